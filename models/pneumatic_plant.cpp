@@ -1,0 +1,69 @@
+#include "models/pneumatic_plant.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace palprig {
+
+namespace {
+constexpr std::size_t kDelayCapacity = 8192;  // enough for 8 s of dead time at 1 kHz
+}
+
+PneumaticPlant::PneumaticPlant(const PlantParams& p) : params_(p), delay_(kDelayCapacity), rng_(p.seed) {
+  auto need = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("PneumaticPlant: ") + what);
+  };
+  need(std::isfinite(p.dead_time_s) && p.dead_time_s >= 0, "dead_time_s must be >= 0");
+  need(std::isfinite(p.time_constant_s) && p.time_constant_s >= 0, "time_constant_s must be >= 0");
+  need(p.slew_kPa_per_s > 0, "slew_kPa_per_s must be > 0");
+  need(std::isfinite(p.min_kPa) && std::isfinite(p.max_kPa) && p.min_kPa < p.max_kPa, "min_kPa < max_kPa");
+  need(p.hysteresis_kPa >= 0 && std::isfinite(p.hysteresis_kPa), "hysteresis_kPa must be >= 0");
+  need(p.noise_sd_kPa >= 0 && std::isfinite(p.noise_sd_kPa), "noise_sd_kPa must be >= 0");
+  reset(p.min_kPa);
+}
+
+void PneumaticPlant::reset(double pressure_kPa) noexcept {
+  output_kPa_ = play_kPa_ = initial_kPa_ = std::clamp(pressure_kPa, params_.min_kPa, params_.max_kPa);
+  time_s_ = 0;
+  head_ = 0;
+  count_ = 0;
+}
+
+double PneumaticPlant::step(double command_kPa, double dt_s) noexcept {
+  if (!std::isfinite(command_kPa)) command_kPa = 0.0;
+  if (!(dt_s > 0) || !std::isfinite(dt_s)) return output_kPa_;
+  const double x = std::clamp(command_kPa, params_.min_kPa, params_.max_kPa);
+  const double r = params_.hysteresis_kPa;
+  play_kPa_ = std::max(x - r, std::min(x + r, play_kPa_));
+
+  // Dead time: push the play output, then read the newest value at least dead_time old.
+  time_s_ += dt_s;
+  const std::size_t cap = delay_.size();
+  delay_[(head_ + count_) % cap] = {time_s_, play_kPa_};
+  if (count_ < cap) ++count_; else head_ = (head_ + 1) % cap;
+  const double due = time_s_ - params_.dead_time_s + 1e-12;
+  while (count_ > 1 && delay_[(head_ + 1) % cap].t_s <= due) {
+    head_ = (head_ + 1) % cap;
+    --count_;
+  }
+  // Until the first command has aged past the dead time the regulator holds its reset value.
+  const double delayed = delay_[head_].t_s <= due ? delay_[head_].value_kPa : initial_kPa_;
+
+  // First-order lag (exact discretisation), then the regulator's slew limit.
+  const double tau = params_.time_constant_s;
+  const double alpha = tau > 0 ? 1.0 - std::exp(-dt_s / tau) : 1.0;
+  double dy = (delayed - output_kPa_) * alpha;
+  const double max_step = params_.slew_kPa_per_s * dt_s;
+  dy = std::clamp(dy, -max_step, max_step);
+  output_kPa_ = std::clamp(output_kPa_ + dy, params_.min_kPa, params_.max_kPa);
+  return output_kPa_;
+}
+
+double PneumaticPlant::monitor_kPa() noexcept {
+  const double v = output_kPa_ + params_.noise_sd_kPa * noise_(rng_);
+  return std::clamp(v, params_.min_kPa, params_.max_kPa);
+}
+
+}  // namespace palprig
