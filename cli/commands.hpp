@@ -1,0 +1,39 @@
+#pragma once
+// One registration function per capability; cli/main.cpp calls them all. Each subcommand is a
+// thin layer: parse arguments, call the library folders, print, return an exit code.
+#include <atomic>
+#include <filesystem>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace palprig::cli {
+
+// Exit codes shared by every subcommand.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFault = 1;      // the rig faulted while running (channels vented)
+inline constexpr int kExitBadInput = 2;   // a file or argument was refused before anything moved
+
+// Set by SIGINT/SIGTERM; loops poll it and vent.
+std::atomic<int>& stop_signal();
+void install_stop_signals();
+
+// End a subcommand with an exit code (CLI11 callbacks return void; main returns this code).
+[[noreturn]] inline void finish(int exit_code) { throw CLI::RuntimeError(exit_code); }
+
+// Where the shipped data (scenes, rigs, traces) lives: $PALPRIG_DATA or the source tree's data/.
+std::filesystem::path data_dir();
+
+}  // namespace palprig::cli
+
+// Registration functions (each defined in its own cli/*_command.cpp).
+void register_run_command(CLI::App& app);
+void register_demo_command(CLI::App& app);
+void register_telemetry_command(CLI::App& app);
+// Capabilities built in parallel; declared weak so the program links while one is absent.
+__attribute__((weak)) void register_stats_command(CLI::App& app);
+__attribute__((weak)) void register_experiment_command(CLI::App& app);
+__attribute__((weak)) void register_export_command(CLI::App& app);
+__attribute__((weak)) void register_sim_rig_command(CLI::App& app);
+__attribute__((weak)) void register_calibrate_command(CLI::App& app);
+__attribute__((weak)) void register_scene_command(CLI::App& app);

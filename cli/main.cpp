@@ -1,0 +1,56 @@
+// palprig: the command line. Subcommands register themselves from cli/*_command.cpp.
+#include <csignal>
+#include <cstdlib>
+#include <iostream>
+
+#include "cli/commands.hpp"
+#include "models/parse_error.hpp"
+
+
+namespace palprig::cli {
+
+std::atomic<int>& stop_signal() {
+  static std::atomic<int> flag{0};
+  return flag;
+}
+
+extern "C" void palprig_on_stop_signal(int sig) { stop_signal().store(sig); }
+
+void install_stop_signals() {
+  std::signal(SIGINT, palprig_on_stop_signal);
+  std::signal(SIGTERM, palprig_on_stop_signal);
+}
+
+std::filesystem::path data_dir() {
+  if (const char* env = std::getenv("PALPRIG_DATA")) return env;
+  return PALPRIG_SOURCE_DATA_DIR;
+}
+
+}  // namespace palprig::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"palprig: drive a pneumatic multi-finger palpation rig and run the studies done on it"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "palprig " PALPRIG_VERSION);
+  register_run_command(app);
+  register_demo_command(app);
+  register_telemetry_command(app);
+  for (auto* reg : {register_stats_command, register_experiment_command, register_export_command,
+                    register_sim_rig_command, register_calibrate_command, register_scene_command})
+    if (reg) reg(app);  // weak: a capability whose file is not in this build is simply absent
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // a subcommand finished with this exit code (see cli::finish)
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : palprig::cli::kExitBadInput;
+  } catch (const palprig::InputError& e) {
+    std::cerr << "palprig: " << e.what() << "\n";
+    return palprig::cli::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "palprig: " << e.what() << "\n";
+    return palprig::cli::kExitFault;
+  }
+  return 0;
+}

@@ -1,0 +1,83 @@
+#include "controller/calibration_file.hpp"
+
+#include "controller/json_file.hpp"
+#include "controller/rig_file.hpp"
+
+namespace palprig {
+
+CalibrationModels load_calibration_file(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  const nlohmann::json doc = read_json_file(path);
+  JsonObject root(doc, file, "");
+  root.require_version(kCalibrationFileVersion);
+  CalibrationModels cal;
+  cal.source = file;
+  cal.rig_id = root.string("rig_id");
+  if (root.has("date")) (void)root.string("date");
+  if (root.has("stress_model")) {
+    const JsonObject s = root.object("stress_model");
+    cal.stress.soft_stress_kPa = s.number("soft_stress_kPa", 0, 1000);
+    cal.stress.hard_stress_kPa = s.number("hard_stress_kPa", 0, 1000);
+    cal.stress.reference_force_N = s.number("reference_force_N", 1e-3, 100);
+    cal.stress.max_force_ratio = s.number_or("max_force_ratio", cal.stress.max_force_ratio, 0.1, 100);
+    if (!(cal.stress.hard_stress_kPa > cal.stress.soft_stress_kPa))
+      s.fail("hard_stress_kPa", "a hard-nodule stress above the soft-tissue stress");
+    s.refuse_unknown();
+  }
+  const auto channels = root.objects("channels");
+  if (channels.size() != kFingerCount)
+    root.fail("channels", "exactly " + std::to_string(kFingerCount) + " channels, got " + std::to_string(channels.size()));
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const JsonObject& ch = channels[i];
+    const JsonObject a = ch.object("actuator");
+    cal.actuators[i].slope = a.number("slope", -1e6, 1e6);
+    cal.actuators[i].intercept_kPa = a.number("intercept_kPa", -1e6, 1e6);
+    if (!(cal.actuators[i].slope > 1e-9))
+      a.fail("slope", "a positive stress-per-pressure slope (a flat or falling fit is degenerate)");
+    if (a.has("r_squared")) (void)a.number("r_squared", -1e9, 1);
+    a.refuse_unknown();
+    if (ch.has("hysteresis")) {
+      const JsonObject h = ch.object("hysteresis");
+      PrandtlIshlinskii& pi = cal.hysteresis[i];
+      pi.linear_weight = h.number("linear_weight", -1e6, 1e6);
+      const auto r = h.numbers("thresholds_kPa", -1e6, 1e6);
+      const auto w = h.numbers("weights", -1e6, 1e6);
+      if (r.size() != w.size()) h.fail("weights", "as many weights as thresholds_kPa (" + std::to_string(r.size()) + ")");
+      if (r.size() > kMaxPlayOperators)
+        h.fail("thresholds_kPa", "at most " + std::to_string(kMaxPlayOperators) + " play operators");
+      pi.operator_count = r.size();
+      for (std::size_t k = 0; k < r.size(); ++k) { pi.thresholds_kPa[k] = r[k]; pi.weights[k] = w[k]; }
+      if (!pi.valid())
+        h.fail("weights", "an invertible model: linear_weight > 0, weights >= 0, thresholds > 0 and increasing");
+      // Fit-quality fields written by calibration are informative here.
+      for (const char* k : {"rms_error_kPa", "r_squared"}) if (h.has(k)) (void)h.number(k, -1e9, 1e9);
+      h.refuse_unknown();
+    }
+    ch.refuse_unknown();
+  }
+  // Sections written by calibration for people and later tools (fit tables, force window)
+  // are kept in the file; the tick does not need them.
+  for (const char* k : {"fits", "force_window", "notes"}) (void)root.has(k);
+  root.refuse_unknown();
+  return cal;
+}
+
+void check_calibration_matches(const CalibrationModels& cal, const std::string& rig_id, const std::string& rig_source) {
+  if (cal.rig_id != "*" && cal.rig_id != rig_id)
+    throw InputError(cal.source, "rig_id",
+                     "the id of the rig in use (\"" + rig_id + "\" from " + rig_source + "), got \"" + cal.rig_id + "\"");
+}
+
+TickConfig make_tick_config(const RigConfig& rig, const CalibrationModels& cal) {
+  TickConfig cfg;
+  cfg.layout = rig.layout;
+  cfg.safety = rig.safety;
+  cfg.contact_force_N = rig.contact_force_N;
+  cfg.stress = cal.stress;
+  cfg.actuators = cal.actuators;
+  for (std::size_t i = 0; i < kFingerCount; ++i)
+    cfg.hysteresis_inverse[i] = cal.hysteresis[i].is_identity() ? PrandtlIshlinskii{} : cal.hysteresis[i].inverse();
+  return cfg;
+}
+
+}  // namespace palprig

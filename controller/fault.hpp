@@ -1,0 +1,34 @@
+#pragma once
+// Why the rig was vented. Stored in every telemetry record and in the run summary.
+#include <cstdint>
+
+namespace palprig {
+
+enum class FaultCode : std::uint8_t {
+  none = 0,
+  bad_sample,        // non-finite or negative pen reading
+  non_finite_target, // a model produced NaN/inf
+  backend_error,     // the rig backend failed to write or read
+  input_stale,       // the pen sample is older than the configured limit
+  overrun_limit,     // too many consecutive missed deadlines
+  signal,            // SIGINT / SIGTERM
+  thread_exception,  // an exception on another thread (writer, I/O, input)
+  operator_stop,     // stopped on purpose (end of run, GUI stop button)
+};
+
+constexpr const char* to_string(FaultCode f) noexcept {
+  switch (f) {
+    case FaultCode::none: return "none";
+    case FaultCode::bad_sample: return "bad pen sample (non-finite or negative force)";
+    case FaultCode::non_finite_target: return "non-finite pressure target";
+    case FaultCode::backend_error: return "rig backend error";
+    case FaultCode::input_stale: return "pen input stale";
+    case FaultCode::overrun_limit: return "too many consecutive deadline overruns";
+    case FaultCode::signal: return "stopped by signal";
+    case FaultCode::thread_exception: return "exception on a worker thread";
+    case FaultCode::operator_stop: return "operator stop";
+  }
+  return "unknown";
+}
+
+}  // namespace palprig

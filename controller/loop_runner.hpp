@@ -1,0 +1,73 @@
+#pragma once
+// The loop runner: calls the tick at a fixed rate against a backend and an input source.
+//   realtime: absolute deadlines on CLOCK_MONOTONIC (no drift), overruns counted and the
+//             schedule resynchronised to the next free period; SCHED_FIFO/mlockall if allowed.
+//   replay:   simulated time, as fast as the machine goes, same tick and same backend calls.
+// Any fault latches in the tick state, every channel is vented and the run ends with the reason.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "controller/input_source.hpp"
+#include "controller/latency_histogram.hpp"
+#include "controller/rig_backend.hpp"
+#include "controller/tick.hpp"
+
+namespace palprig {
+
+enum class LoopMode { realtime, replay };
+
+// Sees every tick's record on the loop thread (the demo's per-tumor table, tests). Must be
+// quick, and must not allocate, lock or throw.
+class TickObserver {
+ public:
+  virtual ~TickObserver() = default;
+  virtual void on_tick(const TelemetryRecord& record) noexcept = 0;
+};
+
+struct RunOptions {
+  double rate_hz = 1000.0;
+  double duration_s = 10.0;
+  LoopMode mode = LoopMode::replay;
+  std::filesystem::path telemetry_path;  // empty: no telemetry file
+  bool want_fifo = true;
+  const std::atomic<int>* stop_signal = nullptr;  // set non-zero by a signal handler to stop (vents)
+  TickObserver* observer = nullptr;
+};
+
+struct RangeStats {
+  double min = 0, max = 0, sum = 0;
+  std::uint64_t n = 0;
+  void add(double v) noexcept {
+    if (n == 0 || v < min) min = v;
+    if (n == 0 || v > max) max = v;
+    sum += v;
+    ++n;
+  }
+  double mean() const noexcept { return n ? sum / double(n) : 0.0; }
+};
+
+struct RunSummary {
+  std::uint64_t ticks = 0;
+  std::uint64_t overruns = 0;
+  std::uint64_t telemetry_dropped = 0;
+  std::array<RangeStats, kFingerCount> target_kPa{};   // what the models asked for
+  std::array<RangeStats, kFingerCount> setpoint_kPa{}; // what went to the backend
+  std::array<RangeStats, kFingerCount> monitor_kPa{};  // what the regulators reported
+  FaultCode fault = FaultCode::none;
+  double fault_t_s = 0;
+  std::string fault_detail;  // the backend's or worker's own message
+  LatencySummary wake_latency;  // realtime only
+  LatencySummary io_time;
+  LatencySummary tick_time;
+  double sim_time_s = 0, wall_time_s = 0;
+  std::string realtime_note;
+  std::string telemetry_path;
+};
+
+RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& input, RigBackend& backend,
+                    const RunOptions& options);
+
+}  // namespace palprig

@@ -1,0 +1,37 @@
+#pragma once
+// One fixed-size record per tick: what the pen did, what each finger read and was commanded,
+// and what the regulators reported. Trivially copyable so it moves through a lock-free queue
+// and is written to the binary telemetry file as is.
+#include <cstdint>
+#include <type_traits>
+
+#include "controller/fault.hpp"
+#include "models/finger_layout.hpp"
+
+namespace palprig {
+
+struct TelemetryRecord {
+  std::uint64_t tick = 0;
+  double t_s = 0;
+  float x_mm = 0, y_mm = 0, force_N = 0;
+  float stiffness[kFingerCount] = {};
+  float target_kPa[kFingerCount] = {};    // pressure the models ask for (before safety)
+  float setpoint_kPa[kFingerCount] = {};  // what was sent to the backend
+  float monitor_kPa[kFingerCount] = {};   // what the regulators reported
+  float wake_latency_us = 0;              // real-time mode: wake-up minus deadline
+  float io_us = 0;                        // time spent in the backend this tick
+  FaultCode fault = FaultCode::none;
+  std::uint8_t flags = 0;                 // TelemetryFlag bits
+};
+
+enum TelemetryFlag : std::uint8_t {
+  kInContact = 1 << 0,
+  kClamped = 1 << 1,   // a target was above p_max and clamped
+  kSlewLimited = 1 << 2,
+  kVented = 1 << 3,
+  kOverrun = 1 << 4,   // this tick finished after the next deadline
+};
+
+static_assert(std::is_trivially_copyable_v<TelemetryRecord>);
+
+}  // namespace palprig

@@ -1,0 +1,61 @@
+#pragma once
+// Telemetry leaves the loop through a lock-free single-producer/single-consumer queue
+// (Boost.Lockfree) and is written by its own thread, as CSV or as a compact binary file
+// ("PALPRIGT" magic, version, record size, then raw TelemetryRecord structs, little-endian)
+// that `palprig telemetry to-csv` converts.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include <boost/lockfree/spsc_queue.hpp>
+
+#include "controller/telemetry.hpp"
+
+
+namespace palprig {
+
+enum class TelemetryFormat { binary, csv };
+
+// Binary when the name ends in .bin or .ptl, CSV otherwise.
+TelemetryFormat telemetry_format_for(const std::filesystem::path& path);
+
+class TelemetryWriter {
+ public:
+  TelemetryWriter(std::filesystem::path path, TelemetryFormat format, std::size_t queue_capacity = 1 << 16);
+  ~TelemetryWriter();
+  TelemetryWriter(const TelemetryWriter&) = delete;
+  TelemetryWriter& operator=(const TelemetryWriter&) = delete;
+
+  // Loop side. try_push never blocks; it returns false when the queue is full (counted).
+  bool try_push(const TelemetryRecord& r) noexcept;
+  // For replays, which must keep every record: waits (yielding) while the queue is full.
+  void push_wait(const TelemetryRecord& r) noexcept;
+  std::uint64_t dropped() const noexcept { return dropped_.load(std::memory_order_relaxed); }
+  // True once the writer thread failed (disk full, ...); the loop treats it as a fault.
+  bool failed() const noexcept { return failed_.load(std::memory_order_acquire); }
+  std::string failure() const;
+  // Drain the queue, close the file, join the thread. Throws if the writer failed.
+  void finish();
+  std::uint64_t written() const noexcept { return written_.load(std::memory_order_relaxed); }
+
+ private:
+  void run() noexcept;
+
+  std::filesystem::path path_;
+  TelemetryFormat format_;
+  std::unique_ptr<boost::lockfree::spsc_queue<TelemetryRecord>> queue_;
+  std::atomic<bool> done_{false}, failed_{false};
+  std::atomic<std::uint64_t> dropped_{0}, written_{0};
+  std::string failure_;
+  std::thread thread_;
+};
+
+void write_telemetry_csv_header(std::ostream& out);
+void write_telemetry_csv_row(std::ostream& out, const TelemetryRecord& r);
+// Convert a binary telemetry file to CSV; throws InputError on a file that is not one.
+std::uint64_t convert_telemetry_to_csv(const std::filesystem::path& binary, const std::filesystem::path& csv);
+
+}  // namespace palprig

@@ -1,0 +1,36 @@
+#pragma once
+// Descriptive statistics of one sample: n, mean, sd, quartiles, IQR.
+//
+// Quantiles follow Hyndman & Fan's types. The default is type 7 (linear interpolation between
+// order statistics at (n-1)p), the default of R's quantile() and numpy.percentile; type 6
+// ((n+1)p, SPSS's "weighted average") is offered because the questionnaire papers (003) report
+// SPSS quartiles.
+#include <span>
+
+namespace palprig::stats {
+
+enum class QuantileRule { r_type6 = 6, r_type7 = 7 };
+
+struct Description {
+  std::size_t n = 0;
+  double mean = 0;
+  double sd = 0;  // sample standard deviation (n - 1 denominator); NaN when n < 2
+  double min = 0, q1 = 0, median = 0, q3 = 0, max = 0;
+  double iqr = 0;  // q3 - q1
+};
+
+// The p-quantile (0 <= p <= 1) of an ascending sorted sample. Throws StatisticsError when empty.
+double quantile_sorted(std::span<const double> sorted, double p, QuantileRule rule = QuantileRule::r_type7);
+
+// Throws StatisticsError when the sample is empty or holds a non-finite value.
+Description describe(std::span<const double> values, QuantileRule rule = QuantileRule::r_type7);
+
+// Mean and sample variance in one pass (Welford's update, stable for large offsets).
+struct MeanVariance {
+  std::size_t n = 0;
+  double mean = 0;
+  double variance = 0;  // n - 1 denominator; 0 when n < 2
+};
+MeanVariance mean_variance(std::span<const double> values) noexcept;
+
+}  // namespace palprig::stats

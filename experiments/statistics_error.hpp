@@ -1,0 +1,15 @@
+#pragma once
+// StatisticsError: a test cannot be computed from the data it was given (too few values, a
+// constant sample, an empty group). The command line turns it into one line naming the file
+// and the column, exit code 2; library callers can catch it like any invalid_argument.
+#include <stdexcept>
+#include <string>
+
+namespace palprig::stats {
+
+class StatisticsError : public std::invalid_argument {
+ public:
+  explicit StatisticsError(const std::string& what) : std::invalid_argument(what) {}
+};
+
+}  // namespace palprig::stats

@@ -1,0 +1,45 @@
+#pragma once
+// Scene: the virtual tissue the fingers touch. The tick asks it, per finger, what is felt at a
+// point for a given pressing force and time. MapScene is paper 002's measured stiffness map;
+// function-based phantoms, layers and arteries implement the same interface.
+#include <string>
+
+#include "models/finger_layout.hpp"
+#include "models/stiffness_map.hpp"
+
+namespace palprig {
+
+struct TissueSample {
+  double stiffness = 0.0;  // normalised 0..1
+  int layer = -1;          // index of the layer felt, -1 when the scene has no layers
+};
+
+struct SceneBounds {
+  double x0_mm = 0, y0_mm = 0, x1_mm = 0, y1_mm = 0;
+};
+
+class Scene {
+ public:
+  virtual ~Scene() = default;
+  // Called three times per tick: must not allocate, lock or throw.
+  virtual TissueSample sample(const Point2_mm& at, double force_N, double t_s) const noexcept = 0;
+  // The region a sweep or a generated case covers.
+  virtual SceneBounds bounds() const noexcept = 0;
+};
+
+class MapScene final : public Scene {
+ public:
+  MapScene(StiffnessMap map, MapSampling sampling) : map_(std::move(map)), sampling_(sampling) {}
+  TissueSample sample(const Point2_mm& at, double, double) const noexcept override {
+    return {map_.sample(at.x_mm, at.y_mm, sampling_), -1};
+  }
+  SceneBounds bounds() const noexcept override { return {0, 0, map_.width_mm(), map_.height_mm()}; }
+  const StiffnessMap& map() const noexcept { return map_; }
+  MapSampling sampling() const noexcept { return sampling_; }
+
+ private:
+  StiffnessMap map_;
+  MapSampling sampling_;
+};
+
+}  // namespace palprig
