@@ -2,6 +2,7 @@
 // published figures of papers 002 and 000.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -64,13 +65,22 @@ TEST(experiments_ttest, paper_002_response_times_from_rounded_summaries) {
 }
 
 TEST(experiments_ttest, paper_000_paired_t_table_3) {
-  struct Row { double t, df, p; };
-  // Published two-sided p to 3 decimals.
-  const Row rows[] = {{-2.615, 22, .016}, {-2.955, 22, .007}, {-1.779, 22, .089}, {-1.351, 22, .191},
-                      {-3.7, 16, .002},   {-3.816, 16, .002}, {-0.347, 16, .733}, {-1.247, 16, .230}};
-  for (const Row& row : rows) EXPECT_NEAR(two_sided_t_p(row.t, row.df), row.p, 0.0005) << row.t;
+  // Published t (rounded to the digits shown: half_step is half its last digit) and two-sided p
+  // to 3 decimals: the reported p must lie within our p over the t rounding interval, widened
+  // by the p rounding.
+  struct Row { double t, half_step, df, p; };
+  const Row rows[] = {{-2.615, 5e-4, 22, .016}, {-2.955, 5e-4, 22, .007}, {-1.779, 5e-4, 22, .089},
+                      {-1.351, 5e-4, 22, .191}, {-3.7, 5e-2, 16, .002},   {-3.816, 5e-4, 16, .002},
+                      {-0.347, 5e-4, 16, .733}, {-1.247, 5e-4, 16, .230}};
+  for (const Row& row : rows) {
+    const double p_low = two_sided_t_p(std::fabs(row.t) + row.half_step, row.df);
+    const double p_high = two_sided_t_p(std::fabs(row.t) - row.half_step, row.df);
+    EXPECT_LE(p_low - 0.0005, row.p) << row.t;
+    EXPECT_GE(p_high + 0.0005, row.p) << row.t;
+  }
   // And to full precision against mpmath.
   EXPECT_NEAR(two_sided_t_p(-2.615, 22), 0.015810820215038407, 1e-14);
+  EXPECT_NEAR(two_sided_t_p(-1.351, 22), 0.1904273846140652, 1e-13);
   EXPECT_NEAR(two_sided_t_p(-3.7, 16), 0.0019423664304346924, 1e-14);
 }
 
