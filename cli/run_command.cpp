@@ -55,6 +55,7 @@ nlohmann::json summary_json(const RunSummary& s, const LoadedRun& run, const Run
       {"rate_hz", opt.rate_hz},
       {"ticks", s.ticks},
       {"overruns", s.overruns},
+      {"missed_periods", s.missed_periods},
       {"sim_time_s", s.sim_time_s},
       {"wall_time_s", s.wall_time_s},
       {"speedup", s.wall_time_s > 0 ? s.sim_time_s / s.wall_time_s : 0.0},
@@ -84,7 +85,7 @@ void print_summary(std::ostream& out, const RunSummary& s, const LoadedRun& run,
   out << "  " << s.ticks << " ticks at " << opt.rate_hz << " Hz, " << std::fixed << std::setprecision(3)
       << s.sim_time_s << " s simulated in " << s.wall_time_s << " s wall ("
       << std::setprecision(0) << (s.wall_time_s > 0 ? s.sim_time_s / s.wall_time_s : 0) << "x), overruns "
-      << s.overruns << "\n";
+      << s.overruns << " (" << s.missed_periods << " periods skipped)\n";
   out << std::setprecision(2);
   out << "  finger   target kPa min/mean/max      plant kPa min/mean/max\n";
   for (int i = 0; i < kFingerCount; ++i)

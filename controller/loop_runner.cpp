@@ -108,7 +108,9 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
         if (++consecutive_overruns > config.safety.max_consecutive_overruns) state.enter_fault(FaultCode::overrun_limit);
         // Resynchronise to the next period still in the future: missed periods are skipped,
         // never run late in a burst, and the schedule keeps its original phase (no drift).
-        k = static_cast<std::uint64_t>((now - start_ns) / period_ns) + 1;
+        const auto resume = static_cast<std::uint64_t>((now - start_ns) / period_ns) + 1;
+        sum.missed_periods += resume - k;
+        k = resume;
       } else {
         consecutive_overruns = 0;
       }

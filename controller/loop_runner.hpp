@@ -51,7 +51,8 @@ struct RangeStats {
 
 struct RunSummary {
   std::uint64_t ticks = 0;
-  std::uint64_t overruns = 0;
+  std::uint64_t overruns = 0;        // ticks that finished after the next deadline
+  std::uint64_t missed_periods = 0;  // periods skipped to resynchronise after overruns
   std::uint64_t telemetry_dropped = 0;
   std::array<RangeStats, kFingerCount> target_kPa{};   // what the models asked for
   std::array<RangeStats, kFingerCount> setpoint_kPa{}; // what went to the backend

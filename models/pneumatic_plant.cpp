@@ -39,9 +39,11 @@ double PneumaticPlant::step(double command_kPa, double dt_s) noexcept {
   play_kPa_ = std::max(x - r, std::min(x + r, play_kPa_));
 
   // Dead time: push the play output, then read the newest value at least dead_time old.
-  time_s_ += dt_s;
+  // The command is stamped with the time it was given (the start of this step) and is felt
+  // dead_time later.
   const std::size_t cap = delay_.size();
   delay_[(head_ + count_) % cap] = {time_s_, play_kPa_};
+  time_s_ += dt_s;
   if (count_ < cap) ++count_; else head_ = (head_ + 1) % cap;
   const double due = time_s_ - params_.dead_time_s + 1e-12;
   while (count_ > 1 && delay_[(head_ + 1) % cap].t_s <= due) {

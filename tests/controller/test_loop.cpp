@@ -1,0 +1,183 @@
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <fstream>
+#include <thread>
+
+#include "controller/loop_runner.hpp"
+#include "controller/simulated_rig.hpp"
+#include "controller/telemetry_writer.hpp"
+#include "models/parse_error.hpp"
+#include "tests/support/temp_dir.hpp"
+
+using namespace palprig;
+using palprig::test_support::TempDir;
+
+namespace {
+
+MapScene hard_right_scene() {
+  std::vector<float> v(11 * 11);
+  for (int r = 0; r < 11; ++r)
+    for (int c = 0; c < 11; ++c) v[r * 11 + c] = c >= 6 ? 1.0f : 0.0f;
+  return MapScene(StiffnessMap(11, 11, 100, 100, v), MapSampling::nearest);
+}
+
+std::array<PlantParams, kFingerCount> quiet_plants() {
+  PlantParams p;
+  p.noise_sd_kPa = 0;
+  p.hysteresis_kPa = 0;
+  return {p, p, p};
+}
+
+// A pen resting at one place, pressing 2 N.
+class RestingPen final : public InputSource {
+ public:
+  RestingPen(double x, double y) : x_(x), y_(y) {}
+  TouchSample latest(double t) noexcept override { return {t, x_, y_, 2.0, true}; }
+  double duration_s() const noexcept override { return 0; }
+  std::string describe() const override { return "resting pen"; }
+
+ private:
+  double x_, y_;
+};
+
+// A backend that fails on the n-th write, to see the loop vent and stop.
+class FailingRig final : public RigBackend {
+ public:
+  explicit FailingRig(int fail_at) : RigBackend(60), fail_at_(fail_at) {}
+  void open() override {}
+  void close() noexcept override {}
+  std::string describe() const override { return "failing"; }
+  int vents = 0, writes = 0;
+  ChannelPressures last{};
+
+ protected:
+  BackendStatus do_write(const ChannelPressures& p, double) noexcept override {
+    last = p;
+    if (++writes == fail_at_) {
+      set_error("bus timeout on channel 2");
+      return BackendStatus::error;
+    }
+    return BackendStatus::ok;
+  }
+  BackendStatus do_read(ChannelPressures& m, double) noexcept override {
+    m = last;
+    return BackendStatus::ok;
+  }
+  BackendStatus do_vent() noexcept override {
+    ++vents;
+    last = {};
+    return BackendStatus::ok;
+  }
+
+ private:
+  int fail_at_;
+};
+
+}  // namespace
+
+TEST(LoopRunner, ReplayDrivesThePlantToTheTarget) {
+  const auto scene = hard_right_scene();
+  TickConfig cfg;
+  SimulatedRig rig(quiet_plants(), 60);
+  rig.open();
+  RestingPen pen(50, 20);  // finger 1 over hard tissue
+  RunOptions opt;
+  opt.duration_s = 1.0;
+  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  EXPECT_EQ(s.ticks, 1000u);
+  EXPECT_EQ(s.fault, FaultCode::none);
+  EXPECT_NEAR(s.target_kPa[1].max, 11.75, 1e-4);
+  EXPECT_NEAR(s.monitor_kPa[1].max, 11.75, 0.05);  // settled after 1 s with a 50 ms lag
+  EXPECT_NEAR(s.monitor_kPa[0].max, 0.0, 1e-9);
+  EXPECT_EQ(rig.plant_output_kPa(1), rig.plant_output_kPa(1));
+}
+
+TEST(LoopRunner, BackendErrorVentsAndStopsWithTheReason) {
+  const auto scene = hard_right_scene();
+  TickConfig cfg;
+  FailingRig rig(100);
+  RestingPen pen(50, 20);
+  RunOptions opt;
+  opt.duration_s = 1.0;
+  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  EXPECT_EQ(s.fault, FaultCode::backend_error);
+  EXPECT_EQ(s.fault_detail, "bus timeout on channel 2");
+  EXPECT_EQ(s.ticks, 100u);
+  EXPECT_GE(rig.vents, 1);
+  EXPECT_EQ(rig.last, (ChannelPressures{0, 0, 0}));
+}
+
+TEST(LoopRunner, StopSignalVents) {
+  const auto scene = hard_right_scene();
+  TickConfig cfg;
+  SimulatedRig rig(quiet_plants(), 60);
+  rig.open();
+  RestingPen pen(50, 20);
+  std::atomic<int> stop{15};
+  RunOptions opt;
+  opt.duration_s = 1.0;
+  opt.stop_signal = &stop;
+  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  EXPECT_EQ(s.fault, FaultCode::signal);
+  EXPECT_EQ(s.ticks, 1u);
+  EXPECT_EQ(s.setpoint_kPa[1].max, 0.0);  // vented from the first tick on
+}
+
+TEST(LoopRunner, RealtimeModeRunsOnTheClock) {
+  // Timing is not asserted (benchmarks measure it); this checks the mode works and reports.
+  const auto scene = hard_right_scene();
+  TickConfig cfg;
+  cfg.safety.max_consecutive_overruns = 1000000;  // a loaded CI machine must not fault this
+  SimulatedRig rig(quiet_plants(), 60);
+  rig.open();
+  RestingPen pen(50, 20);
+  RunOptions opt;
+  opt.mode = LoopMode::realtime;
+  opt.rate_hz = 500;
+  opt.duration_s = 0.2;
+  opt.want_fifo = false;
+  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  EXPECT_EQ(s.fault, FaultCode::none);
+  EXPECT_EQ(s.ticks + s.missed_periods, 100u);  // every period either ran or was skipped
+  EXPECT_NEAR(s.sim_time_s, 0.2, 1e-9);
+  EXPECT_GT(s.wake_latency.count, 0u);
+  EXPECT_GE(s.wall_time_s, 0.19);
+}
+
+TEST(LoopRunner, BinaryTelemetryRoundTripsThroughCsv) {
+  TempDir dir;
+  const auto scene = hard_right_scene();
+  TickConfig cfg;
+  SimulatedRig rig(quiet_plants(), 60);
+  rig.open();
+  RestingPen pen(50, 20);
+  RunOptions opt;
+  opt.duration_s = 0.5;
+  opt.telemetry_path = dir.path() / "t.bin";
+  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  EXPECT_EQ(s.telemetry_dropped, 0u);
+  EXPECT_EQ(std::filesystem::file_size(opt.telemetry_path), 16 + 500 * sizeof(TelemetryRecord));
+  EXPECT_EQ(convert_telemetry_to_csv(opt.telemetry_path, dir.path() / "t.csv"), 500u);
+  std::ifstream csv(dir.path() / "t.csv");
+  std::string header, first, line, last;
+  std::getline(csv, header);
+  std::getline(csv, first);
+  while (std::getline(csv, line)) last = line;
+  EXPECT_EQ(header.rfind("tick,t_s,x_mm,y_mm,force_N,stiffness_1", 0), 0u);
+  EXPECT_EQ(first.rfind("0,0.000000,50.000,20.000,2.0000", 0), 0u);
+  EXPECT_EQ(last.rfind("499,0.499000", 0), 0u);
+  EXPECT_THROW(convert_telemetry_to_csv(dir.path() / "t.csv", dir.path() / "x.csv"), InputError);
+}
+
+TEST(LatencyHistogram, Percentiles) {
+  LatencyHistogram h;
+  for (int i = 0; i < 1000; ++i) h.record(i < 990 ? 10.5 : 500.0);
+  const auto s = h.summary();
+  EXPECT_EQ(s.count, 1000u);
+  EXPECT_EQ(s.p50_us, 11.0);
+  EXPECT_EQ(s.p99_us, 11.0);
+  EXPECT_EQ(s.p999_us, 500.0);
+  EXPECT_EQ(s.max_us, 500.0);
+}

@@ -1,0 +1,77 @@
+// The main job through the real palprig program: replay end to end, bad files refused with
+// exit 2 before anything moves, and the demo.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/support/run_process.hpp"
+
+using namespace palprig::test_support;
+
+namespace {
+std::string data(const std::string& rel) { return source_dir() + "/data/" + rel; }
+}  // namespace
+
+TEST(RunCommand, ReplayOfTheBundledTraceGivesTheSummaryAsJson) {
+  TempDir dir;
+  const auto telemetry = dir.path() / "tel.csv";
+  const ProcessResult r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") +
+                                      " --input trace:" + data("traces/phantom_abc_pass.csv") + " --rig " +
+                                      data("rigs/simulated.json") + " --rate-hz 1000 --replay --json --telemetry " +
+                                      telemetry.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["ticks"], 13290);  // the trace lasts 13.29 s
+  EXPECT_EQ(j["overruns"], 0);
+  EXPECT_TRUE(j["fault"].is_null());
+  EXPECT_NEAR(j["target_kPa"][0]["max"].get<double>(), 11.75, 0.01);  // the pen passes over tumor centres
+  EXPECT_LE(j["setpoint_kPa"][0]["max"].get<double>(), 60.0);
+  EXPECT_GT(j["plant_kPa"][0]["max"].get<double>(), 8.0);
+  EXPECT_EQ(j["telemetry"], telemetry.string());
+  // One CSV row per tick plus the header.
+  const std::string tel = read_file(telemetry);
+  EXPECT_EQ(std::count(tel.begin(), tel.end(), '\n'), 13291);
+}
+
+TEST(RunCommand, TextSummaryNamesTicksFingersAndFaults) {
+  const ProcessResult r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") +
+                                      " --input sweep --duration-s 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("2000 ticks at 1000 Hz"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("finger   target kPa"), std::string::npos);
+  EXPECT_NE(r.out.find("faults: none"), std::string::npos);
+}
+
+TEST(RunCommand, BadFilesStopBeforeAnythingMovesWithExitTwo) {
+  TempDir dir;
+  const auto bad_rig = dir.write("rig.json", R"({"version": 1, "id": "x", "safety": {"p_max_kPa": 5000}})");
+  const auto telemetry = dir.path() / "never.csv";
+  ProcessResult r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") + " --rig " +
+                                bad_rig.string() + " --telemetry " + telemetry.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "palprig: " + bad_rig.string() + ": safety.p_max_kPa: a number in 1..1000, got 5000\n");
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_FALSE(std::filesystem::exists(telemetry));  // nothing started
+
+  const auto bad_trace = dir.write("t.csv", "t_s,x_mm,y_mm,force_N\n0,1,1,1\n0.5,2,2,nan\n");
+  r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") + " --input trace:" +
+                  bad_trace.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "palprig: " + bad_trace.string() + ": line 3, force_N: a finite number, got 'nan'\n");
+
+  r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") + " --input joystick");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "palprig: --input: joystick: trace:FILE or sweep\n");
+}
+
+TEST(DemoCommand, TumorsFeelHarderThanSoftTissue) {
+  TempDir dir;
+  const ProcessResult r = run_process(palprig_bin() + " demo --json --out " + dir.path().string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["tumors_feel_harder"].get<bool>());
+  ASSERT_EQ(j["regions"].size(), 4u);
+  const double soft = j["regions"][3]["target_kPa_mean"];
+  for (int t = 0; t < 3; ++t) EXPECT_GT(j["regions"][t]["target_kPa_mean"].get<double>(), soft + 5.0);
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "telemetry.csv"));
+}
