@@ -1,0 +1,116 @@
+// Tick cost and replay throughput (issue 2 goals: tick p99 <= 2 us with 3 fingers on a
+// 4096 x 4096 map; replay >= 1000x real time at 1 kHz).
+//   build/bin/bench_tick                      all benchmarks
+// Per-tick percentiles are reported as counters (p50_ns, p99_ns, p999_ns), each tick timed on
+// CLOCK_MONOTONIC around the tick call (the clock read itself costs ~20 ns and is included).
+#include <benchmark/benchmark.h>
+#include <time.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "controller/calibration_file.hpp"
+#include "controller/loop_runner.hpp"
+#include "controller/rig_file.hpp"
+#include "controller/scene_file.hpp"
+#include "controller/simulated_rig.hpp"
+#include "controller/tick.hpp"
+
+using namespace palprig;
+
+namespace {
+
+std::int64_t now_ns() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+const MapScene& big_scene(MapSampling sampling) {
+  static std::vector<float> values = [] {
+    std::vector<float> v(4096u * 4096u);
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    for (auto& x : v) x = u(rng);
+    return v;
+  }();
+  static MapScene nearest(StiffnessMap(4096, 4096, 400.0, 400.0, values), MapSampling::nearest);
+  static MapScene bilinear(StiffnessMap(4096, 4096, 400.0, 400.0, values), MapSampling::bilinear);
+  return sampling == MapSampling::nearest ? nearest : bilinear;
+}
+
+// A pen wandering over the whole map (a new place each tick: the worst case for the cache)
+// or moving like a hand (40 mm/s).
+void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering) {
+  const MapScene& scene = big_scene(sampling);
+  TickConfig cfg;
+  TickState st = make_tick_state(cfg);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> pos(0, 400);
+  const std::size_t n_samples = 1 << 16;
+  std::vector<TouchSample> samples(n_samples);
+  for (std::size_t i = 0; i < n_samples; ++i) {
+    const double t = double(i) * 1e-3;
+    samples[i] = wandering ? TouchSample{t, pos(rng), pos(rng), 2.0, true}
+                           : TouchSample{t, 20 + std::fmod(40 * t, 360), 200 + 50 * std::sin(t), 2.0, true};
+  }
+  std::vector<std::int64_t> ns;
+  ns.reserve(4'000'000);
+  std::size_t i = 0;
+  double t = 0;
+  for (auto _ : state) {
+    const TouchSample& s0 = samples[i++ & (n_samples - 1)];
+    TouchSample s = s0;
+    s.t_s = t;
+    const std::int64_t a = now_ns();
+    TickResult r = tick(st, cfg, scene, s, t);
+    const std::int64_t b = now_ns();
+    benchmark::DoNotOptimize(r);
+    if (ns.size() < ns.capacity()) ns.push_back(b - a);
+    t += 1e-3;
+  }
+  std::sort(ns.begin(), ns.end());
+  auto pct = [&](double q) { return ns.empty() ? 0.0 : double(ns[std::min(ns.size() - 1, std::size_t(q * ns.size()))]); };
+  state.counters["p50_ns"] = pct(0.50);
+  state.counters["p99_ns"] = pct(0.99);
+  state.counters["p999_ns"] = pct(0.999);
+  state.counters["max_ns"] = ns.empty() ? 0.0 : double(ns.back());
+}
+
+void BM_TickNearestWandering(benchmark::State& s) { tick_cost(s, MapSampling::nearest, true); }
+void BM_TickBilinearWandering(benchmark::State& s) { tick_cost(s, MapSampling::bilinear, true); }
+void BM_TickNearestHandSpeed(benchmark::State& s) { tick_cost(s, MapSampling::nearest, false); }
+BENCHMARK(BM_TickNearestWandering);
+BENCHMARK(BM_TickBilinearWandering);
+BENCHMARK(BM_TickNearestHandSpeed);
+
+// Replay: the bundled phantom swept for 60 s of loop time at 1 kHz on the simulated rig.
+void BM_Replay60s(benchmark::State& state) {
+  const bool with_telemetry = state.range(0) != 0;
+  const std::filesystem::path data = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
+  const SceneFile scene = load_scene_file(data / "scenes" / "phantom_abc.json");
+  const RigConfig rig = load_rig_file(data / "rigs" / "simulated.json");
+  const TickConfig cfg = make_tick_config(rig, CalibrationModels{});
+  double speedup_sum = 0;
+  int runs = 0;
+  for (auto _ : state) {
+    SimulatedRig backend(rig.plants, rig.safety.p_max_kPa);
+    backend.open();
+    SweepInput sweep(scene.scene->bounds(), SweepPlan{});
+    RunOptions opt;
+    opt.duration_s = 60;
+    opt.mode = LoopMode::replay;
+    if (with_telemetry) opt.telemetry_path = std::filesystem::temp_directory_path() / "palprig-bench-telemetry.bin";
+    const RunSummary s = run_loop(cfg, *scene.scene, sweep, backend, opt);
+    speedup_sum += s.sim_time_s / s.wall_time_s;
+    ++runs;
+  }
+  state.counters["x_realtime"] = speedup_sum / runs;
+  state.counters["ticks_per_s"] = benchmark::Counter(60000.0 * runs, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Replay60s)->Arg(0)->Arg(1)->ArgNames({"telemetry_bin"})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
