@@ -2,6 +2,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
@@ -10,6 +11,7 @@
 
 #include "controller/realtime.hpp"
 #include "controller/telemetry_writer.hpp"
+#include "controller/worker_fault.hpp"
 
 namespace palprig {
 
@@ -55,6 +57,7 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
   }
   char fault_detail[256] = {0};
   int consecutive_overruns = 0;
+  bool was_linked = true;
 
   const auto wall_start = Clock::now();
   const std::int64_t start_ns = mono_ns() + period_ns;  // first deadline one period from now
@@ -70,9 +73,23 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
     }
     if (opt.stop_signal && opt.stop_signal->load(std::memory_order_relaxed) != 0) state.enter_fault(FaultCode::signal);
     if (telemetry && telemetry->failed()) state.enter_fault(FaultCode::thread_exception);
+    if (state.fault == FaultCode::none && worker_fault_pending(fault_detail, sizeof fault_detail))
+      state.enter_fault(FaultCode::thread_exception);
+    // A backend whose link dropped is vented and reconnecting: run the tick as if the pen were
+    // lifted, so its setpoints fall to 0 and rise again under the slew limit once it is back.
+    const bool linked = backend.linked();
+    if (!linked) {
+      ++sum.unlinked_ticks;
+      if (was_linked) ++sum.link_outages;
+    }
+    was_linked = linked;
 
     const std::int64_t tick_start = mono_ns();
-    const TouchSample sample = input.latest(t_s);
+    TouchSample sample = input.latest(t_s);
+    if (!linked) {
+      sample.force_N = 0;
+      sample.in_contact = false;
+    }
     TickResult r = tick(state, config, scene, sample, t_s);
 
     const std::int64_t io_start = mono_ns();
@@ -96,6 +113,11 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       sum.monitor_kPa[i].add(monitor[i]);
     }
     r.record.fault = state.fault;
+    if (!linked && state.fault == FaultCode::none) {
+      // The alarm: not latched, the run goes on vented and resumes when the link returns.
+      r.record.fault = FaultCode::backend_error;
+      r.record.flags |= kVented;
+    }
     ++sum.ticks;
     ++k;
 
@@ -108,7 +130,8 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
         if (++consecutive_overruns > config.safety.max_consecutive_overruns) state.enter_fault(FaultCode::overrun_limit);
         // Resynchronise to the next period still in the future: missed periods are skipped,
         // never run late in a burst, and the schedule keeps its original phase (no drift).
-        const auto resume = static_cast<std::uint64_t>((now - start_ns) / period_ns) + 1;
+        const auto resume =
+            std::min(total_ticks, static_cast<std::uint64_t>((now - start_ns) / period_ns) + 1);
         sum.missed_periods += resume - k;
         k = resume;
       } else {

@@ -6,6 +6,7 @@
 // Any fault latches in the tick state, every channel is vented and the run ends with the reason.
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -41,6 +42,7 @@ struct RangeStats {
   double min = 0, max = 0, sum = 0;
   std::uint64_t n = 0;
   void add(double v) noexcept {
+    if (!std::isfinite(v)) return;  // a monitor with no reading (link down) is not a value
     if (n == 0 || v < min) min = v;
     if (n == 0 || v > max) max = v;
     sum += v;
@@ -54,6 +56,8 @@ struct RunSummary {
   std::uint64_t overruns = 0;        // ticks that finished after the next deadline
   std::uint64_t missed_periods = 0;  // periods skipped to resynchronise after overruns
   std::uint64_t telemetry_dropped = 0;
+  std::uint64_t link_outages = 0;    // times the backend's link dropped (alarm, vented, reconnecting)
+  std::uint64_t unlinked_ticks = 0;  // ticks run while it was down
   std::array<RangeStats, kFingerCount> target_kPa{};   // what the models asked for
   std::array<RangeStats, kFingerCount> setpoint_kPa{}; // what went to the backend
   std::array<RangeStats, kFingerCount> monitor_kPa{};  // what the regulators reported

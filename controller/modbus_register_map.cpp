@@ -155,7 +155,8 @@ ModbusRigConfig parse_modbus_config(const RigConfig& rig) {
   if (!channels.is_array())
     throw InputError(rig.source, "channels", "an array of " + std::to_string(kFingerCount) +
                                                  " channel objects with \"output\" and \"monitor\" registers");
-  const JsonObject root(nlohmann::json{{"channels", channels}}, rig.source, "");
+  const nlohmann::json channels_doc = {{"channels", channels}};  // JsonObject keeps a pointer: keep it alive
+  const JsonObject root(channels_doc, rig.source, "");
   const auto ch = root.objects("channels");  // rig_file already checked the count
   std::set<std::size_t> used_links;
   for (std::size_t i = 0; i < kFingerCount; ++i) {
@@ -167,7 +168,6 @@ ModbusRigConfig parse_modbus_config(const RigConfig& rig) {
     used_links.insert(c.output.link);
     used_links.insert(c.monitor.link);
 
-    const std::string out_path = "output";
     const JsonObject out = ch[i].object("output");
     const RegisterScale& s = c.output.scale;
     const double v0 = s.regulator.volts(0.0), vmax = s.regulator.volts(cfg.p_max_kPa);

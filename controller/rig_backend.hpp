@@ -36,8 +36,24 @@ class RigBackend {
   // All channels to 0 kPa. Safe to call repeatedly and after errors.
   BackendStatus vent() noexcept;
 
+  // Whether commands currently reach the regulators. A backend whose link can drop and come back
+  // (Modbus) returns false while it is vented and reconnecting; the loop then raises an alarm in
+  // telemetry instead of stopping. In-process and directly attached backends are always linked.
+  virtual bool linked() const noexcept { return true; }
+
   double p_max_kPa() const noexcept { return p_max_kPa_; }
   const char* last_error() const noexcept { return last_error_; }
+
+  // Optional sensor per channel (actuator deformation or fingertip force) that calibration
+  // sweeps record beside the monitors. A backend with one returns its name with the unit
+  // (e.g. "deformation_mm") and overrides read_sensors; the defaults mean "no sensor".
+  virtual const char* sensor_name() const noexcept { return nullptr; }
+  virtual BackendStatus read_sensors(std::array<double, kFingerCount>& value, double t_s) noexcept {
+    (void)value;
+    (void)t_s;
+    set_error("this rig has no sensor channel");
+    return BackendStatus::error;
+  }
 
  protected:
   virtual BackendStatus do_write(const ChannelPressures& setpoint_kPa, double t_s) noexcept = 0;

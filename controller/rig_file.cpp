@@ -71,6 +71,7 @@ static RigConfig parse_rig(const nlohmann::json& doc, const std::string& file) {
     if (root.has("channels")) rig.backend_section["channels"] = root.raw("channels");
   }
   root.refuse_unknown();
+  validate_backend_section(rig);  // a bad register map or DAQ section is refused at load
   return rig;
 }
 

@@ -36,6 +36,10 @@ RigConfig default_rig();
 class JsonObject;
 PlantParams parse_plant(const JsonObject& obj, const PlantParams& base);
 
+// Validate the section of a hardware backend (register map, DAQ channels); throws InputError.
+// load_rig_file calls it, so a bad map is refused before anything is opened.
+void validate_backend_section(const RigConfig& rig);
+
 // Open the backend the rig file names. Throws InputError for a bad backend section and
 // std::runtime_error when the device cannot be reached.
 std::unique_ptr<RigBackend> make_backend(const RigConfig& rig);
