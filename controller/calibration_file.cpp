@@ -49,6 +49,12 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
       for (std::size_t k = 0; k < r.size(); ++k) { pi.thresholds_kPa[k] = r[k]; pi.weights[k] = w[k]; }
       if (!pi.valid())
         h.fail("weights", "an invertible model: linear_weight > 0, weights >= 0, thresholds > 0 and increasing");
+      // A regulator's output follows its command about one to one; a gain far from it is a
+      // degenerate fit (or a model in other units) that would drive the inverse wild.
+      double gain = pi.linear_weight;
+      for (std::size_t k = 0; k < pi.operator_count; ++k) gain += pi.weights[k];
+      if (!(gain >= 0.2 && gain <= 5.0))
+        h.fail("weights", "a model of gain near 1 (linear_weight + sum of weights in 0.2..5), got " + std::to_string(gain));
       // Fit-quality fields written by calibration are informative here.
       for (const char* k : {"rms_error_kPa", "r_squared"}) if (h.has(k)) (void)h.number(k, -1e9, 1e9);
       h.refuse_unknown();
@@ -57,7 +63,22 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
   }
   // Sections written by calibration for people and later tools (fit tables, force window)
   // are kept in the file; the tick does not need them.
-  for (const char* k : {"fits", "force_window", "notes"}) (void)root.has(k);
+  for (const char* k : {"fits", "notes"}) (void)root.has(k);
+  if (root.has("force_window")) {
+    const JsonObject f = root.object("force_window");
+    MeasuredForceWindow w;
+    w.f_min_N = f.number("f_min_N", 0, 1000);
+    w.f_max_N = f.number("f_max_N", 0, 1000);
+    w.diastolic_mmHg = f.number_or("diastolic_mmHg", w.diastolic_mmHg, 1, 400);
+    w.systolic_mmHg = f.number_or("systolic_mmHg", w.systolic_mmHg, 1, 400);
+    if (!(w.f_max_N > w.f_min_N)) f.fail("f_max_N", "a force above f_min_N (the systolic press above the diastolic)");
+    if (!(w.systolic_mmHg > w.diastolic_mmHg)) f.fail("systolic_mmHg", "a reference above diastolic_mmHg");
+    // How the window was measured, kept for people: spread and number of presses.
+    for (const char* k : {"f_min_sd_N", "f_max_sd_N"}) (void)f.number_or(k, 0, 0, 1000);
+    for (const char* k : {"presses_min", "presses_max"}) (void)f.integer_or(k, 0, 0, 1000000);
+    f.refuse_unknown();
+    cal.force_window = w;
+  }
   root.refuse_unknown();
   return cal;
 }
@@ -77,6 +98,9 @@ TickConfig make_tick_config(const RigConfig& rig, const CalibrationModels& cal) 
   cfg.actuators = cal.actuators;
   for (std::size_t i = 0; i < kFingerCount; ++i)
     cfg.hysteresis_inverse[i] = cal.hysteresis[i].is_identity() ? PrandtlIshlinskii{} : cal.hysteresis[i].inverse();
+  // The pulse stage pre-compensates each regulator's lag as the rig file's plant describes it.
+  for (std::size_t i = 0; i < kFingerCount; ++i)
+    cfg.pulse.lag[i] = {rig.plants[i].dead_time_s, rig.plants[i].time_constant_s, rig.plants[i].slew_kPa_per_s};
   return cfg;
 }
 

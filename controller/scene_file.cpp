@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "controller/function_scene_file.hpp"
 #include "controller/json_file.hpp"
 
 namespace palprig {
@@ -24,8 +25,12 @@ SceneFile load_scene_file(const std::filesystem::path& path) {
   SceneFile out;
   out.source = file;
   out.name = root.string_or("name", path.stem().string());
-  const std::string kind = root.choice_or("kind", "map", {"map"});
+  const std::string kind = root.choice_or("kind", "map", {"map", "function"});
   (void)root.string_or("description", "");
+  if (kind == "function") {  // a tissue block described by functions, with arteries
+    load_function_scene(root, path, out);
+    return out;
+  }
 
   const JsonObject m = root.object("map");
   const std::string map_name = m.string("file");

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "controller/pulse_stage.hpp"
+
 namespace palprig {
 
 TickState make_tick_state(const TickConfig& config) noexcept {
@@ -70,6 +72,8 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   rec.force_N = static_cast<float>(sample.force_N);
 
   ChannelPressures target{};
+  std::array<Point2_mm, kFingerCount> fingers{};
+  bool pressed = false;
   const bool sample_ok = std::isfinite(sample.x_mm) && std::isfinite(sample.y_mm) &&
                          std::isfinite(sample.force_N) && sample.force_N >= 0 && std::isfinite(sample.t_s);
   if (!sample_ok) {
@@ -78,7 +82,8 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
     state.enter_fault(FaultCode::input_stale);
   } else if (sample.in_contact && sample.force_N >= config.contact_force_N) {
     rec.flags |= kInContact;
-    const auto fingers = config.layout.centres(sample.x_mm, sample.y_mm);
+    pressed = true;
+    fingers = config.layout.centres(sample.x_mm, sample.y_mm);
     const double ratio = config.stress.force_ratio(sample.force_N);
     for (std::size_t i = 0; i < kFingerCount; ++i) {
       const TissueSample felt = scene.sample(fingers[i], sample.force_N, t_s);
@@ -86,6 +91,12 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
       const double stress_kPa = config.stress.target_stress_kPa(felt.stiffness, sample.force_N);
       target[i] = config.actuators[i].pressure_kPa(stress_kPa, ratio);
     }
+  }
+  // Scenes without arteries (maps) skip this entirely.
+  if (const PulseField* arteries = scene.pulse()) {
+    const double dt_s = state.started ? t_s - state.last_t_s : 0.0;
+    apply_pulse_stage(state.pulse, config.pulse, config.safety, *arteries, pressed, fingers, sample.force_N, t_s, dt_s,
+                      target, out.pulse_kPa);
   }
   finish(state, config, target, t_s, out);
   return out;

@@ -4,6 +4,7 @@
 // exceptions, so tests and replays run it directly.
 //
 //   sample -> FingerLayout -> Scene::sample -> StressModel -> ActuatorModel
+//          [-> + pulse (scenes with arteries only; controller/pulse_stage.hpp)]
 //          -> HysteresisInverse -> Safety (clamp, slew, vent) -> setpoints + telemetry
 //
 // Experiments that present fixed per-finger pressures use tick_direct(), which enters at the
@@ -16,6 +17,7 @@
 #include "controller/touch_sample.hpp"
 #include "models/finger_layout.hpp"
 #include "models/hysteresis.hpp"
+#include "models/pulse_renderer.hpp"
 #include "models/scene.hpp"
 #include "models/stress_model.hpp"
 
@@ -36,6 +38,8 @@ struct TickConfig {
   std::array<PrandtlIshlinskii, kFingerCount> hysteresis_inverse{};
   SafetyLimits safety;
   double contact_force_N = 0.05;    // below this the pen is lifted: targets go to 0 kPa
+  // Pulse rendering (scenes with arteries): regulator-lag pre-compensation from the rig's plant.
+  PulseRendering pulse;
 };
 
 struct TickState {
@@ -45,6 +49,7 @@ struct TickState {
   FaultCode fault = FaultCode::none;  // latched: once set, every later tick vents
   std::uint64_t ticks = 0;
   std::array<PrandtlIshlinskii, kFingerCount> compensator{};  // running inverse models
+  PulseTickState pulse;  // pulse clocks, per-finger activation and lag compensators (fixed size)
 
   // Latch a fault (the first reason wins) so the next ticks vent.
   void enter_fault(FaultCode why) noexcept {
@@ -54,6 +59,7 @@ struct TickState {
 
 struct TickResult {
   ChannelPressures setpoint_kPa{};
+  ChannelPressures pulse_kPa{};  // the pulse each finger should feel now (before compensation); 0 without arteries
   TelemetryRecord record;
 };
 

@@ -9,6 +9,8 @@
 
 namespace palprig {
 
+class PulseField;  // models/artery.hpp
+
 struct TissueSample {
   double stiffness = 0.0;  // normalised 0..1
   int layer = -1;          // index of the layer felt, -1 when the scene has no layers
@@ -25,6 +27,9 @@ class Scene {
   virtual TissueSample sample(const Point2_mm& at, double force_N, double t_s) const noexcept = 0;
   // The region a sweep or a generated case covers.
   virtual SceneBounds bounds() const noexcept = 0;
+  // The arteries whose pulse the tick adds to the fingers' pressures; nullptr for a scene
+  // without any (a measured map), which the tick then runs exactly as before.
+  virtual const PulseField* pulse() const noexcept { return nullptr; }
 };
 
 class MapScene final : public Scene {

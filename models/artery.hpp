@@ -1,0 +1,143 @@
+#pragma once
+// Arteries and the pulse each finger feels (papers 000, 003, 004).
+//
+// An artery is a centreline (a polyline on the skin plane) at a depth, with a radius. Along it
+// sit pulse point sources spaced at most one range radius apart (000), at the centreline's
+// depth. The artery is a pulse region (004): a box around it (broad phase) decides whether a
+// finger is near at all, then the sources are tested one by one (narrow phase).
+//
+// Per finger, with T the finger centre on the skin and F the pressing force:
+//   activation (003)  on when d <= R + h + delta, off when d >= R + h + delta + epsilon, with d
+//                     the distance from T to the centreline, R the artery radius and h the
+//                     tissue over it (so R + h is the centreline depth). delta defaults to the
+//                     margin that switches the pulse on when the centreline passes under the
+//                     fingertip pad (8 mm from its centre); epsilon to 003's 0.57 mm.
+//   distance (000)    each source within range r gives k (r - |P_i - T|); the sources' sum,
+//                     capped, is scaled so that a finger straight over a source feels the full
+//                     amplitude (k = 1 / (r - depth)). Summing keeps the pulse nearly even along
+//                     the artery where neighbouring ranges overlap.
+//   force (003)       A = (F - F_min) / (F_max - F_min) * mu inside the window, 0 outside it:
+//                     too light a touch feels nothing, pressing harder than systolic occludes.
+//   pulse pressure    amplitude_kPa * distance factor * force factor * waveform(phase).
+// A finger over two arteries feels both; every finger over an artery feels it.
+//
+// Rates can change while running from any thread (request_rate_bpm); the loop thread applies the
+// request at its next tick with the phase kept continuous (PulseClock).
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "models/finger_layout.hpp"
+#include "models/frep.hpp"
+#include "models/pulse_waveform.hpp"
+
+namespace palprig {
+
+inline constexpr std::size_t kMaxArteries = 8;
+inline constexpr std::size_t kMaxSourcesPerArtery = 512;
+
+// 003's force window. Defaults: 60 and 120 mmHg (diastolic, systolic) over a 1.5 cm^2 fingertip
+// contact, i.e. 8.0 kPa and 16.0 kPa times 150 mm^2.
+struct ForceWindow {
+  double min_N = 1.2;
+  double max_N = 2.4;
+  double gain = 1.0;  // mu: the factor reached at F_max
+
+  double factor(double force_N) const noexcept {
+    if (!(force_N >= min_N && force_N <= max_N)) return 0.0;
+    return gain * (force_N - min_N) / (max_N - min_N);
+  }
+};
+
+struct ArterySpec {
+  std::string name;
+  std::vector<Point2_mm> path;  // centreline on the skin plane, at least 2 points
+  double depth_mm = 6.0;        // of the centreline below the skin (R + h)
+  double radius_mm = 2.0;       // R
+  double range_mm = 0.0;        // r of each source; 0: depth + activation + release margins
+  double amplitude_kPa = 6.0;   // pulse pressure straight over the artery at the force window's top
+  double rate_bpm = 72.0;
+  double phase_offset = 0.0;    // cycles: the pulse wave arrives later in distal arteries
+  PulseWaveform waveform;
+  ForceWindow force_window;
+  double activation_margin_mm = -1.0;  // delta; negative: from the fingertip pad radius
+  double release_margin_mm = 0.57;     // epsilon
+};
+
+class Artery {
+ public:
+  // Validates (std::invalid_argument naming the problem) and places the sources.
+  Artery(ArterySpec spec, double finger_pad_radius_mm);
+
+  const ArterySpec& spec() const noexcept { return spec_; }
+  const std::vector<Point3_mm>& sources() const noexcept { return sources_; }
+  double on_distance_mm() const noexcept { return on_mm_; }
+  double off_distance_mm() const noexcept { return off_mm_; }
+  double range_mm() const noexcept { return range_mm_; }
+  double length_mm() const noexcept { return length_mm_; }
+
+  // Distance on the skin plane from a point to the centreline (what a mark is scored by).
+  double centreline_distance_mm(const Point2_mm& p) const noexcept;
+  // Broad phase: may the pulse be felt (or activation change) at p?
+  bool in_region(const Point2_mm& p) const noexcept;
+  // 000's distance law, normalised: 1 straight over a source, 0 beyond every range.
+  double distance_factor(const Point2_mm& p) const noexcept;
+
+ private:
+  ArterySpec spec_;
+  std::vector<Point3_mm> sources_;
+  double range_mm_ = 0, on_mm_ = 0, off_mm_ = 0, length_mm_ = 0;
+  double region_x0_ = 0, region_y0_ = 0, region_x1_ = 0, region_y1_ = 0;
+};
+
+struct PulseClocks {
+  std::array<PulseClock, kMaxArteries> clock{};
+  bool started = false;
+};
+
+struct PulseActivation {
+  std::array<bool, kMaxArteries> on{};
+};
+
+struct PulseFelt {
+  double now_kPa = 0;    // pulse pressure at t
+  double ahead_kPa = 0;  // the same finger's pulse pressure at t + lead (for lag compensation)
+  int arteries_on = 0;
+};
+
+class PulseField {
+ public:
+  PulseField() = default;
+  PulseField(std::vector<ArterySpec> arteries, double finger_pad_radius_mm);
+  PulseField(const PulseField&) = delete;
+  PulseField& operator=(const PulseField&) = delete;
+
+  std::size_t size() const noexcept { return arteries_.size(); }
+  bool empty() const noexcept { return arteries_.empty(); }
+  const Artery& artery(std::size_t i) const { return arteries_.at(i); }
+  // Index of the artery with this name, or -1.
+  int find(const std::string& name) const noexcept;
+
+  // Any thread: beat at bpm from the next tick on. False (and no change) for an unknown artery
+  // or a rate outside kMinPulseRateBpm..kMaxPulseRateBpm.
+  bool request_rate_bpm(std::size_t artery, double bpm) const noexcept;
+  double requested_rate_bpm(std::size_t artery) const noexcept;
+
+  // Loop thread, once per tick before felt(): start the clocks (phase 0 + offset at t = 0 of
+  // the run) or apply pending rate requests at t.
+  void update_clocks(PulseClocks& clocks, double t_s) const noexcept;
+  // Loop thread, per finger: update its activation and return its pulse pressure now and lead_s
+  // ahead; in the value ahead, rectangular pulses start rise_advance_s and end fall_advance_s
+  // early (the lag compensator's anticipation). A lifted finger releases every artery.
+  PulseFelt felt(const Point2_mm& at, double force_N, bool in_contact, const PulseClocks& clocks,
+                 PulseActivation& activation, double t_s, double lead_s, double rise_advance_s = 0,
+                 double fall_advance_s = 0) const noexcept;
+
+ private:
+  std::vector<Artery> arteries_;
+  mutable std::array<std::atomic<double>, kMaxArteries> requested_bpm_{};
+};
+
+}  // namespace palprig

@@ -1,0 +1,58 @@
+#include "models/tissue_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace palprig {
+
+FunctionScene::FunctionScene(TissueDefinition tissue, std::vector<ArterySpec> arteries)
+    : field_(std::move(tissue)), arteries_(std::move(arteries), field_.definition().press.finger_radius_mm) {}
+
+std::vector<InclusionOutline> FunctionScene::outlines(InclusionKind kind) const {
+  // The bounding boxes of blobby shapes are loose, so the outline is measured: the shape is
+  // sampled on a grid inside its box (0.5 mm across, 0.5 mm deep, at least 40 steps per axis)
+  // and the outline is the circle around the inside points' centroid that holds them all.
+  std::vector<InclusionOutline> out;
+  for (const Inclusion& inc : field_.definition().inclusions) {
+    if (inc.kind != kind) continue;
+    const Box3_mm b = inc.shape.bounds();
+    if (b.empty()) continue;
+    auto steps = [](double lo, double hi) { return std::max(40, static_cast<int>(std::ceil((hi - lo) / 0.5))); };
+    const int nx = steps(b.lo.x_mm, b.hi.x_mm), ny = steps(b.lo.y_mm, b.hi.y_mm), nz = steps(b.lo.z_mm, b.hi.z_mm);
+    auto at = [](double lo, double hi, int i, int n) { return lo + (hi - lo) * (i + 0.5) / n; };
+    std::vector<Point2_mm> columns;  // (x, y) with any inside point
+    double top = std::numeric_limits<double>::infinity(), bottom = -top;
+    for (int ix = 0; ix < nx; ++ix)
+      for (int iy = 0; iy < ny; ++iy) {
+        const double x = at(b.lo.x_mm, b.hi.x_mm, ix, nx), y = at(b.lo.y_mm, b.hi.y_mm, iy, ny);
+        bool any = false;
+        for (int iz = 0; iz < nz; ++iz) {
+          const double z = at(b.lo.z_mm, b.hi.z_mm, iz, nz);
+          if (!inc.shape.contains({x, y, z})) continue;
+          any = true;
+          top = std::min(top, z);
+          bottom = std::max(bottom, z);
+        }
+        if (any) columns.push_back({x, y});
+      }
+    if (columns.empty()) continue;  // too thin to sample: nothing a finger could find
+    InclusionOutline o;
+    o.name = inc.name;
+    o.kind = inc.kind;
+    for (const Point2_mm& c : columns) {
+      o.x_mm += c.x_mm / static_cast<double>(columns.size());
+      o.y_mm += c.y_mm / static_cast<double>(columns.size());
+    }
+    const double half_cell = 0.5 * std::hypot((b.hi.x_mm - b.lo.x_mm) / nx, (b.hi.y_mm - b.lo.y_mm) / ny);
+    for (const Point2_mm& c : columns)
+      o.radius_mm = std::max(o.radius_mm, std::hypot(c.x_mm - o.x_mm, c.y_mm - o.y_mm) + half_cell);
+    o.top_depth_mm = std::max(top, 0.0);
+    o.bottom_depth_mm = bottom;
+    o.stiffness_kPa = inc.stiffness_kPa;
+    out.push_back(o);
+  }
+  return out;
+}
+
+}  // namespace palprig
