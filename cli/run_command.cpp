@@ -56,6 +56,8 @@ nlohmann::json summary_json(const RunSummary& s, const LoadedRun& run, const Run
       {"ticks", s.ticks},
       {"overruns", s.overruns},
       {"missed_periods", s.missed_periods},
+      {"link_outages", s.link_outages},
+      {"unlinked_ticks", s.unlinked_ticks},
       {"sim_time_s", s.sim_time_s},
       {"wall_time_s", s.wall_time_s},
       {"speedup", s.wall_time_s > 0 ? s.sim_time_s / s.wall_time_s : 0.0},
@@ -94,8 +96,10 @@ void print_summary(std::ostream& out, const RunSummary& s, const LoadedRun& run,
         << s.monitor_kPa[i].min << " / " << std::setw(6) << s.monitor_kPa[i].mean() << " / " << std::setw(6)
         << s.monitor_kPa[i].max << "\n";
   out << std::setprecision(1) << "  tick time p50/p99/max " << s.tick_time.p50_us << "/" << s.tick_time.p99_us << "/"
-      << s.tick_time.max_us << " us, backend I/O p50/p99/max " << s.io_time.p50_us << "/" << s.io_time.p99_us << "/"
-      << s.io_time.max_us << " us\n";
+      << s.tick_time.max_us << " us, backend I/O p50/p99/p99.9/max " << s.io_time.p50_us << "/" << s.io_time.p99_us
+      << "/" << s.io_time.p999_us << "/" << s.io_time.max_us << " us\n";
+  if (s.link_outages)
+    out << "  link outages: " << s.link_outages << " (" << s.unlinked_ticks << " ticks vented while reconnecting)\n";
   if (opt.mode == LoopMode::realtime) {
     out << "  wake-up latency p50/p99/p99.9/max " << s.wake_latency.p50_us << "/" << s.wake_latency.p99_us << "/"
         << s.wake_latency.p999_us << "/" << s.wake_latency.max_us << " us\n";
@@ -120,37 +124,42 @@ RunSummary execute(LoadedRun& run, const RunOptions& opt) {
 }  // namespace palprig::cli
 
 void register_run_command(CLI::App& app) {
-  auto args = std::make_shared<cli::RunArgs>();
-  auto opt = std::make_shared<RunOptions>();
-  auto json_out = std::make_shared<bool>(false);
-  auto replay = std::make_shared<bool>(false), realtime = std::make_shared<bool>(false);
-  auto duration = std::make_shared<double>(0.0);
-  auto telemetry = std::make_shared<std::string>();
+  // CLI11 binds options to these fields, so they live as long as the app (one shared object,
+  // captured by the callback).
+  struct Options {
+    cli::RunArgs args;
+    RunOptions run;
+    bool json = false, replay = false, realtime = false;
+    double duration_s = 0.0;
+    std::string telemetry;
+  };
+  auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("run", "Run the loop: pen input -> scene -> pressures -> rig, and print a summary");
-  sub->add_option("--scene", args->scene_path, "Scene file (JSON)")->required()->check(CLI::ExistingFile);
-  sub->add_option("--input", args->input_spec, "Pen input: trace:FILE (CSV t_s,x_mm,y_mm,force_N) or sweep")
+  sub->add_option("--scene", o->args.scene_path, "Scene file (JSON)")->required()->check(CLI::ExistingFile);
+  sub->add_option("--input", o->args.input_spec, "Pen input: trace:FILE (CSV t_s,x_mm,y_mm,force_N) or sweep")
       ->default_val("sweep");
-  sub->add_option("--rig", args->rig_path, "Rig file (JSON); default: the simulated rig in data/rigs/simulated.json");
-  sub->add_option("--cal", args->cal_path, "Calibration file (JSON); default: paper 002's models");
-  sub->add_option("--rate-hz", opt->rate_hz, "Loop rate in Hz")->default_val(1000.0)->check(CLI::Range(1.0, 100000.0));
-  sub->add_option("--duration-s", *duration, "Run length in seconds; default: the length of the input");
-  auto* rt = sub->add_flag("--realtime", *realtime, "Real time: absolute deadlines on the monotonic clock");
-  sub->add_flag("--replay", *replay, "As fast as possible on simulated time (default)")->excludes(rt);
-  sub->add_flag("--no-fifo", [opt](std::int64_t) { opt->want_fifo = false; }, "Real time without SCHED_FIFO");
-  sub->add_option("--telemetry", *telemetry, "Write every tick to FILE (.csv, or .bin for the compact binary)");
-  sub->add_flag("--json", *json_out, "Print the summary as one JSON object");
-  sub->callback([=]() {
-    cli::LoadedRun run = cli::load_run(*args);
-    RunOptions o = *opt;
-    o.mode = *realtime ? LoopMode::realtime : LoopMode::replay;
-    o.duration_s = *duration > 0 ? *duration : run.input->duration_s();
-    if (!(o.duration_s > 0)) throw InputError("--duration-s", "value", "a positive duration (the input has no length of its own)");
-    o.telemetry_path = *telemetry;
+  sub->add_option("--rig", o->args.rig_path, "Rig file (JSON); default: the simulated rig in data/rigs/simulated.json");
+  sub->add_option("--cal", o->args.cal_path, "Calibration file (JSON); default: paper 002's models");
+  sub->add_option("--rate-hz", o->run.rate_hz, "Loop rate in Hz")->default_val(1000.0)->check(CLI::Range(1.0, 100000.0));
+  sub->add_option("--duration-s", o->duration_s, "Run length in seconds; default: the length of the input");
+  auto* rt = sub->add_flag("--realtime", o->realtime, "Real time: absolute deadlines on the monotonic clock");
+  sub->add_flag("--replay", o->replay, "As fast as possible on simulated time (default)")->excludes(rt);
+  sub->add_flag("--no-fifo", [o](std::int64_t) { o->run.want_fifo = false; }, "Real time without SCHED_FIFO");
+  sub->add_option("--telemetry", o->telemetry, "Write every tick to FILE (.csv, or .bin for the compact binary)");
+  sub->add_flag("--json", o->json, "Print the summary as one JSON object");
+  sub->callback([o]() {
+    cli::LoadedRun run = cli::load_run(o->args);
+    RunOptions opt = o->run;
+    opt.mode = o->realtime ? LoopMode::realtime : LoopMode::replay;
+    opt.duration_s = o->duration_s > 0 ? o->duration_s : run.input->duration_s();
+    if (!(opt.duration_s > 0))
+      throw InputError("--duration-s", "value", "a positive duration (the input has no length of its own)");
+    opt.telemetry_path = o->telemetry;
     cli::install_stop_signals();
-    o.stop_signal = &cli::stop_signal();
-    const RunSummary s = cli::execute(run, o);
-    if (*json_out) std::cout << cli::summary_json(s, run, o).dump(2) << "\n";
-    else cli::print_summary(std::cout, s, run, o);
+    opt.stop_signal = &cli::stop_signal();
+    const RunSummary s = cli::execute(run, opt);
+    if (o->json) std::cout << cli::summary_json(s, run, opt).dump(2) << "\n";
+    else cli::print_summary(std::cout, s, run, opt);
     if (s.fault != FaultCode::none) {
       std::cerr << "palprig: fault at t=" << s.fault_t_s << " s: " << to_string(s.fault)
                 << (s.fault_detail.empty() ? "" : " (" + s.fault_detail + ")") << "; all channels vented\n";
