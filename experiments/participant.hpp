@@ -1,0 +1,38 @@
+#pragma once
+// Participant: who answers the trials. The session loop asks it, on every pass, whether it is
+// ready to go on and whether it has answered, and tells it what the fingers feel. A person at
+// the terminal (cli/experiment_command.cpp) and the simulated observer implement it.
+#include <optional>
+
+#include "controller/input_source.hpp"
+#include "controller/telemetry.hpp"
+#include "experiments/protocol.hpp"
+#include "experiments/session_plan.hpp"
+#include "experiments/trial_runner.hpp"
+
+namespace palprig {
+
+// What reaches the participant's fingers at one moment of a trial.
+struct FeltSample {
+  double t_s = 0;
+  ChannelPressures felt_kPa{};           // actuator pressures (monitor readings)
+  FingerFlags active{};                  // fingers carrying the stimulus now
+  const TelemetryRecord* record = nullptr;  // the rig's last tick (pen position), when available
+};
+
+class Participant {
+ public:
+  virtual ~Participant() = default;
+  // In `ready` (session start, after a break): true when the participant wants to go on.
+  virtual bool ready(double t_s) = 0;
+  // A trial begins (stimulus onset at t_s).
+  virtual void trial_started(const PlannedTrial& trial, const Condition& condition, double t_s) = 0;
+  // Every loop pass while the trial runs (present and respond).
+  virtual void feel(const FeltSample& sample) = 0;
+  // The answer, once given (asked every pass while the trial runs).
+  virtual std::optional<Response> answer(double t_s) = 0;
+  // The pen this participant palpates with (localisation); null when it has none.
+  virtual InputSource* pen() { return nullptr; }
+};
+
+}  // namespace palprig

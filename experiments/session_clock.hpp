@@ -1,0 +1,40 @@
+#pragma once
+// Session clocks: the monotonic time the runner is fed, in seconds since the session started.
+//   SteadyClock     real time (std::chrono::steady_clock), for people
+//   SimulatedClock  time jumps to whatever the loop waits for: a simulated participant's
+//                   session runs as fast as the machine goes, with the same timing logic
+//   scaled          SteadyClock(speed): real sleeps, time running `speed` times faster
+#include <chrono>
+
+namespace palprig {
+
+class SessionClock {
+ public:
+  virtual ~SessionClock() = default;
+  virtual double now_s() = 0;
+  virtual void wait_until(double t_s) = 0;
+};
+
+class SteadyClock final : public SessionClock {
+ public:
+  explicit SteadyClock(double speed = 1.0);
+  double now_s() override;
+  void wait_until(double t_s) override;
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+  double speed_;
+};
+
+class SimulatedClock final : public SessionClock {
+ public:
+  double now_s() override { return t_s_; }
+  void wait_until(double t_s) override {
+    if (t_s > t_s_) t_s_ = t_s;
+  }
+
+ private:
+  double t_s_ = 0;
+};
+
+}  // namespace palprig

@@ -1,0 +1,29 @@
+#pragma once
+// The session loop: feeds the runner the clock's time, tells the participant what the fingers
+// feel, passes on readiness and answers, and services the rig every period, until the
+// session is done, a stop is requested, or the rig faults. No terminal or GUI knowledge.
+#include <atomic>
+#include <string>
+
+#include "experiments/participant.hpp"
+#include "experiments/session_clock.hpp"
+#include "experiments/trial_runner.hpp"
+
+namespace palprig {
+
+struct SessionLoopOptions {
+  double period_s = 0.005;                   // how often the runner and rig are serviced
+  const std::atomic<int>* stop = nullptr;    // non-zero: stop (vents; the current trial is not kept)
+  const StimulusOutput* output = nullptr;    // for the rig's last tick record (pen position)
+};
+
+struct SessionLoopResult {
+  bool completed = false;  // every planned trial done
+  bool stopped = false;    // a stop was requested
+  std::string fault;       // non-empty when the rig faulted (channels vented)
+};
+
+SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant, SessionClock& clock,
+                                   const SessionLoopOptions& options);
+
+}  // namespace palprig

@@ -1,0 +1,96 @@
+#pragma once
+// SimulatedParticipant: a model observer that answers from what the rig actually delivers, so
+// whole studies run headless (tests, demos, planning sample sizes).
+//
+// Discrimination: each finger's felt pressure (mean monitor reading while that finger's
+// stimulus was on) is perceived with Gaussian noise (noise_kPa; times sequential_noise_factor
+// when the values come one after another and must be held in memory). The observer reports a
+// tumor under every finger perceived more than criterion_kPa above the lowest one.
+// Response times are log-normal with the mean and sd of paper 002 per mode (4.6 +/- 2.3 s
+// three fingers, 8.3 +/- 2.9 s one finger), never before every finger has been felt.
+//
+// Localisation: the observer sweeps the scene with the pen (rows 10 mm apart, a random row
+// offset per trial) and watches each finger's pressure above its running minimum. Each bump
+// above half the detection threshold becomes a candidate at its peak; it is reported with
+// probability Phi((peak - threshold) / detection_noise_kPa), marked with Gaussian position
+// noise. Small tumors that fall between the fingers' paths are missed, as people miss them.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/participant.hpp"
+#include "experiments/random_source.hpp"
+#include "experiments/shifted_input.hpp"
+#include "models/finger_layout.hpp"
+#include "models/scene.hpp"
+
+namespace palprig {
+
+struct ResponseTimeModel {
+  double mean_s = 4.6;
+  double sd_s = 2.3;
+};
+
+struct SimulatedObserverModel {
+  std::uint64_t seed = 1;
+  double noise_kPa = 1.5;
+  double sequential_noise_factor = 1.6;
+  double criterion_kPa = 5.0;
+  ResponseTimeModel simultaneous{4.6, 2.3};
+  ResponseTimeModel sequential{8.3, 2.9};
+  // Localisation.
+  double detection_threshold_kPa = 1.0;
+  double detection_noise_kPa = 0.5;
+  double mark_noise_mm = 2.0;
+  double sweep_speed_mm_per_s = 40.0;
+  double sweep_row_step_mm = 10.0;
+  double press_force_N = 2.0;
+};
+
+nlohmann::json to_json(const SimulatedObserverModel& m);
+
+// "sim:SEED" -> true and the seed; anything else -> false.
+bool parse_simulated_participant(const std::string& spec, std::uint64_t& seed);
+
+class SimulatedParticipant final : public Participant {
+ public:
+  // For localisation, `scene` bounds the sweep and `layout` places the fingers around the pen.
+  SimulatedParticipant(const SimulatedObserverModel& model, const Protocol& protocol, const Scene* scene = nullptr,
+                       FingerLayout layout = {});
+
+  bool ready(double) override { return true; }
+  void trial_started(const PlannedTrial& trial, const Condition& condition, double t_s) override;
+  void feel(const FeltSample& sample) override;
+  std::optional<Response> answer(double t_s) override;
+  InputSource* pen() override { return scene_ ? &pen_ : nullptr; }
+
+ private:
+  struct Candidate {
+    double x_mm = 0, y_mm = 0, peak_kPa = 0;
+  };
+  Response discrimination_answer();
+  Response localisation_answer();
+  void watch_for_bumps(const FeltSample& sample);
+
+  SimulatedObserverModel model_;
+  const Protocol& protocol_;
+  const Scene* scene_;
+  FingerLayout layout_;
+  RandomSource random_;
+  ShiftedInput pen_;
+
+  PresentationMode mode_ = PresentationMode::simultaneous;
+  double answer_at_s_ = 0;
+  bool answered_ = false;
+  std::array<double, kFingerCount> felt_sum_{};
+  std::array<int, kFingerCount> felt_count_{};
+  std::array<double, kFingerCount> baseline_kPa_{};
+  double contact_since_s_ = -1;
+  std::vector<Candidate> candidates_;
+};
+
+}  // namespace palprig

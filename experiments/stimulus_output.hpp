@@ -1,0 +1,39 @@
+#pragma once
+// StimulusOutput: what the trial runner drives. RigStimulus puts it on a rig through the
+// controller's tick (direct per-finger pressures, or a scene felt through pen input); tests
+// substitute a recording fake. Calls come from the session thread, never the real-time loop.
+#include <stdexcept>
+#include <string>
+
+#include "controller/input_source.hpp"
+#include "controller/rig_backend.hpp"
+#include "controller/telemetry.hpp"
+#include "models/scene.hpp"
+
+namespace palprig {
+
+// The rig faulted (backend error, safety fault): every channel has been vented.
+class RigFault : public std::runtime_error {
+ public:
+  explicit RigFault(const std::string& what) : std::runtime_error(what) {}
+};
+
+class StimulusOutput {
+ public:
+  virtual ~StimulusOutput() = default;
+  // From t_s on, hold these pressures on the fingers.
+  virtual void hold(const ChannelPressures& target_kPa, double t_s) = 0;
+  // From t_s on, render the scene under the pen (localisation).
+  virtual void palpate(const Scene& scene, InputSource& pen, double t_s) = 0;
+  // From t_s on, every channel at 0 kPa.
+  virtual void vent(double t_s) = 0;
+  // Called on every pass of the session loop, so slew-limited setpoints ramp and a simulated
+  // plant advances. Returns what the fingers feel now (the regulators' monitor readings).
+  // Throws RigFault after venting when the rig faults.
+  virtual ChannelPressures service(double t_s) = 0;
+  virtual std::string describe() const = 0;
+  // The last tick's record (pen position, per-finger values), when the output has one.
+  virtual const TelemetryRecord* last_record() const noexcept { return nullptr; }
+};
+
+}  // namespace palprig

@@ -1,0 +1,214 @@
+#include "experiments/trial_runner.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace palprig {
+
+const char* to_string(RunnerState s) noexcept {
+  switch (s) {
+    case RunnerState::ready: return "ready";
+    case RunnerState::present: return "present";
+    case RunnerState::respond: return "respond";
+    case RunnerState::inter_trial: return "inter-trial";
+    case RunnerState::rest: return "break";
+    case RunnerState::done: return "done";
+  }
+  return "ready";
+}
+
+TrialRunner::TrialRunner(const Protocol& protocol, const SessionPlan& plan, int start_position, StimulusOutput& output,
+                         RunnerListener& listener, const Scene* scene, InputSource* pen)
+    : protocol_(protocol), plan_(plan), output_(output), listener_(listener), scene_(scene), pen_(pen),
+      position_(start_position) {
+  if (protocol.task == TaskKind::localisation && (scene == nullptr || pen == nullptr)) {
+    throw std::invalid_argument("a localisation session needs a scene and a pen input");
+  }
+  if (position_ >= total_trials()) state_ = RunnerState::done;
+}
+
+const PlannedTrial* TrialRunner::current_trial() const noexcept {
+  if (position_ < 0 || position_ >= total_trials()) return nullptr;
+  return &plan_.trials[static_cast<std::size_t>(position_)];
+}
+
+void TrialRunner::enter(RunnerState s, double t_s) {
+  state_ = s;
+  state_since_s_ = t_s;
+  RunnerEvent e;
+  e.kind = RunnerEvent::Kind::state_changed;
+  e.state = s;
+  e.t_s = t_s;
+  e.position = current_trial() ? position_ : -1;
+  e.active = active_;
+  listener_.on_event(e);
+}
+
+void TrialRunner::set_active(const FingerFlags& active, double t_s) {
+  if (active == active_ && state_ == RunnerState::present) return;
+  active_ = active;
+  const PlannedTrial& t = *current_trial();
+  if (protocol_.task == TaskKind::discrimination) {
+    const auto& combination = protocol_.combinations.at(static_cast<std::size_t>(t.combination));
+    ChannelPressures target{};
+    for (std::size_t f = 0; f < kFingerCount; ++f) target[f] = active[f] ? combination.pressure_kPa[f] : 0.0;
+    output_.hold(target, t_s);
+  }
+  RunnerEvent e;
+  e.kind = RunnerEvent::Kind::stimulus_changed;
+  e.state = state_;
+  e.t_s = t_s;
+  e.position = position_;
+  e.active = active_;
+  listener_.on_event(e);
+}
+
+double TrialRunner::sequence_length_s() const {
+  const Timing& tm = protocol_.timing;
+  return kFingerCount * tm.sequential_step_s + (kFingerCount - 1) * tm.sequential_gap_s;
+}
+
+void TrialRunner::begin(double t_s) {
+  if (state_ != RunnerState::ready) return;
+  start_trial(t_s);
+}
+
+void TrialRunner::start_trial(double t_s) {
+  felt_sum_.fill(0.0);
+  felt_count_.fill(0);
+  onset_s_ = t_s;
+  active_ = {};
+  state_ = RunnerState::present;  // set before enter() so set_active sees the presenting state
+  const PlannedTrial& t = *current_trial();
+  const PresentationMode mode = protocol_.conditions.at(static_cast<std::size_t>(t.condition)).mode;
+  enter(RunnerState::present, t_s);
+  switch (mode) {
+    case PresentationMode::simultaneous: set_active({true, true, true}, t_s); break;
+    case PresentationMode::sequential: set_active({true, false, false}, t_s); break;
+    case PresentationMode::scene:
+      output_.palpate(*scene_, *pen_, t_s);
+      set_active({true, true, true}, t_s);
+      break;
+  }
+}
+
+void TrialRunner::sample_felt(double t_s) {
+  const ChannelPressures felt = output_.service(t_s);
+  felt_now_ = felt;
+  if (state_ != RunnerState::present) return;
+  for (std::size_t f = 0; f < kFingerCount; ++f) {
+    if (active_[f]) {
+      felt_sum_[f] += felt[f];
+      ++felt_count_[f];
+    }
+  }
+}
+
+void TrialRunner::update_presentation(double t_s) {
+  const PlannedTrial& t = *current_trial();
+  const PresentationMode mode = protocol_.conditions.at(static_cast<std::size_t>(t.condition)).mode;
+  const double elapsed = t_s - onset_s_;
+  if (mode == PresentationMode::sequential) {
+    const Timing& tm = protocol_.timing;
+    if (elapsed >= sequence_length_s()) {
+      set_active({}, t_s);
+      output_.vent(t_s);
+      enter(RunnerState::respond, t_s);
+      return;
+    }
+    // Which slot of step, gap, step, gap, step are we in?
+    const double period = tm.sequential_step_s + tm.sequential_gap_s;
+    const auto finger = static_cast<std::size_t>(std::floor(elapsed / period));
+    const bool on = elapsed - static_cast<double>(finger) * period < tm.sequential_step_s;
+    FingerFlags active{};
+    if (on && finger < kFingerCount) active[finger] = true;
+    set_active(active, t_s);
+    return;
+  }
+  if (elapsed >= protocol_.timing.max_present_s) {
+    set_active({}, t_s);
+    output_.vent(t_s);
+    enter(RunnerState::respond, t_s);
+  }
+}
+
+void TrialRunner::advance(double t_s) {
+  // Several transitions may fall due in one call when the caller's steps are coarse.
+  for (int guard = 0; guard < 8; ++guard) {
+    const RunnerState before = state_;
+    switch (state_) {
+      case RunnerState::ready:
+      case RunnerState::done: break;
+      case RunnerState::present: update_presentation(t_s); break;
+      case RunnerState::respond:
+        if (t_s - state_since_s_ >= protocol_.timing.response_timeout_s) finish_trial(nullptr, t_s);
+        break;
+      case RunnerState::inter_trial:
+        if (t_s - state_since_s_ >= protocol_.timing.inter_trial_s) {
+          const PlannedTrial& finished = plan_.trials[static_cast<std::size_t>(position_)];
+          ++position_;
+          if (position_ >= total_trials()) enter(RunnerState::done, t_s);
+          else if (finished.break_after) enter(RunnerState::rest, t_s);
+          else start_trial(t_s);
+        }
+        break;
+      case RunnerState::rest:
+        if (t_s - state_since_s_ >= protocol_.timing.break_s) enter(RunnerState::ready, t_s);
+        break;
+    }
+    if (state_ == before) break;
+  }
+  sample_felt(t_s);
+}
+
+bool TrialRunner::respond(const Response& response, double t_s) {
+  if (state_ != RunnerState::present && state_ != RunnerState::respond) return false;
+  finish_trial(&response, t_s);
+  return true;
+}
+
+void TrialRunner::finish_trial(const Response* response, double t_s) {
+  const PlannedTrial& t = *current_trial();
+  const Condition& condition = protocol_.conditions.at(static_cast<std::size_t>(t.condition));
+  TrialRecord r;
+  r.planned = t;
+  r.condition = condition.name;
+  r.mode = condition.mode;
+  r.onset_s = onset_s_;
+  r.answered = response != nullptr;
+  r.response_time_s = r.answered ? t_s - onset_s_ : std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t f = 0; f < kFingerCount; ++f) {
+    r.felt_kPa[f] = felt_count_[f] ? felt_sum_[f] / felt_count_[f] : std::numeric_limits<double>::quiet_NaN();
+  }
+  if (protocol_.task == TaskKind::discrimination) {
+    const auto& combination = protocol_.combinations.at(static_cast<std::size_t>(t.combination));
+    r.combination_label = combination.label;
+    r.stimulus_kPa = combination.pressure_kPa;
+    r.truth = combination.tumor;
+    if (response) {
+      r.answer = response->tumor_under;
+      r.finger_outcomes = score_discrimination(r.truth, r.answer);
+    }
+  } else if (response) {
+    r.marks = response->marks;
+    r.localisation = score_localisation(protocol_.localisation.tumors, r.marks, protocol_.localisation.tolerance_mm);
+  }
+  active_ = {};
+  output_.vent(t_s);
+  listener_.on_trial_completed(r);
+  RunnerEvent e;
+  e.kind = RunnerEvent::Kind::trial_completed;
+  e.state = state_;
+  e.t_s = t_s;
+  e.position = position_;
+  listener_.on_event(e);
+  enter(RunnerState::inter_trial, t_s);
+}
+
+void TrialRunner::abort(double t_s) {
+  active_ = {};
+  output_.vent(t_s);
+  if (state_ != RunnerState::done) enter(RunnerState::done, t_s);
+}
+
+}  // namespace palprig

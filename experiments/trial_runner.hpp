@@ -1,0 +1,109 @@
+#pragma once
+// TrialRunner: the state machine of a session, with no knowledge of Qt, the terminal or the
+// clock. The caller feeds it the time (seconds on a monotonic clock) and the participant's
+// actions; it drives the StimulusOutput, times responses from stimulus onset, scores answers
+// and reports events and completed trials to a listener (the CLI, the GUI, the trial store).
+//
+//   ready ──begin──> present ──(stimulus over)──> respond ──(answer | timeout)──> inter_trial
+//                       └────────────(answer)─────────────────────────────────────┘
+//   inter_trial ──> present (next trial) | rest (break) ──> ready | done
+//
+// present   the stimulus is on: all three fingers (simultaneous), one finger after the other
+//           (sequential: step, gap, step, gap, step) or the scene under the pen (localisation);
+//           an answer is accepted at any time
+// respond   the stimulus is off, the answer is still awaited (until response_timeout_s)
+// inter_trial  vented pause; the trial has been handed to the listener (committed) on entry
+// rest      a break of break_s (0: none), then ready waits for the participant
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "controller/input_source.hpp"
+#include "experiments/protocol.hpp"
+#include "experiments/scoring.hpp"
+#include "experiments/session_plan.hpp"
+#include "experiments/stimulus_output.hpp"
+#include "experiments/trial_record.hpp"
+
+namespace palprig {
+
+enum class RunnerState { ready, present, respond, inter_trial, rest, done };
+
+const char* to_string(RunnerState s) noexcept;
+
+// A participant's answer: the fingers with a tumor (discrimination) or marks (localisation).
+struct Response {
+  FingerFlags tumor_under{};
+  std::vector<Mark> marks;
+};
+
+struct RunnerEvent {
+  enum class Kind { state_changed, stimulus_changed, trial_completed };
+  Kind kind = Kind::state_changed;
+  RunnerState state = RunnerState::ready;
+  double t_s = 0;
+  int position = -1;         // the current trial's position, -1 when none
+  FingerFlags active{};      // stimulus_changed: fingers carrying a stimulus now
+};
+
+class RunnerListener {
+ public:
+  virtual ~RunnerListener() = default;
+  virtual void on_event(const RunnerEvent&) {}
+  // Called once per completed trial, before the inter-trial pause starts; the trial store
+  // commits here, so an exception stops the session without losing earlier trials.
+  virtual void on_trial_completed(const TrialRecord& trial) = 0;
+};
+
+class TrialRunner {
+ public:
+  // Runs plan.trials from start_position (a resumed session starts past the committed ones).
+  // For localisation, `scene` and `pen` are what the participant palpates.
+  TrialRunner(const Protocol& protocol, const SessionPlan& plan, int start_position, StimulusOutput& output,
+              RunnerListener& listener, const Scene* scene = nullptr, InputSource* pen = nullptr);
+
+  RunnerState state() const noexcept { return state_; }
+  const PlannedTrial* current_trial() const noexcept;  // the trial presented or next; null when done
+  int next_position() const noexcept { return position_; }
+  int total_trials() const noexcept { return static_cast<int>(plan_.trials.size()); }
+  FingerFlags active_fingers() const noexcept { return active_; }
+  // What the fingers felt at the last advance() (the regulators' monitor readings).
+  const ChannelPressures& felt_kPa() const noexcept { return felt_now_; }
+  const Protocol& protocol() const noexcept { return protocol_; }
+
+  // The participant is ready: leaves `ready` and presents the next trial.
+  void begin(double t_s);
+  // Time passes: presentation steps, timeouts and pauses; also services the rig. Call often.
+  void advance(double t_s);
+  // An answer. Accepted in present and respond (returns true), ignored otherwise.
+  bool respond(const Response& response, double t_s);
+  // Stop now (operator or signal): vents; the trial in progress is not recorded.
+  void abort(double t_s);
+
+ private:
+  void enter(RunnerState s, double t_s);
+  void start_trial(double t_s);
+  void update_presentation(double t_s);
+  void set_active(const FingerFlags& active, double t_s);
+  void finish_trial(const Response* response, double t_s);
+  void sample_felt(double t_s);
+  double sequence_length_s() const;
+
+  const Protocol& protocol_;
+  const SessionPlan& plan_;
+  StimulusOutput& output_;
+  RunnerListener& listener_;
+  const Scene* scene_;
+  InputSource* pen_;
+
+  RunnerState state_ = RunnerState::ready;
+  int position_ = 0;
+  double state_since_s_ = 0;
+  double onset_s_ = 0;
+  FingerFlags active_{};
+  std::array<double, kFingerCount> felt_sum_{};
+  std::array<int, kFingerCount> felt_count_{};
+  ChannelPressures felt_now_{};
+};
+
+}  // namespace palprig
