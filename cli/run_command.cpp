@@ -10,19 +10,24 @@
 #include "cli/commands.hpp"
 #include "cli/run_setup.hpp"
 #include "controller/loop_runner.hpp"
+#include "controller/tablet_input.hpp"
 #include "models/parse_error.hpp"
 
 using namespace palprig;
 
 namespace palprig::cli {
 
-std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& scene, double contact_force_N) {
+bool is_live_input(const std::string& spec) { return spec == "tablet" || spec.rfind("tablet:", 0) == 0; }
+
+std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& scene, double contact_force_N,
+                                        const TabletConfig& tablet) {
+  if (is_live_input(spec)) return make_tablet_input(spec, tablet);
   if (spec == "sweep") return std::make_unique<SweepInput>(scene.bounds(), SweepPlan{});
   if (spec.rfind("trace:", 0) == 0) {
     const std::filesystem::path p = spec.substr(6);
     return std::make_unique<TraceInput>(load_trace_csv(p, contact_force_N), p.string(), contact_force_N);
   }
-  throw InputError("--input", spec, "trace:FILE or sweep");
+  throw InputError("--input", spec, "trace:FILE, sweep, tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
 }
 
 LoadedRun load_run(const RunArgs& a) {
@@ -32,7 +37,7 @@ LoadedRun load_run(const RunArgs& a) {
   check_calibration_matches(run.cal, run.rig.id, run.rig.source);
   run.scene = load_scene_file(a.scene_path);
   run.config = make_tick_config(run.rig, run.cal);
-  run.input = make_input(a.input_spec, *run.scene.scene, run.rig.contact_force_N);
+  run.input = make_input(a.input_spec, *run.scene.scene, run.rig.contact_force_N, run.rig.tablet);
   return run;
 }
 
@@ -136,7 +141,8 @@ void register_run_command(CLI::App& app) {
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("run", "Run the loop: pen input -> scene -> pressures -> rig, and print a summary");
   sub->add_option("--scene", o->args.scene_path, "Scene file (JSON)")->required()->check(CLI::ExistingFile);
-  sub->add_option("--input", o->args.input_spec, "Pen input: trace:FILE (CSV t_s,x_mm,y_mm,force_N) or sweep")
+  sub->add_option("--input", o->args.input_spec, "Pen input: trace:FILE (CSV t_s,x_mm,y_mm,force_N), sweep, tablet (the first pen tablet), "
+                 "tablet:/dev/input/eventN, or tablet:FILE.evemu (a recording replayed in real time)")
       ->default_val("sweep");
   sub->add_option("--rig", o->args.rig_path, "Rig file (JSON); default: the simulated rig in data/rigs/simulated.json");
   sub->add_option("--cal", o->args.cal_path, "Calibration file (JSON); default: paper 002's models");

@@ -28,7 +28,10 @@ struct LoadedRun {
   std::unique_ptr<RigBackend> backend;
 };
 
-std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& scene, double contact_force_N);
+// Live inputs (the pen tablet) make `palprig run` real time.
+bool is_live_input(const std::string& spec);
+std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& scene, double contact_force_N,
+                                        const TabletConfig& tablet = {});
 LoadedRun load_run(const RunArgs& args);  // throws InputError before anything moves
 RunSummary execute(LoadedRun& run, const RunOptions& opt);
 nlohmann::json summary_json(const RunSummary& s, const LoadedRun& run, const RunOptions& opt);

@@ -75,8 +75,9 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
     if (telemetry && telemetry->failed()) state.enter_fault(FaultCode::thread_exception);
     if (state.fault == FaultCode::none && worker_fault_pending(fault_detail, sizeof fault_detail))
       state.enter_fault(FaultCode::thread_exception);
-    // A backend whose link dropped is vented and reconnecting: run the tick as if the pen were
-    // lifted, so its setpoints fall to 0 and rise again under the slew limit once it is back.
+    // A backend whose link dropped is vented and reconnecting (an alarm, not a latched fault):
+    // the loop sends 0 kPa and restarts the tick's slew limiter from 0, so pressure rises again
+    // under the slew limit when the link is back.
     const bool linked = backend.linked();
     if (!linked) {
       ++sum.unlinked_ticks;
@@ -85,12 +86,13 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
     was_linked = linked;
 
     const std::int64_t tick_start = mono_ns();
-    TouchSample sample = input.latest(t_s);
-    if (!linked) {
-      sample.force_N = 0;
-      sample.in_contact = false;
-    }
+    const TouchSample sample = input.latest(t_s);
     TickResult r = tick(state, config, scene, sample, t_s);
+    if (!linked) {
+      r.setpoint_kPa = {};
+      state.last_setpoint_kPa = {};
+      for (int i = 0; i < kFingerCount; ++i) r.record.setpoint_kPa[i] = 0.0f;
+    }
 
     const std::int64_t io_start = mono_ns();
     ChannelPressures monitor{};

@@ -44,6 +44,7 @@ static RigConfig parse_rig(const nlohmann::json& doc, const std::string& file) {
     rig.contact_force_N = f.number_or("contact_force_N", rig.contact_force_N, 0, 100);
     f.refuse_unknown();
   }
+  if (root.has("tablet")) rig.tablet = parse_tablet_config(root.object("tablet"));
   PlantParams base;
   if (root.has("plant")) base = parse_plant(root.object("plant"), base);
   rig.plants.fill(base);

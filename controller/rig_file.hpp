@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "controller/rig_backend.hpp"
+#include "controller/tablet_config.hpp"
 #include "controller/tick.hpp"
 #include "models/pneumatic_plant.hpp"
 
@@ -27,6 +28,7 @@ struct RigConfig {
   double contact_force_N = 0.05;
   std::array<PlantParams, kFingerCount> plants{};
   nlohmann::json backend_section;  // the section named after the backend, if any
+  TabletConfig tablet;             // the pen tablet ("tablet" section; defaults when absent)
 };
 
 RigConfig load_rig_file(const std::filesystem::path& path);

@@ -1,0 +1,82 @@
+// palprig sim-rig: serve the rig file's simulated plants as a real Modbus TCP server with the
+// rig file's register map, so `palprig run` with that rig file drives it over the network
+// exactly as it would drive the modules on the bench.
+#include <chrono>
+#include <iostream>
+#include <thread>
+
+#include "cli/commands.hpp"
+#include "controller/modbus_sim_server.hpp"
+#include "controller/rig_file.hpp"
+#include "models/parse_error.hpp"
+
+using namespace palprig;
+
+void register_sim_rig_command(CLI::App& app) {
+  auto rig_path = std::make_shared<std::string>();
+  auto listen = std::make_shared<std::vector<std::string>>();
+  auto write_log = std::make_shared<std::string>();
+  auto watchdog_ms = std::make_shared<double>(0.0);
+  auto duration_s = std::make_shared<double>(0.0);
+  CLI::App* sub = app.add_subcommand(
+      "sim-rig", "Serve the simulated pneumatic plant as a Modbus TCP server with a rig file's register map");
+  sub->add_option("--rig", *rig_path, "Rig file (JSON) with backend \"modbus\": its register map and plants")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--listen", *listen,
+                  "HOST:PORT to serve, one per link of the map in order (port 0: any free port, printed on start); "
+                  "default: the rig file's own TCP addresses");
+  sub->add_option("--write-log", *write_log, "Write every output-register write to FILE (CSV t_s,channel,word,kPa)");
+  sub->add_option("--watchdog-ms", *watchdog_ms,
+                  "Like a module's communication watchdog: outputs of a link silent this long go to 0 kPa (0: off)")
+      ->check(CLI::Range(0.0, 600000.0));
+  sub->add_option("--duration-s", *duration_s, "Stop after this long (default: until SIGINT/SIGTERM)")
+      ->check(CLI::Range(0.0, 1e9));
+  sub->callback([=]() {
+    const RigConfig rig = load_rig_file(*rig_path);
+    if (rig.backend != "modbus")
+      throw InputError(rig.source, "backend", "\"modbus\" (sim-rig serves the rig's register map), got \"" + rig.backend + "\"");
+    const ModbusRigConfig map = parse_modbus_config(rig);
+    std::vector<ListenAddress> addresses;
+    if (listen->empty()) {
+      for (std::size_t i = 0; i < map.links.size(); ++i) {
+        if (map.links[i].rtu)
+          throw InputError("--listen", "link \"" + map.links[i].name + "\"",
+                           "a HOST:PORT to serve this RTU link on over TCP (the rig file has no TCP address for it)");
+        addresses.push_back({map.links[i].host, map.links[i].port});
+      }
+    } else {
+      if (listen->size() != map.links.size())
+        throw InputError("--listen", std::to_string(listen->size()) + " address(es)",
+                         "one HOST:PORT per link of the map (" + std::to_string(map.links.size()) + ")");
+      for (const auto& text : *listen) {
+        try {
+          addresses.push_back(parse_listen_address(text));
+        } catch (const std::invalid_argument& e) {
+          throw InputError("--listen", text, e.what());
+        }
+      }
+    }
+    ModbusSimServer server(map, rig.plants);
+    if (!write_log->empty()) server.set_write_log(*write_log);
+    server.set_watchdog_s(*watchdog_ms / 1000.0);
+    cli::install_stop_signals();
+    try {
+      server.start(addresses);
+    } catch (const std::runtime_error& e) {
+      std::cerr << "palprig sim-rig: " << e.what() << "\n";
+      cli::finish(cli::kExitBadInput);
+    }
+    for (std::size_t i = 0; i < map.links.size(); ++i)
+      std::cout << "palprig sim-rig: rig '" << rig.id << "' link '" << map.links[i].name << "' (unit "
+                << map.links[i].unit_id << ") listening on " << addresses[i].host << ":" << server.port(i) << "\n";
+    std::cout << "palprig sim-rig: serving " << kFingerCount << " channels; stop with Ctrl-C" << std::endl;
+    const auto start = std::chrono::steady_clock::now();
+    while (cli::stop_signal().load() == 0) {
+      if (*duration_s > 0 && std::chrono::steady_clock::now() - start >= std::chrono::duration<double>(*duration_s)) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    server.stop();
+    std::cout << "palprig sim-rig: stopped after " << server.requests() << " requests" << std::endl;
+  });
+}
