@@ -1,0 +1,148 @@
+#include "calibration/calibration_fit.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "models/parse_error.hpp"
+
+namespace palprig {
+
+const char* to_string(HysteresisSource s) noexcept {
+  switch (s) {
+    case HysteresisSource::monitor: return "monitor";
+    case HysteresisSource::sensor: return "sensor";
+    case HysteresisSource::none: return "none";
+  }
+  return "?";
+}
+
+namespace {
+
+std::vector<HoldPoint> staircase_of(const std::vector<HoldPoint>& pts) {
+  std::vector<HoldPoint> out;
+  for (const auto& p : pts)
+    if (p.segment == SweepSegment::staircase && p.branch != SweepBranch::none) out.push_back(p);
+  return out;
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOptions& o) {
+  const std::string& file = data.file;
+  CalibrationResult out;
+  out.data_file = file;
+  out.date = o.date;
+  out.sensor_name = data.info.sensor_name;
+  out.rig_id = o.rig_id.empty() ? data.info.rig_id : o.rig_id;
+  if (out.rig_id.empty())
+    throw InputError(file, "rig_id", "the rig the data came from (a \"# rig_id: ...\" line, or --rig-id)");
+  if (out.rig_id == "*")
+    throw InputError(file, "rig_id", "a real rig id: a fitted calibration belongs to one rig, not \"*\"");
+  if (data.points.empty())
+    throw InputError(file, "rows", "settled readings (every hold of the file is unsettled or empty)");
+  if (data.unsettled_holds)
+    out.notes.push_back(std::to_string(data.unsettled_holds) + " holds never settled and were left out");
+
+  const HysteresisSource source =
+      o.hysteresis_from.value_or(data.has_monitor ? HysteresisSource::monitor : HysteresisSource::none);
+  if (source == HysteresisSource::monitor && !data.has_monitor)
+    throw InputError(file, "monitor_kPa", "monitor readings to fit the hysteresis on (or --hysteresis-from sensor|none)");
+  if (source == HysteresisSource::sensor && !data.has_sensor)
+    throw InputError(file, "sensor", "sensor readings to fit the hysteresis on (or --hysteresis-from monitor|none)");
+
+  out.stress = o.base.stress;
+  out.stress_file = o.stress_file;
+  out.force_file = o.force_file;
+  out.force_window = o.force_window;
+  std::vector<HoldPoint> pooled;
+  for (int c = 1; c <= int(kFingerCount); ++c) {
+    ChannelCalibration& ch = out.channels[std::size_t(c - 1)];
+    ch.channel = c;
+    ch.actuator = o.base.actuators[std::size_t(c - 1)];
+    if (!o.stress_pairs.empty()) {
+      const ActuatorFit a = fit_actuator_stress(o.stress_pairs, c, o.stress_file);
+      ch.actuator = a.model;
+      ch.stress_line = a.line;
+    }
+    const std::vector<HoldPoint> pts = data.channel_points(c);
+    ch.points = pts.size();
+    ch.swept = !pts.empty();
+    if (!ch.swept) {
+      out.notes.push_back("channel " + std::to_string(c) + " was not swept: no hysteresis model (identity)");
+      continue;
+    }
+    const std::string name = "channel " + std::to_string(c);
+    const std::vector<HoldPoint> stairs = staircase_of(pts);
+    if (data.has_monitor) check_response_moves(pts, Response::monitor, file, name + " monitor");
+    if (data.has_sensor) check_response_moves(pts, Response::sensor, file, name + " sensor");
+    if (!stairs.empty()) {
+      if (data.has_monitor) {
+        check_staircase_monotone(stairs, Response::monitor, o.monotone_tolerance, file, name);
+        ch.regulator = fit_branches(stairs, Response::monitor, file, name + " regulator");
+        ch.regulator_check = check_regulator(ch.regulator->both, o.regulator_tolerance_kPa);
+        if (!ch.regulator_check->passed()) {
+          const LineFit& l = ch.regulator->both;
+          throw InputError(file, name + " regulator",
+                           "a monitor within " + fixed(o.regulator_tolerance_kPa, 1) + " kPa of the command; its line " +
+                               "monitor = " + fixed(l.slope, 3) + " * command " + (l.intercept < 0 ? "- " : "+ ") +
+                               fixed(std::abs(l.intercept), 2) + " kPa is off by " +
+                               fixed(ch.regulator_check->worst_deviation_kPa, 2) + " kPa at " +
+                               fixed(ch.regulator_check->at_command_kPa, 1) +
+                               " kPa (check the regulator's supply, range and scaling, or raise "
+                               "--regulator-tolerance-kPa)");
+        }
+      }
+      if (data.has_sensor) {
+        check_staircase_monotone(stairs, Response::sensor, o.monotone_tolerance, file, name);
+        ch.response = fit_branches(stairs, Response::sensor, file, name + " sensor");
+      }
+      pooled.insert(pooled.end(), stairs.begin(), stairs.end());
+    }
+
+    ch.hysteresis_source = source;
+    if (source == HysteresisSource::none) continue;
+    std::vector<double> x, y;
+    for (const auto& p : pts) {
+      x.push_back(p.command_kPa);
+      y.push_back(source == HysteresisSource::monitor ? p.monitor_kPa : p.sensor);
+    }
+    if (source == HysteresisSource::sensor) {
+      if (!ch.response)
+        throw InputError(file, name + " sensor", "a staircase to convert sensor readings to pressure (no staircase rows)");
+      for (double& v : y) v = ch.response->both.x_for(v);  // the pressure that gives this reading on the line
+    }
+    for (std::size_t k = 0; k < y.size(); ++k)
+      if (!std::isfinite(y[k]))
+        throw InputError(file, "line " + std::to_string(pts[k].line),
+                         std::string("a ") + to_string(source) + " reading for the hysteresis fit of " + name);
+    HysteresisFit fit = fit_hysteresis(x, y, o.hysteresis, file, name + " hysteresis");
+    if (!fit.converged)
+      throw InputError(file, name + " hysteresis",
+                       "a fit Ceres converges on; it did not (" + fit.solver_report +
+                           "). Record more holds (--excitation staircase,random,sine), use fewer operators "
+                           "(--operators), or fix the thresholds (--no-refine)");
+    ch.hysteresis = fit;
+  }
+  if (pooled.empty() && data.has_monitor)
+    out.notes.push_back("no staircase rows: the branch tables of paper 002 fig. 8 were not computed");
+  if (!pooled.empty()) {
+    bool several = false;
+    for (const auto& p : pooled) several = several || p.channel != pooled.front().channel;
+    if (several) {
+      if (data.has_monitor) out.pooled_regulator = fit_branches(pooled, Response::monitor, file, "all channels regulator");
+      if (data.has_sensor) out.pooled_response = fit_branches(pooled, Response::sensor, file, "all channels sensor");
+    }
+  }
+  if (o.stress_pairs.empty()) out.notes.push_back("actuator stress lines from " + o.base.source + " (no --stress pairs)");
+  return out;
+}
+
+}  // namespace palprig

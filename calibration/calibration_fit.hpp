@@ -1,0 +1,66 @@
+#pragma once
+// `palprig calibrate fit` as a library call: from sweep data (and optional stress pairs and
+// force-window presses) to every model the controller's calibration file holds, with the fit
+// quality a lab engineer reads before trusting it. Nothing is written when any check fails:
+// each refusal is an InputError naming the data file, the channel and what was wrong.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calibration/branch_fits.hpp"
+#include "calibration/force_window.hpp"
+#include "calibration/hysteresis_fit.hpp"
+#include "calibration/stress_fit.hpp"
+#include "calibration/sweep_csv.hpp"
+#include "controller/calibration_file.hpp"
+
+namespace palprig {
+
+// What the hysteresis model maps the command to. monitor: the regulator's reported pressure
+// (the simulated plant's hysteresis is there). sensor: the sensor reading converted to the
+// pressure that gives it on the both-branch line, for actuators whose own deformation lags
+// (paper 002's case), so the tick lands the deformation on the line.
+enum class HysteresisSource { monitor, sensor, none };
+const char* to_string(HysteresisSource s) noexcept;
+
+struct CalibrationFitOptions {
+  HysteresisFitOptions hysteresis;
+  std::optional<HysteresisSource> hysteresis_from;  // default: monitor when the data has it, else none
+  double regulator_tolerance_kPa = 3.0;
+  double monotone_tolerance = 0.02;   // fraction of a branch's span a reading may step back
+  std::string rig_id;                 // overrides the data file's "# rig_id"
+  std::string date;                   // when the fit was made (ISO 8601)
+  CalibrationModels base;             // stress model and the lines of channels without stress data
+  std::vector<StressPair> stress_pairs;
+  std::string stress_file;
+  std::optional<ForceWindowFit> force_window;
+  std::string force_file;
+};
+
+struct ChannelCalibration {
+  int channel = 0;  // 1-based
+  bool swept = false;
+  std::size_t points = 0;
+  std::optional<BranchFits> regulator;          // monitor against command (staircase)
+  std::optional<RegulatorCheck> regulator_check;
+  std::optional<BranchFits> response;           // sensor against command (staircase)
+  std::optional<HysteresisFit> hysteresis;
+  HysteresisSource hysteresis_source = HysteresisSource::none;
+  ActuatorModel actuator;
+  std::optional<LineFit> stress_line;           // when fitted from stress pairs
+};
+
+struct CalibrationResult {
+  std::string rig_id, date, data_file, sensor_name;
+  std::array<ChannelCalibration, kFingerCount> channels;
+  std::optional<BranchFits> pooled_regulator, pooled_response;  // all swept channels together
+  StressModel stress;
+  std::optional<ForceWindowFit> force_window;
+  std::string stress_file, force_file;
+  std::vector<std::string> notes;
+};
+
+CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOptions& options);
+
+}  // namespace palprig

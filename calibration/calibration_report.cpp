@@ -1,0 +1,190 @@
+#include "calibration/calibration_report.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <stdexcept>
+
+namespace palprig {
+
+namespace {
+
+void line_row(std::ostream& out, const std::string& who, const char* branch, const LineFit& f, const char* unit) {
+  out << "  " << std::left << std::setw(9) << who << std::setw(11) << branch << std::right << std::setw(4) << f.n
+      << std::fixed << std::setprecision(4) << std::setw(10) << f.slope << std::setw(11) << std::setprecision(3)
+      << f.intercept << std::setw(10) << std::setprecision(4) << f.r_squared << std::setw(11) << std::setprecision(3)
+      << f.residual_sd << " " << unit << "\n";
+}
+
+void branch_table(std::ostream& out, const std::string& title, const char* unit,
+                  const std::vector<std::pair<std::string, const BranchFits*>>& rows) {
+  if (rows.empty()) return;
+  out << title << "\n";
+  out << "  channel  branch        n     slope  intercept       R^2   resid SD\n";
+  for (const auto& [who, f] : rows) {
+    line_row(out, who, "inflation", f->inflation, unit);
+    line_row(out, who, "deflation", f->deflation, unit);
+    line_row(out, who, "both", f->both, unit);
+  }
+  out << "  gap (deflation - inflation, mean over levels) / spread between repeats:\n";
+  for (const auto& [who, f] : rows) {
+    out << "    " << std::left << std::setw(8) << who << std::right << std::fixed << std::setprecision(3) << f->gap << " "
+        << unit << " / ";
+    if (std::isfinite(f->repeat_sd_percent)) out << std::setprecision(2) << f->repeat_sd_percent << " % of reading";
+    else out << "n/a (one repeat)";
+    out << "  (" << f->levels << " levels x " << f->repeats << " repeats)\n";
+  }
+}
+
+}  // namespace
+
+void print_fit_report(std::ostream& out, const CalibrationResult& r, const std::string& written_to) {
+  out << "palprig calibrate fit: " << r.data_file << " (rig " << r.rig_id << ") -> " << written_to << "\n";
+  std::vector<std::pair<std::string, const BranchFits*>> reg, sen;
+  for (const auto& ch : r.channels) {
+    if (ch.regulator) reg.emplace_back(std::to_string(ch.channel), &*ch.regulator);
+    if (ch.response) sen.emplace_back(std::to_string(ch.channel), &*ch.response);
+  }
+  if (r.pooled_regulator) reg.emplace_back("all", &*r.pooled_regulator);
+  if (r.pooled_response) sen.emplace_back("all", &*r.pooled_response);
+  branch_table(out, "Regulator: monitored against commanded pressure, staircase (paper 002 fig. 8 layout)", "kPa", reg);
+  branch_table(out, "Sensor (" + r.sensor_name + ") against commanded pressure, staircase (paper 002 fig. 8)",
+               r.sensor_name.c_str(), sen);
+  bool any_check = false;
+  for (const auto& ch : r.channels)
+    if (ch.regulator_check) {
+      if (!any_check) out << "Regulator check (monitor line against the command, tolerance " << std::setprecision(1)
+                          << ch.regulator_check->tolerance_kPa << " kPa):\n";
+      any_check = true;
+      out << "  channel " << ch.channel << ": off by at most " << std::setprecision(2)
+          << ch.regulator_check->worst_deviation_kPa << " kPa (at " << std::setprecision(1)
+          << ch.regulator_check->at_command_kPa << " kPa): " << (ch.regulator_check->passed() ? "ok" : "REFUSED") << "\n";
+    }
+  out << "Hysteresis (Prandtl-Ishlinskii, Ceres; the tick applies the inverse):\n";
+  for (const auto& ch : r.channels) {
+    out << "  channel " << ch.channel << ": ";
+    if (!ch.hysteresis) {
+      out << (ch.swept ? "not fitted (--hysteresis-from none)" : "not swept") << ": identity\n";
+      continue;
+    }
+    const HysteresisFit& h = *ch.hysteresis;
+    out << "from " << to_string(ch.hysteresis_source) << ", " << h.samples << " holds; w0 " << std::setprecision(3)
+        << h.model.linear_weight << ", plays";
+    for (std::size_t i = 0; i < h.model.operator_count; ++i)
+      out << " " << std::setprecision(2) << h.model.thresholds_kPa[i] << ":" << std::setprecision(3) << h.model.weights[i];
+    out << " (kPa:weight); RMS " << std::setprecision(3) << h.rms_error_kPa << " kPa, max " << h.max_abs_error_kPa
+        << " kPa, R^2 " << std::setprecision(5) << h.r_squared << "; " << h.iterations << " iterations, "
+        << std::setprecision(3) << h.solve_seconds << " s, thresholds " << (h.thresholds_refined ? "refined" : "on the grid")
+        << "\n";
+  }
+  out << "Actuator stress lines (stress = slope * p + intercept):\n";
+  for (const auto& ch : r.channels) {
+    out << "  channel " << ch.channel << ": slope " << std::setprecision(5) << ch.actuator.slope << ", intercept "
+        << std::setprecision(3) << ch.actuator.intercept_kPa << " kPa";
+    if (ch.stress_line)
+      out << ", R^2 " << std::setprecision(4) << ch.stress_line->r_squared << " (" << ch.stress_line->n << " pairs from "
+          << r.stress_file << ")";
+    else out << " (base calibration)";
+    out << "; 11.75 kPa of air -> " << std::setprecision(3) << ch.actuator.stress_kPa(11.75) << " kPa of stress\n";
+  }
+  if (r.force_window) {
+    const auto& w = *r.force_window;
+    out << "Force window (paper 003): F_min " << std::setprecision(3) << w.window.f_min_N << " N at "
+        << std::setprecision(0) << w.window.diastolic_mmHg << " mmHg (" << w.presses_min << " presses, SD "
+        << std::setprecision(3) << w.f_min_sd_N << " N), F_max " << w.window.f_max_N << " N at " << std::setprecision(0)
+        << w.window.systolic_mmHg << " mmHg (" << w.presses_max << " presses, SD " << std::setprecision(3)
+        << w.f_max_sd_N << " N)\n";
+  }
+  for (const auto& n : r.notes) out << "note: " << n << "\n";
+  out.unsetf(std::ios::fixed);
+}
+
+nlohmann::json evaluation_json(const EvaluationResult& r, const std::array<bool, kFingerCount>& channels) {
+  using nlohmann::json;
+  auto metrics = [](const TrackingMetrics& m) {
+    return json{{"samples", m.samples},
+                {"rms_error_kPa", m.rms_error_kPa},
+                {"max_abs_error_kPa", m.max_abs_error_kPa},
+                {"mean_error_inflation_kPa", m.mean_error_inflation_kPa},
+                {"mean_error_deflation_kPa", m.mean_error_deflation_kPa},
+                {"gap_kPa", m.gap_kPa},
+                {"r_squared", m.r_squared}};
+  };
+  json ch = json::array();
+  for (std::size_t c = 0; c < kFingerCount; ++c) {
+    if (!channels[c]) continue;
+    ch.push_back({{"channel", c + 1},
+                  {"uncompensated", metrics(r.uncompensated.channels[c])},
+                  {"compensated", metrics(r.compensated.channels[c])},
+                  {"improvement", r.improvement[c]}});
+  }
+  auto run_state = [](const EvaluationRun& run) {
+    return json{{"stopped", run.stopped}, {"faulted", run.faulted}, {"fault", run.fault}};
+  };
+  return json{{"trajectory",
+               {{"from_kPa", r.from_kPa},
+                {"to_kPa", r.to_kPa},
+                {"ramp_kPa_per_s", r.ramp_kPa_per_s},
+                {"duration_s", r.duration_s},
+                {"reversals", r.reversals}}},
+              {"channels", ch},
+              {"worst_improvement", r.worst_improvement},
+              {"complete", r.complete()},
+              {"uncompensated_run", run_state(r.uncompensated)},
+              {"compensated_run", run_state(r.compensated)}};
+}
+
+void print_evaluation_report(std::ostream& out, const EvaluationResult& r, const std::array<bool, kFingerCount>& channels) {
+  out << std::fixed << std::setprecision(1) << "  trajectory: " << r.from_kPa << " .. " << r.to_kPa << " kPa at "
+      << r.ramp_kPa_per_s << " kPa/s, " << std::setprecision(0) << r.duration_s << " s scored, " << r.reversals
+      << " reversals\n";
+  out << "  channel  compensation   RMS kPa   max kPa   gap kPa        R^2\n";
+  for (std::size_t c = 0; c < kFingerCount; ++c) {
+    if (!channels[c]) continue;
+    for (int with = 0; with < 2; ++with) {
+      const TrackingMetrics& m = with ? r.compensated.channels[c] : r.uncompensated.channels[c];
+      out << "  " << std::left << std::setw(9) << c + 1 << std::setw(13) << (with ? "on" : "off") << std::right
+          << std::setprecision(3) << std::setw(10) << m.rms_error_kPa << std::setw(10) << m.max_abs_error_kPa
+          << std::setw(10) << m.gap_kPa << std::setprecision(5) << std::setw(11) << m.r_squared << "\n";
+    }
+  }
+  out << "  improvement (RMS off / on):";
+  for (std::size_t c = 0; c < kFingerCount; ++c)
+    if (channels[c]) out << " channel " << c + 1 << " " << std::setprecision(1) << r.improvement[c] << "x";
+  out << "; worst " << r.worst_improvement << "x\n";
+  for (const EvaluationRun* run : {&r.uncompensated, &r.compensated}) {
+    if (run->stopped) out << "  note: stopped by a signal; channels vented; figures cover what was driven\n";
+    if (run->faulted) out << "  note: fault (" << run->fault << "); channels vented\n";
+  }
+  out.unsetf(std::ios::fixed);
+}
+
+void write_evaluation_trace_csv(const std::filesystem::path& path, const EvaluationResult& r) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot create " + path.string());
+  out << "t_s,compensation,target_kPa,setpoint_1_kPa,setpoint_2_kPa,setpoint_3_kPa,monitor_1_kPa,monitor_2_kPa,"
+         "monitor_3_kPa\n";
+  char line[256];
+  for (int with = 0; with < 2; ++with)
+    for (const auto& row : (with ? r.compensated : r.uncompensated).trace) {
+      std::snprintf(line, sizeof line, "%.3f,%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", row.t_s, with ? "on" : "off",
+                    row.target_kPa, row.setpoint_kPa[0], row.setpoint_kPa[1], row.setpoint_kPa[2], row.monitor_kPa[0],
+                    row.monitor_kPa[1], row.monitor_kPa[2]);
+      out << line;
+    }
+  if (!out.flush()) throw std::runtime_error("cannot write " + path.string());
+}
+
+std::string utc_timestamp_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+}  // namespace palprig

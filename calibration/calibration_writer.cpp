@@ -1,0 +1,128 @@
+#include "calibration/calibration_writer.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+namespace palprig {
+
+namespace {
+
+using nlohmann::json;
+
+// JSON has no NaN: a figure that does not exist (one repeat: no spread) is null.
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json line_json(const LineFit& f) {
+  return json{{"slope", f.slope},
+              {"intercept", f.intercept},
+              {"r_squared", f.r_squared},
+              {"residual_sd", f.residual_sd},
+              {"n", f.n},
+              {"x_min_kPa", f.x_min},
+              {"x_max_kPa", f.x_max}};
+}
+
+}  // namespace
+
+json branch_fits_json(const BranchFits& f) {
+  return json{{"inflation", line_json(f.inflation)},
+              {"deflation", line_json(f.deflation)},
+              {"both", line_json(f.both)},
+              {"gap", f.gap},
+              {"repeat_sd_percent", number_or_null(f.repeat_sd_percent)},
+              {"levels", f.levels},
+              {"repeats", f.repeats}};
+}
+
+json calibration_json(const CalibrationResult& r) {
+  json doc;
+  doc["version"] = kCalibrationFileVersion;
+  doc["rig_id"] = r.rig_id;
+  doc["date"] = r.date;
+  std::string notes = "Fitted by palprig calibrate fit from " + r.data_file + ".";
+  for (const auto& n : r.notes) notes += " " + n + ".";
+  doc["notes"] = notes;
+  doc["stress_model"] = {{"soft_stress_kPa", r.stress.soft_stress_kPa},
+                         {"hard_stress_kPa", r.stress.hard_stress_kPa},
+                         {"reference_force_N", r.stress.reference_force_N},
+                         {"max_force_ratio", r.stress.max_force_ratio}};
+  json channels = json::array(), fits_channels = json::array();
+  for (const ChannelCalibration& ch : r.channels) {
+    json c;
+    c["actuator"] = {{"slope", ch.actuator.slope}, {"intercept_kPa", ch.actuator.intercept_kPa}};
+    if (ch.stress_line) c["actuator"]["r_squared"] = ch.stress_line->r_squared;
+    json f{{"channel", ch.channel}, {"swept", ch.swept}, {"points", ch.points}};
+    if (ch.hysteresis) {
+      const HysteresisFit& h = *ch.hysteresis;
+      json thresholds = json::array(), weights = json::array();
+      for (std::size_t i = 0; i < h.model.operator_count; ++i) {
+        thresholds.push_back(h.model.thresholds_kPa[i]);
+        weights.push_back(h.model.weights[i]);
+      }
+      c["hysteresis"] = {{"linear_weight", h.model.linear_weight},
+                         {"thresholds_kPa", thresholds},
+                         {"weights", weights},
+                         {"rms_error_kPa", h.rms_error_kPa},
+                         {"r_squared", h.r_squared}};
+      f["hysteresis_fit"] = {{"source", to_string(ch.hysteresis_source)},
+                             {"samples", h.samples},
+                             {"max_abs_error_kPa", h.max_abs_error_kPa},
+                             {"grid_rms_error_kPa", h.stage1_rms_error_kPa},
+                             {"thresholds_refined", h.thresholds_refined},
+                             {"converged", h.converged},
+                             {"iterations", h.iterations},
+                             {"solve_seconds", h.solve_seconds},
+                             {"solver", h.solver_report}};
+    }
+    if (ch.regulator) f["regulator"] = branch_fits_json(*ch.regulator);
+    if (ch.regulator_check)
+      f["regulator_check"] = {{"worst_deviation_kPa", ch.regulator_check->worst_deviation_kPa},
+                              {"at_command_kPa", ch.regulator_check->at_command_kPa},
+                              {"tolerance_kPa", ch.regulator_check->tolerance_kPa},
+                              {"passed", ch.regulator_check->passed()}};
+    if (ch.response) f["sensor"] = branch_fits_json(*ch.response);
+    if (ch.stress_line) f["stress_line"] = line_json(*ch.stress_line);
+    channels.push_back(c);
+    fits_channels.push_back(f);
+  }
+  doc["channels"] = channels;
+  json fits{{"data", r.data_file}, {"sensor", r.sensor_name.empty() ? json(nullptr) : json(r.sensor_name)},
+            {"channels", fits_channels}};
+  if (r.pooled_regulator) fits["all_channels"]["regulator"] = branch_fits_json(*r.pooled_regulator);
+  if (r.pooled_response) fits["all_channels"]["sensor"] = branch_fits_json(*r.pooled_response);
+  if (!r.stress_file.empty()) fits["stress_pairs"] = r.stress_file;
+  doc["fits"] = fits;
+  if (r.force_window) {
+    const ForceWindowFit& w = *r.force_window;
+    doc["force_window"] = {{"diastolic_mmHg", w.window.diastolic_mmHg}, {"systolic_mmHg", w.window.systolic_mmHg},
+                           {"f_min_N", w.window.f_min_N},           {"f_max_N", w.window.f_max_N},
+                           {"f_min_sd_N", w.f_min_sd_N},             {"f_max_sd_N", w.f_max_sd_N},
+                           {"presses_min", w.presses_min},           {"presses_max", w.presses_max}};
+  }
+  return doc;
+}
+
+CalibrationModels write_calibration_file(const std::filesystem::path& path, const json& document) {
+  std::filesystem::path tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error("cannot create " + tmp.string());
+    out << document.dump(2) << "\n";
+    if (!out.flush()) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  CalibrationModels loaded;
+  try {
+    loaded = load_calibration_file(tmp);
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw;
+  }
+  std::filesystem::rename(tmp, path);
+  loaded.source = path.string();
+  return loaded;
+}
+
+}  // namespace palprig

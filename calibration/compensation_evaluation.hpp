@@ -1,0 +1,75 @@
+#pragma once
+// `palprig calibrate evaluate`: drive one test trajectory through the controller's own tick
+// (tick_direct: hysteresis inverse, then the safety stage) on a backend, once without and
+// once with the calibration's hysteresis compensation, and compare what the regulators report
+// with the target:
+//   - tracking RMS and worst error,
+//   - the inflation/deflation gap: mean error while the target falls minus while it rises
+//     (what hysteresis looks like; about twice the play half-width without compensation),
+//   - R^2 of the output against the target (the identity line, not a fitted one).
+// The trajectory ramps at a constant, slow rate between random turning points (reversals of
+// many sizes, so minor loops too); slow, because the compensation is for the rate-independent
+// hysteresis and the regulator's lag would otherwise dominate the error. The first approach
+// from vented to the bottom of the range is not scored.
+#include <array>
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "controller/calibration_file.hpp"
+#include "controller/rig_backend.hpp"
+#include "controller/rig_file.hpp"
+
+namespace palprig {
+
+struct EvaluationOptions {
+  double from_kPa = 10.0;
+  double to_kPa = 0.0;            // 0: 80 % of the rig's p_max
+  double ramp_kPa_per_s = 1.0;
+  double duration_s = 120.0;      // per run, after the rest and the first approach
+  double rest_s = 1.0;            // vented before each run
+  double rate_hz = 1000.0;
+  double record_hz = 50.0;        // trace kept for plots and --out
+  unsigned seed = 7;
+  bool realtime = true;
+  std::array<bool, kFingerCount> channels{true, true, true};
+  const std::atomic<int>* stop_signal = nullptr;
+};
+
+struct TrackingMetrics {
+  std::size_t samples = 0;
+  double rms_error_kPa = 0, max_abs_error_kPa = 0;
+  double mean_error_inflation_kPa = 0, mean_error_deflation_kPa = 0;
+  double gap_kPa = 0;     // deflation minus inflation mean error
+  double r_squared = 0;   // output against target
+};
+
+struct EvaluationTraceRow {
+  double t_s = 0, target_kPa = 0;
+  ChannelPressures setpoint_kPa{}, monitor_kPa{};
+};
+
+struct EvaluationRun {
+  std::array<TrackingMetrics, kFingerCount> channels{};
+  std::vector<EvaluationTraceRow> trace;
+  bool stopped = false, faulted = false;
+  std::string fault;
+};
+
+struct EvaluationResult {
+  double from_kPa = 0, to_kPa = 0, ramp_kPa_per_s = 0, duration_s = 0;
+  std::size_t reversals = 0;
+  EvaluationRun uncompensated, compensated;
+  std::array<double, kFingerCount> improvement{};  // uncompensated RMS / compensated RMS
+  double worst_improvement = 0;                     // over the evaluated channels
+  bool complete() const noexcept {
+    return !uncompensated.stopped && !uncompensated.faulted && !compensated.stopped && !compensated.faulted;
+  }
+};
+
+// Throws InputError for a range outside 0..p_max, or a calibration without any hysteresis model
+// on an evaluated channel (nothing to compare).
+EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig, const CalibrationModels& cal,
+                                       const EvaluationOptions& options);
+
+}  // namespace palprig

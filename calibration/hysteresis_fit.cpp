@@ -1,0 +1,310 @@
+#include "calibration/hysteresis_fit.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include <ceres/ceres.h>
+
+#include "calibration/line_fit.hpp"
+#include "calibration/nonnegative_least_squares.hpp"
+#include "models/parse_error.hpp"
+
+namespace palprig {
+
+void simulate_hysteresis(PrandtlIshlinskii model, std::span<const double> input_kPa, std::span<double> output_kPa) {
+  if (input_kPa.empty()) return;
+  model.reset(input_kPa[0]);
+  for (std::size_t k = 0; k < input_kPa.size() && k < output_kPa.size(); ++k) output_kPa[k] = model.apply(input_kPa[k]);
+}
+
+namespace {
+
+// The model's output and its derivatives at the current parameter values, for every sample.
+// Ceres calls PrepareForEvaluation with the parameter blocks already holding the point to
+// evaluate; the per-sample cost functions then only read from here.
+class PlaySequenceCache final : public ceres::EvaluationCallback {
+ public:
+  PlaySequenceCache(std::span<const double> x, std::span<const double> y, std::size_t n) : x_(x), y_(y) {
+    set_operators(n);
+  }
+  void set_operators(std::size_t n) {
+    n_ = n;
+    prediction_.resize(x_.size());
+    dy_dw_.resize(x_.size() * n);
+    dy_dd_.resize(x_.size() * n);
+    z_.resize(n);
+    dz_dr_.resize(n);
+    r_.resize(n);
+    dy_dr_.resize(n);
+  }
+
+  // Parameter storage the problem optimises (w0, w[n], d[n]).
+  double w0 = 1.0;
+  std::vector<double> w, d;
+
+  void PrepareForEvaluation(bool evaluate_jacobians, bool new_evaluation_point) override {
+    if (!new_evaluation_point && (have_jacobians_ || !evaluate_jacobians)) return;
+    compute(evaluate_jacobians);
+  }
+
+  double residual(std::size_t k) const { return prediction_[k] - y_[k]; }
+  double input(std::size_t k) const { return x_[k]; }
+  const double* dy_dw(std::size_t k) const { return &dy_dw_[k * n_]; }
+  const double* dy_dd(std::size_t k) const { return &dy_dd_[k * n_]; }
+  std::size_t operators() const { return n_; }
+
+  void compute(bool with_jacobians) {
+    double r_sum = 0;
+    for (std::size_t i = 0; i < n_; ++i) {
+      r_sum += d[i];
+      r_[i] = r_sum;
+      z_[i] = x_[0];  // relaxed start
+      dz_dr_[i] = 0;
+    }
+    for (std::size_t k = 0; k < x_.size(); ++k) {
+      const double xk = x_[k];
+      double y = w0 * xk;
+      for (std::size_t i = 0; i < n_; ++i) {
+        // play: z = clamp(z_prev, x - r, x + r); on a clamp the state follows x -/+ r.
+        if (z_[i] < xk - r_[i]) { z_[i] = xk - r_[i]; dz_dr_[i] = -1; }
+        else if (z_[i] > xk + r_[i]) { z_[i] = xk + r_[i]; dz_dr_[i] = 1; }
+        y += w[i] * z_[i];
+      }
+      prediction_[k] = y;
+      if (with_jacobians) {
+        for (std::size_t i = 0; i < n_; ++i) {
+          dy_dw_[k * n_ + i] = z_[i];
+          dy_dr_[i] = w[i] * dz_dr_[i];
+        }
+        // r_i = d_1 + ... + d_i, so dy/dd_j = sum over i >= j of dy/dr_i.
+        double suffix = 0;
+        for (std::size_t i = n_; i-- > 0;) {
+          suffix += dy_dr_[i];
+          dy_dd_[k * n_ + i] = suffix;
+        }
+      }
+    }
+    have_jacobians_ = with_jacobians;
+  }
+
+ private:
+  std::span<const double> x_, y_;
+  std::size_t n_;
+  std::vector<double> prediction_, dy_dw_, dy_dd_;
+  std::vector<double> z_, dz_dr_, r_, dy_dr_;  // scratch for one pass
+  bool have_jacobians_ = false;
+};
+
+// One sample's residual; values come from the shared cache.
+class PlaySampleCost final : public ceres::CostFunction {
+ public:
+  PlaySampleCost(const PlaySequenceCache& cache, std::size_t k) : cache_(cache), k_(k) {
+    set_num_residuals(1);
+    mutable_parameter_block_sizes()->push_back(1);
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(cache.operators()));
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(cache.operators()));
+  }
+  bool Evaluate(double const* const*, double* residuals, double** jacobians) const override {
+    residuals[0] = cache_.residual(k_);
+    if (jacobians) {
+      const std::size_t n = cache_.operators();
+      if (jacobians[0]) jacobians[0][0] = cache_.input(k_);
+      if (jacobians[1]) std::copy_n(cache_.dy_dw(k_), n, jacobians[1]);
+      if (jacobians[2]) std::copy_n(cache_.dy_dd(k_), n, jacobians[2]);
+    }
+    return true;
+  }
+
+ private:
+  const PlaySequenceCache& cache_;
+  std::size_t k_;
+};
+
+ceres::LossFunction* make_loss(const HysteresisFitOptions& o) {
+  switch (o.loss) {
+    case RobustLoss::huber: return new ceres::HuberLoss(o.loss_scale_kPa);
+    case RobustLoss::cauchy: return new ceres::CauchyLoss(o.loss_scale_kPa);
+    case RobustLoss::none: break;
+  }
+  return nullptr;
+}
+
+std::size_t count_reversals(std::span<const double> x) {
+  std::size_t reversals = 0;
+  int direction = 0;
+  for (std::size_t k = 1; k < x.size(); ++k) {
+    const double dx = x[k] - x[k - 1];
+    const int s = dx > 0 ? 1 : dx < 0 ? -1 : 0;
+    if (s != 0 && direction != 0 && s != direction) ++reversals;
+    if (s != 0) direction = s;
+  }
+  return reversals;
+}
+
+}  // namespace
+
+HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> y, const HysteresisFitOptions& o,
+                             const std::string& file, const std::string& what) {
+  const std::size_t n = o.operator_count;
+  if (n == 0 || n > kMaxPlayOperators)
+    throw InputError(file, what, "between 1 and " + std::to_string(kMaxPlayOperators) + " play operators");
+  if (x.size() != y.size()) throw InputError(file, what, "as many inputs as outputs");
+  const std::size_t parameters = 1 + 2 * n;
+  if (x.size() < 4 * parameters)
+    throw InputError(file, what, "at least " + std::to_string(4 * parameters) + " quasi-static samples for " +
+                                     std::to_string(n) + " play operators, got " + std::to_string(x.size()) +
+                                     " (record more holds or use fewer operators)");
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (!std::isfinite(x[k]) || !std::isfinite(y[k]))
+      throw InputError(file, what, "finite samples (sample " + std::to_string(k + 1) + " is NaN or infinite)");
+  const auto [x_lo, x_hi] = std::minmax_element(x.begin(), x.end());
+  const double x_range = *x_hi - *x_lo;
+  if (!(x_range > 1e-6)) throw InputError(file, what, "an input that moves (it stays at " + std::to_string(*x_lo) + " kPa)");
+  if (count_reversals(x) == 0)
+    throw InputError(file, what, "an input that reverses at least once (inflation and deflation), so hysteresis can be seen");
+
+  // Starting point from a straight line: slope shared between the linear part and the plays;
+  // the residual band around it says how wide the loops are.
+  const LineFit line = fit_line(x, y, file, what);
+  if (!(line.slope > 0))
+    throw InputError(file, what, "an output that rises with the input (the fitted slope is " +
+                                     std::to_string(line.slope) + ")");
+  double band_lo = 0, band_hi = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double r = y[k] - line.at(x[k]);
+    band_lo = std::min(band_lo, r);
+    band_hi = std::max(band_hi, r);
+  }
+  double r_max = o.max_threshold_kPa;
+  if (!(r_max > 0))
+    r_max = std::clamp(2.5 * 0.5 * (band_hi - band_lo) / line.slope, 0.02 * x_range, 0.5 * x_range);
+  r_max = std::max(r_max, o.min_threshold_step_kPa * double(n));
+
+  HysteresisFit fit;
+  fit.samples = x.size();
+  const auto t0 = std::chrono::steady_clock::now();
+
+  // Stage 1: thresholds on a grid, weights by exact non-negative least squares (reweighted
+  // for a robust loss). w0 = min_linear_weight + v with v >= 0 keeps w0's bound.
+  std::vector<double> grid(n);
+  for (std::size_t i = 0; i < n; ++i) grid[i] = r_max * double(i + 1) / double(n);
+  Eigen::MatrixXd A(Eigen::Index(x.size()), Eigen::Index(n + 1));
+  Eigen::VectorXd b(Eigen::Index(x.size()));
+  {
+    PrandtlIshlinskii plays;
+    plays.operator_count = n;
+    for (std::size_t i = 0; i < n; ++i) { plays.thresholds_kPa[i] = grid[i]; plays.weights[i] = 0; }
+    plays.reset(x[0]);
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      const auto row = Eigen::Index(k);
+      plays.apply(x[k]);
+      A(row, 0) = x[k];
+      for (std::size_t i = 0; i < n; ++i) A(row, Eigen::Index(i + 1)) = plays.state_kPa[i];
+      b[row] = y[k] - o.min_linear_weight * x[k];
+    }
+  }
+  NnlsResult stage1 = solve_nonnegative_least_squares(A, b);
+  if (o.loss != RobustLoss::none) {
+    Eigen::VectorXd row_weights(b.size());
+    for (int pass = 0; pass < 20; ++pass) {
+      const Eigen::VectorXd e = A * stage1.w - b;
+      for (Eigen::Index k = 0; k < e.size(); ++k) {
+        const double u = std::abs(e[k]) / o.loss_scale_kPa;
+        row_weights[k] = o.loss == RobustLoss::huber ? (u <= 1 ? 1.0 : 1.0 / u) : 1.0 / (1.0 + u * u);
+      }
+      const NnlsResult next = solve_nonnegative_least_squares(A, b, &row_weights);
+      const double change = (next.w - stage1.w).norm();
+      stage1 = next;
+      if (change <= 1e-9 * std::max(1.0, stage1.w.norm())) break;
+    }
+  }
+  fit.iterations = stage1.iterations;
+  fit.converged = stage1.converged;
+
+  // Keep the operators the data uses; unused ones only make stage 2 ill-conditioned.
+  PlaySequenceCache cache(x, y, 0);
+  cache.w0 = o.min_linear_weight + stage1.w[0];
+  double total_slope = cache.w0;
+  for (std::size_t i = 0; i < n; ++i) total_slope += stage1.w[Eigen::Index(i + 1)];
+  std::vector<double> kept_r;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double wi = stage1.w[Eigen::Index(i + 1)];
+    if (wi > 1e-6 * total_slope) { cache.w.push_back(wi); kept_r.push_back(grid[i]); }
+  }
+  for (std::size_t i = 0; i < kept_r.size(); ++i) cache.d.push_back(kept_r[i] - (i ? kept_r[i - 1] : 0.0));
+  cache.set_operators(kept_r.size());
+  fit.stage1_rms_error_kPa = std::sqrt((A * stage1.w - b).squaredNorm() / double(x.size()));
+
+  // Stage 2 (Ceres): thresholds and weights together, bounded, with the robust loss.
+  if (o.refine_thresholds && !kept_r.empty() && fit.converged) {
+    const std::size_t p = kept_r.size();
+    const std::vector<double> w_start = cache.w, d_start = cache.d;
+    const double w0_start = cache.w0;
+    ceres::Problem::Options po;
+    po.evaluation_callback = &cache;
+    ceres::Problem problem(po);
+    for (std::size_t k = 0; k < x.size(); ++k)
+      problem.AddResidualBlock(new PlaySampleCost(cache, k), make_loss(o), &cache.w0, cache.w.data(), cache.d.data());
+    problem.SetParameterLowerBound(&cache.w0, 0, o.min_linear_weight);
+    for (std::size_t i = 0; i < p; ++i) {
+      problem.SetParameterLowerBound(cache.w.data(), static_cast<int>(i), 0.0);
+      problem.SetParameterLowerBound(cache.d.data(), static_cast<int>(i), o.min_threshold_step_kPa);
+      problem.SetParameterUpperBound(cache.d.data(), static_cast<int>(i), x_range);
+    }
+    // The cost moves over the kinks of the play operators: stop on a small relative change.
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.max_num_iterations = o.max_iterations;
+    so.num_threads = std::max(o.threads, 1);
+    so.function_tolerance = 1e-7;
+    so.parameter_tolerance = 1e-8;
+    so.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    fit.iterations += static_cast<int>(summary.iterations.size());
+    fit.solver_report = summary.BriefReport();
+    fit.converged = summary.termination_type == ceres::CONVERGENCE;
+    fit.thresholds_refined = fit.converged && summary.final_cost <= summary.initial_cost;
+    if (!fit.thresholds_refined) {  // keep stage 1's exact solution
+      cache.w = w_start;
+      cache.d = d_start;
+      cache.w0 = w0_start;
+    }
+  } else if (!o.refine_thresholds) {
+    fit.solver_report = "thresholds fixed on the grid (no refinement asked)";
+  }
+  fit.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  PrandtlIshlinskii& m = fit.model;
+  m.linear_weight = cache.w0;
+  m.operator_count = cache.w.size();
+  double r_sum = 0;
+  for (std::size_t i = 0; i < m.operator_count; ++i) {
+    r_sum += cache.d[i];
+    m.thresholds_kPa[i] = r_sum;
+    m.weights[i] = std::max(cache.w[i], 0.0);  // bounds hold; this only removes -0.0
+  }
+  m.reset(0.0);
+
+  std::vector<double> predicted(x.size());
+  simulate_hysteresis(m, x, predicted);
+  double ss = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double e = predicted[k] - y[k];
+    ss += e * e;
+    fit.max_abs_error_kPa = std::max(fit.max_abs_error_kPa, std::abs(e));
+  }
+  fit.rms_error_kPa = std::sqrt(ss / double(x.size()));
+  fit.r_squared = r_squared_against(y, predicted);
+  if (!m.valid()) {
+    fit.converged = false;
+    fit.solver_report += " (result is not an invertible model)";
+  }
+  return fit;
+}
+
+}  // namespace palprig

@@ -1,0 +1,121 @@
+#include "calibration/sweep_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <sstream>
+
+#include "models/parse_error.hpp"
+
+namespace palprig {
+
+const char* to_string(SweepSegment s) noexcept {
+  switch (s) {
+    case SweepSegment::vent: return "vent";
+    case SweepSegment::staircase: return "staircase";
+    case SweepSegment::random: return "random";
+    case SweepSegment::sine: return "sine";
+  }
+  return "?";
+}
+
+const char* to_string(SweepBranch b) noexcept {
+  switch (b) {
+    case SweepBranch::none: return "none";
+    case SweepBranch::inflation: return "inflation";
+    case SweepBranch::deflation: return "deflation";
+  }
+  return "?";
+}
+
+bool parse_segment(const std::string& t, SweepSegment& out) noexcept {
+  for (auto s : {SweepSegment::vent, SweepSegment::staircase, SweepSegment::random, SweepSegment::sine})
+    if (t == to_string(s)) { out = s; return true; }
+  return false;
+}
+
+bool parse_branch(const std::string& t, SweepBranch& out) noexcept {
+  for (auto b : {SweepBranch::none, SweepBranch::inflation, SweepBranch::deflation})
+    if (t == to_string(b)) { out = b; return true; }
+  return false;
+}
+
+namespace {
+
+std::string kPa_text(double v) {
+  std::ostringstream s;
+  s << v << " kPa";
+  return s.str();
+}
+
+}  // namespace
+
+SweepSchedule plan_calibration_sweep(const SweepPlanOptions& o, double p_max_kPa) {
+  auto need = [](bool ok, const char* option, const std::string& expected) {
+    if (!ok) throw InputError(option, "value", expected);
+  };
+  need(std::isfinite(o.from_kPa) && o.from_kPa >= 0, "--from-kPa", "a pressure >= 0 kPa");
+  need(std::isfinite(o.to_kPa) && o.to_kPa > o.from_kPa, "--to-kPa", "a pressure above --from-kPa");
+  need(std::isfinite(o.step_kPa) && o.step_kPa > 0, "--step-kPa", "a step > 0 kPa");
+  need((o.to_kPa - o.from_kPa) / o.step_kPa <= 1000, "--step-kPa", "at most 1000 levels between --from-kPa and --to-kPa");
+  need(o.repeats >= 1 && o.repeats <= 100, "--repeats", "1 to 100 repeats");
+  need(o.staircase || o.random || o.sine, "--excitation", "at least one of staircase, random, sine");
+  need(o.random_levels >= 2 && o.random_levels <= 100000, "--random-levels", "2 to 100000 levels");
+  need(o.sine_cycles >= 1 && o.sine_cycles <= 1000, "--sine-cycles", "1 to 1000 cycles");
+  need(o.sine_steps_per_cycle >= 4 && o.sine_steps_per_cycle <= 1000, "--sine-steps", "4 to 1000 steps per cycle");
+  need(p_max_kPa > 0, "rig", "a positive p_max");
+  need(o.from_kPa < p_max_kPa, "--from-kPa",
+       "a level below the rig's p_max (" + kPa_text(p_max_kPa) + "), got " + kPa_text(o.from_kPa));
+
+  SweepSchedule plan;
+  plan.p_max_kPa = p_max_kPa;
+  const double top = std::min(o.to_kPa, p_max_kPa);
+  if (o.to_kPa > p_max_kPa) {
+    std::ostringstream s;
+    s << "the rig's p_max is " << p_max_kPa << " kPa: sweep levels above it are clamped to " << p_max_kPa
+      << " kPa (asked up to " << o.to_kPa << " kPa)";
+    plan.notes.push_back(s.str());
+  }
+
+  // Staircase levels from..to in steps, clamped, without repeated levels.
+  std::vector<double> levels;
+  const auto steps = static_cast<int>(std::floor((o.to_kPa - o.from_kPa) / o.step_kPa + 1e-9));
+  for (int k = 0; k <= steps; ++k) {
+    const double level = std::min(o.from_kPa + k * o.step_kPa, top);
+    if (levels.empty() || level > levels.back() + 1e-9) levels.push_back(level);
+  }
+  if (levels.back() < top - 1e-9) levels.push_back(top);  // the step did not land on `to`
+
+  auto add = [&](SweepSegment seg, int repeat, SweepBranch branch, double level) {
+    plan.holds.push_back({seg, repeat, branch, level});
+  };
+  if (o.staircase) {
+    for (int r = 1; r <= o.repeats; ++r) {
+      add(SweepSegment::vent, 0, SweepBranch::none, 0.0);  // every repeat starts vented (paper 002)
+      for (double l : levels) add(SweepSegment::staircase, r, SweepBranch::inflation, l);
+      for (auto it = levels.rbegin(); it != levels.rend(); ++it) add(SweepSegment::staircase, r, SweepBranch::deflation, *it);
+    }
+  }
+  if (o.random) {
+    add(SweepSegment::vent, 0, SweepBranch::none, 0.0);
+    std::mt19937_64 rng(o.seed);
+    std::uniform_real_distribution<double> level(o.from_kPa, top);
+    for (int k = 0; k < o.random_levels; ++k) add(SweepSegment::random, 0, SweepBranch::none, level(rng));
+  }
+  if (o.sine) {
+    add(SweepSegment::vent, 0, SweepBranch::none, 0.0);
+    const double centre = 0.5 * (o.from_kPa + top), full = 0.5 * (top - o.from_kPa);
+    const int total = o.sine_cycles * o.sine_steps_per_cycle;
+    for (int k = 0; k <= total; ++k) {
+      const double phase = double(k) / o.sine_steps_per_cycle;  // in cycles
+      // Amplitude shrinks linearly to a quarter: every cycle's loop nests inside the last.
+      const double amplitude = full * (1.0 - 0.75 * phase / o.sine_cycles);
+      add(SweepSegment::sine, 0, SweepBranch::none, centre - amplitude * std::cos(2 * std::numbers::pi * phase));
+    }
+  }
+  add(SweepSegment::vent, 0, SweepBranch::none, 0.0);
+  return plan;
+}
+
+}  // namespace palprig

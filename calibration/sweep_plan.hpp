@@ -1,0 +1,53 @@
+#pragma once
+// What a calibration sweep commands, as a list of holds (a level held until the regulators
+// settle). Paper 002's protocol is the staircase: from 10 to 100 kPa in steps of 10 and back,
+// five repeats, each repeat starting vented. For identifying hysteresis, two optional
+// excitations add reversals of many sizes (minor loops):
+//   random - levels drawn uniformly in [from, to];
+//   sine   - levels on a sine whose amplitude shrinks cycle by cycle (nested loops).
+// Both are stepped (every level is held until settled) so the fit sees the rate-independent
+// hysteresis and not the regulator's lag.
+// Levels above the rig's p_max are clamped to p_max (the backend refuses anything above it)
+// and the schedule's notes say so.
+#include <string>
+#include <vector>
+
+namespace palprig {
+
+enum class SweepSegment { vent, staircase, random, sine };
+enum class SweepBranch { none, inflation, deflation };
+
+const char* to_string(SweepSegment s) noexcept;
+const char* to_string(SweepBranch b) noexcept;
+bool parse_segment(const std::string& text, SweepSegment& out) noexcept;
+bool parse_branch(const std::string& text, SweepBranch& out) noexcept;
+
+struct SweepHold {
+  SweepSegment segment = SweepSegment::vent;
+  int repeat = 0;  // staircase repeat (1-based), 0 elsewhere
+  SweepBranch branch = SweepBranch::none;
+  double level_kPa = 0;
+};
+
+struct SweepPlanOptions {
+  double from_kPa = 10, to_kPa = 100, step_kPa = 10;
+  int repeats = 5;
+  bool staircase = true;
+  bool random = false;
+  bool sine = false;
+  int random_levels = 60;
+  unsigned seed = 1;
+  int sine_cycles = 4;
+  int sine_steps_per_cycle = 16;
+};
+
+struct SweepSchedule {
+  std::vector<SweepHold> holds;
+  std::vector<std::string> notes;  // e.g. the p_max clamp
+  double p_max_kPa = 0;
+};
+
+// Throws InputError("--from-kPa", ...) and the like for arguments that make no sweep.
+SweepSchedule plan_calibration_sweep(const SweepPlanOptions& options, double p_max_kPa);
+
+}  // namespace palprig

@@ -1,0 +1,95 @@
+#include "calibration/sweep_runner.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "calibration/pacer.hpp"
+
+namespace palprig {
+
+namespace {
+
+// Whether the newest `window` samples of every selected channel have stopped moving.
+bool monitors_settled(const std::vector<SweepSample>& s, std::size_t window, const std::array<bool, kFingerCount>& on,
+                      double band_kPa) {
+  if (s.size() < window || window < 2) return false;
+  const std::size_t half = window / 2, first = s.size() - window;
+  for (std::size_t c = 0; c < kFingerCount; ++c) {
+    if (!on[c]) continue;
+    double older = 0, newer = 0;
+    for (std::size_t k = 0; k < half; ++k) older += s[first + k].monitor_kPa[c];
+    for (std::size_t k = window - half; k < window; ++k) newer += s[first + k].monitor_kPa[c];
+    if (std::abs(newer - older) / double(half) > band_kPa) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& schedule, const SweepRunOptions& o,
+                                   SweepSink& sink, const SweepProgress& progress) {
+  if (!(o.settle_window_s > 0) || !(o.settle_band_kPa > 0) || !(o.min_hold_s >= 0) ||
+      !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s))
+    throw std::invalid_argument("sweep: need settle window > 0, band > 0 and max hold above min hold and the window");
+  bool any = false;
+  for (bool on : o.channels) any = any || on;
+  if (!any) throw std::invalid_argument("sweep: no channel selected");
+
+  Pacer pacer(o.rate_hz, o.realtime);
+  const auto window = static_cast<std::size_t>(std::max(2.0, std::round(o.settle_window_s * o.rate_hz)));
+  std::vector<SweepSample> hold_samples;
+  hold_samples.reserve(static_cast<std::size_t>(o.max_hold_s * o.rate_hz) + 2);
+  const bool has_sensor = backend.sensor_name() != nullptr;
+
+  SweepOutcome out;
+  out.holds_planned = schedule.holds.size();
+  std::uint64_t k = 0;
+  double t_s = 0;
+  for (std::size_t h = 0; h < schedule.holds.size() && !out.stopped && !out.faulted; ++h) {
+    const SweepHold& hold = schedule.holds[h];
+    ChannelPressures setpoint{};
+    for (std::size_t c = 0; c < kFingerCount; ++c) setpoint[c] = o.channels[c] ? hold.level_kPa : 0.0;
+    hold_samples.clear();
+    HoldOutcome result;
+    const double hold_start_s = pacer.period_s() * double(k);
+    for (;;) {
+      t_s = pacer.wait_for_tick(k++);
+      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+        out.stopped = true;
+        out.stop_signal = o.stop_signal->load();
+        break;
+      }
+      SweepSample s;
+      s.t_s = t_s;
+      s.command_kPa = hold.level_kPa;
+      s.sensor.fill(std::numeric_limits<double>::quiet_NaN());
+      if (backend.write(setpoint, t_s) != BackendStatus::ok || backend.read_monitors(s.monitor_kPa, t_s) != BackendStatus::ok ||
+          (has_sensor && backend.read_sensors(s.sensor, t_s) != BackendStatus::ok)) {
+        out.faulted = true;
+        out.fault = backend.last_error();
+        break;
+      }
+      hold_samples.push_back(s);
+      result.hold_s = t_s - hold_start_s;
+      if (result.hold_s >= o.min_hold_s && monitors_settled(hold_samples, window, o.channels, o.settle_band_kPa)) {
+        result.settled = true;
+        for (std::size_t j = hold_samples.size() - window; j < hold_samples.size(); ++j) hold_samples[j].settled = true;
+        break;
+      }
+      if (result.hold_s >= o.max_hold_s) break;  // recorded, but marked unsettled
+    }
+    if (!hold_samples.empty()) {
+      sink.on_hold(h, hold, hold_samples, result);
+      ++out.holds_done;
+      if (!result.settled) ++out.holds_unsettled;
+    }
+    if (progress && !out.stopped && !out.faulted) progress(h + 1, schedule.holds.size(), hold, result);
+  }
+  backend.vent();
+  out.duration_s = t_s;
+  return out;
+}
+
+}  // namespace palprig

@@ -1,0 +1,64 @@
+#pragma once
+// Runs a calibration sweep on any RigBackend: each hold commands its level on the selected
+// channels (the others stay vented), then waits until every selected monitor has settled
+// (the mean of the newest half of a window differs from the older half by at most a band),
+// up to a time limit. Every sample goes to a sink hold by hold, so a stop keeps what was
+// recorded. Ctrl-C (the stop flag), a backend error or the end all vent every channel.
+#include <array>
+#include <atomic>
+#include <functional>
+#include <span>
+#include <string>
+
+#include "calibration/sweep_plan.hpp"
+#include "controller/rig_backend.hpp"
+
+namespace palprig {
+
+struct SweepSample {
+  double t_s = 0;
+  double command_kPa = 0;
+  ChannelPressures monitor_kPa{};
+  std::array<double, kFingerCount> sensor{};  // NaN when the rig has no sensor
+  bool settled = false;                        // inside the window that met the settle test
+};
+
+struct HoldOutcome {
+  bool settled = false;
+  double hold_s = 0;
+};
+
+class SweepSink {
+ public:
+  virtual ~SweepSink() = default;
+  virtual void on_hold(std::size_t index, const SweepHold& hold, std::span<const SweepSample> samples,
+                       const HoldOutcome& outcome) = 0;
+};
+
+struct SweepRunOptions {
+  double rate_hz = 100.0;
+  bool realtime = true;              // false: simulated time, as fast as possible
+  double settle_window_s = 0.3;
+  double settle_band_kPa = 0.2;
+  double min_hold_s = 0.2;
+  double max_hold_s = 10.0;
+  std::array<bool, kFingerCount> channels{true, true, true};
+  const std::atomic<int>* stop_signal = nullptr;
+};
+
+struct SweepOutcome {
+  std::size_t holds_planned = 0, holds_done = 0, holds_unsettled = 0;
+  bool stopped = false;   // by the stop flag (the signal number is in stop_signal)
+  int stop_signal = 0;
+  bool faulted = false;   // a backend error; `fault` says which
+  std::string fault;
+  double duration_s = 0;  // rig time
+};
+
+using SweepProgress = std::function<void(std::size_t done, std::size_t total, const SweepHold&, const HoldOutcome&)>;
+
+// Throws std::invalid_argument for options that make no sweep (before anything is written).
+SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& schedule, const SweepRunOptions& options,
+                                   SweepSink& sink, const SweepProgress& progress = {});
+
+}  // namespace palprig
