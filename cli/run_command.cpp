@@ -156,7 +156,13 @@ void register_run_command(CLI::App& app) {
   sub->callback([o]() {
     cli::LoadedRun run = cli::load_run(o->args);
     RunOptions opt = o->run;
-    opt.mode = o->realtime ? LoopMode::realtime : LoopMode::replay;
+    // Hardware and live pen input run on the wall clock: a replay would command real
+    // regulators (or read a real pen) on simulated time.
+    const bool live = run.rig.backend != "simulated" || cli::is_live_input(o->args.input_spec);
+    if (live && o->replay)
+      throw InputError("--replay", run.rig.backend != "simulated" ? "backend " + run.rig.backend : "--input " + o->args.input_spec,
+                       "--realtime: hardware and live pen input run on the wall clock");
+    opt.mode = (o->realtime || live) ? LoopMode::realtime : LoopMode::replay;
     opt.duration_s = o->duration_s > 0 ? o->duration_s : run.input->duration_s();
     if (!(opt.duration_s > 0))
       throw InputError("--duration-s", "value", "a positive duration (the input has no length of its own)");
