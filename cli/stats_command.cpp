@@ -11,6 +11,8 @@
 #include "experiments/csv_table.hpp"
 #include "experiments/statistics_error.hpp"
 #include "experiments/statistics_report.hpp"
+#include "experiments/trial_summary.hpp"
+#include "experiments/trial_summary_report.hpp"
 #include "models/parse_error.hpp"
 
 using namespace palprig;
@@ -263,6 +265,40 @@ void register_describe(CLI::App* stats_app) {
   });
 }
 
+void register_trials(CLI::App* stats_app) {
+  struct Args {
+    std::string db, by = "condition", format = "table";
+    bool json = false, include_practice = false;
+    double confidence = 0.95;
+  };
+  auto a = std::make_shared<Args>();
+  auto* sub = stats_app->add_subcommand(
+      "trials", "Scores of a trial database: TP/FN/TN/FP per finger value (discrimination) or per tumor "
+                "(localisation), Se, Sp, PPV, ACC (paper 002 eq. 5-8) with Wilson 95 % intervals (no continuity "
+                "correction), mean and sd of response times; practice trials left out");
+  sub->add_option("db", a->db, "Trial database written by palprig experiment run")->required();
+  sub->add_option("--by", a->by, "Group by a comma list of: condition, participant, finger, tumor, combination, session "
+                                 "(empty: everything in one row)")
+      ->default_val("condition");
+  sub->add_option("--format", a->format, "table, csv or json")->check(CLI::IsMember({"table", "csv", "json"}))->default_val("table");
+  sub->add_flag("--json", a->json, "Same as --format json");
+  sub->add_flag("--include-practice", a->include_practice, "Score practice trials too");
+  sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson intervals")->default_val(0.95)
+      ->check(CLI::Range(0.5, 0.9999));
+  sub->callback([a] {
+    SummaryOptions options;
+    options.by = parse_summary_keys(a->by);
+    options.include_practice = a->include_practice;
+    options.confidence = a->confidence;
+    TrialStore store = open_trial_store_for_reading(a->db);
+    const TrialSummary summary = summarise_trials(store, options);
+    const std::string format = a->json ? "json" : a->format;
+    if (format == "json") std::cout << summary_json(summary, a->confidence).dump(2) << "\n";
+    else if (format == "csv") std::cout << summary_csv(summary);
+    else std::cout << summary_table(summary);
+  });
+}
+
 }  // namespace
 
 void register_stats_command(CLI::App& app) {
@@ -276,4 +312,5 @@ void register_stats_command(CLI::App& app) {
   register_wilcoxon(stats_app);
   register_pearson(stats_app);
   register_describe(stats_app);
+  register_trials(stats_app);
 }

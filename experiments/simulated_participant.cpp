@@ -103,7 +103,7 @@ void SimulatedParticipant::watch_for_bumps(const FeltSample& sample) {
   for (std::size_t f = 0; f < kFingerCount; ++f) {
     baseline_kPa_[f] = std::min(baseline_kPa_[f], sample.felt_kPa[f]);
     const double excess = sample.felt_kPa[f] - baseline_kPa_[f];
-    if (excess < model_.detection_threshold_kPa / 2.0) continue;
+    if (excess < model_.detection_threshold_kPa) continue;
     auto near = std::find_if(candidates_.begin(), candidates_.end(), [&](const Candidate& c) {
       return std::hypot(c.x_mm - fingers[f].x_mm, c.y_mm - fingers[f].y_mm) < kSameBumpMm;
     });

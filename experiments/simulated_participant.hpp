@@ -9,9 +9,9 @@
 // Response times are log-normal with the mean and sd of paper 002 per mode (4.6 +/- 2.3 s
 // three fingers, 8.3 +/- 2.9 s one finger), never before every finger has been felt.
 //
-// Localisation: the observer sweeps the scene with the pen (rows 10 mm apart, a random row
+// Localisation: the observer sweeps the scene with the pen (rows 20 mm apart, a random row
 // offset per trial) and watches each finger's pressure above its running minimum. Each bump
-// above half the detection threshold becomes a candidate at its peak; it is reported with
+// above the detection threshold becomes a candidate at its peak; it is reported with
 // probability Phi((peak - threshold) / detection_noise_kPa), marked with Gaussian position
 // noise. Small tumors that fall between the fingers' paths are missed, as people miss them.
 #include <cstdint>
@@ -37,17 +37,17 @@ struct ResponseTimeModel {
 
 struct SimulatedObserverModel {
   std::uint64_t seed = 1;
-  double noise_kPa = 1.5;
-  double sequential_noise_factor = 1.6;
+  double noise_kPa = 1.7;
+  double sequential_noise_factor = 1.3;
   double criterion_kPa = 5.0;
   ResponseTimeModel simultaneous{4.6, 2.3};
   ResponseTimeModel sequential{8.3, 2.9};
   // Localisation.
-  double detection_threshold_kPa = 1.0;
-  double detection_noise_kPa = 0.5;
+  double detection_threshold_kPa = 3.0;  // above the plant's hysteresis offset (~2 kPa)
+  double detection_noise_kPa = 1.5;
   double mark_noise_mm = 2.0;
   double sweep_speed_mm_per_s = 40.0;
-  double sweep_row_step_mm = 10.0;
+  double sweep_row_step_mm = 20.0;       // fingers pass 16 mm apart: paths 4 and 16 mm apart
   double press_force_N = 2.0;
 };
 
