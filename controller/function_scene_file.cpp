@@ -217,6 +217,7 @@ PulseWaveform load_waveform_csv(const std::filesystem::path& path) {
   std::vector<double> t, v;
   std::string line;
   int line_no = 0;
+  bool seen_header = false;
   while (std::getline(in, line)) {
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -238,7 +239,10 @@ PulseWaveform load_waveform_csv(const std::filesystem::path& path) {
       return s.find_first_not_of(" \t", from) == std::string::npos;
     };
     if (!ok || !blank(a, used_a) || !blank(b, used_b)) {
-      if (t.empty() && v.empty() && line_no == 1) continue;  // a header line
+      if (t.empty() && !seen_header) {  // a header line before the first row
+        seen_header = true;
+        continue;
+      }
       throw InputError(file, "line " + std::to_string(line_no), "two numbers t_s,value, got \"" + line + "\"");
     }
     t.push_back(ta);

@@ -244,21 +244,18 @@ double FrepShape::eval(Node index, const Point3_mm& p) const noexcept {
       double v = kOutside;
       for (std::int32_t i = 0; i < n.count; ++i) {
         v = std::max(v, eval(children_[static_cast<std::size_t>(n.first + i)], p));
-        if (v >= 0) break;  // membership is decided; only the sign is meaningful
       }
       return v;
     }
     case Kind::intersect: {
-      double v = 1.0;
+      double v = std::numeric_limits<double>::infinity();
       for (std::int32_t i = 0; i < n.count; ++i) {
         v = std::min(v, eval(children_[static_cast<std::size_t>(n.first + i)], p));
-        if (v < 0) break;
       }
       return v;
     }
     case Kind::subtract: {
       const double a = eval(children_[static_cast<std::size_t>(n.first)], p);
-      if (a < 0) return a;
       return std::min(a, -eval(children_[static_cast<std::size_t>(n.first + 1)], p));
     }
     case Kind::scaled: {

@@ -9,9 +9,10 @@
 // Coordinates: x, y on the skin plane as the touchpad's (mm, y grows down the pad), z the depth
 // below the skin (mm, positive into the body).
 //
-// Only the sign of a value is meaningful: the primitives are normalised differently (a sphere
-// gives 1 - |p - c|^2 / r^2, a blob sum is in its own units), so union and intersection decide
-// membership correctly but a value is not a distance.
+// Membership is the sign of the value. The primitives are normalised differently (a sphere
+// gives 1 - |p - c|^2 / r^2, a blob sum is in its own units), so a value is not a distance.
+// Values are exact within each part's bounding box; outside it a part counts as -1, which
+// keeps every sign (and so every union, intersection and difference) right.
 //
 // The shape is a tree stored in flat vectors, built once; value() walks it without allocating,
 // and every node carries a conservative bounding box so distant points are rejected cheaply.

@@ -32,16 +32,18 @@ const DepthKernel kDepth = [] {
 }();
 
 // Centre for the inner disc (65 % of a Hertz load lies inside a / sqrt(2)), four points at
-// 0.75 a for the annulus.
+// 0.75 a for the annulus. A bone under a point bears on the finger with the Hertz contact
+// pressure there relative to the centre's: sqrt(1 - 0.75^2) = 0.66 at the ring.
 struct LateralPoint {
-  double dx, dy, weight;
+  double dx, dy, weight, bearing;
 };
+constexpr double kRingBearing = 0.6614378277661477;
 constexpr std::array<LateralPoint, 5> kLateral{{
-    {0.0, 0.0, 0.65},
-    {0.75, 0.0, 0.0875},
-    {-0.75, 0.0, 0.0875},
-    {0.0, 0.75, 0.0875},
-    {0.0, -0.75, 0.0875},
+    {0.0, 0.0, 0.65, 1.0},
+    {0.75, 0.0, 0.0875, kRingBearing},
+    {-0.75, 0.0, 0.0875, kRingBearing},
+    {0.0, 0.75, 0.0875, kRingBearing},
+    {0.0, -0.75, 0.0875, kRingBearing},
 }};
 
 void need(bool ok, const std::string& what) {
@@ -119,6 +121,7 @@ StiffnessField::StiffnessField(TissueDefinition d) : def_(std::move(d)) {
     need(std::isfinite(e.x_mm) && std::isfinite(e.y_mm) && std::isfinite(e.z_mm),
          "inclusion '" + inc.name + "' breathing excursion must be finite");
     inclusion_level_[i] = normalised(inc.stiffness_kPa);
+    inclusion_rigid_[i] = inc.kind == InclusionKind::bone || inc.kind == InclusionKind::ligament;
     inclusion_box_[i] = inc.shape.bounds();
     if (def_.respiration.breathing() && (e.x_mm != 0 || e.y_mm != 0 || e.z_mm != 0)) any_breathing_ = true;
   }
@@ -149,24 +152,25 @@ double StiffnessField::modulus_kPa(const Point3_mm& p, double t_s) const noexcep
   return def_.support_kPa > 0 ? def_.support_kPa : def_.layers[n - 1].stiffness_kPa;
 }
 
-double StiffnessField::level_at(const Point3_mm& p, const std::uint16_t* candidates, std::size_t count,
-                                const std::array<Point3_mm, kMaxInclusions>& shift) const noexcept {
+StiffnessField::Level StiffnessField::level_at(const Point3_mm& p, const std::uint16_t* candidates, std::size_t count,
+                                               const std::array<Point3_mm, kMaxInclusions>& shift) const noexcept {
   // Later inclusions win, so search from the end of the candidate list (kept in file order).
   for (std::size_t c = count; c-- > 0;) {
     const std::size_t i = candidates[c];
     const Point3_mm q{p.x_mm - shift[i].x_mm, p.y_mm - shift[i].y_mm, p.z_mm - shift[i].z_mm};
-    if (def_.inclusions[i].shape.contains(q)) return inclusion_level_[i];
+    if (def_.inclusions[i].shape.contains(q)) return {inclusion_level_[i], inclusion_rigid_[i]};
   }
   const std::size_t n = def_.layers.size();
   for (std::size_t i = 0; i < n; ++i)
-    if (p.z_mm < layer_bottom_mm_[i]) return layer_level_[i];
-  return support_level_;
+    if (p.z_mm < layer_bottom_mm_[i]) return {layer_level_[i], false};
+  return {support_level_, false};
 }
 
 TissueSample StiffnessField::sample(const Point2_mm& at, double force_N, double t_s) const noexcept {
   if (!std::isfinite(at.x_mm) || !std::isfinite(at.y_mm) || !def_.body.contains(at)) return {0.0, -1};
   const double a = def_.press.contact_radius_mm(force_N);
   const double reach = kReachInContactRadii * a;
+  const double sunk = def_.press.indentation_mm(force_N);
 
   std::array<Point3_mm, kMaxInclusions> shift{};
   const std::size_t n_inc = def_.inclusions.size();
@@ -174,7 +178,7 @@ TissueSample StiffnessField::sample(const Point2_mm& at, double force_N, double 
     for (std::size_t i = 0; i < n_inc; ++i)
       shift[i] = def_.respiration.displacement(def_.inclusions[i].breathing_excursion_mm, t_s);
 
-  double felt = 0;
+  double felt = 0, pressed_on = 0;
   for (const LateralPoint& lp : kLateral) {
     const Point2_mm q{at.x_mm + lp.dx * a, at.y_mm + lp.dy * a};
     if (!def_.body.contains(q)) continue;  // off the body: air, felt as 0
@@ -189,11 +193,34 @@ TissueSample StiffnessField::sample(const Point2_mm& at, double force_N, double 
         cand[n_cand++] = static_cast<std::uint16_t>(i);
     }
     double column = 0;
-    for (std::size_t k = 0; k < kDepthSamples; ++k)
-      column += kDepth.weight[k] * level_at({q.x_mm, q.y_mm, kDepth.u[k] * a}, cand.data(), n_cand, shift);
+    int first_rigid = -1;
+    double rigid_level = 0;
+    for (std::size_t k = 0; k < kDepthSamples; ++k) {
+      const Level l = level_at({q.x_mm, q.y_mm, kDepth.u[k] * a}, cand.data(), n_cand, shift);
+      column += kDepth.weight[k] * l.value;
+      if (l.rigid && first_rigid < 0) {
+        first_rigid = static_cast<int>(k);
+        rigid_level = l.value;
+      }
+    }
+    if (first_rigid >= 0) {
+      // Where the bone starts, to a fraction of a millimetre: bisect between the last sample
+      // above it and the first in it.
+      double above = first_rigid > 0 ? kDepth.u[static_cast<std::size_t>(first_rigid) - 1] * a : 0.0;
+      double in = kDepth.u[static_cast<std::size_t>(first_rigid)] * a;
+      if (level_at({q.x_mm, q.y_mm, above}, cand.data(), n_cand, shift).rigid) in = above;
+      for (int it = 0; it < 8 && in - above > 0.05; ++it) {
+        const double mid = 0.5 * (above + in);
+        if (level_at({q.x_mm, q.y_mm, mid}, cand.data(), n_cand, shift).rigid) in = mid;
+        else above = mid;
+      }
+      const double u = std::max(in - sunk, 0.0) / a;
+      pressed_on = std::max(pressed_on, lp.bearing * rigid_level * (1.0 - u * u * u / std::pow(1.0 + u * u, 1.5)));
+    }
     felt += lp.weight * column;
   }
-  return {std::clamp(felt, 0.0, 1.0), layer_at(def_.press.indentation_mm(force_N))};
+  // The finger is one rigid body: resting on bone anywhere under its contact stops it.
+  return {std::clamp(std::max(felt, pressed_on), 0.0, 1.0), layer_at(sunk)};
 }
 
 SceneBounds StiffnessField::bounds() const noexcept {

@@ -23,9 +23,17 @@
 // least as hard as E_hard throughout the loaded zone.
 //
 // So pressing harder loads deeper tissue (a grows with F): a deep small tumor fills little of a
-// light press's zone and needs more force to be felt than a shallow large one, and a rib just
-// under the skin fills most of the zone at any force (bone feels hard at any force). The log
-// scale follows Weber's law for perceived stiffness and keeps a stiff support from dominating.
+// light press's zone and needs more force to be felt than a shallow large one. The log scale
+// follows Weber's law for perceived stiffness and keeps a stiff support from dominating.
+//
+// Bone and ligaments are different: they are held by the skeleton (a ligament is a cord pulled
+// taut between bones), so the finger presses against them rather than into the tissue around
+// them (paper 000's constraint plane for a touched layer). An inclusion of kind bone or ligament
+// whose top lies at depth z_b is felt with the Boussinesq stress that reaches it from the sunk
+// fingertip, n(E) * w(max(z_b - delta, 0) / a): fully once the finger has sunk to it and nearly
+// so just below, which makes a rib under the skin hard at any force. The finger is one rigid
+// body, so bone under any contact point stops it; a ring point bears with the Hertz pressure
+// there (0.66 of the centre's). The finger feels the larger of the two terms.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -115,13 +123,18 @@ class StiffnessField {
 
  private:
   // A material's felt value n(E) is constant, so it is computed once per layer and inclusion.
-  double level_at(const Point3_mm& p, const std::uint16_t* candidates, std::size_t count,
-                  const std::array<Point3_mm, kMaxInclusions>& shift) const noexcept;
+  struct Level {
+    double value;
+    bool rigid;  // inside a bone or ligament inclusion
+  };
+  Level level_at(const Point3_mm& p, const std::uint16_t* candidates, std::size_t count,
+                 const std::array<Point3_mm, kMaxInclusions>& shift) const noexcept;
 
   TissueDefinition def_;
   std::array<double, kMaxLayers> layer_bottom_mm_{};
   std::array<double, kMaxLayers> layer_level_{};
   std::array<double, kMaxInclusions> inclusion_level_{};
+  std::array<bool, kMaxInclusions> inclusion_rigid_{};
   std::array<Box3_mm, kMaxInclusions> inclusion_box_{};
   double support_level_ = 0;
   double log_soft_ = 0, inv_log_span_ = 1;
