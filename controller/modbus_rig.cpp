@@ -222,7 +222,7 @@ void ModbusRig::io_cycle(std::int64_t now, double dt_s) {
     double out = target;
     if (engaging_[c]) {
       out = std::min(target, ramp_kPa_[c] + config_.slew_kPa_per_s * std::max(dt_s, 0.0));
-      if (out >= target) engaging_[c] = false;
+      if (target > 0.0 && out >= target) engaging_[c] = false;  // caught up with a real setpoint
     }
     ramp_kPa_[c] = out;
     out_words_[c] = config_.channels[c].output.scale.word_from_kPa(out);

@@ -195,6 +195,36 @@ TEST(ModbusLoopback, LostPeerVentsAlarmsReconnectsAndRampsFromZero) {
   EXPECT_LE(peak, 40.0 + 0.01);
 }
 
+TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
+  TempDir dir;
+  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  ModbusSimServer server(map, quiet_plants());
+  server.set_log_sink(nullptr);
+  const auto log_path = dir.path() / "writes.csv";
+  server.set_write_log(log_path);
+  ModbusRigConfig cmap = client_map(map, serve(server, 1));
+  ModbusRig rig(cmap);
+  rig.set_log_sink(nullptr);
+  rig.open();
+  std::this_thread::sleep_for(20ms);  // a few bus cycles at 0 kPa before the loop's first write
+  // The loop asks for 50 kPa at once (a tick's first setpoint is not slew-limited).
+  ASSERT_TRUE(drive(rig, {50, 50, 50}, 3000ms, [&] { return server.output_words()[0] == 16384; }));
+  rig.close();
+  server.stop();
+  const auto writes = palprig::test_support::read_csv(log_path.string());
+  const std::size_t t = writes.col("t_s"), ch = writes.col("channel"), kpa = writes.col("kPa");
+  std::array<double, 4> last_kPa{}, last_t{};
+  std::size_t rising_writes = 0;
+  for (const auto& row : writes.rows) {
+    const auto c = static_cast<std::size_t>(row[ch]);
+    if (last_t[c] > 0) EXPECT_LE(row[kpa] - last_kPa[c], 2000.0 * (row[t] - last_t[c] + 2.0 / cmap.io_rate_hz) + 0.01);
+    if (row[kpa] > 0 && row[kpa] < 49.99) ++rising_writes;
+    last_kPa[c] = row[kpa];
+    last_t[c] = row[t];
+  }
+  EXPECT_GE(rising_writes, 3u * 5u);  // 50 kPa at 2000 kPa/s takes 25 ms: several bus cycles per channel
+}
+
 TEST(ModbusLoopback, TheBusThreadVentsWhenTheLoopFallsSilent) {
   const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
   ModbusSimServer server(map, quiet_plants());
