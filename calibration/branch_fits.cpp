@@ -113,6 +113,7 @@ void check_staircase_monotone(std::span<const HoldPoint> pts, Response r, double
       const double moved = response_of(b, r) - response_of(a, r);
       if (step != 0 && (up ? moved < -tolerance : moved > tolerance)) {
         std::ostringstream s;
+        s.precision(4);  // significant digits: readable for kPa and for a sensor in mm alike
         s << "a monotone " << to_string(r) << " along the " << to_string(b.branch) << " staircase of " << what
           << ": it " << (up ? "fell" : "rose") << " from " << response_of(a, r) << " to " << response_of(b, r)
           << " while the command went from " << a.command_kPa << " to " << b.command_kPa

@@ -115,9 +115,22 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
       y.push_back(source == HysteresisSource::monitor ? p.monitor_kPa : p.sensor);
     }
     if (source == HysteresisSource::sensor) {
-      if (!ch.response)
-        throw InputError(file, name + " sensor", "a staircase to convert sensor readings to pressure (no staircase rows)");
-      for (double& v : y) v = ch.response->both.x_for(v);  // the pressure that gives this reading on the line
+      // Sensor readings become the pressure that would give them: zero at the first vented
+      // reading (the record starts at rest, as paper 002 zeroed its caliper on the uninflated
+      // actuator), scaled by the sensor's sensitivity through that zero. A line's intercept
+      // would put an offset in the data that a PI model cannot hold.
+      double zero = 0;
+      for (const auto& p : pts)
+        if (p.segment == SweepSegment::vent && std::isfinite(p.sensor)) { zero = p.sensor; break; }
+      double sxy = 0, sxx = 0;
+      for (const auto& p : stairs) {
+        sxy += (p.sensor - zero) * p.command_kPa;
+        sxx += p.command_kPa * p.command_kPa;
+      }
+      const double per_kPa = sxx > 0 ? sxy / sxx : 0.0;
+      if (!(std::abs(per_kPa) > 0) || !std::isfinite(per_kPa))
+        throw InputError(file, name + " sensor", "a staircase over which the sensor moves, to scale it to pressure");
+      for (double& v : y) v = (v - zero) / per_kPa;
     }
     for (std::size_t k = 0; k < y.size(); ++k)
       if (!std::isfinite(y[k]))

@@ -249,7 +249,11 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
     ceres::Problem problem(po);
     for (std::size_t k = 0; k < x.size(); ++k)
       problem.AddResidualBlock(new PlaySampleCost(cache, k), make_loss(o), &cache.w0, cache.w.data(), cache.d.data());
-    problem.SetParameterLowerBound(&cache.w0, 0, o.min_linear_weight);
+    // Stage 1's active set carries over: a linear weight stage 1 left on its bound stays there
+    // (the exact solution says the data wants less), so the bound is not active in stage 2,
+    // where Ceres' projected steps would crawl along it.
+    if (stage1.w[0] <= 0.0) problem.SetParameterBlockConstant(&cache.w0);
+    else problem.SetParameterLowerBound(&cache.w0, 0, o.min_linear_weight);
     for (std::size_t i = 0; i < p; ++i) {
       problem.SetParameterLowerBound(cache.w.data(), static_cast<int>(i), 0.0);
       problem.SetParameterLowerBound(cache.d.data(), static_cast<int>(i), o.min_threshold_step_kPa);

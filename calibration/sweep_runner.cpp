@@ -30,15 +30,17 @@ bool monitors_settled(const std::vector<SweepSample>& s, std::size_t window, con
 
 SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& schedule, const SweepRunOptions& o,
                                    SweepSink& sink, const SweepProgress& progress) {
-  if (!(o.settle_window_s > 0) || !(o.settle_band_kPa > 0) || !(o.min_hold_s >= 0) ||
-      !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s))
-    throw std::invalid_argument("sweep: need settle window > 0, band > 0 and max hold above min hold and the window");
+  if (!(o.settle_window_s > 0) || !(o.settle_band_kPa > 0) || !(o.average_s > 0) || !(o.min_hold_s >= 0) ||
+      !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s + o.average_s))
+    throw std::invalid_argument(
+        "sweep: need settle window, band and averaging window > 0, and max hold above min hold and both windows");
   bool any = false;
   for (bool on : o.channels) any = any || on;
   if (!any) throw std::invalid_argument("sweep: no channel selected");
 
   Pacer pacer(o.rate_hz, o.realtime);
   const auto window = static_cast<std::size_t>(std::max(2.0, std::round(o.settle_window_s * o.rate_hz)));
+  const auto average = static_cast<std::size_t>(std::max(1.0, std::round(o.average_s * o.rate_hz)));
   std::vector<SweepSample> hold_samples;
   hold_samples.reserve(static_cast<std::size_t>(o.max_hold_s * o.rate_hz) + 2);
   const bool has_sensor = backend.sensor_name() != nullptr;
@@ -53,6 +55,8 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
     for (std::size_t c = 0; c < kFingerCount; ++c) setpoint[c] = o.channels[c] ? hold.level_kPa : 0.0;
     hold_samples.clear();
     HoldOutcome result;
+    std::size_t averaging_from = 0;  // index of the first averaged sample, once settled
+    bool averaging = false;
     const double hold_start_s = pacer.period_s() * double(k);
     for (;;) {
       t_s = pacer.wait_for_tick(k++);
@@ -73,9 +77,13 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
       }
       hold_samples.push_back(s);
       result.hold_s = t_s - hold_start_s;
-      if (result.hold_s >= o.min_hold_s && monitors_settled(hold_samples, window, o.channels, o.settle_band_kPa)) {
+      if (!averaging && result.hold_s >= o.min_hold_s &&
+          monitors_settled(hold_samples, window, o.channels, o.settle_band_kPa)) {
+        averaging = true;
+        averaging_from = hold_samples.size();
+      } else if (averaging && hold_samples.size() - averaging_from >= average) {
         result.settled = true;
-        for (std::size_t j = hold_samples.size() - window; j < hold_samples.size(); ++j) hold_samples[j].settled = true;
+        for (std::size_t j = averaging_from; j < hold_samples.size(); ++j) hold_samples[j].settled = true;
         break;
       }
       if (result.hold_s >= o.max_hold_s) break;  // recorded, but marked unsettled

@@ -1,8 +1,10 @@
 #pragma once
 // Runs a calibration sweep on any RigBackend: each hold commands its level on the selected
-// channels (the others stay vented), then waits until every selected monitor has settled
-// (the mean of the newest half of a window differs from the older half by at most a band),
-// up to a time limit. Every sample goes to a sink hold by hold, so a stop keeps what was
+// channels (the others stay vented), waits until every selected monitor has settled (the mean
+// of the newest half of a window differs from the older half by at most a band), then keeps
+// holding for an averaging window whose samples are the hold's reading. Averaging only after
+// the settle test keeps the tail of the regulator's lag out of the reading (it would look
+// like extra hysteresis). A hold that does not settle within a time limit is kept, unmarked. Every sample goes to a sink hold by hold, so a stop keeps what was
 // recorded. Ctrl-C (the stop flag), a backend error or the end all vent every channel.
 #include <array>
 #include <atomic>
@@ -20,7 +22,7 @@ struct SweepSample {
   double command_kPa = 0;
   ChannelPressures monitor_kPa{};
   std::array<double, kFingerCount> sensor{};  // NaN when the rig has no sensor
-  bool settled = false;                        // inside the window that met the settle test
+  bool settled = false;                        // in the averaging window after settling
 };
 
 struct HoldOutcome {
@@ -40,6 +42,7 @@ struct SweepRunOptions {
   bool realtime = true;              // false: simulated time, as fast as possible
   double settle_window_s = 0.3;
   double settle_band_kPa = 0.2;
+  double average_s = 0.3;            // averaging window once settled
   double min_hold_s = 0.2;
   double max_hold_s = 10.0;
   std::array<bool, kFingerCount> channels{true, true, true};

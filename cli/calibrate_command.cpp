@@ -99,10 +99,11 @@ void run_sweep(const SweepArgs& a) {
   SweepRunOptions run = a.run;
   run.channels = parse_channels(a.channels);
   run.realtime = use_realtime(rig, a.realtime, a.fast);
-  if (!(run.settle_window_s > 0) || !(run.settle_band_kPa > 0) || !(run.max_hold_s > run.min_hold_s) ||
-      run.max_hold_s < run.settle_window_s)
+  if (!(run.settle_window_s > 0) || !(run.settle_band_kPa > 0) || !(run.average_s > 0) ||
+      !(run.max_hold_s > run.min_hold_s) || run.max_hold_s < run.settle_window_s + run.average_s)
     throw InputError("--max-hold-s", std::to_string(run.max_hold_s),
-                     "settle window > 0, band > 0, and a max hold above the min hold and the window");
+                     "settle window, band and averaging window > 0, and a max hold above the min hold and both "
+                     "windows");
   for (const auto& n : plan.notes) std::cerr << "palprig: note: " << n << "\n";
 
   auto backend = make_backend(rig);
@@ -261,7 +262,8 @@ void register_calibrate_command(CLI::App& app) {
   sweep->add_option("--rate-hz", sa->run.rate_hz, "Command/record rate")->default_val(100.0)->check(CLI::Range(1.0, 10000.0));
   sweep->add_option("--settle-band-kPa", sa->run.settle_band_kPa, "Settled: window halves differ by at most this")
       ->default_val(0.2);
-  sweep->add_option("--settle-window-s", sa->run.settle_window_s, "Settle test window (also what is averaged)")
+  sweep->add_option("--settle-window-s", sa->run.settle_window_s, "Settle test window")->default_val(0.3);
+  sweep->add_option("--average-s", sa->run.average_s, "Averaging window once settled (the hold's reading)")
       ->default_val(0.3);
   sweep->add_option("--min-hold-s", sa->run.min_hold_s, "Shortest hold")->default_val(0.2);
   sweep->add_option("--max-hold-s", sa->run.max_hold_s, "Longest hold; a hold that does not settle is marked")
