@@ -5,7 +5,10 @@
 namespace palprig {
 
 Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.string()) {
-  const int flags = mode == Mode::read_only ? SQLITE_OPEN_READONLY : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  // NOMUTEX: a connection is used by one thread at a time, so SQLite's per-call mutex (a tenth
+  // of the time of a million-row scan) buys nothing.
+  const int flags = (mode == Mode::read_only ? SQLITE_OPEN_READONLY : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE)) |
+                    SQLITE_OPEN_NOMUTEX;
   const int rc = sqlite3_open_v2(file_.c_str(), &db_, flags, nullptr);
   if (rc != SQLITE_OK) {
     const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);

@@ -25,6 +25,7 @@ class SqliteError : public std::runtime_error {
 
 class Statement;
 
+// One connection, used by one thread at a time (opened without SQLite's internal mutex).
 class Database {
  public:
   enum class Mode { read_only, read_write_create };

@@ -74,13 +74,38 @@ class Grouper {
   Accumulator& group(const std::array<int, kKeyKinds>& all_ids) {
     GroupKey key{};
     for (SummaryKey k : by_) key[static_cast<std::size_t>(k)] = all_ids[static_cast<std::size_t>(k)];
-    return groups_[key];
+    // Consecutive units mostly share a group (a trial's fingers, a participant's trials):
+    // the last one is remembered. unordered_map never moves its elements, so the pointer holds.
+    if (last_ && key == last_key_) return *last_;
+    last_key_ = key;
+    last_ = &groups_[key];
+    return *last_;
   }
   const std::unordered_map<GroupKey, Accumulator, GroupKeyHash>& groups() const { return groups_; }
 
  private:
   std::vector<SummaryKey> by_;
   std::unordered_map<GroupKey, Accumulator, GroupKeyHash> groups_;
+  GroupKey last_key_{};
+  Accumulator* last_ = nullptr;
+};
+
+// Interned id of a text column, remembering the last text seen (runs of equal values are the
+// rule: one condition block after another).
+class CachedIds {
+ public:
+  explicit CachedIds(Interner& names) : names_(names) {}
+  int id(std::string_view text) {
+    if (last_ >= 0 && text == last_text_) return last_;
+    last_text_.assign(text);
+    last_ = names_.id(text);
+    return last_;
+  }
+
+ private:
+  Interner& names_;
+  std::string last_text_;
+  int last_ = -1;
 };
 
 std::optional<Outcome> outcome_of(std::string_view text) { return outcome_from_string(text); }
@@ -145,26 +170,34 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
   }
 
   Grouper grouper(options.by);
-  const std::string practice_filter = options.include_practice ? "" : " WHERE t.practice = 0";
 
   // Discrimination: three finger values per trial.
   {
     auto q = db.prepare(
         "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, t.outcome1, t.outcome2, t.outcome3, "
-        "t.combination_label, t.mode FROM trials t" +
-        practice_filter);
+        "t.combination_label FROM trials t WHERE t.mode != 'scene'" +
+        std::string(options.include_practice ? "" : " AND t.practice = 0"));
+    CachedIds condition_ids(conditions), combination_ids(combinations);
+    const bool by_combination =
+        std::find(options.by.begin(), options.by.end(), SummaryKey::combination) != options.by.end();
+    std::int64_t last_session = -1;
+    std::pair<int, int> session_key{};
     while (q.step()) {
-      if (q.text_view(9) == "scene") continue;
       const std::int64_t trial_id = q.integer(0);
-      const auto& [participant, session] = session_ids.at(q.integer(1));
+      if (q.integer(1) != last_session) {
+        last_session = q.integer(1);
+        session_key = session_ids.at(last_session);
+      }
+      const auto& [participant, session] = session_key;
       const bool answered = q.integer(3) != 0;
       const double rt = q.is_null(4) ? std::numeric_limits<double>::quiet_NaN() : q.real(4);
       std::array<int, kKeyKinds> ids{};
-      ids[static_cast<std::size_t>(SummaryKey::condition)] = conditions.id(q.text_view(2));
+      ids[static_cast<std::size_t>(SummaryKey::condition)] = condition_ids.id(q.text_view(2));
       ids[static_cast<std::size_t>(SummaryKey::participant)] = participant;
       ids[static_cast<std::size_t>(SummaryKey::session)] = session;
       ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
-      ids[static_cast<std::size_t>(SummaryKey::combination)] = q.is_null(8) ? no_combination : combinations.id(q.text_view(8));
+      ids[static_cast<std::size_t>(SummaryKey::combination)] =
+          !by_combination || q.is_null(8) ? no_combination : combination_ids.id(q.text_view(8));
       for (int f = 0; f < kFingerCount; ++f) {
         ids[static_cast<std::size_t>(SummaryKey::finger)] = finger_ids[static_cast<std::size_t>(f)];
         Accumulator& a = grouper.group(ids);
