@@ -1,0 +1,250 @@
+// The tick's pulse stage on function scenes: fingers over an artery pulse at its rate, the
+// force window and lifting the pen stop it, map scenes are untouched, the pulse keeps exact
+// time over long runs at any loop rate, rate changes while running, lag compensation improves
+// the waveform on the simulated rig, and no setpoint ever exceeds p_max.
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "controller/calibration_file.hpp"
+#include "controller/rig_file.hpp"
+#include "controller/scene_file.hpp"
+#include "controller/simulated_rig.hpp"
+#include "controller/tick.hpp"
+#include "models/tissue_scene.hpp"
+
+using namespace palprig;
+
+namespace {
+
+const std::string kData = std::string(PALPRIG_SOURCE_DIR) + "/data/";
+
+TickConfig rig_config() { return make_tick_config(load_rig_file(kData + "rigs/simulated.json"), CalibrationModels{}); }
+
+// Soft tissue with an artery along y = 60 (so fingers 0 and 1 of the default layout, which lie
+// along x, can both be over it), 5 mm deep, inside a firm vessel wall.
+std::unique_ptr<FunctionScene> artery_scene(double bpm, PulseWaveform wave = PulseWaveform::rectangular(0.2),
+                                            double amplitude_kPa = 8) {
+  TissueDefinition t;
+  t.body = {{80, 60}, 80, 60, 6};
+  t.layers = {{"skin", 1.5, 40}, {"fat", 3.5, 4}, {"muscle", 50, 15}};
+  t.felt = {4, 300};
+  Inclusion wall;
+  wall.name = "vessel";
+  wall.kind = InclusionKind::other;
+  wall.shape.tube({0, 60, 5}, {160, 60, 5}, 2.5);
+  wall.stiffness_kPa = 30;
+  t.inclusions.push_back(wall);
+  ArterySpec a;
+  a.name = "test";
+  a.path = {{0, 60}, {160, 60}};
+  a.depth_mm = 5;
+  a.radius_mm = 2.5;
+  a.amplitude_kPa = amplitude_kPa;
+  a.rate_bpm = bpm;
+  a.waveform = wave;
+  a.force_window = {0.5, 3.0, 1.0};
+  return std::make_unique<FunctionScene>(t, std::vector<ArterySpec>{a});
+}
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
+  ma /= double(a.size());
+  mb /= double(b.size());
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return sab / std::sqrt(saa * sbb);
+}
+
+}  // namespace
+
+TEST(FunctionSceneTick, FingersOverTheArteryPulseAtItsRateOthersDoNot) {
+  const auto scene = artery_scene(60);
+  const TickConfig cfg = rig_config();
+  TickState st = make_tick_state(cfg);
+  std::array<int, 3> onsets{};
+  std::array<double, 3> previous{}, lo{1e9, 1e9, 1e9}, hi{};
+  for (int k = 0; k < 10000; ++k) {
+    const double t = k * 0.001;
+    const TickResult r = tick(st, cfg, *scene, {t, 40, 60, 2.5, true}, t);
+    for (int i = 0; i < 3; ++i) {
+      if (r.pulse_kPa[i] > 0.5 && previous[i] <= 0.5) ++onsets[i];
+      previous[i] = r.pulse_kPa[i];
+      if (k > 2000) {
+        lo[i] = std::min(lo[i], r.setpoint_kPa[i]);
+        hi[i] = std::max(hi[i], r.setpoint_kPa[i]);
+      }
+    }
+  }
+  EXPECT_EQ(onsets[0], 10);  // 10 s at 60 BPM
+  EXPECT_EQ(onsets[1], 10);  // the second finger along the artery feels it too
+  EXPECT_EQ(onsets[2], 0);   // the third is 16 mm across it
+  EXPECT_GT(hi[0] - lo[0], 8 * 0.8 * 0.8);  // amplitude 8 kPa * force factor (2.5-0.5)/2.5
+  EXPECT_LT(hi[2] - lo[2], 0.5);
+}
+
+TEST(FunctionSceneTick, ForceOutsideTheWindowAndLiftingThePenStopThePulse) {
+  const auto scene = artery_scene(90);
+  const TickConfig cfg = rig_config();
+  for (double force : {0.3, 3.5}) {
+    TickState st = make_tick_state(cfg);
+    double most = 0;
+    for (int k = 0; k < 2000; ++k) {
+      const double t = k * 0.001;
+      most = std::max(most, tick(st, cfg, *scene, {t, 40, 60, force, true}, t).pulse_kPa[0]);
+    }
+    EXPECT_EQ(most, 0.0) << force;
+  }
+  TickState st = make_tick_state(cfg);
+  for (int k = 0; k < 1000; ++k) tick(st, cfg, *scene, {k * 0.001, 40, 60, 2.0, true}, k * 0.001);
+  EXPECT_TRUE(st.pulse.activation[0].on[0]);
+  double lifted_max = 0;
+  for (int k = 1000; k < 3000; ++k) {
+    const TickResult r = tick(st, cfg, *scene, {k * 0.001, 40, 60, 0.0, false}, k * 0.001);
+    lifted_max = std::max(lifted_max, r.pulse_kPa[0]);
+    if (k > 1100) {
+      EXPECT_EQ(r.setpoint_kPa[0], 0.0);  // down to 0 under the slew limit, and stays there
+    }
+  }
+  EXPECT_EQ(lifted_max, 0.0);
+  EXPECT_FALSE(st.pulse.activation[0].on[0]);
+}
+
+TEST(FunctionSceneTick, MapScenesAreUntouchedByThePulseStage) {
+  const SceneFile map = load_scene_file(kData + "scenes/phantom_abc.json");
+  ASSERT_EQ(map.scene->pulse(), nullptr);
+  TickConfig with = rig_config(), without = rig_config();
+  without.pulse.compensate_lag = false;
+  for (auto& l : without.pulse.lag) l = {0, 0, 1};
+  TickState a = make_tick_state(with), b = make_tick_state(without);
+  for (int k = 0; k < 5000; ++k) {
+    const double t = k * 0.001;
+    const TouchSample s{t, 20 + 0.02 * k, 40 + 0.005 * k, 2.0, k % 1500 < 1200};
+    const TickResult ra = tick(a, with, *map.scene, s, t), rb = tick(b, without, *map.scene, s, t);
+    ASSERT_EQ(ra.setpoint_kPa, rb.setpoint_kPa) << k;
+    ASSERT_EQ(ra.pulse_kPa, (ChannelPressures{}));
+  }
+  EXPECT_FALSE(a.pulse.clocks.started);  // the stage never ran
+}
+
+TEST(FunctionSceneTick, PulseKeepsExactTimeOverLongRunsAtAnyLoopRate) {
+  // 5 minutes at 250 Hz and 30 s at 1 kHz, each tick up to a quarter period early or late: the
+  // beats follow the timestamps.
+  for (const auto& [rate_hz, seconds] : {std::pair{250.0, 300.0}, std::pair{1000.0, 30.0}}) {
+    const auto scene = artery_scene(72);
+    const TickConfig cfg = rig_config();
+    TickState st = make_tick_state(cfg);
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> jitter(-0.25, 0.25);
+    const double period = 1.0 / rate_hz;
+    int onsets = 0;
+    double previous = 0, worst = 0;
+    for (long k = 0;; ++k) {
+      const double t = (static_cast<double>(k) + (k > 0 ? jitter(rng) : 0.0)) * period;
+      if (t > seconds + 0.1) break;  // the last beat falls on t = seconds exactly
+      const double p = tick(st, cfg, *scene, {t, 40, 60, 2.0, true}, t).pulse_kPa[0];
+      if (p > 0.5 && previous <= 0.5 && k > 0) {
+        ++onsets;
+        worst = std::max(worst, std::abs(t - onsets * 60.0 / 72.0));
+      }
+      previous = p;
+    }
+    EXPECT_EQ(onsets, static_cast<int>(seconds * 72 / 60)) << rate_hz;
+    EXPECT_LT(worst, 1.5 * period) << rate_hz;  // seen at the first tick after each onset
+  }
+}
+
+TEST(FunctionSceneTick, RateChangedWhileRunningTakesEffectWithoutAJump) {
+  const auto scene = artery_scene(60);
+  const TickConfig cfg = rig_config();
+  TickState st = make_tick_state(cfg);
+  std::vector<double> onsets;
+  double previous = 0;
+  for (int k = 0; k < 8000; ++k) {
+    const double t = k * 0.001;
+    if (k == 4100) {
+      EXPECT_TRUE(scene->arteries().request_rate_bpm(0, 120));  // as a GUI thread would
+    }
+    const double p = tick(st, cfg, *scene, {t, 40, 60, 2.0, true}, t).pulse_kPa[0];
+    if (p > 0.5 && previous <= 0.5) onsets.push_back(t);
+    previous = p;
+  }
+  // Beats at 0, 1, 2, 3, 4 s; the change at 4.1 s keeps the phase (0.1 of a beat), so the next
+  // beat comes 0.45 s later at 120 BPM, then every 0.5 s.
+  ASSERT_GE(onsets.size(), 10u);
+  EXPECT_NEAR(onsets[4], 4.0, 0.0015);
+  EXPECT_NEAR(onsets[5], 4.55, 0.0015);
+  EXPECT_NEAR(onsets[6], 5.05, 0.0015);
+  EXPECT_NEAR(onsets[9], 6.55, 0.0015);
+}
+
+TEST(FunctionSceneTick, LagCompensationImprovesTheWaveformOnTheSimulatedRig) {
+  const RigConfig rig = load_rig_file(kData + "rigs/simulated.json");  // its plant: 5 ms + 50 ms lag, 2 kPa play
+  auto correlation = [&](bool compensate, double bpm) {
+    const auto scene = artery_scene(bpm);
+    TickConfig cfg = make_tick_config(rig, CalibrationModels{});
+    cfg.pulse.compensate_lag = compensate;
+    TickState st = make_tick_state(cfg);
+    SimulatedRig backend(rig.plants, rig.safety.p_max_kPa);
+    backend.open();
+    std::vector<double> want, got;
+    ChannelPressures monitor{};
+    for (int k = 0; k < 12000; ++k) {
+      const double t = k * 0.001;
+      const TickResult r = tick(st, cfg, *scene, {t, 40, 60, 2.5, true}, t);
+      EXPECT_EQ(backend.write(r.setpoint_kPa, t), BackendStatus::ok);
+      EXPECT_EQ(backend.read_monitors(monitor, t), BackendStatus::ok);
+      if (k >= 2000) {
+        want.push_back(r.pulse_kPa[0]);
+        got.push_back(monitor[0]);
+      }
+    }
+    return pearson(want, got);
+  };
+  for (double bpm : {60.0, 100.0}) {
+    const double raw = correlation(false, bpm), comp = correlation(true, bpm);
+    EXPECT_GT(comp, 0.9) << bpm;
+    EXPECT_GT(comp, raw + 0.15) << bpm;
+  }
+}
+
+TEST(FunctionSceneTick, NoSetpointAbovePmaxEvenWhileBoosting) {
+  const auto scene = artery_scene(160, PulseWaveform::rectangular(0.2), 80);  // a pulse beyond p_max
+  TickConfig cfg = rig_config();
+  TickState st = make_tick_state(cfg);
+  bool clamped = false;
+  for (int k = 0; k < 5000; ++k) {
+    const double t = k * 0.001;
+    const TickResult r = tick(st, cfg, *scene, {t, 40, 60, 3.0, true}, t);
+    for (double p : r.setpoint_kPa) {
+      ASSERT_TRUE(std::isfinite(p));
+      ASSERT_GE(p, 0.0);
+      ASSERT_LE(p, cfg.safety.p_max_kPa);
+    }
+    clamped |= (r.record.flags & kClamped) != 0 || r.setpoint_kPa[0] == cfg.safety.p_max_kPa;
+  }
+  EXPECT_TRUE(clamped);
+  EXPECT_EQ(st.fault, FaultCode::none);
+}
+
+TEST(FunctionSceneTick, BreathingChangesWhatAFixedFingerFeels) {
+  const SceneFile liver = load_scene_file(kData + "scenes/liver_edge.json");
+  const TickConfig cfg = rig_config();
+  TickState st = make_tick_state(cfg);
+  // Below the costal margin, just past the liver's edge at rest: the edge arrives on inspiration.
+  float rest = 0, inspired = 0;
+  for (int k = 0; k <= 2000; ++k) {
+    const double t = k * 0.001;
+    const TickResult r = tick(st, cfg, *liver.scene, {t, 24, 80, 2.0, true}, t);
+    if (k == 0) rest = r.record.stiffness[0];
+    if (k == 2000) inspired = r.record.stiffness[0];
+  }
+  EXPECT_GT(inspired, rest + 0.1f);
+}
