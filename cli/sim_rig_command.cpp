@@ -24,8 +24,8 @@ void register_sim_rig_command(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("--listen", *listen,
-                  "HOST:PORT to serve, one per link of the map in order (port 0: any free port, printed on start); "
-                  "default: the rig file's own TCP addresses");
+                  "HOST:PORT to serve, one per link of the map in order (port 0: any free port, printed on start), or "
+                  "pty to serve that link as Modbus RTU on a new pseudo-terminal; default: the rig file's own TCP addresses");
   sub->add_option("--write-log", *write_log, "Write every output-register write to FILE (CSV t_s,channel,word,kPa)");
   sub->add_option("--watchdog-ms", *watchdog_ms,
                   "Like a module's communication watchdog: outputs of a link silent this long go to 0 kPa (0: off)")
@@ -42,7 +42,8 @@ void register_sim_rig_command(CLI::App& app) {
       for (std::size_t i = 0; i < map.links.size(); ++i) {
         if (map.links[i].rtu)
           throw InputError("--listen", "link \"" + map.links[i].name + "\"",
-                           "a HOST:PORT to serve this RTU link on over TCP (the rig file has no TCP address for it)");
+                           "a HOST:PORT to serve this RTU link on over TCP, or pty for RTU on a pseudo-terminal "
+                           "(the rig file has no TCP address for it)");
         addresses.push_back({map.links[i].host, map.links[i].port});
       }
     } else {
@@ -67,9 +68,14 @@ void register_sim_rig_command(CLI::App& app) {
       std::cerr << "palprig sim-rig: " << e.what() << "\n";
       cli::finish(cli::kExitBadInput);
     }
-    for (std::size_t i = 0; i < map.links.size(); ++i)
-      std::cout << "palprig sim-rig: rig '" << rig.id << "' link '" << map.links[i].name << "' (unit "
-                << map.links[i].unit_id << ") listening on " << addresses[i].host << ":" << server.port(i) << "\n";
+    for (std::size_t i = 0; i < map.links.size(); ++i) {
+      std::cout << "palprig sim-rig: rig '" << rig.id << "' link '" << map.links[i].name << "' (unit " << map.links[i].unit_id << ") ";
+      if (addresses[i].pty)
+        std::cout << "serving Modbus RTU on " << server.pty_path(i) << " (" << map.links[i].baud << " " << map.links[i].data_bits
+                  << map.links[i].parity << map.links[i].stop_bits << "; point the rig file's rtu.device there)\n";
+      else
+        std::cout << "listening on " << addresses[i].host << ":" << server.port(i) << "\n";
+    }
     std::cout << "palprig sim-rig: serving " << kFingerCount << " channels; stop with Ctrl-C" << std::endl;
     const auto start = std::chrono::steady_clock::now();
     while (cli::stop_signal().load() == 0) {

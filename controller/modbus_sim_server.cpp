@@ -1,6 +1,8 @@
 #include "controller/modbus_sim_server.hpp"
 
 #include <arpa/inet.h>
+#include <fcntl.h>
+#include <termios.h>
 #include <modbus.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -27,9 +29,14 @@ std::int64_t mono_ns() noexcept {
 }  // namespace
 
 ListenAddress parse_listen_address(const std::string& text) {
+  if (text == "pty") {
+    ListenAddress a;
+    a.pty = true;
+    return a;
+  }
   const auto colon = text.rfind(':');
   if (colon == std::string::npos || colon == 0 || colon + 1 == text.size())
-    throw std::invalid_argument("HOST:PORT (e.g. 127.0.0.1:1502, port 0 for any free port), got '" + text + "'");
+    throw std::invalid_argument("HOST:PORT (e.g. 127.0.0.1:1502, port 0 for any free port) or pty, got '" + text + "'");
   ListenAddress a;
   a.host = text.substr(0, colon);
   const std::string port = text.substr(colon + 1);
@@ -108,6 +115,27 @@ void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
     link->mapping = modbus_mapping_new_start_address(0, 0, 0, 0, h_hi < 0 ? 0 : unsigned(h_lo), h_hi < 0 ? 0 : unsigned(h_hi - h_lo + 1),
                                                      i_hi < 0 ? 0 : unsigned(i_lo), i_hi < 0 ? 0 : unsigned(i_hi - i_lo + 1));
     if (!link->mapping) throw std::runtime_error(std::string("cannot allocate the register space: ") + modbus_strerror(errno));
+    if (link->address.pty) {
+      link->pty_master = posix_openpt(O_RDWR | O_NOCTTY);
+      if (link->pty_master < 0 || grantpt(link->pty_master) != 0 || unlockpt(link->pty_master) != 0)
+        throw std::runtime_error(std::string("cannot create a pseudo-terminal: ") + std::strerror(errno));
+      link->pty_path = ptsname(link->pty_master);
+      // Hold the slave side open in raw mode: the line discipline must not echo or edit the
+      // binary frames, and the master must not see a hang-up between clients.
+      link->pty_slave = ::open(link->pty_path.c_str(), O_RDWR | O_NOCTTY);
+      termios raw{};
+      if (link->pty_slave < 0 || tcgetattr(link->pty_slave, &raw) != 0)
+        throw std::runtime_error("cannot open " + link->pty_path + ": " + std::strerror(errno));
+      cfmakeraw(&raw);
+      tcsetattr(link->pty_slave, TCSANOW, &raw);
+      const ModbusLinkConfig& cfg = map_.links[i];
+      link->ctx = modbus_new_rtu(link->pty_path.c_str(), cfg.baud, cfg.parity, cfg.data_bits, cfg.stop_bits);
+      if (!link->ctx) throw std::runtime_error(std::string("modbus_new_rtu: ") + modbus_strerror(errno));
+      modbus_set_slave(link->ctx, cfg.unit_id);  // an RTU module answers its own address only
+      modbus_set_socket(link->ctx, link->pty_master);
+      links_.push_back(std::move(link));
+      continue;
+    }
     link->ctx = modbus_new_tcp(link->address.host.c_str(), link->address.port);
     if (!link->ctx) throw std::runtime_error(std::string("modbus_new_tcp: ") + modbus_strerror(errno));
     link->listen_fd = modbus_tcp_listen(link->ctx, 16);
@@ -141,7 +169,8 @@ void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
       }
     }
   });
-  for (std::size_t i = 0; i < links_.size(); ++i) links_[i]->thread = std::thread([this, i] { serve(*links_[i], i); });
+  for (std::size_t i = 0; i < links_.size(); ++i)
+    links_[i]->thread = std::thread([this, i] { links_[i]->address.pty ? serve_rtu(*links_[i], i) : serve(*links_[i], i); });
 }
 
 void ModbusSimServer::stop() noexcept {
@@ -152,6 +181,9 @@ void ModbusSimServer::stop() noexcept {
   for (auto& l : links_) {
     if (l->listen_fd >= 0) ::close(l->listen_fd);
     l->listen_fd = -1;
+    if (l->pty_slave >= 0) ::close(l->pty_slave);
+    if (l->pty_master >= 0) ::close(l->pty_master);
+    l->pty_slave = l->pty_master = -1;
     if (l->ctx) modbus_free(l->ctx);
     l->ctx = nullptr;
     if (l->mapping) modbus_mapping_free(l->mapping);
@@ -216,7 +248,6 @@ void ModbusSimServer::after_write(std::size_t link, const std::uint8_t* query, i
 void ModbusSimServer::serve(Link& link, std::size_t index) noexcept {
   std::vector<int> clients;
   std::uint8_t query[MODBUS_TCP_MAX_ADU_LENGTH];
-  const int header = modbus_get_header_length(link.ctx);
   while (!stop_.load(std::memory_order_acquire)) {
     fd_set readable;
     FD_ZERO(&readable);
@@ -251,11 +282,7 @@ void ModbusSimServer::serve(Link& link, std::size_t index) noexcept {
       modbus_set_socket(link.ctx, fd);
       const int rc = modbus_receive(link.ctx, query);
       if (rc > 0) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        link.last_request_ns = mono_ns();
-        modbus_reply(link.ctx, query, rc, link.mapping);
-        requests_.fetch_add(1, std::memory_order_relaxed);
-        after_write(index, query, header);
+        handle(link, index, query, rc);
         ++it;
       } else if (rc == -1) {  // the client closed or sent garbage: drop it
         ::close(fd);
@@ -268,6 +295,28 @@ void ModbusSimServer::serve(Link& link, std::size_t index) noexcept {
   }
   for (int fd : clients) ::close(fd);
   clients_.fetch_sub(static_cast<int>(clients.size()), std::memory_order_relaxed);
+}
+
+void ModbusSimServer::handle(Link& link, std::size_t index, const std::uint8_t* query, int length) noexcept {
+  std::lock_guard<std::mutex> lock(mutex_);
+  link.last_request_ns = mono_ns();
+  modbus_reply(link.ctx, query, length, link.mapping);
+  requests_.fetch_add(1, std::memory_order_relaxed);
+  after_write(index, query, modbus_get_header_length(link.ctx));
+}
+
+void ModbusSimServer::serve_rtu(Link& link, std::size_t index) noexcept {
+  std::uint8_t query[MODBUS_RTU_MAX_ADU_LENGTH];
+  while (!stop_.load(std::memory_order_acquire)) {
+    fd_set readable;
+    FD_ZERO(&readable);
+    FD_SET(link.pty_master, &readable);
+    timeval timeout{0, 50'000};
+    if (select(link.pty_master + 1, &readable, nullptr, nullptr, &timeout) <= 0) continue;
+    const int rc = modbus_receive(link.ctx, query);  // a whole frame, CRC checked, our unit only
+    if (rc > 0) handle(link, index, query, rc);
+    else if (rc == -1) modbus_flush(link.ctx);       // a broken frame: drop what is buffered
+  }
 }
 
 std::array<std::uint16_t, kFingerCount> ModbusSimServer::output_words() const {

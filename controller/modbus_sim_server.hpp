@@ -9,6 +9,8 @@
 // holding register into a command (the same scaling the client used to encode it) and encodes
 // the plant's monitor pressure into the monitor register. Like a real module's communication
 // watchdog, an optional timeout sets the outputs of a link nobody talks to back to 0 kPa.
+// A link may also be served as Modbus RTU on a pseudo-terminal, so the RTU client path (framing,
+// CRC, unit id) runs without a serial adapter.
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -30,10 +32,11 @@ namespace palprig {
 
 struct ListenAddress {
   std::string host = "127.0.0.1";
-  int port = 0;  // 0: an ephemeral port, see ModbusSimServer::port()
+  int port = 0;      // 0: an ephemeral port, see ModbusSimServer::port()
+  bool pty = false;  // Modbus RTU on a new pseudo-terminal instead (see ModbusSimServer::pty_path())
 };
 
-// "HOST:PORT" -> ListenAddress; throws std::invalid_argument with the reason.
+// "HOST:PORT" or "pty" -> ListenAddress; throws std::invalid_argument with the reason.
 ListenAddress parse_listen_address(const std::string& text);
 
 class ModbusSimServer {
@@ -56,6 +59,8 @@ class ModbusSimServer {
   void start(const std::vector<ListenAddress>& listen);
   void stop() noexcept;
   int port(std::size_t link) const { return links_.at(link)->port; }
+  // The serial device a Modbus RTU client opens for a link served on a pty (e.g. /dev/pts/3).
+  const std::string& pty_path(std::size_t link) const { return links_.at(link)->pty_path; }
 
   // Observations (any thread).
   std::array<std::uint16_t, kFingerCount> output_words() const;
@@ -70,11 +75,15 @@ class ModbusSimServer {
     modbus_t* ctx = nullptr;
     modbus_mapping_t* mapping = nullptr;
     int listen_fd = -1;
+    int pty_master = -1, pty_slave = -1;  // RTU on a pty: we serve the master side
+    std::string pty_path;
     std::thread thread;
     std::int64_t last_request_ns = 0;
     bool watchdog_tripped = false;
   };
   void serve(Link& link, std::size_t index) noexcept;
+  void serve_rtu(Link& link, std::size_t index) noexcept;
+  void handle(Link& link, std::size_t index, const std::uint8_t* query, int length) noexcept;
   void step_plants() noexcept;
   std::uint16_t* output_register(std::size_t channel) const noexcept;
   std::uint16_t* monitor_register(std::size_t channel) const noexcept;

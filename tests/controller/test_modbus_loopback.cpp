@@ -328,3 +328,62 @@ TEST(ModbusLoopback, TwoModuleMapsWriteEachRegisterOnItsOwnLink) {
   })) << monitors[2];
   rig.close();
 }
+
+TEST(ModbusLoopback, RtuOnAPseudoTerminalCarriesTheSameMap) {
+  // The map as a lab would wire it on RS-485: one RTU link, unit 7, 115200 8E1.
+  ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  map.links[0].rtu = true;
+  map.links[0].baud = 115200;
+  map.links[0].parity = 'E';
+  map.links[0].unit_id = 7;
+  ModbusSimServer server(map, quiet_plants());
+  server.set_log_sink(nullptr);
+  ListenAddress pty;
+  pty.pty = true;
+  server.start({pty});
+  ASSERT_EQ(server.pty_path(0).rfind("/dev/pts/", 0), 0u) << server.pty_path(0);
+  ModbusRigConfig cmap = map;
+  cmap.links[0].device = server.pty_path(0);
+  cmap.io_thread_fifo_priority = 0;
+  ModbusRig rig(cmap);
+  rig.set_log_sink(nullptr);
+  rig.open();
+  EXPECT_NE(rig.describe().find("rtu " + server.pty_path(0) + " 115200 8E1"), std::string::npos) << rig.describe();
+  const ChannelPressures setpoint{11.75, 25.0, 40.0};
+  EXPECT_TRUE(drive(rig, setpoint, 3000ms, [&] {
+    return server.output_words() == std::array<std::uint16_t, kFingerCount>{3850, 8192, 13107};
+  }));
+  ChannelPressures monitors{};
+  EXPECT_TRUE(drive(rig, setpoint, 3000ms, [&] {
+    rig.read_monitors(monitors, 0);
+    return std::fabs(monitors[2] - 40.0) < 0.05;
+  })) << monitors[2];
+  rig.close();
+  // A client addressing another unit on the same bus gets no answer: a timeout, not a reply.
+  cmap.links[0].unit_id = 8;
+  ModbusRig stranger(cmap);
+  stranger.set_log_sink(nullptr);
+  EXPECT_THROW(stranger.open(), InputError);
+}
+
+TEST(ModbusLoopback, SimulatedModuleWatchdogZeroesOutputsOfASilentLink) {
+  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  ModbusSimServer server(map, quiet_plants());
+  Quiet log;
+  server.set_log_sink(log.sink());
+  server.set_watchdog_s(0.1);
+  const auto ports = serve(server, 1);
+  modbus_t* client = modbus_new_tcp("127.0.0.1", ports[0]);
+  ASSERT_EQ(modbus_connect(client), 0);
+  const std::uint16_t words[3] = {13107, 13107, 13107};
+  ASSERT_EQ(modbus_write_registers(client, 0, 3, words), 3);
+  EXPECT_EQ(server.output_words()[1], 13107);
+  // The client goes quiet without venting (a crashed controller): the module's own watchdog
+  // takes the outputs to 0 kPa.
+  const auto end = std::chrono::steady_clock::now() + 2s;
+  while (server.output_words()[1] != 0 && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(5ms);
+  EXPECT_EQ(server.output_words(), (std::array<std::uint16_t, kFingerCount>{0, 0, 0}));
+  EXPECT_TRUE(log.contains("watchdog"));
+  modbus_close(client);
+  modbus_free(client);
+}
