@@ -195,7 +195,8 @@ ArterySpec parse_artery(const JsonObject& a, const std::filesystem::path& scene_
   s.rate_bpm = a.number("rate_bpm", kMinPulseRateBpm, kMaxPulseRateBpm);
   s.phase_offset = a.number_or("phase_offset", 0, -1, 1);
   if (a.has("waveform")) s.waveform = parse_waveform(a.object("waveform"), scene_path);
-  if (a.has("force_window_N")) {
+  s.own_force_window = a.has("force_window_N");
+  if (s.own_force_window) {
     const auto fw = triple(a, "force_window_N", 2, 0, 1000);
     if (!(fw[0] < fw[1])) a.fail("force_window_N", "[F_min, F_max] with F_min < F_max, got " + a.raw("force_window_N").dump());
     s.force_window.min_N = fw[0];

@@ -23,7 +23,8 @@ void apply_pulse_stage(PulseTickState& state, const PulseRendering& rendering, c
     const double rise_s = rendering.compensate_lag ? comp.rise_anticipation_s() : 0.0;
     const double fall_s = rendering.compensate_lag ? comp.fall_anticipation_s() : 0.0;
     const PulseFelt felt =
-        arteries.felt(fingers[i], force_N, pressed, state.clocks, state.activation[i], t_s, lead_s, rise_s, fall_s);
+        arteries.felt(fingers[i], force_N, pressed, state.clocks, state.activation[i], t_s, lead_s, rise_s, fall_s,
+                      rendering.has_measured_window ? &rendering.measured_window : nullptr);
     pulse_kPa[i] = felt.now_kPa;
     const double base = target_kPa[i];
     if (!std::isfinite(base)) continue;  // left for the safety stage to fault on

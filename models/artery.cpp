@@ -152,7 +152,7 @@ void PulseField::update_clocks(PulseClocks& clocks, double t_s) const noexcept {
 
 PulseFelt PulseField::felt(const Point2_mm& at, double force_N, bool in_contact, const PulseClocks& clocks,
                            PulseActivation& activation, double t_s, double lead_s, double rise_advance_s,
-                           double fall_advance_s) const noexcept {
+                           double fall_advance_s, const ForceWindow* measured_window) const noexcept {
   PulseFelt out;
   const bool usable = in_contact && std::isfinite(at.x_mm) && std::isfinite(at.y_mm) && std::isfinite(force_N);
   for (std::size_t i = 0; i < arteries_.size(); ++i) {
@@ -170,7 +170,9 @@ PulseFelt PulseField::felt(const Point2_mm& at, double force_N, bool in_contact,
     }
     on = true;
     ++out.arteries_on;
-    const double amp = a.spec().amplitude_kPa * a.distance_factor(at) * a.spec().force_window.factor(force_N);
+    const ForceWindow& window =
+        !a.spec().own_force_window && measured_window ? *measured_window : a.spec().force_window;
+    const double amp = a.spec().amplitude_kPa * a.distance_factor(at) * window.factor(force_N);
     if (amp <= 0) continue;
     const PulseClock& c = clocks.clock[i];
     out.now_kPa += amp * a.spec().waveform.value(c.phase(t_s));

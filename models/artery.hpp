@@ -62,6 +62,9 @@ struct ArterySpec {
   double phase_offset = 0.0;    // cycles: the pulse wave arrives later in distal arteries
   PulseWaveform waveform;
   ForceWindow force_window;
+  // False when the scene left the window out: a window measured by calibration (003's
+  // sphygmomanometer procedure) then takes its place.
+  bool own_force_window = true;
   double activation_margin_mm = -1.0;  // delta; negative: from the fingertip pad radius
   double release_margin_mm = 0.57;     // epsilon
 };
@@ -130,10 +133,11 @@ class PulseField {
   void update_clocks(PulseClocks& clocks, double t_s) const noexcept;
   // Loop thread, per finger: update its activation and return its pulse pressure now and lead_s
   // ahead; in the value ahead, rectangular pulses start rise_advance_s and end fall_advance_s
-  // early (the lag compensator's anticipation). A lifted finger releases every artery.
+  // early (the lag compensator's anticipation). measured_window, when given, serves arteries
+  // whose scene left their force window out. A lifted finger releases every artery.
   PulseFelt felt(const Point2_mm& at, double force_N, bool in_contact, const PulseClocks& clocks,
                  PulseActivation& activation, double t_s, double lead_s, double rise_advance_s = 0,
-                 double fall_advance_s = 0) const noexcept;
+                 double fall_advance_s = 0, const ForceWindow* measured_window = nullptr) const noexcept;
 
  private:
   std::vector<Artery> arteries_;

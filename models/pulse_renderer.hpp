@@ -39,6 +39,10 @@ struct RegulatorLag {
 struct PulseRendering {
   bool compensate_lag = true;
   std::array<RegulatorLag, kFingerCount> lag{};
+  // 003's force window as calibration measured it on this rig (60 and 120 mmHg), for arteries
+  // whose scene gives none.
+  bool has_measured_window = false;
+  ForceWindow measured_window;
 };
 
 class LagCompensator {

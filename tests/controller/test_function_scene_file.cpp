@@ -44,6 +44,16 @@ TEST(FunctionSceneFile, ShippedScenesLoad) {
   EXPECT_EQ(load_scene_file(kScenes + "liver_edge.json").scene->pulse(), nullptr);
   const SceneFile brachial = load_scene_file(kScenes + "brachial_pulse.json");
   EXPECT_EQ(brachial.scene->pulse()->artery(0).spec().waveform.shape(), WaveShape::table);
+  EXPECT_TRUE(brachial.scene->pulse()->artery(0).spec().own_force_window);
+}
+
+TEST(FunctionSceneFile, AnArteryMayLeaveItsForceWindowToCalibration) {
+  TempDir dir;
+  nlohmann::json j = brachial();
+  j["arteries"][0].erase("force_window_N");
+  const SceneFile sf = load_scene_file(dir.write("s.json", j.dump()));
+  EXPECT_FALSE(sf.scene->pulse()->artery(0).spec().own_force_window);
+  EXPECT_EQ(sf.scene->pulse()->artery(0).spec().force_window.min_N, 1.2);  // 60 mmHg over 1.5 cm^2 until calibrated
 }
 
 TEST(FunctionSceneFile, MapScenesStillLoadAsBefore) {

@@ -248,3 +248,28 @@ TEST(FunctionSceneTick, BreathingChangesWhatAFixedFingerFeels) {
   }
   EXPECT_GT(inspired, rest + 0.1f);
 }
+
+TEST(FunctionSceneTick, AnArteryWithoutItsOwnForceWindowUsesTheCalibratedOne) {
+  auto peak_at = [](const TickConfig& cfg, const Scene& scene, double force) {
+    TickState st = make_tick_state(cfg);
+    double most = 0;
+    for (int k = 0; k < 1500; ++k) {
+      const double t = k * 0.001;
+      most = std::max(most, tick(st, cfg, scene, {t, 40, 60, force, true}, t).pulse_kPa[0]);
+    }
+    return most;
+  };
+  const auto shipped = artery_scene(80);
+  ArterySpec a = shipped->arteries().artery(0).spec();
+  a.own_force_window = false;  // as loaded from a scene that leaves "force_window_N" out
+  a.force_window = ForceWindow{};
+  const FunctionScene scene(shipped->field().definition(), {a});
+  CalibrationModels cal;
+  cal.force_window = MeasuredForceWindow{2.0, 4.0, 60, 120};
+  const TickConfig calibrated = make_tick_config(load_rig_file(kData + "rigs/simulated.json"), cal);
+  ASSERT_TRUE(calibrated.pulse.has_measured_window);
+  EXPECT_EQ(peak_at(calibrated, scene, 1.8), 0.0);  // below the measured F_min (the default window would pulse)
+  EXPECT_GT(peak_at(rig_config(), scene, 1.8), 0.0);
+  EXPECT_GT(peak_at(calibrated, scene, 3.5), 0.0);
+  EXPECT_GT(peak_at(calibrated, *shipped, 1.8), 0.0);  // an artery's own window wins
+}
