@@ -220,7 +220,6 @@ void run_experiment(const RunArgs& a) {
   std::unique_ptr<RigBackend> backend = make_backend(rig);
   backend->open();
   RigStimulus output(config, *backend);
-  const bool print_trials = !simulated || !a.quiet;
   SessionRecorder recorder(
       store, session.session_id,
       [&](const RunnerEvent& e) {
@@ -229,7 +228,10 @@ void run_experiment(const RunArgs& a) {
         }
       },
       [&](const TrialRecord& t) {
-        if (print_trials) std::cout << trial_line(t, total) << "\n" << std::flush;
+        // A person gets no feedback on correctness (it would train them during the study); the
+        // scores are in the database. A simulated session prints the whole line.
+        if (!simulated) std::cout << "  Answer recorded (" << t.planned.position + 1 << " of " << total << ").\n" << std::flush;
+        else if (!a.quiet) std::cout << trial_line(t, total) << "\n" << std::flush;
       });
   TrialRunner runner(protocol, session.plan, session.start_position, output, recorder,
                      scene ? scene->scene.get() : nullptr, participant->pen());

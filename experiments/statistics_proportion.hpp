@@ -9,6 +9,7 @@
 //     CI = sqrt((P1 - p1)^2 + (P2 - p2)^2),  significant when |p1 - p2| > CI.
 // The same Wilson bounds give Newcombe's (1998, method 10) hybrid score interval for p1 - p2,
 // reported alongside: the difference is significant exactly when that interval excludes 0.
+// Boost 1.74 has neither interval; both are written here on Boost's normal quantile.
 #include <cstdint>
 
 namespace palprig::stats {
