@@ -1,9 +1,13 @@
 // Cost of function scenes on the 1 kHz path: one finger's felt stiffness on each shipped scene,
-// a whole tick with the pulse stage (three fingers, lag compensation), and one compensator step.
+// a whole tick with the pulse stage (three fingers, lag compensation; with the number of heap
+// allocations it made, which must be 0), and one compensator step.
 //   build/bin/bench_scene_sample
 #include <benchmark/benchmark.h>
 
+#include <atomic>
+#include <cstdlib>
 #include <map>
+#include <new>
 #include <string>
 
 #include "controller/calibration_file.hpp"
@@ -13,6 +17,20 @@
 #include "models/pulse_renderer.hpp"
 
 using namespace palprig;
+
+// Every allocation in this program is counted, so the tick benchmark can report how many it
+// made (the loop path must make none). This program only: each bench file is its own binary.
+// GCC pairs the replaced operator new with std::free once both are inlined and warns of a
+// mismatch; here new is malloc, so the pair is right.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+static std::atomic<long> g_allocations{0};
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -49,10 +67,12 @@ void BM_TickWithPulse(benchmark::State& state) {
   const TickConfig cfg = make_tick_config(load_rig_file(kData + "rigs/simulated.json"), CalibrationModels{});
   TickState st = make_tick_state(cfg);
   double t = 0;
+  const long before = g_allocations.load();
   for (auto _ : state) {
     benchmark::DoNotOptimize(tick(st, cfg, s, {t, 24, 59, 2.0, true}, t));
     t += 0.001;
   }
+  state.counters["allocations"] = double(g_allocations.load() - before);  // expected 0
 }
 BENCHMARK(BM_TickWithPulse);
 
