@@ -184,6 +184,11 @@ void run_experiment(const RunArgs& a) {
   check_levels_fit_rig(from_file, rig);
   const TickConfig config = make_tick_config(rig, cal);
 
+  // The rig is opened (and vented) before the session is stored, so an unreachable device does
+  // not leave an empty session behind.
+  std::unique_ptr<RigBackend> backend = make_backend(rig);
+  backend->open();
+
   TrialStore store(a.db, TrialStore::Access::read_write);
   SimulatedObserverModel model = a.model;
   model.seed = sim_seed;
@@ -217,8 +222,6 @@ void run_experiment(const RunArgs& a) {
             << ", " << total << " trials, seed " << session.plan.seed << ", database " << a.db << "\n"
             << std::flush;
 
-  std::unique_ptr<RigBackend> backend = make_backend(rig);
-  backend->open();
   RigStimulus output(config, *backend);
   SessionRecorder recorder(
       store, session.session_id,

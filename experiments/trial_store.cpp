@@ -112,26 +112,26 @@ std::optional<double> finite_or_null(double x) {
 
 }  // namespace
 
-TrialStore::TrialStore(const std::filesystem::path& file, Access access)
+TrialStore::TrialStore(const std::filesystem::path& file, Access access) try
     : db_(file, access == Access::read_only ? Database::Mode::read_only : Database::Mode::read_write_create) {
-  try {
-    if (access == Access::read_write) {
-      if (is_blank()) create_schema();
-    }
-    check_identity();
-    // Scans of large stores (stats, export) read through a memory map instead of copying pages.
-    db_.exec("PRAGMA mmap_size = 1073741824");
-    if (access == Access::read_write) {
-      // WAL: readers never block the writer; synchronous FULL: a committed trial survives a
-      // crash of the process and of the machine.
-      db_.exec("PRAGMA journal_mode = WAL; PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON;");
-    }
-  } catch (const SqliteError& e) {
-    if (e.code() == SQLITE_NOTADB) {
-      throw InputError(file.string(), "file", "a palprig trial database (this is not an SQLite database)");
-    }
-    throw;
+  if (access == Access::read_write && is_blank()) create_schema();
+  check_identity();
+  // Scans of large stores (stats, export) read through a memory map instead of copying pages.
+  db_.exec("PRAGMA mmap_size = 1073741824");
+  if (access == Access::read_write) {
+    // WAL: readers never block the writer; synchronous FULL: a committed trial survives a
+    // crash of the process and of the machine.
+    db_.exec("PRAGMA journal_mode = WAL; PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON;");
   }
+} catch (const SqliteError& e) {
+  // Whatever the member initialiser or the checks threw, the file was the problem.
+  if (e.code() == SQLITE_NOTADB) {
+    throw InputError(file.string(), "file", "a palprig trial database (this is not an SQLite database)");
+  }
+  if (e.code() == SQLITE_CANTOPEN) {
+    throw InputError(file.string(), "file", "a database file that can be opened or created (check the path)");
+  }
+  throw;
 }
 
 bool TrialStore::is_blank() {

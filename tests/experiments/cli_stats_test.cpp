@@ -45,7 +45,7 @@ TEST(experiments_cli_stats, csv_tests_match_the_library_oracles) {
   j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["n1"].get<int>(), 7);
   EXPECT_EQ(j["p_method"].get<std::string>(), "exact");
-  EXPECT_DOUBLE_EQ(j["U1"].get<double>(), 41.0);  // 7 x 6 pairs, only 5.0 vs 5.1.. all x above y but 4.9 < 5.0
+  EXPECT_DOUBLE_EQ(j["U1"].get<double>(), 41.0);  // 42 pairs: every x beats every y except 4.9 < 5.0
 
   r = run_palprig({"stats", "describe", (dir / "d.csv").string(), "--column", "time", "--by", "group", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;

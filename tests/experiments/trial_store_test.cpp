@@ -78,6 +78,7 @@ TEST(experiments_trial_store, refuses_foreign_newer_and_non_sqlite_files) {
   std::ofstream(dir / "text.db") << "participant,rt\n1,2\nthis is not a database at all, just text\n";
   EXPECT_THROW(TrialStore(dir / "text.db", TrialStore::Access::read_write), InputError);
   EXPECT_THROW(open_trial_store_for_reading(dir / "missing.db"), InputError);
+  EXPECT_THROW(TrialStore(dir / "no" / "such" / "folder.db", TrialStore::Access::read_write), InputError);
 }
 
 TEST(experiments_trial_store, session_order_and_trials_round_trip) {
