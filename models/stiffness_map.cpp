@@ -141,7 +141,8 @@ std::string pgm_token(std::istream& in) {
   return tok;
 }
 
-long pgm_int(std::istream& in, const std::string& source, const char* field, long lo, long hi) {
+// The next token as an integer in lo..hi; `where` names the header field or pixel.
+long pgm_int(std::istream& in, const std::string& source, const std::string& where, long lo, long hi) {
   const std::string tok = pgm_token(in);
   long v = -1;
   std::size_t used = 0;
@@ -151,7 +152,7 @@ long pgm_int(std::istream& in, const std::string& source, const char* field, lon
     used = 0;
   }
   if (tok.empty() || used != tok.size() || v < lo || v > hi)
-    throw InputError(source, std::string("header ") + field,
+    throw InputError(source, where,
                      "an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + tok + "'");
   return v;
 }
@@ -164,9 +165,9 @@ StiffnessMap parse_stiffness_pgm(std::istream& in, const std::string& source, do
   const std::string magic = pgm_token(in);
   if (magic != "P5" && magic != "P2")
     throw InputError(source, "header magic", "'P5' (binary) or 'P2' (ASCII) PGM, got '" + magic + "'");
-  const long cols = pgm_int(in, source, "width", 2, 1 << 16);
-  const long rows = pgm_int(in, source, "height", 2, 1 << 16);
-  const long maxval = pgm_int(in, source, "maxval", 1, 65535);
+  const long cols = pgm_int(in, source, "header width", 2, 1 << 16);
+  const long rows = pgm_int(in, source, "header height", 2, 1 << 16);
+  const long maxval = pgm_int(in, source, "header maxval", 1, 65535);
   std::vector<float> values(static_cast<std::size_t>(cols * rows));
   if (magic == "P5") {
     const int bytes = maxval > 255 ? 2 : 1;
@@ -184,17 +185,7 @@ StiffnessMap parse_stiffness_pgm(std::istream& in, const std::string& source, do
     }
   } else {
     for (std::size_t i = 0; i < values.size(); ++i) {
-      const std::string tok = pgm_token(in);
-      long v = -1;
-      std::size_t used = 0;
-      try {
-        v = std::stol(tok, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (tok.empty() || used != tok.size() || v < 0 || v > maxval)
-        throw InputError(source, "pixel " + std::to_string(i),
-                         "an integer in 0.." + std::to_string(maxval) + ", got '" + tok + "'");
+      const long v = pgm_int(in, source, "pixel " + std::to_string(i), 0, maxval);
       values[i] = static_cast<float>(double(v) / double(maxval));
     }
   }
