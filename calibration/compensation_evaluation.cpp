@@ -93,6 +93,7 @@ EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Traject
   const auto ticks = static_cast<std::uint64_t>(std::ceil(tr.end_s() * o.rate_hz));
   const auto record_every = std::max<std::uint64_t>(1, std::uint64_t(std::llround(o.rate_hz / o.record_hz)));
   run.trace.reserve(std::size_t(ticks / record_every + 2));
+  run.scored_from_t_s = t0 + tr.scored_from_s;
   TickState state = make_tick_state(config);
   std::array<Accumulator, kFingerCount> acc{};
   for (std::uint64_t i = 0; i < ticks; ++i) {

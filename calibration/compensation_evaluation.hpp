@@ -52,6 +52,7 @@ struct EvaluationTraceRow {
 struct EvaluationRun {
   std::array<TrackingMetrics, kFingerCount> channels{};
   std::vector<EvaluationTraceRow> trace;
+  double scored_from_t_s = 0;  // trace rows before this (rest, first approach) are not scored
   bool stopped = false, faulted = false;
   std::string fault;
 };

@@ -142,3 +142,29 @@ TEST(CalibrateCli, RefusedInputExitsTwoWithOneLine) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "palprig: --fast: modbus: a simulated rig (hardware runs in real time)\n");
 }
+
+TEST(CalibrateCli, PlotWritesPngFilesOrIsRefusedWithoutTheChartDrawing) {
+  TempDir dir;
+  const std::string data = (dir.path() / "data.csv").string(), cal = (dir.path() / "cal.json").string();
+  ASSERT_EQ(run_process(palprig_cmd() + " calibrate sweep --excitation staircase,random --quiet --out " + data).exit_code, 0);
+  const std::string plots = (dir.path() / "plots").string();
+  const ProcessResult fit = run_process(palprig_cmd() + " calibrate fit " + data + " --out " + cal + " --plot " + plots);
+  if (fit.exit_code == 2) {
+    // A build without Qt: refused before anything is written.
+    EXPECT_EQ(fit.err, "palprig: --plot: " + plots +
+                           ": a build with the chart drawing (configure with -DPALPRIG_GUI=ON; needs Qt6)\n");
+    EXPECT_FALSE(std::filesystem::exists(cal));
+    return;
+  }
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_EQ(fit.err, "");  // Qt's offscreen set-up stays quiet
+  for (const char* name : {"channel_1_regulator.png", "channel_2_hysteresis.png", "channel_3_regulator.png"}) {
+    const std::string png = read_file(dir.path() / "plots" / name);
+    ASSERT_GT(png.size(), 1000u) << name;
+    EXPECT_EQ(png.substr(1, 3), "PNG") << name;
+  }
+  const ProcessResult ev =
+      run_process(palprig_cmd() + " calibrate evaluate --cal " + cal + " --duration-s 20 --plot " + plots);
+  ASSERT_EQ(ev.exit_code, 0) << ev.err;
+  EXPECT_EQ(read_file(dir.path() / "plots" / "evaluate_channel_2_loops.png").substr(1, 3), "PNG");
+}
