@@ -127,7 +127,9 @@ TEST(RealtimeSafety, AnExceptionOnTheReaderThreadVentsAndStopsTheLoop) {
   opt.mode = LoopMode::realtime;
   opt.want_fifo = false;
   opt.duration_s = 2.0;
-  const RunSummary s = run_loop(TickConfig{}, uniform_scene(0.5f), input, backend, opt);
+  TickConfig config;
+  config.safety.max_consecutive_overruns = 1000000;  // a busy test machine must not end it first
+  const RunSummary s = run_loop(config, uniform_scene(0.5f), input, backend, opt);
   EXPECT_EQ(s.fault, FaultCode::thread_exception);
   EXPECT_NE(s.fault_detail.find("USB bus reset"), std::string::npos) << s.fault_detail;
   EXPECT_NE(s.fault_detail.find("pen tablet reader"), std::string::npos) << s.fault_detail;
@@ -145,7 +147,9 @@ TEST(RealtimeSafety, ALiveTabletThatDisappearsIsAWorkerFaultWithTheReason) {
   opt.mode = LoopMode::realtime;
   opt.want_fifo = false;
   opt.duration_s = 2.0;
-  const RunSummary s = run_loop(TickConfig{}, uniform_scene(0.5f), input, backend, opt);
+  TickConfig config;
+  config.safety.max_consecutive_overruns = 1000000;  // a busy test machine must not end it first
+  const RunSummary s = run_loop(config, uniform_scene(0.5f), input, backend, opt);
   EXPECT_EQ(s.fault, FaultCode::thread_exception);
   EXPECT_NE(s.fault_detail.find("unplugged"), std::string::npos) << s.fault_detail;
   clear_worker_faults();
