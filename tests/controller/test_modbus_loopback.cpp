@@ -340,7 +340,11 @@ TEST(ModbusLoopback, RtuOnAPseudoTerminalCarriesTheSameMap) {
   server.set_log_sink(nullptr);
   ListenAddress pty;
   pty.pty = true;
-  server.start({pty});
+  try {
+    server.start({pty});
+  } catch (const std::runtime_error& e) {
+    GTEST_SKIP() << "this machine gives no pseudo-terminals (" << e.what() << "); the RTU path needs one to run";
+  }
   ASSERT_EQ(server.pty_path(0).rfind("/dev/pts/", 0), 0u) << server.pty_path(0);
   ModbusRigConfig cmap = map;
   cmap.links[0].device = server.pty_path(0);
