@@ -152,6 +152,16 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
   const std::size_t n = o.operator_count;
   if (n == 0 || n > kMaxPlayOperators)
     throw InputError(file, what, "between 1 and " + std::to_string(kMaxPlayOperators) + " play operators");
+  // Ceres checks its own arguments by aborting: everything it will see is checked here first.
+  if (!(o.min_linear_weight > 0) || !std::isfinite(o.min_linear_weight))
+    throw InputError("hysteresis fit", "min_linear_weight", "a positive linear weight floor");
+  if (!(o.min_threshold_step_kPa > 0) || !std::isfinite(o.min_threshold_step_kPa))
+    throw InputError("hysteresis fit", "min_threshold_step_kPa", "a positive threshold step");
+  if (!(o.max_threshold_kPa >= 0) || !std::isfinite(o.max_threshold_kPa))
+    throw InputError("--max-threshold-kPa", std::to_string(o.max_threshold_kPa), "a threshold >= 0 kPa (0: from the data)");
+  if (o.loss != RobustLoss::none && (!(o.loss_scale_kPa > 0) || !std::isfinite(o.loss_scale_kPa)))
+    throw InputError("--robust-scale-kPa", std::to_string(o.loss_scale_kPa), "a positive scale in kPa");
+  if (o.max_iterations < 1) throw InputError("hysteresis fit", "max_iterations", "at least 1 iteration");
   if (x.size() != y.size()) throw InputError(file, what, "as many inputs as outputs");
   const std::size_t parameters = 1 + 2 * n;
   if (x.size() < 4 * parameters)

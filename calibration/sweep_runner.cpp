@@ -31,9 +31,11 @@ bool monitors_settled(const std::vector<SweepSample>& s, std::size_t window, con
 SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& schedule, const SweepRunOptions& o,
                                    SweepSink& sink, const SweepProgress& progress) {
   if (!(o.settle_window_s > 0) || !(o.settle_band_kPa > 0) || !(o.average_s > 0) || !(o.min_hold_s >= 0) ||
-      !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s + o.average_s))
+      !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s + o.average_s) || !(o.max_hold_s <= 3600) ||
+      !(o.rate_hz > 0) || !(o.rate_hz <= 10000))
     throw std::invalid_argument(
-        "sweep: need settle window, band and averaging window > 0, and max hold above min hold and both windows");
+        "sweep: need settle window, band and averaging window > 0, a max hold above min hold and both windows (at "
+        "most an hour), and a rate in (0, 10000] Hz");
   bool any = false;
   for (bool on : o.channels) any = any || on;
   if (!any) throw std::invalid_argument("sweep: no channel selected");

@@ -253,10 +253,11 @@ void run_sweep(const SweepArgs& a) {
   run.channels = parse_channels(a.channels);
   run.realtime = use_realtime(rig, a.realtime, a.fast);
   if (!(run.settle_window_s > 0) || !(run.settle_band_kPa > 0) || !(run.average_s > 0) ||
-      !(run.max_hold_s > run.min_hold_s) || run.max_hold_s < run.settle_window_s + run.average_s)
+      !(run.max_hold_s > run.min_hold_s) || run.max_hold_s < run.settle_window_s + run.average_s ||
+      !(run.max_hold_s <= 3600))
     throw InputError("--max-hold-s", std::to_string(run.max_hold_s),
                      "settle window, band and averaging window > 0, and a max hold above the min hold and both "
-                     "windows");
+                     "windows, at most 3600 s");
   for (const auto& n : plan.notes) std::cerr << "palprig: note: " << n << "\n";
 
   auto backend = make_backend(rig);

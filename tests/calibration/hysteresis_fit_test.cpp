@@ -184,4 +184,15 @@ TEST(HysteresisFit, RefusesUnusableData) {
   std::vector<double> falling(y.size());
   for (std::size_t k = 0; k < y.size(); ++k) falling[k] = 100 - y[k];
   refused(x, falling, "rises with the input");
+  // Options Ceres would abort on are refused before it sees them.
+  HysteresisFitOptions bad;
+  bad.loss = RobustLoss::huber;
+  bad.loss_scale_kPa = 0;
+  EXPECT_THROW(fit_hysteresis(x, y, bad, "f", "w"), InputError);
+  bad = {};
+  bad.min_linear_weight = 0;
+  EXPECT_THROW(fit_hysteresis(x, y, bad, "f", "w"), InputError);
+  bad = {};
+  bad.max_iterations = 0;
+  EXPECT_THROW(fit_hysteresis(x, y, bad, "f", "w"), InputError);
 }
