@@ -46,6 +46,7 @@ ModbusRig::ModbusRig(ModbusRigConfig config)
     s.link = std::make_unique<ModbusLink>(config_, i);
     links_.push_back(std::move(s));
   }
+  for (std::size_t c = 0; c < kFingerCount; ++c) zero_words_[c] = config_.channels[c].output.scale.word_from_kPa(0.0);
   Monitors nan_monitors;
   nan_monitors.kPa.fill(std::nan(""));
   monitors_.publish(nan_monitors);
@@ -71,9 +72,8 @@ void ModbusRig::open() {
     const std::string where = "modbus.links[" + std::to_string(i) + "] \"" + link.config().name + "\" (" +
                               link.config().endpoint() + ")";
     if (!link.connect()) throw InputError(config_.source, where, std::string("a Modbus device that answers (") + link.last_error() + ")");
-    ChannelWords zeros{}, monitors{};
-    for (std::size_t c = 0; c < kFingerCount; ++c) zeros[c] = config_.channels[c].output.scale.word_from_kPa(0.0);
-    if (!link.write_outputs(zeros) || !link.read_monitors(monitors)) {
+    ChannelWords monitors{};
+    if (!link.write_outputs(zero_words_) || !link.read_monitors(monitors)) {
       const std::string why = link.last_error();
       const bool device = link.last_error_kind() == LinkError::device;
       link.disconnect();
@@ -113,10 +113,8 @@ void ModbusRig::close() noexcept {
 }
 
 void ModbusRig::write_zeros_everywhere() noexcept {
-  ChannelWords zeros{};
-  for (std::size_t c = 0; c < kFingerCount; ++c) zeros[c] = config_.channels[c].output.scale.word_from_kPa(0.0);
   for (auto& l : links_)
-    if (l.up && l.link->connected()) l.link->write_outputs(zeros);
+    if (l.up && l.link->connected()) l.link->write_outputs(zero_words_);
 }
 
 ModbusBusStats ModbusRig::bus_stats() const {
@@ -235,7 +233,7 @@ void ModbusRig::io_cycle(std::int64_t now, double dt_s) {
       if (now >= l.next_attempt_ns) try_reconnect(l, now);
       continue;
     }
-    // While some other link is down this one carries 0 kPa (out_words_ are zeros then).
+    // While some other link is down this one carries 0 kPa (out_words_ hold 0 kPa then).
     if (l.link->write_outputs(out_words_) && l.link->read_monitors(mon_words_)) continue;
     if (l.link->last_error_kind() == LinkError::device) {
       char text[256];
@@ -284,11 +282,9 @@ void ModbusRig::mark_down(LinkState& l, std::int64_t now) {
 
 void ModbusRig::try_reconnect(LinkState& l, std::int64_t now) {
   ++l.attempts;
-  ChannelWords zeros{};
-  for (std::size_t c = 0; c < kFingerCount; ++c) zeros[c] = config_.channels[c].output.scale.word_from_kPa(0.0);
   // Back only when the module takes 0 kPa and answers a monitor read: a half-open link must
   // not be trusted with pressure.
-  if (l.link->connect() && l.link->write_outputs(zeros) && l.link->read_monitors(mon_words_)) {
+  if (l.link->connect() && l.link->write_outputs(zero_words_) && l.link->read_monitors(mon_words_)) {
     l.up = true;
     ++stats_.reconnects;
     for (std::size_t c = 0; c < kFingerCount; ++c) {

@@ -105,6 +105,7 @@ class ModbusRig final : public RigBackend {
   ChannelPressures ramp_kPa_{};     // what the re-engagement ramp allows now
   std::array<bool, kFingerCount> engaging_{};
   ChannelWords out_words_{}, mon_words_{};
+  ChannelWords zero_words_{};       // every output at 0 kPa (not always word 0: signed or offset maps)
   LatencyHistogram cycle_hist_;
   ModbusBusStats stats_;
   std::int64_t start_ns_ = 0;
