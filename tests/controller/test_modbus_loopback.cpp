@@ -217,7 +217,9 @@ TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
   std::size_t rising_writes = 0;
   for (const auto& row : writes.rows) {
     const auto c = static_cast<std::size_t>(row[ch]);
-    if (last_t[c] > 0) EXPECT_LE(row[kpa] - last_kPa[c], 2000.0 * (row[t] - last_t[c] + 2.0 / cmap.io_rate_hz) + 0.01);
+    if (last_t[c] > 0) {
+      EXPECT_LE(row[kpa] - last_kPa[c], 2000.0 * (row[t] - last_t[c] + 2.0 / cmap.io_rate_hz) + 0.01);
+    }
     if (row[kpa] > 0 && row[kpa] < 49.99) ++rising_writes;
     last_kPa[c] = row[kpa];
     last_t[c] = row[t];

@@ -87,8 +87,11 @@ TEST(TabletDecoder, LiftOffAndProximityOutPressWithZeroNewtons) {
   EXPECT_FALSE(out.in_proximity);
   EXPECT_FALSE(out.in_contact);
   EXPECT_EQ(out.force_N, 0.0);
-  for (const auto& f : frames)
-    if (f.t_s >= 0.65) EXPECT_FALSE(f.in_contact) << "contact after lift-off at t=" << f.t_s;
+  for (const auto& f : frames) {
+    if (f.t_s >= 0.65) {
+      EXPECT_FALSE(f.in_contact) << "contact after lift-off at t=" << f.t_s;
+    }
+  }
   const PenFrame& back = frame_at(frames, 0.95);
   EXPECT_TRUE(back.in_proximity);
   EXPECT_FALSE(back.in_contact);
