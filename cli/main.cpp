@@ -43,8 +43,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::RuntimeError& e) {
     return e.get_exit_code();  // a subcommand finished with this exit code (see cli::finish)
   } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : palprig::cli::kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // One line, like every other refusal, instead of CLI11's two.
+    std::cerr << "palprig: " << e.what() << " (see --help)\n";
+    return palprig::cli::kExitBadInput;
   } catch (const palprig::InputError& e) {
     std::cerr << "palprig: " << e.what() << "\n";
     return palprig::cli::kExitBadInput;
