@@ -67,7 +67,11 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
     ChannelCalibration& ch = out.channels[std::size_t(c - 1)];
     ch.channel = c;
     ch.actuator = o.base.actuators[std::size_t(c - 1)];
-    if (!o.stress_pairs.empty()) {
+    bool has_pairs = false;
+    for (const auto& q : o.stress_pairs) has_pairs = has_pairs || q.channel == 0 || q.channel == c;
+    if (!o.stress_pairs.empty() && !has_pairs)
+      out.notes.push_back("channel " + std::to_string(c) + " has no stress pairs: its actuator line is the base's");
+    if (has_pairs) {
       const ActuatorFit a = fit_actuator_stress(o.stress_pairs, c, o.stress_file);
       ch.actuator = a.model;
       ch.stress_line = a.line;

@@ -51,51 +51,58 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
   out.holds_planned = schedule.holds.size();
   std::uint64_t k = 0;
   double t_s = 0;
-  for (std::size_t h = 0; h < schedule.holds.size() && !out.stopped && !out.faulted; ++h) {
-    const SweepHold& hold = schedule.holds[h];
-    ChannelPressures setpoint{};
-    for (std::size_t c = 0; c < kFingerCount; ++c) setpoint[c] = o.channels[c] ? hold.level_kPa : 0.0;
-    hold_samples.clear();
-    HoldOutcome result;
-    std::size_t averaging_from = 0;  // index of the first averaged sample, once settled
-    bool averaging = false;
-    const double hold_start_s = pacer.period_s() * double(k);
-    for (;;) {
-      t_s = pacer.wait_for_tick(k++);
-      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
-        out.stopped = true;
-        out.stop_signal = o.stop_signal->load();
-        break;
+  // A sink or progress callback that throws (a full disk) must not leave pressure on.
+  try {
+    for (std::size_t h = 0; h < schedule.holds.size() && !out.stopped && !out.faulted; ++h) {
+      const SweepHold& hold = schedule.holds[h];
+      ChannelPressures setpoint{};
+      for (std::size_t c = 0; c < kFingerCount; ++c) setpoint[c] = o.channels[c] ? hold.level_kPa : 0.0;
+      hold_samples.clear();
+      HoldOutcome result;
+      std::size_t averaging_from = 0;  // index of the first averaged sample, once settled
+      bool averaging = false;
+      const double hold_start_s = pacer.period_s() * double(k);
+      for (;;) {
+        t_s = pacer.wait_for_tick(k++);
+        if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+          out.stopped = true;
+          out.stop_signal = o.stop_signal->load();
+          break;
+        }
+        SweepSample s;
+        s.t_s = t_s;
+        s.command_kPa = hold.level_kPa;
+        s.sensor.fill(std::numeric_limits<double>::quiet_NaN());
+        if (backend.write(setpoint, t_s) != BackendStatus::ok ||
+            backend.read_monitors(s.monitor_kPa, t_s) != BackendStatus::ok ||
+            (has_sensor && backend.read_sensors(s.sensor, t_s) != BackendStatus::ok)) {
+          out.faulted = true;
+          out.fault = backend.last_error();
+          break;
+        }
+        hold_samples.push_back(s);
+        result.hold_s = t_s - hold_start_s;
+        if (!averaging && result.hold_s >= o.min_hold_s &&
+            monitors_settled(hold_samples, window, o.channels, o.settle_band_kPa)) {
+          averaging = true;
+          averaging_from = hold_samples.size();
+        } else if (averaging && hold_samples.size() - averaging_from >= average) {
+          result.settled = true;
+          for (std::size_t j = averaging_from; j < hold_samples.size(); ++j) hold_samples[j].settled = true;
+          break;
+        }
+        if (result.hold_s >= o.max_hold_s) break;  // recorded, but marked unsettled
       }
-      SweepSample s;
-      s.t_s = t_s;
-      s.command_kPa = hold.level_kPa;
-      s.sensor.fill(std::numeric_limits<double>::quiet_NaN());
-      if (backend.write(setpoint, t_s) != BackendStatus::ok || backend.read_monitors(s.monitor_kPa, t_s) != BackendStatus::ok ||
-          (has_sensor && backend.read_sensors(s.sensor, t_s) != BackendStatus::ok)) {
-        out.faulted = true;
-        out.fault = backend.last_error();
-        break;
+      if (!hold_samples.empty()) {
+        sink.on_hold(h, hold, hold_samples, result);
+        ++out.holds_done;
+        if (!result.settled) ++out.holds_unsettled;
       }
-      hold_samples.push_back(s);
-      result.hold_s = t_s - hold_start_s;
-      if (!averaging && result.hold_s >= o.min_hold_s &&
-          monitors_settled(hold_samples, window, o.channels, o.settle_band_kPa)) {
-        averaging = true;
-        averaging_from = hold_samples.size();
-      } else if (averaging && hold_samples.size() - averaging_from >= average) {
-        result.settled = true;
-        for (std::size_t j = averaging_from; j < hold_samples.size(); ++j) hold_samples[j].settled = true;
-        break;
-      }
-      if (result.hold_s >= o.max_hold_s) break;  // recorded, but marked unsettled
+      if (progress && !out.stopped && !out.faulted) progress(h + 1, schedule.holds.size(), hold, result);
     }
-    if (!hold_samples.empty()) {
-      sink.on_hold(h, hold, hold_samples, result);
-      ++out.holds_done;
-      if (!result.settled) ++out.holds_unsettled;
-    }
-    if (progress && !out.stopped && !out.faulted) progress(h + 1, schedule.holds.size(), hold, result);
+  } catch (...) {
+    backend.vent();
+    throw;
   }
   backend.vent();
   out.duration_s = t_s;

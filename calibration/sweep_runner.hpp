@@ -4,8 +4,9 @@
 // of the newest half of a window differs from the older half by at most a band), then keeps
 // holding for an averaging window whose samples are the hold's reading. Averaging only after
 // the settle test keeps the tail of the regulator's lag out of the reading (it would look
-// like extra hysteresis). A hold that does not settle within a time limit is kept, unmarked. Every sample goes to a sink hold by hold, so a stop keeps what was
-// recorded. Ctrl-C (the stop flag), a backend error or the end all vent every channel.
+// like extra hysteresis). A hold that does not settle within a time limit is kept, unmarked.
+// Every sample goes to a sink hold by hold, so a stop keeps what was recorded. Ctrl-C (the
+// stop flag), a backend error, an exception from the sink or the end all vent every channel.
 #include <array>
 #include <atomic>
 #include <functional>

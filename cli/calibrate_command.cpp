@@ -261,7 +261,6 @@ void run_sweep(const SweepArgs& a) {
   for (const auto& n : plan.notes) std::cerr << "palprig: note: " << n << "\n";
 
   auto backend = make_backend(rig);
-  backend->open();
   SweepFileInfo info;
   info.rig_id = rig.id;
   info.backend = backend->describe();
@@ -270,7 +269,8 @@ void run_sweep(const SweepArgs& a) {
   info.rate_hz = run.rate_hz;
   if (const char* s = backend->sensor_name()) info.sensor_name = s;
   info.notes = plan.notes;
-  SweepCsvWriter writer(a.out, info, run.channels);
+  SweepCsvWriter writer(a.out, info, run.channels);  // a path that cannot be written fails here, before open
+  backend->open();
 
   cli::install_stop_signals();
   run.stop_signal = &cli::stop_signal();

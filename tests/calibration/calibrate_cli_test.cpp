@@ -122,8 +122,10 @@ TEST(CalibrateCli, RefusedInputExitsTwoWithOneLine) {
 
   // A calibration made on another rig.
   const std::string ch =
-      R"({"actuator": {"slope": 0.25, "intercept_kPa": 5}, "hysteresis": {"linear_weight": 0.5, "thresholds_kPa": [2], "weights": [0.5]}})";
-  const auto other = dir.write("other.json", R"({"version": 1, "rig_id": "bench-A", "channels": [)" + ch + "," + ch + "," + ch + "]}");
+      R"({"actuator": {"slope": 0.25, "intercept_kPa": 5},)"
+      R"( "hysteresis": {"linear_weight": 0.5, "thresholds_kPa": [2], "weights": [0.5]}})";
+  const auto other =
+      dir.write("other.json", R"({"version": 1, "rig_id": "bench-A", "channels": [)" + ch + "," + ch + "," + ch + "]}");
   r = run_process(palprig_cmd() + " calibrate evaluate --cal " + other.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(one_line(r)) << r.err;

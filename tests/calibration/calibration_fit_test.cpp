@@ -173,6 +173,23 @@ TEST(CalibrationFit, WrittenFileIsWhatTheControllerLoads) {
   for (double t : {10.0, 25.0, 18.0, 40.0, 12.0, 33.0}) EXPECT_NEAR(model.apply(inverse.apply(t)), t, 1e-9);
 }
 
+TEST(CalibrationFit, ChannelsWithoutStressPairsKeepTheBaseLine) {
+  SyntheticRig rig;
+  CalibrationFitOptions o = options();
+  o.stress_pairs = {{3, 0, 5.0}, {3, 10, 8.0}, {3, 20, 11.0}};
+  o.stress_file = "pairs.csv";
+  const CalibrationResult r = fit_calibration(rig.sweep({1}), o);
+  EXPECT_NEAR(r.channels[2].actuator.slope, 0.3, 1e-12);
+  EXPECT_FALSE(r.channels[0].stress_line);
+  EXPECT_DOUBLE_EQ(r.channels[0].actuator.slope, ActuatorModel{}.slope);
+  bool noted = false;
+  for (const auto& n : r.notes) noted = noted || n == "channel 1 has no stress pairs: its actuator line is the base's";
+  EXPECT_TRUE(noted);
+  o.stress_pairs.pop_back();  // two pairs for channel 3: too few for a line
+  EXPECT_EQ(refusal([&] { fit_calibration(rig.sweep({1}), o); }),
+            "pairs.csv: stress line of channel 3: at least 3 points for a line, got 2");
+}
+
 TEST(CalibrationFit, SensorTablesAndHysteresisFromTheSensor) {
   SyntheticRig rig;
   rig.sensor = true;

@@ -250,10 +250,11 @@ TEST(SweepRunner, StopSignalVentsAndKeepsWhatWasRecorded) {
   MemorySink sink;
   std::size_t seen = 0;
   const SweepSchedule plan = plan_calibration_sweep({}, 60.0);
-  const SweepOutcome out = run_calibration_sweep(rig, plan, ro, sink, [&](std::size_t done, std::size_t, const SweepHold&, const HoldOutcome&) {
+  auto progress = [&](std::size_t done, std::size_t, const SweepHold&, const HoldOutcome&) {
     seen = done;
     if (done == 7) stop.store(2);  // SIGINT arrives during hold 8
-  });
+  };
+  const SweepOutcome out = run_calibration_sweep(rig, plan, ro, sink, progress);
   EXPECT_TRUE(out.stopped);
   EXPECT_EQ(out.stop_signal, 2);
   EXPECT_EQ(seen, 7u);
@@ -274,6 +275,19 @@ TEST(SweepRunner, BackendFaultVentsAndReportsTheBackendsReason) {
   for (const auto& h : sink.holds) samples += h.samples.size();
   EXPECT_EQ(samples, 500u);  // every good sample kept, the partial hold included
   EXPECT_GE(rig.vents, 1);
+}
+
+TEST(SweepRunner, ASinkThatThrowsLeavesTheRigVented) {
+  CaliperRig rig(60.0);
+  rig.open();
+  struct FullDisk final : SweepSink {
+    int holds = 0;
+    void on_hold(std::size_t, const SweepHold&, std::span<const SweepSample>, const HoldOutcome&) override {
+      if (++holds == 3) throw std::runtime_error("cannot write data.csv");
+    }
+  } sink;
+  EXPECT_THROW(run_calibration_sweep(rig, plan_calibration_sweep({}, 60.0), fast_options(), sink), std::runtime_error);
+  EXPECT_EQ(rig.vents, 1);
 }
 
 TEST(SweepRunner, AHoldThatNeverSettlesIsMarkedAndTheSweepGoesOn) {
