@@ -102,7 +102,8 @@ TEST(TabletDecoder, OriginAndPressureCurveFromTheRigFile) {
   TabletConfig cfg;
   cfg.origin_mm = {10.0, 5.0};
   cfg.pressure.points = {{0.0, 0.0}, {0.5, 1.0}, {1.0, 5.0}};
-  const PenFrame& press = frame_at(decode_pen_events(r.axes, cfg, r.events), 0.4);
+  const std::vector<PenFrame> frames = decode_pen_events(r.axes, cfg, r.events);  // keep them alive
+  const PenFrame& press = frame_at(frames, 0.4);
   EXPECT_DOUBLE_EQ(press.x_mm, 64.0);
   EXPECT_DOUBLE_EQ(press.y_mm, 85.0);
   const double p = 3072.0 / 4095.0;  // on the second segment: 1 N at 0.5, 5 N at 1
