@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "controller/monotonic_clock.hpp"
 #include "controller/realtime.hpp"
 #include "controller/telemetry_writer.hpp"
 #include "controller/worker_fault.hpp"
@@ -18,18 +19,6 @@ namespace palprig {
 namespace {
 
 using Clock = std::chrono::steady_clock;  // CLOCK_MONOTONIC on Linux
-
-std::int64_t mono_ns() noexcept {
-  timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-void sleep_until_ns(std::int64_t deadline_ns) noexcept {
-  timespec ts{static_cast<time_t>(deadline_ns / 1'000'000'000), static_cast<long>(deadline_ns % 1'000'000'000)};
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-  }
-}
 
 }  // namespace
 

@@ -11,24 +11,13 @@
 #include <cstring>
 #include <sstream>
 
+#include "controller/monotonic_clock.hpp"
 #include "controller/worker_fault.hpp"
 #include "models/parse_error.hpp"
 
 namespace palprig {
 
 namespace {
-
-std::int64_t mono_ns() noexcept {
-  timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-void sleep_until_ns(std::int64_t deadline_ns) noexcept {
-  timespec ts{static_cast<time_t>(deadline_ns / 1'000'000'000), static_cast<long>(deadline_ns % 1'000'000'000)};
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-  }
-}
 
 std::string seconds_text(double s) {
   char buf[32];

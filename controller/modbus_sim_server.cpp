@@ -1,4 +1,5 @@
 #include "controller/modbus_sim_server.hpp"
+#include "controller/monotonic_clock.hpp"
 
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -17,16 +18,6 @@
 #include <stdexcept>
 
 namespace palprig {
-
-namespace {
-
-std::int64_t mono_ns() noexcept {
-  timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-}  // namespace
 
 ListenAddress parse_listen_address(const std::string& text) {
   if (text == "pty") {
@@ -164,9 +155,7 @@ void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
       deadline += 1'000'000;
       const std::int64_t now = mono_ns();
       if (deadline < now) deadline = now;  // the simulator was paused (SIGSTOP): do not catch up in a burst
-      timespec ts{static_cast<time_t>(deadline / 1'000'000'000), static_cast<long>(deadline % 1'000'000'000)};
-      while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-      }
+      sleep_until_ns(deadline);
     }
   });
   for (std::size_t i = 0; i < links_.size(); ++i)

@@ -1,4 +1,5 @@
 #include "controller/tablet_input.hpp"
+#include "controller/monotonic_clock.hpp"
 
 #include <sys/stat.h>
 #include <time.h>
@@ -12,12 +13,6 @@
 namespace palprig {
 
 namespace {
-
-std::int64_t mono_ns() noexcept {
-  timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 constexpr int kHeartbeatMs = 10;
 

@@ -1,4 +1,5 @@
 #include "controller/tablet_source.hpp"
+#include "controller/monotonic_clock.hpp"
 
 #include <evemu.h>
 #include <fcntl.h>
@@ -18,12 +19,6 @@
 namespace palprig {
 
 namespace {
-
-std::int64_t mono_ns() noexcept {
-  timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 bool is_pen_tablet(const libevdev* d) {
   return libevdev_has_event_code(d, EV_ABS, ABS_X) && libevdev_has_event_code(d, EV_ABS, ABS_Y) &&
@@ -180,9 +175,7 @@ PenEventSource::Status EvemuPenSource::next(std::vector<input_event>& out, int t
   auto due_ns = [&](std::size_t i) { return start_ns_ + std::int64_t((event_time_s(events_[i]) - t0) * 1e9); };
   std::int64_t wake = std::min(due_ns(cursor_), now + std::int64_t(timeout_ms) * 1'000'000);
   if (wake > now) {
-    timespec ts{static_cast<time_t>(wake / 1'000'000'000), static_cast<long>(wake % 1'000'000'000)};
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-    }
+    sleep_until_ns(wake);
   }
   const std::int64_t after = mono_ns();
   const std::size_t before = cursor_;
