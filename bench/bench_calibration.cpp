@@ -13,12 +13,13 @@
 #include <random>
 #include <vector>
 
+#include "controller/backend_factory.hpp"
 #include "calibration/compensation_evaluation.hpp"
 #include "calibration/hysteresis_fit.hpp"
 #include "calibration/line_fit.hpp"
 #include "calibration/sweep_plan.hpp"
 #include "calibration/sweep_runner.hpp"
-#include "controller/rig_file.hpp"
+#include "formats/rig_file.hpp"
 
 using namespace palprig;
 

@@ -13,10 +13,10 @@
 #include <memory>
 #include <vector>
 
-#include "controller/modbus_link.hpp"
-#include "controller/modbus_rig.hpp"
-#include "controller/modbus_sim_server.hpp"
-#include "controller/rig_file.hpp"
+#include "rigs/modbus_link.hpp"
+#include "rigs/modbus_rig.hpp"
+#include "rigs/modbus_sim_server.hpp"
+#include "formats/rig_file.hpp"
 
 using namespace palprig;
 

@@ -10,9 +10,10 @@
 #include <new>
 #include <string>
 
-#include "controller/calibration_file.hpp"
-#include "controller/rig_file.hpp"
-#include "controller/scene_file.hpp"
+#include "controller/tick_setup.hpp"
+#include "formats/calibration_file.hpp"
+#include "formats/rig_file.hpp"
+#include "formats/scene_file.hpp"
 #include "controller/tick.hpp"
 #include "models/pulse_renderer.hpp"
 

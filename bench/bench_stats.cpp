@@ -12,11 +12,11 @@
 #include "experiments/protocol.hpp"
 #include "experiments/random_source.hpp"
 #include "experiments/session_plan.hpp"
-#include "experiments/statistics_proportion.hpp"
-#include "experiments/statistics_rank_tests.hpp"
-#include "experiments/trial_store.hpp"
-#include "experiments/trial_summary.hpp"
-#include "experiments/trial_summary_report.hpp"
+#include "statistics/statistics_proportion.hpp"
+#include "statistics/statistics_rank_tests.hpp"
+#include "store/trial_store.hpp"
+#include "store/trial_summary.hpp"
+#include "store/trial_summary_report.hpp"
 
 namespace {
 

@@ -10,11 +10,12 @@
 #include <random>
 #include <vector>
 
-#include "controller/calibration_file.hpp"
+#include "controller/tick_setup.hpp"
+#include "formats/calibration_file.hpp"
 #include "controller/loop_runner.hpp"
-#include "controller/rig_file.hpp"
-#include "controller/scene_file.hpp"
-#include "controller/simulated_rig.hpp"
+#include "formats/rig_file.hpp"
+#include "formats/scene_file.hpp"
+#include "rigs/simulated_rig.hpp"
 #include "controller/tick.hpp"
 
 using namespace palprig;

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "controller/loop_runner.hpp"
-#include "controller/rig_file.hpp"
-#include "controller/simulated_rig.hpp"
+#include "formats/rig_file.hpp"
+#include "rigs/simulated_rig.hpp"
 
 using namespace palprig;
 

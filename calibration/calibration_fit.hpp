@@ -13,7 +13,7 @@
 #include "calibration/hysteresis_fit.hpp"
 #include "calibration/stress_fit.hpp"
 #include "calibration/sweep_csv.hpp"
-#include "controller/calibration_file.hpp"
+#include "formats/calibration_file.hpp"
 
 namespace palprig {
 

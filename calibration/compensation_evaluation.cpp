@@ -1,5 +1,7 @@
 #include "calibration/compensation_evaluation.hpp"
 
+#include "controller/tick_setup.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <random>

@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "controller/calibration_file.hpp"
-#include "controller/rig_backend.hpp"
-#include "controller/rig_file.hpp"
+#include "formats/calibration_file.hpp"
+#include "rigs/rig_backend.hpp"
+#include "formats/rig_file.hpp"
 
 namespace palprig {
 

@@ -6,7 +6,7 @@
 // Presses file (CSV, header required):  reference_mmHg,force_N   (several presses per level)
 #include <filesystem>
 
-#include "controller/calibration_file.hpp"
+#include "formats/calibration_file.hpp"
 
 namespace palprig {
 

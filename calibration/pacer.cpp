@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "controller/monotonic_clock.hpp"
+#include "runtime/monotonic_clock.hpp"
 
 namespace palprig {
 

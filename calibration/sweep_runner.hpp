@@ -14,7 +14,7 @@
 #include <string>
 
 #include "calibration/sweep_plan.hpp"
-#include "controller/rig_backend.hpp"
+#include "rigs/rig_backend.hpp"
 
 namespace palprig {
 

@@ -13,6 +13,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "controller/backend_factory.hpp"
 #include "calibration/calibration_fit.hpp"
 #include "calibration/calibration_report.hpp"
 #include "calibration/calibration_writer.hpp"
@@ -21,8 +22,8 @@
 #include "calibration/sweep_plan.hpp"
 #include "calibration/sweep_runner.hpp"
 #include "cli/commands.hpp"
-#include "controller/calibration_file.hpp"
-#include "controller/rig_file.hpp"
+#include "formats/calibration_file.hpp"
+#include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
 #ifdef PALPRIG_HAVE_GUI
 #include "gui/chart_png.hpp"

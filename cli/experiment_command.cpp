@@ -15,18 +15,20 @@
 #include <optional>
 #include <string>
 
+#include "controller/backend_factory.hpp"
+#include "controller/tick_setup.hpp"
 #include "cli/commands.hpp"
-#include "controller/calibration_file.hpp"
-#include "controller/rig_file.hpp"
-#include "controller/scene_file.hpp"
+#include "formats/calibration_file.hpp"
+#include "formats/rig_file.hpp"
+#include "formats/scene_file.hpp"
 #include "experiments/participant.hpp"
 #include "experiments/protocol.hpp"
 #include "experiments/rig_stimulus.hpp"
 #include "experiments/session_clock.hpp"
 #include "experiments/session_loop.hpp"
-#include "experiments/session_setup.hpp"
+#include "sessions/session_setup.hpp"
 #include "experiments/simulated_participant.hpp"
-#include "experiments/trial_store.hpp"
+#include "store/trial_store.hpp"
 #include "models/parse_error.hpp"
 
 using namespace palprig;

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "experiments/trial_export.hpp"
-#include "experiments/trial_store.hpp"
-#include "experiments/trial_summary.hpp"
+#include "store/trial_export.hpp"
+#include "store/trial_store.hpp"
+#include "store/trial_summary.hpp"
 #include "models/parse_error.hpp"
 #ifdef PALPRIG_HAVE_GUI
 #include "gui/chart_png.hpp"

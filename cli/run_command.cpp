@@ -7,10 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "controller/backend_factory.hpp"
+#include "controller/tick_setup.hpp"
 #include "cli/commands.hpp"
 #include "cli/run_setup.hpp"
 #include "controller/loop_runner.hpp"
-#include "controller/tablet_input.hpp"
+#include "inputs/tablet_input.hpp"
 #include "models/parse_error.hpp"
 
 using namespace palprig;

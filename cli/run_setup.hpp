@@ -7,11 +7,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "controller/calibration_file.hpp"
-#include "controller/input_source.hpp"
+#include "formats/calibration_file.hpp"
+#include "inputs/input_source.hpp"
 #include "controller/loop_runner.hpp"
-#include "controller/rig_file.hpp"
-#include "controller/scene_file.hpp"
+#include "formats/rig_file.hpp"
+#include "formats/scene_file.hpp"
 
 namespace palprig::cli {
 

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
-#include "controller/function_scene_file.hpp"
-#include "controller/scene_file.hpp"
+#include "formats/function_scene_file.hpp"
+#include "formats/scene_file.hpp"
 #include "models/artery.hpp"
 #include "models/case_generator.hpp"
 #include "models/parse_error.hpp"

@@ -6,8 +6,8 @@
 #include <thread>
 
 #include "cli/commands.hpp"
-#include "controller/modbus_sim_server.hpp"
-#include "controller/rig_file.hpp"
+#include "rigs/modbus_sim_server.hpp"
+#include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
 
 using namespace palprig;

@@ -7,12 +7,12 @@
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "experiments/csv_groups.hpp"
-#include "experiments/csv_table.hpp"
-#include "experiments/statistics_error.hpp"
-#include "experiments/statistics_report.hpp"
-#include "experiments/trial_summary.hpp"
-#include "experiments/trial_summary_report.hpp"
+#include "statistics/csv_groups.hpp"
+#include "statistics/csv_table.hpp"
+#include "statistics/statistics_error.hpp"
+#include "statistics/statistics_report.hpp"
+#include "store/trial_summary.hpp"
+#include "store/trial_summary_report.hpp"
 #include "models/parse_error.hpp"
 
 using namespace palprig;

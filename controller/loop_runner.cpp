@@ -9,10 +9,10 @@
 #include <memory>
 #include <stdexcept>
 
-#include "controller/monotonic_clock.hpp"
-#include "controller/realtime.hpp"
+#include "runtime/monotonic_clock.hpp"
+#include "runtime/realtime.hpp"
 #include "controller/telemetry_writer.hpp"
-#include "controller/worker_fault.hpp"
+#include "runtime/worker_fault.hpp"
 
 namespace palprig {
 

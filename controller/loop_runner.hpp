@@ -11,9 +11,9 @@
 #include <filesystem>
 #include <string>
 
-#include "controller/input_source.hpp"
-#include "controller/latency_histogram.hpp"
-#include "controller/rig_backend.hpp"
+#include "inputs/input_source.hpp"
+#include "runtime/latency_histogram.hpp"
+#include "rigs/rig_backend.hpp"
 #include "controller/tick.hpp"
 
 namespace palprig {

@@ -7,7 +7,7 @@
 // no locks, no exceptions.
 #include <array>
 
-#include "controller/rig_backend.hpp"
+#include "models/channel_pressures.hpp"
 #include "models/artery.hpp"
 #include "models/finger_layout.hpp"
 #include "models/pulse_renderer.hpp"

@@ -12,23 +12,17 @@
 #include <array>
 
 #include "controller/fault.hpp"
-#include "controller/rig_backend.hpp"
 #include "controller/telemetry.hpp"
-#include "controller/touch_sample.hpp"
+#include "models/touch_sample.hpp"
+#include "models/channel_pressures.hpp"
 #include "models/finger_layout.hpp"
 #include "models/hysteresis.hpp"
 #include "models/pulse_renderer.hpp"
+#include "models/safety_limits.hpp"
 #include "models/scene.hpp"
 #include "models/stress_model.hpp"
 
 namespace palprig {
-
-struct SafetyLimits {
-  double p_max_kPa = 60.0;          // no setpoint above this ever leaves the tick
-  double slew_kPa_per_s = 2000.0;   // largest setpoint change per second (venting is exempt)
-  double max_input_age_s = 0.1;     // older pen samples fault the loop (input_stale)
-  int max_consecutive_overruns = 20;
-};
 
 struct TickConfig {
   FingerLayout layout;

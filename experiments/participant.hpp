@@ -4,7 +4,7 @@
 // the terminal (cli/experiment_command.cpp) and the simulated observer implement it.
 #include <optional>
 
-#include "controller/input_source.hpp"
+#include "inputs/input_source.hpp"
 #include "controller/telemetry.hpp"
 #include "experiments/protocol.hpp"
 #include "experiments/session_plan.hpp"

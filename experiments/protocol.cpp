@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "controller/json_file.hpp"
+#include "formats/json_file.hpp"
 #include "experiments/trial_order.hpp"
 #include "models/parse_error.hpp"
 

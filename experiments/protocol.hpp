@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "controller/scene_file.hpp"
+#include "formats/scene_file.hpp"
 #include "models/finger_layout.hpp"
 
 namespace palprig {

@@ -3,7 +3,7 @@
 // Direct stimuli go through tick_direct (hysteresis compensation and the safety stage), scenes
 // through tick (finger layout, stiffness, stress and actuator models, safety), then to the
 // backend. A safety fault or backend error vents every channel and throws RigFault.
-#include "controller/rig_backend.hpp"
+#include "rigs/rig_backend.hpp"
 #include "controller/telemetry.hpp"
 #include "controller/tick.hpp"
 #include "experiments/stimulus_output.hpp"

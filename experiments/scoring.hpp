@@ -12,12 +12,12 @@
 #include <string_view>
 #include <vector>
 
-#include "controller/scene_file.hpp"
+#include "formats/scene_file.hpp"
+#include "statistics/outcome.hpp"
 #include "experiments/protocol.hpp"
 
 namespace palprig {
 
-enum class Outcome : std::uint8_t { tp, fn, tn, fp };
 
 const char* to_string(Outcome o) noexcept;  // "TP", "FN", "TN", "FP"
 std::optional<Outcome> outcome_from_string(std::string_view text) noexcept;

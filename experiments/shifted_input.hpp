@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "controller/input_source.hpp"
+#include "inputs/input_source.hpp"
 
 namespace palprig {
 

@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "controller/input_source.hpp"
-#include "controller/rig_backend.hpp"
+#include "inputs/input_source.hpp"
+#include "rigs/rig_backend.hpp"
 #include "controller/telemetry.hpp"
 #include "models/scene.hpp"
 

@@ -18,7 +18,7 @@
 #include <optional>
 #include <vector>
 
-#include "controller/input_source.hpp"
+#include "inputs/input_source.hpp"
 #include "experiments/protocol.hpp"
 #include "experiments/scoring.hpp"
 #include "experiments/session_plan.hpp"

@@ -7,9 +7,10 @@
 #include <functional>
 #include <random>
 
+#include "controller/tick_setup.hpp"
 #include "calibration/calibration_fit.hpp"
 #include "calibration/calibration_writer.hpp"
-#include "controller/rig_file.hpp"
+#include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
 #include "tests/support/temp_dir.hpp"
 

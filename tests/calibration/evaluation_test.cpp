@@ -6,13 +6,14 @@
 #include <atomic>
 #include <functional>
 
+#include "controller/backend_factory.hpp"
 #include "calibration/calibration_fit.hpp"
 #include "calibration/calibration_writer.hpp"
 #include "calibration/compensation_evaluation.hpp"
 #include "calibration/sweep_csv.hpp"
 #include "calibration/sweep_plan.hpp"
 #include "calibration/sweep_runner.hpp"
-#include "controller/rig_file.hpp"
+#include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -12,8 +12,8 @@
 #include "calibration/sweep_csv.hpp"
 #include "calibration/sweep_plan.hpp"
 #include "calibration/sweep_runner.hpp"
-#include "controller/rig_file.hpp"
-#include "controller/simulated_rig.hpp"
+#include "formats/rig_file.hpp"
+#include "rigs/simulated_rig.hpp"
 #include "models/parse_error.hpp"
 #include "tests/support/temp_dir.hpp"
 

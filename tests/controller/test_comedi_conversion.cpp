@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "controller/comedi_config.hpp"
-#include "controller/comedi_conversion.hpp"
-#include "controller/comedi_rig.hpp"
-#include "controller/rig_file.hpp"
+#include "formats/comedi_config.hpp"
+#include "rigs/comedi_conversion.hpp"
+#include "rigs/comedi_rig.hpp"
+#include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"

@@ -1,11 +1,11 @@
 // Every file the program reads is validated with file, field or line, and what was expected.
 #include <gtest/gtest.h>
 
-#include "controller/calibration_file.hpp"
+#include "formats/calibration_file.hpp"
 #include "models/parse_error.hpp"
-#include "controller/input_source.hpp"
-#include "controller/rig_file.hpp"
-#include "controller/scene_file.hpp"
+#include "inputs/input_source.hpp"
+#include "formats/rig_file.hpp"
+#include "formats/scene_file.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "controller/scene_file.hpp"
+#include "formats/scene_file.hpp"
 #include "models/stiffness_map.hpp"
 #include "tests/support/run_process.hpp"
 

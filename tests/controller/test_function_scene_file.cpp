@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "controller/function_scene_file.hpp"
-#include "controller/scene_file.hpp"
+#include "formats/function_scene_file.hpp"
+#include "formats/scene_file.hpp"
 #include "models/case_generator.hpp"
 #include "models/parse_error.hpp"
 #include "models/tissue_scene.hpp"

@@ -8,10 +8,11 @@
 
 #include <gtest/gtest.h>
 
-#include "controller/calibration_file.hpp"
-#include "controller/rig_file.hpp"
-#include "controller/scene_file.hpp"
-#include "controller/simulated_rig.hpp"
+#include "controller/tick_setup.hpp"
+#include "formats/calibration_file.hpp"
+#include "formats/rig_file.hpp"
+#include "formats/scene_file.hpp"
+#include "rigs/simulated_rig.hpp"
 #include "controller/tick.hpp"
 #include "models/tissue_scene.hpp"
 

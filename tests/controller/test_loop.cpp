@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "controller/loop_runner.hpp"
-#include "controller/simulated_rig.hpp"
+#include "rigs/simulated_rig.hpp"
 #include "controller/telemetry_writer.hpp"
 #include "models/parse_error.hpp"
 #include "tests/support/temp_dir.hpp"

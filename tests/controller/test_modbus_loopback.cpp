@@ -10,9 +10,9 @@
 #include <functional>
 #include <thread>
 
-#include "controller/modbus_rig.hpp"
-#include "controller/modbus_sim_server.hpp"
-#include "controller/rig_file.hpp"
+#include "rigs/modbus_rig.hpp"
+#include "rigs/modbus_sim_server.hpp"
+#include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
 #include "tests/controller/test_modbus_support.hpp"
 #include "tests/support/temp_dir.hpp"

@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "controller/modbus_link.hpp"
-#include "controller/modbus_register_map.hpp"
-#include "controller/rig_file.hpp"
+#include "rigs/modbus_link.hpp"
+#include "formats/modbus_register_map.hpp"
+#include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"

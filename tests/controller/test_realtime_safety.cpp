@@ -7,12 +7,12 @@
 #include <cmath>
 #include <thread>
 
-#include "controller/latest_value.hpp"
+#include "runtime/latest_value.hpp"
 #include "controller/loop_runner.hpp"
-#include "controller/simulated_rig.hpp"
-#include "controller/tablet_input.hpp"
-#include "controller/worker_fault.hpp"
-#include "controller/rig_file.hpp"
+#include "rigs/simulated_rig.hpp"
+#include "inputs/tablet_input.hpp"
+#include "runtime/worker_fault.hpp"
+#include "formats/rig_file.hpp"
 
 using namespace palprig;
 

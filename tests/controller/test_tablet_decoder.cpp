@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "controller/json_file.hpp"
-#include "controller/tablet_decoder.hpp"
-#include "controller/tablet_source.hpp"
+#include "formats/json_file.hpp"
+#include "inputs/tablet_decoder.hpp"
+#include "inputs/tablet_source.hpp"
 #include "models/parse_error.hpp"
 #include "tests/support/temp_dir.hpp"
 

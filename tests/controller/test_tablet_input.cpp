@@ -10,10 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "controller/loop_runner.hpp"
-#include "controller/rig_file.hpp"
-#include "controller/simulated_rig.hpp"
-#include "controller/tablet_input.hpp"
-#include "controller/worker_fault.hpp"
+#include "formats/rig_file.hpp"
+#include "rigs/simulated_rig.hpp"
+#include "inputs/tablet_input.hpp"
+#include "runtime/worker_fault.hpp"
 #include "models/parse_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"

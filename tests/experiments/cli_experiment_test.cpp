@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiments/trial_store.hpp"
+#include "store/trial_store.hpp"
 #include "process_support.hpp"
 #include "test_support.hpp"
 

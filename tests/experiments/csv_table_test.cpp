@@ -3,8 +3,8 @@
 
 #include <functional>
 
-#include "experiments/csv_groups.hpp"
-#include "experiments/csv_table.hpp"
+#include "statistics/csv_groups.hpp"
+#include "statistics/csv_table.hpp"
 #include "models/parse_error.hpp"
 
 namespace palprig {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "experiments/diagnostic_measures.hpp"
+#include "statistics/diagnostic_measures.hpp"
 #include "experiments/scoring.hpp"
 
 namespace palprig {

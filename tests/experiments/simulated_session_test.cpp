@@ -5,13 +5,15 @@
 #include <cmath>
 #include <memory>
 
-#include "controller/calibration_file.hpp"
-#include "controller/rig_file.hpp"
+#include "controller/backend_factory.hpp"
+#include "controller/tick_setup.hpp"
+#include "formats/calibration_file.hpp"
+#include "formats/rig_file.hpp"
 #include "experiments/rig_stimulus.hpp"
 #include "experiments/session_loop.hpp"
-#include "experiments/session_setup.hpp"
+#include "sessions/session_setup.hpp"
 #include "experiments/simulated_participant.hpp"
-#include "experiments/trial_summary.hpp"
+#include "store/trial_summary.hpp"
 #include "test_support.hpp"
 
 namespace palprig {

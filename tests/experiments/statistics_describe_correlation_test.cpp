@@ -4,9 +4,9 @@
 #include <cmath>
 #include <vector>
 
-#include "experiments/statistics_correlation.hpp"
-#include "experiments/statistics_describe.hpp"
-#include "experiments/statistics_error.hpp"
+#include "statistics/statistics_correlation.hpp"
+#include "statistics/statistics_describe.hpp"
+#include "statistics/statistics_error.hpp"
 
 namespace palprig::stats {
 namespace {

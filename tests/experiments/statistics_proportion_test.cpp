@@ -2,8 +2,8 @@
 // Oracles: REFERENCE.md (paper 002) and tests/experiments/statistics_oracles.py (mpmath).
 #include <gtest/gtest.h>
 
-#include "experiments/statistics_error.hpp"
-#include "experiments/statistics_proportion.hpp"
+#include "statistics/statistics_error.hpp"
+#include "statistics/statistics_proportion.hpp"
 
 namespace palprig::stats {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <vector>
 
-#include "experiments/rank_distributions.hpp"
-#include "experiments/statistics_error.hpp"
-#include "experiments/statistics_rank_tests.hpp"
+#include "statistics/rank_distributions.hpp"
+#include "statistics/statistics_error.hpp"
+#include "statistics/statistics_rank_tests.hpp"
 
 namespace palprig::stats {
 namespace {

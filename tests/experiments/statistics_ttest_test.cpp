@@ -6,8 +6,8 @@
 #include <limits>
 #include <vector>
 
-#include "experiments/statistics_error.hpp"
-#include "experiments/statistics_ttest.hpp"
+#include "statistics/statistics_error.hpp"
+#include "statistics/statistics_ttest.hpp"
 
 namespace palprig::stats {
 namespace {

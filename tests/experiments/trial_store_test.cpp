@@ -4,8 +4,8 @@
 
 #include <fstream>
 
-#include "experiments/session_setup.hpp"
-#include "experiments/trial_store.hpp"
+#include "sessions/session_setup.hpp"
+#include "store/trial_store.hpp"
 #include "models/parse_error.hpp"
 #include "test_support.hpp"
 

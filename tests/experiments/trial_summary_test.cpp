@@ -6,9 +6,9 @@
 #include <cmath>
 #include <map>
 
-#include "experiments/session_setup.hpp"
-#include "experiments/trial_summary.hpp"
-#include "experiments/trial_summary_report.hpp"
+#include "sessions/session_setup.hpp"
+#include "store/trial_summary.hpp"
+#include "store/trial_summary_report.hpp"
 #include "models/parse_error.hpp"
 #include "test_support.hpp"
 

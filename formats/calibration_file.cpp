@@ -1,0 +1,91 @@
+#include "formats/calibration_file.hpp"
+
+#include "formats/json_file.hpp"
+
+namespace palprig {
+
+CalibrationModels load_calibration_file(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  const nlohmann::json doc = read_json_file(path);
+  JsonObject root(doc, file, "");
+  root.require_version(kCalibrationFileVersion);
+  CalibrationModels cal;
+  cal.source = file;
+  cal.rig_id = root.string("rig_id");
+  if (root.has("date")) (void)root.string("date");
+  if (root.has("stress_model")) {
+    const JsonObject s = root.object("stress_model");
+    cal.stress.soft_stress_kPa = s.number("soft_stress_kPa", 0, 1000);
+    cal.stress.hard_stress_kPa = s.number("hard_stress_kPa", 0, 1000);
+    cal.stress.reference_force_N = s.number("reference_force_N", 1e-3, 100);
+    cal.stress.max_force_ratio = s.number_or("max_force_ratio", cal.stress.max_force_ratio, 0.1, 100);
+    if (!(cal.stress.hard_stress_kPa > cal.stress.soft_stress_kPa))
+      s.fail("hard_stress_kPa", "a hard-nodule stress above the soft-tissue stress");
+    s.refuse_unknown();
+  }
+  const auto channels = root.objects("channels");
+  if (channels.size() != kFingerCount)
+    root.fail("channels", "exactly " + std::to_string(kFingerCount) + " channels, got " + std::to_string(channels.size()));
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const JsonObject& ch = channels[i];
+    const JsonObject a = ch.object("actuator");
+    cal.actuators[i].slope = a.number("slope", -1e6, 1e6);
+    cal.actuators[i].intercept_kPa = a.number("intercept_kPa", -1e6, 1e6);
+    if (!(cal.actuators[i].slope > 1e-9))
+      a.fail("slope", "a positive stress-per-pressure slope (a flat or falling fit is degenerate)");
+    if (a.has("r_squared")) (void)a.number("r_squared", -1e9, 1);
+    a.refuse_unknown();
+    if (ch.has("hysteresis")) {
+      const JsonObject h = ch.object("hysteresis");
+      PrandtlIshlinskii& pi = cal.hysteresis[i];
+      pi.linear_weight = h.number("linear_weight", -1e6, 1e6);
+      const auto r = h.numbers("thresholds_kPa", -1e6, 1e6);
+      const auto w = h.numbers("weights", -1e6, 1e6);
+      if (r.size() != w.size()) h.fail("weights", "as many weights as thresholds_kPa (" + std::to_string(r.size()) + ")");
+      if (r.size() > kMaxPlayOperators)
+        h.fail("thresholds_kPa", "at most " + std::to_string(kMaxPlayOperators) + " play operators");
+      pi.operator_count = r.size();
+      for (std::size_t k = 0; k < r.size(); ++k) { pi.thresholds_kPa[k] = r[k]; pi.weights[k] = w[k]; }
+      if (!pi.valid())
+        h.fail("weights", "an invertible model: linear_weight > 0, weights >= 0, thresholds > 0 and increasing");
+      // A regulator's output follows its command about one to one; a gain far from it is a
+      // degenerate fit (or a model in other units) that would drive the inverse wild.
+      double gain = pi.linear_weight;
+      for (std::size_t k = 0; k < pi.operator_count; ++k) gain += pi.weights[k];
+      if (!(gain >= 0.2 && gain <= 5.0))
+        h.fail("weights", "a model of gain near 1 (linear_weight + sum of weights in 0.2..5), got " + std::to_string(gain));
+      // Fit-quality fields written by calibration are informative here.
+      for (const char* k : {"rms_error_kPa", "r_squared"}) if (h.has(k)) (void)h.number(k, -1e9, 1e9);
+      h.refuse_unknown();
+    }
+    ch.refuse_unknown();
+  }
+  // Sections written by calibration for people and later tools (fit tables, force window)
+  // are kept in the file; the tick does not need them.
+  for (const char* k : {"fits", "notes"}) (void)root.has(k);
+  if (root.has("force_window")) {
+    const JsonObject f = root.object("force_window");
+    MeasuredForceWindow w;
+    w.f_min_N = f.number("f_min_N", 0, 1000);
+    w.f_max_N = f.number("f_max_N", 0, 1000);
+    w.diastolic_mmHg = f.number_or("diastolic_mmHg", w.diastolic_mmHg, 1, 400);
+    w.systolic_mmHg = f.number_or("systolic_mmHg", w.systolic_mmHg, 1, 400);
+    if (!(w.f_max_N > w.f_min_N)) f.fail("f_max_N", "a force above f_min_N (the systolic press above the diastolic)");
+    if (!(w.systolic_mmHg > w.diastolic_mmHg)) f.fail("systolic_mmHg", "a reference above diastolic_mmHg");
+    // How the window was measured, kept for people: spread and number of presses.
+    for (const char* k : {"f_min_sd_N", "f_max_sd_N"}) (void)f.number_or(k, 0, 0, 1000);
+    for (const char* k : {"presses_min", "presses_max"}) (void)f.integer_or(k, 0, 0, 1000000);
+    f.refuse_unknown();
+    cal.force_window = w;
+  }
+  root.refuse_unknown();
+  return cal;
+}
+
+void check_calibration_matches(const CalibrationModels& cal, const std::string& rig_id, const std::string& rig_source) {
+  if (cal.rig_id != "*" && cal.rig_id != rig_id)
+    throw InputError(cal.source, "rig_id",
+                     "the id of the rig in use (\"" + rig_id + "\" from " + rig_source + "), got \"" + cal.rig_id + "\"");
+}
+
+}  // namespace palprig

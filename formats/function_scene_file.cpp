@@ -1,0 +1,407 @@
+#include "formats/function_scene_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "models/tissue_scene.hpp"
+
+namespace palprig {
+
+namespace {
+
+constexpr int kMaxShapeNesting = 16;
+constexpr double kMaxSize_mm = 1e4;
+constexpr double kMaxModulus_kPa = 1e8;  // 100 GPa: stiffer than any bone
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// Refused with a reason a scene author understands, not just a range.
+double positive(const JsonObject& o, const std::string& key, const char* what, double hi = kMaxSize_mm) {
+  const auto& v = o.raw(key);
+  if (!v.is_number()) o.fail(key, std::string("a positive ") + what + ", got " + v.dump());
+  const double d = v.get<double>();
+  if (!std::isfinite(d) || d <= 0) o.fail(key, std::string("a positive ") + what + " (sizes and moduli cannot be zero or negative), got " + v.dump());
+  if (d > hi) o.fail(key, std::string("a ") + what + " no larger than " + number_text(hi) + ", got " + v.dump());
+  return d;
+}
+
+double positive_or(const JsonObject& o, const std::string& key, double fallback, const char* what,
+                   double hi = kMaxSize_mm) {
+  return o.has(key) ? positive(o, key, what, hi) : fallback;
+}
+
+// A fixed-length array of numbers, e.g. "centre_mm": [x, y, z].
+std::vector<double> triple(const JsonObject& o, const std::string& key, std::size_t n, double lo, double hi) {
+  const auto& v = o.raw(key);
+  if (!v.is_array() || v.size() != n)
+    o.fail(key, "an array of " + std::to_string(n) + " numbers, got " + v.dump());
+  return o.numbers(key, lo, hi);
+}
+
+std::vector<double> positive_triple(const JsonObject& o, const std::string& key, std::size_t n, const char* what) {
+  const auto& v = o.raw(key);
+  if (!v.is_array() || v.size() != n)
+    o.fail(key, "an array of " + std::to_string(n) + " positive " + what + ", got " + v.dump());
+  for (std::size_t i = 0; i < n; ++i)
+    if (!v[i].is_number() || !(v[i].get<double>() > 0) || v[i].get<double>() > kMaxSize_mm)
+      throw InputError(o.file(), o.path(key) + "[" + std::to_string(i) + "]",
+                       std::string("a positive ") + what + " (no larger than " + number_text(kMaxSize_mm) + "), got " +
+                           v[i].dump());
+  return o.numbers(key, 0, kMaxSize_mm);
+}
+
+Point3_mm point3(const JsonObject& o, const std::string& key) {
+  const auto v = triple(o, key, 3, -kMaxSize_mm, kMaxSize_mm);
+  return {v[0], v[1], v[2]};
+}
+
+std::array<double, 3> radii3(const JsonObject& o, const std::string& key) {
+  const auto v = positive_triple(o, key, 3, "radii in mm");
+  return {v[0], v[1], v[2]};
+}
+
+FrepShape::Node parse_shape(const JsonObject& s, FrepShape& shape, int nesting);
+
+std::vector<FrepShape::Node> parse_parts(const JsonObject& s, const std::string& key, FrepShape& shape, int nesting) {
+  std::vector<FrepShape::Node> parts;
+  for (const JsonObject& p : s.objects(key)) parts.push_back(parse_shape(p, shape, nesting + 1));
+  if (parts.empty()) s.fail(key, "at least one shape");
+  return parts;
+}
+
+FrepShape::Node parse_shape(const JsonObject& s, FrepShape& shape, int nesting) {
+  if (nesting > kMaxShapeNesting) s.fail("type", "shapes nested at most " + std::to_string(kMaxShapeNesting) + " deep");
+  const std::string type = s.choice("type", {"sphere", "ellipsoid", "superellipsoid", "tube", "blobs", "union",
+                                             "intersection", "difference", "scaled"});
+  FrepShape::Node n = -1;
+  if (type == "sphere") {
+    n = shape.sphere(point3(s, "centre_mm"), positive(s, "radius_mm", "radius in mm"));
+  } else if (type == "ellipsoid") {
+    const Point3_mm c = point3(s, "centre_mm");
+    n = shape.ellipsoid(c, radii3(s, "radii_mm"), s.number_or("yaw_deg", 0, -360, 360));
+  } else if (type == "superellipsoid") {
+    const Point3_mm c = point3(s, "centre_mm");
+    const auto r = radii3(s, "radii_mm");
+    n = shape.superellipsoid(c, r, s.number_or("exponent", 6, 2, 64), s.number_or("yaw_deg", 0, -360, 360));
+  } else if (type == "tube") {
+    const Point3_mm a = point3(s, "from_mm"), b = point3(s, "to_mm");
+    n = shape.tube(a, b, positive(s, "radius_mm", "radius in mm"));
+  } else if (type == "blobs") {
+    // 001: F = sum k_i exp(-(s_x dx^2 + s_y dy^2 + s_z dz^2)) - c. Each blob gives either the
+    // paper's inverse scales s (1/mm^2) or radii r (s = 1/r^2), not both.
+    const double c = positive(s, "threshold", "threshold c", 1e6);
+    std::vector<Blob> terms;
+    for (const JsonObject& b : s.objects("blobs")) {
+      Blob t;
+      t.centre = point3(b, "centre_mm");
+      t.k = positive_or(b, "k", 1.0, "blob weight k", 1e6);
+      const bool has_s = b.has("inverse_scale_per_mm2"), has_r = b.has("radii_mm");
+      if (has_s == has_r) b.fail("radii_mm", "either \"radii_mm\" or \"inverse_scale_per_mm2\" (exactly one of them)");
+      if (has_s) {
+        const auto v = positive_triple(b, "inverse_scale_per_mm2", 3, "inverse scales in 1/mm^2");
+        t.inverse_scale_per_mm2 = {v[0], v[1], v[2]};
+      } else {
+        const auto r = radii3(b, "radii_mm");
+        t.inverse_scale_per_mm2 = {1 / (r[0] * r[0]), 1 / (r[1] * r[1]), 1 / (r[2] * r[2])};
+      }
+      b.refuse_unknown();
+      terms.push_back(t);
+    }
+    if (terms.empty()) s.fail("blobs", "at least one blob");
+    n = shape.blobs(terms, c);
+  } else if (type == "union") {
+    n = shape.unite(parse_parts(s, "of", shape, nesting));
+  } else if (type == "intersection") {
+    n = shape.intersect(parse_parts(s, "of", shape, nesting));
+  } else if (type == "difference") {
+    const FrepShape::Node from = parse_shape(s.object("from"), shape, nesting + 1);
+    const FrepShape::Node minus = parse_shape(s.object("minus"), shape, nesting + 1);
+    n = shape.subtract(from, minus);
+  } else if (type == "scaled") {
+    // Enlarged organs are the normal organ scaled (001): "factor" is one number or one per axis.
+    std::array<double, 3> f{};
+    const auto& fv = s.raw("factor");
+    if (fv.is_number()) {
+      const double k = positive(s, "factor", "scale factor", 100);
+      f = {k, k, k};
+    } else {
+      const auto v = positive_triple(s, "factor", 3, "scale factors");
+      f = {v[0], v[1], v[2]};
+    }
+    const Point3_mm about = point3(s, "about_mm");
+    n = shape.scaled(parse_shape(s.object("shape"), shape, nesting + 1), about, f);
+  }
+  s.refuse_unknown();
+  return n;
+}
+
+InclusionKind parse_kind(const JsonObject& o) {
+  const std::string k = o.choice_or("kind", "tumor", {"tumor", "organ", "bone", "ligament", "other"});
+  if (k == "organ") return InclusionKind::organ;
+  if (k == "bone") return InclusionKind::bone;
+  if (k == "ligament") return InclusionKind::ligament;
+  if (k == "other") return InclusionKind::other;
+  return InclusionKind::tumor;
+}
+
+PulseWaveform parse_waveform(const JsonObject& w, const std::filesystem::path& scene_path) {
+  const std::string shape = w.choice("shape", {"rectangular", "sawtooth", "table"});
+  PulseWaveform out;
+  if (shape == "rectangular") {
+    const double duty = w.number_or("duty", 0.2, 0.01, 0.99);
+    out = PulseWaveform::rectangular(duty);
+  } else if (shape == "sawtooth") {
+    out = PulseWaveform::sawtooth(w.number_or("rise_fraction", 0.15, 0.01, 0.99));
+  } else {
+    std::filesystem::path file = w.string("file");
+    if (file.is_relative()) file = scene_path.parent_path() / file;
+    out = load_waveform_csv(file);
+  }
+  w.refuse_unknown();
+  return out;
+}
+
+ArterySpec parse_artery(const JsonObject& a, const std::filesystem::path& scene_path) {
+  ArterySpec s;
+  s.name = a.string("name");
+  const auto& path = a.raw("path_mm");
+  if (!path.is_array() || path.size() < 2)
+    a.fail("path_mm", "an array of at least 2 points [x, y] along the artery's centreline, got " + path.dump());
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const auto& p = path[i];
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number() ||
+        !std::isfinite(p[0].get<double>()) || !std::isfinite(p[1].get<double>()))
+      throw InputError(a.file(), a.path("path_mm") + "[" + std::to_string(i) + "]", "a point [x_mm, y_mm], got " + p.dump());
+    s.path.push_back({p[0].get<double>(), p[1].get<double>()});
+  }
+  s.radius_mm = positive(a, "radius_mm", "artery radius in mm", 100);
+  s.depth_mm = positive(a, "depth_mm", "depth of the centreline in mm", 500);
+  if (s.depth_mm < s.radius_mm)
+    a.fail("depth_mm", "a centreline depth of at least the radius (" + number_text(s.radius_mm) +
+                           " mm): the artery lies under the skin, got " + number_text(s.depth_mm));
+  if (a.has("range_mm")) {
+    s.range_mm = positive(a, "range_mm", "source range in mm", 500);
+    if (s.range_mm <= s.depth_mm)
+      a.fail("range_mm", "a range larger than the depth (" + number_text(s.depth_mm) +
+                             " mm), or no finger on the skin ever feels the pulse, got " + number_text(s.range_mm));
+  }
+  s.amplitude_kPa = a.number("amplitude_kPa", 0, 100);
+  s.rate_bpm = a.number("rate_bpm", kMinPulseRateBpm, kMaxPulseRateBpm);
+  s.phase_offset = a.number_or("phase_offset", 0, -1, 1);
+  if (a.has("waveform")) s.waveform = parse_waveform(a.object("waveform"), scene_path);
+  s.own_force_window = a.has("force_window_N");
+  if (s.own_force_window) {
+    const auto fw = triple(a, "force_window_N", 2, 0, 1000);
+    if (!(fw[0] < fw[1])) a.fail("force_window_N", "[F_min, F_max] with F_min < F_max, got " + a.raw("force_window_N").dump());
+    s.force_window.min_N = fw[0];
+    s.force_window.max_N = fw[1];
+  }
+  s.force_window.gain = positive_or(a, "force_gain", 1.0, "force window gain mu", 100);
+  if (a.has("activation_margin_mm")) s.activation_margin_mm = a.number("activation_margin_mm", 0, 100);
+  s.release_margin_mm = a.number_or("release_margin_mm", 0.57, 0, 100);
+  a.refuse_unknown();
+  return s;
+}
+
+}  // namespace
+
+PulseWaveform load_waveform_csv(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::ifstream in(path);
+  if (!in) throw InputError(file, "file", "a readable waveform table (cannot open it)");
+  std::vector<double> t, v;
+  std::string line;
+  int line_no = 0;
+  bool seen_header = false;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    const auto comma = line.find(',');
+    if (comma == std::string::npos)
+      throw InputError(file, "line " + std::to_string(line_no), "two comma-separated numbers t_s,value, got \"" + line + "\"");
+    const std::string a = line.substr(0, comma), b = line.substr(comma + 1);
+    std::size_t used_a = 0, used_b = 0;
+    double ta = 0, vb = 0;
+    bool ok = true;
+    try {
+      ta = std::stod(a, &used_a);
+      vb = std::stod(b, &used_b);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    auto blank = [](const std::string& s, std::size_t from) {
+      return s.find_first_not_of(" \t", from) == std::string::npos;
+    };
+    if (!ok || !blank(a, used_a) || !blank(b, used_b)) {
+      if (t.empty() && !seen_header) {  // a header line before the first row
+        seen_header = true;
+        continue;
+      }
+      throw InputError(file, "line " + std::to_string(line_no), "two numbers t_s,value, got \"" + line + "\"");
+    }
+    t.push_back(ta);
+    v.push_back(vb);
+  }
+  if (t.empty()) throw InputError(file, "table", "at least 4 rows t_s,value over one beat (the table is empty)");
+  try {
+    return PulseWaveform::table(t, v);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(file, "table", e.what());
+  }
+}
+
+void load_function_scene(const JsonObject& root, const std::filesystem::path& path, SceneFile& out) {
+  const std::string file = path.string();
+  TissueDefinition tissue;
+
+  const JsonObject body = root.object("body");
+  const auto centre = triple(body, "centre_mm", 2, -kMaxSize_mm, kMaxSize_mm);
+  const auto half = positive_triple(body, "half_size_mm", 2, "half sizes in mm");
+  tissue.body = {{centre[0], centre[1]}, half[0], half[1], body.number_or("exponent", 6, 2, 64)};
+  body.refuse_unknown();
+
+  const auto layers = root.objects("layers");
+  if (layers.empty()) root.fail("layers", "at least one tissue layer (skin first)");
+  if (layers.size() > kMaxLayers) root.fail("layers", "at most " + std::to_string(kMaxLayers) + " layers");
+  for (const JsonObject& l : layers) {
+    TissueLayer layer;
+    layer.name = l.string("name");
+    layer.thickness_mm = positive(l, "thickness_mm", "thickness in mm");
+    layer.stiffness_kPa = positive(l, "stiffness_kPa", "Young's modulus in kPa", kMaxModulus_kPa);
+    l.refuse_unknown();
+    tissue.layers.push_back(layer);
+  }
+  if (root.has("support_kPa")) tissue.support_kPa = positive(root, "support_kPa", "Young's modulus in kPa", kMaxModulus_kPa);
+
+  const JsonObject felt = root.object("felt_range_kPa");
+  tissue.felt.soft_kPa = positive(felt, "soft", "modulus in kPa felt as 0", kMaxModulus_kPa);
+  tissue.felt.hard_kPa = positive(felt, "hard", "modulus in kPa felt as 1", kMaxModulus_kPa);
+  if (!(tissue.felt.soft_kPa < tissue.felt.hard_kPa))
+    felt.fail("hard", "a modulus above soft (" + number_text(tissue.felt.soft_kPa) + " kPa), got " +
+                          number_text(tissue.felt.hard_kPa));
+  felt.refuse_unknown();
+
+  if (root.has("press")) {
+    const JsonObject p = root.object("press");
+    tissue.press.finger_radius_mm = positive_or(p, "finger_radius_mm", tissue.press.finger_radius_mm, "radius in mm", 100);
+    tissue.press.reference_force_N = positive_or(p, "reference_force_N", tissue.press.reference_force_N, "force in N", 1000);
+    tissue.press.reference_indentation_mm =
+        positive_or(p, "reference_indentation_mm", tissue.press.reference_indentation_mm, "indentation in mm", 100);
+    p.refuse_unknown();
+  }
+  if (root.has("respiration")) {
+    const JsonObject r = root.object("respiration");
+    tissue.respiration.period_s = r.number("period_s", 0.5, 60);
+    r.refuse_unknown();
+  }
+
+  if (root.has("inclusions")) {
+    const auto incs = root.objects("inclusions");
+    if (incs.size() > kMaxInclusions) root.fail("inclusions", "at most " + std::to_string(kMaxInclusions) + " inclusions");
+    for (const JsonObject& o : incs) {
+      Inclusion inc;
+      inc.name = o.string("name");
+      inc.kind = parse_kind(o);
+      inc.stiffness_kPa = positive(o, "stiffness_kPa", "Young's modulus in kPa", kMaxModulus_kPa);
+      try {
+        parse_shape(o.object("shape"), inc.shape, 0);
+      } catch (const std::invalid_argument& e) {  // the builders' own checks, should the loader's miss one
+        o.fail("shape", e.what());
+      }
+      if (o.has("breathing_excursion_mm")) inc.breathing_excursion_mm = point3(o, "breathing_excursion_mm");
+      o.refuse_unknown();
+      tissue.inclusions.push_back(std::move(inc));
+    }
+  }
+
+  std::vector<ArterySpec> arteries;
+  if (root.has("arteries")) {
+    const auto list = root.objects("arteries");
+    if (list.size() > kMaxArteries) root.fail("arteries", "at most " + std::to_string(kMaxArteries) + " arteries");
+    for (const JsonObject& a : list) arteries.push_back(parse_artery(a, path));
+  }
+
+  if (root.has("generator")) {  // provenance of a generated case: checked, kept in the file
+    const JsonObject g = root.object("generator");
+    (void)g.integer("seed", 0, INT64_MAX);
+    (void)g.choice("difficulty", {"easy", "medium", "hard"});
+    g.refuse_unknown();
+  }
+  root.refuse_unknown();
+
+  std::unique_ptr<FunctionScene> scene;
+  try {
+    scene = std::make_unique<FunctionScene>(std::move(tissue), std::move(arteries));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(file, "scene", e.what());
+  }
+  for (const InclusionOutline& o : scene->outlines(InclusionKind::tumor))
+    out.tumors.push_back({o.name, o.x_mm, o.y_mm, o.radius_mm});
+  out.scene = std::move(scene);
+}
+
+nlohmann::json generated_case_json(const GeneratedCase& c) {
+  using nlohmann::json;
+  auto p3 = [](const Point3_mm& p) { return json::array({p.x_mm, p.y_mm, p.z_mm}); };
+  json layers = json::array();
+  for (const TissueLayer& l : c.layers)
+    layers.push_back({{"name", l.name}, {"thickness_mm", l.thickness_mm}, {"stiffness_kPa", l.stiffness_kPa}});
+  json inclusions = json::array();
+  for (const GeneratedTumor& t : c.tumors) {
+    json shape;
+    switch (t.shape) {
+      case GeneratedTumor::Shape::sphere:
+        shape = {{"type", "sphere"}, {"centre_mm", p3(t.centre)}, {"radius_mm", t.radii_mm[0]}};
+        break;
+      case GeneratedTumor::Shape::ellipsoid:
+        shape = {{"type", "ellipsoid"},
+                 {"centre_mm", p3(t.centre)},
+                 {"radii_mm", json::array({t.radii_mm[0], t.radii_mm[1], t.radii_mm[2]})},
+                 {"yaw_deg", t.yaw_deg}};
+        break;
+      case GeneratedTumor::Shape::blobs: {
+        json blobs = json::array();
+        for (const Blob& b : t.lobes)
+          blobs.push_back({{"centre_mm", p3(b.centre)},
+                           {"k", b.k},
+                           {"inverse_scale_per_mm2", json::array({b.inverse_scale_per_mm2[0], b.inverse_scale_per_mm2[1],
+                                                                  b.inverse_scale_per_mm2[2]})}});
+        shape = {{"type", "blobs"}, {"threshold", t.threshold}, {"blobs", blobs}};
+        break;
+      }
+    }
+    inclusions.push_back({{"name", t.name}, {"kind", "tumor"}, {"stiffness_kPa", t.stiffness_kPa}, {"shape", shape}});
+  }
+  return {
+      {"version", kSceneFileVersion},
+      {"kind", "function"},
+      {"name", std::string("case-") + to_string(c.difficulty) + "-" + std::to_string(c.seed)},
+      {"description", "Generated rehearsal case (palprig scene generate): " + std::to_string(c.tumors.size()) +
+                          " tumor(s), difficulty " + to_string(c.difficulty) +
+                          ". The inclusions are the ground truth; do not show them to the trainee."},
+      {"generator", {{"seed", c.seed}, {"difficulty", to_string(c.difficulty)}}},
+      {"body",
+       {{"centre_mm", json::array({c.body.centre.x_mm, c.body.centre.y_mm})},
+        {"half_size_mm", json::array({c.body.half_width_mm, c.body.half_height_mm})},
+        {"exponent", c.body.exponent}}},
+      {"layers", layers},
+      {"felt_range_kPa", {{"soft", c.felt.soft_kPa}, {"hard", c.felt.hard_kPa}}},
+      {"inclusions", inclusions},
+  };
+}
+
+void write_scene_json(const std::filesystem::path& path, const nlohmann::json& scene) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+  out << scene.dump(2) << "\n";
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+}  // namespace palprig

@@ -1,0 +1,45 @@
+#pragma once
+// The rig file (JSON, versioned) describes one physical or simulated rig: which backend, its
+// safety limits, the virtual hand (finger spacing and orientation) and, for the simulated
+// backend, the plant of each channel. Backends other than "simulated" keep their own section
+// (e.g. "modbus") which their factory validates.
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "formats/tablet_config.hpp"
+#include "models/finger_layout.hpp"
+#include "models/safety_limits.hpp"
+#include "models/pneumatic_plant.hpp"
+
+namespace palprig {
+
+inline constexpr int kRigFileVersion = 1;
+
+struct RigConfig {
+  std::string source;  // file it came from, for messages
+  std::string id;
+  std::string backend = "simulated";
+  SafetyLimits safety;
+  FingerLayout layout;
+  double contact_force_N = 0.05;
+  std::array<PlantParams, kFingerCount> plants{};
+  nlohmann::json backend_section;  // the section named after the backend, if any
+  TabletConfig tablet;             // the pen tablet ("tablet" section; defaults when absent)
+};
+
+RigConfig load_rig_file(const std::filesystem::path& path);
+// The built-in default: the simulated rig described in data/rigs/simulated.json.
+RigConfig default_rig();
+// Plant parameters from a JSON object, starting from `base` (fields absent keep base's value).
+class JsonObject;
+PlantParams parse_plant(const JsonObject& obj, const PlantParams& base);
+
+// Validate the section of a hardware backend (register map, DAQ channels); throws InputError.
+// load_rig_file calls it, so a bad map is refused before anything is opened.
+void validate_backend_section(const RigConfig& rig);
+
+}  // namespace palprig

@@ -1,0 +1,66 @@
+#pragma once
+// Where pen samples come from. The loop asks for the latest sample at its own time; a source
+// never blocks, allocates or throws in latest(). Recorded traces and scripted sweeps are here;
+// the pen tablet (evdev) and the GUI pointer implement the same interface.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "models/touch_sample.hpp"
+#include "models/scene.hpp"
+
+namespace palprig {
+
+class InputSource {
+ public:
+  virtual ~InputSource() = default;
+  virtual TouchSample latest(double t_s) noexcept = 0;
+  // Length of a finite source (a trace, a sweep); 0 for a live one.
+  virtual double duration_s() const noexcept = 0;
+  virtual std::string describe() const = 0;
+};
+
+// A recorded trace: CSV with header t_s,x_mm,y_mm,force_N and strictly increasing times.
+// Between rows the pen is interpolated linearly; after the last row it stays lifted.
+class TraceInput final : public InputSource {
+ public:
+  TraceInput(std::vector<TouchSample> samples, std::string name, double contact_force_N = 0.05);
+  TouchSample latest(double t_s) noexcept override;
+  double duration_s() const noexcept override { return samples_.empty() ? 0 : samples_.back().t_s; }
+  std::string describe() const override { return "trace " + name_; }
+  const std::vector<TouchSample>& samples() const noexcept { return samples_; }
+
+ private:
+  std::vector<TouchSample> samples_;
+  std::string name_;
+  std::size_t cursor_ = 0;  // the loop's time only moves forward: search from here
+};
+
+std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, double contact_force_N = 0.05);
+void write_trace_csv(const std::filesystem::path& path, const std::vector<TouchSample>& samples);
+
+// A scripted raster sweep over a scene's bounds at constant speed and force: rows spaced
+// row_step_mm apart, travelling back and forth, pen pressed the whole time.
+struct SweepPlan {
+  double speed_mm_per_s = 40.0;
+  double row_step_mm = 10.0;
+  double force_N = 2.0;
+  double margin_mm = 5.0;
+};
+
+class SweepInput final : public InputSource {
+ public:
+  SweepInput(const SceneBounds& bounds, const SweepPlan& plan);
+  TouchSample latest(double t_s) noexcept override;
+  double duration_s() const noexcept override { return duration_s_; }
+  std::string describe() const override { return "sweep"; }
+
+ private:
+  SceneBounds area_;
+  SweepPlan plan_;
+  double row_length_mm_ = 0, duration_s_ = 0;
+  int rows_ = 0;
+};
+
+}  // namespace palprig

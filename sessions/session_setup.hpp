@@ -1,0 +1,71 @@
+#pragma once
+// Starting or resuming a session against the trial store, and the listener that commits each
+// completed trial as it happens.
+//
+// New session: the participant is enrolled (numbered in order of enrolment), the order is
+// generated from a seed (given, or derived from participant code and protocol name so the same
+// pair always gets the same order) and stored with the protocol snapshot before trial 1.
+// Resume: the unfinished session of that participant and protocol continues at the first
+// trial not committed, with the stored protocol and order; a protocol file that changed since
+// is refused. Starting anew while an unfinished session exists is refused (use --resume).
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "experiments/protocol.hpp"
+#include "experiments/session_plan.hpp"
+#include "experiments/trial_runner.hpp"
+#include "store/trial_store.hpp"
+
+namespace palprig {
+
+struct OpenedSession {
+  Protocol protocol;  // as stored with the session
+  SessionPlan plan;
+  std::int64_t session_id = 0;
+  ParticipantRecord participant;
+  int start_position = 0;
+  bool resumed = false;
+};
+
+struct SessionRequest {
+  std::string participant_code;
+  bool simulated = false;
+  bool resume = false;
+  std::optional<std::uint64_t> seed;  // default: derived from participant and protocol
+  SessionSetup setup;                 // rig, calibration, participant model
+};
+
+// Throws InputError (file, field, reason) for every refusal above.
+OpenedSession open_session(TrialStore& store, const Protocol& protocol, const SessionRequest& request);
+
+// The default seed of a participant's session with a protocol.
+std::uint64_t default_session_seed(const std::string& participant_code, const std::string& protocol_name);
+
+// Commits each completed trial in its own transaction and forwards events to the UI.
+class SessionRecorder final : public RunnerListener {
+ public:
+  SessionRecorder(TrialStore& store, std::int64_t session_id, std::function<void(const RunnerEvent&)> on_event = {},
+                  std::function<void(const TrialRecord&)> on_trial = {})
+      : store_(store), session_id_(session_id), on_event_(std::move(on_event)), on_trial_(std::move(on_trial)) {}
+
+  void on_event(const RunnerEvent& e) override {
+    if (on_event_) on_event_(e);
+  }
+  void on_trial_completed(const TrialRecord& trial) override {
+    store_.commit_trial(session_id_, trial);
+    ++committed_;
+    if (on_trial_) on_trial_(trial);
+  }
+  int committed() const noexcept { return committed_; }
+
+ private:
+  TrialStore& store_;
+  std::int64_t session_id_;
+  std::function<void(const RunnerEvent&)> on_event_;
+  std::function<void(const TrialRecord&)> on_trial_;
+  int committed_ = 0;
+};
+
+}  // namespace palprig

@@ -1,0 +1,354 @@
+#include "store/trial_store.hpp"
+
+#include <sqlite3.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+
+#include "models/parse_error.hpp"
+
+namespace palprig {
+
+namespace {
+
+constexpr const char* kSchema = R"sql(
+CREATE TABLE participants (
+  id          INTEGER PRIMARY KEY,
+  code        TEXT NOT NULL UNIQUE,
+  number      INTEGER NOT NULL UNIQUE,         -- 1-based enrolment order (counterbalancing)
+  simulated   INTEGER NOT NULL CHECK (simulated IN (0, 1)),
+  created_utc TEXT NOT NULL
+);
+CREATE TABLE sessions (
+  id                INTEGER PRIMARY KEY,
+  participant_id    INTEGER NOT NULL REFERENCES participants(id),
+  protocol_name     TEXT NOT NULL,
+  task              TEXT NOT NULL,
+  bids_task         TEXT NOT NULL,
+  protocol_json     TEXT NOT NULL,             -- the protocol file as read
+  protocol_dir      TEXT NOT NULL,
+  seed              INTEGER NOT NULL,
+  condition_order   TEXT NOT NULL,             -- JSON array of condition indices
+  rig_id            TEXT NOT NULL,
+  rig_backend       TEXT NOT NULL,
+  calibration       TEXT NOT NULL,
+  participant_model TEXT,                      -- simulated participant parameters (JSON)
+  status            TEXT NOT NULL CHECK (status IN ('running', 'completed')),
+  started_utc       TEXT NOT NULL,
+  finished_utc      TEXT
+);
+CREATE TABLE planned_trials (                  -- the generated order, stored before trial 1
+  session_id      INTEGER NOT NULL REFERENCES sessions(id),
+  position        INTEGER NOT NULL,
+  block           INTEGER NOT NULL,
+  condition_index INTEGER NOT NULL,
+  condition       TEXT NOT NULL,
+  practice        INTEGER NOT NULL,
+  combination     INTEGER NOT NULL,            -- -1 for localisation
+  break_after     INTEGER NOT NULL,
+  PRIMARY KEY (session_id, position)
+) WITHOUT ROWID;
+CREATE TABLE trials (
+  id                INTEGER PRIMARY KEY,
+  session_id        INTEGER NOT NULL REFERENCES sessions(id),
+  position          INTEGER NOT NULL,
+  block             INTEGER NOT NULL,
+  condition         TEXT NOT NULL,
+  mode              TEXT NOT NULL,
+  practice          INTEGER NOT NULL,
+  combination       INTEGER NOT NULL,
+  combination_label TEXT,
+  stimulus1_kPa     REAL, stimulus2_kPa REAL, stimulus3_kPa REAL,
+  truth             TEXT,                      -- per finger 1/0, e.g. "010"
+  answered          INTEGER NOT NULL,          -- 0: the response timed out
+  answer            TEXT,                      -- per finger 1/0; NULL when not answered
+  response_time_s   REAL,
+  onset_s           REAL NOT NULL,
+  felt1_kPa         REAL, felt2_kPa REAL, felt3_kPa REAL,
+  outcome1          TEXT CHECK (outcome1 IN ('TP', 'FN', 'TN', 'FP')),
+  outcome2          TEXT CHECK (outcome2 IN ('TP', 'FN', 'TN', 'FP')),
+  outcome3          TEXT CHECK (outcome3 IN ('TP', 'FN', 'TN', 'FP')),
+  false_marks       INTEGER,
+  completed_utc     TEXT NOT NULL,
+  UNIQUE (session_id, position)
+);
+CREATE TABLE tumor_scores (
+  trial_id        INTEGER NOT NULL REFERENCES trials(id),
+  tumor           TEXT NOT NULL,
+  outcome         TEXT NOT NULL CHECK (outcome IN ('TP', 'FN')),
+  nearest_mark_mm REAL,
+  PRIMARY KEY (trial_id, tumor)
+) WITHOUT ROWID;
+CREATE TABLE marks (
+  trial_id INTEGER NOT NULL REFERENCES trials(id),
+  mark     INTEGER NOT NULL,
+  x_mm     REAL NOT NULL,
+  y_mm     REAL NOT NULL,
+  tumor    TEXT,                               -- the tumor it hit; NULL for a false mark
+  PRIMARY KEY (trial_id, mark)
+) WITHOUT ROWID;
+)sql";
+
+std::string utc_now() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string flags_text(const FingerFlags& f) {
+  std::string s;
+  for (bool b : f) s += b ? '1' : '0';
+  return s;
+}
+
+std::optional<double> finite_or_null(double x) {
+  if (std::isfinite(x)) return x;
+  return std::nullopt;
+}
+
+}  // namespace
+
+TrialStore::TrialStore(const std::filesystem::path& file, Access access) try
+    : db_(file, access == Access::read_only ? Database::Mode::read_only : Database::Mode::read_write_create) {
+  if (access == Access::read_write && is_blank()) create_schema();
+  check_identity();
+  // Scans of large stores (stats, export) read through a memory map instead of copying pages.
+  db_.exec("PRAGMA mmap_size = 1073741824");
+  if (access == Access::read_write) {
+    // WAL: readers never block the writer; synchronous FULL: a committed trial survives a
+    // crash of the process and of the machine.
+    db_.exec("PRAGMA journal_mode = WAL; PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON;");
+  }
+} catch (const SqliteError& e) {
+  // Whatever the member initialiser or the checks threw, the file was the problem.
+  if (e.code() == SQLITE_NOTADB) {
+    throw InputError(file.string(), "file", "a palprig trial database (this is not an SQLite database)");
+  }
+  if (e.code() == SQLITE_CANTOPEN) {
+    throw InputError(file.string(), "file", "a database file that can be opened or created (check the path)");
+  }
+  throw;
+}
+
+bool TrialStore::is_blank() {
+  if (db_.pragma_integer("application_id") != 0 || db_.pragma_integer("user_version") != 0) return false;
+  auto tables = db_.prepare("SELECT count(*) FROM sqlite_master");
+  tables.step();
+  return tables.integer(0) == 0;
+}
+
+void TrialStore::create_schema() {
+  Transaction tx(db_);
+  db_.exec(kSchema);
+  db_.exec("PRAGMA application_id = " + std::to_string(kTrialStoreApplicationId));
+  db_.exec("PRAGMA user_version = " + std::to_string(kTrialStoreSchemaVersion));
+  tx.commit();
+}
+
+void TrialStore::check_identity() {
+  if (db_.pragma_integer("application_id") != kTrialStoreApplicationId) {
+    throw InputError(db_.file(), "PRAGMA application_id",
+                     "a palprig trial database (this SQLite file belongs to another program or is empty)");
+  }
+  const std::int64_t version = db_.pragma_integer("user_version");
+  if (version > kTrialStoreSchemaVersion) {
+    throw InputError(db_.file(), "PRAGMA user_version",
+                     "schema version " + std::to_string(kTrialStoreSchemaVersion) +
+                         " or older (written by a newer palprig: schema " + std::to_string(version) + ")");
+  }
+  if (version < 1) throw InputError(db_.file(), "PRAGMA user_version", "a palprig schema version (found none)");
+}
+
+std::optional<ParticipantRecord> TrialStore::find_participant(const std::string& code) {
+  auto s = db_.prepare("SELECT id, code, number, simulated FROM participants WHERE code = ?1");
+  s.bind(1, code);
+  if (!s.step()) return std::nullopt;
+  return ParticipantRecord{s.integer(0), s.text(1), static_cast<int>(s.integer(2)), s.integer(3) != 0};
+}
+
+ParticipantRecord TrialStore::enrol(const std::string& code, bool simulated) {
+  if (auto p = find_participant(code)) return *p;
+  Transaction tx(db_);
+  auto next = db_.prepare("SELECT COALESCE(MAX(number), 0) + 1 FROM participants");
+  next.step();
+  const int number = static_cast<int>(next.integer(0));
+  auto ins = db_.prepare("INSERT INTO participants (code, number, simulated, created_utc) VALUES (?1, ?2, ?3, ?4)");
+  ins.bind(1, code).bind(2, number).bind(3, simulated ? 1 : 0).bind(4, utc_now()).run();
+  const std::int64_t id = db_.last_insert_rowid();
+  tx.commit();
+  return ParticipantRecord{id, code, number, simulated};
+}
+
+std::optional<std::int64_t> TrialStore::find_unfinished_session(const ParticipantRecord& who, const std::string& protocol_name) {
+  auto s = db_.prepare(
+      "SELECT id FROM sessions WHERE participant_id = ?1 AND protocol_name = ?2 AND status = 'running' "
+      "ORDER BY id DESC LIMIT 1");
+  s.bind(1, who.id).bind(2, protocol_name);
+  if (!s.step()) return std::nullopt;
+  return s.integer(0);
+}
+
+std::int64_t TrialStore::create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
+                                        const SessionSetup& setup) {
+  Transaction tx(db_);
+  auto ins = db_.prepare(
+      "INSERT INTO sessions (participant_id, protocol_name, task, bids_task, protocol_json, protocol_dir, seed, "
+      "condition_order, rig_id, rig_backend, calibration, participant_model, status, started_utc) "
+      "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, 'running', ?13)");
+  ins.bind(1, who.id)
+      .bind(2, protocol.name)
+      .bind(3, to_string(protocol.task))
+      .bind(4, protocol.bids_task)
+      .bind(5, protocol.snapshot.dump())
+      .bind(6, setup.protocol_dir)
+      .bind(7, static_cast<std::int64_t>(plan.seed))  // stored as the same 64 bits
+      .bind(8, nlohmann::json(plan.condition_order).dump())
+      .bind(9, setup.rig_id)
+      .bind(10, setup.rig_backend)
+      .bind(11, setup.calibration);
+  if (setup.participant_model.is_null()) ins.bind_null(12);
+  else ins.bind(12, setup.participant_model.dump());
+  ins.bind(13, utc_now()).run();
+  const std::int64_t session_id = db_.last_insert_rowid();
+
+  auto planned = db_.prepare(
+      "INSERT INTO planned_trials (session_id, position, block, condition_index, condition, practice, combination, "
+      "break_after) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
+  for (const PlannedTrial& t : plan.trials) {
+    planned.bind(1, session_id)
+        .bind(2, t.position)
+        .bind(3, t.block)
+        .bind(4, t.condition)
+        .bind(5, protocol.conditions.at(static_cast<std::size_t>(t.condition)).name)
+        .bind(6, t.practice ? 1 : 0)
+        .bind(7, t.combination)
+        .bind(8, t.break_after ? 1 : 0)
+        .run();
+  }
+  tx.commit();
+  return session_id;
+}
+
+StoredSession TrialStore::load_session(std::int64_t session_id) {
+  StoredSession s;
+  auto q = db_.prepare(
+      "SELECT s.id, s.protocol_json, s.protocol_dir, s.status, s.seed, s.condition_order, p.id, p.code, p.number, "
+      "p.simulated FROM sessions s JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
+  q.bind(1, session_id);
+  if (!q.step()) throw InputError(db_.file(), "session " + std::to_string(session_id), "an existing session");
+  s.id = q.integer(0);
+  s.protocol_snapshot = nlohmann::json::parse(q.text(1));
+  s.protocol_dir = q.text(2);
+  s.status = q.text(3);
+  s.plan.seed = static_cast<std::uint64_t>(q.integer(4));
+  s.plan.condition_order = nlohmann::json::parse(q.text(5)).get<std::vector<int>>();
+  s.participant = ParticipantRecord{q.integer(6), q.text(7), static_cast<int>(q.integer(8)), q.integer(9) != 0};
+  s.plan.participant_number = s.participant.number;
+
+  auto t = db_.prepare(
+      "SELECT position, block, condition_index, practice, combination, break_after FROM planned_trials "
+      "WHERE session_id = ?1 ORDER BY position");
+  t.bind(1, session_id);
+  while (t.step()) {
+    s.plan.trials.push_back(PlannedTrial{static_cast<int>(t.integer(0)), static_cast<int>(t.integer(1)),
+                                         static_cast<int>(t.integer(2)), t.integer(3) != 0,
+                                         static_cast<int>(t.integer(4)), t.integer(5) != 0});
+  }
+  auto done = db_.prepare("SELECT count(*), COALESCE(MAX(position), -1) FROM trials WHERE session_id = ?1");
+  done.bind(1, session_id);
+  done.step();
+  s.completed_trials = static_cast<int>(done.integer(0));
+  // Trials are committed in order, so the committed ones are exactly positions 0..n-1.
+  if (done.integer(1) != s.completed_trials - 1) {
+    throw InputError(db_.file(), "session " + std::to_string(session_id),
+                     "trials committed in order (positions are missing; the database was edited)");
+  }
+  return s;
+}
+
+void TrialStore::complete_session(std::int64_t session_id) {
+  Transaction tx(db_);
+  auto u = db_.prepare("UPDATE sessions SET status = 'completed', finished_utc = ?2 WHERE id = ?1");
+  u.bind(1, session_id).bind(2, utc_now()).run();
+  tx.commit();
+}
+
+void TrialStore::insert_trial(std::int64_t session_id, const TrialRecord& r) {
+  const bool discrimination = r.mode != PresentationMode::scene;
+  if (!insert_trial_) {
+    insert_trial_ = std::make_unique<Statement>(db_,
+      "INSERT INTO trials (session_id, position, block, condition, mode, practice, combination, combination_label, "
+      "stimulus1_kPa, stimulus2_kPa, stimulus3_kPa, truth, answered, answer, response_time_s, onset_s, felt1_kPa, "
+      "felt2_kPa, felt3_kPa, outcome1, outcome2, outcome3, false_marks, completed_utc) VALUES (?1, ?2, ?3, ?4, ?5, "
+      "?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24)");
+  }
+  Statement& ins = *insert_trial_;
+  ins.bind(1, session_id)
+      .bind(2, r.planned.position)
+      .bind(3, r.planned.block)
+      .bind(4, r.condition)
+      .bind(5, to_string(r.mode))
+      .bind(6, r.planned.practice ? 1 : 0)
+      .bind(7, r.planned.combination)
+      .bind(13, r.answered ? 1 : 0)
+      .bind(16, r.onset_s)
+      .bind(24, utc_now());
+  if (discrimination) {
+    ins.bind(8, r.combination_label);
+    for (int f = 0; f < kFingerCount; ++f) ins.bind(9 + f, r.stimulus_kPa[static_cast<std::size_t>(f)]);
+    ins.bind(12, flags_text(r.truth));
+  }
+  for (int f = 0; f < kFingerCount; ++f) ins.bind(17 + f, finite_or_null(r.felt_kPa[static_cast<std::size_t>(f)]));
+  if (r.answered) {
+    ins.bind(15, r.response_time_s);
+    if (discrimination) {
+      ins.bind(14, flags_text(r.answer));
+      for (int f = 0; f < kFingerCount; ++f) ins.bind(20 + f, to_string(r.finger_outcomes[static_cast<std::size_t>(f)]));
+    } else {
+      ins.bind(23, r.localisation.false_marks);
+    }
+  }
+  ins.run();
+  const std::int64_t trial_id = db_.last_insert_rowid();
+  if (!discrimination && r.answered) {
+    auto ts = db_.prepare("INSERT INTO tumor_scores (trial_id, tumor, outcome, nearest_mark_mm) VALUES (?1, ?2, ?3, ?4)");
+    for (const TumorScore& score : r.localisation.tumors) {
+      ts.bind(1, trial_id).bind(2, score.tumor).bind(3, score.hit ? "TP" : "FN");
+      if (score.nearest_mark_mm >= 0) ts.bind(4, score.nearest_mark_mm);
+      ts.run();
+    }
+    auto mk = db_.prepare("INSERT INTO marks (trial_id, mark, x_mm, y_mm, tumor) VALUES (?1, ?2, ?3, ?4, ?5)");
+    for (std::size_t i = 0; i < r.marks.size(); ++i) {
+      mk.bind(1, trial_id).bind(2, static_cast<std::int64_t>(i)).bind(3, r.marks[i].x_mm).bind(4, r.marks[i].y_mm);
+      const int hit = i < r.localisation.mark_tumor.size() ? r.localisation.mark_tumor[i] : -1;
+      if (hit >= 0) mk.bind(5, r.localisation.tumors[static_cast<std::size_t>(hit)].tumor);
+      mk.run();
+    }
+  }
+}
+
+void TrialStore::commit_trial(std::int64_t session_id, const TrialRecord& trial) {
+  Transaction tx(db_);
+  insert_trial(session_id, trial);
+  tx.commit();
+}
+
+void TrialStore::commit_trials(std::int64_t session_id, std::span<const TrialRecord> trials) {
+  Transaction tx(db_);
+  for (const TrialRecord& t : trials) insert_trial(session_id, t);
+  tx.commit();
+}
+
+TrialStore open_trial_store_for_reading(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    throw InputError(file.string(), "file", "an existing palprig trial database");
+  }
+  return TrialStore(file, TrialStore::Access::read_only);
+}
+
+}  // namespace palprig

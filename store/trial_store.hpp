@@ -1,0 +1,91 @@
+#pragma once
+// TrialStore: the SQLite trial database (DESIGN.md "Data"). WAL journal with full sync, one
+// committed transaction per trial, so killing the process loses at most the trial in
+// progress. Holds participants, sessions (protocol snapshot, seed, generated order, rig and
+// calibration ids, simulated participant model) and trials (stimuli, answers, per-finger and
+// per-tumor scores, times).
+//
+// Identification: PRAGMA application_id = 0x50616C50 ("PalP") marks a palprig database and
+// PRAGMA user_version its schema version. Opening refuses a file that is not SQLite, a SQLite
+// database of another program, and a palprig database from a newer version (InputError).
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/protocol.hpp"
+#include "experiments/session_plan.hpp"
+#include "store/sqlite_db.hpp"
+#include "experiments/trial_record.hpp"
+
+namespace palprig {
+
+inline constexpr std::int64_t kTrialStoreApplicationId = 0x50616C50;  // "PalP"
+inline constexpr std::int64_t kTrialStoreSchemaVersion = 1;
+
+struct ParticipantRecord {
+  std::int64_t id = 0;
+  std::string code;
+  int number = 0;  // 1-based enrolment order
+  bool simulated = false;
+};
+
+struct SessionSetup {
+  std::string rig_id, rig_backend, calibration;
+  nlohmann::json participant_model;  // the simulated participant's parameters; null for people
+  std::string protocol_dir;          // folder of the protocol file (resolves a scene path)
+};
+
+struct StoredSession {
+  std::int64_t id = 0;
+  ParticipantRecord participant;
+  nlohmann::json protocol_snapshot;
+  std::string protocol_dir;
+  std::string status;  // "running" or "completed"
+  SessionPlan plan;
+  int completed_trials = 0;  // trials committed; the next position to run
+};
+
+class TrialStore {
+ public:
+  enum class Access { read_only, read_write };
+  // Creates the schema in a new or empty file (read_write); refuses foreign or newer files.
+  TrialStore(const std::filesystem::path& file, Access access);
+
+  ParticipantRecord enrol(const std::string& code, bool simulated);
+  std::optional<ParticipantRecord> find_participant(const std::string& code);
+
+  // The session of this participant and protocol that was started but not completed.
+  std::optional<std::int64_t> find_unfinished_session(const ParticipantRecord& who, const std::string& protocol_name);
+  std::int64_t create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
+                              const SessionSetup& setup);
+  StoredSession load_session(std::int64_t session_id);
+  void complete_session(std::int64_t session_id);
+
+  // One transaction per trial (the crash-safety promise).
+  void commit_trial(std::int64_t session_id, const TrialRecord& trial);
+  // Many trials in one transaction (imports, benchmarks, tests).
+  void commit_trials(std::int64_t session_id, std::span<const TrialRecord> trials);
+
+  Database& database() noexcept { return db_; }
+  const std::string& file() const noexcept { return db_.file(); }
+
+ private:
+  bool is_blank();  // a new file: no tables, no palprig marks
+  void create_schema();
+  void check_identity();
+  void insert_trial(std::int64_t session_id, const TrialRecord& trial);
+
+  Database db_;
+  std::unique_ptr<Statement> insert_trial_;  // prepared once: trials are inserted one by one
+};
+
+// Open a database for reading (stats, export): refuses a missing, foreign or newer file.
+TrialStore open_trial_store_for_reading(const std::filesystem::path& file);
+
+}  // namespace palprig

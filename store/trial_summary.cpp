@@ -1,0 +1,268 @@
+#include "store/trial_summary.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <unordered_map>
+
+#include "models/parse_error.hpp"
+
+namespace palprig {
+
+namespace {
+
+constexpr std::size_t kKeyKinds = 6;
+
+// Strings of one key kind, interned so the hot loop works on small integers.
+class Interner {
+ public:
+  int id(std::string_view text) {
+    for (std::size_t i = 0; i < values_.size(); ++i) {
+      if (values_[i] == text) return static_cast<int>(i);
+    }
+    values_.emplace_back(text);
+    return static_cast<int>(values_.size() - 1);
+  }
+  const std::string& text(int id) const { return values_[static_cast<std::size_t>(id)]; }
+
+ private:
+  std::vector<std::string> values_;
+};
+
+// A group's key as interned ids, only the requested kinds set (the others stay 0).
+using GroupKey = std::array<int, kKeyKinds>;
+
+struct GroupKeyHash {
+  std::size_t operator()(const GroupKey& k) const noexcept {
+    std::size_t h = 1469598103934665603ULL;
+    for (int v : k) h = (h ^ static_cast<std::size_t>(v)) * 1099511628211ULL;
+    return h;
+  }
+};
+
+struct Accumulator {
+  ConfusionCounts counts;
+  std::int64_t trials = 0, unanswered = 0;
+  std::int64_t rt_n = 0;
+  double rt_mean = 0, rt_m2 = 0;  // Welford
+  std::int64_t last_trial = -1;   // a trial adds its response time once per group
+
+  void add_trial(std::int64_t trial_id, bool answered, double rt_s) {
+    if (trial_id == last_trial) return;
+    last_trial = trial_id;
+    ++trials;
+    if (!answered) {
+      ++unanswered;
+      return;
+    }
+    if (!std::isfinite(rt_s)) return;
+    ++rt_n;
+    const double d = rt_s - rt_mean;
+    rt_mean += d / static_cast<double>(rt_n);
+    rt_m2 += d * (rt_s - rt_mean);
+  }
+};
+
+class Grouper {
+ public:
+  explicit Grouper(const std::vector<SummaryKey>& by) : by_(by) {}
+
+  Accumulator& group(const std::array<int, kKeyKinds>& all_ids) {
+    GroupKey key{};
+    for (SummaryKey k : by_) key[static_cast<std::size_t>(k)] = all_ids[static_cast<std::size_t>(k)];
+    // Consecutive units mostly share a group (a trial's fingers, a participant's trials):
+    // the last one is remembered. unordered_map never moves its elements, so the pointer holds.
+    if (last_ && key == last_key_) return *last_;
+    last_key_ = key;
+    last_ = &groups_[key];
+    return *last_;
+  }
+  const std::unordered_map<GroupKey, Accumulator, GroupKeyHash>& groups() const { return groups_; }
+
+ private:
+  std::vector<SummaryKey> by_;
+  std::unordered_map<GroupKey, Accumulator, GroupKeyHash> groups_;
+  GroupKey last_key_{};
+  Accumulator* last_ = nullptr;
+};
+
+// Interned id of a text column, remembering the last text seen (runs of equal values are the
+// rule: one condition block after another).
+class CachedIds {
+ public:
+  explicit CachedIds(Interner& names) : names_(names) {}
+  int id(std::string_view text) {
+    if (last_ >= 0 && text == last_text_) return last_;
+    last_text_.assign(text);
+    last_ = names_.id(text);
+    return last_;
+  }
+
+ private:
+  Interner& names_;
+  std::string last_text_;
+  int last_ = -1;
+};
+
+std::optional<Outcome> outcome_of(std::string_view text) { return outcome_from_string(text); }
+
+}  // namespace
+
+const char* to_string(SummaryKey key) noexcept {
+  switch (key) {
+    case SummaryKey::condition: return "condition";
+    case SummaryKey::participant: return "participant";
+    case SummaryKey::finger: return "finger";
+    case SummaryKey::tumor: return "tumor";
+    case SummaryKey::combination: return "combination";
+    case SummaryKey::session: return "session";
+  }
+  return "condition";
+}
+
+std::vector<SummaryKey> parse_summary_keys(const std::string& list) {
+  std::vector<SummaryKey> keys;
+  std::stringstream in(list);
+  std::string word;
+  while (std::getline(in, word, ',')) {
+    if (word.empty()) continue;
+    bool found = false;
+    for (std::size_t k = 0; k < kKeyKinds; ++k) {
+      if (word == to_string(static_cast<SummaryKey>(k))) {
+        const auto key = static_cast<SummaryKey>(k);
+        if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+        found = true;
+      }
+    }
+    if (!found) {
+      throw InputError("command line", "--by", "a list of condition, participant, finger, tumor, combination, session; got '" + word + "'");
+    }
+  }
+  return keys;
+}
+
+TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) {
+  Database& db = store.database();
+  std::array<Interner, kKeyKinds> names;
+  auto& conditions = names[static_cast<std::size_t>(SummaryKey::condition)];
+  auto& participants = names[static_cast<std::size_t>(SummaryKey::participant)];
+  auto& fingers = names[static_cast<std::size_t>(SummaryKey::finger)];
+  auto& tumors = names[static_cast<std::size_t>(SummaryKey::tumor)];
+  auto& combinations = names[static_cast<std::size_t>(SummaryKey::combination)];
+  auto& sessions = names[static_cast<std::size_t>(SummaryKey::session)];
+  const int no_tumor = tumors.id("-");
+  const int no_finger = fingers.id("-");
+  const int no_combination = combinations.id("-");
+  std::array<int, kFingerCount> finger_ids{};
+  for (int f = 0; f < kFingerCount; ++f) finger_ids[static_cast<std::size_t>(f)] = fingers.id(std::to_string(f + 1));
+
+  // Session -> participant and session ids (few rows), so the trial scan needs no join.
+  std::unordered_map<std::int64_t, std::pair<int, int>> session_ids;
+  {
+    auto s = db.prepare("SELECT s.id, p.code FROM sessions s JOIN participants p ON p.id = s.participant_id");
+    while (s.step()) {
+      session_ids[s.integer(0)] = {participants.id(s.text_view(1)), sessions.id(std::to_string(s.integer(0)))};
+    }
+  }
+
+  Grouper grouper(options.by);
+
+  // Discrimination: three finger values per trial.
+  {
+    auto q = db.prepare(
+        "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, t.outcome1, t.outcome2, t.outcome3, "
+        "t.combination_label FROM trials t WHERE t.mode != 'scene'" +
+        std::string(options.include_practice ? "" : " AND t.practice = 0"));
+    CachedIds condition_ids(conditions), combination_ids(combinations);
+    const bool by_combination =
+        std::find(options.by.begin(), options.by.end(), SummaryKey::combination) != options.by.end();
+    std::int64_t last_session = -1;
+    std::pair<int, int> session_key{};
+    while (q.step()) {
+      const std::int64_t trial_id = q.integer(0);
+      if (q.integer(1) != last_session) {
+        last_session = q.integer(1);
+        session_key = session_ids.at(last_session);
+      }
+      const auto& [participant, session] = session_key;
+      const bool answered = q.integer(3) != 0;
+      const double rt = q.is_null(4) ? std::numeric_limits<double>::quiet_NaN() : q.real(4);
+      std::array<int, kKeyKinds> ids{};
+      ids[static_cast<std::size_t>(SummaryKey::condition)] = condition_ids.id(q.text_view(2));
+      ids[static_cast<std::size_t>(SummaryKey::participant)] = participant;
+      ids[static_cast<std::size_t>(SummaryKey::session)] = session;
+      ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
+      ids[static_cast<std::size_t>(SummaryKey::combination)] =
+          !by_combination || q.is_null(8) ? no_combination : combination_ids.id(q.text_view(8));
+      for (int f = 0; f < kFingerCount; ++f) {
+        ids[static_cast<std::size_t>(SummaryKey::finger)] = finger_ids[static_cast<std::size_t>(f)];
+        Accumulator& a = grouper.group(ids);
+        a.add_trial(trial_id, answered, rt);
+        if (answered) {
+          if (auto o = outcome_of(q.text_view(5 + f))) a.counts.add(*o);
+        }
+      }
+    }
+  }
+
+  // Localisation: one value per tumor, plus one FP per false mark.
+  {
+    auto q = db.prepare(
+        "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, t.false_marks "
+        "FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
+        std::string(options.include_practice ? "" : " AND t.practice = 0") + " ORDER BY t.id");
+    std::int64_t previous_trial = -1;
+    while (q.step()) {
+      const std::int64_t trial_id = q.integer(0);
+      const auto& [participant, session] = session_ids.at(q.integer(1));
+      const bool answered = q.integer(3) != 0;
+      const double rt = q.is_null(4) ? std::numeric_limits<double>::quiet_NaN() : q.real(4);
+      std::array<int, kKeyKinds> ids{};
+      ids[static_cast<std::size_t>(SummaryKey::condition)] = conditions.id(q.text_view(2));
+      ids[static_cast<std::size_t>(SummaryKey::participant)] = participant;
+      ids[static_cast<std::size_t>(SummaryKey::session)] = session;
+      ids[static_cast<std::size_t>(SummaryKey::finger)] = no_finger;
+      ids[static_cast<std::size_t>(SummaryKey::combination)] = no_combination;
+      if (!q.is_null(5)) {
+        ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(q.text_view(5));
+        Accumulator& a = grouper.group(ids);
+        a.add_trial(trial_id, answered, rt);
+        if (auto o = outcome_of(q.text_view(6))) a.counts.add(*o);
+      }
+      if (trial_id != previous_trial) {  // the trial's false marks, and an unanswered trial, once
+        previous_trial = trial_id;
+        ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
+        const std::int64_t false_marks = q.is_null(7) ? 0 : q.integer(7);
+        if (!answered || false_marks > 0) {
+          Accumulator& a = grouper.group(ids);
+          a.add_trial(trial_id, answered, rt);
+          a.counts.fp += false_marks;
+        }
+      }
+    }
+  }
+
+  TrialSummary summary;
+  summary.by = options.by;
+  for (const auto& [key, a] : grouper.groups()) {
+    SummaryRow row;
+    for (SummaryKey k : options.by) {
+      row.key.push_back(names[static_cast<std::size_t>(k)].text(key[static_cast<std::size_t>(k)]));
+    }
+    row.counts = a.counts;
+    row.measures = diagnostic_measures(a.counts, options.confidence);
+    row.trials = a.trials;
+    row.unanswered = a.unanswered;
+    row.mean_rt_s = a.rt_n > 0 ? a.rt_mean : std::numeric_limits<double>::quiet_NaN();
+    row.sd_rt_s = a.rt_n > 1 ? std::sqrt(a.rt_m2 / static_cast<double>(a.rt_n - 1)) : std::numeric_limits<double>::quiet_NaN();
+    summary.rows.push_back(std::move(row));
+  }
+  std::sort(summary.rows.begin(), summary.rows.end(), [](const SummaryRow& a, const SummaryRow& b) { return a.key < b.key; });
+  return summary;
+}
+
+}  // namespace palprig

@@ -1,0 +1,47 @@
+#pragma once
+// `palprig stats trials`: per-group confusion counts of a trial database with paper 002's
+// measures (Se, Sp, PPV, ACC, each with its Wilson interval) and response times.
+//
+// Units scored: every finger value of a discrimination trial (3 per trial, as in the paper);
+// every tumor of a localisation trial (TP detected / FN missed), plus one FP per false mark
+// (tumor "-"). Unanswered (timed-out) trials are counted, not scored. Practice trials are left
+// out unless asked for. Response times: mean and sd over answered trials, each trial counted
+// once per group it contributes to.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "statistics/diagnostic_measures.hpp"
+#include "store/trial_store.hpp"
+
+namespace palprig {
+
+enum class SummaryKey { condition, participant, finger, tumor, combination, session };
+
+const char* to_string(SummaryKey key) noexcept;
+// "condition,participant" -> keys; throws InputError naming the unknown word.
+std::vector<SummaryKey> parse_summary_keys(const std::string& list);
+
+struct SummaryOptions {
+  std::vector<SummaryKey> by;
+  bool include_practice = false;
+  double confidence = 0.95;
+};
+
+struct SummaryRow {
+  std::vector<std::string> key;  // one value per SummaryOptions::by, in that order
+  ConfusionCounts counts;
+  DiagnosticMeasures measures;
+  std::int64_t trials = 0;      // trials that contributed (answered or not)
+  std::int64_t unanswered = 0;  // of which timed out
+  double mean_rt_s = 0, sd_rt_s = 0;  // NaN when fewer than 1 (mean) or 2 (sd) answered trials
+};
+
+struct TrialSummary {
+  std::vector<SummaryKey> by;
+  std::vector<SummaryRow> rows;  // sorted by key
+};
+
+TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options);
+
+}  // namespace palprig

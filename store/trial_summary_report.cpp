@@ -1,0 +1,129 @@
+#include "store/trial_summary_report.hpp"
+
+#include <cmath>
+#include <array>
+#include <cstdio>
+#include <sstream>
+
+namespace palprig {
+
+namespace {
+
+struct NamedMeasure {
+  const char* name;
+  const Measure& m;
+};
+
+std::array<NamedMeasure, 4> measures_of(const SummaryRow& r) {
+  return {{{"Se", r.measures.se}, {"Sp", r.measures.sp}, {"PPV", r.measures.ppv}, {"ACC", r.measures.acc}}};
+}
+
+std::string fixed(double x, int decimals) {
+  if (!std::isfinite(x)) return "NA";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
+  return buf;
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+nlohmann::ordered_json number_or_null(double x) {
+  if (std::isfinite(x)) return x;
+  return nullptr;
+}
+
+}  // namespace
+
+std::string summary_table(const TrialSummary& s) {
+  std::vector<std::vector<std::string>> cells;
+  std::vector<std::string> header;
+  for (SummaryKey k : s.by) header.push_back(to_string(k));
+  for (const char* h : {"trials", "no answer", "TP", "FN", "TN", "FP", "Se [95% CI]", "Sp [95% CI]", "PPV [95% CI]",
+                        "ACC [95% CI]", "RT mean s", "RT sd s"}) {
+    header.push_back(h);
+  }
+  cells.push_back(header);
+  for (const SummaryRow& r : s.rows) {
+    std::vector<std::string> line = r.key;
+    for (std::int64_t v : {r.trials, r.unanswered, r.counts.tp, r.counts.fn, r.counts.tn, r.counts.fp}) {
+      line.push_back(std::to_string(v));
+    }
+    for (const auto& nm : measures_of(r)) {
+      line.push_back(nm.m.defined ? fixed(nm.m.value, 3) + " [" + fixed(nm.m.lower, 3) + ", " + fixed(nm.m.upper, 3) + "]"
+                                  : std::string("NA"));
+    }
+    line.push_back(fixed(r.mean_rt_s, 2));
+    line.push_back(fixed(r.sd_rt_s, 2));
+    cells.push_back(line);
+  }
+  std::vector<std::size_t> width(header.size(), 0);
+  for (const auto& line : cells) {
+    for (std::size_t i = 0; i < line.size(); ++i) width[i] = std::max(width[i], line[i].size());
+  }
+  std::ostringstream out;
+  for (const auto& line : cells) {
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      out << line[i] << (i + 1 < line.size() ? std::string(width[i] - line[i].size() + 2, ' ') : "");
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string summary_csv(const TrialSummary& s) {
+  std::ostringstream out;
+  for (SummaryKey k : s.by) out << to_string(k) << ",";
+  out << "trials,unanswered,TP,FN,TN,FP";
+  for (const char* m : {"Se", "Sp", "PPV", "ACC"}) out << "," << m << "," << m << "_lower," << m << "_upper";
+  out << ",rt_mean_s,rt_sd_s\n";
+  for (const SummaryRow& r : s.rows) {
+    for (const auto& k : r.key) out << csv_field(k) << ",";
+    out << r.trials << "," << r.unanswered << "," << r.counts.tp << "," << r.counts.fn << "," << r.counts.tn << ","
+        << r.counts.fp;
+    for (const auto& nm : measures_of(r)) {
+      if (nm.m.defined) out << "," << fixed(nm.m.value, 6) << "," << fixed(nm.m.lower, 6) << "," << fixed(nm.m.upper, 6);
+      else out << ",NA,NA,NA";
+    }
+    out << "," << fixed(r.mean_rt_s, 4) << "," << fixed(r.sd_rt_s, 4) << "\n";
+  }
+  return out.str();
+}
+
+nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence) {
+  nlohmann::ordered_json j;
+  j["convention"] = "per finger value (discrimination) or per tumor (localisation): Se = TP/(TP+FN), "
+                    "Sp = TN/(TN+FP), PPV = TP/(TP+FP), ACC = (TP+TN)/all (paper 002 eq. 5-8); Wilson score "
+                    "intervals without continuity correction";
+  j["confidence"] = confidence;
+  j["by"] = nlohmann::ordered_json::array();
+  for (SummaryKey k : s.by) j["by"].push_back(to_string(k));
+  j["rows"] = nlohmann::ordered_json::array();
+  for (const SummaryRow& r : s.rows) {
+    nlohmann::ordered_json row;
+    for (std::size_t i = 0; i < s.by.size(); ++i) row[to_string(s.by[i])] = r.key[i];
+    row["trials"] = r.trials;
+    row["unanswered"] = r.unanswered;
+    row["TP"] = r.counts.tp;
+    row["FN"] = r.counts.fn;
+    row["TN"] = r.counts.tn;
+    row["FP"] = r.counts.fp;
+    for (const auto& nm : measures_of(r)) {
+      if (nm.m.defined) {
+        row[nm.name] = {{"k", nm.m.k}, {"n", nm.m.n}, {"value", nm.m.value}, {"lower", nm.m.lower}, {"upper", nm.m.upper}};
+      } else {
+        row[nm.name] = nullptr;
+      }
+    }
+    row["rt_mean_s"] = number_or_null(r.mean_rt_s);
+    row["rt_sd_s"] = number_or_null(r.sd_rt_s);
+    j["rows"].push_back(std::move(row));
+  }
+  return j;
+}
+
+}  // namespace palprig
