@@ -84,6 +84,7 @@ nlohmann::json summary_json(const RunSummary& s, const LoadedRun& run, const Run
   if (opt.mode == LoopMode::realtime) {
     j["wake_latency"] = lat(s.wake_latency);
     j["realtime_note"] = s.realtime_note;
+    j["realtime_practices"] = s.realtime_practices;
   }
   return j;
 }
@@ -110,6 +111,7 @@ void print_summary(std::ostream& out, const RunSummary& s, const LoadedRun& run,
   if (opt.mode == LoopMode::realtime) {
     out << "  wake-up latency p50/p99/p99.9/max " << s.wake_latency.p50_us << "/" << s.wake_latency.p99_us << "/"
         << s.wake_latency.p999_us << "/" << s.wake_latency.max_us << " us\n";
+    out << "  real time: " << s.realtime_practices << "\n";
     if (!s.realtime_note.empty()) out << "  note: " << s.realtime_note << "\n";
   }
   out << "  faults: " << (s.fault == FaultCode::none ? std::string("none") : std::string(to_string(s.fault)) +
@@ -153,6 +155,14 @@ void register_run_command(CLI::App& app) {
   auto* rt = sub->add_flag("--realtime", o->realtime, "Real time: absolute deadlines on the monotonic clock");
   sub->add_flag("--replay", o->replay, "As fast as possible on simulated time (default)")->excludes(rt);
   sub->add_flag("--no-fifo", [o](std::int64_t) { o->run.want_fifo = false; }, "Real time without SCHED_FIFO");
+  sub->add_option("--priority", o->run.realtime.fifo_priority,
+                  "SCHED_FIFO priority of the loop in real time (the Modbus bus thread and the tablet reader run below it)")
+      ->default_val(80)
+      ->check(CLI::Range(1, 98));
+  sub->add_option("--cpu", o->run.realtime.cpu, "Pin the real-time loop to this CPU (e.g. one in isolcpus); default: not pinned")
+      ->check(CLI::Range(0, 1023));
+  sub->add_flag("--no-pm-qos", [o](std::int64_t) { o->run.realtime.pm_qos = false; },
+                "Real time without holding /dev/cpu_dma_latency at 0 (lets the CPUs sleep deeply: a laptop on battery)");
   sub->add_option("--telemetry", o->telemetry, "Write every tick to FILE (.csv, or .bin for the compact binary)");
   sub->add_flag("--json", o->json, "Print the summary as one JSON object");
   sub->callback([o]() {

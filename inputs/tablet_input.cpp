@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "runtime/realtime.hpp"
 #include "runtime/worker_fault.hpp"
 #include "models/parse_error.hpp"
 
@@ -20,7 +21,7 @@ constexpr int kHeartbeatMs = 10;
 
 TabletInput::TabletInput(std::unique_ptr<PenEventSource> source, const TabletConfig& config)
     : source_(std::move(source)), decoder_(source_->axes(), config), description_(source_->describe()),
-      duration_s_(source_->duration_s()) {
+      duration_s_(source_->duration_s()), reader_fifo_priority_(config.reader_fifo_priority) {
   Published first;
   first.frame = decoder_.frame();
   first.heartbeat_ns = mono_ns();
@@ -35,6 +36,9 @@ TabletInput::~TabletInput() {
 
 void TabletInput::reader_main() noexcept {
   try {
+    // Below the loop and the bus thread (runtime/thread_priorities.hpp). Refused quietly when
+    // the system does not permit it: the loop's own note says so once.
+    (void)set_thread_fifo(reader_fifo_priority_);
     std::vector<input_event> events;
     events.reserve(256);
     PenState resynced;

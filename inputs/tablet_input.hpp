@@ -51,6 +51,7 @@ class TabletInput final : public InputSource {
   std::atomic<bool> stop_{false};
   std::atomic<bool> started_{false};  // the loop asked for its first sample
   std::atomic<std::uint64_t> frames_{0};
+  int reader_fifo_priority_ = 0;
   std::int64_t epoch_ns_ = 0;  // loop time 0 on CLOCK_MONOTONIC, fixed at the first latest()
   std::thread reader_;
 };

@@ -62,6 +62,9 @@ class EvemuPenSource final : public PenEventSource {
   std::string why() const override { return "end of the recording " + path_; }
   double duration_s() const noexcept override;
   const std::vector<input_event>& events() const noexcept { return events_; }
+  // CLOCK_MONOTONIC when playback started (0 before the first next()): event i came due at
+  // start_ns() + (its time - the first event's time), what a kernel would stamp on a live one.
+  std::int64_t start_ns() const noexcept { return start_ns_; }
 
  private:
   std::string path_;
