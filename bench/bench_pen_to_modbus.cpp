@@ -8,7 +8,10 @@
 // loop tick at 1 kHz (FIFO 80) -> ModbusRig bus thread at the rig's io_rate_hz (FIFO 70) ->
 // FC16 over TCP -> sim-rig. The recording presses the pen down on tumor B of the bundled
 // phantom and lifts it again, every 250 ms; each press is matched with the first non-zero write
-// of finger 1's output after it, each lift with the first zero write after it.
+// of finger 1's output after it, each lift with the first write below the value held at the
+// lift (the setpoint then ramps down under the rig's slew limit, 2000 kPa/s).
+// sim-rig runs under `chrt -f 50`: a real module is hardware that the machine's other work
+// cannot delay, so the simulator must not be the part that waits for the CPU.
 //   build/bin/bench_pen_to_modbus [SECONDS=20]
 // (No /dev/uinput on the development machine, so no kernel-stamped events could be injected;
 // with a live tablet the reader's own wake-up adds to the figure.)
@@ -18,6 +21,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -65,11 +69,19 @@ std::vector<PenEdge> write_recording(const std::string& path, double seconds) {
   ev(0.0, 3, 0x01, 5000);
   ev(0.0, 0, 0, 0);
   std::vector<PenEdge> edges;
+  // Each edge lands at a pseudo-random phase within 4 ms (two bus periods, four loop periods),
+  // so the figures cover every phase of the pen against the loop and the bus, not one.
+  std::uint32_t lcg = 12345;
+  auto phase_s = [&] {
+    lcg = lcg * 1664525u + 1013904223u;
+    return double(lcg >> 8) / double(1u << 24) * 0.004;
+  };
   for (double t = 0.1; t + 0.25 < seconds; t += 0.25) {
-    ev(t, 1, 0x14a, 1), ev(t, 3, 0x18, 3072), ev(t, 0, 0, 0);
-    edges.push_back({t, true});
-    ev(t + 0.125, 1, 0x14a, 0), ev(t + 0.125, 3, 0x18, 0), ev(t + 0.125, 0, 0, 0);
-    edges.push_back({t + 0.125, false});
+    const double down = t + phase_s(), up = t + 0.125 + phase_s();
+    ev(down, 1, 0x14a, 1), ev(down, 3, 0x18, 3072), ev(down, 0, 0, 0);
+    edges.push_back({down, true});
+    ev(up, 1, 0x14a, 0), ev(up, 3, 0x18, 0), ev(up, 0, 0, 0);
+    edges.push_back({up, false});
   }
   // Stay in proximity, pen up, until the end (heartbeats keep the sample fresh).
   ev(seconds, 3, 0x00, 11001), ev(seconds, 0, 0, 0);
@@ -88,12 +100,12 @@ Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
   posix_spawn_file_actions_addclose(&fa, fds[0]);
-  std::vector<std::string> args = {PALPRIG_BIN, "sim-rig", "--rig", rig, "--listen", "127.0.0.1:0", "--write-log", write_log};
+  std::vector<std::string> args = {"chrt", "-f", "50", PALPRIG_BIN, "sim-rig", "--rig", rig, "--listen", "127.0.0.1:0", "--write-log", write_log};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   Child c;
-  if (posix_spawn(&c.pid, PALPRIG_BIN, &fa, nullptr, argv.data(), environ) != 0) throw std::runtime_error("spawn sim-rig");
+  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw std::runtime_error("spawn sim-rig");
   close(fds[1]);
   c.out = fdopen(fds[0], "r");
   return c;
@@ -170,8 +182,12 @@ int main(int argc, char** argv) {
   std::size_t unmatched = 0;
   for (const auto& e : edges) {
     const long long due = start + static_cast<long long>(e.t_s * 1e9);  // the recording's first event is at 0
-    auto it = std::find_if(writes.begin(), writes.end(),
-                           [&](const auto& w) { return w.first >= due && (e.press ? w.second > 0 : w.second == 0); });
+    // The setpoint moves under the rig's slew limit in both directions, so the pen's effect
+    // arrives with the first write that moves the output its way: up from 0 after a press,
+    // down from the value held at the lift.
+    auto first = std::find_if(writes.begin(), writes.end(), [&](const auto& w) { return w.first >= due; });
+    const unsigned held = first == writes.begin() ? 0u : std::prev(first)->second;
+    auto it = std::find_if(first, writes.end(), [&](const auto& w) { return e.press ? w.second > 0 : w.second < held; });
     if (it == writes.end() || double(it->first - due) > 100e6) {
       ++unmatched;
       continue;
