@@ -12,7 +12,7 @@
 // lift (the setpoint then ramps down under the rig's slew limit, 2000 kPa/s).
 // sim-rig runs under `chrt -f 50`: a real module is hardware that the machine's other work
 // cannot delay, so the simulator must not be the part that waits for the CPU.
-//   build/bin/bench_pen_to_modbus [SECONDS=20]
+//   build/bin/bench_pen_to_modbus [SECONDS=20]   (root, or an rtprio limit, for chrt and FIFO)
 // (No /dev/uinput on the development machine, so no kernel-stamped events could be injected;
 // with a live tablet the reader's own wake-up adds to the figure.)
 #include <signal.h>
@@ -120,7 +120,8 @@ double pct(std::vector<double> v, double q) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const double seconds = argc > 1 ? std::atof(argv[1]) : 20.0;
+  // bench/run_all.sh passes Google Benchmark flags to every program: only a number is a length.
+  const double seconds = argc > 1 && std::atof(argv[1]) > 0 ? std::atof(argv[1]) : 20.0;
   const std::string dir = "/tmp/palprig-bench-e2e-" + std::to_string(getpid());
   std::filesystem::create_directories(dir);
   const std::string recording = dir + "/presses.evemu", write_log = dir + "/writes.csv", rig_path = dir + "/rig.json";
