@@ -11,6 +11,7 @@
 
 #include "cli/commands.hpp"
 #include "controller/loop_probe.hpp"
+#include "models/parse_error.hpp"
 #include "runtime/rt_readiness.hpp"
 
 using namespace palprig;
@@ -68,6 +69,8 @@ void register_rt_check_command(CLI::App& app) {
   sub->add_flag("--no-pm-qos", [o](std::int64_t) { o->rt.pm_qos = false; }, "Measure without the PM QoS request, as for palprig run");
   sub->add_flag("--json", o->json, "Print the report as one JSON object");
   sub->callback([o]() {
+    if (o->rt.cpu >= 0 && !cpu_allowed(o->rt.cpu))
+      throw InputError("--cpu", std::to_string(o->rt.cpu), "a CPU this process may run on (" + allowed_cpus_text() + ")");
     const SystemFacts facts = probe_system(ProbeRoots{}, o->rt.fifo_priority);
     if (!o->json)
       std::cout << "palprig rt-check: measuring the loop at " << o->rate_hz << " Hz for " << o->seconds << " s ..." << std::endl;

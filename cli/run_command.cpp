@@ -178,6 +178,8 @@ void register_run_command(CLI::App& app) {
     opt.duration_s = o->duration_s > 0 ? o->duration_s : run.input->duration_s();
     if (!(opt.duration_s > 0))
       throw InputError("--duration-s", "value", "a positive duration (the input has no length of its own)");
+    if (opt.realtime.cpu >= 0 && !cpu_allowed(opt.realtime.cpu))
+      throw InputError("--cpu", std::to_string(opt.realtime.cpu), "a CPU this process may run on (" + allowed_cpus_text() + ")");
     opt.telemetry_path = o->telemetry;
     cli::install_stop_signals();
     opt.stop_signal = &cli::stop_signal();

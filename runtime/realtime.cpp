@@ -92,6 +92,25 @@ std::string describe_practices(const RealtimeSetup& r, const RealtimeOptions& o)
   return s.empty() ? "none" : s;
 }
 
+bool cpu_allowed(int cpu) noexcept {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (cpu < 0 || cpu >= CPU_SETSIZE || sched_getaffinity(0, sizeof set, &set) != 0) return false;
+  return CPU_ISSET(cpu, &set);
+}
+
+std::string allowed_cpus_text() {
+  std::string s;
+  for (int c = 0; c < CPU_SETSIZE; ++c) {
+    if (!cpu_allowed(c)) continue;
+    int end = c;
+    while (end + 1 < CPU_SETSIZE && cpu_allowed(end + 1)) ++end;
+    s += (s.empty() ? "" : ",") + std::to_string(c) + (end > c ? "-" + std::to_string(end) : "");
+    c = end;
+  }
+  return s;
+}
+
 std::string set_thread_fifo(int priority) noexcept {
   if (priority <= 0) return {};
   sched_param sp{};

@@ -46,6 +46,11 @@ RealtimeSetup enter_realtime(int fifo_priority = 80, bool want_fifo = true) noex
 // stack prefaulted 256 KiB, CPU 1" (only the parts granted).
 std::string describe_practices(const RealtimeSetup& setup, const RealtimeOptions& options);
 
+// The CPUs this process may run on, as a kernel CPU list ("0-1"), and whether `cpu` is one of
+// them: `--cpu` is checked against it before anything moves.
+std::string allowed_cpus_text();
+bool cpu_allowed(int cpu) noexcept;
+
 // Puts the calling thread on SCHED_FIFO at `priority` (0: leave it at normal scheduling).
 // Returns an empty string on success, else one line saying why not (for worker threads:
 // the Modbus bus thread and the tablet reader, whose priorities sit below the loop's).

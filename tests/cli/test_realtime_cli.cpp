@@ -1,4 +1,5 @@
-// palprig rt-check as the lab engineer runs it: a short real measured run of the loop.
+// The real-time command line: palprig rt-check as the lab engineer runs it (short real measured
+// runs), and run's --cpu / --no-pm-qos options.
 #include <gtest/gtest.h>
 #include <sys/utsname.h>
 
@@ -44,4 +45,30 @@ TEST(RtCheckCli, BadRateIsRefusedWithExit2) {
   const ProcessResult r = run_process(palprig_bin() + " rt-check --rate-hz 0");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--rate-hz"), std::string::npos) << r.err;
+}
+
+TEST(RtCheckCli, CpuThatDoesNotExistIsRefusedWithExit2) {
+  const ProcessResult r = run_process(palprig_bin() + " rt-check --seconds 0.2 --cpu 1023");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--cpu"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("a CPU this process may run on"), std::string::npos) << r.err;
+}
+
+TEST(RunCliRealtime, CpuThatDoesNotExistIsRefusedBeforeAnythingMoves) {
+  const ProcessResult r = run_process(palprig_bin() + " run --scene " + source_dir() +
+                                      "/data/scenes/phantom_abc.json --realtime --duration-s 0.2 --cpu 1023");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--cpu"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;  // no summary: the loop never ran
+}
+
+TEST(RunCliRealtime, SummarySaysWhichPracticesWereInEffect) {
+  const ProcessResult r = run_process(palprig_bin() + " run --scene " + source_dir() +
+                                      "/data/scenes/phantom_abc.json --realtime --duration-s 0.2 --no-pm-qos --cpu 0 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const std::string practices = j.at("realtime_practices");
+  EXPECT_EQ(practices.find("PM QoS"), std::string::npos) << practices;
+  EXPECT_NE(practices.find("CPU 0"), std::string::npos) << practices;
+  EXPECT_NE(practices.find("timer slack 1 ns"), std::string::npos) << practices;
 }
