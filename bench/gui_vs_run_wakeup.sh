@@ -8,6 +8,7 @@ set -eu
 build=${1:-build}
 secs=${2:-20}
 bin="$build/bin/palprig"
+scene="$(dirname "$0")/../data/scenes/phantom_abc.json"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
@@ -23,14 +24,14 @@ print(f"{label:<34} ticks {j['ticks']:>6}  overruns {j['overruns']:>3}  wake-up 
 PY
 }
 
-"$bin" run --realtime --input sweep --duration-s "$secs" --json > "$out/run.json"
+"$bin" run --realtime --scene "$scene" --input sweep --duration-s "$secs" --json > "$out/run.json"
 summary "palprig run (no window)" "$out/run.json"
 
 if command -v xvfb-run >/dev/null 2>&1; then
   xvfb-run -a -s '-screen 0 1400x1000x24' env QT_QPA_PLATFORM=xcb \
-    "$bin" gui --input sweep --json --screenshot "$out/gui.png" --after-s "$secs" > "$out/gui.json"
+    "$bin" gui --scene "$scene" --input sweep --json --screenshot "$out/gui.png" --after-s "$secs" > "$out/gui.json"
   summary "palprig gui (Xvfb, traces drawing)" "$out/gui.json"
 else
-  QT_QPA_PLATFORM=offscreen "$bin" gui --input sweep --json --screenshot "$out/gui.png" --after-s "$secs" > "$out/gui.json"
+  QT_QPA_PLATFORM=offscreen "$bin" gui --scene "$scene" --input sweep --json --screenshot "$out/gui.png" --after-s "$secs" > "$out/gui.json"
   summary "palprig gui (offscreen, traces)" "$out/gui.json"
 fi

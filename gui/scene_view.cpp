@@ -17,6 +17,10 @@ namespace palprig::gui {
 namespace {
 constexpr double kFingerRadius_mm = 8.0;  // a 16 mm fingertip (paper 002)
 constexpr int kImageMaxPx = 480;
+// A function scene costs about 5 us per sample (every layer and inclusion is evaluated), so it
+// is rendered coarser and scaled up: 200 px is about 0.2 s of one core, done once, and a
+// breathing scene's 120 px re-render (about 70 ms) runs on a worker thread once a second.
+constexpr int kFunctionImageMaxPx = 200, kBreathingImageMaxPx = 120;
 constexpr double kRenderForce_N = 2.0;  // the scene as the reference press feels it
 }  // namespace
 
@@ -34,7 +38,8 @@ SceneView::SceneView(const SceneFile& scene, const FingerLayout& layout, double 
       artery_names_.push_back(f->arteries().artery(i).spec().name);
     }
   }
-  image_ = render_scene_image(*scene_, kRenderForce_N, 0.0, kImageMaxPx, kImageMaxPx);
+  const int px = dynamic_cast<const FunctionScene*>(scene_) ? kFunctionImageMaxPx : kImageMaxPx;
+  image_ = render_scene_image(*scene_, kRenderForce_N, 0.0, px, px);
 }
 
 SceneView::~SceneView() {
@@ -139,11 +144,11 @@ void SceneView::advance_scene_time(double t_s) {
     image_ = pending_image_.get();
     update();
   }
-  if (!pending_image_.valid() && std::abs(t_s - last_render_t_s_) >= 0.5) {
+  if (!pending_image_.valid() && std::abs(t_s - last_render_t_s_) >= 1.0) {
     last_render_t_s_ = t_s;
     const Scene* scene = scene_;
     pending_image_ = std::async(std::launch::async, [scene, t_s] {
-      return render_scene_image(*scene, kRenderForce_N, t_s, kImageMaxPx / 2, kImageMaxPx / 2);
+      return render_scene_image(*scene, kRenderForce_N, t_s, kBreathingImageMaxPx, kBreathingImageMaxPx);
     });
   }
 }
@@ -196,6 +201,8 @@ void SceneView::render_to(QPainter& p) {
   p.fillRect(rect(), QColor(60, 60, 66));
   const QRectF r = scene_rect();
   p.drawImage(r, image_);
+  p.save();
+  p.setClipRect(r);  // the tissue, its arteries and dimples end at the scene's edge
   const double px_per_mm = r.width() / (bounds_.x1_mm - bounds_.x0_mm);
   // A light 10 mm grid: the undeformed surface the dimples sink into.
   p.setPen(QPen(QColor(255, 255, 255, 60), 1));
@@ -228,16 +235,16 @@ void SceneView::render_to(QPainter& p) {
       p.drawText(c + QPointF(rad + 3, -rad), QString::fromStdString(t.name));
     }
   }
-  if (!have_record_) return;
+  if (!have_record_) {
+    p.restore();
+    return;
+  }
   const bool pressed = record_.flags & kInContact;
   const auto centres = layout_.centres(record_.x_mm, record_.y_mm);
-  if (pressed) {
-    p.save();
-    p.setClipRect(r);  // the tissue ends at the scene's edge
+  if (pressed)
     for (int i = 0; i < kFingerCount; ++i)
       draw_indentation(p, centres[i], indentation_.depth_mm(record_.force_N, record_.stiffness[i]));
-    p.restore();
-  }
+  p.restore();
   for (int i = 0; i < kFingerCount; ++i) {
     const QPointF c = pixel_of(centres[i].x_mm, centres[i].y_mm);
     const double rad = kFingerRadius_mm * px_per_mm;

@@ -2,7 +2,7 @@
 // SceneView: the tissue, the pen and the three fingers, and the pen input itself.
 //
 // Shows the scene (stiffness map or rendered function scene; breathing scenes are re-rendered
-// twice a second on a worker thread), arteries, tumor outlines (hidden for participants), the
+// once a second on a worker thread), arteries, tumor outlines (hidden for participants), the
 // pen position from the loop's telemetry, the three finger circles coloured by the setpoint each
 // finger gets, and the tissue indenting under each pressing finger (paper 001's tiered grid,
 // gui/indentation.hpp).
