@@ -295,6 +295,28 @@ class LiveWindowTest : public QObject {
       }
   }
 
+  void sigtermVentsEveryChannelAndExitsOne() {
+    TempDir dir;
+    const auto csv = dir.path() / "telemetry.csv";
+    // Start the window, wait (polling the file, up to 30 s) until the loop has recorded a
+    // while, then SIGTERM it as a session manager or an operator's kill would.
+    const std::string script =
+        "QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --input sweep --telemetry " + csv.string() +
+        " & pid=$!; i=0; while [ \"$(stat -c %s " + csv.string() + " 2>/dev/null || echo 0)\" -lt 60000 ] && [ $i -lt 300 ];"
+        " do sleep 0.1; i=$((i+1)); done; kill -TERM $pid; wait $pid; echo exit=$?";
+    const auto r = test_support::run_process("sh -c '" + QString::fromStdString(script).replace("'", "'\\''").toStdString() + "'");
+    QVERIFY2(r.out.find("exit=1") != std::string::npos, (r.out + r.err).c_str());
+    QVERIFY2(r.err.find("stopped by signal") != std::string::npos, r.err.c_str());
+    // The last record: fault 6 (signal), every setpoint 0 kPa, flag 8 (vented).
+    const QStringList rows = QString::fromStdString(test_support::read_file(csv)).trimmed().split('\n');
+    QVERIFY(rows.size() > 100);
+    const QStringList last = rows.back().split(',');
+    QCOMPARE(last.size(), 21);
+    QCOMPARE(last[19].toInt(), int(FaultCode::signal));
+    for (int col = 11; col <= 13; ++col) QCOMPARE(last[col].toDouble(), 0.0);
+    QVERIFY(last[20].toInt() & kVented);
+  }
+
   void realWindowUnderXvfb() {
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) QSKIP("xvfb-run is not installed (package xvfb)");
     TempDir dir;
