@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/psychometric_command.hpp"  // issue 13
 #include "statistics/csv_groups.hpp"
 #include "statistics/csv_table.hpp"
 #include "statistics/statistics_error.hpp"
@@ -313,4 +314,5 @@ void register_stats_command(CLI::App& app) {
   register_pearson(stats_app);
   register_describe(stats_app);
   register_trials(stats_app);
+  register_psychometric_command(*stats_app);  // issue 13
 }
