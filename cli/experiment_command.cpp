@@ -30,6 +30,8 @@
 #include "experiments/simulated_participant.hpp"
 #include "store/trial_store.hpp"
 #include "cli/threshold_experiment.hpp"
+#include "cli/pulse_experiment.hpp"
+#include "experiments/pulse_task.hpp"
 #include "experiments/threshold_protocol.hpp"
 #include "formats/json_file.hpp"
 #include "models/parse_error.hpp"
@@ -172,10 +174,15 @@ void check_levels_fit_rig(const Protocol& protocol, const RigConfig& rig) {
 }
 
 void run_experiment(const RunArgs& a) {
-  // --- issue 13: threshold protocols (staircases, QUEST) run in cli/threshold_experiment.cpp ---
-  if (is_threshold_protocol(read_json_file(a.protocol))) {
+  // --- issue 13: threshold protocols (staircases, QUEST) and the pulse task run in their own files ---
+  const nlohmann::json document = read_json_file(a.protocol);
+  if (is_threshold_protocol(document)) {
     cli::run_threshold_experiment({a.protocol, a.participant, a.db, a.rig, a.cal, a.resume, a.quiet, a.seed, a.speed,
                                    a.sim_threshold_noise_kPa, a.sim_threshold_criterion_kPa});
+    return;
+  }
+  if (is_pulse_protocol(document)) {  // the pulse-localisation task: cli/pulse_experiment.cpp
+    cli::run_pulse_experiment({a.protocol, a.participant, a.db, a.rig, a.cal, a.resume, a.quiet, a.seed, a.speed});
     return;
   }
   // --- end issue 13 ---
