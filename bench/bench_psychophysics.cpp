@@ -78,13 +78,13 @@ void recovery(benchmark::State& state, const char* protocol_file, double target_
       auto backend = make_backend(rig);
       backend->open();
       RigStimulus output(config, *backend);
-      model.seed = static_cast<std::uint64_t>(seed);
+      model.seed = static_cast<std::uint64_t>(state.range(0)) + static_cast<std::uint64_t>(seed);
       SimulatedThresholdObserver observer(model);
       std::vector<AdaptiveTrack> tracks;
       for (const auto& spec : p.tracks) tracks.emplace_back(spec);
       SimulatedClock clock;
       ThresholdSessionOptions options;
-      options.seed = 5000 + static_cast<std::uint64_t>(seed);
+      options.seed = static_cast<std::uint64_t>(state.range(0)) + static_cast<std::uint64_t>(seed);
       run_threshold_session(p, tracks, output, observer, clock, options);
       for (std::size_t t = 0; t < tracks.size(); ++t) {
         estimates[t].push_back(tracks[t].estimate().threshold_kPa);
@@ -109,8 +109,9 @@ void recovery(benchmark::State& state, const char* protocol_file, double target_
 
 void BM_StaircaseRecovery20(benchmark::State& state) { recovery(state, "threshold_1up3down.json", std::pow(0.5, 1.0 / 3.0)); }
 void BM_QuestRecovery20(benchmark::State& state) { recovery(state, "threshold_quest.json", 0.82); }
-BENCHMARK(BM_StaircaseRecovery20)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK(BM_QuestRecovery20)->Unit(benchmark::kMillisecond)->Iterations(1);
+// The argument is the seed base: three independent panels of 20 participants each.
+BENCHMARK(BM_StaircaseRecovery20)->Arg(0)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_QuestRecovery20)->Arg(0)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 
