@@ -211,3 +211,29 @@ TEST(experiments_threshold_session, protocol_above_the_rigs_p_max_is_refused_bef
 
 }  // namespace
 }  // namespace palprig
+
+namespace palprig {
+namespace {
+
+TEST(experiments_threshold_session, a_person_answers_in_the_terminal_and_q_keeps_the_answers) {
+  ScratchDir dir;
+  const std::string db = (dir / "person.db").string();
+  // Enter starts; "2" and "1" answer two trials (the second and the first interval); q stops.
+  const auto r = testing::run_palprig({"experiment", "run", "--protocol",
+                                       (testing::protocols_dir() / "threshold_1up3down.json").string(), "--participant",
+                                       "P01", "--db", db},
+                                      "\n2\n1\nq\n");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.out.find("Which interval was stronger?"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("stopped after 2 trials"), std::string::npos) << r.err;
+  TrialStore store = open_trial_store_for_reading(db);
+  auto q = store.database().prepare("SELECT response, answered FROM threshold_trials ORDER BY position");
+  ASSERT_TRUE(q.step());
+  EXPECT_EQ(q.integer(0), 1);
+  ASSERT_TRUE(q.step());
+  EXPECT_EQ(q.integer(0), 0);
+  EXPECT_FALSE(q.step());
+}
+
+}  // namespace
+}  // namespace palprig
