@@ -83,8 +83,8 @@ TEST(experiments_threshold_runner, intervals_carry_reference_and_increment_on_th
     }
     EXPECT_EQ(one_finger_holds, 24);  // 12 one-finger trials x 2 intervals
     EXPECT_EQ(output.calls.back().what, "vent");
-    // Always correct: each track went down 4 times (12 trials / 3) from 4 kPa by 0.8 kPa.
-    for (const auto& t : tracks) EXPECT_NEAR(t.next_level_kPa(), 0.8, 1e-9);
+    // Always correct: each track went down 4 times (12 trials / 3) from 2 kPa by 0.5 kPa.
+    for (const auto& t : tracks) EXPECT_NEAR(t.next_level_kPa(), 0.0, 1e-9);
   }
 }
 
@@ -108,7 +108,7 @@ TEST(experiments_threshold_runner, unanswered_trials_leave_the_track_and_a_stop_
   ASSERT_EQ(records.size(), 5u);
   for (const auto& r : records) {
     EXPECT_FALSE(r.answered);
-    EXPECT_DOUBLE_EQ(r.level_kPa, 4.0);  // the start level again and again
+    EXPECT_DOUBLE_EQ(r.level_kPa, 2.0);  // the start level again and again
   }
   for (const auto& t : tracks) EXPECT_EQ(t.trials(), 0);
   EXPECT_EQ(output.calls.back().what, "vent");

@@ -154,7 +154,7 @@ TEST(experiments_threshold_session, sigkill_and_resume_continue_the_same_stairca
   EXPECT_NE(resumed.out.find("one-finger: threshold"), std::string::npos) << resumed.out;
 
   // Replaying every stored answer through fresh tracks reproduces every stored level and state:
-  // the resumed part continued the killed staircases (a new staircase would restart at 4 kPa).
+  // the resumed part continued the killed staircases (a new staircase would restart at 2 kPa).
   TrialStore store = open_trial_store_for_reading(db);
   EXPECT_EQ(scalar(store, "SELECT count(*) FROM sessions WHERE status = 'completed'"), 1);
   const auto total = scalar(store, "SELECT count(*) FROM threshold_trials");
