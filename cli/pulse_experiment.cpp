@@ -29,7 +29,7 @@ void run_pulse_experiment(const PulseRunRequest& a) {
                      "not read; run it from the GUI)");
   }
   std::vector<SceneFile> scenes;
-  for (const auto& c : from_file.conditions) scenes.push_back(load_scene_file(c.scene_file));
+  for (const auto& c : from_file.conditions) scenes.push_back(c.generated ? SceneFile{} : load_scene_file(c.scene_file));
   const RigConfig rig = a.rig.empty() ? load_rig_file(data_dir() / "rigs" / "simulated.json") : load_rig_file(a.rig);
   const CalibrationModels cal = a.cal.empty() ? CalibrationModels{} : load_calibration_file(a.cal);
   check_calibration_matches(cal, rig.id, rig.source);

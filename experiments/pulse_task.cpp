@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "experiments/adaptive_track.hpp"
+#include "formats/function_scene_file.hpp"
 #include "formats/json_file.hpp"
 #include "models/artery.hpp"
 #include "models/parse_error.hpp"
@@ -42,6 +44,15 @@ PulseProtocol parse_pulse_protocol(const nlohmann::json& document, const std::st
     for (const auto& other : p.conditions) {
       if (other.name == pc.name) c.fail("name", "a name used by one condition only");
     }
+    if (c.has("generate") == c.has("scene")) c.fail("scene", "either a scene file or \"generate\": {\"difficulty\": ...}");
+    if (c.has("generate")) {
+      const JsonObject g = c.object("generate");
+      pc.generated = parse_difficulty(g.choice("difficulty", {"easy", "medium", "hard"}));
+      g.refuse_unknown();
+      c.refuse_unknown();
+      p.conditions.push_back(pc);
+      continue;
+    }
     const std::filesystem::path scene = c.string("scene");
     pc.scene_file = scene.is_absolute() ? scene : base_dir / scene;
     pc.artery = c.string_or("artery", "");
@@ -74,6 +85,36 @@ std::vector<int> pulse_trial_order(const PulseProtocol& protocol, std::uint64_t 
   return order;
 }
 
+SceneFile generated_pulse_scene(std::uint64_t seed, CaseDifficulty difficulty) {
+  const GeneratedCase c = generate_case(seed, difficulty);
+  nlohmann::json doc = generated_case_json(c);
+  RandomSource random(seed ^ 0xA5A5A5A5DEADBEEFULL);
+  const double cx = c.body.centre.x_mm, cy = c.body.centre.y_mm;
+  const double hx = c.body.half_width_mm, hy = c.body.half_height_mm;
+  const double x0 = cx + (random.uniform() - 0.5) * hx;        // enters within the middle half
+  const double x1 = cx + (random.uniform() - 0.5) * hx;
+  const double xm = 0.5 * (x0 + x1) + (random.uniform() - 0.5) * 0.4 * hx;
+  const double depth = difficulty == CaseDifficulty::easy ? 6.0 : difficulty == CaseDifficulty::medium ? 10.0 : 14.0;
+  doc["arteries"] = nlohmann::json::array({{{"name", "artery"},
+                                            {"path_mm", {{x0, cy - 0.85 * hy}, {xm, cy}, {x1, cy + 0.85 * hy}}},
+                                            {"depth_mm", depth},
+                                            {"radius_mm", 3.0},
+                                            {"amplitude_kPa", 8.0},
+                                            {"rate_bpm", 60.0 + 40.0 * random.uniform()},
+                                            {"waveform", {{"shape", "rectangular"}, {"duty", 0.2}}},
+                                            {"force_window_N", {1.0, 4.0}}}});
+  const std::string source = "generated pulse case (seed " + std::to_string(seed) + ", " + to_string(difficulty) + ")";
+  const JsonObject root(doc, source, "");
+  root.require_version(1);
+  SceneFile out;
+  out.source = source;
+  out.name = root.string_or("name", "generated");
+  (void)root.choice_or("kind", "function", {"function"});
+  (void)root.string_or("description", "");
+  load_function_scene(root, std::filesystem::path("."), out);
+  return out;
+}
+
 namespace {
 struct Stopped {};
 }  // namespace
@@ -100,10 +141,15 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
     for (int position = options.start_position; position < static_cast<int>(order.size()); ++position) {
       const auto c = static_cast<std::size_t>(order[static_cast<std::size_t>(position)]);
       const PulseCondition& condition = protocol.conditions[c];
-      const Scene& scene = *scenes.at(c).scene;
       PulseTrialRecord r;
       r.position = position;
       r.condition = condition.name;
+      SceneFile generated;
+      if (condition.generated) {
+        r.scene_seed = trial_seed(options.seed, position, 3) >> 1;  // the generator takes 0..2^63-1
+        generated = generated_pulse_scene(*r.scene_seed, *condition.generated);
+      }
+      const Scene& scene = condition.generated ? *generated.scene : *scenes.at(c).scene;
       r.onset_s = clock.now_s();
       InputSource& pen = participant.trial_started(condition, scene, r.onset_s);
       output.palpate(scene, pen, r.onset_s);

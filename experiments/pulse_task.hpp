@@ -26,6 +26,7 @@
 #include "experiments/shifted_input.hpp"
 #include "experiments/stimulus_output.hpp"
 #include "formats/scene_file.hpp"
+#include "models/case_generator.hpp"
 #include "models/pulse_localisation.hpp"
 
 namespace palprig {
@@ -34,7 +35,15 @@ struct PulseCondition {
   std::string name;
   std::filesystem::path scene_file;  // resolved against the protocol's folder
   std::string artery;                // score against this artery; empty: the nearest one
+  // "generate": {"difficulty"}: every trial a new generated case (models/case_generator) with a
+  // random artery crossing it (generated_pulse_scene), seeded by the session seed and position.
+  std::optional<CaseDifficulty> generated;
 };
+
+// A generated rehearsal case with one artery crossing the block from its cranial to its caudal
+// edge, bending at a random point; deeper and fainter with difficulty (easy 6 mm, medium 10 mm,
+// hard 14 mm deep). Same seed, same scene.
+SceneFile generated_pulse_scene(std::uint64_t seed, CaseDifficulty difficulty);
 
 struct PulseProtocol {
   std::string source, name, description, bids_task;
@@ -59,6 +68,7 @@ std::vector<int> pulse_trial_order(const PulseProtocol& protocol, std::uint64_t 
 struct PulseTrialRecord {
   int position = 0;
   std::string condition;
+  std::optional<std::uint64_t> scene_seed;  // generated conditions: the case's seed
   bool answered = false;
   double mark_x_mm = 0, mark_y_mm = 0;
   std::string artery;         // the artery scored against

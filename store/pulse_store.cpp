@@ -20,6 +20,7 @@ CREATE TABLE IF NOT EXISTS pulse_trials (
   session_id      INTEGER NOT NULL REFERENCES sessions(id),
   position        INTEGER NOT NULL,
   condition       TEXT NOT NULL,
+  scene_seed      INTEGER,              -- generated conditions: the case's seed
   answered        INTEGER NOT NULL CHECK (answered IN (0, 1)),
   mark_x_mm       REAL, mark_y_mm REAL,
   artery          TEXT,                 -- the artery scored against
@@ -103,9 +104,10 @@ void PulseStore::commit_trial(std::int64_t session_id, const PulseTrialRecord& r
   Transaction tx(db);
   auto ins = db.prepare(
       "INSERT INTO pulse_trials (session_id, position, condition, answered, mark_x_mm, mark_y_mm, artery, distance_mm, "
-      "hit, response_time_s, onset_s, completed_utc) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
+      "hit, response_time_s, onset_s, completed_utc, scene_seed) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)");
   ins.bind(1, session_id).bind(2, r.position).bind(3, r.condition).bind(4, r.answered ? 1 : 0).bind(9, r.hit ? 1 : 0);
   ins.bind(11, r.onset_s).bind(12, utc_now());
+  if (r.scene_seed) ins.bind(13, static_cast<std::int64_t>(*r.scene_seed));
   if (r.answered) {
     ins.bind(5, r.mark_x_mm).bind(6, r.mark_y_mm).bind(7, r.artery).bind(8, r.distance_mm).bind(10, r.response_time_s);
   }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/pulse_task.hpp"
+#include "store/trial_store.hpp"
 #include "models/parse_error.hpp"
 #include "statistics/statistics_proportion.hpp"
 #include "process_support.hpp"
@@ -73,6 +74,44 @@ TEST(experiments_pulse_task, simulated_participant_finds_the_pulse_and_stats_tri
                                             "--participant", "P01", "--db", (dir / "p.db").string()});
   EXPECT_EQ(person.exit_code, 2);
   EXPECT_FALSE(std::filesystem::exists(dir / "p.db"));
+}
+
+}  // namespace
+}  // namespace palprig
+
+namespace palprig {
+namespace {
+
+TEST(experiments_pulse_task, generated_cases_carry_an_artery_and_the_participant_finds_it) {
+  // Same seed, same case; different seeds, different courses.
+  const SceneFile a = generated_pulse_scene(11, CaseDifficulty::medium);
+  const SceneFile b = generated_pulse_scene(11, CaseDifficulty::medium);
+  const SceneFile c = generated_pulse_scene(12, CaseDifficulty::medium);
+  ASSERT_NE(a.scene->pulse(), nullptr);
+  ASSERT_EQ(a.scene->pulse()->size(), 1u);
+  const auto& pa = a.scene->pulse()->artery(0).spec().path;
+  EXPECT_DOUBLE_EQ(pa[1].x_mm, b.scene->pulse()->artery(0).spec().path[1].x_mm);
+  EXPECT_NE(pa[1].x_mm, c.scene->pulse()->artery(0).spec().path[1].x_mm);
+  EXPECT_DOUBLE_EQ(a.scene->pulse()->artery(0).spec().depth_mm, 10.0);
+
+  ScratchDir dir;
+  const std::string db = (dir / "gen.db").string();
+  const auto run = testing::run_palprig({"experiment", "run", "--protocol",
+                                         (testing::protocols_dir() / "pulse_generated.json").string(), "--participant",
+                                         "sim:2", "--db", db, "--quiet"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto stats = testing::run_palprig({"stats", "trials", db, "--json"});
+  ASSERT_EQ(stats.exit_code, 0) << stats.err;
+  const auto j = nlohmann::json::parse(stats.out);
+  ASSERT_EQ(j["conditions"].size(), 2u);
+  for (const auto& cond : j["conditions"]) {
+    EXPECT_EQ(cond["trials"].get<int>(), 4);
+    EXPECT_LT(cond["distance_median_mm"].get<double>(), 8.0) << cond.dump();
+  }
+  TrialStore store = open_trial_store_for_reading(db);
+  auto q = store.database().prepare("SELECT count(DISTINCT scene_seed) FROM pulse_trials WHERE scene_seed IS NOT NULL");
+  ASSERT_TRUE(q.step());
+  EXPECT_EQ(q.integer(0), 8) << "every trial a new case, its seed stored";
 }
 
 }  // namespace
