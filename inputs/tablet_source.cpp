@@ -146,6 +146,67 @@ std::string seconds_text(double s) {
   return o.str();
 }
 
+// libevemu reports a description line it cannot parse on stderr by itself (FATAL: ..., WARNING:
+// ...) and has no way to turn that off. So every line is checked here first, against the
+// formats libevemu 2.7 reads (sscanf "%02x" fields, A: lines with 6 numbers from format 1.2 on),
+// and in its order (N:, I:, then P:, B:, A:, L:, S: lines); a line it would complain about is
+// refused with palprig's one line and libevemu never sees it. Returns what was expected, or "".
+std::string description_problem(const std::string& line, int format_minor, char& last_tag) {
+  const char tag = line[0];
+  static const std::string order = "NIPBALS";
+  const auto rank = order.find(tag);
+  const auto last = last_tag ? order.find(last_tag) : std::string::npos;
+  if (last_tag == 0 && tag != 'N') return "the device name first ('N: <name>')";
+  if (last_tag == 'N' && tag != 'I') return "the device id after the name ('I: <bus> <vendor> <product> <version>' in hex)";
+  if (last_tag != 0 && last_tag != 'N' && (tag == 'N' || tag == 'I' || rank < last))
+    return "description lines in evemu-record's order (N:, I:, P:, B:, A:, L:, S:)";
+  last_tag = tag;
+  if (tag == 'N') return line.size() > 3 ? "" : "a device name after 'N: '";
+  std::istringstream in(line.substr(2));
+  std::vector<std::string> fields;
+  for (std::string f; in >> f;) fields.push_back(f);
+  auto hex = [](const std::string& f, unsigned max) {
+    unsigned v = 0;
+    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v, 16);
+    return ec == std::errc() && end == f.data() + f.size() && v <= max;
+  };
+  auto integer = [](const std::string& f) {
+    int v = 0;
+    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v, 10);
+    return ec == std::errc() && end == f.data() + f.size();
+  };
+  auto all = [&](std::size_t from, auto&& ok) {
+    for (std::size_t i = from; i < fields.size(); ++i)
+      if (!ok(fields[i])) return false;
+    return true;
+  };
+  switch (tag) {
+    case 'I':
+      return fields.size() == 4 && all(0, [&](const std::string& f) { return f.size() <= 4 && hex(f, 0xffff); })
+                 ? ""
+                 : "'I: <bus> <vendor> <product> <version>' (4 hex numbers)";
+    case 'P':
+      return fields.size() == 8 && all(0, [&](const std::string& f) { return f.size() <= 2 && hex(f, 0xff); })
+                 ? ""
+                 : "'P: ' and 8 hex bytes";
+    case 'B':
+      return fields.size() == 9 && hex(fields[0], EV_MAX) &&
+                     all(0, [&](const std::string& f) { return f.size() <= 2 && hex(f, 0xff); })
+                 ? ""
+                 : "'B: <event type> ' and 8 hex bytes";
+    case 'A': {
+      const std::size_t numbers = format_minor >= 2 ? 6 : 5;
+      return fields.size() == numbers && fields[0].size() <= 2 && hex(fields[0], ABS_MAX) && all(1, integer)
+                 ? ""
+                 : "'A: <axis> <min> <max> <fuzz> <flat>" + std::string(numbers == 6 ? " <resolution>'" : "'");
+    }
+    default:  // L:, S:
+      return fields.size() == 2 && fields[0].size() <= 2 && hex(fields[0], 0xff) && integer(fields[1])
+                 ? ""
+                 : std::string("'") + tag + ": <code> <state>'";
+  }
+}
+
 bool is_description_line(const std::string& line) {
   // What evemu-record writes before the events: N: name, I: id, P: properties, B: bit masks,
   // A: axes, L: LEDs, S: switches, and '#' comments.
@@ -198,6 +259,8 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
   std::string description, line;
   std::vector<std::pair<std::size_t, std::string>> event_lines;
   std::size_t line_no = 0, bytes = 0;
+  int format_minor = 0;  // "# EVEMU 1.3" on the first line; libevemu takes a missing one as 1.0
+  char last_tag = 0;
   while (std::getline(in, line)) {
     ++line_no;
     bytes += line.size() + 1;
@@ -205,6 +268,18 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
       throw InputError(file, "file", "a recording of at most " + std::to_string(kMaxRecordingBytes >> 20) + " MiB");
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (event_lines.empty() && is_description_line(line)) {
+      if (line_no == 1 && line.rfind("# EVEMU ", 0) == 0) {
+        unsigned major = 0, minor = 0;
+        if (std::sscanf(line.c_str(), "# EVEMU %u.%u", &major, &minor) == 2) {
+          if (major != 1 || minor > 3)
+            throw InputError(file, "line 1", "an evemu recording of format 1.3 or older, got " + line.substr(8));
+          format_minor = static_cast<int>(minor);
+        }
+      }
+      if (!line.empty() && line[0] != '#') {
+        if (const std::string problem = description_problem(line, format_minor, last_tag); !problem.empty())
+          throw InputError(file, "line " + std::to_string(line_no), problem + ", got '" + line + "'");
+      }
       description += line + "\n";
       continue;
     }

@@ -61,7 +61,7 @@ TEST(FunctionSceneBounds, TooManyShapesAcrossNestedUnionsAreRefused) {
   of.push_back(second);  // 3000 + a union of 3000 more
   const auto f = dir.write("nested.json", doc.dump());
   const std::string why = refusal(f);
-  EXPECT_NE(why.find(": type: at most 4096 shapes in one inclusion"), std::string::npos) << why;
+  EXPECT_NE(why.find(".type: at most 4096 shapes in one inclusion"), std::string::npos) << why;
 }
 
 TEST(FunctionSceneBounds, TooManyBlobsAreRefused) {
