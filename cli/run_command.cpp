@@ -22,12 +22,23 @@ namespace palprig::cli {
 bool is_live_input(const std::string& spec) { return spec == "tablet" || spec.rfind("tablet:", 0) == 0; }
 
 std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& scene, double contact_force_N,
-                                        const TabletConfig& tablet) {
-  if (is_live_input(spec)) return make_tablet_input(spec, tablet);
+                                        const TabletConfig& tablet, const TraceLimits& trace_limits) {
+  const bool unbounded = trace_limits.max_length_s == TraceLimits::unbounded().max_length_s;
+  if (is_live_input(spec)) {
+    try {
+      return make_tablet_input(spec, tablet, unbounded ? PenRecordingLimits::unbounded() : PenRecordingLimits{});
+    } catch (const PenRecordingBoundError& e) {
+      throw InputError(e.file(), e.where(), e.expected() + "; give --duration-s to run it anyway");
+    }
+  }
   if (spec == "sweep") return std::make_unique<SweepInput>(scene.bounds(), SweepPlan{});
   if (spec.rfind("trace:", 0) == 0) {
     const std::filesystem::path p = spec.substr(6);
-    return std::make_unique<TraceInput>(load_trace_csv(p, contact_force_N), p.string(), contact_force_N);
+    try {
+      return std::make_unique<TraceInput>(load_trace_csv(p, contact_force_N, trace_limits), p.string(), contact_force_N);
+    } catch (const TraceBoundError& e) {
+      throw InputError(e.file(), e.where(), e.expected() + "; give --duration-s to run it anyway");
+    }
   }
   throw InputError("--input", spec, "trace:FILE, sweep, tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
 }
@@ -39,7 +50,10 @@ LoadedRun load_run(const RunArgs& a) {
   check_calibration_matches(run.cal, run.rig.id, run.rig.source);
   run.scene = load_scene_file(a.scene_path);
   run.config = make_tick_config(run.rig, run.cal);
-  run.input = make_input(a.input_spec, *run.scene.scene, run.rig.contact_force_N, run.rig.tablet);
+  TraceLimits limits;
+  limits.max_gap_s = run.rig.safety.max_input_age_s;
+  run.input = make_input(a.input_spec, *run.scene.scene, run.rig.contact_force_N, run.rig.tablet,
+                         a.explicit_duration ? TraceLimits::unbounded() : limits);
   return run;
 }
 
@@ -166,6 +180,7 @@ void register_run_command(CLI::App& app) {
   sub->add_option("--telemetry", o->telemetry, "Write every tick to FILE (.csv, or .bin for the compact binary)");
   sub->add_flag("--json", o->json, "Print the summary as one JSON object");
   sub->callback([o]() {
+    o->args.explicit_duration = o->duration_s > 0;
     cli::LoadedRun run = cli::load_run(o->args);
     RunOptions opt = o->run;
     // Hardware and live pen input run on the wall clock: a replay would command real

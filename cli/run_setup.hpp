@@ -17,6 +17,9 @@ namespace palprig::cli {
 
 struct RunArgs {
   std::string scene_path, input_spec = "sweep", rig_path, cal_path;
+  // --duration-s was given: a trace longer than TraceLimits, or with long gaps, is run anyway
+  // (the run stops at the given length).
+  bool explicit_duration = false;
 };
 
 struct LoadedRun {
@@ -31,7 +34,7 @@ struct LoadedRun {
 // Live inputs (the pen tablet) make `palprig run` real time.
 bool is_live_input(const std::string& spec);
 std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& scene, double contact_force_N,
-                                        const TabletConfig& tablet = {});
+                                        const TabletConfig& tablet = {}, const TraceLimits& trace_limits = {});
 LoadedRun load_run(const RunArgs& args);  // throws InputError before anything moves
 RunSummary execute(LoadedRun& run, const RunOptions& opt);
 nlohmann::json summary_json(const RunSummary& s, const LoadedRun& run, const RunOptions& opt);

@@ -97,13 +97,14 @@ TouchSample TabletInput::latest(double t_s) noexcept {
   return s;
 }
 
-std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const TabletConfig& config) {
+std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const TabletConfig& config,
+                                               const PenRecordingLimits& recording_limits) {
   std::string path = config.device;
   if (spec.rfind("tablet:", 0) == 0) path = spec.substr(7);
   else if (spec != "tablet") throw InputError("--input", spec, "tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
   std::unique_ptr<PenEventSource> source;
   struct stat st{};
-  if (path != "auto" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) source = std::make_unique<EvemuPenSource>(path);
+  if (path != "auto" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) source = std::make_unique<EvemuPenSource>(path, recording_limits);
   else source = std::make_unique<EvdevPenSource>(path, config.grab);
   try {
     return std::make_unique<TabletInput>(std::move(source), config);

@@ -58,6 +58,7 @@ class TabletInput final : public InputSource {
 
 // "tablet", "tablet:/dev/input/eventN" or "tablet:FILE.evemu" (a recording replayed in real
 // time through the same reader). Throws InputError when no such device or file can be used.
-std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const TabletConfig& config);
+std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const TabletConfig& config,
+                                               const PenRecordingLimits& recording_limits = {});
 
 }  // namespace palprig
