@@ -182,7 +182,7 @@ TEST(SweepPlan, RefusesArgumentsThatMakeNoSweep) {
   o = {};
   o.from_kPa = 70;
   EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }),
-            "--from-kPa: value: a level below the rig's p_max (60 kPa), got 70 kPa");
+            "from_kPa: value: a level below the rig's p_max (60 kPa), got 70 kPa");
   o = {};
   o.staircase = false;
   EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }),
