@@ -36,3 +36,4 @@ void register_export_command(CLI::App& app);
 void register_sim_rig_command(CLI::App& app);
 void register_calibrate_command(CLI::App& app);
 void register_scene_command(CLI::App& app);
+void register_gui_command(CLI::App& app);  // builds with Qt only (PALPRIG_HAVE_GUI)

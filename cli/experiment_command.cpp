@@ -14,6 +14,11 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/pulse_experiment.hpp"
+#include "cli/threshold_experiment.hpp"
+#include "experiments/pulse_task.hpp"
+#include "experiments/threshold_protocol.hpp"
+#include "formats/json_file.hpp"
 #include "experiments/protocol.hpp"
 #include "experiments/terminal_participant.hpp"
 #include "sessions/session_setup.hpp"
@@ -26,6 +31,7 @@ namespace {
 struct RunArgs {
   StudySessionRequest request;
   bool quiet = false;
+  double sim_threshold_noise_kPa = 0.8, sim_threshold_criterion_kPa = 0.5;  // threshold protocols (issue 13)
 };
 
 std::string flags_text(const FingerFlags& f) {
@@ -93,6 +99,20 @@ class TerminalReport final : public SessionListener {
 };
 
 void run_experiment(const RunArgs& a) {
+  // Threshold protocols (staircases, QUEST) and the pulse task run in their own files (issue 13).
+  const auto& r = a.request;
+  const nlohmann::json document = read_json_file(r.protocol_file);
+  if (is_threshold_protocol(document)) {
+    cli::run_threshold_experiment({r.protocol_file.string(), r.participant_code, r.store_location, r.rig_file.string(),
+                                   r.calibration_file.string(), r.resume, a.quiet, r.seed, r.speed,
+                                   a.sim_threshold_noise_kPa, a.sim_threshold_criterion_kPa});
+    return;
+  }
+  if (is_pulse_protocol(document)) {
+    cli::run_pulse_experiment({r.protocol_file.string(), r.participant_code, r.store_location, r.rig_file.string(),
+                               r.calibration_file.string(), r.resume, a.quiet, r.seed, r.speed});
+    return;
+  }
   StudySessionRequest request = a.request;
   if (request.rig_file.empty()) request.rig_file = cli::data_dir() / "rigs" / "simulated.json";
   TerminalReport report(request.store_location, a.quiet);
@@ -151,6 +171,13 @@ void register_run(CLI::App* experiment) {
       ->default_val(a->request.model.sequential.mean_s)->check(CLI::Range(0.05, 600.0));
   sub->add_option("--sim-rt-sd-sequential", a->request.model.sequential.sd_s, "Simulated: response time sd in s")
       ->default_val(a->request.model.sequential.sd_s)->check(CLI::Range(0.0, 600.0));
+  // issue 13: the simulated threshold observer (experiments/threshold_observer.hpp)
+  sub->add_option("--sim-threshold-noise-kPa", a->sim_threshold_noise_kPa,
+                  "Simulated, threshold protocols: sd of each finger's perceived pressure per interval")
+      ->default_val(a->sim_threshold_noise_kPa)->check(CLI::Range(0.0, 100.0));
+  sub->add_option("--sim-threshold-criterion-kPa", a->sim_threshold_criterion_kPa,
+                  "Simulated, yes-no threshold protocols: 'stronger' when the second interval is felt this much above the first")
+      ->default_val(a->sim_threshold_criterion_kPa)->check(CLI::Range(0.0, 100.0));
   sub->callback([a] { run_experiment(*a); });
 }
 

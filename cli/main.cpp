@@ -42,6 +42,9 @@ int main(int argc, char** argv) {
   register_sim_rig_command(app);
   register_calibrate_command(app);
   register_scene_command(app);
+#ifdef PALPRIG_HAVE_GUI
+  register_gui_command(app);  // the window needs Qt: cli/CMakeLists.txt leaves its file out otherwise
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

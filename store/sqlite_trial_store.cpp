@@ -506,4 +506,12 @@ std::vector<StoredTrial> SqliteTrialStore::read_trials(bool include_practice) {
   return trials;
 }
 
+SqliteTrialStore open_sqlite_trial_store_for_reading(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    throw InputError(file.string(), "file", "an existing palprig trial database");
+  }
+  return SqliteTrialStore(file, TrialStore::Access::read_only);
+}
+
 }  // namespace palprig

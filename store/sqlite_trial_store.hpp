@@ -59,4 +59,8 @@ class SqliteTrialStore final : public TrialStore {
   std::unique_ptr<Statement> insert_trial_;  // prepared once: trials are inserted one by one
 };
 
+// Open an existing SQLite trial database for reading; refuses a missing, foreign or newer file.
+// For code that reads SQLite-only tables (threshold_trials, pulse_trials) besides the interface.
+SqliteTrialStore open_sqlite_trial_store_for_reading(const std::filesystem::path& file);
+
 }  // namespace palprig
