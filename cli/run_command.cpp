@@ -24,7 +24,8 @@ bool is_live_input(const std::string& spec) { return spec == "tablet" || spec.rf
 std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& scene, double contact_force_N,
                                         const TabletConfig& tablet) {
   if (is_live_input(spec)) return make_tablet_input(spec, tablet);
-  if (spec == "sweep") return std::make_unique<SweepInput>(scene.bounds(), SweepPlan{});
+  // "sweep" is the command line's historical word for the pen raster; "raster" is its name in code.
+  if (spec == "sweep" || spec == "raster") return std::make_unique<RasterInput>(scene.bounds(), RasterPlan{});
   if (spec.rfind("trace:", 0) == 0) {
     const std::filesystem::path p = spec.substr(6);
     return std::make_unique<TraceInput>(load_trace_csv(p, contact_force_N), p.string(), contact_force_N);
