@@ -48,6 +48,7 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
   }
   char worker_detail[256] = {0};
   int consecutive_overruns = 0;
+  bool vent_was_held = false;
   // Armed for the run, disarmed (vented) at its end. A backend that refuses (closed) ends the
   // run before the first tick with the reason.
   rig.arm();
@@ -68,6 +69,17 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
     if (telemetry && telemetry->failed()) rig.enter_fault(FaultCode::thread_exception);
     if (!rig.faulted() && worker_fault_pending(worker_detail, sizeof worker_detail))
       rig.enter_fault(FaultCode::thread_exception, worker_detail);
+
+    if (opt.stop_request && opt.stop_request->load(std::memory_order_relaxed)) break;
+    // The operator's VENT (held from another thread) disarms: 0 kPa from this very tick, the
+    // loop runs on reading monitors; released, the rig is armed again and pressure rises from
+    // 0 kPa under the slew limit.
+    const bool vent_held = opt.vent_request && opt.vent_request->load(std::memory_order_relaxed);
+    if (vent_held != vent_was_held) {
+      if (vent_held) rig.disarm();
+      else rig.arm();
+      vent_was_held = vent_held;
+    }
 
     const StepResult& step = rig.step(scene, input.latest(t_s), t_s);
     io_hist.record(step.io_us);

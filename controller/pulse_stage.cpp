@@ -14,11 +14,12 @@ void apply_pulse_stage(PulseTickState& state, const PulseStageSetting& setting, 
   const bool stepped = dt_s > 0 && std::isfinite(dt_s);
   // The command issued now reaches the actuator one tick and one dead time later.
   const double period_s = stepped ? dt_s : state.last_dt_s;
+  const bool compensate = rendering.lag_compensation_on();
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     const RegulatorLag& lag = rendering.lag[i];
     LagCompensator& compensator = state.lag_compensator[i];
     PulseLookahead ahead;
-    if (rendering.compensate_lag) {
+    if (compensate) {
       ahead.lead_s = lag.dead_time_s + period_s;
       ahead.rise_advance_s = compensator.rise_anticipation_s();
       ahead.fall_advance_s = compensator.fall_anticipation_s();
@@ -29,7 +30,7 @@ void apply_pulse_stage(PulseTickState& state, const PulseStageSetting& setting, 
     pulse_kPa[i] = felt.now_kPa;
     const double base = target_kPa[i];
     if (!std::isfinite(base)) continue;  // left for the safety stage to fault on
-    if (!rendering.compensate_lag) {
+    if (!compensate) {
       target_kPa[i] = base + felt.now_kPa;
       continue;
     }
