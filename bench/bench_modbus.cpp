@@ -138,6 +138,7 @@ void BM_ModbusRig_LoopSideWriteRead(benchmark::State& state) {
   ModbusRig rig(l.map);
   rig.set_log_sink(nullptr);
   rig.open();
+  rig.arm();
   ChannelPressures monitors{};
   double t = 0;
   for (auto _ : state) {

@@ -30,7 +30,7 @@
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"
 #include "rigs/simulated_rig.hpp"
-#include "controller/tick.hpp"
+#include "controller/rig_step.hpp"
 #include "models/tissue_scene.hpp"
 
 using namespace palprig;
@@ -87,9 +87,10 @@ Result measure(const FunctionScene& scene, const RigConfig& rig, const Calibrati
   }
   TickConfig cfg = make_tick_config(r, play == Play::calibrated ? fitted : CalibrationModels{});
   cfg.pulse.compensate_lag = compensate;
-  TickState st = make_tick_state(cfg);
   SimulatedRig backend(r.plants, r.safety.p_max_kPa);
   backend.open();
+  RigStep step_rig(cfg, backend);
+  step_rig.arm();
   // Finger 1 (16 mm along x from the pen) over the artery at x = 40 mm.
   const double x = 24, y = 60 - 2.0 * 40 / 90;
   std::vector<double> want, got;
@@ -97,9 +98,9 @@ Result measure(const FunctionScene& scene, const RigConfig& rig, const Calibrati
   ChannelPressures monitor{};
   for (int k = 0; k < 23000; ++k) {
     const double t = k * 0.001;
-    const TickResult tr = tick(st, cfg, scene, {t, x, y, 2.0, true}, t);
-    backend.write(tr.setpoint_kPa, t);
-    backend.read_monitors(monitor, t);
+    const StepResult& step = step_rig.step(scene, {t, x, y, 2.0, true}, t);
+    const TickResult& tr = step.tick;
+    monitor = step.monitor_kPa;
     if (k >= 3000) {
       want.push_back(tr.pulse_kPa[1]);
       got.push_back(monitor[1]);

@@ -86,7 +86,7 @@ BENCHMARK(BM_TickNearestWandering);
 BENCHMARK(BM_TickBilinearWandering);
 BENCHMARK(BM_TickNearestHandSpeed);
 
-// Replay: the bundled phantom swept for 60 s of loop time at 1 kHz on the simulated rig.
+// Replay: the bundled phantom rastered for 60 s of loop time at 1 kHz on the simulated rig.
 void BM_Replay60s(benchmark::State& state) {
   const bool with_telemetry = state.range(0) != 0;
   const std::filesystem::path data = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
@@ -98,12 +98,12 @@ void BM_Replay60s(benchmark::State& state) {
   for (auto _ : state) {
     SimulatedRig backend(rig.plants, rig.safety.p_max_kPa);
     backend.open();
-    SweepInput sweep(scene.scene->bounds(), SweepPlan{});
+    RasterInput raster(scene.scene->bounds(), RasterPlan{});
     RunOptions opt;
     opt.duration_s = 60;
     opt.mode = LoopMode::replay;
     if (with_telemetry) opt.telemetry_path = std::filesystem::temp_directory_path() / "palprig-bench-telemetry.bin";
-    const RunSummary s = run_loop(cfg, *scene.scene, sweep, backend, opt);
+    const RunSummary s = run_loop(cfg, *scene.scene, raster, backend, opt);
     speedup_sum += s.sim_time_s / s.wall_time_s;
     ++runs;
   }

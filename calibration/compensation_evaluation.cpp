@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "calibration/pacer.hpp"
-#include "controller/tick.hpp"
+#include "controller/rig_step.hpp"
 #include "models/parse_error.hpp"
 
 namespace palprig {
@@ -87,7 +87,8 @@ struct Accumulator {
   }
 };
 
-// One run on the shared time base (the backend's clock only moves forward).
+// One run on the shared time base (the backend's clock only moves forward), through the
+// controller's rig step: tick_direct (hysteresis inverse, safety stage), write, monitors.
 EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Trajectory& tr, const EvaluationOptions& o,
                     Pacer& pacer, std::uint64_t& k) {
   EvaluationRun run;
@@ -96,8 +97,13 @@ EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Traject
   const auto record_every = std::max<std::uint64_t>(1, std::uint64_t(std::llround(o.rate_hz / o.record_hz)));
   run.trace.reserve(std::size_t(ticks / record_every + 2));
   run.scored_from_t_s = t0 + tr.scored_from_s;
-  TickState state = make_tick_state(config);
+  RigStep rig(config, backend, RigStepOptions{o.rate_hz, false});
   std::array<Accumulator, kFingerCount> acc{};
+  if (rig.arm() != BackendStatus::ok) {
+    run.faulted = true;
+    run.fault = rig.fault_detail();
+    return run;
+  }
   for (std::uint64_t i = 0; i < ticks; ++i) {
     const double t = pacer.wait_for_tick(k++);
     if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) { run.stopped = true; break; }
@@ -105,24 +111,19 @@ EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Traject
     const double target = tr.at(t - t0, slope);
     ChannelPressures want{};
     for (std::size_t c = 0; c < kFingerCount; ++c) want[c] = o.channels[c] ? target : 0.0;
-    const TickResult r = tick_direct(state, config, want, t);
-    if (r.record.fault != FaultCode::none) {
+    const StepResult& r = rig.step_direct(want, t);
+    if (rig.faulted()) {
       run.faulted = true;
-      run.fault = std::string("tick fault: ") + to_string(r.record.fault);
-      break;
-    }
-    ChannelPressures monitor{};
-    if (backend.write(r.setpoint_kPa, t) != BackendStatus::ok || backend.read_monitors(monitor, t) != BackendStatus::ok) {
-      run.faulted = true;
-      run.fault = backend.last_error();
+      run.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
+                                                          : std::string("tick fault: ") + to_string(rig.fault());
       break;
     }
     if (t - t0 >= tr.scored_from_s)
       for (std::size_t c = 0; c < kFingerCount; ++c)
-        if (o.channels[c]) acc[c].add(target, monitor[c], slope);
-    if (i % record_every == 0) run.trace.push_back({t, target, r.setpoint_kPa, monitor});
+        if (o.channels[c]) acc[c].add(target, r.monitor_kPa[c], slope);
+    if (i % record_every == 0) run.trace.push_back({t, target, r.tick.setpoint_kPa, r.monitor_kPa});
   }
-  backend.vent();
+  rig.disarm();
   for (std::size_t c = 0; c < kFingerCount; ++c) run.channels[c] = acc[c].metrics();
   return run;
 }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "calibration/pacer.hpp"
+#include "controller/rig_step.hpp"
 
 namespace palprig {
 
@@ -32,31 +33,45 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
                                    SweepSink& sink, const SweepProgress& progress) {
   if (!(o.settle_window_s > 0) || !(o.settle_band_kPa > 0) || !(o.average_s > 0) || !(o.min_hold_s >= 0) ||
       !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s + o.average_s) || !(o.max_hold_s <= 3600) ||
-      !(o.rate_hz > 0) || !(o.rate_hz <= 10000))
+      !(o.rate_hz > 0) || !(o.rate_hz <= 10000) || !(o.slew_kPa_per_s > 0))
     throw std::invalid_argument(
         "sweep: need settle window, band and averaging window > 0, a max hold above min hold and both windows (at "
-        "most an hour), and a rate in (0, 10000] Hz");
+        "most an hour), a rate in (0, 10000] Hz and a slew rate > 0");
   bool any = false;
   for (bool on : o.channels) any = any || on;
   if (!any) throw std::invalid_argument("sweep: no channel selected");
+
+  // Every setpoint passes the controller's safety stage through a rig step (tick_direct without
+  // a hysteresis inverse): clamped to the rig's p_max, slew-limited at the rig's own rate
+  // (o.slew_kPa_per_s, from the rig file), vented on any fault. No exemption: a staircase step
+  // of 10 kPa at 100 Hz passes in one tick at the default 2000 kPa/s; larger steps ramp at the
+  // rate the regulators slew at anyway, and the settle test waits the ramp out.
+  TickConfig direct;
+  direct.safety.p_max_kPa = backend.p_max_kPa();
+  direct.safety.slew_kPa_per_s = o.slew_kPa_per_s;
+  RigStep rig(direct, backend, RigStepOptions{o.rate_hz, true});
 
   Pacer pacer(o.rate_hz, o.realtime);
   const auto window = static_cast<std::size_t>(std::max(2.0, std::round(o.settle_window_s * o.rate_hz)));
   const auto average = static_cast<std::size_t>(std::max(1.0, std::round(o.average_s * o.rate_hz)));
   std::vector<SweepSample> hold_samples;
   hold_samples.reserve(static_cast<std::size_t>(o.max_hold_s * o.rate_hz) + 2);
-  const bool has_sensor = backend.sensor_name() != nullptr;
 
   SweepOutcome out;
   out.holds_planned = schedule.holds.size();
   std::uint64_t k = 0;
   double t_s = 0;
+  if (rig.arm() != BackendStatus::ok) {
+    out.faulted = true;
+    out.fault = rig.fault_detail();
+    return out;
+  }
   // A sink or progress callback that throws (a full disk) must not leave pressure on.
   try {
     for (std::size_t h = 0; h < schedule.holds.size() && !out.stopped && !out.faulted; ++h) {
       const SweepHold& hold = schedule.holds[h];
-      ChannelPressures setpoint{};
-      for (std::size_t c = 0; c < kFingerCount; ++c) setpoint[c] = o.channels[c] ? hold.level_kPa : 0.0;
+      ChannelPressures target{};
+      for (std::size_t c = 0; c < kFingerCount; ++c) target[c] = o.channels[c] ? hold.level_kPa : 0.0;
       hold_samples.clear();
       HoldOutcome result;
       std::size_t averaging_from = 0;  // index of the first averaged sample, once settled
@@ -69,17 +84,18 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
           out.stop_signal = o.stop_signal->load();
           break;
         }
+        const StepResult& step = rig.step_direct(target, t_s);
+        if (rig.faulted()) {
+          out.faulted = true;
+          out.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
+                                                              : std::string("safety stage: ") + to_string(rig.fault());
+          break;
+        }
         SweepSample s;
         s.t_s = t_s;
         s.command_kPa = hold.level_kPa;
-        s.sensor.fill(std::numeric_limits<double>::quiet_NaN());
-        if (backend.write(setpoint, t_s) != BackendStatus::ok ||
-            backend.read_monitors(s.monitor_kPa, t_s) != BackendStatus::ok ||
-            (has_sensor && backend.read_sensors(s.sensor, t_s) != BackendStatus::ok)) {
-          out.faulted = true;
-          out.fault = backend.last_error();
-          break;
-        }
+        s.monitor_kPa = step.monitor_kPa;
+        s.sensor = step.sensor;  // NaN when the rig has no sensor
         hold_samples.push_back(s);
         result.hold_s = t_s - hold_start_s;
         if (!averaging && result.hold_s >= o.min_hold_s &&
@@ -101,10 +117,10 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
       if (progress && !out.stopped && !out.faulted) progress(h + 1, schedule.holds.size(), hold, result);
     }
   } catch (...) {
-    backend.vent();
+    rig.disarm();
     throw;
   }
-  backend.vent();
+  rig.disarm();
   out.duration_s = t_s;
   return out;
 }

@@ -7,6 +7,7 @@
 // like extra hysteresis). A hold that does not settle within a time limit is kept, unmarked.
 // Every sample goes to a sink hold by hold, so a stop keeps what was recorded. Ctrl-C (the
 // stop flag), a backend error, an exception from the sink or the end all vent every channel.
+// Setpoints go through the controller's rig step and safety stage like every other path.
 #include <array>
 #include <atomic>
 #include <functional>
@@ -14,6 +15,7 @@
 #include <string>
 
 #include "calibration/sweep_plan.hpp"
+#include "models/safety_limits.hpp"
 #include "rigs/rig_backend.hpp"
 
 namespace palprig {
@@ -48,6 +50,9 @@ struct SweepRunOptions {
   double max_hold_s = 10.0;
   std::array<bool, kFingerCount> channels{true, true, true};
   const std::atomic<int>* stop_signal = nullptr;
+  // The rig file's safety.slew_kPa_per_s: every setpoint passes the tick's safety stage, so a
+  // step between holds rises at most this fast (p_max is the backend's).
+  double slew_kPa_per_s = SafetyLimits{}.slew_kPa_per_s;
 };
 
 struct SweepOutcome {

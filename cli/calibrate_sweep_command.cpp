@@ -45,6 +45,7 @@ void run_sweep(const SweepArgs& a) {
   SweepRunOptions run = a.run;
   run.channels = parse_channels(a.channels);
   run.realtime = use_realtime(rig, a.realtime, a.fast);
+  run.slew_kPa_per_s = rig.safety.slew_kPa_per_s;  // steps between holds pass the safety stage
   if (!(run.settle_window_s > 0) || !(run.settle_band_kPa > 0) || !(run.average_s > 0) ||
       !(run.max_hold_s > run.min_hold_s) || run.max_hold_s < run.settle_window_s + run.average_s ||
       !(run.max_hold_s <= 3600))
@@ -60,7 +61,7 @@ void run_sweep(const SweepArgs& a) {
   info.date = utc_timestamp_now();
   info.p_max_kPa = rig.safety.p_max_kPa;
   info.rate_hz = run.rate_hz;
-  if (const char* s = backend->sensor_name()) info.sensor_name = s;
+  info.sensor_name = backend->sensor_name();
   info.notes = plan.notes;
   SweepCsvWriter writer(a.out, info, run.channels);  // a path that cannot be written fails here, before open
   backend->open();

@@ -11,6 +11,7 @@
 
 #include "runtime/monotonic_clock.hpp"
 #include "runtime/realtime.hpp"
+#include "controller/rig_step.hpp"
 #include "controller/telemetry_writer.hpp"
 #include "runtime/worker_fault.hpp"
 
@@ -35,7 +36,8 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
   }
   // Everything the loop touches is allocated here, before the first tick.
   LatencyHistogram wake_hist, io_hist, tick_hist;
-  TickState state = make_tick_state(config);
+  RigStep rig(config, backend, RigStepOptions{opt.rate_hz, false});
+  if (opt.rig_step_ready) opt.rig_step_ready(rig);
   const bool realtime = opt.mode == LoopMode::realtime;
   const double period_s = 1.0 / opt.rate_hz;
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / opt.rate_hz));
@@ -48,14 +50,17 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
     sum.realtime_note = rt.note;
     sum.realtime_practices = describe_practices(rt, ro);
   }
-  char fault_detail[256] = {0};
+  char worker_detail[256] = {0};
   int consecutive_overruns = 0;
-  bool was_linked = true;
+  bool vent_was_held = false;
+  // Armed for the run, disarmed (vented) at its end. A backend that refuses (closed) ends the
+  // run before the first tick with the reason.
+  rig.arm();
 
   const auto wall_start = Clock::now();
   const std::int64_t start_ns = mono_ns() + period_ns;  // first deadline one period from now
   std::uint64_t k = 0;
-  while (k < total_ticks) {
+  while (k < total_ticks && !rig.faulted()) {
     const double t_s = double(k) * period_s;
     float wake_us = 0;
     if (realtime) {
@@ -64,58 +69,32 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       wake_us = float(double(mono_ns() - deadline) / 1000.0);
       wake_hist.record(wake_us);
     }
-    if (opt.stop_signal && opt.stop_signal->load(std::memory_order_relaxed) != 0) state.enter_fault(FaultCode::signal);
-    if (telemetry && telemetry->failed()) state.enter_fault(FaultCode::thread_exception);
-    if (state.fault == FaultCode::none && worker_fault_pending(fault_detail, sizeof fault_detail))
-      state.enter_fault(FaultCode::thread_exception);
-    // A backend whose link dropped is vented and reconnecting (an alarm, not a latched fault):
-    // the loop sends 0 kPa and restarts the tick's slew limiter from 0, so pressure rises again
-    // under the slew limit when the link is back.
-    const bool linked = backend.linked();
-    if (!linked) {
-      ++sum.unlinked_ticks;
-      if (was_linked) ++sum.link_outages;
-    }
-    was_linked = linked;
+    if (opt.stop_signal && opt.stop_signal->load(std::memory_order_relaxed) != 0) rig.enter_fault(FaultCode::signal);
+    if (telemetry && telemetry->failed()) rig.enter_fault(FaultCode::thread_exception);
+    if (!rig.faulted() && worker_fault_pending(worker_detail, sizeof worker_detail))
+      rig.enter_fault(FaultCode::thread_exception, worker_detail);
 
     if (opt.stop_request && opt.stop_request->load(std::memory_order_relaxed)) break;
+    // The operator's VENT (held from another thread) disarms: 0 kPa from this very tick, the
+    // loop runs on reading monitors; released, the rig is armed again and pressure rises from
+    // 0 kPa under the slew limit.
     const bool vent_held = opt.vent_request && opt.vent_request->load(std::memory_order_relaxed);
-
-    const std::int64_t tick_start = mono_ns();
-    const TouchSample sample = input.latest(t_s);
-    TickResult r = tick(state, config, scene, sample, t_s);
-    if (vent_held) r.record.flags |= kVented;
-    if (!linked || vent_held) {
-      r.setpoint_kPa = {};
-      state.last_setpoint_kPa = {};
-      for (int i = 0; i < kFingerCount; ++i) r.record.setpoint_kPa[i] = 0.0f;
+    if (vent_held != vent_was_held) {
+      if (vent_held) rig.disarm();
+      else rig.arm();
+      vent_was_held = vent_held;
     }
 
-    const std::int64_t io_start = mono_ns();
-    ChannelPressures monitor{};
-    bool io_ok = backend.write(r.setpoint_kPa, t_s) == BackendStatus::ok;
-    io_ok = io_ok && backend.read_monitors(monitor, t_s) == BackendStatus::ok;
-    const std::int64_t io_end = mono_ns();
-    if (!io_ok && state.fault == FaultCode::none) {
-      state.enter_fault(FaultCode::backend_error);
-      std::snprintf(fault_detail, sizeof fault_detail, "%s", backend.last_error());
-    }
-    io_hist.record(double(io_end - io_start) / 1000.0);
-    tick_hist.record(double(io_start - tick_start) / 1000.0);
+    const StepResult& step = rig.step(scene, input.latest(t_s), t_s);
+    io_hist.record(step.io_us);
+    tick_hist.record(step.tick_us);
 
-    r.record.wake_latency_us = wake_us;
-    r.record.io_us = float(double(io_end - io_start) / 1000.0);
-    for (int i = 0; i < kFingerCount; ++i) {
-      r.record.monitor_kPa[i] = float(monitor[i]);
-      sum.target_kPa[i].add(r.record.target_kPa[i]);
-      sum.setpoint_kPa[i].add(r.setpoint_kPa[i]);
-      sum.monitor_kPa[i].add(monitor[i]);
-    }
-    r.record.fault = state.fault;
-    if (!linked && state.fault == FaultCode::none) {
-      // The alarm: not latched, the run goes on vented and resumes when the link returns.
-      r.record.fault = FaultCode::backend_error;
-      r.record.flags |= kVented;
+    TelemetryRecord rec = step.tick.record;
+    rec.wake_latency_us = wake_us;
+    for (std::size_t i = 0; i < kFingerCount; ++i) {
+      sum.target_kPa[i].add(rec.target_kPa[i]);
+      sum.setpoint_kPa[i].add(step.tick.setpoint_kPa[i]);
+      sum.monitor_kPa[i].add(step.monitor_kPa[i]);
     }
     ++sum.ticks;
     ++k;
@@ -124,9 +103,10 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       const std::int64_t now = mono_ns();
       const std::int64_t next = start_ns + std::int64_t(k) * period_ns;
       if (now > next) {
-        r.record.flags |= kOverrun;
+        rec.flags |= kOverrun;
         ++sum.overruns;
-        if (++consecutive_overruns > config.safety.max_consecutive_overruns) state.enter_fault(FaultCode::overrun_limit);
+        // Latched: the loop ends below and disarm() vents at once.
+        if (++consecutive_overruns > config.safety.max_consecutive_overruns) rig.enter_fault(FaultCode::overrun_limit);
         // Resynchronise to the next period still in the future: missed periods are skipped,
         // never run late in a burst, and the schedule keeps its original phase (no drift).
         const auto resume =
@@ -137,26 +117,27 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
         consecutive_overruns = 0;
       }
     }
-    if (opt.observer) opt.observer->on_tick(r.record);
+    if (opt.observer) opt.observer->on_tick(rec);
     if (telemetry) {
-      if (realtime) telemetry->try_push(r.record);
-      else telemetry->push_wait(r.record);
+      if (realtime) telemetry->try_push(rec);
+      else telemetry->push_wait(rec);
     }
-    if (state.fault != FaultCode::none) {
-      backend.vent();
-      sum.fault = state.fault;
+    if (rig.faulted()) {
+      sum.fault = rig.fault();
       sum.fault_t_s = t_s;
-      break;
     }
   }
-  backend.vent();  // a run always ends with every channel at 0 kPa
+  if (rig.faulted() && sum.fault == FaultCode::none) sum.fault = rig.fault();  // refused before the first tick
+  rig.disarm();  // a run always ends with every channel at 0 kPa
+  sum.link_outages = rig.link_outages();
+  sum.unlinked_ticks = rig.unlinked_steps();
   rt.pm_qos.release();  // the CPUs may sleep deeply again
   sum.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
   sum.sim_time_s = double(k) * period_s;
   sum.wake_latency = wake_hist.summary();
   sum.io_time = io_hist.summary();
   sum.tick_time = tick_hist.summary();
-  sum.fault_detail = fault_detail;
+  sum.fault_detail = rig.fault_detail();
   if (telemetry) {
     sum.telemetry_dropped = telemetry->dropped();
     try {

@@ -1,20 +1,26 @@
 #pragma once
-// The loop runner: calls the tick at a fixed rate against a backend and an input source.
+// The loop runner: schedules one RigStep (controller/rig_step.hpp: tick, backend write, monitors,
+// faults, vent) per period against a backend and an input source, and keeps the run's
+// statistics and telemetry. The backend (open) is armed at the start and disarmed at the end.
 //   realtime: absolute deadlines on CLOCK_MONOTONIC (no drift), overruns counted and the
 //             schedule resynchronised to the next free period; SCHED_FIFO/mlockall if allowed.
 //   replay:   simulated time, as fast as the machine goes, same tick and same backend calls.
-// Any fault latches in the tick state, every channel is vented and the run ends with the reason.
+// Stop requests, worker-thread exceptions, telemetry failures and deadline overruns beyond the
+// limit latch a fault in the rig step; any fault vents every channel and ends the run with the
+// reason.
 #include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "inputs/input_source.hpp"
 #include "runtime/latency_histogram.hpp"
 #include "runtime/realtime.hpp"
 #include "rigs/rig_backend.hpp"
+#include "controller/rig_step.hpp"
 #include "controller/tick.hpp"
 
 namespace palprig {
@@ -42,10 +48,14 @@ struct RunOptions {
   // Operator controls from another thread (the GUI), read once per tick, never waited on:
   // while vent_request is set every setpoint is 0 kPa from that very tick on and the loop keeps
   // running (telemetry flag vented); when it clears, pressure rises again from 0 under the slew
-  // limit. stop_request ends the run cleanly (vented, no fault).
+  // limit. The backend is disarmed while it is held and armed again when it clears.
+  // stop_request ends the run cleanly (vented, no fault).
   const std::atomic<bool>* vent_request = nullptr;
   const std::atomic<bool>* stop_request = nullptr;
   TickObserver* observer = nullptr;
+  // Called once, on the calling thread, before the first tick with the run's rig step: a front
+  // end keeps it to request arm/disarm from its own thread. Valid until run_loop returns.
+  std::function<void(RigStep&)> rig_step_ready;
 };
 
 struct RangeStats {

@@ -19,7 +19,8 @@ std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& sc
       throw InputError(e.file(), e.where(), e.expected() + "; give `duration_s` to run it anyway");
     }
   }
-  if (spec == "sweep") return std::make_unique<SweepInput>(scene.bounds(), SweepPlan{});
+  // "sweep" is the command line's historical word for the pen raster; "raster" is its name in code.
+  if (spec == "sweep" || spec == "raster") return std::make_unique<RasterInput>(scene.bounds(), RasterPlan{});
   if (spec.rfind("trace:", 0) == 0) {
     const std::filesystem::path p = spec.substr(6);
     try {

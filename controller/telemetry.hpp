@@ -30,6 +30,7 @@ enum TelemetryFlag : std::uint8_t {
   kSlewLimited = 1 << 2,
   kVented = 1 << 3,
   kOverrun = 1 << 4,   // this tick finished after the next deadline
+  kDisarmed = 1 << 5,  // the backend was not armed: vented, monitors still read
 };
 
 static_assert(std::is_trivially_copyable_v<TelemetryRecord>);

@@ -9,48 +9,59 @@ namespace palprig {
 
 TickState make_tick_state(const TickConfig& config) noexcept {
   TickState s;
-  s.compensator = config.hysteresis_inverse;
-  for (auto& c : s.compensator) c.reset(0.0);
+  s.hysteresis_inverse = config.hysteresis_inverse;
+  for (auto& inverse : s.hysteresis_inverse) inverse.reset(0.0);
   return s;
 }
 
 namespace {
 
-// Hysteresis compensation, then the safety stage; fills setpoints and the record's outputs.
-void finish(TickState& state, const TickConfig& config, const ChannelPressures& target_kPa, double t_s,
-            TickResult& out) noexcept {
-  TelemetryRecord& rec = out.record;
-  const SafetyLimits& lim = config.safety;
+// Record the targets and latch a fault for a non-finite target or time, before the last stages.
+void check_targets(TickState& state, const ChannelPressures& target_kPa, double t_s, TelemetryRecord& rec) noexcept {
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     rec.target_kPa[i] = static_cast<float>(target_kPa[i]);
     if (!std::isfinite(target_kPa[i])) state.enter_fault(FaultCode::non_finite_target);
   }
   if (state.fault == FaultCode::none && !std::isfinite(t_s)) state.enter_fault(FaultCode::bad_sample);
+}
+
+}  // namespace
+
+ChannelPressures hysteresis_inverse_stage(TickState& state, const ChannelPressures& target_kPa) noexcept {
+  ChannelPressures command = target_kPa;
+  if (state.fault != FaultCode::none) return command;  // venting: the inverses keep their state
+  for (std::size_t i = 0; i < kFingerCount; ++i)
+    if (std::isfinite(target_kPa[i]) && !state.hysteresis_inverse[i].is_identity())
+      command[i] = state.hysteresis_inverse[i].apply(target_kPa[i]);
+  return command;
+}
+
+void safety_stage(TickState& state, const TickConfig& config, const ChannelPressures& command_kPa, double t_s,
+                  TickResult& out) noexcept {
+  TelemetryRecord& rec = out.record;
+  const SafetyLimits& lim = config.safety;
+  for (double p : command_kPa)
+    if (!std::isfinite(p)) state.enter_fault(FaultCode::non_finite_target);  // a broken inverse, too
 
   if (state.fault != FaultCode::none) {
     // Vent: every channel to 0 kPa at once (no slew limit on the way down to safety).
     out.setpoint_kPa = {};
     rec.flags |= kVented;
   } else {
-    const double dt = state.started ? std::max(t_s - state.last_t_s, 0.0) : 0.0;
+    // The first tick has no previous time: one nominal period. From the vented state (the
+    // state's last setpoint is 0 kPa at the start and after restart_from_vented) the
+    // setpoint therefore rises by at most one slew step, whatever the pen pressed on.
+    const double dt = state.started ? std::max(t_s - state.last_t_s, 0.0) : config.period_s;
     const double max_step = lim.slew_kPa_per_s * dt;
     for (std::size_t i = 0; i < kFingerCount; ++i) {
-      double p = target_kPa[i];
-      if (!state.compensator[i].is_identity()) p = state.compensator[i].apply(p);
-      if (!std::isfinite(p)) {  // a broken compensator must not reach the rig either
-        state.enter_fault(FaultCode::non_finite_target);
-        p = 0;
-      }
+      double p = command_kPa[i];
       if (p > lim.p_max_kPa) { p = lim.p_max_kPa; rec.flags |= kClamped; }
       if (p < 0) p = 0;
-      if (state.started) {
-        const double prev = state.last_setpoint_kPa[i];
-        if (p > prev + max_step) { p = prev + max_step; rec.flags |= kSlewLimited; }
-        else if (p < prev - max_step) { p = prev - max_step; rec.flags |= kSlewLimited; }
-      }
+      const double prev = state.last_setpoint_kPa[i];
+      if (p > prev + max_step) { p = prev + max_step; rec.flags |= kSlewLimited; }
+      else if (p < prev - max_step) { p = prev - max_step; rec.flags |= kSlewLimited; }
       out.setpoint_kPa[i] = p;
     }
-    if (state.fault != FaultCode::none) { out.setpoint_kPa = {}; rec.flags |= kVented; }
   }
   for (std::size_t i = 0; i < kFingerCount; ++i) rec.setpoint_kPa[i] = static_cast<float>(out.setpoint_kPa[i]);
   rec.fault = state.fault;
@@ -61,8 +72,6 @@ void finish(TickState& state, const TickConfig& config, const ChannelPressures& 
   state.started = true;
 }
 
-}  // namespace
-
 TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, const TouchSample& sample,
                 double t_s) noexcept {
   TickResult out;
@@ -72,8 +81,7 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   rec.force_N = static_cast<float>(sample.force_N);
 
   ChannelPressures target{};
-  std::array<Point2_mm, kFingerCount> fingers{};
-  bool pressed = false;
+  FingersOnSkin fingers;
   const bool sample_ok = std::isfinite(sample.x_mm) && std::isfinite(sample.y_mm) &&
                          std::isfinite(sample.force_N) && sample.force_N >= 0 && std::isfinite(sample.t_s);
   if (!sample_ok) {
@@ -82,23 +90,26 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
     state.enter_fault(FaultCode::input_stale);
   } else if (sample.in_contact && sample.force_N >= config.contact_force_N) {
     rec.flags |= kInContact;
-    pressed = true;
-    fingers = config.layout.centres(sample.x_mm, sample.y_mm);
+    fingers.pressed = true;
+    fingers.force_N = sample.force_N;
+    fingers.centres = config.layout.centres(sample.x_mm, sample.y_mm);
     const double ratio = config.stress.force_ratio(sample.force_N);
     for (std::size_t i = 0; i < kFingerCount; ++i) {
-      const TissueSample felt = scene.sample(fingers[i], sample.force_N, t_s);
+      const TissueSample felt = scene.sample(fingers.centres[i], sample.force_N, t_s);
       rec.stiffness[i] = static_cast<float>(felt.stiffness);
       const double stress_kPa = config.stress.target_stress_kPa(felt.stiffness, sample.force_N);
       target[i] = config.actuators[i].pressure_kPa(stress_kPa, ratio);
     }
   }
+  if (!fingers.pressed) fingers.force_N = sample.force_N;
   // Scenes without arteries (maps) skip this entirely.
   if (const PulseField* arteries = scene.pulse()) {
-    const double dt_s = state.started ? t_s - state.last_t_s : 0.0;
-    apply_pulse_stage(state.pulse, config.pulse, config.safety, *arteries, pressed, fingers, sample.force_N, t_s, dt_s,
-                      target, out.pulse_kPa);
+    const PulseStageSetting setting{config.pulse, *arteries, config.safety.p_max_kPa, config.safety.slew_kPa_per_s};
+    const TickTime time{t_s, state.started ? t_s - state.last_t_s : 0.0};
+    apply_pulse_stage(state.pulse, setting, fingers, time, target, out.pulse_kPa);
   }
-  finish(state, config, target, t_s, out);
+  check_targets(state, target, t_s, rec);
+  safety_stage(state, config, hysteresis_inverse_stage(state, target), t_s, out);
   return out;
 }
 
@@ -106,7 +117,8 @@ TickResult tick_direct(TickState& state, const TickConfig& config, const Channel
                        double t_s) noexcept {
   TickResult out;
   out.record.flags |= kInContact;
-  finish(state, config, target_kPa, t_s, out);
+  check_targets(state, target_kPa, t_s, out.record);
+  safety_stage(state, config, hysteresis_inverse_stage(state, target_kPa), t_s, out);
   return out;
 }
 

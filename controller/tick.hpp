@@ -4,11 +4,12 @@
 // exceptions, so tests and replays run it directly.
 //
 //   sample -> FingerLayout -> Scene::sample -> StressModel -> ActuatorModel
-//          [-> + pulse (scenes with arteries only; controller/pulse_stage.hpp)]
-//          -> HysteresisInverse -> Safety (clamp, slew, vent) -> setpoints + telemetry
+//          [-> pulse stage (scenes with arteries only; controller/pulse_stage.hpp)]
+//          -> hysteresis inverse stage -> safety stage (clamp, slew, vent) -> setpoints + telemetry
 //
-// Experiments that present fixed per-finger pressures use tick_direct(), which enters at the
-// hysteresis stage and passes the same safety stage.
+// Experiments that present fixed per-finger pressures, and calibration, use tick_direct(),
+// which enters at the hysteresis inverse stage and passes the same safety stage. What happens
+// around the tick (backend write, monitors, faults, venting) is controller/rig_step.hpp's.
 #include <array>
 
 #include "controller/fault.hpp"
@@ -28,27 +29,37 @@ struct TickConfig {
   FingerLayout layout;
   StressModel stress;
   std::array<ActuatorModel, kFingerCount> actuators{};
-  // Per-channel hysteresis model fitted by calibration; the tick applies its inverse.
+  // Per channel, the inverse of the hysteresis model calibration fitted (identity: no
+  // compensation). The hysteresis inverse stage runs a copy of it (TickState::hysteresis_inverse).
   std::array<PrandtlIshlinskii, kFingerCount> hysteresis_inverse{};
   SafetyLimits safety;
   double contact_force_N = 0.05;    // below this the pen is lifted: targets go to 0 kPa
+  // Nominal time between ticks (1 / loop rate). The first tick of a run has no previous time,
+  // so its slew allowance from the vented state is one nominal period's.
+  double period_s = 0.001;
   // Pulse rendering (scenes with arteries): regulator-lag pre-compensation from the rig's plant.
   PulseRendering pulse;
 };
 
 struct TickState {
+  // Where the safety stage's slew limiter starts from: the last setpoint sent, or 0 kPa (the
+  // vented state) after a (re)start.
   ChannelPressures last_setpoint_kPa{};
   double last_t_s = 0;
-  bool started = false;
+  bool started = false;           // a tick has run: last_t_s is a time
   FaultCode fault = FaultCode::none;  // latched: once set, every later tick vents
   std::uint64_t ticks = 0;
-  std::array<PrandtlIshlinskii, kFingerCount> compensator{};  // running inverse models
+  // The running copies of TickConfig::hysteresis_inverse (they hold each channel's play state).
+  std::array<PrandtlIshlinskii, kFingerCount> hysteresis_inverse{};
   PulseTickState pulse;  // pulse clocks, per-finger activation and lag compensators (fixed size)
 
   // Latch a fault (the first reason wins) so the next ticks vent.
   void enter_fault(FaultCode why) noexcept {
     if (fault == FaultCode::none) fault = why;
   }
+  // The channels were vented without a fault (a link outage, a disarm): the next tick rises
+  // from 0 kPa under the slew limit again, as on the first tick. Time and the pulse clocks go on.
+  void restart_from_vented() noexcept { last_setpoint_kPa = {}; }
 };
 
 struct TickResult {
@@ -57,14 +68,25 @@ struct TickResult {
   TelemetryRecord record;
 };
 
-// Prepare a state for a run: copies the compensators from the configuration and resets them.
+// Prepare a state for a run: copies the hysteresis inverses from the configuration and resets them.
 TickState make_tick_state(const TickConfig& config) noexcept;
 
 TickResult tick(TickState& state, const TickConfig& config, const Scene& scene,
                 const TouchSample& sample, double t_s) noexcept;
 
-// Direct per-finger pressures (experiments): hysteresis compensation and safety only.
+// Direct per-finger pressures (experiments, calibration): hysteresis inverse and safety only.
 TickResult tick_direct(TickState& state, const TickConfig& config, const ChannelPressures& target_kPa,
                        double t_s) noexcept;
+
+// The last two stages, named as in the design diagram (tick and tick_direct call them in this
+// order). The hysteresis inverse stage turns targets into commands that land the actuator on the
+// target on both branches; it leaves non-finite targets for the safety stage and does nothing
+// once a fault is latched.
+ChannelPressures hysteresis_inverse_stage(TickState& state, const ChannelPressures& target_kPa) noexcept;
+// The safety stage: vent on a latched fault or a non-finite command; otherwise clamp to
+// [0, p_max] and limit each change to the slew rate (from 0 kPa after a (re)start). Fills the
+// setpoints and the record's setpoint, flag, fault, time and tick fields, and advances the state.
+void safety_stage(TickState& state, const TickConfig& config, const ChannelPressures& command_kPa, double t_s,
+                  TickResult& out) noexcept;
 
 }  // namespace palprig

@@ -196,14 +196,15 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
 }
 
 InputSource& SimulatedPulseObserver::trial_started(const PulseCondition&, const Scene& scene, double t_s) {
-  SweepPlan plan;
+  // A pen raster (the model's sweep_* fields keep their stored names).
+  RasterPlan plan;
   plan.speed_mm_per_s = model_.sweep_speed_mm_per_s;
   plan.row_step_mm = model_.sweep_row_step_mm;
   plan.force_N = model_.press_force_N;
   plan.margin_mm = 2.0 + random_.uniform() * model_.sweep_row_step_mm;
-  auto sweep = std::make_unique<SweepInput>(scene.bounds(), plan);
-  done_at_s_ = t_s + sweep->duration_s();
-  pen_.restart(std::move(sweep), t_s);
+  auto raster = std::make_unique<RasterInput>(scene.bounds(), plan);
+  done_at_s_ = t_s + raster->duration_s();
+  pen_.restart(std::move(raster), t_s);
   for (auto& h : history_) h.clear();
   best_swing_kPa_ = 0;
   best_ = {};

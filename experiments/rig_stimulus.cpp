@@ -4,8 +4,12 @@
 
 namespace palprig {
 
-RigStimulus::RigStimulus(const TickConfig& config, RigBackend& backend)
-    : config_(config), backend_(backend), state_(make_tick_state(config)) {}
+RigStimulus::RigStimulus(const TickConfig& config, RigBackend& backend, double rate_hz)
+    : rig_(config, backend, RigStepOptions{rate_hz, false}) {
+  if (rig_.arm() != BackendStatus::ok) fault(std::string("rig backend: ") + rig_.fault_detail());
+}
+
+RigStimulus::~RigStimulus() { rig_.disarm(); }
 
 void RigStimulus::hold(const ChannelPressures& target_kPa, double t_s) {
   mode_ = Mode::hold;
@@ -27,33 +31,25 @@ void RigStimulus::vent(double t_s) {
 }
 
 void RigStimulus::fault(const std::string& why) {
-  backend_.vent();
+  rig_.disarm();
   throw RigFault(why + "; all channels vented");
 }
 
 ChannelPressures RigStimulus::service(double t_s) {
-  if (state_.fault != FaultCode::none) fault(std::string("rig faulted earlier: ") + to_string(state_.fault));
+  if (rig_.faulted()) fault(std::string("rig faulted earlier: ") + to_string(rig_.fault()));
   // The tick's time only moves forward; a repeated call at the same time re-sends the setpoint.
-  const double t = state_.started && t_s < state_.last_t_s ? state_.last_t_s : t_s;
-  TickResult result;
-  if (mode_ == Mode::scene) {
-    result = tick(state_, config_, *scene_, pen_->latest(t), t);
-  } else {
-    // Venting goes through the same stage at 0 kPa so the safety stage sees every setpoint.
-    result = tick_direct(state_, config_, mode_ == Mode::hold ? target_kPa_ : ChannelPressures{}, t);
+  const TickState& state = rig_.tick_state();
+  const double t = state.started && t_s < state.last_t_s ? state.last_t_s : t_s;
+  // Venting goes through the same stage at 0 kPa so the safety stage sees every setpoint.
+  const StepResult& result = mode_ == Mode::scene
+                                 ? rig_.step(*scene_, pen_->latest(t), t)
+                                 : rig_.step_direct(mode_ == Mode::hold ? target_kPa_ : ChannelPressures{}, t);
+  if (rig_.faulted()) {
+    if (rig_.fault() == FaultCode::backend_error) fault(std::string("rig backend: ") + rig_.fault_detail());
+    fault(std::string("safety stage: ") + to_string(rig_.fault()));
   }
-  if (state_.fault != FaultCode::none) fault(std::string("safety stage: ") + to_string(state_.fault));
-  if (backend_.write(result.setpoint_kPa, t) != BackendStatus::ok) {
-    state_.enter_fault(FaultCode::backend_error);
-    fault(std::string("rig backend: ") + backend_.last_error());
-  }
-  ChannelPressures monitor{};
-  if (backend_.read_monitors(monitor, t) != BackendStatus::ok) {
-    state_.enter_fault(FaultCode::backend_error);
-    fault(std::string("rig backend: ") + backend_.last_error());
-  }
-  last_ = result.record;
-  return monitor;
+  last_ = result.tick.record;
+  return result.monitor_kPa;
 }
 
 }  // namespace palprig

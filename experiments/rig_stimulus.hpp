@@ -1,25 +1,29 @@
 #pragma once
-// RigStimulus: StimulusOutput on a real or simulated rig through the controller's public tick.
-// Direct stimuli go through tick_direct (hysteresis compensation and the safety stage), scenes
-// through tick (finger layout, stiffness, stress and actuator models, safety), then to the
-// backend. A safety fault or backend error vents every channel and throws RigFault.
-#include "rigs/rig_backend.hpp"
+// RigStimulus: StimulusOutput on a real or simulated rig through the controller's rig step
+// (controller/rig_step.hpp). Direct stimuli go through tick_direct (hysteresis inverse and the
+// safety stage), scenes through tick (finger layout, stiffness, stress and actuator models,
+// safety), then to the backend. The backend is armed for the stimulus's lifetime; pressure
+// rises from the vented state under the slew limit. A safety fault or backend error vents every
+// channel and throws RigFault.
+#include "controller/rig_step.hpp"
 #include "controller/telemetry.hpp"
-#include "controller/tick.hpp"
 #include "experiments/stimulus_output.hpp"
 
 namespace palprig {
 
 class RigStimulus final : public StimulusOutput {
  public:
-  // The configuration and backend must outlive this object; the backend must be open.
-  RigStimulus(const TickConfig& config, RigBackend& backend);
+  // The backend must be open and outlive this object. rate_hz: how often service() is called
+  // (the session loop's period); it sizes the first slew step. Throws RigFault when the
+  // backend refuses to arm.
+  RigStimulus(const TickConfig& config, RigBackend& backend, double rate_hz = 200.0);
+  ~RigStimulus() override;  // disarms: every channel vented
 
   void hold(const ChannelPressures& target_kPa, double t_s) override;
   void palpate(const Scene& scene, InputSource& pen, double t_s) override;
   void vent(double t_s) override;
   ChannelPressures service(double t_s) override;
-  std::string describe() const override { return backend_.describe(); }
+  std::string describe() const override { return rig_.backend().describe(); }
 
   // The record of the last serviced tick (pen position and per-finger values, for observers).
   const TelemetryRecord* last_record() const noexcept override { return &last_; }
@@ -28,9 +32,7 @@ class RigStimulus final : public StimulusOutput {
   enum class Mode { vented, hold, scene };
   [[noreturn]] void fault(const std::string& why);
 
-  const TickConfig& config_;
-  RigBackend& backend_;
-  TickState state_;
+  RigStep rig_;
   Mode mode_ = Mode::vented;
   ChannelPressures target_kPa_{};
   const Scene* scene_ = nullptr;

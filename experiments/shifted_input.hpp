@@ -1,6 +1,6 @@
 #pragma once
 // ShiftedInput: an input source whose time 0 is set when a trial starts, so a scripted pen
-// (a sweep) runs from each trial's onset. Samples come back on the caller's clock.
+// (a raster) runs from each trial's onset. Samples come back on the caller's clock.
 #include <memory>
 #include <string>
 

@@ -67,16 +67,16 @@ void SimulatedParticipant::trial_started(const PlannedTrial&, const Condition& c
       break;
     }
     case PresentationMode::scene: {
-      // A fresh sweep with a random row offset: which small tumors the fingers pass over varies.
-      SweepPlan plan;
-      plan.speed_mm_per_s = model_.sweep_speed_mm_per_s;
-      plan.row_step_mm = model_.sweep_row_step_mm;
+      // A fresh raster with a random row offset: which small tumors the fingers pass over varies.
+      RasterPlan plan;
+      plan.speed_mm_per_s = model_.raster_speed_mm_per_s;
+      plan.row_step_mm = model_.raster_row_step_mm;
       plan.force_N = model_.press_force_N;
-      plan.margin_mm = 2.0 + random_.uniform() * model_.sweep_row_step_mm;
-      auto sweep = std::make_unique<SweepInput>(scene_->bounds(), plan);
-      const double sweep_s = sweep->duration_s();
-      pen_.restart(std::move(sweep), t_s);
-      answer_at_s_ = t_s + sweep_s + random_.lognormal_with_mean_sd(2.0, 1.0);
+      plan.margin_mm = 2.0 + random_.uniform() * model_.raster_row_step_mm;
+      auto raster = std::make_unique<RasterInput>(scene_->bounds(), plan);
+      const double raster_s = raster->duration_s();
+      pen_.restart(std::move(raster), t_s);
+      answer_at_s_ = t_s + raster_s + random_.lognormal_with_mean_sd(2.0, 1.0);
       break;
     }
   }

@@ -9,7 +9,7 @@
 // Response times are log-normal with the mean and sd of paper 002 per mode (4.6 +/- 2.3 s
 // three fingers, 8.3 +/- 2.9 s one finger), never before every finger has been felt.
 //
-// Localisation: the observer sweeps the scene with the pen (rows 20 mm apart, a random row
+// Localisation: the observer rasters the scene with the pen (rows 20 mm apart, a random row
 // offset per trial) and watches each finger's pressure above its running minimum. Each bump
 // above the detection threshold becomes a candidate at its peak; it is reported with
 // probability Phi((peak - threshold) / detection_noise_kPa), marked with Gaussian position
@@ -46,8 +46,8 @@ struct SimulatedObserverModel {
   double detection_threshold_kPa = 3.0;  // above the plant's hysteresis offset (~2 kPa)
   double detection_noise_kPa = 1.5;
   double mark_noise_mm = 2.0;
-  double sweep_speed_mm_per_s = 40.0;
-  double sweep_row_step_mm = 20.0;       // fingers pass 16 mm apart: paths 4 and 16 mm apart
+  double raster_speed_mm_per_s = 40.0;
+  double raster_row_step_mm = 20.0;       // fingers pass 16 mm apart: paths 4 and 16 mm apart
   double press_force_N = 2.0;
 };
 
@@ -58,7 +58,7 @@ bool parse_simulated_participant(const std::string& spec, std::uint64_t& seed);
 
 class SimulatedParticipant final : public Participant {
  public:
-  // For localisation, `scene` bounds the sweep and `layout` places the fingers around the pen.
+  // For localisation, `scene` bounds the raster and `layout` places the fingers around the pen.
   SimulatedParticipant(const SimulatedObserverModel& model, const Protocol& protocol, const Scene* scene = nullptr,
                        FingerLayout layout = {});
 

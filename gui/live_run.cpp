@@ -42,7 +42,7 @@ namespace {
 std::unique_ptr<InputSource> make_live_input(const LiveRunSetup& s) {
   const std::string& in = s.input_spec;
   if (in == "window") return std::make_unique<WindowPenInput>();
-  if (in == "sweep") return std::make_unique<SweepInput>(s.scene.scene->bounds(), SweepPlan{});
+  if (in == "sweep" || in == "raster") return std::make_unique<RasterInput>(s.scene.scene->bounds(), RasterPlan{});
   if (in.rfind("trace:", 0) == 0) {
     const std::filesystem::path p = in.substr(6);
     return std::make_unique<TraceInput>(load_trace_csv(p, s.rig.contact_force_N), p.string(), s.rig.contact_force_N);

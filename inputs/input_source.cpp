@@ -113,7 +113,7 @@ void write_trace_csv(const std::filesystem::path& path, const std::vector<TouchS
   for (const auto& s : samples) out << s.t_s << ',' << s.x_mm << ',' << s.y_mm << ',' << s.force_N << '\n';
 }
 
-SweepInput::SweepInput(const SceneBounds& b, const SweepPlan& plan) : area_(b), plan_(plan) {
+RasterInput::RasterInput(const SceneBounds& b, const RasterPlan& plan) : area_(b), plan_(plan) {
   area_.x0_mm += plan.margin_mm;
   area_.y0_mm += plan.margin_mm;
   area_.x1_mm -= plan.margin_mm;
@@ -125,7 +125,7 @@ SweepInput::SweepInput(const SceneBounds& b, const SweepPlan& plan) : area_(b), 
   duration_s_ = (rows_ * row_length_mm_ + (rows_ - 1) * plan.row_step_mm) / plan.speed_mm_per_s;
 }
 
-TouchSample SweepInput::latest(double t_s) noexcept {
+TouchSample RasterInput::latest(double t_s) noexcept {
   TouchSample s;
   s.t_s = t_s;
   if (t_s < 0 || t_s > duration_s_) return s;

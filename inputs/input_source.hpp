@@ -1,6 +1,6 @@
 #pragma once
 // Where pen samples come from. The loop asks for the latest sample at its own time; a source
-// never blocks, allocates or throws in latest(). Recorded traces and scripted sweeps are here;
+// never blocks, allocates or throws in latest(). Recorded traces and scripted pen rasters are here;
 // the pen tablet (evdev) and the GUI pointer implement the same interface.
 #include <cstddef>
 #include <filesystem>
@@ -17,7 +17,7 @@ class InputSource {
  public:
   virtual ~InputSource() = default;
   virtual TouchSample latest(double t_s) noexcept = 0;
-  // Length of a finite source (a trace, a sweep); 0 for a live one.
+  // Length of a finite source (a trace, a raster); 0 for a live one.
   virtual double duration_s() const noexcept = 0;
   virtual std::string describe() const = 0;
 };
@@ -60,25 +60,26 @@ std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, doubl
                                         const TraceLimits& limits = {});
 void write_trace_csv(const std::filesystem::path& path, const std::vector<TouchSample>& samples);
 
-// A scripted raster sweep over a scene's bounds at constant speed and force: rows spaced
-// row_step_mm apart, travelling back and forth, pen pressed the whole time.
-struct SweepPlan {
+// A scripted pen raster over a scene's bounds at constant speed and force: rows spaced
+// row_step_mm apart, travelling back and forth, pen pressed the whole time. (`--input sweep`
+// on the command line; "sweep" in code is calibration's staircase.)
+struct RasterPlan {
   double speed_mm_per_s = 40.0;
   double row_step_mm = 10.0;
   double force_N = 2.0;
   double margin_mm = 5.0;
 };
 
-class SweepInput final : public InputSource {
+class RasterInput final : public InputSource {
  public:
-  SweepInput(const SceneBounds& bounds, const SweepPlan& plan);
+  RasterInput(const SceneBounds& bounds, const RasterPlan& plan);
   TouchSample latest(double t_s) noexcept override;
   double duration_s() const noexcept override { return duration_s_; }
-  std::string describe() const override { return "sweep"; }
+  std::string describe() const override { return "raster"; }
 
  private:
   SceneBounds area_;
-  SweepPlan plan_;
+  RasterPlan plan_;
   double row_length_mm_ = 0, duration_s_ = 0;
   int rows_ = 0;
 };

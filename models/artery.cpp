@@ -164,10 +164,13 @@ void PulseField::update_clocks(PulseClocks& clocks, double t_s) const noexcept {
   clocks.started = true;
 }
 
-PulseFelt PulseField::felt(const Point2_mm& at, double force_N, bool in_contact, const PulseClocks& clocks,
-                           PulseActivation& activation, double t_s, double lead_s, double rise_advance_s,
-                           double fall_advance_s, const ForceWindow* measured_window) const noexcept {
+PulseFelt PulseField::felt(const FingerContact& finger, const PulseClocks& clocks, PulseActivation& activation,
+                           double t_s, const PulseLookahead& ahead, const ForceWindow* measured_window) const noexcept {
   PulseFelt out;
+  const Point2_mm& at = finger.at;
+  const double force_N = finger.force_N;
+  const bool in_contact = finger.in_contact;
+  const double lead_s = ahead.lead_s, rise_advance_s = ahead.rise_advance_s, fall_advance_s = ahead.fall_advance_s;
   const bool usable = in_contact && std::isfinite(at.x_mm) && std::isfinite(at.y_mm) && std::isfinite(force_N);
   for (std::size_t i = 0; i < arteries_.size(); ++i) {
     bool& on = activation.on[i];

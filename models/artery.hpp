@@ -105,6 +105,22 @@ struct PulseActivation {
   std::array<bool, kMaxArteries> on{};
 };
 
+// One finger on the skin, for felt(): its centre, the pen's pressing force, and whether the pen
+// is down (a lifted finger releases every artery).
+struct FingerContact {
+  Point2_mm at{};
+  double force_N = 0;
+  bool in_contact = false;
+};
+
+// How far ahead felt() also looks, for the lag compensator: the value lead_s ahead, with
+// rectangular pulses starting rise_advance_s and ending fall_advance_s early (its anticipation).
+struct PulseLookahead {
+  double lead_s = 0;
+  double rise_advance_s = 0;
+  double fall_advance_s = 0;
+};
+
 struct PulseFelt {
   double now_kPa = 0;    // pulse pressure at t
   double ahead_kPa = 0;  // the same finger's pulse pressure at t + lead (for lag compensation)
@@ -136,13 +152,11 @@ class PulseField {
   // Loop thread, once per tick before felt(): start the clocks (phase 0 + offset at t = 0 of
   // the run) or apply pending rate requests at t.
   void update_clocks(PulseClocks& clocks, double t_s) const noexcept;
-  // Loop thread, per finger: update its activation and return its pulse pressure now and lead_s
-  // ahead; in the value ahead, rectangular pulses start rise_advance_s and end fall_advance_s
-  // early (the lag compensator's anticipation). measured_window, when given, serves arteries
-  // whose scene left their force window out. A lifted finger releases every artery.
-  PulseFelt felt(const Point2_mm& at, double force_N, bool in_contact, const PulseClocks& clocks,
-                 PulseActivation& activation, double t_s, double lead_s, double rise_advance_s = 0,
-                 double fall_advance_s = 0, const ForceWindow* measured_window = nullptr) const noexcept;
+  // Loop thread, per finger: update its activation and return its pulse pressure now and
+  // ahead.lead_s ahead (see PulseLookahead). measured_window, when given, serves arteries whose
+  // scene left their force window out. A lifted finger releases every artery.
+  PulseFelt felt(const FingerContact& finger, const PulseClocks& clocks, PulseActivation& activation, double t_s,
+                 const PulseLookahead& ahead, const ForceWindow* measured_window = nullptr) const noexcept;
 
  private:
   std::vector<Artery> arteries_;

@@ -35,8 +35,14 @@ double PneumaticPlant::step(double command_kPa, double dt_s) noexcept {
   if (!std::isfinite(command_kPa)) command_kPa = 0.0;
   if (!(dt_s > 0) || !std::isfinite(dt_s)) return output_kPa_;
   const double x = std::clamp(command_kPa, params_.min_kPa, params_.max_kPa);
+  // Play operator (backlash of +/- r). Near the bottom of the range the band above the
+  // command narrows to the distance from the bottom: a regulator's exhaust valve opens fully at
+  // a 0 kPa command, so venting empties the actuator instead of leaving it at +r (issue 10:
+  // a vented plant read about 2 kPa, and a 0 kPa stimulus was felt at 2 kPa). Above 2 r the
+  // band is the full +/- r, continuous in between.
   const double r = params_.hysteresis_kPa;
-  play_kPa_ = std::max(x - r, std::min(x + r, play_kPa_));
+  const double r_above = std::min(r, x - params_.min_kPa);
+  play_kPa_ = std::max(x - r, std::min(x + r_above, play_kPa_));
 
   // Dead time: push the play output, then read the newest value at least dead_time old.
   // The command is stamped with the time it was given (the start of this step) and is felt

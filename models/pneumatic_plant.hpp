@@ -1,7 +1,8 @@
 #pragma once
 // PneumaticPlant: one simulated proportional regulator driving one actuator (paper 002 used
 // SMC regulators, 0-100 kPa, about 50 ms response). The command passes through
-//   range clamp -> play-operator hysteresis (backlash of +/- hysteresis_kPa)
+//   range clamp -> play-operator hysteresis (backlash of +/- hysteresis_kPa; a 0 kPa command
+//   exhausts to 0, the band narrowing below 2 x hysteresis_kPa)
 //   -> dead time -> first-order lag (time_constant_s) -> slew limit -> range clamp
 // and the monitor reading adds seeded Gaussian noise. Used by SimulatedRig, by the Modbus
 // simulator and by calibration tests; the rig JSON file sets every parameter.

@@ -80,7 +80,7 @@ class LagCompensator {
 struct PulseTickState {
   PulseClocks clocks;
   std::array<PulseActivation, kFingerCount> activation{};
-  std::array<LagCompensator, kFingerCount> compensator{};
+  std::array<LagCompensator, kFingerCount> lag_compensator{};
   double last_dt_s = 0.001;  // the loop's period as last seen (the first tick assumes 1 kHz)
 };
 

@@ -40,7 +40,9 @@ std::string ranges_text(comedi_t* dev, unsigned subdevice, unsigned channel) {
 
 ComediRig::ComediRig(ComediRigConfig config) : RigBackend(config.p_max_kPa), config_(std::move(config)) {}
 
-ComediRig::~ComediRig() { close(); }
+ComediRig::~ComediRig() {
+  close();
+}
 
 std::string ComediRig::describe() const {
   return "comedi " + config_.device + (board_.empty() ? std::string() : " (" + board_ + ")");
@@ -50,8 +52,14 @@ void ComediRig::refuse(const std::string& field, const std::string& expected) co
   throw InputError(config_.source, field, expected);
 }
 
-void ComediRig::open() {
-  close();
+BackendCapabilities ComediRig::capabilities() const {
+  BackendCapabilities c;
+  c.link_kind = "comedi";
+  c.endpoint = config_.device;
+  return c;
+}
+
+void ComediRig::do_open() {
   // Quiet comedilib's own perror output: our message says it once, with the device path.
   comedi_loglevel(0);
   dev_ = comedi_open(config_.device.c_str());
@@ -156,7 +164,7 @@ void ComediRig::open() {
   if (write_counts() != BackendStatus::ok) refuse("comedi.device", std::string("a device that accepts analog output (") + last_error() + ")");
 }
 
-void ComediRig::close() noexcept {
+void ComediRig::do_close() noexcept {
   if (!dev_) return;
   for (std::size_t c = 0; c < kFingerCount; ++c) out_counts_[c] = counts_from_kPa(out_conv_[c], 0.0);
   write_counts();

@@ -17,16 +17,17 @@ class ComediRig final : public RigBackend {
   explicit ComediRig(ComediRigConfig config);
   ~ComediRig() override;
 
-  // Opens the device, finds the subdevices and ranges, loads the calibration, writes 0 kPa.
-  // A missing or wrong device, a channel or range the card lacks, a missing soft calibration:
-  // InputError with the device path and comedi's own words (the command line exits 2).
-  void open() override;
-  void close() noexcept override;
   std::string describe() const override;
+  BackendCapabilities capabilities() const override;
   const ComediConversion& output_conversion(std::size_t channel) const noexcept { return out_conv_[channel]; }
   const ComediConversion& monitor_conversion(std::size_t channel) const noexcept { return mon_conv_[channel]; }
 
  protected:
+  // Opens the device, finds the subdevices and ranges, loads the calibration, writes 0 kPa.
+  // A missing or wrong device, a channel or range the card lacks, a missing soft calibration:
+  // InputError with the device path and comedi's own words (the command line exits 2).
+  void do_open() override;
+  void do_close() noexcept override;
   BackendStatus do_write(const ChannelPressures& setpoint_kPa, double t_s) noexcept override;
   BackendStatus do_read(ChannelPressures& monitor_kPa, double t_s) noexcept override;
   BackendStatus do_vent() noexcept override;

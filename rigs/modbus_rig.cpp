@@ -42,7 +42,9 @@ ModbusRig::ModbusRig(ModbusRigConfig config)
   monitors_.publish(nan_monitors);
 }
 
-ModbusRig::~ModbusRig() { close(); }
+ModbusRig::~ModbusRig() {
+  close();
+}
 
 std::string ModbusRig::describe() const {
   std::string s = "modbus";
@@ -51,12 +53,26 @@ std::string ModbusRig::describe() const {
   return s;
 }
 
+BackendCapabilities ModbusRig::capabilities() const {
+  BackendCapabilities c;
+  bool tcp = false, rtu = false;
+  for (std::size_t i = 0; i < config_.links.size(); ++i) {
+    const ModbusLinkConfig& link = config_.links[i];
+    (link.rtu ? rtu : tcp) = true;
+    // endpoint() reads "tcp HOST:PORT" or "rtu DEVICE ..."; the kind goes in link_kind.
+    std::string where = link.endpoint();
+    if (const auto space = where.find(' '); space != std::string::npos) where = where.substr(space + 1);
+    c.endpoint += (i ? " + " : "") + where;
+  }
+  c.link_kind = tcp && rtu ? "modbus-tcp+rtu" : rtu ? "modbus-rtu" : "modbus-tcp";
+  return c;
+}
+
 void ModbusRig::log(const std::string& line) {
   if (log_) log_(line);
 }
 
-void ModbusRig::open() {
-  close();
+void ModbusRig::do_open() {
   for (std::size_t i = 0; i < links_.size(); ++i) {
     ModbusLink& link = *links_[i].link;
     const std::string where = "modbus.links[" + std::to_string(i) + "] \"" + link.config().name + "\" (" +
@@ -89,7 +105,7 @@ void ModbusRig::open() {
   io_thread_ = std::thread([this] { io_thread_main(); });
 }
 
-void ModbusRig::close() noexcept {
+void ModbusRig::do_close() noexcept {
   if (io_thread_.joinable()) {
     stop_.store(true, std::memory_order_release);
     io_thread_.join();

@@ -44,13 +44,9 @@ class ModbusRig final : public RigBackend {
   explicit ModbusRig(ModbusRigConfig config);
   ~ModbusRig() override;
 
-  // Connects every link, writes 0 kPa to every output and reads every monitor once (so a map
-  // the device refuses is caught here), then starts the I/O thread. Throws InputError naming
-  // the rig file, the link and libmodbus's reason.
-  void open() override;
-  // Writes 0 kPa on every connected link, stops the I/O thread, closes the links.
-  void close() noexcept override;
   std::string describe() const override;
+  // link_kind "modbus-tcp" or "modbus-rtu" ("modbus-tcp+rtu" when links mix), endpoints joined by " + ".
+  BackendCapabilities capabilities() const override;
   bool linked() const noexcept override { return linked_.load(std::memory_order_acquire); }
 
   // Where link events (lost, back, bus summary) go; called on the I/O thread. Default: stderr.
@@ -59,6 +55,12 @@ class ModbusRig final : public RigBackend {
   const ModbusRigConfig& config() const noexcept { return config_; }
 
  protected:
+  // Connects every link, writes 0 kPa to every output and reads every monitor once (so a map
+  // the device refuses is caught here), then starts the I/O thread. Throws InputError naming
+  // the rig file, the link and libmodbus's reason.
+  void do_open() override;
+  // Writes 0 kPa on every connected link, stops the I/O thread, closes the links.
+  void do_close() noexcept override;
   BackendStatus do_write(const ChannelPressures& setpoint_kPa, double t_s) noexcept override;
   BackendStatus do_read(ChannelPressures& monitor_kPa, double t_s) noexcept override;
   BackendStatus do_vent() noexcept override;

@@ -7,12 +7,66 @@
 
 namespace palprig {
 
+const char* to_string(BackendState state) noexcept {
+  switch (state) {
+    case BackendState::closed: return "closed";
+    case BackendState::connected: return "connected";
+    case BackendState::armed: return "armed";
+    case BackendState::disarmed: return "disarmed";
+  }
+  return "unknown";
+}
+
 RigBackend::RigBackend(double p_max_kPa) : p_max_kPa_(p_max_kPa) {
   if (!(p_max_kPa > 0) || !std::isfinite(p_max_kPa))
     throw std::invalid_argument("RigBackend: p_max_kPa must be positive and finite");
 }
 
+void RigBackend::open() {
+  close();
+  try {
+    do_open();
+  } catch (...) {
+    do_close();  // whatever was half-opened is let go, vented where it could be written
+    state_.store(BackendState::closed, std::memory_order_release);
+    throw;
+  }
+  state_.store(BackendState::connected, std::memory_order_release);
+}
+
+void RigBackend::close() noexcept {
+  if (state() == BackendState::closed) return;
+  // Disarm first, so nothing sees "armed" while the channels are being let go.
+  state_.store(BackendState::disarmed, std::memory_order_release);
+  do_vent();
+  do_close();
+  state_.store(BackendState::closed, std::memory_order_release);
+}
+
+BackendStatus RigBackend::arm() noexcept {
+  const BackendState s = state();
+  if (s == BackendState::closed) {
+    set_error("cannot arm: the rig backend is closed (open it first)");
+    return BackendStatus::error;
+  }
+  state_.store(BackendState::armed, std::memory_order_release);
+  return BackendStatus::ok;
+}
+
+BackendStatus RigBackend::disarm() noexcept {
+  if (state() != BackendState::armed) return BackendStatus::ok;
+  state_.store(BackendState::disarmed, std::memory_order_release);
+  return do_vent();
+}
+
 BackendStatus RigBackend::write(const ChannelPressures& setpoint_kPa, double t_s) noexcept {
+  if (state() != BackendState::armed) {
+    char msg[160];
+    std::snprintf(msg, sizeof msg, "refused setpoints: the rig is %s, not armed; vented", to_string(state()));
+    do_vent();
+    set_error(msg);
+    return BackendStatus::error;
+  }
   for (std::size_t i = 0; i < setpoint_kPa.size(); ++i) {
     const double p = setpoint_kPa[i];
     if (!std::isfinite(p) || p < 0 || p > p_max_kPa_) {
@@ -28,7 +82,25 @@ BackendStatus RigBackend::write(const ChannelPressures& setpoint_kPa, double t_s
 }
 
 BackendStatus RigBackend::read_monitors(ChannelPressures& monitor_kPa, double t_s) noexcept {
+  if (state() == BackendState::closed) {
+    set_error("cannot read monitors: the rig backend is closed (open it first)");
+    return BackendStatus::error;
+  }
   return do_read(monitor_kPa, t_s);
+}
+
+BackendStatus RigBackend::read_sensors(std::array<double, kFingerCount>& value, double t_s) noexcept {
+  if (state() == BackendState::closed) {
+    set_error("cannot read sensors: the rig backend is closed (open it first)");
+    return BackendStatus::error;
+  }
+  return do_read_sensors(value, t_s);
+}
+
+BackendStatus RigBackend::do_read_sensors(std::array<double, kFingerCount>& value, double) noexcept {
+  value.fill(std::nan(""));
+  set_error("this rig has no sensor channel");
+  return BackendStatus::error;
 }
 
 BackendStatus RigBackend::vent() noexcept { return do_vent(); }

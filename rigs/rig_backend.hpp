@@ -1,10 +1,28 @@
 #pragma once
 // RigBackend: the seam between the loop and the pressure regulators. The simulated, Modbus and
-// comedi rigs implement do_write/do_read/do_vent; the public write() enforces the rig's p_max a
-// second time (after the tick's safety stage) so that no value above p_max, NaN or infinite ever
-// reaches a device, whatever called it. Everything the loop calls is noexcept and returns a
-// status; only open() may throw (before anything moves).
+// comedi rigs implement do_open/do_close/do_write/do_read/do_vent; the public calls here are
+// non-virtual and hold the rules every backend shares:
+//
+//   - a lifecycle, as ros2_control's hardware interfaces have one, so that an operator (the GUI)
+//     sees a device connected and reading before pressure can flow:
+//
+//        closed --open()--> connected --arm()--> armed --disarm()--> disarmed --arm()--> armed
+//           ^                   |                  |                     |
+//           +------close()------+------------------+---------------------+
+//
+//     connected and disarmed: every channel vented, monitors (and sensors) readable.
+//     armed: setpoints flow (RigStep ramps them up from the vented state through the slew
+//     limit). write() in any other state is refused and vents.
+//   - p_max enforced a second time (after the tick's safety stage): no value above p_max, NaN
+//     or infinite ever reaches a device, whatever called write().
+//   - capabilities described up front (channels, monitor, sensor and its unit, link kind,
+//     endpoint) instead of discovered by calling and failing.
+//
+// Everything the loop calls is noexcept and returns a status; only open() may throw (before
+// anything moves). state() may be read from any thread; the transitions are made by the thread
+// that owns the backend (the loop while one runs).
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <string>
 
@@ -14,6 +32,20 @@ namespace palprig {
 
 enum class BackendStatus { ok, error };
 
+enum class BackendState { closed, connected, armed, disarmed };
+const char* to_string(BackendState state) noexcept;
+
+// What a backend offers, known before anything is written (the GUI's rig panel shows it).
+struct BackendCapabilities {
+  std::size_t channel_count = kFingerCount;
+  bool has_monitor = true;       // regulators report their output pressure
+  bool has_sensor = false;       // a per-channel sensor calibration sweeps record beside the monitors
+  std::string sensor_name;       // with its unit, e.g. "deformation_mm"; empty without a sensor
+  std::string sensor_unit;       // e.g. "mm"
+  std::string link_kind;         // "in-process", "modbus-tcp", "modbus-rtu", "comedi"
+  std::string endpoint;          // e.g. "127.0.0.1:1502", "/dev/ttyUSB0 9600 8N1", "/dev/comedi0"
+};
+
 class RigBackend {
  public:
   explicit RigBackend(double p_max_kPa);
@@ -21,17 +53,30 @@ class RigBackend {
   RigBackend(const RigBackend&) = delete;
   RigBackend& operator=(const RigBackend&) = delete;
 
-  // Connect and vent. Throws std::runtime_error with one clear line on failure.
-  virtual void open() = 0;
-  virtual void close() noexcept = 0;
-  virtual std::string describe() const = 0;  // e.g. "simulated", "modbus tcp 127.0.0.1:1502"
+  // closed (or any state: closes first) -> connected: connect, vent, ready to read. Throws
+  // std::runtime_error (InputError for configuration) with one clear line on failure; the
+  // backend is then closed.
+  void open();
+  // any -> closed: vent and disconnect. Safe to call repeatedly.
+  void close() noexcept;
+  // connected or disarmed -> armed. Refused (error, last_error says why) when closed.
+  BackendStatus arm() noexcept;
+  // armed -> disarmed: every channel vented, monitors still read. No change in other states.
+  BackendStatus disarm() noexcept;
+  BackendState state() const noexcept { return state_.load(std::memory_order_acquire); }
+  bool armed() const noexcept { return state() == BackendState::armed; }
 
-  // Setpoints for all channels at loop time t_s. A non-finite value or one above p_max is not
-  // sent: the backend vents instead and returns error with the reason in last_error().
+  virtual std::string describe() const = 0;  // e.g. "simulated", "modbus tcp 127.0.0.1:1502"
+  virtual BackendCapabilities capabilities() const = 0;
+
+  // Setpoints for all channels at loop time t_s. Refused (vent, error with the reason in
+  // last_error()) when not armed, or for a value that is non-finite or outside 0..p_max.
   BackendStatus write(const ChannelPressures& setpoint_kPa, double t_s) noexcept;
-  // Latest monitor pressures reported by the regulators.
+  // Latest monitor pressures reported by the regulators (any state but closed).
   BackendStatus read_monitors(ChannelPressures& monitor_kPa, double t_s) noexcept;
-  // All channels to 0 kPa. Safe to call repeatedly and after errors.
+  // The sensor channels (capabilities().has_sensor); error on a backend without one.
+  BackendStatus read_sensors(std::array<double, kFingerCount>& value, double t_s) noexcept;
+  // All channels to 0 kPa, in any state. Safe to call repeatedly and after errors.
   BackendStatus vent() noexcept;
 
   // Whether commands currently reach the regulators. A backend whose link can drop and come back
@@ -41,27 +86,23 @@ class RigBackend {
 
   double p_max_kPa() const noexcept { return p_max_kPa_; }
   const char* last_error() const noexcept { return last_error_; }
-
-  // Optional sensor per channel (actuator deformation or fingertip force) that calibration
-  // sweeps record beside the monitors. A backend with one returns its name with the unit
-  // (e.g. "deformation_mm") and overrides read_sensors; the defaults mean "no sensor".
-  virtual const char* sensor_name() const noexcept { return nullptr; }
-  virtual BackendStatus read_sensors(std::array<double, kFingerCount>& value, double t_s) noexcept {
-    (void)value;
-    (void)t_s;
-    set_error("this rig has no sensor channel");
-    return BackendStatus::error;
-  }
+  // Shorthand for capabilities().sensor_name; empty without a sensor.
+  std::string sensor_name() const { return capabilities().sensor_name; }
 
  protected:
+  virtual void do_open() = 0;
+  virtual void do_close() noexcept = 0;
   virtual BackendStatus do_write(const ChannelPressures& setpoint_kPa, double t_s) noexcept = 0;
   virtual BackendStatus do_read(ChannelPressures& monitor_kPa, double t_s) noexcept = 0;
   virtual BackendStatus do_vent() noexcept = 0;
+  // Backends with a sensor override this (and say so in capabilities()).
+  virtual BackendStatus do_read_sensors(std::array<double, kFingerCount>& value, double t_s) noexcept;
   // Record why the last call failed (copied into a fixed buffer: no allocation).
   void set_error(const char* message) noexcept;
 
  private:
   double p_max_kPa_;
+  std::atomic<BackendState> state_{BackendState::closed};
   char last_error_[256] = {0};
 };
 

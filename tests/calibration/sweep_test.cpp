@@ -43,11 +43,28 @@ class CaliperRig final : public RigBackend {
  public:
   explicit CaliperRig(double p_max_kPa, long fail_after_reads = -1)
       : RigBackend(p_max_kPa), inner_(default_plants(), p_max_kPa), fail_after_(fail_after_reads) {}
-  void open() override { inner_.open(); play_.fill(0); }
-  void close() noexcept override {}
   std::string describe() const override { return "caliper test rig"; }
-  const char* sensor_name() const noexcept override { return "deformation_mm"; }
-  BackendStatus read_sensors(std::array<double, kFingerCount>& value, double) noexcept override {
+  BackendCapabilities capabilities() const override {
+    BackendCapabilities c;
+    c.has_sensor = true;
+    c.sensor_name = "deformation_mm";
+    c.sensor_unit = "mm";
+    c.link_kind = "in-process";
+    return c;
+  }
+  int vents = 0;
+  double highest_write_kPa = 0;
+  double largest_rise_kPa = 0;  // between consecutive writes, any channel
+  ChannelPressures last_write_kPa{};
+
+ protected:
+  void do_open() override {
+    inner_.open();
+    inner_.arm();  // the inner rig is this rig's plant: it follows whatever this one is sent
+    play_.fill(0);
+  }
+  void do_close() noexcept override { inner_.close(); }
+  BackendStatus do_read_sensors(std::array<double, kFingerCount>& value, double) noexcept override {
     for (std::size_t c = 0; c < kFingerCount; ++c) {
       const double p = inner_.plant_output_kPa(c);
       play_[c] = std::clamp(play_[c], p - 1.5, p + 1.5);
@@ -55,12 +72,10 @@ class CaliperRig final : public RigBackend {
     }
     return BackendStatus::ok;
   }
-  int vents = 0;
-  double highest_write_kPa = 0;
-
- protected:
   BackendStatus do_write(const ChannelPressures& s, double t) noexcept override {
     for (double p : s) highest_write_kPa = std::max(highest_write_kPa, p);
+    for (std::size_t c = 0; c < kFingerCount; ++c) largest_rise_kPa = std::max(largest_rise_kPa, s[c] - last_write_kPa[c]);
+    last_write_kPa = s;
     return inner_.write(s, t);
   }
   BackendStatus do_read(ChannelPressures& m, double t) noexcept override {
@@ -220,6 +235,30 @@ TEST(SweepRunner, HoldsSettleOnTheSimulatedRigAndShowItsHysteresis) {
     EXPECT_NEAR(last.sensor[0], sensor_expected, 0.012 * 0.5);
   }
   EXPECT_GE(rig.vents, 1);  // the sweep ends vented
+}
+
+// Issue 9: the sweep wrote its levels straight to the backend, past the tick's safety stage.
+// Now every setpoint goes through it: with the rig's slew limit at 500 kPa/s and 100 steps a
+// second, no write rises by more than 5 kPa, though the staircase steps by 10 kPa and each
+// repeat starts from vented; the levels are still reached and recorded.
+TEST(SweepRunner, EverySetpointPassesTheSafetyStage) {
+  CaliperRig rig(60.0);
+  rig.open();
+  SweepPlanOptions po;
+  po.repeats = 1;
+  po.to_kPa = 40;
+  SweepRunOptions ro = fast_options();
+  ro.slew_kPa_per_s = 500;
+  MemorySink sink;
+  const SweepOutcome out = run_calibration_sweep(rig, plan_calibration_sweep(po, 60.0), ro, sink);
+  EXPECT_FALSE(out.faulted) << out.fault;
+  EXPECT_EQ(out.holds_unsettled, 0u);
+  EXPECT_GT(rig.largest_rise_kPa, 4.9);
+  EXPECT_LE(rig.largest_rise_kPa, 5.0 + 1e-9);
+  for (const auto& h : sink.holds)
+    if (h.hold.segment == SweepSegment::staircase && h.hold.branch == SweepBranch::inflation)
+      EXPECT_NEAR(settled_mean(h, 0), h.hold.level_kPa - 2.0, 0.06) << h.hold.level_kPa;
+  EXPECT_EQ(rig.state(), BackendState::disarmed);  // vented and disarmed at the end
 }
 
 TEST(SweepRunner, OnlySelectedChannelsAreDriven) {

@@ -176,6 +176,7 @@ TEST(ComediDevice, DrivesARealBoardWhenOneIsPresent) {
   for (auto& ch : doc["channels"]) ch["monitor"]["volts_span"] = {0, 5};
   ComediRig rig(load_rig_file(dir.write("rig.json", doc.dump())).comedi.value());
   rig.open();
+  ASSERT_EQ(rig.arm(), BackendStatus::ok) << rig.last_error();
   ChannelPressures monitors{};
   EXPECT_EQ(rig.write({0, 0, 0}, 0), BackendStatus::ok) << rig.last_error();
   EXPECT_EQ(rig.read_monitors(monitors, 0), BackendStatus::ok) << rig.last_error();

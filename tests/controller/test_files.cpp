@@ -160,8 +160,8 @@ TEST(TraceInput, InterpolatesAndLiftsAtTheEnd) {
   EXPECT_NEAR(in.latest(0.5).x_mm, 5.0, 1e-12);  // going back in time restarts the search
 }
 
-TEST(SweepInput, CoversTheSceneRowByRow) {
-  SweepInput sweep({0, 0, 100, 50}, SweepPlan{50.0, 10.0, 2.0, 5.0});
+TEST(RasterInput, CoversTheSceneRowByRow) {
+  RasterInput sweep({0, 0, 100, 50}, RasterPlan{50.0, 10.0, 2.0, 5.0});
   // Rows at y = 5, 15, 25, 35, 45, each 90 mm long.
   EXPECT_NEAR(sweep.duration_s(), (5 * 90 + 4 * 10) / 50.0, 1e-12);
   EXPECT_NEAR(sweep.latest(0).x_mm, 5, 1e-12);

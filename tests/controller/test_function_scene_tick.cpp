@@ -195,6 +195,7 @@ TEST(FunctionSceneTick, LagCompensationImprovesTheWaveformOnTheSimulatedRig) {
     TickState st = make_tick_state(cfg);
     SimulatedRig backend(rig.plants, rig.safety.p_max_kPa);
     backend.open();
+    backend.arm();
     std::vector<double> want, got;
     ChannelPressures monitor{};
     for (int k = 0; k < 12000; ++k) {

@@ -46,13 +46,18 @@ class RestingPen final : public InputSource {
 class FailingRig final : public RigBackend {
  public:
   explicit FailingRig(int fail_at) : RigBackend(60), fail_at_(fail_at) {}
-  void open() override {}
-  void close() noexcept override {}
   std::string describe() const override { return "failing"; }
+  BackendCapabilities capabilities() const override {
+    BackendCapabilities c;
+    c.link_kind = "in-process";
+    return c;
+  }
   int vents = 0, writes = 0;
   ChannelPressures last{};
 
  protected:
+  void do_open() override {}
+  void do_close() noexcept override {}
   BackendStatus do_write(const ChannelPressures& p, double) noexcept override {
     last = p;
     if (++writes == fail_at_) {
@@ -98,6 +103,7 @@ TEST(LoopRunner, BackendErrorVentsAndStopsWithTheReason) {
   const auto scene = hard_right_scene();
   TickConfig cfg;
   FailingRig rig(100);
+  rig.open();
   RestingPen pen(50, 20);
   RunOptions opt;
   opt.duration_s = 1.0;

@@ -55,6 +55,7 @@ std::vector<int> serve(ModbusSimServer& server, std::size_t links) {
 bool drive(RigBackend& rig, const ChannelPressures& setpoint, std::chrono::milliseconds timeout,
            const std::function<bool()>& done) {
   const auto end = std::chrono::steady_clock::now() + timeout;
+  if (!rig.armed()) rig.arm();  // as the loop does at its start
   double t = 0;
   while (std::chrono::steady_clock::now() < end) {
     rig.write(setpoint, t += 0.001);

@@ -33,12 +33,17 @@ class PressingPen final : public InputSource {
 class FlakyLinkRig final : public RigBackend {
  public:
   FlakyLinkRig(int down_from, int down_to) : RigBackend(60), from_(down_from), to_(down_to) {}
-  void open() override {}
-  void close() noexcept override {}
   std::string describe() const override { return "flaky link"; }
+  BackendCapabilities capabilities() const override {
+    BackendCapabilities c;
+    c.link_kind = "in-process";
+    return c;
+  }
   bool linked() const noexcept override { return writes_ < from_ || writes_ >= to_; }
 
  protected:
+  void do_open() override {}
+  void do_close() noexcept override {}
   BackendStatus do_write(const ChannelPressures&, double) noexcept override {
     linked_at_write_ = linked();
     ++writes_;
@@ -85,6 +90,7 @@ class FailingPenSource final : public PenEventSource {
 
 TEST(RealtimeSafety, ALinkOutageIsAnAlarmThatVentsAndRampsBackFromZero) {
   FlakyLinkRig rig(300, 400);
+  rig.open();
   PressingPen pen;
   const MapScene scene = uniform_scene(1.0f);
   TickConfig config;  // slew 2000 kPa/s: 2 kPa per 1 ms tick

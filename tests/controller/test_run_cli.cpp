@@ -42,6 +42,20 @@ TEST(RunCommand, TextSummaryNamesTicksFingersAndFaults) {
   EXPECT_NE(r.out.find("faults: none"), std::string::npos);
 }
 
+// The pen raster is `--input sweep` on the command line (kept) and `raster` too (its name in code;
+// "sweep" is calibration's staircase). Both give the same run.
+TEST(RunCommand, RasterInputIsAcceptedUnderBothNames) {
+  const std::string base = palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") + " --duration-s 2 --json";
+  const ProcessResult sweep = run_process(base + " --input sweep");
+  const ProcessResult raster = run_process(base + " --input raster");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  ASSERT_EQ(raster.exit_code, 0) << raster.err;
+  const auto a = nlohmann::json::parse(sweep.out), b = nlohmann::json::parse(raster.out);
+  EXPECT_EQ(a["ticks"], 2000);
+  EXPECT_EQ(a["target_kPa"], b["target_kPa"]);
+  EXPECT_EQ(a["setpoint_kPa"], b["setpoint_kPa"]);
+}
+
 TEST(RunCommand, BadFilesStopBeforeAnythingMovesWithExitTwo) {
   TempDir dir;
   const auto bad_rig = dir.write("rig.json", R"({"version": 1, "id": "x", "safety": {"p_max_kPa": 5000}})");

@@ -165,3 +165,61 @@ TEST(TickDirect, PassesTheSameSafetyStage) {
   EXPECT_EQ(r.record.fault, FaultCode::non_finite_target);
   for (double p : r.setpoint_kPa) EXPECT_EQ(p, 0.0);
 }
+
+// Issue 10: the first tick was not slew-limited, so a pen already pressed on a tumor when a run
+// started sent the full target to vented regulators in one tick.
+TEST(Tick, FirstTickRisesFromVentedByOneSlewStep) {
+  const auto scene = half_hard_scene();
+  TickConfig cfg;  // 2000 kPa/s over the nominal 1 ms period: 2 kPa
+  TickState st = make_tick_state(cfg);
+  const TickResult r = tick(st, cfg, scene, press(0, 50, 20), 0);
+  EXPECT_NEAR(r.record.target_kPa[1], 11.75, 1e-6);
+  EXPECT_NEAR(r.setpoint_kPa[1], 2.0, 1e-9);
+  EXPECT_TRUE(r.record.flags & kSlewLimited);
+  cfg.period_s = 0.004;  // a slower loop allows a larger first step
+  TickState slow = make_tick_state(cfg);
+  EXPECT_NEAR(tick(slow, cfg, scene, press(0, 50, 20), 0).setpoint_kPa[1], 8.0, 1e-9);
+  // tick_direct passes the same stage.
+  TickState direct = make_tick_state(cfg);
+  EXPECT_NEAR(tick_direct(direct, cfg, {30, 0, 0}, 0).setpoint_kPa[0], 8.0, 1e-9);
+}
+
+TEST(Tick, RestartFromVentedRisesAgainUnderTheSlewLimit) {
+  const auto scene = half_hard_scene();
+  TickConfig cfg;
+  TickState st = make_tick_state(cfg);
+  double t = 0;
+  for (int k = 0; k < 20; ++k, t += 0.001) tick(st, cfg, scene, press(t, 50, 20), t);
+  EXPECT_NEAR(st.last_setpoint_kPa[1], 11.75, 1e-9);
+  st.restart_from_vented();  // e.g. a link outage vented the channels
+  const TickResult r = tick(st, cfg, scene, press(t, 50, 20), t);
+  EXPECT_NEAR(r.setpoint_kPa[1], 2.0, 1e-9);
+  EXPECT_EQ(r.record.fault, FaultCode::none);
+}
+
+TEST(TickStages, HysteresisInverseThenSafetyAreTwoStages) {
+  TickConfig cfg;
+  cfg.safety.p_max_kPa = 25;
+  cfg.safety.slew_kPa_per_s = 1e9;
+  PrandtlIshlinskii forward;
+  forward.linear_weight = 0.5;
+  cfg.hysteresis_inverse.fill(forward.inverse());
+  TickState st = make_tick_state(cfg);
+  // The inverse doubles the target; it does not clamp (that is the safety stage's job).
+  const ChannelPressures command = hysteresis_inverse_stage(st, {5, 10, 20});
+  EXPECT_NEAR(command[0], 10.0, 1e-9);
+  EXPECT_NEAR(command[2], 40.0, 1e-9);
+  TickResult out;
+  safety_stage(st, cfg, command, 0, out);
+  EXPECT_NEAR(out.setpoint_kPa[0], 10.0, 1e-9);
+  EXPECT_NEAR(out.setpoint_kPa[1], 20.0, 1e-9);
+  EXPECT_EQ(out.setpoint_kPa[2], 25.0);
+  EXPECT_TRUE(out.record.flags & kClamped);
+  // A non-finite command (a broken inverse) vents and latches.
+  TickResult bad;
+  safety_stage(st, cfg, {1, NAN, 1}, 0.001, bad);
+  EXPECT_EQ(bad.setpoint_kPa, (ChannelPressures{0, 0, 0}));
+  EXPECT_EQ(st.fault, FaultCode::non_finite_target);
+  // Once faulted, the inverse stage leaves its models alone.
+  EXPECT_EQ(hysteresis_inverse_stage(st, {5, 5, 5})[0], 5.0);
+}

@@ -109,7 +109,7 @@ TEST(experiments_simulated_session, localisation_sweeps_the_scene_and_marks_tumo
   RigStimulus output(rig.config, *rig.backend);
   SimulatedObserverModel model;
   model.seed = 2;
-  model.sweep_row_step_mm = 6.0;  // a thorough sweep finds every tumor
+  model.raster_row_step_mm = 6.0;  // a thorough raster finds every tumor
   SimulatedParticipant participant(model, p, scene.scene.get(), rig.config.layout);
   const SessionPlan plan = make_session_plan(p, 1, 2);
   class Keep final : public RunnerListener {

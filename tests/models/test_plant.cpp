@@ -89,3 +89,23 @@ TEST(PneumaticPlant, RefusesImpossibleParameters) {
   p.max_kPa = 10;
   EXPECT_THROW(PneumaticPlant{p}, std::invalid_argument);
 }
+
+// Issue 10: the default plant (2 kPa play) read about 2 kPa after a vent, so a 0 kPa stimulus
+// was felt at 2 kPa. A regulator commanded to 0 exhausts to 0; above 2 r the play is unchanged.
+TEST(PneumaticPlant, ACommandOfZeroExhaustsToZero) {
+  PlantParams p = ideal_lag(0.0, 0.0);
+  p.hysteresis_kPa = 2.0;
+  PneumaticPlant plant(p);
+  plant.step(30.0, 0.01);
+  EXPECT_NEAR(plant.step(0.0, 0.01), 0.0, 1e-12);
+  // With the default rig's lag and dead time too: 0.5 s after a vent from 30 kPa.
+  PneumaticPlant lagged(PlantParams{});
+  for (int k = 0; k < 500; ++k) lagged.step(30.0, 0.001);
+  for (int k = 0; k < 500; ++k) lagged.step(0.0, 0.001);
+  EXPECT_LT(lagged.output_kPa(), 0.01);
+  // Deflating to a small command keeps at most the command's distance to the bottom of play.
+  plant.step(30.0, 0.01);
+  EXPECT_NEAR(plant.step(1.0, 0.01), 2.0, 1e-12);
+  plant.step(30.0, 0.01);
+  EXPECT_NEAR(plant.step(4.0, 0.01), 6.0, 1e-12);  // full +r above 2 r
+}

@@ -29,7 +29,7 @@ ArterySpec straight(const char* name = "a", double depth = 5, double radius = 2)
 double peak(const PulseField& f, Point2_mm at, double force_N, PulseActivation& act) {
   PulseClocks clocks;
   f.update_clocks(clocks, 0);
-  return f.felt(at, force_N, true, clocks, act, 0.1, 0).now_kPa;
+  return f.felt({at, force_N, true}, clocks, act, 0.1, {}).now_kPa;
 }
 
 }  // namespace
@@ -97,7 +97,7 @@ TEST(Artery, ActivationHysteresisOfPaper003) {
   EXPECT_GT(peak(f, {50, 50}, 2, act), 0.0);
   PulseClocks clocks;
   f.update_clocks(clocks, 0);
-  f.felt({50, 50}, 2, false, clocks, act, 0.1, 0);  // pen lifted: released
+  f.felt({{50, 50}, 2, false}, clocks, act, 0.1, {});  // pen lifted: released
   EXPECT_FALSE(act.on[0]);
 }
 

@@ -1,0 +1,136 @@
+#include "controller/rig_step.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+
+#include "runtime/monotonic_clock.hpp"
+
+namespace palprig {
+
+namespace {
+
+TickConfig with_period(TickConfig config, double rate_hz) {
+  if (rate_hz > 0 && std::isfinite(rate_hz)) config.period_s = 1.0 / rate_hz;
+  return config;
+}
+
+}  // namespace
+
+RigStep::RigStep(const TickConfig& config, RigBackend& backend, const RigStepOptions& options)
+    : config_(with_period(config, options.rate_hz)), backend_(backend),
+      state_(make_tick_state(config_)) {
+  // Asked once here: capabilities() builds strings, which the loop thread must not.
+  read_sensors_ = options.read_sensors && backend.capabilities().has_sensor;
+  result_.sensor.fill(std::numeric_limits<double>::quiet_NaN());
+}
+
+void RigStep::set_detail(const char* text) noexcept { std::snprintf(fault_detail_, sizeof fault_detail_, "%s", text); }
+
+void RigStep::enter_fault(FaultCode why, const char* detail) noexcept {
+  if (state_.fault != FaultCode::none) return;  // the first reason wins
+  state_.enter_fault(why);
+  if (detail) set_detail(detail);
+}
+
+BackendStatus RigStep::arm() noexcept {
+  if (faulted()) {
+    if (fault_detail_[0] == '\0') set_detail(to_string(state_.fault));
+    return BackendStatus::error;
+  }
+  if (backend_.arm() != BackendStatus::ok) {
+    enter_fault(FaultCode::backend_error, backend_.last_error());
+    backend_.vent();
+    return BackendStatus::error;
+  }
+  // Issue 10: pressure rises from the vented state under the slew limit after every arm.
+  state_.restart_from_vented();
+  return BackendStatus::ok;
+}
+
+void RigStep::disarm() noexcept {
+  vent_and_disarm();
+  state_.restart_from_vented();
+}
+
+void RigStep::vent_and_disarm() noexcept {
+  // disarm() vents an armed backend; one that is not armed is vented all the same.
+  if (backend_.armed()) backend_.disarm();
+  else backend_.vent();
+}
+
+void RigStep::apply_request() noexcept {
+  const int request = request_.exchange(kNone, std::memory_order_acq_rel);
+  if (request == kArm && !backend_.armed()) arm();
+  else if (request == kDisarm) disarm();
+}
+
+const StepResult& RigStep::step(const Scene& scene, const TouchSample& sample, double t_s) noexcept {
+  apply_request();
+  const bool linked = backend_.linked();
+  const std::int64_t tick_start = mono_ns();
+  result_.tick = tick(state_, config_, scene, sample, t_s);
+  finish(tick_start, linked, t_s);
+  return result_;
+}
+
+const StepResult& RigStep::step_direct(const ChannelPressures& target_kPa, double t_s) noexcept {
+  apply_request();
+  const bool linked = backend_.linked();
+  const std::int64_t tick_start = mono_ns();
+  result_.tick = tick_direct(state_, config_, target_kPa, t_s);
+  finish(tick_start, linked, t_s);
+  return result_;
+}
+
+void RigStep::finish(std::int64_t tick_start, bool linked, double t_s) noexcept {
+  TickResult& r = result_.tick;
+  TelemetryRecord& rec = r.record;
+  const bool armed = backend_.armed();
+  result_.linked = linked;
+  result_.armed = armed;
+  if (!linked) {
+    ++unlinked_steps_;
+    if (was_linked_) ++link_outages_;
+  }
+  was_linked_ = linked;
+  // Vented without a fault (the link is down and reconnecting, or the operator disarmed): 0 kPa
+  // goes out, and the slew limiter starts again from the vented state when pressure may flow.
+  if (!linked || !armed) {
+    r.setpoint_kPa = {};
+    for (float& p : rec.setpoint_kPa) p = 0.0f;
+    state_.restart_from_vented();
+  }
+
+  const std::int64_t io_start = mono_ns();
+  bool io_ok = true;
+  // While armed the vented setpoints of a down link still go through write(): a backend that
+  // bounds its outages (Modbus max_outage_s) reports an outage that lasts too long there.
+  if (armed) io_ok = backend_.write(r.setpoint_kPa, t_s) == BackendStatus::ok;
+  else backend_.vent();
+  io_ok = io_ok && backend_.read_monitors(result_.monitor_kPa, t_s) == BackendStatus::ok;
+  if (io_ok && read_sensors_) io_ok = backend_.read_sensors(result_.sensor, t_s) == BackendStatus::ok;
+  const std::int64_t io_end = mono_ns();
+  if (!io_ok) enter_fault(FaultCode::backend_error, backend_.last_error());
+
+  result_.tick_us = double(io_start - tick_start) / 1000.0;
+  result_.io_us = double(io_end - io_start) / 1000.0;
+  rec.io_us = float(result_.io_us);
+  for (std::size_t i = 0; i < kFingerCount; ++i) rec.monitor_kPa[i] = float(result_.monitor_kPa[i]);
+  rec.fault = state_.fault;
+  if (state_.fault == FaultCode::none && !linked) {
+    // The alarm: not latched, the run goes on vented and resumes when the link returns.
+    rec.fault = FaultCode::backend_error;
+    rec.flags |= kVented;
+  }
+  if (!armed) rec.flags |= kVented | kDisarmed;
+  if (state_.fault != FaultCode::none) {
+    // Any fault vents every channel and leaves the backend disarmed: nothing moves again
+    // without a new step and an explicit arm.
+    vent_and_disarm();
+    rec.flags |= kVented;
+  }
+}
+
+}  // namespace palprig

@@ -1,0 +1,100 @@
+#pragma once
+// RigStep: the one path from a target to the regulators. Every caller that moves air (the loop
+// runner, experiments' RigStimulus, calibration's sweep and compensation evaluation) makes one
+// step per period:
+//
+//   tick (pen on a scene) or tick_direct (per-finger targets)
+//     -> backend write (only while armed and linked; vented otherwise)
+//     -> read monitors (-> sensors, when asked)
+//     -> fault check (backend errors latch a fault, with the backend's own words)
+//     -> vent on fault
+//     -> the telemetry record, monitors and I/O time filled in
+//
+// It owns the tick state and holds the backend, so no caller edits tick state or writes a
+// setpoint by hand: no setpoint reaches a backend except through the tick's safety stage.
+// A link outage (Modbus reconnecting) or a disarmed backend is not a fault: the channels are
+// vented, the record says so, and the slew limiter restarts from 0 kPa when pressure may flow
+// again. Runs on the loop thread: no allocation, no locks, no exceptions.
+#include <array>
+#include <atomic>
+#include <cstdint>
+
+#include "controller/tick.hpp"
+#include "rigs/rig_backend.hpp"
+
+namespace palprig {
+
+struct RigStepOptions {
+  double rate_hz = 1000.0;    // nominal step rate: the first tick rises one slew step of 1 / rate_hz
+  bool read_sensors = false;  // also read the sensor channels (calibration sweeps), when the rig has them
+};
+
+// What one step did.
+struct StepResult {
+  TickResult tick;                 // setpoints, pulse and the telemetry record (monitors, I/O time filled in)
+  ChannelPressures monitor_kPa{};  // NaN where the backend has no reading (link down)
+  std::array<double, kFingerCount> sensor{};  // NaN unless sensors were read
+  bool linked = true;              // the backend's link carried this step's setpoints
+  bool armed = true;               // the backend was armed (setpoints flowed)
+  double tick_us = 0, io_us = 0;   // time in the tick, time in the backend
+};
+
+class RigStep {
+ public:
+  // The backend must be open and outlive the step. The configuration is copied (its period
+  // set from options.rate_hz).
+  RigStep(const TickConfig& config, RigBackend& backend, const RigStepOptions& options = {});
+  RigStep(const RigStep&) = delete;
+  RigStep& operator=(const RigStep&) = delete;
+
+  // Arm the backend; the next step rises from the vented state under the slew limit. Refused
+  // after a fault (a faulted step never moves air again) and on a closed backend: the reason is
+  // in fault_detail() and, for the backend's refusal, the step faults (backend_error).
+  BackendStatus arm() noexcept;
+  // Vent and disarm; later steps keep reading monitors until arm().
+  void disarm() noexcept;
+  // From another thread (the GUI's buttons): applied at the start of the next step.
+  void request_arm() noexcept { request_.store(kArm, std::memory_order_release); }
+  void request_disarm() noexcept { request_.store(kDisarm, std::memory_order_release); }
+
+  // Latch a fault found outside the step (signal, worker thread, deadline overruns); the next
+  // step vents. detail (copied) overrides the reason text when given.
+  void enter_fault(FaultCode why, const char* detail = nullptr) noexcept;
+
+  // One step with the pen on a scene.
+  const StepResult& step(const Scene& scene, const TouchSample& sample, double t_s) noexcept;
+  // One step with direct per-finger targets (hysteresis inverse and safety stage only).
+  const StepResult& step_direct(const ChannelPressures& target_kPa, double t_s) noexcept;
+
+  FaultCode fault() const noexcept { return state_.fault; }
+  bool faulted() const noexcept { return state_.fault != FaultCode::none; }
+  // The backend's or caller's own words for the fault, or for a refused arm(); "" when none.
+  const char* fault_detail() const noexcept { return fault_detail_; }
+  const TickState& tick_state() const noexcept { return state_; }
+  const TickConfig& config() const noexcept { return config_; }
+  const StepResult& last() const noexcept { return result_; }
+  RigBackend& backend() noexcept { return backend_; }
+  const RigBackend& backend() const noexcept { return backend_; }
+  std::uint64_t link_outages() const noexcept { return link_outages_; }
+  std::uint64_t unlinked_steps() const noexcept { return unlinked_steps_; }
+
+ private:
+  enum Request : int { kNone = 0, kArm, kDisarm };
+  void apply_request() noexcept;
+  void vent_and_disarm() noexcept;
+  // Everything after the tick: write (or vent), read, fault check, vent on fault, record.
+  void finish(std::int64_t tick_start_ns, bool linked, double t_s) noexcept;
+  void set_detail(const char* text) noexcept;
+
+  TickConfig config_;
+  RigBackend& backend_;
+  bool read_sensors_ = false;
+  TickState state_;
+  StepResult result_;
+  std::atomic<int> request_{kNone};
+  bool was_linked_ = true;
+  std::uint64_t link_outages_ = 0, unlinked_steps_ = 0;
+  char fault_detail_[256] = {0};
+};
+
+}  // namespace palprig

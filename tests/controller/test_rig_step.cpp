@@ -1,0 +1,188 @@
+// RigStep: the one path from targets to the regulators (tick, write, monitors, faults, vent),
+// and what it means for the loop and the other callers: pressure rises from the vented state on
+// the first tick and after every re-arm (issue 10), a disarmed backend is vented and read, a
+// backend error vents with the backend's words, a closed backend moves nothing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "controller/loop_runner.hpp"
+#include "controller/rig_step.hpp"
+#include "rigs/simulated_rig.hpp"
+
+using namespace palprig;
+
+namespace {
+
+// Finger 2 (16 mm along x from the pen) over hard tissue when the pen is at x = 50.
+MapScene hard_right_scene() {
+  std::vector<float> v(11 * 11);
+  for (int r = 0; r < 11; ++r)
+    for (int c = 0; c < 11; ++c) v[r * 11 + c] = c >= 6 ? 1.0f : 0.0f;
+  return MapScene(StiffnessMap(11, 11, 100, 100, v), MapSampling::nearest);
+}
+
+std::array<PlantParams, kFingerCount> quiet_plants() {
+  PlantParams p;
+  p.noise_sd_kPa = 0;
+  p.hysteresis_kPa = 0;
+  return {p, p, p};
+}
+
+class RestingPen final : public InputSource {
+ public:
+  TouchSample latest(double t) noexcept override { return {t, 50, 20, 2.0, true}; }
+  double duration_s() const noexcept override { return 0; }
+  std::string describe() const override { return "resting pen"; }
+};
+
+class Recorder final : public TickObserver {
+ public:
+  std::vector<TelemetryRecord> records;
+  void on_tick(const TelemetryRecord& r) noexcept override { records.push_back(r); }
+};
+
+// Records every setpoint that reaches the device, and fails a write on request.
+class RecordingRig final : public RigBackend {
+ public:
+  RecordingRig() : RigBackend(60) {}
+  std::string describe() const override { return "recording"; }
+  BackendCapabilities capabilities() const override {
+    BackendCapabilities c;
+    c.link_kind = "in-process";
+    return c;
+  }
+  std::vector<ChannelPressures> writes;
+  int vents = 0;
+  int fail_at_write = -1;
+
+ protected:
+  void do_open() override {}
+  void do_close() noexcept override {}
+  BackendStatus do_write(const ChannelPressures& p, double) noexcept override {
+    writes.push_back(p);
+    if (int(writes.size()) == fail_at_write) {
+      set_error("valve driver overheated on channel 3");
+      return BackendStatus::error;
+    }
+    return BackendStatus::ok;
+  }
+  BackendStatus do_read(ChannelPressures& m, double) noexcept override {
+    m = writes.empty() ? ChannelPressures{} : writes.back();
+    return BackendStatus::ok;
+  }
+  BackendStatus do_vent() noexcept override {
+    ++vents;
+    return BackendStatus::ok;
+  }
+};
+
+}  // namespace
+
+// Issue 10: a pen already pressed on a tumor when a run starts sent the full target (11.75 kPa)
+// in one tick to vented regulators. Now the first tick rises by one slew step (2000 kPa/s over
+// 1 ms = 2 kPa) and the setpoint ramps from there.
+TEST(RigStep, APenAlreadyPressedWhenTheRunStartsRampsFromVented) {
+  const auto scene = hard_right_scene();
+  SimulatedRig rig(quiet_plants(), 60);
+  rig.open();
+  RestingPen pen;
+  Recorder rec;
+  RunOptions opt;
+  opt.duration_s = 0.05;
+  opt.observer = &rec;
+  const RunSummary s = run_loop(TickConfig{}, scene, pen, rig, opt);
+  ASSERT_EQ(s.fault, FaultCode::none);
+  ASSERT_EQ(rec.records.size(), 50u);
+  EXPECT_NEAR(rec.records[0].target_kPa[1], 11.75, 1e-4);
+  EXPECT_NEAR(rec.records[0].setpoint_kPa[1], 2.0, 1e-4);
+  EXPECT_TRUE(rec.records[0].flags & kSlewLimited);
+  for (std::size_t i = 1; i < rec.records.size(); ++i)
+    EXPECT_LE(rec.records[i].setpoint_kPa[1] - rec.records[i - 1].setpoint_kPa[1], 2.0f + 1e-4f) << i;
+  EXPECT_NEAR(rec.records[10].setpoint_kPa[1], 11.75, 1e-4);  // reached after 6 ticks
+  EXPECT_EQ(rig.state(), BackendState::disarmed);  // the run disarms at its end
+}
+
+TEST(RigStep, ADisarmedRigIsVentedAndReadAndRampsAgainAfterReArming) {
+  RecordingRig rig;
+  rig.open();
+  TickConfig config;  // 2000 kPa/s: 2 kPa per 1 ms step
+  RigStep step(config, rig);
+  ASSERT_EQ(step.arm(), BackendStatus::ok);
+  double t = 0;
+  for (int k = 0; k < 20; ++k, t += 0.001) step.step_direct({30, 0, 0}, t);
+  EXPECT_NEAR(step.last().tick.setpoint_kPa[0], 30.0, 1e-9);
+
+  step.request_disarm();  // as a GUI button would, from its own thread
+  const std::size_t writes_before = rig.writes.size();
+  for (int k = 0; k < 5; ++k, t += 0.001) {
+    const StepResult& r = step.step_direct({30, 0, 0}, t);
+    EXPECT_FALSE(r.armed);
+    EXPECT_EQ(r.tick.setpoint_kPa[0], 0.0);
+    EXPECT_TRUE(r.tick.record.flags & kDisarmed);
+    EXPECT_TRUE(r.tick.record.flags & kVented);
+    EXPECT_EQ(r.tick.record.fault, FaultCode::none);  // disarmed is not a fault
+  }
+  EXPECT_EQ(rig.writes.size(), writes_before);  // nothing written while disarmed: vented instead
+  EXPECT_EQ(rig.state(), BackendState::disarmed);
+  EXPECT_FALSE(step.faulted());
+
+  step.request_arm();
+  const StepResult& first = step.step_direct({30, 0, 0}, t);
+  EXPECT_TRUE(first.armed);
+  EXPECT_NEAR(first.tick.setpoint_kPa[0], 2.0, 1e-9);  // from 0 kPa again, one slew step
+  t += 0.001;
+  EXPECT_NEAR(step.step_direct({30, 0, 0}, t).tick.setpoint_kPa[0], 4.0, 1e-9);
+  for (const auto& w : rig.writes) EXPECT_LE(w[0], 60.0);
+}
+
+TEST(RigStep, ABackendErrorVentsDisarmsAndKeepsTheBackendsWords) {
+  RecordingRig rig;
+  rig.fail_at_write = 5;
+  rig.open();
+  RigStep step(TickConfig{}, rig);
+  ASSERT_EQ(step.arm(), BackendStatus::ok);
+  double t = 0;
+  for (int k = 0; k < 4; ++k, t += 0.001) EXPECT_EQ(step.step_direct({10, 10, 10}, t).tick.record.fault, FaultCode::none);
+  const int vents_before = rig.vents;
+  const StepResult& r = step.step_direct({10, 10, 10}, t);
+  EXPECT_EQ(r.tick.record.fault, FaultCode::backend_error);
+  EXPECT_TRUE(r.tick.record.flags & kVented);
+  EXPECT_EQ(step.fault(), FaultCode::backend_error);
+  EXPECT_STREQ(step.fault_detail(), "valve driver overheated on channel 3");
+  EXPECT_GT(rig.vents, vents_before);
+  EXPECT_EQ(rig.state(), BackendState::disarmed);
+  // Latched: a faulted step never moves air again, even when asked to arm.
+  EXPECT_EQ(step.arm(), BackendStatus::error);
+  const std::size_t writes = rig.writes.size();
+  step.step_direct({10, 10, 10}, t + 0.001);
+  EXPECT_EQ(rig.writes.size(), writes);
+}
+
+TEST(RigStep, ARunOnAClosedBackendMovesNothingAndSaysWhy) {
+  RecordingRig rig;  // never opened
+  RestingPen pen;
+  RunOptions opt;
+  opt.duration_s = 0.1;
+  const RunSummary s = run_loop(TickConfig{}, hard_right_scene(), pen, rig, opt);
+  EXPECT_EQ(s.fault, FaultCode::backend_error);
+  EXPECT_NE(s.fault_detail.find("closed"), std::string::npos) << s.fault_detail;
+  EXPECT_EQ(s.ticks, 0u);
+  EXPECT_TRUE(rig.writes.empty());
+}
+
+TEST(RigStep, FaultsFromOutsideTheStepVentOnTheNextStep) {
+  RecordingRig rig;
+  rig.open();
+  RigStep step(TickConfig{}, rig);
+  ASSERT_EQ(step.arm(), BackendStatus::ok);
+  double t = 0;
+  for (int k = 0; k < 10; ++k, t += 0.001) step.step_direct({10, 10, 10}, t);
+  step.enter_fault(FaultCode::signal);
+  const StepResult& r = step.step_direct({10, 10, 10}, t);
+  EXPECT_EQ(r.tick.setpoint_kPa, (ChannelPressures{0, 0, 0}));
+  EXPECT_EQ(r.tick.record.fault, FaultCode::signal);
+  EXPECT_EQ(rig.writes.back(), (ChannelPressures{0, 0, 0}));
+  EXPECT_EQ(rig.state(), BackendState::disarmed);
+}
