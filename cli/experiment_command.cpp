@@ -184,6 +184,14 @@ void run_experiment(const RunArgs& a) {
   const CalibrationModels cal = a.cal.empty() ? CalibrationModels{} : load_calibration_file(a.cal);
   check_calibration_matches(cal, rig.id, rig.source);
   check_levels_fit_rig(from_file, rig);
+  // Hardware runs on the wall clock, as `palprig run` insists: on simulated time a whole session
+  // would pass in a few bus cycles and the regulators would never reach a stimulus.
+  const bool hardware = rig.backend != "simulated";
+  if (hardware && a.speed != 0 && a.speed != 1) {
+    throw InputError("command line", "--speed",
+                     "1 (real time) or none with a hardware rig (" + rig.source + ", backend " + rig.backend +
+                         "): hardware runs in real time");
+  }
   const TickConfig config = make_tick_config(rig, cal);
 
   // The rig is opened (and vented) before the session is stored, so an unreachable device does
@@ -221,7 +229,8 @@ void run_experiment(const RunArgs& a) {
   std::cout << "palprig experiment: " << protocol.name << ", participant " << session.participant.code << " (no. "
             << session.participant.number << "), session " << session.session_id << ", "
             << (session.resumed ? "resumed at trial " + std::to_string(session.start_position + 1) : std::string("new"))
-            << ", " << total << " trials, seed " << session.plan.seed << ", database " << a.db << "\n"
+            << ", " << total << " trials, seed " << session.plan.seed << ", database " << a.db
+            << (hardware && simulated ? ", real time (hardware rig)" : "") << "\n"
             << std::flush;
 
   RigStimulus output(config, *backend);
@@ -242,8 +251,8 @@ void run_experiment(const RunArgs& a) {
                      scene ? scene->scene.get() : nullptr, participant->pen());
 
   std::unique_ptr<SessionClock> clock;
-  if (simulated && a.speed <= 0) clock = std::make_unique<SimulatedClock>();
-  else clock = std::make_unique<SteadyClock>(simulated ? a.speed : 1.0);
+  if (simulated && !hardware && a.speed <= 0) clock = std::make_unique<SimulatedClock>();
+  else clock = std::make_unique<SteadyClock>(simulated && !hardware ? a.speed : 1.0);
 
   cli::install_stop_signals();
   SessionLoopOptions options;
@@ -283,8 +292,9 @@ void register_run(CLI::App* experiment) {
   sub->add_flag("--resume", a->resume, "Continue this participant's unfinished session with this protocol");
   sub->add_option("--seed", a->seed, "Seed of the generated order; default: derived from participant and protocol");
   sub->add_option("--speed", a->speed,
-                  "Simulated participant only: 0 = as fast as possible on simulated time (default), "
-                  "1 = real time, 10 = ten times faster than real time")->check(CLI::Range(0.0, 1e6));
+                  "Simulated participant on the simulated rig only: 0 = as fast as possible on simulated time "
+                  "(default), 1 = real time, 10 = ten times faster than real time. A hardware rig always runs in real "
+                  "time")->check(CLI::Range(0.0, 1e6));
   sub->add_flag("--quiet", a->quiet, "Simulated participant: no line per trial");
   sub->add_option("--sim-noise-kPa", a->model.noise_kPa,
                   "Simulated: sd of each finger's perceived pressure (three fingers at once)")->default_val(a->model.noise_kPa)

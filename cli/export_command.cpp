@@ -37,7 +37,7 @@ std::filesystem::path plot_measures_by_condition(TrialStore& store, const std::f
   chart.y_label = "proportion";
   chart.x_categories = {"Se", "Sp", "PPV", "ACC"};
   chart.y_min = 0.0;
-  chart.y_max = 1.25;  // room above the bars for the legend
+  chart.y_max = 1.0;  // proportions; the legend sits beside the plot
   for (const SummaryRow& row : summary.rows) {
     gui::ChartSeries bars;
     bars.label = row.key.empty() ? "all" : row.key[0];

@@ -35,6 +35,24 @@ stats::Report refuse_bad_data(const std::string& file, const std::string& where,
   }
 }
 
+// --confidence: a level strictly between 0 and 1. Checked by the command line (CLI11's Range
+// lets NaN through), so the refusal names the option rather than the data it would be used on.
+const CLI::Validator kConfidenceLevel(
+    [](std::string& text) -> std::string {
+      std::size_t used = 0;
+      double level = 0;
+      try {
+        level = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != text.size() || !(level > 0.0 && level < 1.0)) {
+        return "a confidence level strictly between 0 and 1 (e.g. 0.95), got '" + text.substr(0, 40) + "'";
+      }
+      return {};
+    },
+    "(0 < LEVEL < 1)");
+
 stats::RankOptions rank_options(const std::string& method, bool no_correction) {
   stats::RankOptions o;
   o.method = method == "exact" ? stats::RankMethod::exact
@@ -63,7 +81,7 @@ void register_proportion(CLI::App* stats_app) {
                     "statsmodels proportion_confint(method='wilson'), R prop.test(correct=FALSE)");
   sub->add_option("--k", a->k, "Successes")->required();
   sub->add_option("--n", a->n, "Trials")->required();
-  sub->add_option("--confidence", a->confidence, "Confidence level")->default_val(0.95);
+  sub->add_option("--confidence", a->confidence, "Confidence level")->default_val(0.95)->check(kConfidenceLevel);
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a] {
     print(refuse_bad_data("command line", "--k/--n", [&] { return stats::to_report(stats::wilson_interval(a->k, a->n, a->confidence)); }),
@@ -82,7 +100,8 @@ void register_compare_proportions(CLI::App* stats_app) {
   sub->add_option("--n1", a->n1, "Size of the first sample")->required();
   sub->add_option("--k2", a->k2, "Successes in the second sample")->required();
   sub->add_option("--n2", a->n2, "Size of the second sample")->required();
-  sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson bounds")->default_val(0.95);
+  sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson bounds")->default_val(0.95)
+      ->check(kConfidenceLevel);
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a] {
     print(refuse_bad_data("command line", "--k1/--n1/--k2/--n2",
@@ -115,7 +134,8 @@ void register_ttest(CLI::App* stats_app) {
       ->needs(by);
   auto* student = sub->add_flag("--student", a->student, "Pooled variance, df = n1 + n2 - 2")->needs(by);
   sub->add_flag("--welch", a->welch, "Unequal variances, Welch-Satterthwaite df (default)")->needs(by)->excludes(student);
-  sub->add_option("--confidence", a->confidence, "Confidence level of the interval")->default_val(0.95);
+  sub->add_option("--confidence", a->confidence, "Confidence level of the interval")->default_val(0.95)
+      ->check(kConfidenceLevel);
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a, by, paired, against] {
     if (!*by && !*paired && !*against) throw InputError("command line", "ttest", "one of --by, --paired-with or --against");
@@ -217,7 +237,8 @@ void register_pearson(CLI::App* stats_app) {
   sub->add_option("file", a->file, "CSV file with a header row")->required();
   sub->add_option("--x", a->x, "First numeric column")->required();
   sub->add_option("--y", a->y, "Second numeric column")->required();
-  sub->add_option("--confidence", a->confidence, "Confidence level of the interval")->default_val(0.95);
+  sub->add_option("--confidence", a->confidence, "Confidence level of the interval")->default_val(0.95)
+      ->check(kConfidenceLevel);
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a] {
     const CsvTable table = CsvTable::read(a->file);
@@ -254,10 +275,13 @@ void register_describe(CLI::App* stats_app) {
     } else {
       report["by"] = a->by;
       report["groups"] = stats::Report::array();
-      for (const auto& g : group_numbers(table, a->column, a->by)) {
+      const auto groups = group_numbers(table, a->column, a->by);
+      if (groups.empty()) throw InputError(a->file, "column '" + a->by + "'", "at least one data row to group (the table is empty)");
+      for (const auto& g : groups) {
         stats::Report one;
         one["group"] = g.label;
-        one.update(stats::to_report(stats::describe(g.values, rule), rule));
+        one.update(refuse_bad_data(a->file, "column '" + a->column + "', group '" + g.label + "'",
+                                   [&] { return stats::to_report(stats::describe(g.values, rule), rule); }));
         report["groups"].push_back(std::move(one));
       }
     }
@@ -284,7 +308,7 @@ void register_trials(CLI::App* stats_app) {
   sub->add_flag("--json", a->json, "Same as --format json");
   sub->add_flag("--include-practice", a->include_practice, "Score practice trials too");
   sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson intervals")->default_val(0.95)
-      ->check(CLI::Range(0.5, 0.9999));
+      ->check(kConfidenceLevel);
   sub->callback([a] {
     SummaryOptions options;
     options.by = parse_summary_keys(a->by);

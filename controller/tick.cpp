@@ -25,7 +25,7 @@ void finish(TickState& state, const TickConfig& config, const ChannelPressures& 
     rec.target_kPa[i] = static_cast<float>(target_kPa[i]);
     if (!std::isfinite(target_kPa[i])) state.enter_fault(FaultCode::non_finite_target);
   }
-  if (state.fault == FaultCode::none && !std::isfinite(t_s)) state.enter_fault(FaultCode::bad_sample);
+  if (state.fault == FaultCode::none && !std::isfinite(t_s)) state.enter_fault(FaultCode::bad_time);
 
   if (state.fault != FaultCode::none) {
     // Vent: every channel to 0 kPa at once (no slew limit on the way down to safety).
@@ -74,9 +74,12 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   ChannelPressures target{};
   std::array<Point2_mm, kFingerCount> fingers{};
   bool pressed = false;
-  const bool sample_ok = std::isfinite(sample.x_mm) && std::isfinite(sample.y_mm) &&
-                         std::isfinite(sample.force_N) && sample.force_N >= 0 && std::isfinite(sample.t_s);
-  if (!sample_ok) {
+  // Each bad reading is named for what is wrong with it (a NaN position is not a bad force).
+  if (!std::isfinite(sample.x_mm) || !std::isfinite(sample.y_mm)) {
+    state.enter_fault(FaultCode::bad_position);
+  } else if (!std::isfinite(sample.t_s)) {
+    state.enter_fault(FaultCode::bad_time);
+  } else if (!std::isfinite(sample.force_N) || sample.force_N < 0) {
     state.enter_fault(FaultCode::bad_sample);
   } else if (t_s - sample.t_s > config.safety.max_input_age_s) {
     state.enter_fault(FaultCode::input_stale);

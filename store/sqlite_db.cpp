@@ -2,7 +2,21 @@
 
 #include <sqlite3.h>
 
+#include "models/parse_error.hpp"
+
 namespace palprig {
+
+namespace {
+
+// A damaged file is bad input, not a fault of palprig: one line naming the file, exit 2.
+// SQLITE_CORRUPT can surface at any statement (a damaged page is only read when a query reaches
+// it), so every error passes through here. `what` is the statement, `detail` SQLite's reason.
+[[noreturn]] void throw_sqlite(const std::string& file, const std::string& what, const std::string& detail, int code) {
+  if ((code & 0xff) == SQLITE_CORRUPT) throw InputError(file, "database pages", damaged_database_expectation(detail));
+  throw SqliteError(file + ": " + (what.empty() ? detail : what + ": " + detail), code);
+}
+
+}  // namespace
 
 Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.string()) {
   // NOMUTEX: a connection is used by one thread at a time, so SQLite's per-call mutex (a tenth
@@ -23,8 +37,26 @@ Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.st
 
 Database::~Database() { sqlite3_close(db_); }
 
+std::string damaged_database_expectation(const std::string& sqlite_says) {
+  std::string reason = sqlite_says.substr(0, 160);
+  for (char& c : reason) {
+    if (static_cast<unsigned char>(c) < 0x20) c = ' ';  // quick_check lines may hold newlines
+  }
+  return "an undamaged SQLite database (SQLite: " + reason +
+         "); nothing was read from it or written to it: restore it from a backup";
+}
+
+void Database::refuse_if_damaged() {
+  // quick_check(1): stop at the first problem; O(file size), without the index cross-checks
+  // of integrity_check. A damaged schema page fails the pragma itself (InputError from
+  // throw_sqlite); damage further in is the pragma's first result row.
+  Statement s(*this, "PRAGMA quick_check(1)");
+  const std::string first = s.step() ? s.text(0) : std::string("PRAGMA quick_check returned nothing");
+  if (first != "ok") throw InputError(file_, "database pages", damaged_database_expectation(first));
+}
+
 void Database::fail(const std::string& what, int code) const {
-  throw SqliteError(file_ + ": " + what + ": " + sqlite3_errmsg(db_), code);
+  throw_sqlite(file_, what, sqlite3_errmsg(db_), code);
 }
 
 void Database::exec(std::string_view sql) {
@@ -34,7 +66,7 @@ void Database::exec(std::string_view sql) {
   if (rc != SQLITE_OK) {
     const std::string message = error ? error : sqlite3_errstr(rc);
     sqlite3_free(error);
-    throw SqliteError(file_ + ": " + message, rc);
+    throw_sqlite(file_, "", message, rc);
   }
 }
 

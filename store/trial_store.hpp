@@ -55,15 +55,27 @@ class TrialStore {
  public:
   enum class Access { read_only, read_write };
   // Creates the schema in a new or empty file (read_write); refuses foreign or newer files.
+  // Every open runs PRAGMA quick_check and refuses a damaged file (InputError naming it).
   TrialStore(const std::filesystem::path& file, Access access);
+  ~TrialStore();  // releases the sessions this process holds
+  TrialStore(const TrialStore&) = delete;
+  TrialStore& operator=(const TrialStore&) = delete;
 
   ParticipantRecord enrol(const std::string& code, bool simulated);
   std::optional<ParticipantRecord> find_participant(const std::string& code);
 
   // The session of this participant and protocol that was started but not completed.
   std::optional<std::int64_t> find_unfinished_session(const ParticipantRecord& who, const std::string& protocol_name);
+  // Refuses (InputError) when this participant has an unfinished session with this protocol,
+  // e.g. one another process created a moment ago. The new session is held by this process.
   std::int64_t create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
                               const SessionSetup& setup);
+  // One process per session: a row in session_locks names the holder (pid, host, process start
+  // time). Claiming refuses (InputError) a session a live process holds or that was completed;
+  // a row of a dead process on this host is stale and taken over. Released by
+  // complete_session, release_session and the destructor.
+  void claim_session(std::int64_t session_id);
+  void release_session(std::int64_t session_id);
   StoredSession load_session(std::int64_t session_id);
   void complete_session(std::int64_t session_id);
 
@@ -77,12 +89,16 @@ class TrialStore {
 
  private:
   bool is_blank();  // a new file: no tables, no palprig marks
-  void create_schema();
+  void create_schema_if_blank();
+  void create_lock_table();
+  void refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who);
+  void write_lock_row(std::int64_t session_id);  // inside a transaction
   void check_identity();
   void insert_trial(std::int64_t session_id, const TrialRecord& trial);
 
   Database db_;
   std::unique_ptr<Statement> insert_trial_;  // prepared once: trials are inserted one by one
+  std::vector<std::int64_t> held_;            // sessions whose lock row this process wrote
 };
 
 // Open a database for reading (stats, export): refuses a missing, foreign or newer file.

@@ -50,6 +50,7 @@ struct Accumulator {
   std::int64_t rt_n = 0;
   double rt_mean = 0, rt_m2 = 0;  // Welford
   std::int64_t last_trial = -1;   // a trial adds its response time once per group
+  bool localisation = false;      // holds localisation values (no true negatives)
 
   void add_trial(std::int64_t trial_id, bool answered, double rt_s) {
     if (trial_id == last_trial) return;
@@ -145,6 +146,23 @@ std::vector<SummaryKey> parse_summary_keys(const std::string& list) {
   return keys;
 }
 
+namespace {
+
+// A trial whose session row is missing: the database was edited or damaged in a way the
+// page check cannot see. Refused by name rather than a bare std::out_of_range.
+const std::pair<int, int>& session_of(const std::unordered_map<std::int64_t, std::pair<int, int>>& session_ids,
+                                      std::int64_t session_id, const std::string& file, std::int64_t trial_id) {
+  const auto it = session_ids.find(session_id);
+  if (it == session_ids.end()) {
+    throw InputError(file, "trials.session_id of trial " + std::to_string(trial_id),
+                     "a session of the sessions table (session " + std::to_string(session_id) +
+                         " is missing: the database was damaged or edited)");
+  }
+  return it->second;
+}
+
+}  // namespace
+
 TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) {
   Database& db = store.database();
   std::array<Interner, kKeyKinds> names;
@@ -186,7 +204,7 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
       const std::int64_t trial_id = q.integer(0);
       if (q.integer(1) != last_session) {
         last_session = q.integer(1);
-        session_key = session_ids.at(last_session);
+        session_key = session_of(session_ids, last_session, store.file(), trial_id);
       }
       const auto& [participant, session] = session_key;
       const bool answered = q.integer(3) != 0;
@@ -218,7 +236,7 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     std::int64_t previous_trial = -1;
     while (q.step()) {
       const std::int64_t trial_id = q.integer(0);
-      const auto& [participant, session] = session_ids.at(q.integer(1));
+      const auto& [participant, session] = session_of(session_ids, q.integer(1), store.file(), trial_id);
       const bool answered = q.integer(3) != 0;
       const double rt = q.is_null(4) ? std::numeric_limits<double>::quiet_NaN() : q.real(4);
       std::array<int, kKeyKinds> ids{};
@@ -230,6 +248,7 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
       if (!q.is_null(5)) {
         ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(q.text_view(5));
         Accumulator& a = grouper.group(ids);
+        a.localisation = true;
         a.add_trial(trial_id, answered, rt);
         if (auto o = outcome_of(q.text_view(6))) a.counts.add(*o);
       }
@@ -239,6 +258,7 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
         const std::int64_t false_marks = q.is_null(7) ? 0 : q.integer(7);
         if (!answered || false_marks > 0) {
           Accumulator& a = grouper.group(ids);
+          a.localisation = true;
           a.add_trial(trial_id, answered, rt);
           a.counts.fp += false_marks;
         }
@@ -255,6 +275,11 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     }
     row.counts = a.counts;
     row.measures = diagnostic_measures(a.counts, options.confidence);
+    if (a.localisation) {
+      row.negatives_counted = false;
+      row.measures.sp = Measure{};  // undefined: TN + FP would be 0 + FP, Sp a meaningless 0
+      row.measures.acc = Measure{};
+    }
     row.trials = a.trials;
     row.unanswered = a.unanswered;
     row.mean_rt_s = a.rt_n > 0 ? a.rt_mean : std::numeric_limits<double>::quiet_NaN();
