@@ -40,6 +40,7 @@ OpenedSession open_session(TrialStore& store, const Protocol& protocol, const Se
   }
 
   if (unfinished) {
+    store.refuse_if_running_elsewhere(*unfinished);  // "another process runs it" says more than "--resume"
     const StoredSession stored = store.load_session(*unfinished);
     throw InputError(store.file(), "participant '" + request.participant_code + "'",
                      "already has an unfinished session with protocol '" + protocol.name + "' (session " +

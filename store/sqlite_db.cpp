@@ -2,6 +2,9 @@
 
 #include <sqlite3.h>
 
+#include <chrono>
+#include <thread>
+
 #include "models/parse_error.hpp"
 
 namespace palprig {
@@ -32,7 +35,7 @@ Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.st
   }
   // A writer holds the lock only for one short transaction per trial: readers (stats, export,
   // the GUI) wait for it rather than failing.
-  sqlite3_busy_timeout(db_, 5000);
+  sqlite3_busy_timeout(db_, kBusyTimeoutMs);
 }
 
 Database::~Database() { sqlite3_close(db_); }
@@ -66,7 +69,7 @@ void Database::exec(std::string_view sql) {
   if (rc != SQLITE_OK) {
     const std::string message = error ? error : sqlite3_errstr(rc);
     sqlite3_free(error);
-    throw_sqlite(file_, "", message, rc);
+    throw_sqlite(file_, text.substr(0, 60), message, rc);
   }
 }
 
@@ -141,7 +144,24 @@ std::string_view Statement::text_view(int column) const noexcept {
 
 std::string Statement::text(int column) const { return std::string(text_view(column)); }
 
-Transaction::Transaction(Database& db) : db_(db) { db_.exec("BEGIN IMMEDIATE"); }
+void Database::exec_waiting(std::string_view sql) {
+  // SQLite returns SQLITE_BUSY without calling the busy handler where waiting could deadlock,
+  // and while another process switches the file's journal mode or recovers its WAL index: with
+  // several processes starting on one new file, BEGIN IMMEDIATE then fails at once. Those
+  // states last milliseconds, so try again for as long as the busy timeout would have waited.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::milliseconds(kBusyTimeoutMs);
+  for (;;) {
+    try {
+      exec(sql);
+      return;
+    } catch (const SqliteError& e) {
+      if ((e.code() & 0xff) != SQLITE_BUSY || std::chrono::steady_clock::now() >= give_up) throw;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
+Transaction::Transaction(Database& db) : db_(db) { db_.exec_waiting("BEGIN IMMEDIATE"); }
 
 Transaction::~Transaction() {
   if (!done_) {

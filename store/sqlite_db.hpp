@@ -39,7 +39,9 @@ class Database {
   Database(const Database&) = delete;
   Database& operator=(const Database&) = delete;
 
+  static constexpr int kBusyTimeoutMs = 5000;  // how long a statement waits for another process's lock
   void exec(std::string_view sql);  // one or more statements, no results
+  void exec_waiting(std::string_view sql);  // exec, retrying SQLITE_BUSY for up to kBusyTimeoutMs
   Statement prepare(std::string_view sql);
   std::int64_t pragma_integer(std::string_view name);  // e.g. "user_version"
   std::int64_t last_insert_rowid() const noexcept;

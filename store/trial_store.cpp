@@ -173,7 +173,8 @@ TrialStore::TrialStore(const std::filesystem::path& file, Access access) try
   if (access == Access::read_write) {
     // WAL: readers never block the writer; synchronous FULL: a committed trial survives a
     // crash of the process and of the machine.
-    db_.exec("PRAGMA journal_mode = WAL; PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON;");
+    db_.exec_waiting("PRAGMA journal_mode = WAL");
+    db_.exec("PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON;");
   }
 } catch (const SqliteError& e) {
   // Whatever the member initialiser or the checks threw, the file was the problem.
@@ -198,11 +199,18 @@ TrialStore::~TrialStore() {
   }
 }
 
-void TrialStore::create_lock_table() {
+bool TrialStore::has_lock_table() {
   auto exists = db_.prepare("SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'session_locks'");
   exists.step();
-  if (exists.integer(0) != 0) return;
+  return exists.integer(0) != 0;
+}
+
+void TrialStore::create_lock_table() {
+  // The look-up's statement must be finished before the write lock is asked for: a read left
+  // open would keep a shared lock that deadlocks against another process's commit.
+  if (has_lock_table()) return;
   Transaction tx(db_);
+  if (has_lock_table()) return;
   db_.exec(kLockSchema);
   tx.commit();
 }
@@ -252,6 +260,13 @@ void TrialStore::claim_session(std::int64_t session_id) {
   refuse_if_held_elsewhere(session_id, who);
   write_lock_row(session_id);
   tx.commit();
+}
+
+void TrialStore::refuse_if_running_elsewhere(std::int64_t session_id) {
+  auto q = db_.prepare("SELECT p.code FROM sessions s JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
+  q.bind(1, session_id);
+  if (!q.step()) return;
+  refuse_if_held_elsewhere(session_id, "participant '" + q.text(0) + "'");
 }
 
 void TrialStore::release_session(std::int64_t session_id) {

@@ -75,6 +75,8 @@ class TrialStore {
   // a row of a dead process on this host is stale and taken over. Released by
   // complete_session, release_session and the destructor.
   void claim_session(std::int64_t session_id);
+  // The refusal claim_session would give, without claiming (InputError when a live process holds it).
+  void refuse_if_running_elsewhere(std::int64_t session_id);
   void release_session(std::int64_t session_id);
   StoredSession load_session(std::int64_t session_id);
   void complete_session(std::int64_t session_id);
@@ -90,6 +92,7 @@ class TrialStore {
  private:
   bool is_blank();  // a new file: no tables, no palprig marks
   void create_schema_if_blank();
+  bool has_lock_table();
   void create_lock_table();
   void refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who);
   void write_lock_row(std::int64_t session_id);  // inside a transaction
