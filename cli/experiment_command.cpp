@@ -29,6 +29,11 @@
 #include "sessions/session_setup.hpp"
 #include "experiments/simulated_participant.hpp"
 #include "store/trial_store.hpp"
+#include "cli/threshold_experiment.hpp"
+#include "cli/pulse_experiment.hpp"
+#include "experiments/pulse_task.hpp"
+#include "experiments/threshold_protocol.hpp"
+#include "formats/json_file.hpp"
 #include "models/parse_error.hpp"
 
 using namespace palprig;
@@ -125,6 +130,7 @@ struct RunArgs {
   std::optional<std::uint64_t> seed;
   double speed = 0;  // simulated participants: 0 = as fast as possible, else times real time
   SimulatedObserverModel model;
+  double sim_threshold_noise_kPa = 0.8, sim_threshold_criterion_kPa = 0.5;  // threshold protocols (issue 13)
 };
 
 std::string flags_text(const FingerFlags& f) {
@@ -168,6 +174,18 @@ void check_levels_fit_rig(const Protocol& protocol, const RigConfig& rig) {
 }
 
 void run_experiment(const RunArgs& a) {
+  // --- issue 13: threshold protocols (staircases, QUEST) and the pulse task run in their own files ---
+  const nlohmann::json document = read_json_file(a.protocol);
+  if (is_threshold_protocol(document)) {
+    cli::run_threshold_experiment({a.protocol, a.participant, a.db, a.rig, a.cal, a.resume, a.quiet, a.seed, a.speed,
+                                   a.sim_threshold_noise_kPa, a.sim_threshold_criterion_kPa});
+    return;
+  }
+  if (is_pulse_protocol(document)) {  // the pulse-localisation task: cli/pulse_experiment.cpp
+    cli::run_pulse_experiment({a.protocol, a.participant, a.db, a.rig, a.cal, a.resume, a.quiet, a.seed, a.speed});
+    return;
+  }
+  // --- end issue 13 ---
   // Everything is loaded and validated before the rig is opened.
   const Protocol from_file = load_protocol(a.protocol);
   std::uint64_t sim_seed = 0;
@@ -314,6 +332,13 @@ void register_run(CLI::App* experiment) {
       ->default_val(a->model.sequential.mean_s)->check(CLI::Range(0.05, 600.0));
   sub->add_option("--sim-rt-sd-sequential", a->model.sequential.sd_s, "Simulated: response time sd in s")
       ->default_val(a->model.sequential.sd_s)->check(CLI::Range(0.0, 600.0));
+  // issue 13: the simulated threshold observer (experiments/threshold_observer.hpp)
+  sub->add_option("--sim-threshold-noise-kPa", a->sim_threshold_noise_kPa,
+                  "Simulated, threshold protocols: sd of each finger's perceived pressure per interval")
+      ->default_val(a->sim_threshold_noise_kPa)->check(CLI::Range(0.0, 100.0));
+  sub->add_option("--sim-threshold-criterion-kPa", a->sim_threshold_criterion_kPa,
+                  "Simulated, yes-no threshold protocols: 'stronger' when the second interval is felt this much above the first")
+      ->default_val(a->sim_threshold_criterion_kPa)->check(CLI::Range(0.0, 100.0));
   sub->callback([a] { run_experiment(*a); });
 }
 

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/psychometric_command.hpp"  // issue 13
+#include "store/pulse_store.hpp"          // issue 13
 #include "statistics/csv_groups.hpp"
 #include "statistics/csv_table.hpp"
 #include "statistics/statistics_error.hpp"
@@ -315,8 +317,18 @@ void register_trials(CLI::App* stats_app) {
     options.include_practice = a->include_practice;
     options.confidence = a->confidence;
     TrialStore store = open_trial_store_for_reading(a->db);
-    const TrialSummary summary = summarise_trials(store, options);
     const std::string format = a->json ? "json" : a->format;
+    {  // issue 13: pulse-localisation trials (their own table) are summarised per condition
+      PulseStore pulse(store, false);
+      if (pulse.has_trials()) {
+        const auto rows = pulse.summarise(a->confidence);
+        if (format == "json") std::cout << pulse_summary_json(rows, a->confidence).dump(2) << "\n";
+        else std::cout << pulse_summary_table(rows, a->confidence);
+        auto any = store.database().prepare("SELECT count(*) FROM trials");
+        if (!any.step() || any.integer(0) == 0) return;
+      }
+    }
+    const TrialSummary summary = summarise_trials(store, options);
     if (format == "json") std::cout << summary_json(summary, a->confidence).dump(2) << "\n";
     else if (format == "csv") std::cout << summary_csv(summary);
     else std::cout << summary_table(summary);
@@ -337,4 +349,5 @@ void register_stats_command(CLI::App& app) {
   register_pearson(stats_app);
   register_describe(stats_app);
   register_trials(stats_app);
+  register_psychometric_command(*stats_app);  // issue 13
 }

@@ -74,10 +74,14 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
     }
     was_linked = linked;
 
+    if (opt.stop_request && opt.stop_request->load(std::memory_order_relaxed)) break;
+    const bool vent_held = opt.vent_request && opt.vent_request->load(std::memory_order_relaxed);
+
     const std::int64_t tick_start = mono_ns();
     const TouchSample sample = input.latest(t_s);
     TickResult r = tick(state, config, scene, sample, t_s);
-    if (!linked) {
+    if (vent_held) r.record.flags |= kVented;
+    if (!linked || vent_held) {
       r.setpoint_kPa = {};
       state.last_setpoint_kPa = {};
       for (int i = 0; i < kFingerCount; ++i) r.record.setpoint_kPa[i] = 0.0f;

@@ -35,6 +35,12 @@ struct RunOptions {
   std::filesystem::path telemetry_path;  // empty: no telemetry file
   bool want_fifo = true;
   const std::atomic<int>* stop_signal = nullptr;  // set non-zero by a signal handler to stop (vents)
+  // Operator controls from another thread (the GUI), read once per tick, never waited on:
+  // while vent_request is set every setpoint is 0 kPa from that very tick on and the loop keeps
+  // running (telemetry flag vented); when it clears, pressure rises again from 0 under the slew
+  // limit. stop_request ends the run cleanly (vented, no fault).
+  const std::atomic<bool>* vent_request = nullptr;
+  const std::atomic<bool>* stop_request = nullptr;
   TickObserver* observer = nullptr;
 };
 

@@ -16,19 +16,20 @@ void apply_pulse_stage(PulseTickState& state, const PulseRendering& rendering, c
   const bool stepped = dt_s > 0 && std::isfinite(dt_s);
   // The command issued now reaches the actuator one tick and one dead time later.
   const double period_s = stepped ? dt_s : state.last_dt_s;
+  const bool compensate = rendering.lag_compensation_on();
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     const RegulatorLag& lag = rendering.lag[i];
-    const double lead_s = rendering.compensate_lag ? lag.dead_time_s + period_s : 0.0;
+    const double lead_s = compensate ? lag.dead_time_s + period_s : 0.0;
     const LagCompensator& comp = state.compensator[i];
-    const double rise_s = rendering.compensate_lag ? comp.rise_anticipation_s() : 0.0;
-    const double fall_s = rendering.compensate_lag ? comp.fall_anticipation_s() : 0.0;
+    const double rise_s = compensate ? comp.rise_anticipation_s() : 0.0;
+    const double fall_s = compensate ? comp.fall_anticipation_s() : 0.0;
     const PulseFelt felt =
         arteries.felt(fingers[i], force_N, pressed, state.clocks, state.activation[i], t_s, lead_s, rise_s, fall_s,
                       rendering.has_measured_window ? &rendering.measured_window : nullptr);
     pulse_kPa[i] = felt.now_kPa;
     const double base = target_kPa[i];
     if (!std::isfinite(base)) continue;  // left for the safety stage to fault on
-    if (!rendering.compensate_lag) {
+    if (!compensate) {
       target_kPa[i] = base + felt.now_kPa;
       continue;
     }

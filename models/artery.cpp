@@ -118,7 +118,10 @@ PulseField::PulseField(std::vector<ArterySpec> arteries, double pad_radius_mm) {
     if (find(a.name) >= 0) throw std::invalid_argument("two arteries are named '" + a.name + "'");
     arteries_.emplace_back(std::move(a), pad_radius_mm);
   }
-  for (std::size_t i = 0; i < arteries_.size(); ++i) requested_bpm_[i].store(arteries_[i].spec().rate_bpm);
+  for (std::size_t i = 0; i < arteries_.size(); ++i) {
+    requested_bpm_[i].store(arteries_[i].spec().rate_bpm);
+    requested_amplitude_kPa_[i].store(arteries_[i].spec().amplitude_kPa);
+  }
 }
 
 int PulseField::find(const std::string& name) const noexcept {
@@ -135,6 +138,17 @@ bool PulseField::request_rate_bpm(std::size_t artery, double bpm) const noexcept
 
 double PulseField::requested_rate_bpm(std::size_t artery) const noexcept {
   return artery < arteries_.size() ? requested_bpm_[artery].load(std::memory_order_relaxed) : 0.0;
+}
+
+bool PulseField::request_amplitude_kPa(std::size_t artery, double amplitude_kPa) const noexcept {
+  if (artery >= arteries_.size() || !std::isfinite(amplitude_kPa) || amplitude_kPa < 0 || amplitude_kPa > 50)
+    return false;
+  requested_amplitude_kPa_[artery].store(amplitude_kPa, std::memory_order_relaxed);
+  return true;
+}
+
+double PulseField::requested_amplitude_kPa(std::size_t artery) const noexcept {
+  return artery < arteries_.size() ? requested_amplitude_kPa_[artery].load(std::memory_order_relaxed) : 0.0;
 }
 
 void PulseField::update_clocks(PulseClocks& clocks, double t_s) const noexcept {
@@ -172,7 +186,8 @@ PulseFelt PulseField::felt(const Point2_mm& at, double force_N, bool in_contact,
     ++out.arteries_on;
     const ForceWindow& window =
         !a.spec().own_force_window && measured_window ? *measured_window : a.spec().force_window;
-    const double amp = a.spec().amplitude_kPa * a.distance_factor(at) * window.factor(force_N);
+    const double amp = requested_amplitude_kPa_[i].load(std::memory_order_relaxed) * a.distance_factor(at) *
+                       window.factor(force_N);
     if (amp <= 0) continue;
     const PulseClock& c = clocks.clock[i];
     out.now_kPa += amp * a.spec().waveform.value(c.phase(t_s));

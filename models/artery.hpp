@@ -21,8 +21,9 @@
 //   pulse pressure    amplitude_kPa * distance factor * force factor * waveform(phase).
 // A finger over two arteries feels both; every finger over an artery feels it.
 //
-// Rates can change while running from any thread (request_rate_bpm); the loop thread applies the
-// request at its next tick with the phase kept continuous (PulseClock).
+// Rates and amplitudes can change while running from any thread (request_rate_bpm,
+// request_amplitude_kPa: relaxed atomics, no lock); the loop thread applies a rate request at its
+// next tick with the phase kept continuous (PulseClock).
 #include <array>
 #include <atomic>
 #include <cstddef>
@@ -127,6 +128,10 @@ class PulseField {
   // or a rate outside kMinPulseRateBpm..kMaxPulseRateBpm.
   bool request_rate_bpm(std::size_t artery, double bpm) const noexcept;
   double requested_rate_bpm(std::size_t artery) const noexcept;
+  // Any thread: pulse amplitude (kPa straight over the artery at the force window's top) from
+  // the next tick on. False (and no change) for an unknown artery or a value outside 0..50 kPa.
+  bool request_amplitude_kPa(std::size_t artery, double amplitude_kPa) const noexcept;
+  double requested_amplitude_kPa(std::size_t artery) const noexcept;
 
   // Loop thread, once per tick before felt(): start the clocks (phase 0 + offset at t = 0 of
   // the run) or apply pending rate requests at t.
@@ -142,6 +147,7 @@ class PulseField {
  private:
   std::vector<Artery> arteries_;
   mutable std::array<std::atomic<double>, kMaxArteries> requested_bpm_{};
+  mutable std::array<std::atomic<double>, kMaxArteries> requested_amplitude_kPa_{};
 };
 
 }  // namespace palprig

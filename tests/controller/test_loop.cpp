@@ -194,3 +194,55 @@ TEST(LatencyHistogram, TenthsOfAMicrosecondBelow100usAndWholeMicrosecondsAbove) 
   slow.record(50000);
   EXPECT_EQ(slow.summary().max_us, 50000.0);
 }
+
+namespace {
+
+// Plays the GUI's VENT button and Arm from the loop's own thread at chosen ticks, and keeps
+// what each tick sent (the records are checked after the run).
+class VentOperator final : public TickObserver {
+ public:
+  VentOperator(std::atomic<bool>& vent, std::atomic<bool>& stop) : vent_(vent), stop_(stop) {}
+  void on_tick(const TelemetryRecord& r) noexcept override {
+    if (records.size() < records.capacity()) records.push_back(r);
+    if (r.tick == 499) vent_.store(true);
+    if (r.tick == 799) vent_.store(false);
+    if (r.tick == 1199) stop_.store(true);
+  }
+  std::vector<TelemetryRecord> records;
+
+ private:
+  std::atomic<bool>& vent_;
+  std::atomic<bool>& stop_;
+};
+
+}  // namespace
+
+TEST(LoopRunner, VentRequestZeroesEverySetpointFromTheNextTickAndArmingSlewsBackUp) {
+  const auto scene = hard_right_scene();
+  TickConfig cfg;
+  FailingRig rig(1 << 30);  // never fails; keeps the last write
+  RestingPen pen(50, 20);   // finger 2 over hard tissue: 11.75 kPa
+  std::atomic<bool> vent{false}, stop{false};
+  VentOperator op(vent, stop);
+  op.records.reserve(5000);
+  RunOptions opt;
+  opt.duration_s = 5.0;
+  opt.vent_request = &vent;
+  opt.stop_request = &stop;
+  opt.observer = &op;
+  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  EXPECT_EQ(s.fault, FaultCode::none);  // a vent and a stop are operator actions, not faults
+  EXPECT_EQ(s.ticks, 1200u);            // stop_request ended the run before its 5 s
+  ASSERT_EQ(op.records.size(), 1200u);
+  EXPECT_NEAR(op.records[499].setpoint_kPa[1], 11.75, 1e-4);
+  for (std::size_t k = 500; k < 800; ++k) {
+    for (int i = 0; i < kFingerCount; ++i) ASSERT_EQ(op.records[k].setpoint_kPa[i], 0.0f) << "tick " << k;
+    ASSERT_TRUE(op.records[k].flags & kVented);
+    EXPECT_NEAR(op.records[k].target_kPa[1], 11.75, 1e-4);  // the models still ask; nothing is sent
+  }
+  // Armed again: from 0 under the slew limit (2000 kPa/s = 2 kPa per 1 ms tick), not a step.
+  EXPECT_FALSE(op.records[800].flags & kVented);
+  EXPECT_NEAR(op.records[800].setpoint_kPa[1], 2.0, 1e-4);
+  EXPECT_NEAR(op.records[900].setpoint_kPa[1], 11.75, 1e-4);
+  EXPECT_EQ(rig.last, (ChannelPressures{0, 0, 0}));  // the run ended vented
+}

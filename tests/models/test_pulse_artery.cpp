@@ -218,3 +218,20 @@ TEST(PulseLocalisation, MarkScoredByDistanceToTheCentreline) {
   const PulseField none;
   EXPECT_FALSE(score_pulse_mark(none, {0, 0}, 4.0).hit);
 }
+
+TEST(Artery, AmplitudeRequestsFromAnotherThreadScaleThePulseFromTheNextTick) {
+  const PulseField f({straight()}, 8);
+  PulseActivation act{};
+  const double full = peak(f, {50, 50}, 2, act);
+  EXPECT_GT(full, 0);
+  EXPECT_EQ(f.requested_amplitude_kPa(0), 10);
+  std::thread gui([&] { EXPECT_TRUE(f.request_amplitude_kPa(0, 2.5)); });
+  gui.join();
+  PulseActivation act2{};
+  EXPECT_NEAR(peak(f, {50, 50}, 2, act2), full * 0.25, 1e-12);
+  EXPECT_FALSE(f.request_amplitude_kPa(0, -1));
+  EXPECT_FALSE(f.request_amplitude_kPa(0, 51));
+  EXPECT_FALSE(f.request_amplitude_kPa(0, std::nan("")));
+  EXPECT_FALSE(f.request_amplitude_kPa(1, 5));
+  EXPECT_EQ(f.requested_amplitude_kPa(0), 2.5);
+}

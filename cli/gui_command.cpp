@@ -1,0 +1,46 @@
+// palprig gui: the Qt window (gui/). Parses the options and hands over to gui::run_gui.
+#include <cmath>
+
+#include "cli/commands.hpp"
+#include "gui/gui_app.hpp"
+#include "models/parse_error.hpp"
+
+using namespace palprig;
+
+void register_gui_command(CLI::App& app) {
+  struct Options {
+    gui::GuiOptions gui;
+    std::string telemetry;
+    bool no_fifo = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand("gui", "The live rig console: pen on the scene view, finger pressures, VENT, traces");
+  sub->add_option("--scene", o->gui.files.scene_path, "Scene file (JSON); default: the bundled phantom")->check(CLI::ExistingFile);
+  sub->add_option("--rig", o->gui.files.rig_path, "Rig file (JSON); default: the simulated rig");
+  sub->add_option("--cal", o->gui.files.cal_path, "Calibration file (JSON); default: paper 002's models");
+  sub->add_option("--input", o->gui.files.input_spec,
+                  "Pen input: window (mouse or tablet on the scene view), trace:FILE, sweep, tablet[:DEVICE or FILE.evemu]")
+      ->default_val("window");
+  sub->add_option("--rate-hz", o->gui.run.rate_hz, "Loop rate in Hz")->default_val(1000.0)->check(CLI::Range(1.0, 100000.0));
+  sub->add_flag("--no-fifo", o->no_fifo, "Real time without SCHED_FIFO");
+  sub->add_option("--telemetry", o->telemetry, "Write every tick to FILE (.csv, or .bin), as run does");
+  sub->add_option("--screenshot", o->gui.screenshot_path, "Save the whole window as PNG after --after-s seconds, then exit");
+  sub->add_option("--after-s", o->gui.after_s, "Seconds of live operation before the screenshot")
+      ->default_val(2.0)->check(CLI::Range(0.1, 3600.0));
+  sub->add_flag("--json", o->gui.json, "At exit, print the loop's summary (ticks, overruns, wake-up latency) as JSON");
+  sub->callback([o, sub]() {
+    gui::GuiOptions g = o->gui;
+    g.files.data_dir = cli::data_dir();
+    g.run.telemetry_path = o->telemetry;
+    g.run.want_fifo = !o->no_fifo;
+    cli::install_stop_signals();
+    g.run.stop_signal = &cli::stop_signal();
+    // Qt wants argc/argv for its own options; palprig's are already parsed.
+    static int argc = 1;
+    static char name[] = "palprig";
+    static char* argv[] = {name, nullptr};
+    (void)sub;
+    const int code = gui::run_gui(argc, argv, g);
+    if (code != 0) cli::finish(code);
+  });
+}

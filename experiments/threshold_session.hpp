@@ -1,0 +1,86 @@
+#pragma once
+// The threshold session: runs interleaved adaptive tracks on a StimulusOutput (on a rig through
+// the controller's tick_direct: hysteresis compensation and the safety stage, like every
+// trial). Each trial: the track is chosen, its level read, two intervals presented (pressure on
+// the track's fingers for interval_s, vented gap_s between), the answer awaited for
+// response_timeout_s, the answer scored and recorded in the track, the trial handed to
+// `on_trial` (the store commits it, with every track's state, before the next trial starts),
+// then a vented inter-trial pause. An unanswered trial is recorded but leaves the track
+// unchanged (the level is presented again).
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/adaptive_track.hpp"
+#include "experiments/participant.hpp"
+#include "experiments/session_clock.hpp"
+#include "experiments/stimulus_output.hpp"
+#include "experiments/threshold_protocol.hpp"
+
+namespace palprig {
+
+struct ThresholdTrialInfo {
+  int position = 0;
+  int track = 0;
+  const TrackSpec* spec = nullptr;
+  ThresholdMethod method = ThresholdMethod::two_afc;
+  double level_kPa = 0;      // the increment (a person is not told)
+  FingerFlags active{};      // fingers carrying the stimulus
+};
+
+struct ThresholdTrialRecord {
+  int position = 0;
+  int track = 0;
+  std::string track_name;
+  std::string fingers;       // "one" or "three"
+  double level_kPa = 0, reference_kPa = 0;
+  int signal_interval = 1;   // 0 or 1: the interval with reference + level
+  bool answered = false;
+  int response = -1;         // 2afc: chosen interval 0/1; yes-no: 1 yes, 0 no; -1 no answer
+  bool correct = false;      // 2afc: chose the signal interval; yes-no: answered yes
+  bool reversal = false;
+  double onset_s = 0, response_time_s = 0;  // response time from the end of the second interval
+  std::array<double, 2> felt_kPa{};          // mean pressure on the active fingers per interval
+  nlohmann::json state;      // every track's state after this trial (resume from here)
+};
+
+class ThresholdParticipant {
+ public:
+  virtual ~ThresholdParticipant() = default;
+  virtual bool ready(double t_s) = 0;  // before the first trial
+  virtual void trial_started(const ThresholdTrialInfo& trial, double t_s) = 0;
+  virtual void interval_started(int interval, double t_s) = 0;
+  virtual void feel(int interval, const FeltSample& sample) = 0;
+  // Asked every pass after the second interval; 2afc: 0 or 1, yes-no: 1 yes, 0 no.
+  virtual std::optional<int> answer(double t_s) = 0;
+};
+
+struct ThresholdSessionOptions {
+  std::uint64_t seed = 1;
+  int start_position = 0;      // trials already committed
+  double period_s = 0.005;
+  const std::atomic<int>* stop = nullptr;
+  std::function<void(const ThresholdTrialRecord&)> on_trial;
+};
+
+struct ThresholdSessionResult {
+  bool completed = false, stopped = false;
+  std::string fault;
+  int trials = 0;  // recorded in this run
+};
+
+// Every track's state as one JSON array, and back (throws std::invalid_argument).
+nlohmann::json tracks_state(const std::vector<AdaptiveTrack>& tracks);
+void restore_tracks(std::vector<AdaptiveTrack>& tracks, const nlohmann::json& state);
+
+ThresholdSessionResult run_threshold_session(const ThresholdProtocol& protocol, std::vector<AdaptiveTrack>& tracks,
+                                             StimulusOutput& output, ThresholdParticipant& participant,
+                                             SessionClock& clock, const ThresholdSessionOptions& options);
+
+}  // namespace palprig

@@ -1,0 +1,82 @@
+#include "gui/gui_app.hpp"
+
+#include <QApplication>
+#include <QMessageBox>
+#include <QPixmap>
+#include <QTimer>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "gui/main_window.hpp"
+#include "models/parse_error.hpp"
+
+namespace palprig::gui {
+
+namespace {
+
+// The refusal line on stderr, and in a dialog when someone can see it (not offscreen, not a
+// scripted screenshot run).
+int refuse(const std::string& line, int code, bool interactive) {
+  std::cerr << "palprig: " << line << "\n";
+  if (interactive && QGuiApplication::platformName() != "offscreen")
+    QMessageBox::critical(nullptr, "palprig", QString::fromStdString("palprig: " + line));
+  return code;
+}
+
+nlohmann::json summary_json(const RunSummary& s) {
+  auto lat = [](const LatencySummary& l) {
+    return nlohmann::json{{"p50_us", l.p50_us}, {"p99_us", l.p99_us}, {"p999_us", l.p999_us}, {"max_us", l.max_us}};
+  };
+  return {{"ticks", s.ticks},
+          {"overruns", s.overruns},
+          {"missed_periods", s.missed_periods},
+          {"wake_latency", lat(s.wake_latency)},
+          {"tick_time", lat(s.tick_time)},
+          {"io_time", lat(s.io_time)},
+          {"realtime_note", s.realtime_note},
+          {"fault", s.fault == FaultCode::none ? nlohmann::json(nullptr) : nlohmann::json(to_string(s.fault))}};
+}
+
+}  // namespace
+
+int run_gui(int argc, char** argv, const GuiOptions& o) {
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("palprig");
+  const bool interactive = o.screenshot_path.empty();
+  std::unique_ptr<LiveRun> run;
+  try {
+    run = std::make_unique<LiveRun>(load_live_run(o.files), o.run);
+  } catch (const InputError& e) {
+    return refuse(e.what(), 2, interactive);
+  } catch (const std::exception& e) {
+    return refuse(e.what(), 1, interactive);
+  }
+  MainWindow window(std::move(run), o.files, o.run);
+  window.show();
+  int exit_code = 0;
+  if (!o.screenshot_path.empty()) {
+    QTimer::singleShot(int(o.after_s * 1000), &window, [&] {
+      const QPixmap shot = window.grab();
+      if (!shot.save(QString::fromStdString(o.screenshot_path), "PNG")) {
+        std::cerr << "palprig: " << o.screenshot_path << ": cannot write the screenshot\n";
+        exit_code = 1;
+      }
+      window.close();
+    });
+  }
+  app.exec();
+  window.run().stop();
+  const RunSummary& s = window.run().last_summary();
+  if (o.json) std::cout << summary_json(s).dump(2) << "\n";
+  if (s.fault != FaultCode::none) {
+    std::cerr << "palprig: fault at t=" << s.fault_t_s << " s: " << to_string(s.fault)
+              << (s.fault_detail.empty() ? "" : " (" + s.fault_detail + ")") << "; all channels vented\n";
+    if (exit_code == 0) exit_code = 1;
+  }
+  return exit_code;
+}
+
+}  // namespace palprig::gui

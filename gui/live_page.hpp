@@ -1,0 +1,49 @@
+#pragma once
+// LivePage: the live rig console, one page of the main window: scene view with the pen
+// controls, rig panel, pulse controls and the live traces. poll() is its whole update: the
+// main window's timer calls it every 16 ms.
+#include <QWidget>
+#include <vector>
+
+#include "gui/live_run.hpp"
+#include "gui/trace_history.hpp"
+
+class QCheckBox;
+class QDoubleSpinBox;
+class QPushButton;
+class QSlider;
+
+namespace palprig::gui {
+
+class RigPanel;
+class SceneView;
+class StripChart;
+
+class LivePage final : public QWidget {
+  Q_OBJECT
+ public:
+  LivePage(LiveRun& run, QWidget* parent = nullptr);
+  FeedStatus poll();  // take new telemetry, refresh every panel; returns the feed's status
+
+  RigPanel* rig_panel() const noexcept { return rig_panel_; }
+  SceneView* scene_view() const noexcept { return scene_view_; }
+  StripChart* strip_chart() const noexcept { return chart_; }
+  QCheckBox* tumor_outlines() const noexcept { return tumors_; }
+  const TraceHistory& history() const noexcept { return history_; }
+  void toggle_pause();
+  void clear_traces();
+
+ private:
+  LiveRun& run_;
+  TraceHistory history_;
+  std::vector<TraceSample> incoming_;
+  RigPanel* rig_panel_ = nullptr;
+  SceneView* scene_view_ = nullptr;
+  StripChart* chart_ = nullptr;
+  QCheckBox* tumors_ = nullptr;
+  QSlider* force_ = nullptr;
+  QPushButton* pause_ = nullptr;
+  QDoubleSpinBox* window_ = nullptr;
+};
+
+}  // namespace palprig::gui

@@ -1,0 +1,126 @@
+#pragma once
+// LiveRun: the GUI's one adapter to the controller library. It loads and checks the files
+// exactly as `palprig run` does (the same library calls, refusing with the same InputError
+// line before anything moves), opens the backend, and runs controller/loop_runner's run_loop
+// on its own thread in real time, for as long as the window is open.
+//
+// Operator controls reach the loop through atomics it reads every tick (RunOptions::
+// vent_request, stop_request; PulseRendering::compensate_lag_switch; PulseField's rate and
+// amplitude requests); pen samples through WindowPenInput's latest-value handoff; telemetry
+// leaves through TelemetryFeed's wait-free queue. The loop thread never emits a Qt signal and
+// never takes a lock the GUI holds.
+//
+// Lifecycle shown by the rig panel (RigBackend gains arm()/disarm()/state() in the "rig step"
+// work; when it lands this file maps onto it): connected (loop running, reading monitors,
+// every setpoint 0) -> armed (setpoints flow) -> vented (VENT pressed: 0 kPa, Arm again to
+// resume) ; any latched fault ends the run, vents, and shows as fault until acknowledged,
+// after which the loop restarts vented.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "controller/loop_runner.hpp"
+#include "formats/rig_file.hpp"
+#include "formats/scene_file.hpp"
+#include "gui/telemetry_feed.hpp"
+#include "gui/window_pen_input.hpp"
+#include "models/calibration_models.hpp"
+
+namespace palprig::gui {
+
+struct LiveRunFiles {
+  std::string scene_path;        // empty: the bundled phantom
+  std::string rig_path;          // empty: the default simulated rig
+  std::string cal_path;          // empty: paper 002's models
+  std::string input_spec = "window";  // window, trace:FILE, sweep, tablet[:DEV or FILE.evemu]
+  std::filesystem::path data_dir;     // where the bundled scene and rig live
+};
+
+struct LiveRunOptions {
+  double rate_hz = 1000.0;
+  bool want_fifo = true;
+  std::filesystem::path telemetry_path;           // every tick, as `palprig run --telemetry`
+  const std::atomic<int>* stop_signal = nullptr;  // SIGINT/SIGTERM: the loop vents and ends
+  bool arm_at_start = true;  // honoured for the simulated rig only; hardware waits for Arm
+};
+
+enum class RigLifecycle { connected, armed, vented, fault, stopped };
+const char* to_string(RigLifecycle s) noexcept;
+
+// Files loaded and checked, nothing opened: what `palprig run` loads (controller's run set-up
+// replaces this when it lands).
+struct LiveRunSetup {
+  RigConfig rig;
+  CalibrationModels cal;
+  SceneFile scene;
+  TickConfig config;
+  std::string input_spec;
+};
+// Throws InputError (one line: file, field, what was expected) before anything moves.
+LiveRunSetup load_live_run(const LiveRunFiles& files);
+
+class LiveRun {
+ public:
+  // Opens the backend (std::runtime_error with one line when it cannot) and starts the loop.
+  LiveRun(LiveRunSetup setup, const LiveRunOptions& options);
+  ~LiveRun();  // stops the loop (vents) and closes the backend
+  LiveRun(const LiveRun&) = delete;
+  LiveRun& operator=(const LiveRun&) = delete;
+
+  // GUI thread.
+  void arm();    // setpoints flow (from 0 under the slew limit)
+  void vent();   // every setpoint 0 kPa from the loop's next tick
+  void disarm(); // the same on the loop's side; shown as connected rather than vented
+  // Loop time of the last tick finished when VENT was last pressed: every tick after the next
+  // one sends 0 kPa (the next may have been under way).
+  double vent_pressed_after_t_s() const noexcept { return vent_pressed_after_t_s_; }
+  void acknowledge_fault();  // clears the banner; the loop restarts vented
+  void stop();   // ends the loop (vented); idempotent
+  RigLifecycle state() const noexcept;
+  bool fault_pending() const noexcept { return fault_pending_; }
+  FaultCode fault() const noexcept { return last_summary_.fault; }
+  std::string fault_text() const;  // "pen input stale at t=1.234 s" with the backend's words
+  // Call from the GUI poll: notices a loop that ended (fault or signal) and collects its summary.
+  bool poll_finished();
+  const RunSummary& last_summary() const noexcept { return last_summary_; }
+  bool stopped_by_signal() const noexcept { return last_summary_.fault == FaultCode::signal; }
+
+  void set_lag_compensation(bool on) noexcept { lag_compensation_.store(on, std::memory_order_relaxed); }
+  bool lag_compensation() const noexcept { return lag_compensation_.load(std::memory_order_relaxed); }
+
+  WindowPenInput* window_pen() noexcept { return window_pen_; }  // null when the input is not the window
+  TelemetryFeed& feed() noexcept { return feed_; }
+  const LiveRunSetup& setup() const noexcept { return setup_; }
+  const Scene& scene() const noexcept { return *setup_.scene.scene; }
+  std::string backend_text() const;  // "simulated (in-process)", "modbus tcp 10.0.0.5:502"
+  bool linked() const noexcept { return backend_->linked(); }
+  std::string input_text() const { return input_->describe(); }
+  std::string realtime_note() const { return last_summary_.realtime_note; }
+
+ private:
+  void start_loop();
+  void join_loop();
+
+  LiveRunSetup setup_;
+  LiveRunOptions options_;
+  std::unique_ptr<InputSource> input_;
+  WindowPenInput* window_pen_ = nullptr;
+  std::unique_ptr<RigBackend> backend_;
+  TelemetryFeed feed_;
+  std::atomic<bool> vent_request_{true}, stop_request_{false}, lag_compensation_{true};
+  std::atomic<bool> loop_done_{false};
+  std::thread loop_;
+  bool loop_running_ = false;
+  bool fault_pending_ = false;
+  bool vented_by_operator_ = false;
+  double vent_pressed_after_t_s_ = 0;
+  bool stopped_ = false;
+  int runs_ = 0;
+  RunSummary loop_summary_;  // written by the loop thread, read after loop_done_
+  RunSummary last_summary_;
+};
+
+}  // namespace palprig::gui

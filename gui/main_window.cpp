@@ -1,0 +1,138 @@
+#include "gui/main_window.hpp"
+
+#include <QAction>
+#include <QApplication>
+#include <QCheckBox>
+#include <QCloseEvent>
+#include <QFileDialog>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QShortcut>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QTimer>
+
+#include "gui/live_page.hpp"
+#include "gui/rig_panel.hpp"
+#include "models/parse_error.hpp"
+
+namespace palprig::gui {
+
+MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRunOptions options, QWidget* parent)
+    : QMainWindow(parent), run_(std::move(run)), files_(std::move(files)), options_(std::move(options)) {
+  setObjectName("main_window");
+  tabs_ = new QTabWidget;
+  setCentralWidget(tabs_);
+  build_live_page();
+
+  status_ = new QLabel;
+  status_->setObjectName("loop_status");
+  statusBar()->addPermanentWidget(status_, 1);
+
+  QMenu* file = menuBar()->addMenu("&File");
+  file->addAction("Open &scene...", this, [this] { choose_file("scene", &LiveRunFiles::scene_path, "Scenes (*.json)"); });
+  file->addAction("Open &rig...", this, [this] { choose_file("rig", &LiveRunFiles::rig_path, "Rig files (*.json)"); });
+  file->addAction("Open &calibration...", this,
+                  [this] { choose_file("calibration", &LiveRunFiles::cal_path, "Calibration files (*.json)"); });
+  file->addSeparator();
+  file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
+
+  // Esc vents from anywhere in the window, whatever has the focus.
+  auto* vent = new QShortcut(QKeySequence(Qt::Key_Escape), this);
+  vent->setContext(Qt::ApplicationShortcut);
+  connect(vent, &QShortcut::activated, this, [this] { live_page_->rig_panel()->vent_now(); });
+  auto* pause = new QShortcut(QKeySequence(Qt::Key_Space), this);
+  connect(pause, &QShortcut::activated, this, [this] { live_page_->toggle_pause(); });
+  auto* outlines = new QShortcut(QKeySequence(Qt::CTRL | Qt::Key_T), this);
+  connect(outlines, &QShortcut::activated, this, [this] { live_page_->tumor_outlines()->toggle(); });
+
+  timer_ = new QTimer(this);
+  timer_->setInterval(16);  // 60 Hz display; the loop never waits for it
+  connect(timer_, &QTimer::timeout, this, &MainWindow::poll);
+  timer_->start();
+  setWindowTitle(QString("palprig - %1").arg(QString::fromStdString(run_->setup().scene.name)));
+  resize(1280, 860);
+}
+
+MainWindow::~MainWindow() {
+  if (run_) run_->stop();
+}
+
+void MainWindow::build_live_page() {
+  const int index = live_page_ ? tabs_->indexOf(live_page_) : -1;
+  if (live_page_) {
+    tabs_->removeTab(index);
+    delete live_page_;
+  }
+  live_page_ = new LivePage(*run_);
+  tabs_->insertTab(std::max(index, 0), live_page_, "Live rig");
+  tabs_->setCurrentWidget(live_page_);
+}
+
+void MainWindow::poll() {
+  if (options_.stop_signal && options_.stop_signal->load() != 0) {
+    close();  // SIGINT/SIGTERM: the loop has vented on its own already
+    return;
+  }
+  run_->poll_finished();
+  const FeedStatus st = live_page_->poll();
+  status_->setText(QString("loop %1 Hz   overruns %2   wake-up p50 %3 us  p99 %4 us   ticks %5%6")
+                       .arg(st.loop_rate_hz, 0, 'f', 0)
+                       .arg(st.overruns)
+                       .arg(st.wake_p50_us, 0, 'f', 1)
+                       .arg(st.wake_p99_us, 0, 'f', 1)
+                       .arg(st.ticks)
+                       .arg(st.dropped ? QString("   display dropped %1").arg(st.dropped) : QString()));
+  emit polled();
+}
+
+bool MainWindow::open_files(const LiveRunFiles& files) {
+  auto refuse = [this](const char* what) {
+    delete refusal_;
+    refusal_ = new QMessageBox(QMessageBox::Critical, "palprig", QString("palprig: ") + what, QMessageBox::Ok, this);
+    refusal_->setObjectName("refusal_dialog");
+    refusal_->open();  // window-modal, not exec(): the poll timer and the loop go on
+  };
+  LiveRunSetup setup;
+  try {
+    setup = load_live_run(files);  // refused here: nothing was stopped, nothing moves
+  } catch (const std::exception& e) {
+    refuse(e.what());
+    return false;
+  }
+  std::unique_ptr<LiveRun> next;
+  bool opened = true;
+  live_page_->setEnabled(false);
+  run_->stop();  // the old rig vents before the new backend opens
+  try {
+    next = std::make_unique<LiveRun>(std::move(setup), options_);
+  } catch (const std::exception& e) {
+    refuse(e.what());  // the new backend did not open: back to the files that worked
+    opened = false;
+    next = std::make_unique<LiveRun>(load_live_run(files_), options_);
+  }
+  if (opened) files_ = files;
+  delete live_page_;
+  live_page_ = nullptr;
+  run_ = std::move(next);
+  build_live_page();
+  setWindowTitle(QString("palprig - %1").arg(QString::fromStdString(run_->setup().scene.name)));
+  return opened;
+}
+
+void MainWindow::choose_file(const QString& what, std::string LiveRunFiles::*field, const QString& filter) {
+  const QString path = QFileDialog::getOpenFileName(this, "Open " + what, QString(), filter);
+  if (path.isEmpty()) return;
+  LiveRunFiles f = files_;
+  f.*field = path.toStdString();
+  open_files(f);
+}
+
+void MainWindow::closeEvent(QCloseEvent* e) {
+  timer_->stop();
+  run_->stop();  // the loop vents every channel as it ends
+  e->accept();
+}
+
+}  // namespace palprig::gui

@@ -1,0 +1,57 @@
+#pragma once
+// MainWindow: the palprig application window. One page per job in a QTabWidget ("Live rig"
+// now; the experiment console and calibration add pages beside it), a status bar with the
+// loop's rate, overruns and wake-up latency, and the window-wide shortcuts (Esc is VENT).
+// It owns the LiveRun; closing the window stops the loop, which vents every channel.
+#include <QMainWindow>
+#include <atomic>
+#include <memory>
+
+#include "gui/live_run.hpp"
+
+class QLabel;
+class QMessageBox;
+class QTabWidget;
+class QTimer;
+
+namespace palprig::gui {
+
+class LivePage;
+
+class MainWindow final : public QMainWindow {
+  Q_OBJECT
+ public:
+  MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRunOptions options, QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  LiveRun& run() noexcept { return *run_; }
+  LivePage* live_page() const noexcept { return live_page_; }
+  QTabWidget* pages() const noexcept { return tabs_; }
+  QLabel* status_text() const noexcept { return status_; }
+  // Load other files (File menu). A refused file shows the same one line as the CLI in a
+  // dialog and leaves the running rig as it was; returns false then.
+  bool open_files(const LiveRunFiles& files);
+  QMessageBox* last_refusal() const noexcept { return refusal_; }
+
+ signals:
+  void polled();  // after every poll (tests wait on it)
+
+ protected:
+  void closeEvent(QCloseEvent*) override;
+
+ private:
+  void poll();
+  void build_live_page();
+  void choose_file(const QString& what, std::string LiveRunFiles::*field, const QString& filter);
+
+  std::unique_ptr<LiveRun> run_;
+  LiveRunFiles files_;
+  LiveRunOptions options_;
+  QTabWidget* tabs_ = nullptr;
+  LivePage* live_page_ = nullptr;
+  QLabel* status_ = nullptr;
+  QTimer* timer_ = nullptr;
+  QMessageBox* refusal_ = nullptr;
+};
+
+}  // namespace palprig::gui

@@ -1,0 +1,32 @@
+#pragma once
+// Starting or resuming a pulse-localisation session (the rules of sessions/session_setup.hpp):
+// on resume the stored protocol and seed give the same trial order, continued at the first
+// trial not committed.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "experiments/pulse_task.hpp"
+#include "store/pulse_store.hpp"
+
+namespace palprig {
+
+struct PulseSessionRequest {
+  std::string participant_code;
+  bool simulated = false, resume = false;
+  std::optional<std::uint64_t> seed;
+  SessionSetup setup;
+};
+
+struct OpenedPulseSession {
+  PulseProtocol protocol;
+  std::int64_t session_id = 0;
+  ParticipantRecord participant;
+  std::uint64_t seed = 0;
+  int start_position = 0;
+  bool resumed = false;
+};
+
+OpenedPulseSession open_pulse_session(TrialStore& store, const PulseProtocol& protocol, const PulseSessionRequest& request);
+
+}  // namespace palprig

@@ -1,0 +1,198 @@
+#include "store/pulse_store.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <limits>
+#include <map>
+
+#include "models/parse_error.hpp"
+#include "statistics/statistics_describe.hpp"
+#include "statistics/statistics_proportion.hpp"
+
+namespace palprig {
+
+namespace {
+
+constexpr const char* kPulseSchema = R"sql(
+CREATE TABLE IF NOT EXISTS pulse_trials (
+  session_id      INTEGER NOT NULL REFERENCES sessions(id),
+  position        INTEGER NOT NULL,
+  condition       TEXT NOT NULL,
+  scene_seed      INTEGER,              -- generated conditions: the case's seed
+  answered        INTEGER NOT NULL CHECK (answered IN (0, 1)),
+  mark_x_mm       REAL, mark_y_mm REAL,
+  artery          TEXT,                 -- the artery scored against
+  distance_mm     REAL,                 -- mark to its centreline; NULL when not answered
+  hit             INTEGER NOT NULL CHECK (hit IN (0, 1)),
+  response_time_s REAL,
+  onset_s         REAL NOT NULL,
+  completed_utc   TEXT NOT NULL,
+  PRIMARY KEY (session_id, position)
+) WITHOUT ROWID;
+)sql";
+
+std::string utc_now() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+}  // namespace
+
+PulseStore::PulseStore(TrialStore& store, bool writable) : store_(store) {
+  if (writable) store_.database().exec(kPulseSchema);
+}
+
+std::int64_t PulseStore::create_session(const ParticipantRecord& who, const PulseProtocol& protocol, std::uint64_t seed,
+                                        const SessionSetup& setup) {
+  Database& db = store_.database();
+  Transaction tx(db);
+  auto ins = db.prepare(
+      "INSERT INTO sessions (participant_id, protocol_name, task, bids_task, protocol_json, protocol_dir, seed, "
+      "condition_order, rig_id, rig_backend, calibration, participant_model, status, started_utc) "
+      "VALUES (?1, ?2, 'pulse', ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, 'running', ?12)");
+  ins.bind(1, who.id)
+      .bind(2, protocol.name)
+      .bind(3, protocol.bids_task)
+      .bind(4, protocol.snapshot.dump())
+      .bind(5, setup.protocol_dir)
+      .bind(6, static_cast<std::int64_t>(seed))
+      .bind(7, nlohmann::json(pulse_trial_order(protocol, seed)).dump())
+      .bind(8, setup.rig_id)
+      .bind(9, setup.rig_backend)
+      .bind(10, setup.calibration);
+  if (setup.participant_model.is_null()) ins.bind_null(11);
+  else ins.bind(11, setup.participant_model.dump());
+  ins.bind(12, utc_now()).run();
+  const std::int64_t id = db.last_insert_rowid();
+  tx.commit();
+  return id;
+}
+
+StoredPulseSession PulseStore::load_session(std::int64_t session_id) {
+  Database& db = store_.database();
+  auto q = db.prepare(
+      "SELECT s.id, s.protocol_json, s.protocol_dir, s.seed, p.id, p.code, p.number, p.simulated, s.task FROM sessions s "
+      "JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
+  q.bind(1, session_id);
+  if (!q.step() || q.text(8) != "pulse") {
+    throw InputError(store_.file(), "session " + std::to_string(session_id), "an existing pulse session");
+  }
+  StoredPulseSession s;
+  s.id = q.integer(0);
+  s.protocol_snapshot = nlohmann::json::parse(q.text(1));
+  s.protocol_dir = q.text(2);
+  s.seed = static_cast<std::uint64_t>(q.integer(3));
+  s.participant = ParticipantRecord{q.integer(4), q.text(5), static_cast<int>(q.integer(6)), q.integer(7) != 0};
+  auto done = db.prepare("SELECT count(*), COALESCE(MAX(position), -1) FROM pulse_trials WHERE session_id = ?1");
+  done.bind(1, session_id);
+  done.step();
+  s.completed_trials = static_cast<int>(done.integer(0));
+  if (done.integer(1) != s.completed_trials - 1) {
+    throw InputError(store_.file(), "session " + std::to_string(session_id), "pulse trials committed in order");
+  }
+  return s;
+}
+
+void PulseStore::commit_trial(std::int64_t session_id, const PulseTrialRecord& r) {
+  Database& db = store_.database();
+  Transaction tx(db);
+  auto ins = db.prepare(
+      "INSERT INTO pulse_trials (session_id, position, condition, answered, mark_x_mm, mark_y_mm, artery, distance_mm, "
+      "hit, response_time_s, onset_s, completed_utc, scene_seed) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)");
+  ins.bind(1, session_id).bind(2, r.position).bind(3, r.condition).bind(4, r.answered ? 1 : 0).bind(9, r.hit ? 1 : 0);
+  ins.bind(11, r.onset_s).bind(12, utc_now());
+  if (r.scene_seed) ins.bind(13, static_cast<std::int64_t>(*r.scene_seed));
+  if (r.answered) {
+    ins.bind(5, r.mark_x_mm).bind(6, r.mark_y_mm).bind(7, r.artery).bind(8, r.distance_mm).bind(10, r.response_time_s);
+  }
+  ins.run();
+  tx.commit();
+}
+
+bool PulseStore::has_trials() {
+  auto t = store_.database().prepare("SELECT count(*) FROM sqlite_master WHERE name = 'pulse_trials'");
+  t.step();
+  if (t.integer(0) == 0) return false;
+  auto q = store_.database().prepare("SELECT count(*) FROM pulse_trials");
+  q.step();
+  return q.integer(0) > 0;
+}
+
+std::vector<PulseConditionSummary> PulseStore::summarise(double confidence) {
+  std::vector<PulseConditionSummary> out;
+  if (!has_trials()) return out;
+  std::map<std::string, std::vector<double>> distances;
+  std::map<std::string, PulseConditionSummary> by;
+  std::vector<std::string> order;
+  auto q = store_.database().prepare("SELECT condition, answered, hit, distance_mm FROM pulse_trials ORDER BY session_id, position");
+  while (q.step()) {
+    const std::string c = q.text(0);
+    if (!by.count(c)) order.push_back(c);
+    auto& s = by[c];
+    s.condition = c;
+    ++s.trials;
+    if (q.integer(1) != 0) {
+      ++s.answered;
+      distances[c].push_back(q.real(3));
+    }
+    s.hits += q.integer(2) != 0 ? 1 : 0;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& c : order) {
+    PulseConditionSummary s = by[c];
+    const auto w = stats::wilson_interval(s.hits, s.trials, confidence);
+    s.hit_rate = w.p;
+    s.hit_low = w.lower;
+    s.hit_high = w.upper;
+    s.distance_median_mm = s.distance_q1_mm = s.distance_q3_mm = s.distance_iqr_mm = nan;
+    if (!distances[c].empty()) {
+      const auto d = stats::describe(distances[c]);
+      s.distance_median_mm = d.median;
+      s.distance_q1_mm = d.q1;
+      s.distance_q3_mm = d.q3;
+      s.distance_iqr_mm = d.iqr;
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
+nlohmann::ordered_json pulse_summary_json(const std::vector<PulseConditionSummary>& rows, double confidence) {
+  nlohmann::ordered_json j;
+  j["task"] = "pulse";
+  j["convention"] = "hit rate = hits / trials (unanswered trials count as misses), Wilson interval without continuity "
+                    "correction; distance from the mark to the artery centreline over answered trials, quartiles R type 7";
+  j["confidence"] = confidence;
+  j["conditions"] = nlohmann::ordered_json::array();
+  for (const auto& r : rows) {
+    j["conditions"].push_back({{"condition", r.condition}, {"trials", r.trials}, {"answered", r.answered},
+                               {"hits", r.hits}, {"hit_rate", r.hit_rate}, {"hit_rate_low", r.hit_low},
+                               {"hit_rate_high", r.hit_high}, {"distance_median_mm", r.distance_median_mm},
+                               {"distance_q1_mm", r.distance_q1_mm}, {"distance_q3_mm", r.distance_q3_mm},
+                               {"distance_iqr_mm", r.distance_iqr_mm}});
+  }
+  return j;
+}
+
+std::string pulse_summary_table(const std::vector<PulseConditionSummary>& rows, double confidence) {
+  std::string out = "Pulse localisation (hit rate with " + std::to_string(static_cast<int>(std::round(confidence * 100))) +
+                    " % Wilson interval; distance to the artery centreline)\n";
+  char line[256];
+  std::snprintf(line, sizeof line, "  %-16s %6s %6s %22s %12s %10s\n", "condition", "trials", "hits", "hit rate [CI]",
+                "median mm", "IQR mm");
+  out += line;
+  for (const auto& r : rows) {
+    std::snprintf(line, sizeof line, "  %-16s %6d %6d %6.3f [%.3f, %.3f] %12.2f %10.2f\n", r.condition.c_str(), r.trials,
+                  r.hits, r.hit_rate, r.hit_low, r.hit_high, r.distance_median_mm, r.distance_iqr_mm);
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace palprig

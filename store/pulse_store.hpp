@@ -1,0 +1,52 @@
+#pragma once
+// Pulse-localisation sessions in the trial database: a `sessions` row (task "pulse", protocol
+// snapshot, seed) and one `pulse_trials` row per trial, each committed in its own transaction
+// (created on first use, like threshold_trials). The summary is what `palprig stats trials`
+// prints for pulse sessions: hit rate per condition with its Wilson interval, and the median
+// and IQR of the mark's distance to the artery centreline (answered trials).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/pulse_task.hpp"
+#include "store/trial_store.hpp"
+
+namespace palprig {
+
+struct StoredPulseSession {
+  std::int64_t id = 0;
+  ParticipantRecord participant;
+  nlohmann::json protocol_snapshot;
+  std::string protocol_dir;
+  std::uint64_t seed = 0;
+  int completed_trials = 0;
+};
+
+struct PulseConditionSummary {
+  std::string condition;
+  int trials = 0, answered = 0, hits = 0;
+  double hit_rate = 0, hit_low = 0, hit_high = 0;  // hits / trials, Wilson interval
+  double distance_median_mm = 0, distance_q1_mm = 0, distance_q3_mm = 0, distance_iqr_mm = 0;  // NaN without answers
+};
+
+class PulseStore {
+ public:
+  explicit PulseStore(TrialStore& store, bool writable = true);
+  std::int64_t create_session(const ParticipantRecord& who, const PulseProtocol& protocol, std::uint64_t seed,
+                              const SessionSetup& setup);
+  StoredPulseSession load_session(std::int64_t session_id);
+  void commit_trial(std::int64_t session_id, const PulseTrialRecord& trial);
+  bool has_trials();
+  std::vector<PulseConditionSummary> summarise(double confidence = 0.95);
+
+ private:
+  TrialStore& store_;
+};
+
+nlohmann::ordered_json pulse_summary_json(const std::vector<PulseConditionSummary>& rows, double confidence);
+std::string pulse_summary_table(const std::vector<PulseConditionSummary>& rows, double confidence);
+
+}  // namespace palprig

@@ -1,0 +1,55 @@
+#pragma once
+// Threshold sessions in the trial database. A threshold session is a row of `sessions`
+// (task "threshold", the protocol snapshot, the seed) and one row of `threshold_trials` per
+// trial, committed in its own transaction with every track's state after that trial (JSON), so
+// a killed session resumes with exactly the staircases it had. The table is created on first
+// use (CREATE TABLE IF NOT EXISTS): databases of schema version 1 gain it without a migration,
+// and older readers ignore it.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/threshold_protocol.hpp"
+#include "experiments/threshold_session.hpp"
+#include "store/trial_store.hpp"
+
+namespace palprig {
+
+struct StoredThresholdSession {
+  std::int64_t id = 0;
+  ParticipantRecord participant;
+  nlohmann::json protocol_snapshot;
+  std::uint64_t seed = 0;
+  std::string status;
+  int completed_trials = 0;
+  nlohmann::json last_state;  // null before the first trial
+};
+
+// One stored trial, for statistics and plots.
+struct ThresholdTrialRow {
+  std::int64_t session_id = 0;
+  std::string participant;
+  ThresholdTrialRecord trial;
+};
+
+class ThresholdStore {
+ public:
+  // Adds the threshold table to a writable store if missing.
+  explicit ThresholdStore(TrialStore& store, bool writable = true);
+
+  std::int64_t create_session(const ParticipantRecord& who, const ThresholdProtocol& protocol, std::uint64_t seed,
+                              const SessionSetup& setup);
+  StoredThresholdSession load_session(std::int64_t session_id);
+  void commit_trial(std::int64_t session_id, const ThresholdTrialRecord& trial);
+  // Every threshold trial of the database (or of one session), in session and position order.
+  std::vector<ThresholdTrialRow> trials(std::optional<std::int64_t> session_id = std::nullopt);
+  bool has_table();
+
+ private:
+  TrialStore& store_;
+};
+
+}  // namespace palprig
