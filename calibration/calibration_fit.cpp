@@ -140,7 +140,21 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
       if (!std::isfinite(y[k]))
         throw InputError(file, "line " + std::to_string(pts[k].line),
                          std::string("a ") + to_string(source) + " reading for the hysteresis fit of " + name);
-    HysteresisFit fit = fit_hysteresis(x, y, o.hysteresis, file, name + " hysteresis");
+    HysteresisFitOptions hysteresis = o.hysteresis;
+    if (o.operators_from_data) {
+      // 1 + 2n parameters need 4 samples each: the default staircase (paper 002's, 66 holds on
+      // a 60 kPa rig) supports 7 operators, the richer excitations 8.
+      const std::size_t supported = x.size() >= 12 ? (x.size() / 4 - 1) / 2 : 1;
+      if (supported < hysteresis.operator_count) {
+        out.notes.push_back(name + ": " + std::to_string(supported) + " play operators, the most its " +
+                            std::to_string(x.size()) + " quasi-static samples support (" +
+                            std::to_string(hysteresis.operator_count) + " need " +
+                            std::to_string(4 * (1 + 2 * hysteresis.operator_count)) +
+                            "; record more holds with --excitation staircase,random,sine, or set --operators)");
+        hysteresis.operator_count = supported;
+      }
+    }
+    HysteresisFit fit = fit_hysteresis(x, y, hysteresis, file, name + " hysteresis");
     if (!fit.converged)
       throw InputError(file, name + " hysteresis",
                        "a fit Ceres converges on; it did not (" + fit.solver_report +

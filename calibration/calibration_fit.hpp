@@ -26,6 +26,9 @@ const char* to_string(HysteresisSource s) noexcept;
 
 struct CalibrationFitOptions {
   HysteresisFitOptions hysteresis;
+  // When true (no --operators given), hysteresis.operator_count is the most a channel gets:
+  // fewer when its quasi-static samples support fewer (4 per parameter), with a note saying so.
+  bool operators_from_data = false;
   std::optional<HysteresisSource> hysteresis_from;  // default: monitor when the data has it, else none
   double regulator_tolerance_kPa = 3.0;
   double monotone_tolerance = 0.02;   // fraction of a branch's span a reading may step back

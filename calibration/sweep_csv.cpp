@@ -209,6 +209,9 @@ SweepData read_sweep_csv(const std::filesystem::path& path) {
     data.points.push_back(a.point);
   }
   data.channels.assign(channels.begin(), channels.end());
+  // Sensor readings under a "# sensor: none" line, or with no such line: the sensor is named
+  // after its column, so reports and chart titles and axes never show an empty name.
+  if (data.has_sensor && data.info.sensor_name.empty()) data.info.sensor_name = "sensor";
   return data;
 }
 

@@ -29,12 +29,14 @@ struct FitArgs {
   double regulator_tolerance_kPa = 3.0, diastolic_mmHg = 60, systolic_mmHg = 120;
   HysteresisFitOptions hysteresis;
   bool no_refine = false, json = false;
+  bool operators_given = false;  // --operators named: refuse data that cannot support it
 };
 
 void run_fit(const FitArgs& a) {
   check_plot_available(a.plot_dir);
   CalibrationFitOptions o;
   o.hysteresis = a.hysteresis;
+  o.operators_from_data = !a.operators_given;
   o.hysteresis.refine_thresholds = !a.no_refine;
   if (a.loss == "huber") o.hysteresis.loss = RobustLoss::huber;
   else if (a.loss == "cauchy") o.hysteresis.loss = RobustLoss::cauchy;
@@ -83,7 +85,9 @@ void register_calibrate_fit(CLI::App* cal) {
       ->check(CLI::ExistingFile);
   fit->add_option("--diastolic-mmHg", fa->diastolic_mmHg, "Lower reference press")->default_val(60.0);
   fit->add_option("--systolic-mmHg", fa->systolic_mmHg, "Upper reference press")->default_val(120.0);
-  fit->add_option("--operators", fa->hysteresis.operator_count, "Play operators of the hysteresis model")
+  auto* operators = fit->add_option("--operators", fa->hysteresis.operator_count,
+                                    "Play operators of the hysteresis model (default: 8, or as many as the data "
+                                    "supports, with a note)")
       ->default_val(8)
       ->check(CLI::Range(1, int(kMaxPlayOperators)));
   fit->add_option("--max-threshold-kPa", fa->hysteresis.max_threshold_kPa, "Largest initial threshold (0: from the data)")
@@ -100,5 +104,8 @@ void register_calibrate_fit(CLI::App* cal) {
       ->default_val(3.0);
   fit->add_option("--plot", fa->plot_dir, "Write PNG plots of the data and fitted lines to DIR");
   fit->add_flag("--json", fa->json, "Print the calibration file instead of the tables");
-  fit->callback([fa] { run_fit(*fa); });
+  fit->callback([fa, operators] {
+    fa->operators_given = operators->count() > 0;
+    run_fit(*fa);
+  });
 }

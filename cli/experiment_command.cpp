@@ -76,7 +76,8 @@ class TerminalReport final : public SessionListener {
     std::cout << "palprig experiment: " << s.protocol_name << ", participant " << s.participant.code << " (no. "
               << s.participant.number << "), session " << s.session_id << ", "
               << (s.resumed ? "resumed at trial " + std::to_string(s.start_position + 1) : std::string("new")) << ", "
-              << s.total_trials << " trials, seed " << s.seed << ", database " << db_ << "\n"
+              << s.total_trials << " trials, seed " << s.seed << ", database " << db_
+              << (s.real_time_hardware && s.simulated ? ", real time (hardware rig)" : "") << "\n"
               << std::flush;
     session_id_ = s.session_id;
   }

@@ -10,7 +10,7 @@ namespace {
 constexpr std::string_view kCommandLine = "command line";
 
 // field (as libraries name it) -> flag (as the user types it)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 33> kFieldFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 34> kFieldFlags{{
     {"participant", "--participant"},
     {"resume", "--resume"},
     {"seed", "--seed"},
@@ -44,6 +44,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 33> kFieldFl
     {"operator_count", "--operators"},
     {"fixed_thresholds", "--no-refine"},
     {"cpu", "--cpu"},
+    {"speed", "--speed"},
 }};
 
 }  // namespace

@@ -37,7 +37,7 @@ void register_proportion(CLI::App* stats_app) {
                     "statsmodels proportion_confint(method='wilson'), R prop.test(correct=FALSE)");
   sub->add_option("--k", a->k, "Successes")->required();
   sub->add_option("--n", a->n, "Trials")->required();
-  sub->add_option("--confidence", a->confidence, "Confidence level")->default_val(0.95);
+  sub->add_option("--confidence", a->confidence, "Confidence level")->default_val(0.95)->check(kConfidenceLevel);
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a] {
     print(refuse_bad_data("command line", "--k/--n", [&] { return stats::to_report(stats::wilson_interval(a->k, a->n, a->confidence)); }),
@@ -56,7 +56,8 @@ void register_compare_proportions(CLI::App* stats_app) {
   sub->add_option("--n1", a->n1, "Size of the first sample")->required();
   sub->add_option("--k2", a->k2, "Successes in the second sample")->required();
   sub->add_option("--n2", a->n2, "Size of the second sample")->required();
-  sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson bounds")->default_val(0.95);
+  sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson bounds")->default_val(0.95)
+      ->check(kConfidenceLevel);
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a] {
     print(refuse_bad_data("command line", "--k1/--n1/--k2/--n2",
@@ -89,7 +90,8 @@ void register_ttest(CLI::App* stats_app) {
       ->needs(by);
   auto* student = sub->add_flag("--student", a->student, "Pooled variance, df = n1 + n2 - 2")->needs(by);
   sub->add_flag("--welch", a->welch, "Unequal variances, Welch-Satterthwaite df (default)")->needs(by)->excludes(student);
-  sub->add_option("--confidence", a->confidence, "Confidence level of the interval")->default_val(0.95);
+  sub->add_option("--confidence", a->confidence, "Confidence level of the interval")->default_val(0.95)
+      ->check(kConfidenceLevel);
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a, by, paired, against] {
     if (!*by && !*paired && !*against) throw InputError("command line", "ttest", "one of --by, --paired-with or --against");

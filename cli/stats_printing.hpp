@@ -49,4 +49,22 @@ inline void add_rank_options(CLI::App* sub, std::string& method, bool& no_correc
                 "Default: corrected, as R wilcox.test and scipy mannwhitneyu");
 }
 
+// --confidence: a level strictly between 0 and 1. Checked by the command line (CLI11's Range
+// lets NaN through), so the refusal names the option rather than the data it would be used on.
+inline const CLI::Validator kConfidenceLevel(
+    [](std::string& text) -> std::string {
+      std::size_t used = 0;
+      double level = 0;
+      try {
+        level = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != text.size() || !(level > 0.0 && level < 1.0)) {
+        return "a confidence level strictly between 0 and 1 (e.g. 0.95), got '" + text.substr(0, 40) + "'";
+      }
+      return {};
+    },
+    "(0 < LEVEL < 1)");
+
 }  // namespace palprig::cli

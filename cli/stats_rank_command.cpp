@@ -96,7 +96,8 @@ void register_pearson(CLI::App* stats_app) {
   sub->add_option("file", a->file, "CSV file with a header row")->required();
   sub->add_option("--x", a->x, "First numeric column")->required();
   sub->add_option("--y", a->y, "Second numeric column")->required();
-  sub->add_option("--confidence", a->confidence, "Confidence level of the interval")->default_val(0.95);
+  sub->add_option("--confidence", a->confidence, "Confidence level of the interval")->default_val(0.95)
+      ->check(kConfidenceLevel);
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a] {
     const CsvTable table = CsvTable::read(a->file);
@@ -133,10 +134,13 @@ void register_describe(CLI::App* stats_app) {
     } else {
       report["by"] = a->by;
       report["groups"] = stats::Report::array();
-      for (const auto& g : group_numbers(table, a->column, a->by)) {
+      const auto groups = group_numbers(table, a->column, a->by);
+      if (groups.empty()) throw InputError(a->file, "column '" + a->by + "'", "at least one data row to group (the table is empty)");
+      for (const auto& g : groups) {
         stats::Report one;
         one["group"] = g.label;
-        one.update(stats::to_report(stats::describe(g.values, rule), rule));
+        one.update(refuse_bad_data(a->file, "column '" + a->column + "', group '" + g.label + "'",
+                                   [&] { return stats::to_report(stats::describe(g.values, rule), rule); }));
         report["groups"].push_back(std::move(one));
       }
     }

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/stats_printing.hpp"
 #include "store/pulse_store.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "store/trial_store.hpp"
@@ -33,7 +34,7 @@ void register_stats_trials(CLI::App* stats_app) {
   sub->add_flag("--json", a->json, "Same as --format json");
   sub->add_flag("--include-practice", a->include_practice, "Score practice trials too");
   sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson intervals")->default_val(0.95)
-      ->check(CLI::Range(0.5, 0.9999));
+      ->check(kConfidenceLevel);
   sub->callback([a] {
     SummaryOptions options;
     options.by = parse_summary_keys(a->by);

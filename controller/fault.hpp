@@ -6,7 +6,7 @@ namespace palprig {
 
 enum class FaultCode : std::uint8_t {
   none = 0,
-  bad_sample,        // non-finite or negative pen reading
+  bad_sample,        // non-finite or negative pen force
   non_finite_target, // a model produced NaN/inf
   backend_error,     // the rig backend failed to write or read
   input_stale,       // the pen sample is older than the configured limit
@@ -14,12 +14,16 @@ enum class FaultCode : std::uint8_t {
   signal,            // SIGINT / SIGTERM
   thread_exception,  // an exception on another thread (writer, I/O, input)
   operator_stop,     // stopped on purpose (end of run, GUI stop button)
+  bad_position,      // non-finite pen position (added after the others: stored codes keep their values)
+  bad_time,          // non-finite pen sample time or loop time
 };
 
 constexpr const char* to_string(FaultCode f) noexcept {
   switch (f) {
     case FaultCode::none: return "none";
     case FaultCode::bad_sample: return "bad pen sample (non-finite or negative force)";
+    case FaultCode::bad_position: return "bad pen sample (non-finite x or y position)";
+    case FaultCode::bad_time: return "bad pen sample (non-finite time)";
     case FaultCode::non_finite_target: return "non-finite pressure target";
     case FaultCode::backend_error: return "rig backend error";
     case FaultCode::input_stale: return "pen input stale";

@@ -54,10 +54,16 @@ nlohmann::json run_summary_json(const RunSummary& s, const LoadedRun& run, const
 void print_run_summary(std::ostream& out, const RunSummary& s, const LoadedRun& run, const RunOptions& opt) {
   out << "palprig run: " << run.scene.source << " on " << (run.backend ? run.backend->describe() : "?") << " ("
       << run.rig.id << "), input " << run.input->describe() << "\n";
-  out << "  " << s.ticks << " ticks at " << opt.rate_hz << " Hz, " << std::fixed << std::setprecision(3)
-      << s.sim_time_s << " s simulated in " << s.wall_time_s << " s wall ("
-      << std::setprecision(0) << (s.wall_time_s > 0 ? s.sim_time_s / s.wall_time_s : 0) << "x), overruns "
-      << s.overruns << " (" << s.missed_periods << " periods skipped)\n";
+  out << "  " << s.ticks << " ticks at " << opt.rate_hz << " Hz, " << std::fixed << std::setprecision(3);
+  // A replay says how much faster than real time it ran; a real-time run took its own length
+  // by design, so it says so rather than "13.290 s simulated in 13.290 s wall (1x)".
+  if (opt.mode == LoopMode::realtime) {
+    out << s.wall_time_s << " s in real time";
+  } else {
+    out << s.sim_time_s << " s simulated in " << s.wall_time_s << " s wall (" << std::setprecision(0)
+        << (s.wall_time_s > 0 ? s.sim_time_s / s.wall_time_s : 0) << "x faster than real time)";
+  }
+  out << ", overruns " << s.overruns << " (" << s.missed_periods << " periods skipped)\n";
   out << std::setprecision(2);
   out << "  finger   target kPa min/mean/max      plant kPa min/mean/max\n";
   for (int i = 0; i < kFingerCount; ++i)

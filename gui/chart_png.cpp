@@ -124,7 +124,21 @@ void write_chart_png(const Chart& chart, const std::filesystem::path& path) {
   p.setFont(font);
   const QFontMetrics fm(font);
 
-  const int left = 80, right = 24, top = chart.title.empty() ? 20 : 46, bottom = 64;
+  // The legend sits in a column right of the plot, so it can never cover a data point.
+  int legend_text_px = 0;
+  bool has_legend = false;
+  for (const auto& s : chart.series) {
+    if (s.label.empty()) continue;
+    has_legend = true;
+    legend_text_px = std::max(legend_text_px, fm.horizontalAdvance(QString::fromStdString(s.label)));
+  }
+  const int legend_width = has_legend ? legend_text_px + 40 : 0;
+  const int left = 80, right = has_legend ? 24 + legend_width + 12 : 24, top = chart.title.empty() ? 20 : 46,
+            bottom = 64;
+  if (chart.width_px - left - right < 200) {
+    throw std::invalid_argument("chart \"" + chart.title + "\": legend labels too long for a " +
+                                std::to_string(chart.width_px) + " px wide chart");
+  }
   const QRectF plot(left, top, chart.width_px - left - right, chart.height_px - top - bottom);
   auto px = [&](double x) { return plot.left() + (x - xr.lo) / (xr.hi - xr.lo) * plot.width(); };
   auto py = [&](double y) { return plot.bottom() - (y - yr.lo) / (yr.hi - yr.lo) * plot.height(); };
@@ -245,10 +259,8 @@ void write_chart_png(const Chart& chart, const std::filesystem::path& path) {
     p.setFont(font);
   }
   if (!legend.empty()) {
-    int width = 0;
-    for (const auto& [text, style] : legend) width = std::max(width, fm.horizontalAdvance(text));
     const double line_h = fm.height() + 4;
-    const QRectF box(plot.right() - width - 48, plot.top() + 8, width + 40, line_h * double(legend.size()) + 8);
+    const QRectF box(plot.right() + 12, plot.top(), legend_width, line_h * double(legend.size()) + 8);
     p.setPen(QPen(QColor(180, 180, 180), 1));
     p.setBrush(QColor(255, 255, 255, 230));
     p.drawRect(box);

@@ -2,7 +2,7 @@
 // Charts as PNG files, for the command line's --plot options and anything else that needs a
 // figure on disk: line, point and bar series on numeric axes (or named categories), optional
 // error bars with separate low and high ends (Wilson intervals are not symmetric), a title,
-// axis labels and a legend. Drawn with QPainter on a QImage; when no Qt application exists yet,
+// axis labels and a legend (right of the plot area, never over the data). Drawn with QPainter on a QImage; when no Qt application exists yet,
 // an offscreen QGuiApplication is created for the fonts (no display needed).
 #include <filesystem>
 #include <optional>

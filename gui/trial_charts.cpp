@@ -1,8 +1,7 @@
 #include "gui/trial_charts.hpp"
 
-#include <cmath>
-
 #include "gui/chart_png.hpp"
+#include "gui/measures_chart.hpp"
 #include "models/parse_error.hpp"
 #include "store/trial_summary.hpp"
 
@@ -14,25 +13,7 @@ std::filesystem::path plot_measures_by_condition(TrialStore& store, const std::f
   options.by = {SummaryKey::condition};
   options.include_practice = include_practice;
   const TrialSummary summary = summarise_trials(store, options);
-  Chart chart;
-  chart.title = "Se, Sp, PPV and ACC per condition (Wilson 95 % intervals)";
-  chart.y_label = "proportion";
-  chart.x_categories = {"Se", "Sp", "PPV", "ACC"};
-  chart.y_min = 0.0;
-  chart.y_max = 1.25;  // room above the bars for the legend
-  for (const SummaryRow& row : summary.rows) {
-    ChartSeries bars;
-    bars.label = row.key.empty() ? "all" : row.key[0];
-    bars.style = ChartSeries::Style::bars;
-    for (const Measure* m : {&row.measures.se, &row.measures.sp, &row.measures.ppv, &row.measures.acc}) {
-      bars.x.push_back(double(bars.x.size()));
-      // An undefined measure (no cases) is left out of the chart rather than drawn as 0.
-      bars.y.push_back(m->defined ? m->value : std::nan(""));
-      bars.y_low.push_back(m->defined ? m->lower : std::nan(""));
-      bars.y_high.push_back(m->defined ? m->upper : std::nan(""));
-    }
-    chart.series.push_back(std::move(bars));
-  }
+  const Chart chart = measures_chart(summary);  // fig. 15, shared with the GUI
   if (chart.series.empty()) throw InputError(store.location(), "trials", "at least one scored trial to plot");
   std::filesystem::create_directories(dir);
   const auto path = dir / "measures_by_condition.png";

@@ -11,7 +11,7 @@ double LatencyHistogram::percentile_us(double q) const noexcept {
   std::uint64_t seen = 0;
   for (int b = 0; b <= kBins; ++b) {
     seen += bins_[b];
-    if (seen >= std::max<std::uint64_t>(rank, 1)) return b == kBins ? max_us_ : std::min(double(b + 1), max_us_);
+    if (seen >= std::max<std::uint64_t>(rank, 1)) return b == kBins ? max_us_ : std::min(upper_edge_us(b), max_us_);
   }
   return max_us_;
 }

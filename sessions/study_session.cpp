@@ -85,6 +85,14 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   check_calibration_matches(cal, rig.id, rig.source);
   check_levels_fit_rig(from_file, rig);
   const TickConfig config = make_tick_config(rig, cal);
+  // Hardware runs on the wall clock, as `palprig run` insists: on simulated time a whole session
+  // would pass in a few bus cycles and the regulators would never reach a stimulus.
+  const bool hardware = rig.backend != "simulated";
+  if (hardware && request.speed != 0 && request.speed != 1) {
+    throw InputError("command line", "speed",
+                     "1 (real time) or none with a hardware rig (" + rig.source + ", backend " + rig.backend +
+                         "): hardware runs in real time");
+  }
 
   // The rig is opened (and vented) before the session is stored, so an unreachable device does
   // not leave an empty session behind.
@@ -117,7 +125,7 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
 
   const int total = static_cast<int>(session.plan.trials.size());
   listener.session_started(SessionStart{protocol.name, session.participant, session.session_id, session.resumed,
-                                        session.start_position, total, session.plan.seed, simulated});
+                                        session.start_position, total, session.plan.seed, simulated, hardware});
 
   RigStimulus output(config, *backend);
   ListenerBridge bridge(*store, session.session_id, session.plan, protocol, listener);
@@ -125,8 +133,8 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
                      scene ? scene->scene.get() : nullptr, participant->pen());
 
   std::unique_ptr<SessionClock> clock;
-  if (simulated && request.speed <= 0) clock = std::make_unique<SimulatedClock>();
-  else clock = std::make_unique<SteadyClock>(simulated ? request.speed : 1.0);
+  if (simulated && !hardware && request.speed <= 0) clock = std::make_unique<SimulatedClock>();
+  else clock = std::make_unique<SteadyClock>(simulated && !hardware ? request.speed : 1.0);
 
   SessionLoopOptions options;
   options.stop = stop;

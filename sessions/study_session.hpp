@@ -48,6 +48,7 @@ struct SessionStart {
   int total_trials = 0;
   std::uint64_t seed = 0;
   bool simulated = false;
+  bool real_time_hardware = false;  // a hardware rig: the session runs on the wall clock
 };
 
 struct SessionEnd {

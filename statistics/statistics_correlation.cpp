@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "statistics/statistics_describe.hpp"
 #include "statistics/statistics_error.hpp"
 #include "statistics/statistics_proportion.hpp"
 #include "statistics/statistics_ttest.hpp"
@@ -39,18 +40,23 @@ PearsonResult pearson_from_r(double r, std::size_t n, double confidence) {
 PearsonResult pearson(std::span<const double> x, std::span<const double> y, double confidence) {
   if (x.size() != y.size()) throw StatisticsError("a correlation needs two columns of equal length");
   if (x.size() < 3) throw StatisticsError("a correlation test needs at least 3 pairs");
-  double mean_x = 0, mean_y = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (!std::isfinite(x[i]) || !std::isfinite(y[i])) throw StatisticsError("a value is not a finite number");
-    mean_x += x[i];
-    mean_y += y[i];
+  }
+  // r does not depend on the units: each column is divided by a power of two near its largest
+  // magnitude (exact), so sums and squares of values near +-1e308 cannot overflow.
+  const double scale_x = power_of_two_scale(x), scale_y = power_of_two_scale(y);
+  double mean_x = 0, mean_y = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    mean_x += x[i] / scale_x;
+    mean_y += y[i] / scale_y;
   }
   mean_x /= static_cast<double>(x.size());
   mean_y /= static_cast<double>(y.size());
   // Centred sums (two passes) rather than raw sums of squares, which cancel badly.
   double sxx = 0, syy = 0, sxy = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
-    const double dx = x[i] - mean_x, dy = y[i] - mean_y;
+    const double dx = x[i] / scale_x - mean_x, dy = y[i] / scale_y - mean_y;
     sxx += dx * dx;
     syy += dy * dy;
     sxy += dx * dy;

@@ -25,16 +25,28 @@ double quantile_sorted(std::span<const double> sorted, double p, QuantileRule ru
   return sorted[lo] + frac * (sorted[hi] - sorted[lo]);
 }
 
+double power_of_two_scale(std::span<const double> values) noexcept {
+  double largest = 0;
+  for (double x : values) largest = std::max(largest, std::fabs(x));
+  if (!(largest > 0) || !std::isfinite(largest)) return 1.0;
+  return std::ldexp(1.0, std::ilogb(largest));
+}
+
 MeanVariance mean_variance(std::span<const double> values) noexcept {
+  const double scale = power_of_two_scale(values);
   MeanVariance mv;
-  double m2 = 0;
-  for (double x : values) {
+  double mean = 0, m2 = 0;
+  for (double value : values) {
+    const double x = value / scale;
     ++mv.n;
-    const double delta = x - mv.mean;
-    mv.mean += delta / static_cast<double>(mv.n);
-    m2 += delta * (x - mv.mean);
+    const double delta = x - mean;
+    mean += delta / static_cast<double>(mv.n);
+    m2 += delta * (x - mean);
   }
-  mv.variance = mv.n > 1 ? m2 / static_cast<double>(mv.n - 1) : 0.0;
+  const double variance = mv.n > 1 ? m2 / static_cast<double>(mv.n - 1) : 0.0;
+  mv.mean = mean * scale;
+  mv.sd = std::sqrt(variance) * scale;
+  mv.variance = variance * scale * scale;  // +inf past the largest double; sd stays exact
   return mv;
 }
 
@@ -50,13 +62,19 @@ Description describe(std::span<const double> values, QuantileRule rule) {
   Description d;
   d.n = sorted.size();
   d.mean = mv.mean;
-  d.sd = d.n > 1 ? std::sqrt(mv.variance) : std::numeric_limits<double>::quiet_NaN();
+  d.sd = d.n > 1 ? mv.sd : std::numeric_limits<double>::quiet_NaN();
   d.min = sorted.front();
   d.max = sorted.back();
   d.q1 = quantile_sorted(sorted, 0.25, rule);
   d.median = quantile_sorted(sorted, 0.5, rule);
   d.q3 = quantile_sorted(sorted, 0.75, rule);
   d.iqr = d.q3 - d.q1;
+  // Quartiles interpolate between neighbours: a spread beyond the largest double (values near
+  // +-1e308) has no finite IQR, and a NaN would be printed as if it were a result.
+  if (!std::isfinite(d.q1) || !std::isfinite(d.q3) || !std::isfinite(d.median) || !std::isfinite(d.iqr)) {
+    throw StatisticsError("the values are too large: their spread (IQR) exceeds the largest double (1.8e308); "
+                          "rescale the column, e.g. to other units");
+  }
   return d;
 }
 

@@ -25,12 +25,19 @@ double quantile_sorted(std::span<const double> sorted, double p, QuantileRule ru
 // Throws StatisticsError when the sample is empty or holds a non-finite value.
 Description describe(std::span<const double> values, QuantileRule rule = QuantileRule::r_type7);
 
-// Mean and sample variance in one pass (Welford's update, stable for large offsets).
+// Mean and sample variance in one pass (Welford's update, stable for large offsets), on values
+// divided by a power of two near the largest magnitude, so that values near the largest double
+// (1e200, +-1e308) neither overflow the squares nor the differences.
 struct MeanVariance {
   std::size_t n = 0;
   double mean = 0;
-  double variance = 0;  // n - 1 denominator; 0 when n < 2
+  double variance = 0;  // n - 1 denominator; 0 when n < 2; +inf when it exceeds the largest double
+  double sd = 0;        // sqrt(variance), finite even when variance is not
 };
 MeanVariance mean_variance(std::span<const double> values) noexcept;
+
+// 2^k with 2^k <= max |value| < 2^(k+1); 1 when every value is 0 (or there is none). Dividing
+// by it is exact, and brings every finite value into [-2, 2].
+double power_of_two_scale(std::span<const double> values) noexcept;
 
 }  // namespace palprig::stats

@@ -1,6 +1,7 @@
 #include "statistics/statistics_ttest.hpp"
 
 #include <boost/math/distributions/students_t.hpp>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -47,6 +48,19 @@ void finish(TTestResult& r) {
   r.ci_upper = r.estimate + t_crit * r.standard_error;
 }
 
+// t, df and p do not depend on the units; the estimate, its standard error and interval scale
+// with them. Computed on values divided by a power of two (exact), the test cannot overflow in
+// its squares; only a result beyond the largest double remains, and that is refused.
+void unscale(TTestResult& r, double scale) {
+  for (double* x : {&r.mean_x, &r.mean_y, &r.estimate, &r.standard_error, &r.ci_lower, &r.ci_upper}) *x *= scale;
+  for (double x : {r.mean_x, r.mean_y, r.estimate, r.standard_error, r.ci_lower, r.ci_upper}) {
+    if (!std::isfinite(x)) {
+      throw StatisticsError("the values are too large: the difference of means or its interval exceeds the largest "
+                            "double (1.8e308); rescale the column, e.g. to other units");
+    }
+  }
+}
+
 void check_confidence(double confidence) {
   if (!(confidence > 0.0 && confidence < 1.0)) {
     throw StatisticsError("confidence must lie strictly between 0 and 1");
@@ -60,6 +74,15 @@ TTestResult two_sample_t_test_from_summary(double mean_x, double sd_x, std::size
                                            double confidence) {
   check_confidence(confidence);
   if (n_x < 2 || n_y < 2) throw StatisticsError("a two-sample t-test needs at least 2 values per group");
+  const double summary[] = {mean_x, sd_x, mean_y, sd_y};
+  for (double v : summary) {
+    if (!std::isfinite(v)) throw StatisticsError("a mean or sd is not a finite number");
+  }
+  const double scale = power_of_two_scale(summary);
+  mean_x /= scale;
+  mean_y /= scale;
+  sd_x /= scale;
+  sd_y /= scale;
   TTestResult r;
   r.kind = equal_variance ? TTestKind::student : TTestKind::welch;
   r.confidence = confidence;
@@ -77,10 +100,13 @@ TTestResult two_sample_t_test_from_summary(double mean_x, double sd_x, std::size
   } else {
     const double ax = vx / nx, ay = vy / ny;
     r.standard_error = std::sqrt(ax + ay);
-    // Welch-Satterthwaite degrees of freedom.
-    r.df = (ax + ay) * (ax + ay) / (ax * ax / (nx - 1.0) + ay * ay / (ny - 1.0));
+    // Welch-Satterthwaite degrees of freedom, with each share of the variance taken relative
+    // to the sum (the squares of tiny shares would underflow).
+    const double sx = ax / (ax + ay), sy = ay / (ax + ay);
+    r.df = 1.0 / (sx * sx / (nx - 1.0) + sy * sy / (ny - 1.0));
   }
   finish(r);
+  unscale(r, scale);
   return r;
 }
 
@@ -92,33 +118,41 @@ TTestResult two_sample_t_test(std::span<const double> x, std::span<const double>
     throw StatisticsError("a two-sample t-test needs at least 2 values per group");
   }
   const MeanVariance a = mean_variance(x), b = mean_variance(y);
-  return two_sample_t_test_from_summary(a.mean, std::sqrt(a.variance), a.n, b.mean, std::sqrt(b.variance),
-                                        b.n, equal_variance, confidence);
+  return two_sample_t_test_from_summary(a.mean, a.sd, a.n, b.mean, b.sd, b.n, equal_variance, confidence);
 }
 
 TTestResult one_sample_t_test(std::span<const double> x, double mu, double confidence) {
   check_confidence(confidence);
   require_finite(x);
   if (x.size() < 2) throw StatisticsError("a one-sample t-test needs at least 2 values");
+  if (!std::isfinite(mu)) throw StatisticsError("the hypothesised mean is not a finite number");
   const MeanVariance a = mean_variance(x);
+  const double parts[] = {a.mean, a.sd, mu};
+  const double scale = power_of_two_scale(parts);
   TTestResult r;
   r.kind = TTestKind::one_sample;
   r.confidence = confidence;
   r.n_x = a.n;
-  r.mean_x = a.mean;
-  r.mean_y = mu;
-  r.estimate = a.mean - mu;
+  r.mean_x = a.mean / scale;
+  r.mean_y = mu / scale;
+  r.estimate = r.mean_x - r.mean_y;
   r.df = static_cast<double>(a.n) - 1.0;
-  r.standard_error = std::sqrt(a.variance / static_cast<double>(a.n));
+  r.standard_error = a.sd / scale / std::sqrt(static_cast<double>(a.n));
   finish(r);
+  unscale(r, scale);
   return r;
 }
 
 TTestResult paired_t_test(std::span<const double> x, std::span<const double> y, double confidence) {
   if (x.size() != y.size()) throw StatisticsError("a paired t-test needs two columns of equal length");
+  require_finite(x);
+  require_finite(y);
+  // x - y of values near +-1e308 overflows: difference on a common power-of-two scale.
+  const double scale = std::max(power_of_two_scale(x), power_of_two_scale(y));
   std::vector<double> differences(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) differences[i] = x[i] - y[i];
+  for (std::size_t i = 0; i < x.size(); ++i) differences[i] = x[i] / scale - y[i] / scale;
   TTestResult r = one_sample_t_test(differences, 0.0, confidence);
+  unscale(r, scale);
   r.kind = TTestKind::paired;
   r.n_y = y.size();
   r.mean_x = mean_variance(x).mean;

@@ -2,7 +2,24 @@
 
 #include <sqlite3.h>
 
+#include <chrono>
+#include <thread>
+
+#include "models/parse_error.hpp"
+
 namespace palprig {
+
+namespace {
+
+// A damaged file is bad input, not a fault of palprig: one line naming the file, exit 2.
+// SQLITE_CORRUPT can surface at any statement (a damaged page is only read when a query reaches
+// it), so every error passes through here. `what` is the statement, `detail` SQLite's reason.
+[[noreturn]] void throw_sqlite(const std::string& file, const std::string& what, const std::string& detail, int code) {
+  if ((code & 0xff) == SQLITE_CORRUPT) throw InputError(file, "database pages", damaged_database_expectation(detail));
+  throw SqliteError(file + ": " + (what.empty() ? detail : what + ": " + detail), code);
+}
+
+}  // namespace
 
 Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.string()) {
   // NOMUTEX: a connection is used by one thread at a time, so SQLite's per-call mutex (a tenth
@@ -18,13 +35,31 @@ Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.st
   }
   // A writer holds the lock only for one short transaction per trial: readers (stats, export,
   // the GUI) wait for it rather than failing.
-  sqlite3_busy_timeout(db_, 5000);
+  sqlite3_busy_timeout(db_, kBusyTimeoutMs);
 }
 
 Database::~Database() { sqlite3_close(db_); }
 
+std::string damaged_database_expectation(const std::string& sqlite_says) {
+  std::string reason = sqlite_says.substr(0, 160);
+  for (char& c : reason) {
+    if (static_cast<unsigned char>(c) < 0x20) c = ' ';  // quick_check lines may hold newlines
+  }
+  return "an undamaged SQLite database (SQLite: " + reason +
+         "); nothing was read from it or written to it: restore it from a backup";
+}
+
+void Database::refuse_if_damaged() {
+  // quick_check(1): stop at the first problem; O(file size), without the index cross-checks
+  // of integrity_check. A damaged schema page fails the pragma itself (InputError from
+  // throw_sqlite); damage further in is the pragma's first result row.
+  Statement s(*this, "PRAGMA quick_check(1)");
+  const std::string first = s.step() ? s.text(0) : std::string("PRAGMA quick_check returned nothing");
+  if (first != "ok") throw InputError(file_, "database pages", damaged_database_expectation(first));
+}
+
 void Database::fail(const std::string& what, int code) const {
-  throw SqliteError(file_ + ": " + what + ": " + sqlite3_errmsg(db_), code);
+  throw_sqlite(file_, what, sqlite3_errmsg(db_), code);
 }
 
 void Database::exec(std::string_view sql) {
@@ -34,7 +69,7 @@ void Database::exec(std::string_view sql) {
   if (rc != SQLITE_OK) {
     const std::string message = error ? error : sqlite3_errstr(rc);
     sqlite3_free(error);
-    throw SqliteError(file_ + ": " + message, rc);
+    throw_sqlite(file_, text.substr(0, 60), message, rc);
   }
 }
 
@@ -109,7 +144,24 @@ std::string_view Statement::text_view(int column) const noexcept {
 
 std::string Statement::text(int column) const { return std::string(text_view(column)); }
 
-Transaction::Transaction(Database& db) : db_(db) { db_.exec("BEGIN IMMEDIATE"); }
+void Database::exec_waiting(std::string_view sql) {
+  // SQLite returns SQLITE_BUSY without calling the busy handler where waiting could deadlock,
+  // and while another process switches the file's journal mode or recovers its WAL index: with
+  // several processes starting on one new file, BEGIN IMMEDIATE then fails at once. Those
+  // states last milliseconds, so try again for as long as the busy timeout would have waited.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::milliseconds(kBusyTimeoutMs);
+  for (;;) {
+    try {
+      exec(sql);
+      return;
+    } catch (const SqliteError& e) {
+      if ((e.code() & 0xff) != SQLITE_BUSY || std::chrono::steady_clock::now() >= give_up) throw;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
+Transaction::Transaction(Database& db) : db_(db) { db_.exec_waiting("BEGIN IMMEDIATE"); }
 
 Transaction::~Transaction() {
   if (!done_) {

@@ -1,7 +1,9 @@
 #pragma once
 // A thin RAII layer over the SQLite C API for the trial store: a connection, prepared
 // statements with bind/step/column, and a transaction that rolls back unless committed.
-// Errors throw SqliteError with SQLite's message and the database file.
+// Errors throw SqliteError with SQLite's message and the database file; a damaged file
+// (SQLITE_CORRUPT, at whichever statement first reads a bad page) throws InputError instead,
+// since it is bad input rather than a fault of the program.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -25,6 +27,9 @@ class SqliteError : public std::runtime_error {
 
 class Statement;
 
+// What a refusal of a damaged database file says it expected (SQLite's reason, shortened).
+std::string damaged_database_expectation(const std::string& sqlite_says);
+
 // One connection, used by one thread at a time (opened without SQLite's internal mutex).
 class Database {
  public:
@@ -34,10 +39,14 @@ class Database {
   Database(const Database&) = delete;
   Database& operator=(const Database&) = delete;
 
+  static constexpr int kBusyTimeoutMs = 5000;  // how long a statement waits for another process's lock
   void exec(std::string_view sql);  // one or more statements, no results
+  void exec_waiting(std::string_view sql);  // exec, retrying SQLITE_BUSY for up to kBusyTimeoutMs
   Statement prepare(std::string_view sql);
   std::int64_t pragma_integer(std::string_view name);  // e.g. "user_version"
   std::int64_t last_insert_rowid() const noexcept;
+  // Throws InputError naming the file unless PRAGMA quick_check finds it sound.
+  void refuse_if_damaged();
   const std::string& file() const noexcept { return file_; }
   sqlite3* handle() noexcept { return db_; }
 

@@ -1,8 +1,13 @@
 #include "store/sqlite_trial_store.hpp"
 
+#include <signal.h>
 #include <sqlite3.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <fstream>
 #include <cmath>
 #include <ctime>
 #include <limits>
@@ -93,6 +98,48 @@ CREATE TABLE marks (
 ) WITHOUT ROWID;
 )sql";
 
+// Which process runs a session (DESIGN.md "Data": one process per session). Created on every
+// open for writing, so databases written before the table existed get it too.
+constexpr const char* kLockSchema = R"sql(
+CREATE TABLE IF NOT EXISTS session_locks (
+  session_id    INTEGER PRIMARY KEY REFERENCES sessions(id),
+  pid           INTEGER NOT NULL,
+  host          TEXT NOT NULL,
+  process_start TEXT NOT NULL,                 -- /proc/<pid>/stat start time: a reused pid is not the holder
+  since_utc     TEXT NOT NULL
+);
+)sql";
+
+std::string this_host() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0) return "unknown";
+  return name;
+}
+
+// Field 22 of /proc/<pid>/stat (start time in clock ticks since boot); "" when there is no
+// such process. The command name (field 2) may hold spaces and ')', so fields count from the
+// last ')'.
+std::string process_start(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto close = text.rfind(')');
+  if (close == std::string::npos) return "";
+  std::size_t pos = close + 2;  // field 3
+  for (int field = 3; field < 22 && pos != std::string::npos; ++field) {
+    pos = text.find(' ', pos);
+    if (pos != std::string::npos) ++pos;
+  }
+  if (pos == std::string::npos) return "";
+  return text.substr(pos, text.find(' ', pos) - pos);
+}
+
+bool process_alive(pid_t pid, const std::string& start) {
+  if (pid <= 0) return false;
+  const std::string now = process_start(pid);
+  if (!now.empty()) return start.empty() || now == start;
+  return ::kill(pid, 0) == 0 || errno == EPERM;  // no /proc: trust the pid alone
+}
+
 std::string utc_now() {
   const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   std::tm tm{};
@@ -130,14 +177,20 @@ std::string practice_filter(bool include_practice, const char* keyword) {
 
 SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access access) try
     : db_(file, access == Access::read_only ? Database::Mode::read_only : Database::Mode::read_write_create) {
-  if (access == Access::read_write && is_blank()) create_schema();
+  if (access == Access::read_write) create_schema_if_blank();
   check_identity();
+  // Never write into a damaged file (a new session in it could be lost with the rest, and
+  // SQLite may make the damage worse), and never compute statistics or exports from one (the
+  // trials on bad pages would silently be missing).
+  db_.refuse_if_damaged();
+  if (access == Access::read_write) create_lock_table();
   // Scans of large stores (stats, export) read through a memory map instead of copying pages.
   db_.exec("PRAGMA mmap_size = 1073741824");
   if (access == Access::read_write) {
     // WAL: readers never block the writer; synchronous FULL: a committed trial survives a
     // crash of the process and of the machine.
-    db_.exec("PRAGMA journal_mode = WAL; PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON;");
+    db_.exec_waiting("PRAGMA journal_mode = WAL");
+    db_.exec("PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON;");
   }
 } catch (const SqliteError& e) {
   // Whatever the member initialiser or the checks threw, the file was the problem.
@@ -150,15 +203,117 @@ SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access acc
   throw;
 }
 
+<<<<<<< HEAD:store/sqlite_trial_store.cpp
 bool SqliteTrialStore::is_blank() {
+=======
+TrialStore::~TrialStore() {
+  const std::vector<std::int64_t> held = held_;  // release_session edits held_
+  for (std::int64_t session_id : held) {
+    try {
+      release_session(session_id);
+    } catch (...) {
+      // A database gone bad on the way out: the lock row names a dead process, which the next
+      // claim recognises as stale.
+    }
+  }
+}
+
+bool TrialStore::has_lock_table() {
+  auto exists = db_.prepare("SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'session_locks'");
+  exists.step();
+  return exists.integer(0) != 0;
+}
+
+void TrialStore::create_lock_table() {
+  // The look-up's statement must be finished before the write lock is asked for: a read left
+  // open would keep a shared lock that deadlocks against another process's commit.
+  if (has_lock_table()) return;
+  Transaction tx(db_);
+  if (has_lock_table()) return;
+  db_.exec(kLockSchema);
+  tx.commit();
+}
+
+void TrialStore::refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who) {
+  auto q = db_.prepare("SELECT pid, host, process_start, since_utc FROM session_locks WHERE session_id = ?1");
+  q.bind(1, session_id);
+  if (!q.step()) return;
+  const auto pid = static_cast<pid_t>(q.integer(0));
+  const std::string host = q.text(1), start = q.text(2), since = q.text(3);
+  const bool same_host = host == this_host();
+  if (same_host && pid == ::getpid() && start == process_start(::getpid())) return;  // ours
+  if (same_host && !process_alive(pid, start)) return;  // its process died (kill -9, power loss): stale
+  std::string expected = "no other palprig process running session " + std::to_string(session_id) + " of " + who +
+                         " (process " + std::to_string(pid) + " on " + host + " has run it since " + since +
+                         "; wait for it to finish, or stop it and continue with --resume";
+  if (!same_host) {
+    expected += "; if that process is gone, run: sqlite3 " + db_.file() + " \"DELETE FROM session_locks WHERE session_id = " +
+                std::to_string(session_id) + "\"";
+  }
+  throw InputError(db_.file(), "session " + std::to_string(session_id), expected + ")");
+}
+
+void TrialStore::write_lock_row(std::int64_t session_id) {
+  auto ins = db_.prepare(
+      "INSERT OR REPLACE INTO session_locks (session_id, pid, host, process_start, since_utc) VALUES (?1, ?2, ?3, ?4, ?5)");
+  ins.bind(1, session_id)
+      .bind(2, static_cast<std::int64_t>(::getpid()))
+      .bind(3, this_host())
+      .bind(4, process_start(::getpid()))
+      .bind(5, utc_now())
+      .run();
+  if (std::find(held_.begin(), held_.end(), session_id) == held_.end()) held_.push_back(session_id);
+}
+
+void TrialStore::claim_session(std::int64_t session_id) {
+  Transaction tx(db_);
+  auto q = db_.prepare(
+      "SELECT s.status, p.code FROM sessions s JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
+  q.bind(1, session_id);
+  if (!q.step()) throw InputError(db_.file(), "session " + std::to_string(session_id), "an existing session");
+  const std::string status = q.text(0), who = "participant '" + q.text(1) + "'";
+  if (status != "running") {
+    throw InputError(db_.file(), "session " + std::to_string(session_id),
+                     "an unfinished session of " + who + " (another palprig process has just completed it)");
+  }
+  refuse_if_held_elsewhere(session_id, who);
+  write_lock_row(session_id);
+  tx.commit();
+}
+
+void TrialStore::refuse_if_running_elsewhere(std::int64_t session_id) {
+  auto q = db_.prepare("SELECT p.code FROM sessions s JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
+  q.bind(1, session_id);
+  if (!q.step()) return;
+  refuse_if_held_elsewhere(session_id, "participant '" + q.text(0) + "'");
+}
+
+void TrialStore::release_session(std::int64_t session_id) {
+  Transaction tx(db_);
+  auto del = db_.prepare("DELETE FROM session_locks WHERE session_id = ?1 AND pid = ?2 AND host = ?3");
+  del.bind(1, session_id).bind(2, static_cast<std::int64_t>(::getpid())).bind(3, this_host()).run();
+  tx.commit();
+  held_.erase(std::remove(held_.begin(), held_.end(), session_id), held_.end());
+}
+
+bool TrialStore::is_blank() {
+>>>>>>> h4-harden-data:store/trial_store.cpp
   if (db_.pragma_integer("application_id") != 0 || db_.pragma_integer("user_version") != 0) return false;
   auto tables = db_.prepare("SELECT count(*) FROM sqlite_master");
   tables.step();
   return tables.integer(0) == 0;
 }
 
+<<<<<<< HEAD:store/sqlite_trial_store.cpp
 void SqliteTrialStore::create_schema() {
+=======
+void TrialStore::create_schema_if_blank() {
+  if (!is_blank()) return;
+  // Two processes starting on one new file: the write lock of BEGIN IMMEDIATE lets one create
+  // the schema; the other waits (busy timeout), then finds the file no longer blank.
+>>>>>>> h4-harden-data:store/trial_store.cpp
   Transaction tx(db_);
+  if (!is_blank()) return;
   db_.exec(kSchema);
   db_.exec("PRAGMA application_id = " + std::to_string(kTrialStoreApplicationId));
   db_.exec("PRAGMA user_version = " + std::to_string(kTrialStoreSchemaVersion));
@@ -189,6 +344,8 @@ std::optional<ParticipantRecord> SqliteTrialStore::find_participant(const std::s
 ParticipantRecord SqliteTrialStore::enrol(const std::string& code, bool simulated) {
   if (auto p = find_participant(code)) return *p;
   Transaction tx(db_);
+  // Another process may have enrolled the same code between the look-up and the write lock.
+  if (auto p = find_participant(code)) return *p;
   auto next = db_.prepare("SELECT COALESCE(MAX(number), 0) + 1 FROM participants");
   next.step();
   const int number = static_cast<int>(next.integer(0));
@@ -211,6 +368,22 @@ std::optional<std::int64_t> SqliteTrialStore::find_unfinished_session(const Part
 std::int64_t SqliteTrialStore::create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
                                         const SessionSetup& setup) {
   Transaction tx(db_);
+  // Under the write lock: another process may have started this participant's session since
+  // the caller looked for an unfinished one (the same participant started twice at once).
+  {
+    auto running = db_.prepare(
+        "SELECT id FROM sessions WHERE participant_id = ?1 AND protocol_name = ?2 AND status = 'running' "
+        "ORDER BY id DESC LIMIT 1");
+    running.bind(1, who.id).bind(2, protocol.name);
+    if (running.step()) {
+      const std::int64_t other = running.integer(0);
+      const std::string name = "participant '" + who.code + "'";
+      refuse_if_held_elsewhere(other, name);
+      throw InputError(db_.file(), name,
+                       "already has an unfinished session with protocol '" + protocol.name + "' (session " +
+                           std::to_string(other) + "); to continue it, run the same command again with --resume");
+    }
+  }
   auto ins = db_.prepare(
       "INSERT INTO sessions (participant_id, protocol_name, task, bids_task, protocol_json, protocol_dir, seed, "
       "condition_order, rig_id, rig_backend, calibration, participant_model, status, started_utc) "
@@ -245,6 +418,7 @@ std::int64_t SqliteTrialStore::create_session(const ParticipantRecord& who, cons
         .bind(8, t.break_after ? 1 : 0)
         .run();
   }
+  write_lock_row(session_id);
   tx.commit();
   return session_id;
 }
@@ -290,7 +464,10 @@ void SqliteTrialStore::complete_session(std::int64_t session_id) {
   Transaction tx(db_);
   auto u = db_.prepare("UPDATE sessions SET status = 'completed', finished_utc = ?2 WHERE id = ?1");
   u.bind(1, session_id).bind(2, utc_now()).run();
+  auto del = db_.prepare("DELETE FROM session_locks WHERE session_id = ?1");
+  del.bind(1, session_id).run();
   tx.commit();
+  held_.erase(std::remove(held_.begin(), held_.end(), session_id), held_.end());
 }
 
 void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& r) {

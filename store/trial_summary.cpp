@@ -50,6 +50,7 @@ struct Accumulator {
   std::int64_t rt_n = 0;
   double rt_mean = 0, rt_m2 = 0;  // Welford
   std::int64_t last_trial = -1;   // a trial adds its response time once per group
+  bool localisation = false;      // holds localisation values (no true negatives)
 
   void add_trial(std::int64_t trial_id, bool answered, double rt_s) {
     if (trial_id == last_trial) return;
@@ -143,6 +144,23 @@ std::vector<SummaryKey> parse_summary_keys(const std::string& list) {
   return keys;
 }
 
+namespace {
+
+// A trial whose session row is missing: the database was edited or damaged in a way the
+// page check cannot see. Refused by name rather than a bare std::out_of_range.
+const std::pair<int, int>& session_of(const std::unordered_map<std::int64_t, std::pair<int, int>>& session_ids,
+                                      std::int64_t session_id, const std::string& file, std::int64_t trial_id) {
+  const auto it = session_ids.find(session_id);
+  if (it == session_ids.end()) {
+    throw InputError(file, "trials.session_id of trial " + std::to_string(trial_id),
+                     "a session of the sessions table (session " + std::to_string(session_id) +
+                         " is missing: the database was damaged or edited)");
+  }
+  return it->second;
+}
+
+}  // namespace
+
 TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) {
   std::array<Interner, kKeyKinds> names;
   auto& conditions = names[static_cast<std::size_t>(SummaryKey::condition)];
@@ -172,10 +190,18 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
         std::find(options.by.begin(), options.by.end(), SummaryKey::combination) != options.by.end();
     std::int64_t last_session = -1;
     std::pair<int, int> session_key{};
+<<<<<<< HEAD
     store.scan_scored_trials(TrialFamily::discrimination, options.include_practice, [&](const ScoredTrial& t) {
       if (t.session_id != last_session) {
         last_session = t.session_id;
         session_key = session_ids.at(last_session);
+=======
+    while (q.step()) {
+      const std::int64_t trial_id = q.integer(0);
+      if (q.integer(1) != last_session) {
+        last_session = q.integer(1);
+        session_key = session_of(session_ids, last_session, store.file(), trial_id);
+>>>>>>> h4-harden-data
       }
       const auto& [participant, session] = session_key;
       std::array<int, kKeyKinds> ids{};
@@ -195,6 +221,7 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
   }
 
   // Localisation: one value per tumor, plus one FP per false mark.
+<<<<<<< HEAD
   store.scan_scored_trials(TrialFamily::localisation, options.include_practice, [&](const ScoredTrial& t) {
     const auto& [participant, session] = session_ids.at(t.session_id);
     std::array<int, kKeyKinds> ids{};
@@ -208,6 +235,43 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
       Accumulator& a = grouper.group(ids);
       a.add_trial(t.trial_id, t.answered, t.response_time_s);
       a.counts.add(score.outcome);
+=======
+  {
+    auto q = db.prepare(
+        "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, t.false_marks "
+        "FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
+        std::string(options.include_practice ? "" : " AND t.practice = 0") + " ORDER BY t.id");
+    std::int64_t previous_trial = -1;
+    while (q.step()) {
+      const std::int64_t trial_id = q.integer(0);
+      const auto& [participant, session] = session_of(session_ids, q.integer(1), store.file(), trial_id);
+      const bool answered = q.integer(3) != 0;
+      const double rt = q.is_null(4) ? std::numeric_limits<double>::quiet_NaN() : q.real(4);
+      std::array<int, kKeyKinds> ids{};
+      ids[static_cast<std::size_t>(SummaryKey::condition)] = conditions.id(q.text_view(2));
+      ids[static_cast<std::size_t>(SummaryKey::participant)] = participant;
+      ids[static_cast<std::size_t>(SummaryKey::session)] = session;
+      ids[static_cast<std::size_t>(SummaryKey::finger)] = no_finger;
+      ids[static_cast<std::size_t>(SummaryKey::combination)] = no_combination;
+      if (!q.is_null(5)) {
+        ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(q.text_view(5));
+        Accumulator& a = grouper.group(ids);
+        a.localisation = true;
+        a.add_trial(trial_id, answered, rt);
+        if (auto o = outcome_of(q.text_view(6))) a.counts.add(*o);
+      }
+      if (trial_id != previous_trial) {  // the trial's false marks, and an unanswered trial, once
+        previous_trial = trial_id;
+        ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
+        const std::int64_t false_marks = q.is_null(7) ? 0 : q.integer(7);
+        if (!answered || false_marks > 0) {
+          Accumulator& a = grouper.group(ids);
+          a.localisation = true;
+          a.add_trial(trial_id, answered, rt);
+          a.counts.fp += false_marks;
+        }
+      }
+>>>>>>> h4-harden-data
     }
     // The trial's false marks, and an unanswered trial, once.
     ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
@@ -227,6 +291,11 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     }
     row.counts = a.counts;
     row.measures = diagnostic_measures(a.counts, options.confidence);
+    if (a.localisation) {
+      row.negatives_counted = false;
+      row.measures.sp = Measure{};  // undefined: TN + FP would be 0 + FP, Sp a meaningless 0
+      row.measures.acc = Measure{};
+    }
     row.trials = a.trials;
     row.unanswered = a.unanswered;
     row.mean_rt_s = a.rt_n > 0 ? a.rt_mean : std::numeric_limits<double>::quiet_NaN();

@@ -35,6 +35,9 @@ struct SummaryRow {
   std::int64_t trials = 0;      // trials that contributed (answered or not)
   std::int64_t unanswered = 0;  // of which timed out
   double mean_rt_s = 0, sd_rt_s = 0;  // NaN when fewer than 1 (mean) or 2 (sd) answered trials
+  // False for localisation: true negatives are not counted (every tumor-free spot would be
+  // one), so TN, Sp and ACC have no denominator and are n/a, never 0.
+  bool negatives_counted = true;
 };
 
 struct TrialSummary {

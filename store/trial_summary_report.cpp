@@ -53,9 +53,10 @@ std::string summary_table(const TrialSummary& s) {
     for (std::int64_t v : {r.trials, r.unanswered, r.counts.tp, r.counts.fn, r.counts.tn, r.counts.fp}) {
       line.push_back(std::to_string(v));
     }
+    if (!r.negatives_counted) line[line.size() - 2] = "n/a";  // TN
     for (const auto& nm : measures_of(r)) {
       line.push_back(nm.m.defined ? fixed(nm.m.value, 3) + " [" + fixed(nm.m.lower, 3) + ", " + fixed(nm.m.upper, 3) + "]"
-                                  : std::string("NA"));
+                                  : std::string("n/a"));
     }
     line.push_back(fixed(r.mean_rt_s, 2));
     line.push_back(fixed(r.sd_rt_s, 2));
@@ -83,8 +84,8 @@ std::string summary_csv(const TrialSummary& s) {
   out << ",rt_mean_s,rt_sd_s\n";
   for (const SummaryRow& r : s.rows) {
     for (const auto& k : r.key) out << csv_field(k) << ",";
-    out << r.trials << "," << r.unanswered << "," << r.counts.tp << "," << r.counts.fn << "," << r.counts.tn << ","
-        << r.counts.fp;
+    out << r.trials << "," << r.unanswered << "," << r.counts.tp << "," << r.counts.fn << ","
+        << (r.negatives_counted ? std::to_string(r.counts.tn) : std::string("NA")) << "," << r.counts.fp;
     for (const auto& nm : measures_of(r)) {
       if (nm.m.defined) out << "," << fixed(nm.m.value, 6) << "," << fixed(nm.m.lower, 6) << "," << fixed(nm.m.upper, 6);
       else out << ",NA,NA,NA";
@@ -110,7 +111,7 @@ nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence) {
     row["unanswered"] = r.unanswered;
     row["TP"] = r.counts.tp;
     row["FN"] = r.counts.fn;
-    row["TN"] = r.counts.tn;
+    row["TN"] = r.negatives_counted ? nlohmann::ordered_json(r.counts.tn) : nlohmann::ordered_json(nullptr);
     row["FP"] = r.counts.fp;
     for (const auto& nm : measures_of(r)) {
       if (nm.m.defined) {

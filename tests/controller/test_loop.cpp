@@ -182,10 +182,23 @@ TEST(LatencyHistogram, Percentiles) {
   for (int i = 0; i < 1000; ++i) h.record(i < 990 ? 10.5 : 500.0);
   const auto s = h.summary();
   EXPECT_EQ(s.count, 1000u);
-  EXPECT_EQ(s.p50_us, 11.0);
-  EXPECT_EQ(s.p99_us, 11.0);
+  EXPECT_NEAR(s.p50_us, 10.6, 1e-9);  // 0.1 us bins below 100 us
+  EXPECT_NEAR(s.p99_us, 10.6, 1e-9);
   EXPECT_EQ(s.p999_us, 500.0);
   EXPECT_EQ(s.max_us, 500.0);
+}
+
+TEST(LatencyHistogram, TenthsOfAMicrosecondBelow100usAndWholeMicrosecondsAbove) {
+  LatencyHistogram fast;
+  for (int i = 0; i < 100; ++i) fast.record(0.41 + 0.001 * i);  // a tick of 0.41..0.51 us
+  EXPECT_NEAR(fast.percentile_us(0.5), 0.5, 1e-9);
+  EXPECT_NEAR(fast.percentile_us(0.99), 0.509, 1e-9);  // its bin edge (0.6) is past the maximum
+  LatencyHistogram slow;
+  for (int i = 0; i < 100; ++i) slow.record(i < 50 ? 150.3 : 19999.5);
+  EXPECT_EQ(slow.percentile_us(0.5), 151.0);
+  EXPECT_EQ(slow.percentile_us(0.99), 19999.5);  // the bin's edge (20000) is past the maximum
+  slow.record(50000);
+  EXPECT_EQ(slow.summary().max_us, 50000.0);
 }
 
 namespace {

@@ -91,15 +91,21 @@ TEST(Tick, NonFiniteSampleVentsAndLatches) {
     TickState s2 = st;
     const TickResult r = tick(s2, cfg, scene, press(0.001, b, 20), 0.001);
     for (double p : r.setpoint_kPa) EXPECT_EQ(p, 0.0);
-    EXPECT_EQ(r.record.fault, FaultCode::bad_sample);
+    // A NaN position is reported as a bad position, not as a bad force.
+    EXPECT_EQ(r.record.fault, FaultCode::bad_position);
     EXPECT_TRUE(r.record.flags & kVented);
     // Latched: a good sample afterwards still vents.
     const TickResult after = tick(s2, cfg, scene, press(0.002, 90, 20), 0.002);
     for (double p : after.setpoint_kPa) EXPECT_EQ(p, 0.0);
-    EXPECT_EQ(s2.fault, FaultCode::bad_sample);
+    EXPECT_EQ(s2.fault, FaultCode::bad_position);
+    TickState s4 = st;
+    EXPECT_EQ(tick(s4, cfg, scene, press(0.001, 90, 20, b), 0.001).record.fault, FaultCode::bad_sample);
+    TickState s5 = st;
+    EXPECT_EQ(tick(s5, cfg, scene, press(b, 90, 20), 0.001).record.fault, FaultCode::bad_time);
   }
   TickState s3 = st;
   EXPECT_EQ(tick(s3, cfg, scene, press(0.001, 90, 20, -1.0), 0.001).record.fault, FaultCode::bad_sample);
+  EXPECT_NE(std::string(to_string(FaultCode::bad_position)).find("position"), std::string::npos);
 }
 
 TEST(Tick, NonFiniteModelOutputVents) {
