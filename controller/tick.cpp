@@ -22,8 +22,7 @@ void check_targets(TickState& state, const ChannelPressures& target_kPa, double 
     rec.target_kPa[i] = static_cast<float>(target_kPa[i]);
     if (!std::isfinite(target_kPa[i])) state.enter_fault(FaultCode::non_finite_target);
   }
-<<<<<<< HEAD
-  if (state.fault == FaultCode::none && !std::isfinite(t_s)) state.enter_fault(FaultCode::bad_sample);
+  if (state.fault == FaultCode::none && !std::isfinite(t_s)) state.enter_fault(FaultCode::bad_time);
 }
 
 }  // namespace
@@ -43,9 +42,6 @@ void safety_stage(TickState& state, const TickConfig& config, const ChannelPress
   const SafetyLimits& lim = config.safety;
   for (double p : command_kPa)
     if (!std::isfinite(p)) state.enter_fault(FaultCode::non_finite_target);  // a broken inverse, too
-=======
-  if (state.fault == FaultCode::none && !std::isfinite(t_s)) state.enter_fault(FaultCode::bad_time);
->>>>>>> h4-harden-data
 
   if (state.fault != FaultCode::none) {
     // Vent: every channel to 0 kPa at once (no slew limit on the way down to safety).
@@ -85,21 +81,13 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   rec.force_N = static_cast<float>(sample.force_N);
 
   ChannelPressures target{};
-<<<<<<< HEAD
   FingersOnSkin fingers;
-  const bool sample_ok = std::isfinite(sample.x_mm) && std::isfinite(sample.y_mm) &&
-                         std::isfinite(sample.force_N) && sample.force_N >= 0 && std::isfinite(sample.t_s);
-  if (!sample_ok) {
-=======
-  std::array<Point2_mm, kFingerCount> fingers{};
-  bool pressed = false;
   // Each bad reading is named for what is wrong with it (a NaN position is not a bad force).
   if (!std::isfinite(sample.x_mm) || !std::isfinite(sample.y_mm)) {
     state.enter_fault(FaultCode::bad_position);
   } else if (!std::isfinite(sample.t_s)) {
     state.enter_fault(FaultCode::bad_time);
   } else if (!std::isfinite(sample.force_N) || sample.force_N < 0) {
->>>>>>> h4-harden-data
     state.enter_fault(FaultCode::bad_sample);
   } else if (t_s - sample.t_s > config.safety.max_input_age_s) {
     state.enter_fault(FaultCode::input_stale);

@@ -17,16 +17,10 @@ OpenedSession open_session(TrialStore& store, const Protocol& protocol, const Se
 
   if (request.resume) {
     if (!unfinished) {
-<<<<<<< HEAD
-      throw InputError(store.location(), "`resume`",
-                       "an unfinished session of participant '" + request.participant_code + "' with protocol '" +
-                           protocol.name + "' (there is none)");
-=======
-      throw InputError(store.file(), "--resume",
+      throw InputError(store.location(), "resume",
                        "participant '" + request.participant_code + "' has no unfinished session with protocol '" +
                            protocol.name + "' to continue (none was started, or it was completed); to start a new "
-                           "session, run the same command without --resume");
->>>>>>> h4-harden-data
+                           "session, run the same command without `resume`");
     }
     // Held from here on: a second --resume of the same session at the same time is refused.
     store.claim_session(*unfinished);
@@ -48,18 +42,11 @@ OpenedSession open_session(TrialStore& store, const Protocol& protocol, const Se
   if (unfinished) {
     store.refuse_if_running_elsewhere(*unfinished);  // "another process runs it" says more than "--resume"
     const StoredSession stored = store.load_session(*unfinished);
-<<<<<<< HEAD
     throw InputError(store.location(), "participant '" + request.participant_code + "'",
-                     "no unfinished session with this protocol (session " + std::to_string(stored.id) + " stopped after " +
-                         std::to_string(stored.completed_trials) + " of " + std::to_string(stored.plan.trials.size()) +
-                         " trials: continue it with `resume`)");
-=======
-    throw InputError(store.file(), "participant '" + request.participant_code + "'",
                      "already has an unfinished session with protocol '" + protocol.name + "' (session " +
                          std::to_string(stored.id) + ", stopped after " + std::to_string(stored.completed_trials) +
                          " of " + std::to_string(stored.plan.trials.size()) +
-                         " trials); to continue it, run the same command again with --resume");
->>>>>>> h4-harden-data
+                         " trials); to continue it, run the same command again with `resume`");
   }
   opened.participant = store.enrol(request.participant_code, request.simulated);
   opened.protocol = protocol;

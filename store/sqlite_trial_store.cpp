@@ -203,10 +203,7 @@ SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access acc
   throw;
 }
 
-<<<<<<< HEAD:store/sqlite_trial_store.cpp
-bool SqliteTrialStore::is_blank() {
-=======
-TrialStore::~TrialStore() {
+SqliteSqliteTrialStore::~SqliteTrialStore() {
   const std::vector<std::int64_t> held = held_;  // release_session edits held_
   for (std::int64_t session_id : held) {
     try {
@@ -218,13 +215,13 @@ TrialStore::~TrialStore() {
   }
 }
 
-bool TrialStore::has_lock_table() {
+bool SqliteTrialStore::has_lock_table() {
   auto exists = db_.prepare("SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'session_locks'");
   exists.step();
   return exists.integer(0) != 0;
 }
 
-void TrialStore::create_lock_table() {
+void SqliteTrialStore::create_lock_table() {
   // The look-up's statement must be finished before the write lock is asked for: a read left
   // open would keep a shared lock that deadlocks against another process's commit.
   if (has_lock_table()) return;
@@ -234,7 +231,7 @@ void TrialStore::create_lock_table() {
   tx.commit();
 }
 
-void TrialStore::refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who) {
+void SqliteTrialStore::refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who) {
   auto q = db_.prepare("SELECT pid, host, process_start, since_utc FROM session_locks WHERE session_id = ?1");
   q.bind(1, session_id);
   if (!q.step()) return;
@@ -253,7 +250,7 @@ void TrialStore::refuse_if_held_elsewhere(std::int64_t session_id, const std::st
   throw InputError(db_.file(), "session " + std::to_string(session_id), expected + ")");
 }
 
-void TrialStore::write_lock_row(std::int64_t session_id) {
+void SqliteTrialStore::write_lock_row(std::int64_t session_id) {
   auto ins = db_.prepare(
       "INSERT OR REPLACE INTO session_locks (session_id, pid, host, process_start, since_utc) VALUES (?1, ?2, ?3, ?4, ?5)");
   ins.bind(1, session_id)
@@ -265,7 +262,7 @@ void TrialStore::write_lock_row(std::int64_t session_id) {
   if (std::find(held_.begin(), held_.end(), session_id) == held_.end()) held_.push_back(session_id);
 }
 
-void TrialStore::claim_session(std::int64_t session_id) {
+void SqliteTrialStore::claim_session(std::int64_t session_id) {
   Transaction tx(db_);
   auto q = db_.prepare(
       "SELECT s.status, p.code FROM sessions s JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
@@ -281,14 +278,14 @@ void TrialStore::claim_session(std::int64_t session_id) {
   tx.commit();
 }
 
-void TrialStore::refuse_if_running_elsewhere(std::int64_t session_id) {
+void SqliteTrialStore::refuse_if_running_elsewhere(std::int64_t session_id) {
   auto q = db_.prepare("SELECT p.code FROM sessions s JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
   q.bind(1, session_id);
   if (!q.step()) return;
   refuse_if_held_elsewhere(session_id, "participant '" + q.text(0) + "'");
 }
 
-void TrialStore::release_session(std::int64_t session_id) {
+void SqliteTrialStore::release_session(std::int64_t session_id) {
   Transaction tx(db_);
   auto del = db_.prepare("DELETE FROM session_locks WHERE session_id = ?1 AND pid = ?2 AND host = ?3");
   del.bind(1, session_id).bind(2, static_cast<std::int64_t>(::getpid())).bind(3, this_host()).run();
@@ -296,22 +293,17 @@ void TrialStore::release_session(std::int64_t session_id) {
   held_.erase(std::remove(held_.begin(), held_.end(), session_id), held_.end());
 }
 
-bool TrialStore::is_blank() {
->>>>>>> h4-harden-data:store/trial_store.cpp
+bool SqliteTrialStore::is_blank() {
   if (db_.pragma_integer("application_id") != 0 || db_.pragma_integer("user_version") != 0) return false;
   auto tables = db_.prepare("SELECT count(*) FROM sqlite_master");
   tables.step();
   return tables.integer(0) == 0;
 }
 
-<<<<<<< HEAD:store/sqlite_trial_store.cpp
-void SqliteTrialStore::create_schema() {
-=======
-void TrialStore::create_schema_if_blank() {
+void SqliteTrialStore::create_schema_if_blank() {
   if (!is_blank()) return;
   // Two processes starting on one new file: the write lock of BEGIN IMMEDIATE lets one create
   // the schema; the other waits (busy timeout), then finds the file no longer blank.
->>>>>>> h4-harden-data:store/trial_store.cpp
   Transaction tx(db_);
   if (!is_blank()) return;
   db_.exec(kSchema);

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "store/sqlite_db.hpp"
 #include "store/trial_store.hpp"
@@ -23,7 +24,9 @@ inline constexpr std::int64_t kTrialStoreSchemaVersion = 1;
 class SqliteTrialStore final : public TrialStore {
  public:
   // Creates the schema in a new or empty file (read_write); refuses foreign or newer files.
+  // Every open runs PRAGMA quick_check and refuses a damaged file (InputError naming it).
   SqliteTrialStore(const std::filesystem::path& file, Access access);
+  ~SqliteTrialStore() override;  // releases the sessions this process holds
 
   const std::string& location() const noexcept override { return db_.file(); }
 
@@ -34,6 +37,10 @@ class SqliteTrialStore final : public TrialStore {
                                                       const std::string& protocol_name) override;
   std::int64_t create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
                               const SessionSetup& setup) override;
+  // session_locks rows name the holder (pid, host, process start time).
+  void claim_session(std::int64_t session_id) override;
+  void refuse_if_running_elsewhere(std::int64_t session_id) override;
+  void release_session(std::int64_t session_id) override;
   StoredSession load_session(std::int64_t session_id) override;
   void complete_session(std::int64_t session_id) override;
 
@@ -48,15 +55,21 @@ class SqliteTrialStore final : public TrialStore {
 
   // The SQL connection, for tests and tools that check the file itself.
   Database& database() noexcept { return db_; }
+  const std::string& file() const noexcept { return db_.file(); }
 
  private:
   bool is_blank();  // a new file: no tables, no palprig marks
-  void create_schema();
+  void create_schema_if_blank();
+  bool has_lock_table();
+  void create_lock_table();
+  void refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who);
+  void write_lock_row(std::int64_t session_id);  // inside a transaction
   void check_identity();
   void insert_trial(std::int64_t session_id, const TrialRecord& trial);
 
   Database db_;
   std::unique_ptr<Statement> insert_trial_;  // prepared once: trials are inserted one by one
+  std::vector<std::int64_t> held_;            // sessions whose lock row this process wrote
 };
 
 // Open an existing SQLite trial database for reading; refuses a missing, foreign or newer file.

@@ -23,21 +23,13 @@ struct ExportTrial : StoredTrial {
   std::array<std::string, kFingerCount> finger_names{"finger1", "finger2", "finger3"};
 };
 
-<<<<<<< HEAD
-=======
-std::optional<double> real_or_null(const Statement& s, int column) {
-  if (s.is_null(column)) return std::nullopt;
-  return s.real(column);
-}
-
 // The finger names of a session's stored protocol, by the protocol file's rules (absent:
 // finger1..3). A snapshot that no longer reads is refused rather than exported under made-up
 // names: the database was damaged or edited, and the analyst must know.
 std::array<std::string, kFingerCount> stored_finger_names(const std::string& file, std::int64_t session,
-                                                          std::string_view protocol_json) {
+                                                          const nlohmann::json& protocol) {
   const std::string where = "sessions.protocol_json of session " + std::to_string(session);
-  const auto protocol = nlohmann::json::parse(protocol_json, nullptr, false);
-  if (!protocol.is_object()) {
+  if (protocol.is_discarded() || !protocol.is_object()) {
     throw InputError(file, where, "the protocol stored when the session started, as a JSON object (it no longer "
                                   "parses: the database was damaged or edited)");
   }
@@ -57,25 +49,10 @@ std::array<std::string, kFingerCount> stored_finger_names(const std::string& fil
   return names;
 }
 
->>>>>>> h4-harden-data
 std::vector<ExportTrial> read_trials(TrialStore& store, const ExportOptions& options) {
   std::map<std::int64_t, std::array<std::string, kFingerCount>> finger_names;  // per session, from the protocol
-<<<<<<< HEAD
   for (const SessionOverview& session : store.list_sessions()) {
-    std::array<std::string, kFingerCount> names{"finger1", "finger2", "finger3"};
-    const nlohmann::json protocol = store.protocol_snapshot(session.id);
-    if (protocol.is_object() && protocol.contains("fingers") && protocol["fingers"].is_array() &&
-        protocol["fingers"].size() == kFingerCount) {
-      for (std::size_t f = 0; f < kFingerCount; ++f) {
-        if (protocol["fingers"][f].is_string()) names[f] = protocol["fingers"][f].get<std::string>();
-      }
-    }
-    finger_names[session.id] = names;
-=======
-  {
-    auto s = db.prepare("SELECT id, protocol_json FROM sessions");
-    while (s.step()) finger_names[s.integer(0)] = stored_finger_names(store.file(), s.integer(0), s.text_view(1));
->>>>>>> h4-harden-data
+    finger_names[session.id] = stored_finger_names(store.location(), session.id, store.protocol_snapshot(session.id));
   }
   std::vector<ExportTrial> trials;
   for (StoredTrial& stored : store.read_trials(options.include_practice)) {

@@ -117,15 +117,6 @@ struct StoredTrial {
 class TrialStore {
  public:
   enum class Access { read_only, read_write };
-<<<<<<< HEAD
-=======
-  // Creates the schema in a new or empty file (read_write); refuses foreign or newer files.
-  // Every open runs PRAGMA quick_check and refuses a damaged file (InputError naming it).
-  TrialStore(const std::filesystem::path& file, Access access);
-  ~TrialStore();  // releases the sessions this process holds
-  TrialStore(const TrialStore&) = delete;
-  TrialStore& operator=(const TrialStore&) = delete;
->>>>>>> h4-harden-data
 
   virtual ~TrialStore() = default;
   TrialStore() = default;
@@ -142,32 +133,23 @@ class TrialStore {
 
   // --- sessions
   // The session of this participant and protocol that was started but not completed.
-<<<<<<< HEAD
   virtual std::optional<std::int64_t> find_unfinished_session(const ParticipantRecord& who,
                                                               const std::string& protocol_name) = 0;
-  // Stores the session, its protocol snapshot and its whole planned order in one transaction.
+  // Stores the session, its protocol snapshot and its whole planned order in one transaction;
+  // refuses (InputError) when this participant already has an unfinished session with this
+  // protocol (e.g. one another process created a moment ago). The new session is claimed.
   virtual std::int64_t create_session(const ParticipantRecord& who, const Protocol& protocol,
                                       const SessionPlan& plan, const SessionSetup& setup) = 0;
   // Throws InputError when there is no such session or its trials are not positions 0..n-1.
+  // One process per session: claiming refuses (InputError) a session a live process holds or
+  // that was completed; a holder that died is stale and taken over. Released by
+  // complete_session, release_session and the store's destructor.
+  virtual void claim_session(std::int64_t session_id) = 0;
+  // The refusal claim_session would give, without claiming.
+  virtual void refuse_if_running_elsewhere(std::int64_t session_id) = 0;
+  virtual void release_session(std::int64_t session_id) = 0;
   virtual StoredSession load_session(std::int64_t session_id) = 0;
   virtual void complete_session(std::int64_t session_id) = 0;
-=======
-  std::optional<std::int64_t> find_unfinished_session(const ParticipantRecord& who, const std::string& protocol_name);
-  // Refuses (InputError) when this participant has an unfinished session with this protocol,
-  // e.g. one another process created a moment ago. The new session is held by this process.
-  std::int64_t create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
-                              const SessionSetup& setup);
-  // One process per session: a row in session_locks names the holder (pid, host, process start
-  // time). Claiming refuses (InputError) a session a live process holds or that was completed;
-  // a row of a dead process on this host is stale and taken over. Released by
-  // complete_session, release_session and the destructor.
-  void claim_session(std::int64_t session_id);
-  // The refusal claim_session would give, without claiming (InputError when a live process holds it).
-  void refuse_if_running_elsewhere(std::int64_t session_id);
-  void release_session(std::int64_t session_id);
-  StoredSession load_session(std::int64_t session_id);
-  void complete_session(std::int64_t session_id);
->>>>>>> h4-harden-data
 
   // --- trials
   // One transaction per trial (the crash-safety promise).
@@ -175,7 +157,6 @@ class TrialStore {
   // Many trials in one transaction (imports, benchmarks, tests).
   virtual void commit_trials(std::int64_t session_id, std::span<const TrialRecord> trials) = 0;
 
-<<<<<<< HEAD
   // --- reading (stats, export)
   virtual std::vector<SessionOverview> list_sessions() = 0;
   // The protocol file as it was stored with the session.
@@ -186,24 +167,6 @@ class TrialStore {
                                   const std::function<void(const ScoredTrial&)>& visit) = 0;
   // Every trial (practice ones when asked), ordered by participant number, session, position.
   virtual std::vector<StoredTrial> read_trials(bool include_practice) = 0;
-=======
-  Database& database() noexcept { return db_; }
-  const std::string& file() const noexcept { return db_.file(); }
-
- private:
-  bool is_blank();  // a new file: no tables, no palprig marks
-  void create_schema_if_blank();
-  bool has_lock_table();
-  void create_lock_table();
-  void refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who);
-  void write_lock_row(std::int64_t session_id);  // inside a transaction
-  void check_identity();
-  void insert_trial(std::int64_t session_id, const TrialRecord& trial);
-
-  Database db_;
-  std::unique_ptr<Statement> insert_trial_;  // prepared once: trials are inserted one by one
-  std::vector<std::int64_t> held_;            // sessions whose lock row this process wrote
->>>>>>> h4-harden-data
 };
 
 // Opens the store at `location`. Today: a path is an SQLite file (created with its schema when

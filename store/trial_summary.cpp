@@ -190,18 +190,10 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
         std::find(options.by.begin(), options.by.end(), SummaryKey::combination) != options.by.end();
     std::int64_t last_session = -1;
     std::pair<int, int> session_key{};
-<<<<<<< HEAD
     store.scan_scored_trials(TrialFamily::discrimination, options.include_practice, [&](const ScoredTrial& t) {
       if (t.session_id != last_session) {
         last_session = t.session_id;
-        session_key = session_ids.at(last_session);
-=======
-    while (q.step()) {
-      const std::int64_t trial_id = q.integer(0);
-      if (q.integer(1) != last_session) {
-        last_session = q.integer(1);
-        session_key = session_of(session_ids, last_session, store.file(), trial_id);
->>>>>>> h4-harden-data
+        session_key = session_of(session_ids, last_session, store.location(), t.trial_id);
       }
       const auto& [participant, session] = session_key;
       std::array<int, kKeyKinds> ids{};
@@ -221,9 +213,8 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
   }
 
   // Localisation: one value per tumor, plus one FP per false mark.
-<<<<<<< HEAD
   store.scan_scored_trials(TrialFamily::localisation, options.include_practice, [&](const ScoredTrial& t) {
-    const auto& [participant, session] = session_ids.at(t.session_id);
+    const auto& [participant, session] = session_of(session_ids, t.session_id, store.location(), t.trial_id);
     std::array<int, kKeyKinds> ids{};
     ids[static_cast<std::size_t>(SummaryKey::condition)] = conditions.id(t.condition);
     ids[static_cast<std::size_t>(SummaryKey::participant)] = participant;
@@ -233,50 +224,15 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     for (const ScoredTumor& score : t.tumors) {
       ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(score.tumor);
       Accumulator& a = grouper.group(ids);
+      a.localisation = true;
       a.add_trial(t.trial_id, t.answered, t.response_time_s);
       a.counts.add(score.outcome);
-=======
-  {
-    auto q = db.prepare(
-        "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, t.false_marks "
-        "FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
-        std::string(options.include_practice ? "" : " AND t.practice = 0") + " ORDER BY t.id");
-    std::int64_t previous_trial = -1;
-    while (q.step()) {
-      const std::int64_t trial_id = q.integer(0);
-      const auto& [participant, session] = session_of(session_ids, q.integer(1), store.file(), trial_id);
-      const bool answered = q.integer(3) != 0;
-      const double rt = q.is_null(4) ? std::numeric_limits<double>::quiet_NaN() : q.real(4);
-      std::array<int, kKeyKinds> ids{};
-      ids[static_cast<std::size_t>(SummaryKey::condition)] = conditions.id(q.text_view(2));
-      ids[static_cast<std::size_t>(SummaryKey::participant)] = participant;
-      ids[static_cast<std::size_t>(SummaryKey::session)] = session;
-      ids[static_cast<std::size_t>(SummaryKey::finger)] = no_finger;
-      ids[static_cast<std::size_t>(SummaryKey::combination)] = no_combination;
-      if (!q.is_null(5)) {
-        ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(q.text_view(5));
-        Accumulator& a = grouper.group(ids);
-        a.localisation = true;
-        a.add_trial(trial_id, answered, rt);
-        if (auto o = outcome_of(q.text_view(6))) a.counts.add(*o);
-      }
-      if (trial_id != previous_trial) {  // the trial's false marks, and an unanswered trial, once
-        previous_trial = trial_id;
-        ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
-        const std::int64_t false_marks = q.is_null(7) ? 0 : q.integer(7);
-        if (!answered || false_marks > 0) {
-          Accumulator& a = grouper.group(ids);
-          a.localisation = true;
-          a.add_trial(trial_id, answered, rt);
-          a.counts.fp += false_marks;
-        }
-      }
->>>>>>> h4-harden-data
     }
     // The trial's false marks, and an unanswered trial, once.
     ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
     if (!t.answered || t.false_marks > 0) {
       Accumulator& a = grouper.group(ids);
+      a.localisation = true;
       a.add_trial(t.trial_id, t.answered, t.response_time_s);
       a.counts.fp += t.false_marks;
     }
