@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 #include "tests/experiments/process_support.hpp"
 #include "tests/experiments/test_support.hpp"
 
@@ -33,7 +33,7 @@ std::vector<std::string> run_args(const std::string& participant, const std::str
 }
 
 std::int64_t scalar(const std::string& db, const std::string& sql) {
-  TrialStore store = open_trial_store_for_reading(db);
+  SqliteTrialStore store = open_sqlite_trial_store_for_reading(db);
   auto q = store.database().prepare(sql);
   return q.step() ? q.integer(0) : -1;
 }
