@@ -8,7 +8,7 @@
 #include <memory>
 #include <thread>
 
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 #include "tests/controller/test_modbus_support.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -49,7 +49,7 @@ TEST(experiments_hardware_clock, simulated_participant_on_a_modbus_rig_runs_in_r
   EXPECT_NE(err.find("continue with --resume"), std::string::npos) << err;
 
   // Trials committed in those seconds began no later than the wall time elapsed.
-  TrialStore store = open_trial_store_for_reading(db);
+  SqliteTrialStore store = open_sqlite_trial_store_for_reading(db);
   auto q = store.database().prepare("SELECT count(*), COALESCE(MAX(onset_s), 0) FROM trials");
   ASSERT_TRUE(q.step());
   EXPECT_LT(q.integer(0), 32);
