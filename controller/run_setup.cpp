@@ -32,13 +32,20 @@ std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& sc
   throw InputError("input", spec, "trace:FILE, sweep, tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
 }
 
-LoadedRun load_run(const RunFiles& files) {
+LoadedRun load_run_files(const RunFiles& files) {
   LoadedRun run;
   run.rig = load_rig_file(files.rig);
   run.cal = files.calibration.empty() ? CalibrationModels{} : load_calibration_file(files.calibration);
   check_calibration_matches(run.cal, run.rig.id, run.rig.source);
   run.scene = load_scene_file(files.scene);
   run.config = make_tick_config(run.rig, run.cal);
+  run.input_spec = files.input;
+  run.live = run.rig.backend != "simulated" || is_live_input(files.input);
+  return run;
+}
+
+LoadedRun load_run(const RunFiles& files) {
+  LoadedRun run = load_run_files(files);
   TraceLimits limits;
   limits.max_gap_s = run.rig.safety.max_input_age_s;
   run.input = make_input(files.input, *run.scene.scene, run.rig.contact_force_N, run.rig.tablet,

@@ -50,6 +50,9 @@ std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& sc
                                         const TabletConfig& tablet = {}, const TraceLimits& trace_limits = {});
 
 LoadedRun load_run(const RunFiles& files);  // throws InputError before anything moves
+// The same without making the input (run.input stays empty): for a front end with an input of
+// its own (the GUI's window pen), which then calls make_input for every other input.
+LoadedRun load_run_files(const RunFiles& files);
 // Mode and duration from the user's timing: a live run is real time (asking for a replay is
 // refused, naming the field "replay"); a run with no length is refused ("duration_s"); a CPU
 // the process may not run on is refused ("cpu").

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "controller/backend_factory.hpp"
+#include "controller/run_setup.hpp"
 #include "controller/tick_setup.hpp"
 #include "formats/calibration_file.hpp"
 #include "inputs/tablet_input.hpp"
@@ -22,17 +23,23 @@ const char* to_string(RigLifecycle s) noexcept {
 }
 
 LiveRunSetup load_live_run(const LiveRunFiles& f) {
-  // The same calls, in the same order, as `palprig run`'s load_run (cli/run_command.cpp).
+  // The library's run set-up, as `palprig run` calls it (controller/run_setup.hpp); only the
+  // window pen is the GUI's own input.
+  RunFiles files;
+  files.rig = f.rig_path.empty() ? f.data_dir / "rigs" / "simulated.json" : std::filesystem::path(f.rig_path);
+  files.calibration = f.cal_path;
+  files.scene = f.scene_path.empty() ? f.data_dir / "scenes" / "phantom_abc.json" : std::filesystem::path(f.scene_path);
+  files.input = f.input_spec.empty() ? "window" : f.input_spec;
+  LoadedRun run = load_run_files(files);
   LiveRunSetup s;
-  s.rig = load_rig_file(f.rig_path.empty() ? f.data_dir / "rigs" / "simulated.json" : std::filesystem::path(f.rig_path));
-  s.cal = f.cal_path.empty() ? CalibrationModels{} : load_calibration_file(f.cal_path);
-  check_calibration_matches(s.cal, s.rig.id, s.rig.source);
-  s.scene = load_scene_file(f.scene_path.empty() ? f.data_dir / "scenes" / "phantom_abc.json"
-                                                 : std::filesystem::path(f.scene_path));
-  s.config = make_tick_config(s.rig, s.cal);
-  s.input_spec = f.input_spec.empty() ? "window" : f.input_spec;
+  s.rig = std::move(run.rig);
+  s.cal = std::move(run.cal);
+  s.scene = std::move(run.scene);
+  s.config = run.config;
+  s.input_spec = files.input;
   const std::string& in = s.input_spec;
-  if (!(in == "window" || in == "sweep" || in == "tablet" || in.rfind("tablet:", 0) == 0 || in.rfind("trace:", 0) == 0))
+  if (!(in == "window" || in == "sweep" || in == "raster" || in == "tablet" || in.rfind("tablet:", 0) == 0 ||
+        in.rfind("trace:", 0) == 0))
     throw InputError("input", in, "window, trace:FILE, sweep, tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
   return s;
 }
@@ -40,14 +47,11 @@ LiveRunSetup load_live_run(const LiveRunFiles& f) {
 namespace {
 
 std::unique_ptr<InputSource> make_live_input(const LiveRunSetup& s) {
-  const std::string& in = s.input_spec;
-  if (in == "window") return std::make_unique<WindowPenInput>();
-  if (in == "sweep" || in == "raster") return std::make_unique<RasterInput>(s.scene.scene->bounds(), RasterPlan{});
-  if (in.rfind("trace:", 0) == 0) {
-    const std::filesystem::path p = in.substr(6);
-    return std::make_unique<TraceInput>(load_trace_csv(p, s.rig.contact_force_N), p.string(), s.rig.contact_force_N);
-  }
-  return make_tablet_input(in, s.rig.tablet);
+  if (s.input_spec == "window") return std::make_unique<WindowPenInput>();
+  // Every other input is the library's, with the same bounds as `palprig run`.
+  TraceLimits limits;
+  limits.max_gap_s = s.rig.safety.max_input_age_s;
+  return make_input(s.input_spec, *s.scene.scene, s.rig.contact_force_N, s.rig.tablet, limits);
 }
 
 }  // namespace
