@@ -203,7 +203,7 @@ SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access acc
   throw;
 }
 
-SqliteSqliteTrialStore::~SqliteTrialStore() {
+SqliteTrialStore::~SqliteTrialStore() {
   const std::vector<std::int64_t> held = held_;  // release_session edits held_
   for (std::int64_t session_id : held) {
     try {
