@@ -264,7 +264,7 @@ void CalibrationPage::fit() {
   save_->setEnabled(true);
   QStringList notes;
   for (const auto& n : result_->notes) notes << QString::fromStdString(n);
-  say("Fitted." + (notes.isEmpty() ? QString() : " " + notes.join(" ")));
+  say("Fitted." + (notes.isEmpty() ? QString() : " " + notes.join("; ")));
   emit fitted();
 }
 

@@ -17,6 +17,7 @@
 #include <QTableWidget>
 #include <QtTest>
 #include <cstdlib>
+#include <functional>
 #include <memory>
 
 #include "calibration/sweep_csv.hpp"
@@ -152,6 +153,18 @@ class CalibrationPageTest : public QObject {
 
   // Stop in the middle: the runner vents, the rows recorded so far are kept and can be read.
   void stopVentsAndKeepsWhatWasRecorded() {
+    stop_mid_sweep([](Window& w) {
+      QTest::mouseClick(child<QPushButton>(w.page, "cal_stop"), Qt::LeftButton);
+    });
+  }
+
+  // Esc (the window's VENT key) stops the sweep the same way, whatever has the focus.
+  void escapeStopsTheSweep() {
+    stop_mid_sweep([](Window& w) { QTest::keyClick(w.window.get(), Qt::Key_Escape); });
+  }
+
+ private:
+  void stop_mid_sweep(const std::function<void(Window&)>& press_stop) {
     Window w = open_window();
     CalibrationPage* p = w.page;
     set_staircase(p, 1, 60, 0.1, 50);  // thousands of holds: still running when Stop is pressed
@@ -160,7 +173,7 @@ class CalibrationPageTest : public QObject {
     auto* progress = child<QProgressBar>(p, "cal_progress");
     QSignalSpy progressed(progress, &QProgressBar::valueChanged);
     while (progress->value() < 20) QVERIFY(progressed.wait(30000));
-    QTest::mouseClick(child<QPushButton>(p, "cal_stop"), Qt::LeftButton);
+    press_stop(w);
     QVERIFY(finished.wait(60000));
     const QString status = child<QLabel>(p, "cal_status")->text();
     QVERIFY2(status.startsWith("Stopped: every channel vented"), qPrintable(status));
@@ -171,6 +184,23 @@ class CalibrationPageTest : public QObject {
     QVERIFY(data.points.size() >= 20);
     QVERIFY(child<QPushButton>(p, "cal_fit")->isEnabled());
     QVERIFY(w.window->run().state() != RigLifecycle::stopped);
+  }
+
+
+ private slots:
+  // Too few holds for the hysteresis fit: the library's refusal line on the page, nothing to save.
+  void fitRefusedWithTheLibraryLine() {
+    Window w = open_window();
+    CalibrationPage* p = w.page;
+    set_staircase(p, 10, 50, 10, 2);
+    QSignalSpy finished(p, &CalibrationPage::sweep_finished);
+    QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
+    QVERIFY(finished.wait(120000));
+    QTest::mouseClick(child<QPushButton>(p, "cal_fit"), Qt::LeftButton);
+    const QString status = child<QLabel>(p, "cal_status")->text();
+    QVERIFY2(status.startsWith("palprig: ") && status.contains("sweep.csv: channel 1 hysteresis"), qPrintable(status));
+    QVERIFY(!p->result().has_value());
+    QVERIFY(!child<QPushButton>(p, "cal_save")->isEnabled());
   }
 
   // A staircase that makes no sweep is refused on the page with the library's line; the live
