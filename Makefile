@@ -1,10 +1,15 @@
 # palprig: the two set-up commands of the README.
 #   make demo   install missing Debian packages, configure, build, run the demo
 #   make test   same set-up, then the whole test suite
+#   make fuzz   run every fuzz target for a minute (make test runs each for a second)
+#   make test-tsan  the threaded suites under ThreadSanitizer
 # Both are idempotent: packages already present are not touched and the build is incremental.
 
 BUILD      ?= build
 BUILD_ASAN ?= build-asan
+BUILD_FUZZ ?= build-fuzz
+BUILD_TSAN ?= build-tsan
+FUZZ_SECONDS ?= 60
 JOBS       ?= 2
 CMAKE_ARGS ?=
 
@@ -12,7 +17,7 @@ CMAKE_ARGS ?=
 PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages.txt | tr '\n' ' ')
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build demo test test-asan bench clean
+.PHONY: all deps configure build demo test test-asan test-tsan fuzz fuzz-build fuzz-smoke bench clean
 
 all: build
 
@@ -39,6 +44,31 @@ demo: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS) --timeout 600
+	$(MAKE) --no-print-directory fuzz-smoke
+
+# The fuzz targets of fuzz/ (libFuzzer, clang): only the reader libraries, in their own build dir.
+fuzz-build: deps
+	@[ -f $(BUILD_FUZZ)/CMakeCache.txt ] || CXX=clang++ cmake -S . -B $(BUILD_FUZZ) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DPALPRIG_FUZZ=ON
+	cmake --build $(BUILD_FUZZ) -j$(JOBS)
+
+# make test: each target for 1 s from its seeds (the shipped files), a crash fails the run.
+fuzz-smoke: fuzz-build
+	fuzz/run_fuzz.sh $(BUILD_FUZZ) 1
+
+# Longer: FUZZ_SECONDS (60) per target; prints executions, time and crashes per target.
+fuzz: fuzz-build
+	fuzz/run_fuzz.sh $(BUILD_FUZZ) $(FUZZ_SECONDS)
+
+# The threaded suites (loop, Modbus bus thread, tablet reader, telemetry writer) under
+# ThreadSanitizer; a reported race fails the run.
+TSAN_TESTS := \.(LoopRunner|ModbusLoopback|ModbusEndToEnd|TabletInput|RealtimeSafety|TelemetryHardening)\.
+test-tsan: deps
+	@[ -f $(BUILD_TSAN)/CMakeCache.txt ] || cmake -S . -B $(BUILD_TSAN) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DPALPRIG_TSAN=ON -DPALPRIG_BENCH=OFF -DPALPRIG_GUI=OFF
+	cmake --build $(BUILD_TSAN) -j$(JOBS) --target palprig palprig_tests_controller
+	cd $(BUILD_TSAN) && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
+	  ctest --output-on-failure -j$(JOBS) --timeout 900 -R '$(TSAN_TESTS)'
 
 # One run of the core suites under AddressSanitizer + UndefinedBehaviorSanitizer (CI runs it).
 test-asan: deps
@@ -51,4 +81,4 @@ bench: build
 	bench/run_all.sh $(BUILD)
 
 clean:
-	rm -rf $(BUILD) $(BUILD_ASAN)
+	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ) $(BUILD_TSAN)

@@ -24,7 +24,7 @@
 #include "statistics/statistics_error.hpp"
 #include "statistics/statistics_report.hpp"
 #include "store/threshold_store.hpp"
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 #ifdef PALPRIG_HAVE_GUI
 #include "gui/chart_png.hpp"
 #endif
@@ -115,7 +115,7 @@ std::string db_label(const ThresholdTrialRow& r, const std::string& column, cons
 }
 
 std::vector<ThresholdTrialRow> database_rows(const std::string& file) {
-  TrialStore store = open_trial_store_for_reading(file);
+  SqliteTrialStore store = open_sqlite_trial_store_for_reading(file);
   ThresholdStore threshold(store, false);
   return threshold.trials();
 }

@@ -24,7 +24,7 @@ void run_pulse_experiment(const PulseRunRequest& a) {
   const PulseProtocol from_file = load_pulse_protocol(a.protocol);
   std::uint64_t sim_seed = 0;
   if (!parse_simulated_participant(a.participant, sim_seed)) {
-    throw InputError("command line", "--participant",
+    throw InputError("command line", "participant",
                      "sim:SEED for a pulse protocol (a person palpates with pen input, which the terminal session does "
                      "not read; run it from the GUI)");
   }
@@ -37,7 +37,7 @@ void run_pulse_experiment(const PulseRunRequest& a) {
   std::unique_ptr<RigBackend> backend = make_backend(rig);
   backend->open();
 
-  TrialStore store(a.db, TrialStore::Access::read_write);
+  SqliteTrialStore store(a.db, TrialStore::Access::read_write);
   PulseObserverModel model;
   model.seed = sim_seed;
   PulseSessionRequest request;

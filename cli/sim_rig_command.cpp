@@ -26,7 +26,7 @@ void register_sim_rig_command(CLI::App& app) {
   sub->add_option("--listen", *listen,
                   "HOST:PORT to serve, one per link of the map in order (port 0: any free port, printed on start), or "
                   "pty to serve that link as Modbus RTU on a new pseudo-terminal; default: the rig file's own TCP addresses");
-  sub->add_option("--write-log", *write_log, "Write every output-register write to FILE (CSV t_s,channel,word,kPa)");
+  sub->add_option("--write-log", *write_log, "Write every output-register write to FILE (CSV t_s,channel,word,kPa,mono_ns; mono_ns: arrival on CLOCK_MONOTONIC)");
   sub->add_option("--watchdog-ms", *watchdog_ms,
                   "Like a module's communication watchdog: outputs of a link silent this long go to 0 kPa (0: off)")
       ->check(CLI::Range(0.0, 600000.0));
@@ -36,7 +36,7 @@ void register_sim_rig_command(CLI::App& app) {
     const RigConfig rig = load_rig_file(*rig_path);
     if (rig.backend != "modbus")
       throw InputError(rig.source, "backend", "\"modbus\" (sim-rig serves the rig's register map), got \"" + rig.backend + "\"");
-    const ModbusRigConfig map = parse_modbus_config(rig);
+    const ModbusRigConfig map = rig.modbus.value();
     std::vector<ListenAddress> addresses;
     if (listen->empty()) {
       for (std::size_t i = 0; i < map.links.size(); ++i) {

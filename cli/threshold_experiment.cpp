@@ -133,7 +133,7 @@ void run_threshold_experiment(const ThresholdRunRequest& a) {
   std::uint64_t sim_seed = 0;
   const bool simulated = parse_simulated_participant(a.participant, sim_seed);
   if (!simulated && a.participant.rfind("sim:", 0) == 0) {
-    throw InputError("command line", "--participant", "sim:SEED with a decimal seed, got '" + a.participant + "'");
+    throw InputError("command line", "participant", "sim:SEED with a decimal seed, got '" + a.participant + "'");
   }
   const RigConfig rig = a.rig.empty() ? load_rig_file(data_dir() / "rigs" / "simulated.json") : load_rig_file(a.rig);
   const CalibrationModels cal = a.cal.empty() ? CalibrationModels{} : load_calibration_file(a.cal);
@@ -148,7 +148,7 @@ void run_threshold_experiment(const ThresholdRunRequest& a) {
   std::unique_ptr<RigBackend> backend = make_backend(rig);
   backend->open();
 
-  TrialStore store(a.db, TrialStore::Access::read_write);
+  SqliteTrialStore store(a.db, TrialStore::Access::read_write);
   ThresholdObserverModel model;
   model.noise_kPa = a.sim_noise_kPa;
   model.criterion_kPa = a.sim_criterion_kPa;

@@ -40,9 +40,13 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
   const double period_s = 1.0 / opt.rate_hz;
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / opt.rate_hz));
   const auto total_ticks = static_cast<std::uint64_t>(std::llround(opt.duration_s * opt.rate_hz));
+  RealtimeSetup rt;  // held until the loop has vented: the PM QoS request lives in it
   if (realtime) {
-    const RealtimeSetup rt = enter_realtime(80, opt.want_fifo);
+    RealtimeOptions ro = opt.realtime;
+    ro.fifo = ro.fifo && opt.want_fifo;
+    rt = enter_realtime(ro);
     sum.realtime_note = rt.note;
+    sum.realtime_practices = describe_practices(rt, ro);
   }
   char fault_detail[256] = {0};
   int consecutive_overruns = 0;
@@ -146,6 +150,7 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
     }
   }
   backend.vent();  // a run always ends with every channel at 0 kPa
+  rt.pm_qos.release();  // the CPUs may sleep deeply again
   sum.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
   sum.sim_time_s = double(k) * period_s;
   sum.wake_latency = wake_hist.summary();

@@ -13,6 +13,7 @@
 
 #include "inputs/input_source.hpp"
 #include "runtime/latency_histogram.hpp"
+#include "runtime/realtime.hpp"
 #include "rigs/rig_backend.hpp"
 #include "controller/tick.hpp"
 
@@ -34,6 +35,9 @@ struct RunOptions {
   LoopMode mode = LoopMode::replay;
   std::filesystem::path telemetry_path;  // empty: no telemetry file
   bool want_fifo = true;
+  // Realtime mode only: FIFO priority, PM QoS request, timer slack, stack prefault, CPU pinning
+  // (runtime/realtime.hpp). FIFO is used when both want_fifo and realtime.fifo are true.
+  RealtimeOptions realtime;
   const std::atomic<int>* stop_signal = nullptr;  // set non-zero by a signal handler to stop (vents)
   // Operator controls from another thread (the GUI), read once per tick, never waited on:
   // while vent_request is set every setpoint is 0 kPa from that very tick on and the loop keeps
@@ -75,6 +79,7 @@ struct RunSummary {
   LatencySummary tick_time;
   double sim_time_s = 0, wall_time_s = 0;
   std::string realtime_note;
+  std::string realtime_practices;  // what was in effect, e.g. "SCHED_FIFO 80, mlockall, PM QoS 0 us"
   std::string telemetry_path;
 };
 

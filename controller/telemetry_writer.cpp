@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cstring>
 #include <fstream>
+#include <sstream>
+#include <string>
 
 #include "models/parse_error.hpp"
 
@@ -19,8 +21,9 @@ TelemetryFormat telemetry_format_for(const std::filesystem::path& path) {
   return ext == ".bin" || ext == ".ptl" ? TelemetryFormat::binary : TelemetryFormat::csv;
 }
 
-TelemetryWriter::TelemetryWriter(std::filesystem::path path, TelemetryFormat format, std::size_t capacity)
-    : path_(std::move(path)), format_(format),
+TelemetryWriter::TelemetryWriter(std::filesystem::path path, TelemetryFormat format, std::size_t capacity,
+                                 TelemetryLimits limits)
+    : path_(std::move(path)), format_(format), limits_(limits),
       queue_(std::make_unique<boost::lockfree::spsc_queue<TelemetryRecord>>(capacity)) {
   {  // Fail now, before anything moves, if the file cannot be created.
     std::ofstream probe(path_, std::ios::binary | std::ios::trunc);
@@ -50,26 +53,56 @@ void TelemetryWriter::push_wait(const TelemetryRecord& r) noexcept {
   }
 }
 
+namespace {
+std::string size_text(std::uint64_t bytes) {
+  return bytes >= (1u << 20) ? std::to_string(bytes >> 20) + " MiB" : std::to_string(bytes >> 10) + " KiB";
+}
+}  // namespace
+
+void TelemetryWriter::check_room(std::uint64_t more) {
+  constexpr std::uint64_t kMiB = 1 << 20;
+  if (bytes_ + more > limits_.max_bytes)
+    throw std::runtime_error("telemetry stopped at " + size_text(bytes_) + " in " + path_.string() +
+                             ": the budget of " + size_text(limits_.max_bytes) + " per file is reached");
+  if (bytes_ + more - bytes_at_space_check_ < kMiB && bytes_ != 0) return;
+  bytes_at_space_check_ = bytes_ + more;
+  std::error_code ec;
+  const auto dir = path_.has_parent_path() ? path_.parent_path() : std::filesystem::path(".");
+  const std::filesystem::space_info room = std::filesystem::space(dir, ec);
+  if (!ec && room.available < limits_.min_free_bytes + more)
+    throw std::runtime_error("telemetry stopped at " + size_text(bytes_) + " in " + path_.string() + ": the disk has " +
+                             size_text(room.available) + " free and " + size_text(limits_.min_free_bytes) +
+                             " are kept free");
+}
+
 std::string TelemetryWriter::failure() const { return failed() ? failure_ : std::string(); }
 
 void TelemetryWriter::run() noexcept {
   try {
     std::ofstream out(path_, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot open " + path_.string());
+    std::ostringstream chunk;  // one batch, so its size is known before it reaches the disk
     if (format_ == TelemetryFormat::binary) {
-      out.write(kMagic, sizeof kMagic);
+      chunk.write(kMagic, sizeof kMagic);
       const std::uint32_t header[2] = {kTelemetryVersion, static_cast<std::uint32_t>(sizeof(TelemetryRecord))};
-      out.write(reinterpret_cast<const char*>(header), sizeof header);
+      chunk.write(reinterpret_cast<const char*>(header), sizeof header);
     } else {
-      write_telemetry_csv_header(out);
+      write_telemetry_csv_header(chunk);
     }
     TelemetryRecord batch[256];
     for (;;) {
       const bool finishing = done_.load(std::memory_order_acquire);
       const std::size_t n = queue_->pop(batch, 256);
       for (std::size_t i = 0; i < n; ++i) {
-        if (format_ == TelemetryFormat::binary) out.write(reinterpret_cast<const char*>(&batch[i]), sizeof batch[i]);
-        else write_telemetry_csv_row(out, batch[i]);
+        if (format_ == TelemetryFormat::binary) chunk.write(reinterpret_cast<const char*>(&batch[i]), sizeof batch[i]);
+        else write_telemetry_csv_row(chunk, batch[i]);
+      }
+      const std::string bytes = std::move(chunk).str();
+      chunk.str({});
+      if (!bytes.empty()) {
+        check_room(bytes.size());
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        bytes_ += bytes.size();
       }
       written_.fetch_add(n, std::memory_order_relaxed);
       if (!out) throw std::runtime_error("write failed on " + path_.string() + " (disk full?)");
@@ -99,15 +132,43 @@ void write_telemetry_csv_header(std::ostream& out) {
   out << ",wake_latency_us,io_us,fault,flags\n";
 }
 
+namespace {
+
+// Appends one printf-formatted field to `row`. The field's length is whatever snprintf says
+// it needs (a float of 3e38 printed with %.4f is 45 characters, a double of 1e308 with %.6f is
+// 316), so no value a file or a run can hold writes past a buffer.
+template <typename... Args>
+void append_field(std::string& row, const char* format, Args... args) {
+  char field[64];
+  const int n = std::snprintf(field, sizeof field, format, args...);
+  if (n < 0) return;
+  if (static_cast<std::size_t>(n) < sizeof field) {
+    row.append(field, static_cast<std::size_t>(n));
+    return;
+  }
+  const std::size_t at = row.size();
+  row.resize(at + static_cast<std::size_t>(n) + 1);
+  std::snprintf(row.data() + at, static_cast<std::size_t>(n) + 1, format, args...);
+  row.resize(at + static_cast<std::size_t>(n));
+}
+
+}  // namespace
+
 void write_telemetry_csv_row(std::ostream& out, const TelemetryRecord& r) {
-  char buf[512];
-  int n = std::snprintf(buf, sizeof buf, "%llu,%.6f,%.3f,%.3f,%.4f", static_cast<unsigned long long>(r.tick), r.t_s,
-                        r.x_mm, r.y_mm, r.force_N);
+  std::string row;
+  row.reserve(256);
+  append_field(row, "%llu", static_cast<unsigned long long>(r.tick));
+  append_field(row, ",%.6f", r.t_s);
+  append_field(row, ",%.3f", double(r.x_mm));
+  append_field(row, ",%.3f", double(r.y_mm));
+  append_field(row, ",%.4f", double(r.force_N));
   const float* cols[4] = {r.stiffness, r.target_kPa, r.setpoint_kPa, r.monitor_kPa};
   for (const float* c : cols)
-    for (int i = 0; i < kFingerCount; ++i) n += std::snprintf(buf + n, sizeof buf - n, ",%.4f", c[i]);
-  n += std::snprintf(buf + n, sizeof buf - n, ",%.1f,%.1f,%d,%d\n", r.wake_latency_us, r.io_us, int(r.fault), int(r.flags));
-  out.write(buf, n);
+    for (int i = 0; i < kFingerCount; ++i) append_field(row, ",%.4f", double(c[i]));
+  append_field(row, ",%.1f", double(r.wake_latency_us));
+  append_field(row, ",%.1f", double(r.io_us));
+  append_field(row, ",%d,%d\n", int(r.fault), int(r.flags));
+  out.write(row.data(), static_cast<std::streamsize>(row.size()));
 }
 
 std::uint64_t convert_telemetry_to_csv(const std::filesystem::path& binary, const std::filesystem::path& csv) {

@@ -22,9 +22,19 @@ enum class TelemetryFormat { binary, csv };
 // Binary when the name ends in .bin or .ptl, CSV otherwise.
 TelemetryFormat telemetry_format_for(const std::filesystem::path& path);
 
+// Telemetry stops (the writer fails, the loop faults and vents, the message says why) before it
+// fills a disk: a run on a runaway input must not take the machine down with it.
+struct TelemetryLimits {
+  // Most bytes one file may take. 4 GiB is about 5 hours of CSV or 15 hours of binary at 1 kHz.
+  std::uint64_t max_bytes = std::uint64_t(4) << 30;
+  // Stop when the disk holding the file has less free space than this (checked every MiB).
+  std::uint64_t min_free_bytes = std::uint64_t(512) << 20;
+};
+
 class TelemetryWriter {
  public:
-  TelemetryWriter(std::filesystem::path path, TelemetryFormat format, std::size_t queue_capacity = 1 << 16);
+  TelemetryWriter(std::filesystem::path path, TelemetryFormat format, std::size_t queue_capacity = 1 << 16,
+                  TelemetryLimits limits = {});
   ~TelemetryWriter();
   TelemetryWriter(const TelemetryWriter&) = delete;
   TelemetryWriter& operator=(const TelemetryWriter&) = delete;
@@ -43,9 +53,13 @@ class TelemetryWriter {
 
  private:
   void run() noexcept;
+  // Throws (ending the writer) when `more` bytes would break the budget or the disk is nearly full.
+  void check_room(std::uint64_t more);
 
   std::filesystem::path path_;
   TelemetryFormat format_;
+  TelemetryLimits limits_;
+  std::uint64_t bytes_ = 0, bytes_at_space_check_ = 0;  // writer thread only
   std::unique_ptr<boost::lockfree::spsc_queue<TelemetryRecord>> queue_;
   std::atomic<bool> done_{false}, failed_{false};
   std::atomic<std::uint64_t> dropped_{0}, written_{0};

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "models/decimal_number.hpp"
 #include "models/tissue_scene.hpp"
 
 namespace palprig {
@@ -12,6 +13,11 @@ namespace palprig {
 namespace {
 
 constexpr int kMaxShapeNesting = 16;
+// Shapes (primitives and the unions etc. joining them) in one inclusion. The tick evaluates an
+// inclusion's shape many times a millisecond; a thousand parts is already more than any organ
+// model needs, and the bound keeps a hostile file from holding the loader for minutes.
+constexpr std::size_t kMaxShapeNodes = 4096;
+constexpr std::size_t kMaxBlobTerms = 256;
 constexpr double kMaxSize_mm = 1e4;
 constexpr double kMaxModulus_kPa = 1e8;  // 100 GPa: stiffer than any bone
 
@@ -24,10 +30,10 @@ std::string number_text(double v) {
 // Refused with a reason a scene author understands, not just a range.
 double positive(const JsonObject& o, const std::string& key, const char* what, double hi = kMaxSize_mm) {
   const auto& v = o.raw(key);
-  if (!v.is_number()) o.fail(key, std::string("a positive ") + what + ", got " + v.dump());
+  if (!v.is_number()) o.fail(key, std::string("a positive ") + what + ", got " + json_excerpt(v));
   const double d = v.get<double>();
-  if (!std::isfinite(d) || d <= 0) o.fail(key, std::string("a positive ") + what + " (sizes and moduli cannot be zero or negative), got " + v.dump());
-  if (d > hi) o.fail(key, std::string("a ") + what + " no larger than " + number_text(hi) + ", got " + v.dump());
+  if (!std::isfinite(d) || d <= 0) o.fail(key, std::string("a positive ") + what + " (sizes and moduli cannot be zero or negative), got " + json_excerpt(v));
+  if (d > hi) o.fail(key, std::string("a ") + what + " no larger than " + number_text(hi) + ", got " + json_excerpt(v));
   return d;
 }
 
@@ -40,19 +46,19 @@ double positive_or(const JsonObject& o, const std::string& key, double fallback,
 std::vector<double> triple(const JsonObject& o, const std::string& key, std::size_t n, double lo, double hi) {
   const auto& v = o.raw(key);
   if (!v.is_array() || v.size() != n)
-    o.fail(key, "an array of " + std::to_string(n) + " numbers, got " + v.dump());
+    o.fail(key, "an array of " + std::to_string(n) + " numbers, got " + json_excerpt(v));
   return o.numbers(key, lo, hi);
 }
 
 std::vector<double> positive_triple(const JsonObject& o, const std::string& key, std::size_t n, const char* what) {
   const auto& v = o.raw(key);
   if (!v.is_array() || v.size() != n)
-    o.fail(key, "an array of " + std::to_string(n) + " positive " + what + ", got " + v.dump());
+    o.fail(key, "an array of " + std::to_string(n) + " positive " + what + ", got " + json_excerpt(v));
   for (std::size_t i = 0; i < n; ++i)
     if (!v[i].is_number() || !(v[i].get<double>() > 0) || v[i].get<double>() > kMaxSize_mm)
       throw InputError(o.file(), o.path(key) + "[" + std::to_string(i) + "]",
                        std::string("a positive ") + what + " (no larger than " + number_text(kMaxSize_mm) + "), got " +
-                           v[i].dump());
+                           json_excerpt(v[i]));
   return o.numbers(key, 0, kMaxSize_mm);
 }
 
@@ -69,6 +75,10 @@ std::array<double, 3> radii3(const JsonObject& o, const std::string& key) {
 FrepShape::Node parse_shape(const JsonObject& s, FrepShape& shape, int nesting);
 
 std::vector<FrepShape::Node> parse_parts(const JsonObject& s, const std::string& key, FrepShape& shape, int nesting) {
+  const auto& list = s.raw(key);
+  if (list.is_array() && list.size() > kMaxShapeNodes)  // refused before reading thousands of them
+    s.fail(key, "at most " + std::to_string(kMaxShapeNodes) + " shapes in one inclusion, got " +
+                    std::to_string(list.size()) + " here");
   std::vector<FrepShape::Node> parts;
   for (const JsonObject& p : s.objects(key)) parts.push_back(parse_shape(p, shape, nesting + 1));
   if (parts.empty()) s.fail(key, "at least one shape");
@@ -77,6 +87,8 @@ std::vector<FrepShape::Node> parse_parts(const JsonObject& s, const std::string&
 
 FrepShape::Node parse_shape(const JsonObject& s, FrepShape& shape, int nesting) {
   if (nesting > kMaxShapeNesting) s.fail("type", "shapes nested at most " + std::to_string(kMaxShapeNesting) + " deep");
+  if (shape.node_count() >= kMaxShapeNodes)
+    s.fail("type", "at most " + std::to_string(kMaxShapeNodes) + " shapes in one inclusion");
   const std::string type = s.choice("type", {"sphere", "ellipsoid", "superellipsoid", "tube", "blobs", "union",
                                              "intersection", "difference", "scaled"});
   FrepShape::Node n = -1;
@@ -97,6 +109,9 @@ FrepShape::Node parse_shape(const JsonObject& s, FrepShape& shape, int nesting) 
     // paper's inverse scales s (1/mm^2) or radii r (s = 1/r^2), not both.
     const double c = positive(s, "threshold", "threshold c", 1e6);
     std::vector<Blob> terms;
+    // Every blob counts at every point (a sum, not a union): a few hundred is the useful limit.
+    if (const auto& list = s.raw("blobs"); list.is_array() && list.size() > kMaxBlobTerms)
+      s.fail("blobs", "at most " + std::to_string(kMaxBlobTerms) + " blobs in one shape, got " + std::to_string(list.size()));
     for (const JsonObject& b : s.objects("blobs")) {
       Blob t;
       t.centre = point3(b, "centre_mm");
@@ -172,12 +187,12 @@ ArterySpec parse_artery(const JsonObject& a, const std::filesystem::path& scene_
   s.name = a.string("name");
   const auto& path = a.raw("path_mm");
   if (!path.is_array() || path.size() < 2)
-    a.fail("path_mm", "an array of at least 2 points [x, y] along the artery's centreline, got " + path.dump());
+    a.fail("path_mm", "an array of at least 2 points [x, y] along the artery's centreline, got " + json_excerpt(path));
   for (std::size_t i = 0; i < path.size(); ++i) {
     const auto& p = path[i];
     if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number() ||
         !std::isfinite(p[0].get<double>()) || !std::isfinite(p[1].get<double>()))
-      throw InputError(a.file(), a.path("path_mm") + "[" + std::to_string(i) + "]", "a point [x_mm, y_mm], got " + p.dump());
+      throw InputError(a.file(), a.path("path_mm") + "[" + std::to_string(i) + "]", "a point [x_mm, y_mm], got " + json_excerpt(p));
     s.path.push_back({p[0].get<double>(), p[1].get<double>()});
   }
   s.radius_mm = positive(a, "radius_mm", "artery radius in mm", 100);
@@ -198,7 +213,7 @@ ArterySpec parse_artery(const JsonObject& a, const std::filesystem::path& scene_
   s.own_force_window = a.has("force_window_N");
   if (s.own_force_window) {
     const auto fw = triple(a, "force_window_N", 2, 0, 1000);
-    if (!(fw[0] < fw[1])) a.fail("force_window_N", "[F_min, F_max] with F_min < F_max, got " + a.raw("force_window_N").dump());
+    if (!(fw[0] < fw[1])) a.fail("force_window_N", "[F_min, F_max] with F_min < F_max, got " + json_excerpt(a.raw("force_window_N")));
     s.force_window.min_N = fw[0];
     s.force_window.max_N = fw[1];
   }
@@ -227,19 +242,9 @@ PulseWaveform load_waveform_csv(const std::filesystem::path& path) {
     if (comma == std::string::npos)
       throw InputError(file, "line " + std::to_string(line_no), "two comma-separated numbers t_s,value, got \"" + line + "\"");
     const std::string a = line.substr(0, comma), b = line.substr(comma + 1);
-    std::size_t used_a = 0, used_b = 0;
     double ta = 0, vb = 0;
-    bool ok = true;
-    try {
-      ta = std::stod(a, &used_a);
-      vb = std::stod(b, &used_b);
-    } catch (const std::exception&) {
-      ok = false;
-    }
-    auto blank = [](const std::string& s, std::size_t from) {
-      return s.find_first_not_of(" \t", from) == std::string::npos;
-    };
-    if (!ok || !blank(a, used_a) || !blank(b, used_b)) {
+    const bool ok = parse_decimal(a, ta) == DecimalCell::number && parse_decimal(b, vb) == DecimalCell::number;
+    if (!ok) {
       if (t.empty() && !seen_header) {  // a header line before the first row
         seen_header = true;
         continue;

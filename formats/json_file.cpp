@@ -3,21 +3,133 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 namespace palprig {
 
-nlohmann::json read_json_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), "file", "a readable JSON file (cannot open it)");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+namespace {
+
+// nlohmann's DOM builder, plus what a user-facing file needs: the field path of every value
+// (so an overflowing number names its field) and a nesting limit (so a file of 100,000 '['
+// is refused here, before any recursive walk over the value - dump(), comparison, the
+// validators - can overflow the stack). The parser itself is iterative.
+class CheckedSax {
+ public:
+  using json = nlohmann::json;
+  CheckedSax(json& root, std::string file) : dom_(root, true), file_(std::move(file)) {}
+
+  bool null() { return value(), dom_.null(); }
+  bool boolean(bool v) { return value(), dom_.boolean(v); }
+  bool number_integer(json::number_integer_t v) { return value(), dom_.number_integer(v); }
+  bool number_unsigned(json::number_unsigned_t v) { return value(), dom_.number_unsigned(v); }
+  bool number_float(json::number_float_t v, const json::string_t& s) { return value(), dom_.number_float(v, s); }
+  bool string(json::string_t& v) { return value(), dom_.string(v); }
+  bool binary(json::binary_t& v) { return value(), dom_.binary(v); }
+  bool start_object(std::size_t n) { return open(false), dom_.start_object(n); }
+  bool key(json::string_t& k) {
+    frames_.back().key = k;
+    return dom_.key(k);
+  }
+  bool end_object() { return frames_.pop_back(), dom_.end_object(); }
+  bool start_array(std::size_t n) { return open(true), dom_.start_array(n); }
+  bool end_array() { return frames_.pop_back(), dom_.end_array(); }
+
+  [[noreturn]] bool parse_error(std::size_t, const std::string& token, const nlohmann::detail::exception& ex) {
+    if (ex.id == 406)  // a number beyond double's range (1e400): bad input in a known field
+      throw InputError(file_, path_or("top level", true),
+                       "a number within +-1.8e308, got " + printable_excerpt(token, 40));
     // e.what() reads "[json.exception.parse_error.101] parse error at line L, column C: ..."
-    std::string msg = e.what();
+    const std::string msg = ex.what();
     const auto pos = msg.find("at line");
-    throw InputError(path.string(), pos == std::string::npos ? "syntax" : msg.substr(pos, msg.find(':', pos) - pos),
+    throw InputError(file_, pos == std::string::npos ? "syntax" : msg.substr(pos, msg.find(':', pos) - pos),
                      "valid JSON (" + msg.substr(msg.rfind(": ") + 2) + ")");
   }
+
+ private:
+  struct Frame {
+    bool array = false;
+    std::size_t index = 0;  // next element's index (arrays)
+    std::string key;        // last key seen (objects)
+  };
+  // A value arrives: in an array it is the next element.
+  void value() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+  void open(bool array) {
+    value();
+    if (frames_.size() >= kMaxJsonDepth)
+      throw InputError(file_, path_or("top level", false),
+                       "objects and arrays nested at most " + std::to_string(kMaxJsonDepth) + " deep");
+    frames_.push_back({array, 0, {}});
+  }
+  // The path of the value being read. A scalar still pending (being_read) has not been counted
+  // in its array yet; an opened container has.
+  std::string path_or(const char* fallback, bool being_read) const {
+    std::string p;
+    for (std::size_t i = 0; i < frames_.size(); ++i) {
+      const Frame& f = frames_[i];
+      const bool pending = being_read && i + 1 == frames_.size();
+      if (f.array) p += "[" + std::to_string(pending || f.index == 0 ? f.index : f.index - 1) + "]";
+      else if (!f.key.empty() || !p.empty()) p += (p.empty() ? "" : ".") + f.key;
+      if (p.size() > kMaxWhereChars) break;  // InputError cuts it anyway
+    }
+    return p.empty() ? fallback : p;
+  }
+
+  nlohmann::detail::json_sax_dom_parser<json> dom_;
+  std::string file_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
+nlohmann::json read_json_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "file", "a readable JSON file (cannot open it)");
+  nlohmann::json doc;
+  CheckedSax sax(doc, path.string());
+  nlohmann::json::sax_parse(in, &sax);
+  return doc;
+}
+
+std::string json_excerpt(const nlohmann::json& v, std::size_t max_chars) {
+  // Built piece by piece so a huge value costs max_chars, not its whole size.
+  std::string out;
+  auto add = [&](const std::string& s) {
+    if (out.size() <= max_chars) out += s;
+    return out.size() <= max_chars;
+  };
+  auto walk = [&](auto&& self, const nlohmann::json& x, std::size_t depth) -> bool {
+    if (depth > kMaxJsonDepth) return add("...");
+    if (x.is_object()) {
+      if (!add("{")) return false;
+      bool first = true;
+      for (auto it = x.begin(); it != x.end(); ++it) {
+        if (!add(std::string(first ? "" : ", ") + nlohmann::json(it.key()).dump() + ": ")) return false;
+        if (!self(self, it.value(), depth + 1)) return false;
+        first = false;
+      }
+      return add("}");
+    }
+    if (x.is_array()) {
+      if (!add("[")) return false;
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        if (i && !add(", ")) return false;
+        if (!self(self, x[i], depth + 1)) return false;
+      }
+      return add("]");
+    }
+    // dump() escapes control characters in strings; a long string is cut below.
+    return add(x.is_string() && x.get_ref<const std::string&>().size() > max_chars
+                   ? nlohmann::json(x.get_ref<const std::string&>().substr(0, max_chars)).dump()
+                   : x.dump());
+  };
+  walk(walk, v, 0);
+  if (out.size() > max_chars) {
+    out.resize(max_chars);
+    out += "...";
+  }
+  return out;
 }
 
 JsonObject::JsonObject(const nlohmann::json& value, std::string file, std::string where)
@@ -51,9 +163,9 @@ static std::string range_text(double lo, double hi) {
 
 double JsonObject::number(const std::string& key, double lo, double hi) const {
   const auto& v = get(key);
-  if (!v.is_number()) fail(key, range_text(lo, hi) + ", got " + v.dump());
+  if (!v.is_number()) fail(key, range_text(lo, hi) + ", got " + json_excerpt(v));
   const double d = v.get<double>();
-  if (!std::isfinite(d) || d < lo || d > hi) fail(key, range_text(lo, hi) + ", got " + v.dump());
+  if (!std::isfinite(d) || d < lo || d > hi) fail(key, range_text(lo, hi) + ", got " + json_excerpt(v));
   return d;
 }
 
@@ -64,7 +176,7 @@ double JsonObject::number_or(const std::string& key, double fallback, double lo,
 std::int64_t JsonObject::integer(const std::string& key, std::int64_t lo, std::int64_t hi) const {
   const auto& v = get(key);
   if (!v.is_number_integer() || v.get<std::int64_t>() < lo || v.get<std::int64_t>() > hi)
-    fail(key, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + v.dump());
+    fail(key, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + json_excerpt(v));
   return v.get<std::int64_t>();
 }
 
@@ -75,7 +187,7 @@ std::int64_t JsonObject::integer_or(const std::string& key, std::int64_t fallbac
 
 std::string JsonObject::string(const std::string& key) const {
   const auto& v = get(key);
-  if (!v.is_string()) fail(key, "a string, got " + v.dump());
+  if (!v.is_string()) fail(key, "a string, got " + json_excerpt(v));
   return v.get<std::string>();
 }
 
@@ -100,23 +212,23 @@ std::string JsonObject::choice_or(const std::string& key, const std::string& fal
 bool JsonObject::boolean_or(const std::string& key, bool fallback) const {
   if (!has(key)) return fallback;
   const auto& v = get(key);
-  if (!v.is_boolean()) fail(key, "true or false, got " + v.dump());
+  if (!v.is_boolean()) fail(key, "true or false, got " + json_excerpt(v));
   return v.get<bool>();
 }
 
 JsonObject JsonObject::object(const std::string& key) const {
   const auto& v = get(key);
-  if (!v.is_object()) fail(key, "an object, got " + v.dump());
+  if (!v.is_object()) fail(key, "an object, got " + json_excerpt(v));
   return JsonObject(v, file_, path(key));
 }
 
 std::vector<JsonObject> JsonObject::objects(const std::string& key) const {
   const auto& v = get(key);
-  if (!v.is_array()) fail(key, "an array of objects, got " + v.dump());
+  if (!v.is_array()) fail(key, "an array of objects, got " + json_excerpt(v));
   std::vector<JsonObject> out;
   for (std::size_t i = 0; i < v.size(); ++i) {
     const std::string p = path(key) + "[" + std::to_string(i) + "]";
-    if (!v[i].is_object()) throw InputError(file_, p, "an object, got " + v[i].dump());
+    if (!v[i].is_object()) throw InputError(file_, p, "an object, got " + json_excerpt(v[i]));
     out.emplace_back(v[i], file_, p);
   }
   return out;
@@ -124,12 +236,12 @@ std::vector<JsonObject> JsonObject::objects(const std::string& key) const {
 
 std::vector<double> JsonObject::numbers(const std::string& key, double lo, double hi) const {
   const auto& v = get(key);
-  if (!v.is_array()) fail(key, "an array of numbers, got " + v.dump());
+  if (!v.is_array()) fail(key, "an array of numbers, got " + json_excerpt(v));
   std::vector<double> out;
   for (std::size_t i = 0; i < v.size(); ++i) {
     const std::string p = path(key) + "[" + std::to_string(i) + "]";
     if (!v[i].is_number() || v[i].get<double>() < lo || v[i].get<double>() > hi)
-      throw InputError(file_, p, range_text(lo, hi) + ", got " + v[i].dump());
+      throw InputError(file_, p, range_text(lo, hi) + ", got " + json_excerpt(v[i]));
     out.push_back(v[i].get<double>());
   }
   return out;
@@ -138,10 +250,10 @@ std::vector<double> JsonObject::numbers(const std::string& key, double lo, doubl
 void JsonObject::require_version(int supported) const {
   const auto& v = get("version");
   if (!v.is_number_integer() || v.get<std::int64_t>() < 1)
-    fail("version", "a positive integer file version, got " + v.dump());
+    fail("version", "a positive integer file version, got " + json_excerpt(v));
   if (v.get<std::int64_t>() > supported)
     fail("version", "version " + std::to_string(supported) + " or older (this palprig is older than the file), got " +
-                        v.dump());
+                        json_excerpt(v));
 }
 
 void JsonObject::refuse_unknown() const {

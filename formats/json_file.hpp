@@ -15,8 +15,18 @@
 
 namespace palprig {
 
-// Parse a whole file; syntax errors report the line and column.
+// Objects and arrays nested deeper than this are refused while parsing (no palprig file
+// needs more than 6 levels; the bound keeps every recursive walk over a value far from the
+// stack's end).
+inline constexpr std::size_t kMaxJsonDepth = 64;
+
+// Parse a whole file; syntax errors report the line and column, a number beyond double's range
+// (1e400) and too deep a nesting report the field path.
 nlohmann::json read_json_file(const std::filesystem::path& path);
+
+// A value as JSON text for a refusal: at most max_chars characters (then "..."), control
+// characters escaped; costs max_chars however large the value is.
+std::string json_excerpt(const nlohmann::json& value, std::size_t max_chars = 80);
 
 class JsonObject {
  public:

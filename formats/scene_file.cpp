@@ -50,7 +50,7 @@ SceneFile load_scene_file(const std::filesystem::path& path) {
       outside.background_stiffness = ob.number("background", 0, 1);
       ob.refuse_unknown();
     } else {
-      m.fail("outside", "\"clamp\" or {\"background\": stiffness 0..1}, got " + o.dump());
+      m.fail("outside", "\"clamp\" or {\"background\": stiffness 0..1}, got " + json_excerpt(o));
     }
   }
   m.refuse_unknown();

@@ -49,6 +49,7 @@ TabletConfig parse_tablet_config(const JsonObject& o) {
     if (!ok) o.fail("pressure_curve_N", expected + " (forces 0..100 N)");
   }
   t.grab = o.boolean_or("grab", t.grab);
+  t.reader_fifo_priority = static_cast<int>(o.integer_or("reader_fifo_priority", t.reader_fifo_priority, 0, 98));
   o.refuse_unknown();
   return t;
 }

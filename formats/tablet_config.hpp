@@ -6,7 +6,9 @@
 //              "origin_mm": [20, 15],            (tablet mm that land on the scene's 0,0)
 //              "pressure_curve_N": [[0, 0], [0.5, 1.2], [1, 4]],
 //              "size_mm": [152, 95],             (only for tablets that report no resolution)
-//              "grab": false}                    (true: the desktop stops seeing the pen)
+//              "grab": false,                    (true: the desktop stops seeing the pen)
+//              "reader_fifo_priority": 60}       (SCHED_FIFO of the reader thread, below the
+//                                                 loop's 80; 0: normal scheduling)
 //
 // The pressure curve maps the normalised pressure reading (0 at the device minimum, 1 at its
 // maximum) to newtons, piecewise linear through the points; measure it once with a scale.
@@ -33,6 +35,7 @@ struct TabletConfig {
   PressureCurve pressure;
   std::array<double, 2> size_mm{0.0, 0.0};  // 0: use the device's resolution
   bool grab = false;
+  int reader_fifo_priority = 60;  // see runtime/thread_priorities.hpp
 };
 
 // Throws InputError naming the file and field.

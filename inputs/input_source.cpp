@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
+#include "models/decimal_number.hpp"
 #include "models/parse_error.hpp"
 
 namespace palprig {
@@ -38,7 +40,21 @@ TouchSample TraceInput::latest(double t_s) noexcept {
   return out;
 }
 
-std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, double contact_force_N) {
+TraceLimits TraceLimits::unbounded() {
+  const double inf = std::numeric_limits<double>::infinity();
+  return {inf, inf};
+}
+
+namespace {
+std::string seconds_text(double s) {
+  std::ostringstream o;
+  o << s << " s";
+  return o.str();
+}
+}  // namespace
+
+std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, double contact_force_N,
+                                        const TraceLimits& limits) {
   const std::string file = path.string();
   std::ifstream in(path);
   if (!in) throw InputError(file, "file", "a readable trace CSV (cannot open it)");
@@ -46,6 +62,7 @@ std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, doubl
   std::size_t line_no = 0;
   std::vector<TouchSample> out;
   bool header = false;
+  double first_t_s = 0;
   while (std::getline(in, line)) {
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -63,18 +80,26 @@ std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, doubl
     static const char* names[4] = {"t_s", "x_mm", "y_mm", "force_N"};
     while (std::getline(ss, cell, ',')) {
       if (n >= 4) throw InputError(file, "line " + std::to_string(line_no), "4 values (t_s,x_mm,y_mm,force_N), got more");
-      std::size_t used = 0;
-      try { v[n] = std::stod(cell, &used); } catch (const std::exception&) { used = 0; }
-      if (cell.empty() || used != cell.size() || !std::isfinite(v[n]))
+      if (parse_decimal(cell, v[n]) != DecimalCell::number)
         throw InputError(file, "line " + std::to_string(line_no) + ", " + names[n], "a finite number, got '" + cell + "'");
       ++n;
     }
     if (n != 4) throw InputError(file, "line " + std::to_string(line_no), "4 values (t_s,x_mm,y_mm,force_N), got " + std::to_string(n));
     if (v[3] < 0) throw InputError(file, "line " + std::to_string(line_no) + ", force_N", "a force >= 0 N, got " + std::to_string(v[3]));
-    if (!out.empty() && !(v[0] > out.back().t_s))
-      throw InputError(file, "line " + std::to_string(line_no) + ", t_s", "a time after the previous row's " + std::to_string(out.back().t_s) + " s");
-    if (out.empty() && v[0] < 0) throw InputError(file, "line " + std::to_string(line_no) + ", t_s", "a time >= 0 s");
-    out.push_back({v[0], v[1], v[2], v[3], v[3] >= contact_force_N});
+    if (out.empty()) first_t_s = v[0];
+    const double t_s = v[0] - first_t_s;  // relative to the first row
+    const std::string where_t = "line " + std::to_string(line_no) + ", t_s";
+    if (!out.empty() && !(t_s > out.back().t_s))
+      throw InputError(file, where_t, "a time after the previous row's " + std::to_string(out.back().t_s + first_t_s) + " s");
+    if (!out.empty() && t_s - out.back().t_s > limits.max_gap_s)
+      throw TraceBoundError(file, where_t,
+                            "rows at most " + seconds_text(limits.max_gap_s) +
+                                " apart (the stale-input limit), got a gap of " + seconds_text(t_s - out.back().t_s));
+    if (t_s > limits.max_length_s)
+      throw TraceBoundError(file, where_t,
+                            "a trace at most " + seconds_text(limits.max_length_s) + " long (times count from the first row, " +
+                                seconds_text(first_t_s) + "), got " + seconds_text(t_s));
+    out.push_back({t_s, v[1], v[2], v[3], v[3] >= contact_force_N});
   }
   if (!header) throw InputError(file, "line 1", "the header 't_s,x_mm,y_mm,force_N'");
   if (out.size() < 2) throw InputError(file, "line " + std::to_string(line_no), "at least 2 samples");

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "models/parse_error.hpp"
 #include "models/touch_sample.hpp"
 #include "models/scene.hpp"
 
@@ -37,7 +38,26 @@ class TraceInput final : public InputSource {
   std::size_t cursor_ = 0;  // the loop's time only moves forward: search from here
 };
 
-std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, double contact_force_N = 0.05);
+// What a trace may hold before it is refused. A trace's times are relative to its first row
+// (a recorder's epoch timestamps are fine), but a trace that runs for days, or whose rows are
+// further apart than the loop's stale-input limit, is almost always a mistake (a unit error,
+// a clock jump) and would replay for ever into the telemetry. unbounded() lifts both, for a
+// run whose length is given explicitly.
+struct TraceLimits {
+  double max_length_s = 3600.0;  // one hour
+  double max_gap_s = 0.1;        // the rig's safety.max_input_age_s
+  static TraceLimits unbounded();
+};
+
+// Refused because of TraceLimits (not malformed): the command line says how to run it anyway.
+class TraceBoundError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+// Reads the trace and shifts its times so the first row is at t = 0 s.
+std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, double contact_force_N = 0.05,
+                                        const TraceLimits& limits = {});
 void write_trace_csv(const std::filesystem::path& path, const std::vector<TouchSample>& samples);
 
 // A scripted raster sweep over a scene's bounds at constant speed and force: rows spaced

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "runtime/realtime.hpp"
 #include "runtime/worker_fault.hpp"
 #include "models/parse_error.hpp"
 
@@ -20,7 +21,7 @@ constexpr int kHeartbeatMs = 10;
 
 TabletInput::TabletInput(std::unique_ptr<PenEventSource> source, const TabletConfig& config)
     : source_(std::move(source)), decoder_(source_->axes(), config), description_(source_->describe()),
-      duration_s_(source_->duration_s()) {
+      duration_s_(source_->duration_s()), reader_fifo_priority_(config.reader_fifo_priority) {
   Published first;
   first.frame = decoder_.frame();
   first.heartbeat_ns = mono_ns();
@@ -35,6 +36,9 @@ TabletInput::~TabletInput() {
 
 void TabletInput::reader_main() noexcept {
   try {
+    // Below the loop and the bus thread (runtime/thread_priorities.hpp). Refused quietly when
+    // the system does not permit it: the loop's own note says so once.
+    (void)set_thread_fifo(reader_fifo_priority_);
     std::vector<input_event> events;
     events.reserve(256);
     PenState resynced;
@@ -93,18 +97,19 @@ TouchSample TabletInput::latest(double t_s) noexcept {
   return s;
 }
 
-std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const TabletConfig& config) {
+std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const TabletConfig& config,
+                                               const PenRecordingLimits& recording_limits) {
   std::string path = config.device;
   if (spec.rfind("tablet:", 0) == 0) path = spec.substr(7);
-  else if (spec != "tablet") throw InputError("--input", spec, "tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
+  else if (spec != "tablet") throw InputError("input", spec, "tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
   std::unique_ptr<PenEventSource> source;
   struct stat st{};
-  if (path != "auto" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) source = std::make_unique<EvemuPenSource>(path);
+  if (path != "auto" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) source = std::make_unique<EvemuPenSource>(path, recording_limits);
   else source = std::make_unique<EvdevPenSource>(path, config.grab);
   try {
     return std::make_unique<TabletInput>(std::move(source), config);
   } catch (const std::invalid_argument& e) {
-    throw InputError("--input", spec, std::string("a tablet palprig can convert to mm and newtons (") + e.what() + ")");
+    throw InputError("input", spec, std::string("a tablet palprig can convert to mm and newtons (") + e.what() + ")");
   }
 }
 

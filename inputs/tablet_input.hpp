@@ -51,12 +51,14 @@ class TabletInput final : public InputSource {
   std::atomic<bool> stop_{false};
   std::atomic<bool> started_{false};  // the loop asked for its first sample
   std::atomic<std::uint64_t> frames_{0};
+  int reader_fifo_priority_ = 0;
   std::int64_t epoch_ns_ = 0;  // loop time 0 on CLOCK_MONOTONIC, fixed at the first latest()
   std::thread reader_;
 };
 
 // "tablet", "tablet:/dev/input/eventN" or "tablet:FILE.evemu" (a recording replayed in real
 // time through the same reader). Throws InputError when no such device or file can be used.
-std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const TabletConfig& config);
+std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const TabletConfig& config,
+                                               const PenRecordingLimits& recording_limits = {});
 
 }  // namespace palprig

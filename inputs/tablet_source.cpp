@@ -9,6 +9,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string_view>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -43,7 +48,7 @@ EvdevPenSource::EvdevPenSource(const std::string& path, bool grab) {
     const int fd = ::open(p.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
       if (path != "auto")
-        throw InputError("--input", "tablet:" + path, std::string("a readable event device (") + std::strerror(errno) +
+        throw InputError("input", "tablet:" + path, std::string("a readable event device (") + std::strerror(errno) +
                                                           (errno == EACCES ? "; join the 'input' group or add a udev rule" : "") + ")");
       if (errno == EACCES) refused += " " + p;
       continue;
@@ -53,7 +58,7 @@ EvdevPenSource::EvdevPenSource(const std::string& path, bool grab) {
       if (d) libevdev_free(d);
       ::close(fd);
       if (path != "auto")
-        throw InputError("--input", "tablet:" + path, "a pen tablet (ABS_X, ABS_Y, ABS_PRESSURE and a pen tool key)");
+        throw InputError("input", "tablet:" + path, "a pen tablet (ABS_X, ABS_Y, ABS_PRESSURE and a pen tool key)");
       continue;
     }
     fd_ = fd;
@@ -62,14 +67,14 @@ EvdevPenSource::EvdevPenSource(const std::string& path, bool grab) {
     break;
   }
   if (!dev_)
-    throw InputError("--input", "tablet", "a pen tablet under /dev/input (none of " + std::to_string(candidates.size()) +
+    throw InputError("input", "tablet", "a pen tablet under /dev/input (none of " + std::to_string(candidates.size()) +
                                               " event devices has ABS_X, ABS_Y, ABS_PRESSURE and a pen tool" +
                                               (refused.empty() ? std::string() : "; no permission to read" + refused) + ")");
   name_ = libevdev_get_name(dev_) ? libevdev_get_name(dev_) : "unnamed";
   // Event times on the loop's clock, so ages compare directly.
   libevdev_set_clock_id(dev_, CLOCK_MONOTONIC);
   if (grab && libevdev_grab(dev_, LIBEVDEV_GRAB) < 0)
-    throw InputError("--input", "tablet:" + path_, "a device palprig may grab (another program holds it)");
+    throw InputError("input", "tablet:" + path_, "a device palprig may grab (another program holds it)");
   const input_absinfo* x = libevdev_get_abs_info(dev_, ABS_X);
   const input_absinfo* y = libevdev_get_abs_info(dev_, ABS_Y);
   const input_absinfo* p = libevdev_get_abs_info(dev_, ABS_PRESSURE);
@@ -126,16 +131,180 @@ PenEventSource::Status EvdevPenSource::next(std::vector<input_event>& out, int t
   return did_resync ? Status::resynced : Status::events;
 }
 
-PenRecording read_pen_recording(const std::filesystem::path& path) {
+PenRecordingLimits PenRecordingLimits::unbounded() {
+  const double inf = std::numeric_limits<double>::infinity();
+  return {inf, inf};
+}
+
+namespace {
+
+constexpr std::size_t kMaxRecordingBytes = std::size_t(512) << 20;  // ~10 hours of a busy pen
+
+std::string seconds_text(double s) {
+  std::ostringstream o;
+  o << s << " s";
+  return o.str();
+}
+
+// libevemu reports a description line it cannot parse on stderr by itself (FATAL: ..., WARNING:
+// ...) and has no way to turn that off. So every line is checked here first, against the
+// formats libevemu 2.7 reads (sscanf "%02x" fields, A: lines with 6 numbers from format 1.2 on),
+// and in its order (N:, I:, then P:, B:, A:, L:, S: lines); a line it would complain about is
+// refused with palprig's one line and libevemu never sees it. Returns what was expected, or "".
+std::string description_problem(const std::string& line, int format_minor, char& last_tag) {
+  const char tag = line[0];
+  static const std::string order = "NIPBALS";
+  const auto rank = order.find(tag);
+  const auto last = last_tag ? order.find(last_tag) : std::string::npos;
+  if (last_tag == 0 && tag != 'N') return "the device name first ('N: <name>')";
+  if (last_tag == 'N' && tag != 'I') return "the device id after the name ('I: <bus> <vendor> <product> <version>' in hex)";
+  if (last_tag != 0 && last_tag != 'N' && (tag == 'N' || tag == 'I' || rank < last))
+    return "description lines in evemu-record's order (N:, I:, P:, B:, A:, L:, S:)";
+  last_tag = tag;
+  if (tag == 'N') return line.size() > 3 ? "" : "a device name after 'N: '";
+  std::istringstream in(line.substr(2));
+  std::vector<std::string> fields;
+  for (std::string f; in >> f;) fields.push_back(f);
+  auto hex = [](const std::string& f, unsigned max) {
+    unsigned v = 0;
+    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v, 16);
+    return ec == std::errc() && end == f.data() + f.size() && v <= max;
+  };
+  auto integer = [](const std::string& f) {
+    int v = 0;
+    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v, 10);
+    return ec == std::errc() && end == f.data() + f.size();
+  };
+  auto all = [&](std::size_t from, auto&& ok) {
+    for (std::size_t i = from; i < fields.size(); ++i)
+      if (!ok(fields[i])) return false;
+    return true;
+  };
+  switch (tag) {
+    case 'I':
+      return fields.size() == 4 && all(0, [&](const std::string& f) { return f.size() <= 4 && hex(f, 0xffff); })
+                 ? ""
+                 : "'I: <bus> <vendor> <product> <version>' (4 hex numbers)";
+    case 'P':
+      return fields.size() == 8 && all(0, [&](const std::string& f) { return f.size() <= 2 && hex(f, 0xff); })
+                 ? ""
+                 : "'P: ' and 8 hex bytes";
+    case 'B':
+      return fields.size() == 9 && hex(fields[0], EV_MAX) &&
+                     all(0, [&](const std::string& f) { return f.size() <= 2 && hex(f, 0xff); })
+                 ? ""
+                 : "'B: <event type> ' and 8 hex bytes";
+    case 'A': {
+      const std::size_t numbers = format_minor >= 2 ? 6 : 5;
+      return fields.size() == numbers && fields[0].size() <= 2 && hex(fields[0], ABS_MAX) && all(1, integer)
+                 ? ""
+                 : "'A: <axis> <min> <max> <fuzz> <flat>" + std::string(numbers == 6 ? " <resolution>'" : "'");
+    }
+    default:  // L:, S:
+      return fields.size() == 2 && fields[0].size() <= 2 && hex(fields[0], 0xff) && integer(fields[1])
+                 ? ""
+                 : std::string("'") + tag + ": <code> <state>'";
+  }
+}
+
+bool is_description_line(const std::string& line) {
+  // What evemu-record writes before the events: N: name, I: id, P: properties, B: bit masks,
+  // A: axes, L: LEDs, S: switches, and '#' comments.
+  if (line.empty() || line[0] == '#') return true;
+  static const char* tags[] = {"N:", "I:", "P:", "B:", "A:", "L:", "S:"};
+  for (const char* t : tags)
+    if (line.rfind(t, 0) == 0) return true;
+  return false;
+}
+
+// "E: <sec>.<usec> <type hex> <code hex> <value>" with an optional "# comment" after it.
+bool parse_event_line(std::string line, input_event& ev) {
+  if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+  std::istringstream in(line.substr(2));
+  std::string time, type, code, value, extra;
+  if (!(in >> time >> type >> code >> value) || (in >> extra)) return false;
+  const auto dot = time.find('.');
+  if (dot == std::string::npos || dot == 0 || time.size() - dot - 1 == 0 || time.size() - dot - 1 > 6) return false;
+  auto whole = [](std::string_view t, auto& out, int base) {
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), out, base);
+    return ec == std::errc() && end == t.data() + t.size() && !t.empty();
+  };
+  std::uint64_t sec = 0;
+  std::uint32_t usec = 0, type_v = 0, code_v = 0;
+  std::int32_t value_v = 0;
+  std::string usec_text = time.substr(dot + 1);
+  usec_text.append(6 - usec_text.size(), '0');
+  if (!whole(std::string_view(time).substr(0, dot), sec, 10) || !whole(usec_text, usec, 10) ||
+      !whole(type, type_v, 16) || !whole(code, code_v, 16) || !whole(value, value_v, 10))
+    return false;
+  if (sec > std::uint64_t(std::numeric_limits<std::int32_t>::max()) || type_v > EV_MAX || code_v > 0x2ff) return false;
+  ev = {};
+  ev.input_event_sec = static_cast<decltype(ev.input_event_sec)>(sec);
+  ev.input_event_usec = static_cast<decltype(ev.input_event_usec)>(usec);
+  ev.type = static_cast<std::uint16_t>(type_v);
+  ev.code = static_cast<std::uint16_t>(code_v);
+  ev.value = value_v;
+  return true;
+}
+
+}  // namespace
+
+PenRecording read_pen_recording(const std::filesystem::path& path, const PenRecordingLimits& limits) {
   const std::string file = path.string();
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> fp(std::fopen(file.c_str(), "r"), std::fclose);
-  if (!fp) throw InputError(file, "file", std::string("a readable evemu recording (") + std::strerror(errno) + ")");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(file, "file", std::string("a readable evemu recording (") + std::strerror(errno) + ")");
+  // The description goes to libevemu; the event lines are read here, line by line, so a bad one
+  // is refused with its line number (libevemu's own reader stops at it silently and prints its
+  // own FATAL/WARNING line beside ours).
+  std::string description, line;
+  std::vector<std::pair<std::size_t, std::string>> event_lines;
+  std::size_t line_no = 0, bytes = 0;
+  int format_minor = 0;  // "# EVEMU 1.3" on the first line; libevemu takes a missing one as 1.0
+  char last_tag = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    bytes += line.size() + 1;
+    if (bytes > kMaxRecordingBytes)
+      throw InputError(file, "file", "a recording of at most " + std::to_string(kMaxRecordingBytes >> 20) + " MiB");
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (event_lines.empty() && is_description_line(line)) {
+      if (line_no == 1 && line.rfind("# EVEMU ", 0) == 0) {
+        unsigned major = 0, minor = 0;
+        if (std::sscanf(line.c_str(), "# EVEMU %u.%u", &major, &minor) == 2) {
+          if (major != 1 || minor > 3)
+            throw InputError(file, "line 1", "an evemu recording of format 1.3 or older, got " + line.substr(8));
+          format_minor = static_cast<int>(minor);
+        }
+      }
+      if (!line.empty() && line[0] != '#') {
+        if (const std::string problem = description_problem(line, format_minor, last_tag); !problem.empty())
+          throw InputError(file, "line " + std::to_string(line_no), problem + ", got '" + line + "'");
+      }
+      description += line + "\n";
+      continue;
+    }
+    if (line.empty() || line[0] == '#') continue;
+    if (line.rfind("E:", 0) != 0)
+      throw InputError(file, "line " + std::to_string(line_no),
+                       (event_lines.empty() ? "a device description line (N:, I:, P:, B:, A:) or an event line "
+                                            : "an event line ") +
+                           std::string("'E: <sec>.<usec> <type> <code> <value>', got '") + line + "'");
+    event_lines.emplace_back(line_no, line);
+  }
+  // libevemu reads the description from memory. Its parser reports problems on stderr by
+  // itself; given only lines that look like a description, what it can still refuse is
+  // reported below as palprig's one line.
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> fp(fmemopen(description.data(), description.size(), "r"), std::fclose);
   std::unique_ptr<evemu_device, void (*)(evemu_device*)> dev(evemu_new(nullptr), evemu_delete);
-  if (!dev || evemu_read(dev.get(), fp.get()) <= 0)
+  if (!fp || !dev || description.find("N:") == std::string::npos || evemu_read(dev.get(), fp.get()) <= 0)
     throw InputError(file, "device description", "an evemu recording (N:, I:, P:, B:, A: lines as evemu-record writes)");
-  if (!evemu_has_event(dev.get(), EV_ABS, ABS_X) || !evemu_has_event(dev.get(), EV_ABS, ABS_Y) ||
-      !evemu_has_event(dev.get(), EV_ABS, ABS_PRESSURE))
-    throw InputError(file, "device description", "a pen tablet (ABS_X, ABS_Y and ABS_PRESSURE)");
+  if (!evemu_has_event(dev.get(), EV_ABS, ABS_X) || !evemu_has_event(dev.get(), EV_ABS, ABS_Y))
+    throw InputError(file, "device description", "a pen tablet (ABS_X and ABS_Y axes)");
+  // Without a pressure axis every touch would read as full force: refused, not guessed.
+  if (!evemu_has_event(dev.get(), EV_ABS, ABS_PRESSURE) ||
+      evemu_get_abs_maximum(dev.get(), ABS_PRESSURE) <= evemu_get_abs_minimum(dev.get(), ABS_PRESSURE))
+    throw InputError(file, "device description",
+                     "a pen tablet with a pressure axis (ABS_PRESSURE with a range, an 'A: 18 min max ...' line)");
   PenRecording r;
   r.device_name = evemu_get_name(dev.get()) ? evemu_get_name(dev.get()) : "";
   r.axes.x_min = evemu_get_abs_minimum(dev.get(), ABS_X);
@@ -147,18 +316,38 @@ PenRecording read_pen_recording(const std::filesystem::path& path) {
   r.axes.pressure_min = evemu_get_abs_minimum(dev.get(), ABS_PRESSURE);
   r.axes.pressure_max = evemu_get_abs_maximum(dev.get(), ABS_PRESSURE);
   r.axes.has_touch_key = evemu_has_event(dev.get(), EV_KEY, BTN_TOUCH);
-  input_event ev;
-  while (evemu_read_event(fp.get(), &ev) > 0) {
-    if (!r.events.empty() && event_time_s(ev) < event_time_s(r.events.back()))
-      throw InputError(file, "event " + std::to_string(r.events.size() + 1), "event times that never go back");
+  bool pressure_seen = false, touch_seen = false;
+  for (const auto& [number, text] : event_lines) {
+    const std::string where = "line " + std::to_string(number);
+    input_event ev;
+    if (!parse_event_line(text, ev))
+      throw InputError(file, where, "an event line 'E: <sec>.<usec> <type hex> <code hex> <value>', got '" + text + "'");
+    if (!r.events.empty()) {
+      const double gap_s = event_time_s(ev) - event_time_s(r.events.back());
+      if (gap_s < 0) throw InputError(file, where, "event times that never go back");
+      if (gap_s > limits.max_gap_s)
+        throw PenRecordingBoundError(file, where,
+                                     "events at most " + seconds_text(limits.max_gap_s) + " apart, got a gap of " +
+                                         seconds_text(gap_s));
+      const double length_s = event_time_s(ev) - event_time_s(r.events.front());
+      if (length_s > limits.max_length_s)
+        throw PenRecordingBoundError(file, where,
+                                     "a recording at most " + seconds_text(limits.max_length_s) +
+                                         " long (times count from the first event), got " + seconds_text(length_s));
+    }
+    pressure_seen = pressure_seen || (ev.type == EV_ABS && ev.code == ABS_PRESSURE);
+    touch_seen = touch_seen || (ev.type == EV_KEY && ev.code == BTN_TOUCH && ev.value != 0);
     r.events.push_back(ev);
   }
   if (r.events.empty()) throw InputError(file, "events", "at least one E: event line");
+  if (touch_seen && !pressure_seen)  // touches without a force: no way to know how hard
+    throw InputError(file, "events", "touches that report their pressure (ABS_PRESSURE events), got none");
   return r;
 }
 
-EvemuPenSource::EvemuPenSource(const std::filesystem::path& path) : path_(path.string()) {
-  PenRecording r = read_pen_recording(path);
+EvemuPenSource::EvemuPenSource(const std::filesystem::path& path, const PenRecordingLimits& limits)
+    : path_(path.string()) {
+  PenRecording r = read_pen_recording(path, limits);
   axes_ = r.axes;
   events_ = std::move(r.events);
 }

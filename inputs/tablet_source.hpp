@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "inputs/tablet_decoder.hpp"
+#include "models/parse_error.hpp"
 
 struct libevdev;
 
@@ -50,18 +51,36 @@ class EvdevPenSource final : public PenEventSource {
   TabletAxes axes_;
 };
 
+// What a recording may hold before it is refused: it replays in real time, so a gap of days (a
+// clock jump, an edited file) would hold a run and its telemetry for days. A pen lifted for a
+// while is silent, so gaps up to 30 s are normal. unbounded() lifts both for a run whose length
+// is given explicitly.
+struct PenRecordingLimits {
+  double max_length_s = 3600.0;
+  double max_gap_s = 30.0;
+  static PenRecordingLimits unbounded();
+};
+
+class PenRecordingBoundError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 // An evemu recording (evemu-record's format: device description, then "E:" event lines). The
 // whole file is read and checked at construction (InputError on a bad one); next() hands out
 // the events as their recorded times come due, measured from the first next() call.
 class EvemuPenSource final : public PenEventSource {
  public:
-  explicit EvemuPenSource(const std::filesystem::path& path);
+  explicit EvemuPenSource(const std::filesystem::path& path, const PenRecordingLimits& limits = {});
   const TabletAxes& axes() const noexcept override { return axes_; }
   std::string describe() const override { return "pen recording " + path_; }
   Status next(std::vector<input_event>& out, int timeout_ms, PenState& resynced) override;
   std::string why() const override { return "end of the recording " + path_; }
   double duration_s() const noexcept override;
   const std::vector<input_event>& events() const noexcept { return events_; }
+  // CLOCK_MONOTONIC when playback started (0 before the first next()): event i came due at
+  // start_ns() + (its time - the first event's time), what a kernel would stamp on a live one.
+  std::int64_t start_ns() const noexcept { return start_ns_; }
 
  private:
   std::string path_;
@@ -78,6 +97,6 @@ struct PenRecording {
   std::string device_name;
   std::vector<input_event> events;
 };
-PenRecording read_pen_recording(const std::filesystem::path& path);
+PenRecording read_pen_recording(const std::filesystem::path& path, const PenRecordingLimits& limits = {});
 
 }  // namespace palprig

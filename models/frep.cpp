@@ -143,7 +143,58 @@ FrepShape::Node FrepShape::unite(const std::vector<Node>& parts) {
     children_.push_back(c);
     n.box = merge(n.box, nodes_[c].box);
   }
+  index_union(n);
   return add(n);
+}
+
+void FrepShape::index_union(NodeData& n) {
+  constexpr std::int32_t kIndexFrom = 16;  // fewer parts: scanning their boxes is as fast
+  if (n.count < kIndexFrom || n.box.empty()) return;
+  PartGrid g;
+  // About one part per cell for parts of similar size, at most 256 x 256 cells.
+  const auto side = static_cast<std::int32_t>(std::clamp(std::ceil(std::sqrt(double(n.count))), 1.0, 256.0));
+  g.nx = g.ny = side;
+  g.x0 = n.box.lo.x_mm;
+  g.y0 = n.box.lo.y_mm;
+  const double w = n.box.hi.x_mm - n.box.lo.x_mm, h = n.box.hi.y_mm - n.box.lo.y_mm;
+  g.inv_cell_x = w > 0 ? side / w : 0;
+  g.inv_cell_y = h > 0 ? side / h : 0;
+  auto cell = [](double v, double origin, double inv, std::int32_t cells) {
+    const double c = std::floor((v - origin) * inv);
+    return static_cast<std::int32_t>(std::clamp(c, 0.0, double(cells - 1)));
+  };
+  // Two passes (count, then fill) into one flat array, like a CSR matrix.
+  std::vector<std::int32_t> count(static_cast<std::size_t>(side) * side + 1, 0);
+  std::size_t entries = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::int32_t i = 0; i < n.count; ++i) {
+      const Node c = children_[static_cast<std::size_t>(n.first + i)];
+      const Box3_mm& b = nodes_[static_cast<std::size_t>(c)].box;
+      if (b.empty()) continue;  // contains nothing: never a candidate
+      const std::int32_t x0 = cell(b.lo.x_mm, g.x0, g.inv_cell_x, side), x1 = cell(b.hi.x_mm, g.x0, g.inv_cell_x, side);
+      const std::int32_t y0 = cell(b.lo.y_mm, g.y0, g.inv_cell_y, side), y1 = cell(b.hi.y_mm, g.y0, g.inv_cell_y, side);
+      for (std::int32_t y = y0; y <= y1; ++y)
+        for (std::int32_t x = x0; x <= x1; ++x) {
+          const std::size_t k = static_cast<std::size_t>(y) * side + x;
+          if (pass == 0) {
+            ++count[k + 1];
+            ++entries;
+          } else {
+            g.parts[static_cast<std::size_t>(g.cell_start[k] + count[k]++)] = c;
+          }
+        }
+    }
+    if (pass == 0) {
+      // Parts that each cover most of the grid make it no better than a scan: keep the scan.
+      if (entries > 8 * static_cast<std::size_t>(n.count) + static_cast<std::size_t>(side) * side) return;
+      for (std::size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
+      g.cell_start = count;
+      g.parts.resize(entries);
+      std::fill(count.begin(), count.end(), 0);
+    }
+  }
+  n.grid = static_cast<std::int32_t>(grids_.size());
+  grids_.push_back(std::move(g));
 }
 
 FrepShape::Node FrepShape::intersect(const std::vector<Node>& parts) {
@@ -242,6 +293,18 @@ double FrepShape::eval(Node index, const Point3_mm& p) const noexcept {
     }
     case Kind::unite: {
       double v = kOutside;
+      if (n.grid >= 0) {  // only the parts whose box meets p's cell can hold p
+        const PartGrid& g = grids_[static_cast<std::size_t>(n.grid)];
+        auto cell = [](double v, double origin, double inv, std::int32_t cells) {
+          const double c = std::floor((v - origin) * inv);
+          return static_cast<std::int32_t>(std::clamp(c, 0.0, double(cells - 1)));
+        };
+        const std::size_t k =
+            static_cast<std::size_t>(cell(p.y_mm, g.y0, g.inv_cell_y, g.ny)) * g.nx + cell(p.x_mm, g.x0, g.inv_cell_x, g.nx);
+        for (std::int32_t i = g.cell_start[k]; i < g.cell_start[k + 1]; ++i)
+          v = std::max(v, eval(g.parts[static_cast<std::size_t>(i)], p));
+        return v;
+      }
       for (std::int32_t i = 0; i < n.count; ++i) {
         v = std::max(v, eval(children_[static_cast<std::size_t>(n.first + i)], p));
       }

@@ -86,7 +86,19 @@ class FrepShape {
     Point3_mm a, b;
     double p0 = 0, p1 = 0, p2 = 0;  // meaning per kind (radius, cos yaw, sin yaw, exponent, threshold)
     std::int32_t first = 0, count = 0;  // children (into children_) or blob terms (into terms_)
+    std::int32_t grid = -1;             // unions of many parts: their grid in grids_
   };
+
+  // A union of many parts (hundreds of spheres) finds the parts whose box can hold a point
+  // through a uniform grid over the union's x-y box, so a value costs the few parts near the
+  // point, not all of them: building a scene and sampling it stay linear in the part count.
+  struct PartGrid {
+    double x0 = 0, y0 = 0, inv_cell_x = 0, inv_cell_y = 0;
+    std::int32_t nx = 0, ny = 0;
+    std::vector<std::int32_t> cell_start;  // nx * ny + 1 offsets into parts
+    std::vector<Node> parts;
+  };
+  void index_union(NodeData& n);
 
   Node add(const NodeData& n);
   double eval(Node n, const Point3_mm& p) const noexcept;
@@ -94,6 +106,7 @@ class FrepShape {
   std::vector<NodeData> nodes_;
   std::vector<Node> children_;
   std::vector<Blob> terms_;
+  std::vector<PartGrid> grids_;
   Node root_ = -1;
 };
 

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "models/decimal_number.hpp"
 #include "models/parse_error.hpp"
 
 namespace palprig {
@@ -92,19 +93,18 @@ StiffnessMap parse_stiffness_csv(std::istream& in, const std::string& source, do
       const std::string c = trim(cell);
       const std::string where = "line " + std::to_string(line_no) + ", column " + std::to_string(n);
       double v = 0;
-      std::size_t used = 0;
-      try {
-        v = std::stod(c, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (c.empty() || used != c.size()) throw InputError(source, where, "a number, got '" + c + "'");
-      if (!std::isfinite(v)) throw InputError(source, where, "a finite stiffness, got '" + c + "'");
+      const DecimalCell kind = parse_decimal(c, v);
+      if (kind == DecimalCell::not_a_number) throw InputError(source, where, "a number, got '" + c + "'");
+      if (kind == DecimalCell::not_finite) throw InputError(source, where, "a finite stiffness, got '" + c + "'");
       if (value_scale > 0) v /= value_scale;
       if (v < 0 || v > 1)
         throw InputError(source, where,
                          value_scale > 0 ? "a value in 0.." + std::to_string(value_scale) + ", got '" + c + "'"
                                          : "a stiffness in 0..1 (or give a value scale), got '" + c + "'");
+      if (values.size() >= static_cast<std::size_t>(kMaxMapVertices) || n > static_cast<std::size_t>(kMaxMapSide))
+        throw InputError(source, where,
+                         "a map of at most " + std::to_string(kMaxMapVertices) + " values (4096x4096) and " +
+                             std::to_string(kMaxMapSide) + " a side");
       values.push_back(static_cast<float>(v));
     }
     if (!t.empty() && t.back() == ',')
@@ -157,6 +157,16 @@ long pgm_int(std::istream& in, const std::string& source, const std::string& whe
   return v;
 }
 
+// Bytes from the read position to the end of a seekable stream (a file, a string).
+std::size_t bytes_left(std::istream& in) {
+  const auto here = in.tellg();
+  if (here < 0) return 0;
+  in.seekg(0, std::ios::end);
+  const auto end = in.tellg();
+  in.seekg(here);
+  return end > here ? static_cast<std::size_t>(end - here) : 0;
+}
+
 }  // namespace
 
 StiffnessMap parse_stiffness_pgm(std::istream& in, const std::string& source, double width_mm,
@@ -165,12 +175,24 @@ StiffnessMap parse_stiffness_pgm(std::istream& in, const std::string& source, do
   const std::string magic = pgm_token(in);
   if (magic != "P5" && magic != "P2")
     throw InputError(source, "header magic", "'P5' (binary) or 'P2' (ASCII) PGM, got '" + magic + "'");
-  const long cols = pgm_int(in, source, "header width", 2, 1 << 16);
-  const long rows = pgm_int(in, source, "header height", 2, 1 << 16);
+  const long cols = pgm_int(in, source, "header width", 2, kMaxMapSide);
+  const long rows = pgm_int(in, source, "header height", 2, kMaxMapSide);
+  if (cols * rows > kMaxMapVertices)
+    throw InputError(source, "header width x height",
+                     "at most " + std::to_string(kMaxMapVertices) + " pixels (a map of 4096x4096), got " +
+                         std::to_string(cols) + "x" + std::to_string(rows));
   const long maxval = pgm_int(in, source, "header maxval", 1, 65535);
-  std::vector<float> values(static_cast<std::size_t>(cols * rows));
+  const std::size_t pixels = static_cast<std::size_t>(cols * rows);
+  // What the header promises must be in the file before anything of that size is allocated:
+  // a 21-byte file must not be able to ask for gigabytes.
+  const int bytes = maxval > 255 ? 2 : 1;
+  const std::size_t need = magic == "P5" ? pixels * bytes : 2 * pixels - 1;  // ASCII: digit + space each
+  if (const std::size_t left = bytes_left(in); left < need)
+    throw InputError(source, "pixel data",
+                     std::to_string(need) + (magic == "P5" ? "" : " or more") + " bytes for " + std::to_string(cols) +
+                         "x" + std::to_string(rows) + " pixels, the file has " + std::to_string(left));
+  std::vector<float> values(pixels);
   if (magic == "P5") {
-    const int bytes = maxval > 255 ? 2 : 1;
     std::vector<unsigned char> raw(values.size() * bytes);
     in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size()));
     if (static_cast<std::size_t>(in.gcount()) != raw.size())

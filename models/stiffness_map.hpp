@@ -53,6 +53,11 @@ class StiffnessMap {
 // Parsers take a stream and the name to report in errors (the file path); they throw
 // InputError naming the line or field and what was expected.
 //
+// Largest map either reader accepts: 16384 vertices a side and 4096x4096 (16.8 M) in all,
+// 64 MB of floats - finer than any rig's fingers can feel over a hand-sized phantom.
+inline constexpr long kMaxMapSide = 16384;
+inline constexpr long kMaxMapVertices = 4096L * 4096L;
+
 // CSV: one grid row per line, comma separated, '#' comment lines allowed. Values must lie in
 // 0..1 unless value_scale is given (e.g. 65535 for raw counts), then value/scale must.
 StiffnessMap parse_stiffness_csv(std::istream& in, const std::string& source, double width_mm,

@@ -12,13 +12,17 @@ FunctionScene::FunctionScene(TissueDefinition tissue, std::vector<ArterySpec> ar
 std::vector<InclusionOutline> FunctionScene::outlines(InclusionKind kind) const {
   // The bounding boxes of blobby shapes are loose, so the outline is measured: the shape is
   // sampled on a grid inside its box (0.5 mm across, 0.5 mm deep, at least 40 steps per axis)
-  // and the outline is the circle around the inside points' centroid that holds them all.
+  // and the outline is the circle around the inside points' centroid that holds them all. At
+  // most 128 steps per axis: a shape larger than 64 mm is outlined more coarsely, rather than
+  // a 10 m sphere costing 10^13 samples (a load that never ends).
   std::vector<InclusionOutline> out;
   for (const Inclusion& inc : field_.definition().inclusions) {
     if (inc.kind != kind) continue;
     const Box3_mm b = inc.shape.bounds();
     if (b.empty()) continue;
-    auto steps = [](double lo, double hi) { return std::max(40, static_cast<int>(std::ceil((hi - lo) / 0.5))); };
+    auto steps = [](double lo, double hi) {
+      return std::clamp(static_cast<int>(std::min(std::ceil((hi - lo) / 0.5), 1e6)), 40, 128);
+    };
     const int nx = steps(b.lo.x_mm, b.hi.x_mm), ny = steps(b.lo.y_mm, b.hi.y_mm), nz = steps(b.lo.z_mm, b.hi.z_mm);
     auto at = [](double lo, double hi, int i, int n) { return lo + (hi - lo) * (i + 0.5) / n; };
     std::vector<Point2_mm> columns;  // (x, y) with any inside point

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "runtime/monotonic_clock.hpp"
+#include "runtime/realtime.hpp"
 #include "runtime/worker_fault.hpp"
 #include "models/parse_error.hpp"
 
@@ -148,13 +149,10 @@ BackendStatus ModbusRig::do_vent() noexcept {
 
 void ModbusRig::io_thread_main() noexcept {
   try {
-    if (config_.io_thread_fifo_priority > 0) {
-      // Below the loop's priority (80) and above ordinary work; refused quietly when the
-      // system does not permit it (the loop's own note says so once).
-      sched_param sp{};
-      sp.sched_priority = config_.io_thread_fifo_priority;
-      pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
-    }
+    // Below the loop's priority (80) and above the tablet reader and ordinary work
+    // (runtime/thread_priorities.hpp); refused quietly when the system does not permit it
+    // (the loop's own note says so once).
+    (void)set_thread_fifo(config_.io_thread_fifo_priority);
     const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / config_.io_rate_hz));
     std::int64_t deadline = mono_ns();
     std::int64_t last = deadline;

@@ -65,7 +65,7 @@ void ModbusSimServer::set_write_log(const std::filesystem::path& path) {
   write_log_ = std::fopen(path.c_str(), "w");
   if (!write_log_) throw std::runtime_error("cannot create the write log " + path.string() + ": " + std::strerror(errno));
   std::setvbuf(write_log_, nullptr, _IOLBF, 0);  // a killed simulator still leaves whole lines
-  std::fprintf(write_log_, "t_s,channel,word,kPa\n");
+  std::fprintf(write_log_, "t_s,channel,word,kPa,mono_ns\n");
 }
 
 std::uint16_t* ModbusSimServer::output_register(std::size_t c) const noexcept {
@@ -225,12 +225,14 @@ void ModbusSimServer::after_write(std::size_t link, const std::uint8_t* query, i
     log("link '" + map_.links[link].name + "': written again, watchdog cleared");
   }
   if (!write_log_) return;
-  const double t = double(mono_ns() - start_ns_) * 1e-9;
+  const std::int64_t arrival_ns = mono_ns();  // CLOCK_MONOTONIC: comparable with the client's clock
+  const double t = double(arrival_ns - start_ns_) * 1e-9;
   for (std::size_t c = 0; c < kFingerCount; ++c) {
     const auto& out = map_.channels[c].output;
     if (out.link != link || out.address < start || out.address >= start + count) continue;
     const std::uint16_t word = *output_register(c);
-    std::fprintf(write_log_, "%.6f,%zu,%u,%.6f\n", t, c + 1, unsigned(word), out.scale.kPa_from_word(word));
+    std::fprintf(write_log_, "%.6f,%zu,%u,%.6f,%lld\n", t, c + 1, unsigned(word), out.scale.kPa_from_word(word),
+                 static_cast<long long>(arrival_ns));
   }
 }
 

@@ -50,7 +50,9 @@ class ModbusSimServer {
 
   // Options, before start().
   void set_log_sink(LogSink sink) { log_ = std::move(sink); }
-  // Every write to an output register, as CSV rows "t_s,channel,word,kPa" (t_s since start).
+  // Every write to an output register, as CSV rows "t_s,channel,word,kPa,mono_ns" (t_s since
+  // start; mono_ns the arrival on CLOCK_MONOTONIC, the clock palprig's loop and pen reader use,
+  // so end-to-end latency can be measured across processes on one machine).
   void set_write_log(const std::filesystem::path& path);
   void set_watchdog_s(double seconds) { watchdog_s_ = seconds; }
 

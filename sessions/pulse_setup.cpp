@@ -5,15 +5,15 @@
 
 namespace palprig {
 
-OpenedPulseSession open_pulse_session(TrialStore& store, const PulseProtocol& protocol, const PulseSessionRequest& request) {
-  if (request.participant_code.empty()) throw InputError("command line", "--participant", "a participant code");
+OpenedPulseSession open_pulse_session(SqliteTrialStore& store, const PulseProtocol& protocol, const PulseSessionRequest& request) {
+  if (request.participant_code.empty()) throw InputError("command line", "participant", "a participant code");
   PulseStore pulse_store(store);
   OpenedPulseSession opened;
   const auto existing = store.find_participant(request.participant_code);
   const auto unfinished = existing ? store.find_unfinished_session(*existing, protocol.name) : std::nullopt;
   if (request.resume) {
     if (!unfinished) {
-      throw InputError(store.file(), "--resume",
+      throw InputError(store.location(), "`resume`",
                        "an unfinished session of participant '" + request.participant_code + "' with protocol '" +
                            protocol.name + "' (there is none)");
     }
@@ -32,9 +32,9 @@ OpenedPulseSession open_pulse_session(TrialStore& store, const PulseProtocol& pr
     return opened;
   }
   if (unfinished) {
-    throw InputError(store.file(), "participant '" + request.participant_code + "'",
+    throw InputError(store.location(), "participant '" + request.participant_code + "'",
                      "no unfinished session with this protocol (session " + std::to_string(*unfinished) +
-                         " is unfinished: continue it with --resume)");
+                         " is unfinished: continue it with `resume`)");
   }
   opened.participant = store.enrol(request.participant_code, request.simulated);
   opened.protocol = protocol;

@@ -7,9 +7,9 @@
 
 namespace palprig {
 
-OpenedThresholdSession open_threshold_session(TrialStore& store, const ThresholdProtocol& protocol,
+OpenedThresholdSession open_threshold_session(SqliteTrialStore& store, const ThresholdProtocol& protocol,
                                               const ThresholdSessionRequest& request) {
-  if (request.participant_code.empty()) throw InputError("command line", "--participant", "a participant code");
+  if (request.participant_code.empty()) throw InputError("command line", "participant", "a participant code");
   ThresholdStore threshold_store(store);
   OpenedThresholdSession opened;
   const auto existing = store.find_participant(request.participant_code);
@@ -17,7 +17,7 @@ OpenedThresholdSession open_threshold_session(TrialStore& store, const Threshold
 
   if (request.resume) {
     if (!unfinished) {
-      throw InputError(store.file(), "--resume",
+      throw InputError(store.location(), "`resume`",
                        "an unfinished session of participant '" + request.participant_code + "' with protocol '" +
                            protocol.name + "' (there is none)");
     }
@@ -33,7 +33,7 @@ OpenedThresholdSession open_threshold_session(TrialStore& store, const Threshold
       try {
         restore_tracks(opened.tracks, stored.last_state);
       } catch (const std::invalid_argument& e) {
-        throw InputError(store.file(), "threshold_trials.state of session " + std::to_string(stored.id), e.what());
+        throw InputError(store.location(), "threshold_trials.state of session " + std::to_string(stored.id), e.what());
       }
     }
     opened.session_id = stored.id;
@@ -44,9 +44,9 @@ OpenedThresholdSession open_threshold_session(TrialStore& store, const Threshold
     return opened;
   }
   if (unfinished) {
-    throw InputError(store.file(), "participant '" + request.participant_code + "'",
+    throw InputError(store.location(), "participant '" + request.participant_code + "'",
                      "no unfinished session with this protocol (session " + std::to_string(*unfinished) +
-                         " is unfinished: continue it with --resume)");
+                         " is unfinished: continue it with `resume`)");
   }
   opened.participant = store.enrol(request.participant_code, request.simulated);
   opened.protocol = protocol;

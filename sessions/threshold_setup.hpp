@@ -33,7 +33,7 @@ struct OpenedThresholdSession {
 };
 
 // Throws InputError for every refusal.
-OpenedThresholdSession open_threshold_session(TrialStore& store, const ThresholdProtocol& protocol,
+OpenedThresholdSession open_threshold_session(SqliteTrialStore& store, const ThresholdProtocol& protocol,
                                               const ThresholdSessionRequest& request);
 
 }  // namespace palprig

@@ -44,7 +44,7 @@ std::string utc_now() {
 
 }  // namespace
 
-PulseStore::PulseStore(TrialStore& store, bool writable) : store_(store) {
+PulseStore::PulseStore(SqliteTrialStore& store, bool writable) : store_(store) {
   if (writable) store_.database().exec(kPulseSchema);
 }
 
@@ -81,7 +81,7 @@ StoredPulseSession PulseStore::load_session(std::int64_t session_id) {
       "JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
   q.bind(1, session_id);
   if (!q.step() || q.text(8) != "pulse") {
-    throw InputError(store_.file(), "session " + std::to_string(session_id), "an existing pulse session");
+    throw InputError(store_.location(), "session " + std::to_string(session_id), "an existing pulse session");
   }
   StoredPulseSession s;
   s.id = q.integer(0);
@@ -94,7 +94,7 @@ StoredPulseSession PulseStore::load_session(std::int64_t session_id) {
   done.step();
   s.completed_trials = static_cast<int>(done.integer(0));
   if (done.integer(1) != s.completed_trials - 1) {
-    throw InputError(store_.file(), "session " + std::to_string(session_id), "pulse trials committed in order");
+    throw InputError(store_.location(), "session " + std::to_string(session_id), "pulse trials committed in order");
   }
   return s;
 }

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/pulse_task.hpp"
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 
 namespace palprig {
 
@@ -34,7 +34,7 @@ struct PulseConditionSummary {
 
 class PulseStore {
  public:
-  explicit PulseStore(TrialStore& store, bool writable = true);
+  explicit PulseStore(SqliteTrialStore& store, bool writable = true);
   std::int64_t create_session(const ParticipantRecord& who, const PulseProtocol& protocol, std::uint64_t seed,
                               const SessionSetup& setup);
   StoredPulseSession load_session(std::int64_t session_id);
@@ -43,7 +43,7 @@ class PulseStore {
   std::vector<PulseConditionSummary> summarise(double confidence = 0.95);
 
  private:
-  TrialStore& store_;
+  SqliteTrialStore& store_;
 };
 
 nlohmann::ordered_json pulse_summary_json(const std::vector<PulseConditionSummary>& rows, double confidence);

@@ -45,7 +45,7 @@ std::string utc_now() {
 
 }  // namespace
 
-ThresholdStore::ThresholdStore(TrialStore& store, bool writable) : store_(store) {
+ThresholdStore::ThresholdStore(SqliteTrialStore& store, bool writable) : store_(store) {
   if (writable) store_.database().exec(kThresholdSchema);
 }
 
@@ -86,9 +86,9 @@ StoredThresholdSession ThresholdStore::load_session(std::int64_t session_id) {
       "SELECT s.id, s.protocol_json, s.seed, s.status, p.id, p.code, p.number, p.simulated, s.task FROM sessions s "
       "JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
   q.bind(1, session_id);
-  if (!q.step()) throw InputError(store_.file(), "session " + std::to_string(session_id), "an existing session");
+  if (!q.step()) throw InputError(store_.location(), "session " + std::to_string(session_id), "an existing session");
   if (q.text(8) != "threshold") {
-    throw InputError(store_.file(), "session " + std::to_string(session_id), "a threshold session, got task " + q.text(8));
+    throw InputError(store_.location(), "session " + std::to_string(session_id), "a threshold session, got task " + q.text(8));
   }
   StoredThresholdSession s;
   s.id = q.integer(0);
@@ -101,7 +101,7 @@ StoredThresholdSession ThresholdStore::load_session(std::int64_t session_id) {
   done.step();
   s.completed_trials = static_cast<int>(done.integer(0));
   if (done.integer(1) != s.completed_trials - 1) {
-    throw InputError(store_.file(), "session " + std::to_string(session_id),
+    throw InputError(store_.location(), "session " + std::to_string(session_id),
                      "threshold trials committed in order (positions are missing; the database was edited)");
   }
   if (s.completed_trials > 0) {

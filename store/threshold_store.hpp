@@ -14,7 +14,7 @@
 
 #include "experiments/threshold_protocol.hpp"
 #include "experiments/threshold_session.hpp"
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 
 namespace palprig {
 
@@ -38,7 +38,7 @@ struct ThresholdTrialRow {
 class ThresholdStore {
  public:
   // Adds the threshold table to a writable store if missing.
-  explicit ThresholdStore(TrialStore& store, bool writable = true);
+  explicit ThresholdStore(SqliteTrialStore& store, bool writable = true);
 
   std::int64_t create_session(const ParticipantRecord& who, const ThresholdProtocol& protocol, std::uint64_t seed,
                               const SessionSetup& setup);
@@ -49,7 +49,7 @@ class ThresholdStore {
   bool has_table();
 
  private:
-  TrialStore& store_;
+  SqliteTrialStore& store_;
 };
 
 }  // namespace palprig

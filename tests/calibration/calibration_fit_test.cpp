@@ -226,7 +226,7 @@ TEST(CalibrationFit, RefusesBadSweepsNamingTheLineAndChannel) {
     EXPECT_EQ(refusal([&] { fit_calibration(rig.sweep({1}), options()); }),
               "DATA.csv: channel 1 regulator: a monitor within 3.0 kPa of the command; its line monitor = 0.777 * command + "
               "0.54 kPa is off by 12.84 kPa at 60.0 kPa (check the regulator's supply, range and scaling, or raise "
-              "--regulator-tolerance-kPa)");
+              "`regulator_tolerance_kPa`)");
     CalibrationFitOptions lax = options();
     lax.regulator_tolerance_kPa = 15;
     EXPECT_EQ(refusal([&] { fit_calibration(rig.sweep({1}), lax); }), "accepted");
@@ -245,7 +245,7 @@ TEST(CalibrationFit, RefusesBadSweepsNamingTheLineAndChannel) {
     SweepData d = rig.sweep({1});
     d.info.rig_id.clear();
     EXPECT_EQ(refusal([&] { fit_calibration(d, options()); }),
-              "DATA.csv: rig_id: the rig the data came from (a \"# rig_id: ...\" line, or --rig-id)");
+              "DATA.csv: rig_id: the rig the data came from (a \"# rig_id: ...\" line, or `rig_id`)");
     CalibrationFitOptions named = options();
     named.rig_id = "bench-9";
     EXPECT_EQ(fit_calibration(d, named).rig_id, "bench-9");

@@ -188,3 +188,18 @@ TEST(TabletConfigFile, PressureCurveMustRiseFromZeroToOne) {
   EXPECT_THROW(parse("[[0, 2], [1, 1]]"), InputError);
   EXPECT_THROW(parse("[[0, 0]]"), InputError);
 }
+
+TEST(TabletConfigFile, ReaderPriorityDefaultsBelowTheLoopAndIsChecked) {
+  auto parse = [&](const std::string& body) {
+    const nlohmann::json doc = nlohmann::json::parse(body);
+    return parse_tablet_config(JsonObject(doc, "rig.json", "tablet"));
+  };
+  EXPECT_EQ(parse("{}").reader_fifo_priority, 60);  // loop 80 > bus thread 70 > reader 60
+  EXPECT_EQ(parse("{\"reader_fifo_priority\": 0}").reader_fifo_priority, 0);
+  try {
+    parse("{\"reader_fifo_priority\": 99}");
+    FAIL() << "99 accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("reader_fifo_priority"), std::string::npos) << e.what();
+  }
+}

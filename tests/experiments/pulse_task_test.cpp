@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/pulse_task.hpp"
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 #include "models/parse_error.hpp"
 #include "statistics/statistics_proportion.hpp"
 #include "process_support.hpp"
@@ -108,7 +108,7 @@ TEST(experiments_pulse_task, generated_cases_carry_an_artery_and_the_participant
     EXPECT_EQ(cond["trials"].get<int>(), 4);
     EXPECT_LT(cond["distance_median_mm"].get<double>(), 8.0) << cond.dump();
   }
-  TrialStore store = open_trial_store_for_reading(db);
+  SqliteTrialStore store = open_sqlite_trial_store_for_reading(db);
   auto q = store.database().prepare("SELECT count(DISTINCT scene_seed) FROM pulse_trials WHERE scene_seed IS NOT NULL");
   ASSERT_TRUE(q.step());
   EXPECT_EQ(q.integer(0), 8) << "every trial a new case, its seed stored";

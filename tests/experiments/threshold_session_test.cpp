@@ -111,7 +111,7 @@ TEST(experiments_threshold_session, quest_recovers_the_simulated_observers_thres
   expect_recovery("threshold_quest.json", 0.82);
 }
 
-std::int64_t scalar(TrialStore& store, const std::string& sql) {
+std::int64_t scalar(SqliteTrialStore& store, const std::string& sql) {
   auto q = store.database().prepare(sql);
   return q.step() ? q.integer(0) : -1;
 }
@@ -141,7 +141,7 @@ TEST(experiments_threshold_session, sigkill_and_resume_continue_the_same_stairca
   }
   std::int64_t committed = 0;
   {
-    TrialStore store = open_trial_store_for_reading(db);
+    SqliteTrialStore store = open_sqlite_trial_store_for_reading(db);
     committed = scalar(store, "SELECT count(*) FROM threshold_trials");
     ASSERT_GE(committed, 8);
     EXPECT_LT(committed, 100) << "the kill came too late to test a resume";
@@ -155,7 +155,7 @@ TEST(experiments_threshold_session, sigkill_and_resume_continue_the_same_stairca
 
   // Replaying every stored answer through fresh tracks reproduces every stored level and state:
   // the resumed part continued the killed staircases (a new staircase would restart at 2 kPa).
-  TrialStore store = open_trial_store_for_reading(db);
+  SqliteTrialStore store = open_sqlite_trial_store_for_reading(db);
   EXPECT_EQ(scalar(store, "SELECT count(*) FROM sessions WHERE status = 'completed'"), 1);
   const auto total = scalar(store, "SELECT count(*) FROM threshold_trials");
   EXPECT_EQ(scalar(store, "SELECT max(position) FROM threshold_trials"), total - 1);
@@ -226,7 +226,7 @@ TEST(experiments_threshold_session, a_person_answers_in_the_terminal_and_q_keeps
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.out.find("Which interval was stronger?"), std::string::npos) << r.out;
   EXPECT_NE(r.err.find("stopped after 2 trials"), std::string::npos) << r.err;
-  TrialStore store = open_trial_store_for_reading(db);
+  SqliteTrialStore store = open_sqlite_trial_store_for_reading(db);
   auto q = store.database().prepare("SELECT response, answered FROM threshold_trials ORDER BY position");
   ASSERT_TRUE(q.step());
   EXPECT_EQ(q.integer(0), 1);

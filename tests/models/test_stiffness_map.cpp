@@ -130,10 +130,11 @@ TEST(StiffnessMap, MalformedPgmIsRefused) {
     return std::string("accepted");
   };
   EXPECT_EQ(err("P6\n2 2\n255\n"), "m.pgm: header magic: 'P5' (binary) or 'P2' (ASCII) PGM, got 'P6'");
-  EXPECT_EQ(err("P5\n2 x\n255\n"), "m.pgm: header height: an integer in 2..65536, got 'x'");
+  EXPECT_EQ(err("P5\n2 x\n255\n"), "m.pgm: header height: an integer in 2..16384, got 'x'");
   EXPECT_EQ(err("P5\n2 2\n70000\n"), "m.pgm: header maxval: an integer in 1..65535, got '70000'");
   EXPECT_EQ(err(std::string("P5\n2 2\n65535\n") + std::string(5, '\0')),
-            "m.pgm: pixel data: 8 bytes for 2x2 pixels, got 5");
+            "m.pgm: pixel data: 8 bytes for 2x2 pixels, the file has 5");
   EXPECT_EQ(err("P2\n2 2\n10\n1 2 11 3\n"), "m.pgm: pixel 2: an integer in 0..10, got '11'");
-  EXPECT_EQ(err("P2\n2 2\n10\n1 2 3\n"), "m.pgm: pixel 3: an integer in 0..10, got ''");
+  EXPECT_EQ(err("P2\n2 2\n10\n1 2 3\n"), "m.pgm: pixel data: 7 or more bytes for 2x2 pixels, the file has 6");
+  EXPECT_EQ(err("P2\n2 2\n10\n1 2 3    \n"), "m.pgm: pixel 3: an integer in 0..10, got ''");
 }

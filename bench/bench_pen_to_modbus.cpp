@@ -1,0 +1,213 @@
+// End-to-end latency, pen event to regulator register: from the time a pen event is stamped
+// (for a live tablet, the kernel's evdev timestamp; here, the CLOCK_MONOTONIC time an evemu
+// recording's event comes due, which is when the replaying reader hands it over) to the
+// arrival of the Modbus write that carries the resulting setpoint at a `palprig sim-rig`
+// process on loopback (its --write-log stamps each write on the same clock).
+//
+// The path measured is the one a rig runs: tablet reader thread (FIFO 60) -> LatestValue ->
+// loop tick at 1 kHz (FIFO 80) -> ModbusRig bus thread at the rig's io_rate_hz (FIFO 70) ->
+// FC16 over TCP -> sim-rig. The recording presses the pen down on tumor B of the bundled
+// phantom and lifts it again, every 250 ms; each press is matched with the first non-zero write
+// of finger 1's output after it, each lift with the first write below the value held at the
+// lift (the setpoint then ramps down under the rig's slew limit, 2000 kPa/s).
+// sim-rig runs under `chrt -f 50`: a real module is hardware that the machine's other work
+// cannot delay, so the simulator must not be the part that waits for the CPU.
+//   build/bin/bench_pen_to_modbus [SECONDS=20]   (root, or an rtprio limit, for chrt and FIFO)
+// (No /dev/uinput on the development machine, so no kernel-stamped events could be injected;
+// with a live tablet the reader's own wake-up adds to the figure.)
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <iterator>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "controller/backend_factory.hpp"
+#include "controller/loop_runner.hpp"
+#include "controller/tick_setup.hpp"
+#include "formats/modbus_register_map.hpp"
+#include "formats/rig_file.hpp"
+#include "formats/scene_file.hpp"
+#include "inputs/tablet_input.hpp"
+#include "inputs/tablet_source.hpp"
+#include "runtime/latency_histogram.hpp"
+
+extern char** environ;
+using namespace palprig;
+
+namespace {
+
+const std::string kSource = PALPRIG_SOURCE_DIR;
+
+struct PenEdge {
+  double t_s;
+  bool press;
+};
+
+// The device description of the bundled synthesised recording, then presses and lifts.
+std::vector<PenEdge> write_recording(const std::string& path, double seconds) {
+  std::ifstream in(kSource + "/tests/fixtures/evemu/pen_stroke.evemu");
+  std::ofstream out(path);
+  std::string line;
+  while (std::getline(in, line) && line.rfind("E:", 0) != 0) out << line << "\n";
+  auto ev = [&](double t, int type, int code, int value) {
+    char b[64];
+    std::snprintf(b, sizeof b, "E: %.6f %04x %04x %04d\n", t, type, code, value);
+    out << b;
+  };
+  // In proximity over tumor B (110, 50 mm; 100 units/mm), pen up.
+  ev(0.0, 1, 0x140, 1);
+  ev(0.0, 3, 0x00, 11000);
+  ev(0.0, 3, 0x01, 5000);
+  ev(0.0, 0, 0, 0);
+  std::vector<PenEdge> edges;
+  // Each edge lands at a pseudo-random phase within 4 ms (two bus periods, four loop periods),
+  // so the figures cover every phase of the pen against the loop and the bus, not one.
+  std::uint32_t lcg = 12345;
+  auto phase_s = [&] {
+    lcg = lcg * 1664525u + 1013904223u;
+    return double(lcg >> 8) / double(1u << 24) * 0.004;
+  };
+  for (double t = 0.1; t + 0.25 < seconds; t += 0.25) {
+    const double down = t + phase_s(), up = t + 0.125 + phase_s();
+    ev(down, 1, 0x14a, 1), ev(down, 3, 0x18, 3072), ev(down, 0, 0, 0);
+    edges.push_back({down, true});
+    ev(up, 1, 0x14a, 0), ev(up, 3, 0x18, 0), ev(up, 0, 0, 0);
+    edges.push_back({up, false});
+  }
+  // Stay in proximity, pen up, until the end (heartbeats keep the sample fresh).
+  ev(seconds, 3, 0x00, 11001), ev(seconds, 0, 0, 0);
+  return edges;
+}
+
+struct Child {
+  pid_t pid = -1;
+  FILE* out = nullptr;
+};
+
+Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
+  int fds[2];
+  if (pipe(fds) != 0) throw std::runtime_error("pipe");
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
+  posix_spawn_file_actions_addclose(&fa, fds[0]);
+  std::vector<std::string> args = {"chrt", "-f", "50", PALPRIG_BIN, "sim-rig", "--rig", rig, "--listen", "127.0.0.1:0", "--write-log", write_log};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  Child c;
+  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw std::runtime_error("spawn sim-rig");
+  close(fds[1]);
+  c.out = fdopen(fds[0], "r");
+  return c;
+}
+
+double pct(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // bench/run_all.sh passes Google Benchmark flags to every program: only a number is a length.
+  const double seconds = argc > 1 && std::atof(argv[1]) > 0 ? std::atof(argv[1]) : 20.0;
+  const std::string dir = "/tmp/palprig-bench-e2e-" + std::to_string(getpid());
+  std::filesystem::create_directories(dir);
+  const std::string recording = dir + "/presses.evemu", write_log = dir + "/writes.csv", rig_path = dir + "/rig.json";
+  const std::vector<PenEdge> edges = write_recording(recording, seconds);
+
+  const std::string wago = kSource + "/data/rigs/wago_750_559.json";
+  Child sim = spawn_sim_rig(wago, write_log);
+  int port = 0;
+  char buf[512];
+  while (port == 0 && std::fgets(buf, sizeof buf, sim.out)) {
+    const std::string l = buf;
+    const auto at = l.find("listening on 127.0.0.1:");
+    if (at != std::string::npos) port = std::atoi(l.c_str() + at + 23);
+  }
+  if (port == 0) {
+    std::cerr << "bench_pen_to_modbus: sim-rig did not start\n";
+    return 1;
+  }
+  {  // the rig file, pointed at the simulator's port
+    std::ifstream in(wago);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string text = ss.str();
+    text.replace(text.find("\"port\": 1502"), 12, "\"port\": " + std::to_string(port));
+    std::ofstream(rig_path) << text;
+  }
+
+  const RigConfig rig = load_rig_file(rig_path);
+  const SceneFile scene = load_scene_file(kSource + "/data/scenes/phantom_abc.json");
+  const TickConfig config = make_tick_config(rig, CalibrationModels{});
+  auto source = std::make_unique<EvemuPenSource>(recording);
+  EvemuPenSource* replay = source.get();
+  TabletInput pen(std::move(source), rig.tablet);
+  auto backend = make_backend(rig);
+  backend->open();
+  RunOptions opt;
+  opt.mode = LoopMode::realtime;
+  opt.rate_hz = 1000;
+  opt.duration_s = seconds;
+  const RunSummary s = run_loop(config, *scene.scene, pen, *backend, opt);
+  backend->close();
+  kill(sim.pid, SIGTERM);
+  waitpid(sim.pid, nullptr, 0);
+  fclose(sim.out);
+
+  // Writes of finger 1's output: (arrival ns, word).
+  std::vector<std::pair<long long, unsigned>> writes;
+  std::ifstream log(write_log);
+  std::string line;
+  std::getline(log, line);
+  while (std::getline(log, line)) {
+    double t, kPa;
+    unsigned ch, word;
+    long long ns;
+    if (std::sscanf(line.c_str(), "%lf,%u,%u,%lf,%lld", &t, &ch, &word, &kPa, &ns) == 5 && ch == 1) writes.push_back({ns, word});
+  }
+  const std::int64_t start = replay->start_ns();
+  std::vector<double> press_ms, lift_ms;
+  std::size_t unmatched = 0;
+  for (const auto& e : edges) {
+    const long long due = start + static_cast<long long>(e.t_s * 1e9);  // the recording's first event is at 0
+    // The setpoint moves under the rig's slew limit in both directions, so the pen's effect
+    // arrives with the first write that moves the output its way: up from 0 after a press,
+    // down from the value held at the lift.
+    auto first = std::find_if(writes.begin(), writes.end(), [&](const auto& w) { return w.first >= due; });
+    const unsigned held = first == writes.begin() ? 0u : std::prev(first)->second;
+    auto it = std::find_if(first, writes.end(), [&](const auto& w) { return e.press ? w.second > 0 : w.second < held; });
+    if (it == writes.end() || double(it->first - due) > 100e6) {
+      ++unmatched;
+      continue;
+    }
+    (e.press ? press_ms : lift_ms).push_back(double(it->first - due) / 1e6);
+  }
+  std::vector<double> all = press_ms;
+  all.insert(all.end(), lift_ms.begin(), lift_ms.end());
+  std::printf("pen event -> Modbus register write at sim-rig on loopback, %.0f s, loop 1 kHz, bus %g Hz (%s)\n", seconds,
+              parse_modbus_config(rig).io_rate_hz, s.realtime_practices.c_str());
+  std::printf("  presses %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", press_ms.size(), pct(press_ms, .5), pct(press_ms, .99),
+              pct(press_ms, 1.0));
+  std::printf("  lifts   %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", lift_ms.size(), pct(lift_ms, .5), pct(lift_ms, .99),
+              pct(lift_ms, 1.0));
+  std::printf("  all     %zu: p50 %.2f ms, p99 %.2f ms (regulator response: 50 ms time constant); %zu edges unmatched\n",
+              all.size(), pct(all, .5), pct(all, .99), unmatched);
+  std::printf("  loop: %llu ticks, %llu overruns, wake-up p50/p99 %.0f/%.0f us; fault: %s\n",
+              static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns), s.wake_latency.p50_us,
+              s.wake_latency.p99_us, to_string(s.fault));
+  std::filesystem::remove_all(dir);
+  return unmatched == 0 && s.fault == FaultCode::none ? 0 : 1;
+}

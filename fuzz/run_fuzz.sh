@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Runs every fuzz target of a PALPRIG_FUZZ build for SECONDS each, starting from the seeds
+# (the shipped data files and test fixtures that reader takes, plus fuzz/seeds/<target>), and
+# prints one line per target: executions, time, new corpus units, crashes. Exit 1 if any target
+# crashed, leaked, timed out or ran out of memory; its input is kept in BUILD/fuzz-artifacts.
+#   fuzz/run_fuzz.sh BUILD_DIR SECONDS [TARGET...]
+set -euo pipefail
+build=${1:?build dir (cmake -DPALPRIG_FUZZ=ON)}
+seconds=${2:?seconds per target}
+shift 2
+src=$(cd "$(dirname "$0")/.." && pwd)
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  for f in "$src"/fuzz/fuzz_*.cpp; do targets+=("$(basename "$f" .cpp)"); done
+fi
+
+# The shipped files each reader takes (globs relative to the source tree).
+seeds_for() {
+  case $1 in
+    fuzz_rig_file) echo "data/rigs/*.json" ;;
+    fuzz_scene_file) echo "data/scenes/*.json" ;;
+    fuzz_calibration_file) echo "data/calibration/*.json" ;;
+    fuzz_protocol) echo "data/protocols/*.json" ;;
+    fuzz_trace_csv) echo "data/traces/*.csv" ;;
+    fuzz_map_csv) echo "" ;;
+    fuzz_pgm) echo "data/scenes/*.pgm" ;;
+    fuzz_evemu) echo "tests/fixtures/evemu/*.evemu" ;;
+    fuzz_telemetry_bin) echo "" ;;
+    fuzz_stats_csv) echo "data/calibration/*.csv data/traces/*.csv" ;;
+    fuzz_waveform_csv) echo "data/waveforms/*.csv" ;;
+  esac
+}
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/palprig-fuzz.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$build/fuzz-artifacts"
+failed=0
+printf '%-22s %12s %8s %8s %8s\n' target executions time_s corpus crashes
+for t in "${targets[@]}"; do
+  exe="$build/bin/$t"
+  [ -x "$exe" ] || exe="$build/fuzz/$t"
+  [ -x "$exe" ] || { echo "$t: not built in $build" >&2; failed=1; continue; }
+  mkdir -p "$work/$t/seeds" "$work/$t/new"
+  (cd "$src" && for f in $(seeds_for "$t"); do [ -f "$f" ] && cp "$f" "$work/$t/seeds/"; done; true)
+  [ -d "$src/fuzz/seeds/$t" ] && cp "$src/fuzz/seeds/$t"/* "$work/$t/seeds/" 2>/dev/null || true
+  log="$work/$t.log"
+  start=$(date +%s.%N)
+  status=0
+  "$exe" "$work/$t/new" "$work/$t/seeds" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="$build/fuzz-artifacts/$t-" >"$log" 2>&1 || status=$?
+  end=$(date +%s.%N)
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  corpus=$(find "$work/$t/new" "$work/$t/seeds" -type f | wc -l)
+  crashes=0
+  if [ "$status" -ne 0 ]; then
+    crashes=1
+    failed=1
+    echo "---- $t failed (exit $status); its log:" >&2
+    grep -E "ERROR|SUMMARY|Test unit written|terminate|what\(\)" "$log" | head -20 >&2
+  fi
+  printf '%-22s %12s %8.1f %8s %8s\n' "$t" "${execs:-?}" "$(awk "BEGIN {print $end - $start}")" "$corpus" "$crashes"
+done
+exit $failed
