@@ -1,5 +1,7 @@
 #include "gui/live_run.hpp"
 
+#include <stdexcept>
+
 #include <sstream>
 
 #include "controller/backend_factory.hpp"
@@ -160,6 +162,11 @@ void LiveRun::stop() {
   vent_request_.store(true);
   join_loop();
   stopped_ = true;
+}
+
+RigBackend& LiveRun::backend_when_stopped() {
+  if (!stopped_ || loop_running_) throw std::logic_error("LiveRun::backend_when_stopped before stop()");
+  return *backend_;
 }
 
 RigLifecycle LiveRun::state() const noexcept {

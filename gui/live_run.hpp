@@ -79,6 +79,9 @@ class LiveRun {
   double vent_pressed_after_t_s() const noexcept { return vent_pressed_after_t_s_; }
   void acknowledge_fault();  // clears the banner; the loop restarts vented
   void stop();   // ends the loop (vented); idempotent
+  // After stop(): the loop thread is gone and the backend (still open) can be lent to one other
+  // user at a time, e.g. the calibration page's sweep. Throws std::logic_error before stop().
+  RigBackend& backend_when_stopped();
   RigLifecycle state() const noexcept;
   bool fault_pending() const noexcept { return fault_pending_; }
   FaultCode fault() const noexcept { return last_summary_.fault; }

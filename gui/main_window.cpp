@@ -13,6 +13,7 @@
 #include <QTabWidget>
 #include <QTimer>
 
+#include "gui/calibration_page.hpp"
 #include "gui/live_page.hpp"
 #include "gui/rig_panel.hpp"
 #include "models/parse_error.hpp"
@@ -25,6 +26,7 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
   tabs_ = new QTabWidget;
   setCentralWidget(tabs_);
   build_live_page();
+  build_calibration_page();
 
   status_ = new QLabel;
   status_->setObjectName("loop_status");
@@ -41,7 +43,10 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
   // Esc vents from anywhere in the window, whatever has the focus.
   auto* vent = new QShortcut(QKeySequence(Qt::Key_Escape), this);
   vent->setContext(Qt::ApplicationShortcut);
-  connect(vent, &QShortcut::activated, this, [this] { live_page_->rig_panel()->vent_now(); });
+  connect(vent, &QShortcut::activated, this, [this] {
+    if (calibration_page_->sweeping()) calibration_page_->stop_sweep();  // the sweep owns the rig
+    live_page_->rig_panel()->vent_now();
+  });
   auto* pause = new QShortcut(QKeySequence(Qt::Key_Space), this);
   connect(pause, &QShortcut::activated, this, [this] { live_page_->toggle_pause(); });
   auto* outlines = new QShortcut(QKeySequence(Qt::CTRL | Qt::Key_T), this);
@@ -56,7 +61,33 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
 }
 
 MainWindow::~MainWindow() {
+  calibration_page_->cancel_sweep();  // before the backend it borrowed goes with run_
   if (run_) run_->stop();
+}
+
+void MainWindow::build_calibration_page() {
+  CalibrationHost host;
+  host.rig = [this] { return run_->setup().rig; };
+  host.take_backend = [this]() -> RigBackend& {
+    live_page_->setEnabled(false);  // no Arm while the sweep owns the rig
+    run_->stop();                   // the loop vents and ends: one owner of the backend at a time
+    return run_->backend_when_stopped();
+  };
+  host.give_back_backend = [this] {
+    QWidget* current = tabs_->currentWidget();
+    open_files(files_);  // the live loop starts again on the same files
+    tabs_->setCurrentWidget(current);
+  };
+  host.use_calibration = [this](const std::string& path) {
+    LiveRunFiles f = files_;
+    f.cal_path = path;
+    QWidget* current = tabs_->currentWidget();
+    const bool ok = open_files(f);
+    tabs_->setCurrentWidget(current);
+    return ok;
+  };
+  calibration_page_ = new CalibrationPage(std::move(host));
+  tabs_->addTab(calibration_page_, "Calibration");
 }
 
 void MainWindow::build_live_page() {
@@ -131,6 +162,7 @@ void MainWindow::choose_file(const QString& what, std::string LiveRunFiles::*fie
 
 void MainWindow::closeEvent(QCloseEvent* e) {
   timer_->stop();
+  calibration_page_->cancel_sweep();  // the runner vents every channel
   run_->stop();  // the loop vents every channel as it ends
   e->accept();
 }

@@ -1,6 +1,6 @@
 #pragma once
 // MainWindow: the palprig application window. One page per job in a QTabWidget ("Live rig"
-// now; the experiment console and calibration add pages beside it), a status bar with the
+// and "Calibration"; the experiment console adds a page beside them), a status bar with the
 // loop's rate, overruns and wake-up latency, and the window-wide shortcuts (Esc is VENT).
 // It owns the LiveRun; closing the window stops the loop, which vents every channel.
 #include <QMainWindow>
@@ -16,6 +16,7 @@ class QTimer;
 
 namespace palprig::gui {
 
+class CalibrationPage;
 class LivePage;
 
 class MainWindow final : public QMainWindow {
@@ -26,6 +27,7 @@ class MainWindow final : public QMainWindow {
 
   LiveRun& run() noexcept { return *run_; }
   LivePage* live_page() const noexcept { return live_page_; }
+  CalibrationPage* calibration_page() const noexcept { return calibration_page_; }
   QTabWidget* pages() const noexcept { return tabs_; }
   QLabel* status_text() const noexcept { return status_; }
   // Load other files (File menu). A refused file shows the same one line as the CLI in a
@@ -42,6 +44,7 @@ class MainWindow final : public QMainWindow {
  private:
   void poll();
   void build_live_page();
+  void build_calibration_page();
   void choose_file(const QString& what, std::string LiveRunFiles::*field, const QString& filter);
 
   std::unique_ptr<LiveRun> run_;
@@ -49,6 +52,7 @@ class MainWindow final : public QMainWindow {
   LiveRunOptions options_;
   QTabWidget* tabs_ = nullptr;
   LivePage* live_page_ = nullptr;
+  CalibrationPage* calibration_page_ = nullptr;
   QLabel* status_ = nullptr;
   QTimer* timer_ = nullptr;
   QMessageBox* refusal_ = nullptr;

@@ -1,0 +1,26 @@
+#include "calibration/sweep_recording.hpp"
+
+#include "calibration/calibration_report.hpp"
+
+namespace palprig {
+
+SweepRecording record_calibration_sweep(RigBackend& backend, const RigConfig& rig, const SweepSchedule& schedule,
+                                        const SweepRunOptions& options, const std::filesystem::path& out,
+                                        const SweepProgress& progress) {
+  SweepFileInfo info;
+  info.rig_id = rig.id;
+  info.backend = backend.describe();
+  info.date = utc_timestamp_now();
+  info.p_max_kPa = rig.safety.p_max_kPa;
+  info.rate_hz = options.rate_hz;
+  if (const char* s = backend.sensor_name()) info.sensor_name = s;
+  info.notes = schedule.notes;
+  SweepCsvWriter writer(out, info, options.channels);
+  SweepRecording r;
+  r.outcome = run_calibration_sweep(backend, schedule, options, writer, progress);
+  writer.finish(r.outcome);
+  r.rows = writer.rows();
+  return r;
+}
+
+}  // namespace palprig

@@ -1,0 +1,349 @@
+#include "gui/calibration_page.hpp"
+
+#include <QCheckBox>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPixmap>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSpinBox>
+#include <QTableWidget>
+#include <QTimer>
+#include <cmath>
+
+#include "calibration/calibration_report.hpp"
+#include "calibration/calibration_writer.hpp"
+#include "gui/calibration_charts.hpp"
+
+namespace palprig::gui {
+
+namespace {
+
+QDoubleSpinBox* kPa_box(double value, double lo, double hi, const char* name) {
+  auto* b = new QDoubleSpinBox;
+  b->setObjectName(name);
+  b->setRange(lo, hi);
+  b->setDecimals(1);
+  b->setSuffix(" kPa");
+  b->setValue(value);
+  return b;
+}
+
+QString number(double v, int decimals) { return std::isfinite(v) ? QString::number(v, 'f', decimals) : "n/a"; }
+
+}  // namespace
+
+CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidget(parent), host_(std::move(host)) {
+  setObjectName("calibration_page");
+  const SweepPlanOptions defaults;  // `palprig calibrate sweep`'s defaults
+
+  auto* sweep_box = new QGroupBox("Sweep (paper 002 staircase)");
+  auto* form = new QFormLayout(sweep_box);
+  auto* channel_row = new QHBoxLayout;
+  for (int c = 0; c < 3; ++c) {
+    channels_[c] = new QCheckBox(QString::number(c + 1));
+    channels_[c]->setObjectName(QString("cal_channel_%1").arg(c + 1));
+    channels_[c]->setChecked(true);
+    channel_row->addWidget(channels_[c]);
+  }
+  form->addRow("Channels", channel_row);
+  form->addRow("From", from_ = kPa_box(defaults.from_kPa, 0, 1000, "cal_from"));
+  form->addRow("To (clamped to p_max)", to_ = kPa_box(defaults.to_kPa, 0, 1000, "cal_to"));
+  form->addRow("Step", step_ = kPa_box(defaults.step_kPa, 0.1, 1000, "cal_step"));
+  repeats_ = new QSpinBox;
+  repeats_->setObjectName("cal_repeats");
+  repeats_->setRange(1, 100);
+  repeats_->setValue(defaults.repeats);
+  form->addRow("Repeats", repeats_);
+  start_ = new QPushButton("Start sweep");
+  start_->setObjectName("cal_start");
+  stop_ = new QPushButton("Stop (vent, keep data)");
+  stop_->setObjectName("cal_stop");
+  stop_->setEnabled(false);
+  auto* run_row = new QHBoxLayout;
+  run_row->addWidget(start_);
+  run_row->addWidget(stop_);
+  form->addRow(run_row);
+  progress_ = new QProgressBar;
+  progress_->setObjectName("cal_progress");
+  progress_->setRange(0, 1);
+  progress_->setValue(0);
+  progress_->setFormat("%v of %m holds");
+  form->addRow("Progress", progress_);
+
+  auto* fit_box = new QGroupBox("Fit and save (as `palprig calibrate fit`)");
+  auto* fit_form = new QFormLayout(fit_box);
+  fit_ = new QPushButton("Fit");
+  fit_->setObjectName("cal_fit");
+  fit_->setEnabled(false);
+  fit_form->addRow(fit_);
+  save_path_ = new QLineEdit;
+  save_path_->setObjectName("cal_save_path");
+  save_path_->setPlaceholderText("calibration file (JSON)");
+  auto* browse = new QPushButton("...");
+  connect(browse, &QPushButton::clicked, this, [this] {
+    const QString p = QFileDialog::getSaveFileName(this, "Save calibration", QString(), "Calibration files (*.json)");
+    if (!p.isEmpty()) save_path_->setText(p);
+  });
+  auto* path_row = new QHBoxLayout;
+  path_row->addWidget(save_path_, 1);
+  path_row->addWidget(browse);
+  fit_form->addRow("File", path_row);
+  save_ = new QPushButton("Save");
+  save_->setObjectName("cal_save");
+  save_->setEnabled(false);
+  use_ = new QPushButton("Use in live rig");
+  use_->setObjectName("cal_use");
+  use_->setEnabled(false);
+  auto* save_row = new QHBoxLayout;
+  save_row->addWidget(save_);
+  save_row->addWidget(use_);
+  fit_form->addRow(save_row);
+
+  status_ = new QLabel("Start runs the sweep on the connected rig; the live loop is vented meanwhile.");
+  status_->setObjectName("cal_status");
+  status_->setWordWrap(true);
+
+  auto* left_panel = new QWidget;
+  left_panel->setFixedWidth(360);
+  auto* left = new QVBoxLayout(left_panel);
+  left->setContentsMargins(0, 0, 0, 0);
+  left->addWidget(sweep_box);
+  left->addWidget(fit_box);
+  left->addWidget(status_);
+  left->addStretch(1);
+
+  table_ = new QTableWidget(0, 10);
+  table_->setObjectName("cal_table");
+  table_->setHorizontalHeaderLabels(
+      {"channel", "response", "branch", "n", "slope", "intercept", "R^2", "resid SD", "gap", "repeat SD %"});
+  table_->verticalHeader()->hide();
+  table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+
+  auto* chart_host = new QWidget;
+  charts_ = new QGridLayout(chart_host);
+  auto* scroll = new QScrollArea;
+  scroll->setObjectName("cal_charts");
+  scroll->setWidget(chart_host);
+  scroll->setWidgetResizable(true);
+
+  auto* right = new QVBoxLayout;
+  right->addWidget(new QLabel("Fit table (paper 002 fig. 8 layout)"));
+  right->addWidget(table_, 2);
+  right->addWidget(new QLabel("Per channel: branch lines; recorded holds (the loop before compensation) and the fitted model's loops"));
+  right->addWidget(scroll, 3);
+
+  auto* layout = new QHBoxLayout(this);
+  layout->addWidget(left_panel, 0);
+  layout->addLayout(right, 1);
+
+  timer_ = new QTimer(this);
+  timer_->setInterval(50);
+  connect(timer_, &QTimer::timeout, this, &CalibrationPage::poll_job);
+  connect(start_, &QPushButton::clicked, this, &CalibrationPage::start_sweep);
+  connect(stop_, &QPushButton::clicked, this, &CalibrationPage::stop_sweep);
+  connect(fit_, &QPushButton::clicked, this, &CalibrationPage::fit);
+  connect(save_, &QPushButton::clicked, this, &CalibrationPage::save);
+  connect(use_, &QPushButton::clicked, this, [this] {
+    if (host_.use_calibration(saved_path_.toStdString())) say("The live rig now uses " + saved_path_ + ".");
+  });
+}
+
+CalibrationPage::~CalibrationPage() { cancel_sweep(); }
+
+void CalibrationPage::cancel_sweep() {
+  timer_->stop();
+  job_.reset();  // stops (the runner vents every channel) and joins
+}
+
+QString CalibrationPage::data_path() const { return work_dir_.filePath("sweep.csv"); }
+
+void CalibrationPage::say(const QString& text, bool error) {
+  status_->setText(text);
+  status_->setStyleSheet(error ? "color: #b00000; font-weight: bold" : "");
+}
+
+void CalibrationPage::start_sweep() {
+  if (job_) return;
+  const RigConfig rig = host_.rig();
+  SweepPlanOptions plan_options;
+  plan_options.from_kPa = from_->value();
+  plan_options.to_kPa = to_->value();
+  plan_options.step_kPa = step_->value();
+  plan_options.repeats = repeats_->value();
+  SweepRunOptions run;
+  bool any = false;
+  for (int c = 0; c < 3; ++c) any |= (run.channels[c] = channels_[c]->isChecked());
+  // As `calibrate sweep`: the simulated rig runs in simulated time, hardware in real time.
+  run.realtime = rig.backend != "simulated";
+  SweepSchedule schedule;
+  try {
+    if (!any) throw std::invalid_argument("channels: at least one channel to sweep");
+    schedule = plan_calibration_sweep(plan_options, rig.safety.p_max_kPa);  // refused before anything moves
+  } catch (const std::exception& e) {
+    say(QString("palprig: ") + e.what(), true);
+    return;
+  }
+  result_.reset();
+  data_.reset();
+  fit_->setEnabled(false);
+  save_->setEnabled(false);
+  use_->setEnabled(false);
+  table_->setRowCount(0);
+  RigBackend& backend = host_.take_backend();
+  job_ = std::make_unique<CalibrationJob>(backend, rig, std::move(schedule), run, data_path().toStdString());
+  progress_->setRange(0, int(job_->holds_total()));
+  progress_->setValue(0);
+  start_->setEnabled(false);
+  stop_->setEnabled(true);
+  say(QString("Sweeping on rig %1 (%2)...").arg(QString::fromStdString(rig.id), run.realtime ? "real time" : "simulated time"));
+  timer_->start();
+}
+
+void CalibrationPage::stop_sweep() {
+  if (job_) job_->stop();
+}
+
+void CalibrationPage::poll_job() {
+  if (!job_) return;
+  progress_->setValue(int(job_->holds_done()));
+  if (!job_->finished()) return;
+  timer_->stop();
+  std::unique_ptr<CalibrationJob> job = std::move(job_);
+  const std::string error = job->error();
+  const SweepOutcome o = job->recording().outcome;
+  job.reset();  // joined: the backend is free again
+  if (error.empty()) {
+    progress_->setRange(0, int(o.holds_planned));
+    progress_->setValue(int(o.holds_done));  // the last progress call may have come after the poll's read
+  }
+  host_.give_back_backend();
+  start_->setEnabled(true);
+  stop_->setEnabled(false);
+  if (!error.empty()) {
+    say(QString("palprig: ") + QString::fromStdString(error), true);
+  } else {
+    QString text = QString("%1 of %2 holds (%3 not settled) in %4 s of rig time -> %5")
+                       .arg(o.holds_done)
+                       .arg(o.holds_planned)
+                       .arg(o.holds_unsettled)
+                       .arg(o.duration_s, 0, 'f', 1)
+                       .arg(data_path());
+    if (o.stopped) text = "Stopped: every channel vented; kept " + text;
+    if (o.faulted) text = "Fault: " + QString::fromStdString(o.fault) + "; every channel vented; kept " + text;
+    say(text, o.faulted);
+    fit_->setEnabled(o.holds_done > 0);
+  }
+  emit sweep_finished();
+}
+
+void CalibrationPage::fit() {
+  // The same calls as `palprig calibrate fit DATA` with its defaults (paper 002's base models).
+  // Ceres takes well under a second on a staircase; it runs here, beside the loop's own thread.
+  try {
+    CalibrationFitOptions options;
+    options.date = utc_timestamp_now();
+    data_ = read_sweep_csv(data_path().toStdString());
+    result_ = fit_calibration(*data_, options);
+  } catch (const std::exception& e) {
+    result_.reset();
+    say(QString("palprig: ") + e.what(), true);
+    return;
+  }
+  show_table();
+  show_charts();
+  save_->setEnabled(true);
+  QStringList notes;
+  for (const auto& n : result_->notes) notes << QString::fromStdString(n);
+  say("Fitted." + (notes.isEmpty() ? QString() : " " + notes.join("; ")));
+  emit fitted();
+}
+
+void CalibrationPage::show_table() {
+  table_->setRowCount(0);
+  auto rows = [this](const QString& who, const QString& response, const BranchFits& f) {
+    const std::pair<const char*, const LineFit*> branches[] = {
+        {"inflation", &f.inflation}, {"deflation", &f.deflation}, {"both", &f.both}};
+    for (const auto& [name, line] : branches) {
+      const int r = table_->rowCount();
+      table_->insertRow(r);
+      const QString cells[] = {who,
+                               response,
+                               name,
+                               QString::number(line->n),
+                               number(line->slope, 4),
+                               number(line->intercept, 3),
+                               number(line->r_squared, 4),
+                               number(line->residual_sd, 3),
+                               number(f.gap, 3),
+                               number(f.repeat_sd_percent, 2)};
+      for (int c = 0; c < 10; ++c) table_->setItem(r, c, new QTableWidgetItem(cells[c]));
+    }
+  };
+  for (const ChannelCalibration& ch : result_->channels) {
+    if (ch.regulator) rows(QString::number(ch.channel), "monitor", *ch.regulator);
+    if (ch.response) rows(QString::number(ch.channel), QString::fromStdString(result_->sensor_name), *ch.response);
+  }
+  if (result_->pooled_regulator) rows("all", "monitor", *result_->pooled_regulator);
+  if (result_->pooled_response) rows("all", QString::fromStdString(result_->sensor_name), *result_->pooled_response);
+}
+
+void CalibrationPage::show_charts() {
+  while (QLayoutItem* item = charts_->takeAt(0)) {
+    delete item->widget();
+    delete item;
+  }
+  const std::filesystem::path dir = work_dir_.filePath("charts").toStdString();
+  std::filesystem::remove_all(dir);
+  // Per channel one row: its regulator (and sensor) branch lines, then the hysteresis chart:
+  // the recorded holds (the loop before compensation) with the fitted model's major and minor
+  // loops (what the tick inverts).
+  int row = -1, column = 0;
+  std::string channel;
+  for (const auto& png : plot_fit(dir, *data_, *result_)) {
+    const std::string stem = png.stem().string();  // channel_N_regulator / _sensor / _hysteresis
+    const std::string this_channel = stem.substr(0, stem.find('_', 8));
+    if (this_channel != channel) {
+      channel = this_channel;
+      ++row;
+      column = 0;
+    }
+    auto* image = new QLabel;
+    image->setObjectName(QString::fromStdString("cal_chart_" + stem));
+    image->setPixmap(QPixmap(QString::fromStdString(png.string())).scaledToWidth(420, Qt::SmoothTransformation));
+    charts_->addWidget(image, row, column++);
+    image->show();  // at once, so a grab right after the fit has it
+  }
+}
+
+void CalibrationPage::save() {
+  if (!result_) return;
+  QString path = save_path_->text();
+  if (path.isEmpty()) {
+    path = QFileDialog::getSaveFileName(this, "Save calibration", QString(), "Calibration files (*.json)");
+    if (path.isEmpty()) return;
+    save_path_->setText(path);
+  }
+  try {
+    // The writer renames into place only after the controller's reader accepted the file.
+    write_calibration_file(path.toStdString(), calibration_json(*result_));
+  } catch (const std::exception& e) {
+    say(QString("palprig: ") + e.what(), true);
+    return;
+  }
+  saved_path_ = path;
+  use_->setEnabled(true);
+  say("Saved " + path + ".");
+  emit saved(path);
+}
+
+}  // namespace palprig::gui

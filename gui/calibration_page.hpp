@@ -1,0 +1,89 @@
+#pragma once
+// CalibrationPage: `palprig calibrate sweep` and `fit` in the window. The operator picks the
+// channels and the staircase (from/to/step/repeats, the CLI's defaults), Start hands the rig
+// over from the live loop (stopped and vented by the window) to a CalibrationJob on its own
+// thread, the progress bar follows the sweep's progress callback, Stop vents and keeps what was
+// recorded; the rig goes back to the live loop (vented) when the sweep ends. Fit calls
+// fit_calibration as `calibrate fit` does and shows paper 002's fig. 8 table and the charts of
+// gui/calibration_charts (branch lines; recorded hysteresis and the fitted model's loops).
+// Save writes the file through calibration_writer (checked by the controller's own reader
+// before it replaces anything); "Use in live rig" reloads the window with it.
+#include <QWidget>
+#include <functional>
+#include <memory>
+#include <optional>
+
+#include <QTemporaryDir>
+
+#include "calibration/calibration_fit.hpp"
+#include "formats/rig_file.hpp"
+#include "gui/calibration_job.hpp"
+
+class QCheckBox;
+class QDoubleSpinBox;
+class QLabel;
+class QLineEdit;
+class QProgressBar;
+class QPushButton;
+class QSpinBox;
+class QTableWidget;
+class QTimer;
+class QGridLayout;
+
+namespace palprig::gui {
+
+// What the page needs from the window that owns the rig.
+struct CalibrationHost {
+  std::function<RigConfig()> rig;               // the connected rig's configuration
+  std::function<RigBackend&()> take_backend;    // stop and vent the live loop, hand its backend over
+  std::function<void()> give_back_backend;      // the sweep ended: the live loop starts again as on opening
+  std::function<bool(const std::string&)> use_calibration;  // reload the window with this file
+};
+
+class CalibrationPage final : public QWidget {
+  Q_OBJECT
+ public:
+  explicit CalibrationPage(CalibrationHost host, QWidget* parent = nullptr);
+  ~CalibrationPage() override;
+
+  bool sweeping() const noexcept { return job_ != nullptr; }
+  void stop_sweep();  // VENT while calibrating: the runner vents every channel, data kept
+  // The window is closing: stop and join the sweep now, before the backend goes; the rig is
+  // not handed back.
+  void cancel_sweep();
+  const std::optional<CalibrationResult>& result() const noexcept { return result_; }
+  QString data_path() const;
+
+ signals:
+  void sweep_finished();  // tests wait on these
+  void fitted();
+  void saved(const QString& path);
+
+ private:
+  void start_sweep();
+  void poll_job();
+  void fit();
+  void save();
+  void show_table();
+  void show_charts();
+  void say(const QString& text, bool error = false);
+
+  CalibrationHost host_;
+  QTemporaryDir work_dir_;  // sweep data and chart PNGs of this window's calibrations
+  std::unique_ptr<CalibrationJob> job_;
+  std::optional<CalibrationResult> result_;
+  std::optional<SweepData> data_;
+  QCheckBox* channels_[3] = {};
+  QDoubleSpinBox *from_ = nullptr, *to_ = nullptr, *step_ = nullptr;
+  QSpinBox* repeats_ = nullptr;
+  QPushButton *start_ = nullptr, *stop_ = nullptr, *fit_ = nullptr, *save_ = nullptr, *use_ = nullptr;
+  QProgressBar* progress_ = nullptr;
+  QLabel* status_ = nullptr;
+  QTableWidget* table_ = nullptr;
+  QGridLayout* charts_ = nullptr;
+  QLineEdit* save_path_ = nullptr;
+  QTimer* timer_ = nullptr;
+  QString saved_path_;
+};
+
+}  // namespace palprig::gui

@@ -1,0 +1,221 @@
+// Qt Test suite for the window's calibration page (registered as gui.CalibrationPage.*, run under
+// QT_QPA_PLATFORM=offscreen). The window runs the real loop thread on the default simulated rig;
+// the page takes that rig over for a real sweep (the calibration library's runner on its own
+// thread), fits with Ceres, and writes the calibration file the controller reads. Tests wait on
+// the page's signals (QSignalSpy::wait), never on fixed sleeps.
+#include <QApplication>
+#include <QCheckBox>
+#include <QDoubleSpinBox>
+#include <QLabel>
+#include <QLineEdit>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSignalSpy>
+#include <QSpinBox>
+#include <QTabWidget>
+#include <QTableWidget>
+#include <QtTest>
+#include <cstdlib>
+#include <functional>
+#include <memory>
+
+#include "calibration/sweep_csv.hpp"
+#include "formats/calibration_file.hpp"
+#include "gui/calibration_page.hpp"
+#include "gui/live_page.hpp"
+#include "gui/main_window.hpp"
+#include "tests/support/temp_dir.hpp"
+
+using namespace palprig;
+using namespace palprig::gui;
+using palprig::test_support::TempDir;
+
+namespace {
+
+std::string data_dir() { return std::string(PALPRIG_SOURCE_DIR) + "/data"; }
+
+struct Window {
+  LiveRunFiles files;
+  std::unique_ptr<MainWindow> window;
+  CalibrationPage* page = nullptr;
+};
+
+Window open_window() {
+  Window w;
+  w.files.data_dir = data_dir();
+  LiveRunOptions opt;
+  w.window = std::make_unique<MainWindow>(std::make_unique<LiveRun>(load_live_run(w.files), opt), w.files, opt);
+  w.window->show();
+  w.page = w.window->calibration_page();
+  w.window->pages()->setCurrentWidget(w.page);
+  return w;
+}
+
+template <class T>
+T* child(QWidget* page, const char* name) {
+  T* c = page->findChild<T*>(name);
+  if (!c) qFatal("no widget %s on the calibration page", name);
+  return c;
+}
+
+void set_staircase(CalibrationPage* p, double from, double to, double step, int repeats) {
+  child<QDoubleSpinBox>(p, "cal_from")->setValue(from);
+  child<QDoubleSpinBox>(p, "cal_to")->setValue(to);
+  child<QDoubleSpinBox>(p, "cal_step")->setValue(step);
+  child<QSpinBox>(p, "cal_repeats")->setValue(repeats);
+}
+
+}  // namespace
+
+class CalibrationPageTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  // Sweep channels 1 and 2 through the page, fit, look at the table and charts, save, and load
+  // the saved file with the controller's reader; then the live rig uses it.
+  void sweepFitSaveAndUseOnTheSimulatedRig() {
+    TempDir dir;
+    Window w = open_window();
+    CalibrationPage* p = w.page;
+    // `palprig calibrate sweep`'s defaults.
+    QCOMPARE(child<QDoubleSpinBox>(p, "cal_from")->value(), 10.0);
+    QCOMPARE(child<QDoubleSpinBox>(p, "cal_to")->value(), 100.0);
+    QCOMPARE(child<QDoubleSpinBox>(p, "cal_step")->value(), 10.0);
+    QCOMPARE(child<QSpinBox>(p, "cal_repeats")->value(), 5);
+    set_staircase(p, 10, 60, 5, 4);  // enough holds for 8 play operators
+    child<QCheckBox>(p, "cal_channel_3")->setChecked(false);
+    QSignalSpy finished(p, &CalibrationPage::sweep_finished);
+    QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
+    QVERIFY(p->sweeping());
+    QCOMPARE(w.window->run().state(), RigLifecycle::stopped);  // the live loop gave the rig up
+    QVERIFY(!w.window->live_page()->isEnabled());
+    QVERIFY(finished.wait(120000));
+    QVERIFY(!p->sweeping());
+    auto* progress = child<QProgressBar>(p, "cal_progress");
+    QCOMPARE(progress->value(), progress->maximum());
+    QVERIFY2(progress->maximum() > 10, qPrintable(QString::number(progress->maximum())));
+    QVERIFY(w.window->run().state() != RigLifecycle::stopped);  // the live loop runs again
+    QVERIFY(w.window->live_page()->isEnabled());
+    QCOMPARE(w.window->pages()->currentWidget(), static_cast<QWidget*>(p));
+
+    // The data file is the sweep's, as `calibrate sweep --out` writes it.
+    const SweepData data = read_sweep_csv(p->data_path().toStdString());
+    QVERIFY(!data.channel_points(1).empty());
+    QVERIFY(!data.channel_points(2).empty());
+    QVERIFY(data.channel_points(3).empty());
+
+    QSignalSpy fitted(p, &CalibrationPage::fitted);
+    QTest::mouseClick(child<QPushButton>(p, "cal_fit"), Qt::LeftButton);
+    QVERIFY2(fitted.count() == 1, qPrintable(child<QLabel>(p, "cal_status")->text()));
+    QVERIFY(p->result().has_value());
+    auto* table = child<QTableWidget>(p, "cal_table");
+    // Channels 1, 2 and pooled, three branches each (the simulated rig has no sensor).
+    QCOMPARE(table->rowCount(), 9);
+    QCOMPARE(table->item(0, 0)->text(), QString("1"));
+    QCOMPARE(table->item(0, 2)->text(), QString("inflation"));
+    QCOMPARE(table->item(8, 0)->text(), QString("all"));
+    // The simulated regulator follows the command: slope near 1 on both branches together, each
+    // branch a straight line (R^2 near 1; the two together less so, the hysteresis is between).
+    QVERIFY(std::abs(table->item(2, 4)->text().toDouble() - 1.0) < 0.1);
+    QVERIFY(table->item(0, 6)->text().toDouble() > 0.99);
+    QVERIFY(table->item(1, 6)->text().toDouble() > 0.99);
+    // The gap between the branches is the simulated plant's hysteresis: deflation above inflation.
+    QVERIFY(table->item(0, 8)->text().toDouble() > 0.0);
+    auto* hysteresis = p->findChild<QLabel*>("cal_chart_channel_1_hysteresis");
+    QVERIFY(hysteresis);
+    QVERIFY(!hysteresis->pixmap().isNull());
+    QVERIFY(p->findChild<QLabel*>("cal_chart_channel_2_regulator"));
+    QVERIFY(!p->findChild<QLabel*>("cal_chart_channel_3_regulator"));
+
+    if (const char* shots = std::getenv("PALPRIG_SCREENSHOT_DIR")) {
+      QCoreApplication::sendPostedEvents();  // pending layout requests, so the grab shows the page settled
+      QVERIFY(w.window->grab().save(QString(shots) + "/calibration_page.png"));
+    }
+
+    const QString path = QString::fromStdString((dir.path() / "cal.json").string());
+    child<QLineEdit>(p, "cal_save_path")->setText(path);
+    QSignalSpy saved(p, &CalibrationPage::saved);
+    QTest::mouseClick(child<QPushButton>(p, "cal_save"), Qt::LeftButton);
+    QCOMPARE(saved.count(), 1);
+    const CalibrationModels cal = load_calibration_file(path.toStdString());
+    QCOMPARE(QString::fromStdString(cal.rig_id), QString::fromStdString(w.window->run().setup().rig.id));
+    QVERIFY(!cal.hysteresis[0].is_identity());
+    QVERIFY(!cal.hysteresis[1].is_identity());
+    QVERIFY(cal.hysteresis[2].is_identity());
+
+    QTest::mouseClick(child<QPushButton>(p, "cal_use"), Qt::LeftButton);
+    const CalibrationModels& used = w.window->run().setup().cal;
+    QCOMPARE(used.hysteresis[0].linear_weight, cal.hysteresis[0].linear_weight);
+    QCOMPARE(used.hysteresis[0].operator_count, cal.hysteresis[0].operator_count);
+    QVERIFY(w.window->run().state() != RigLifecycle::stopped);
+  }
+
+  // Stop in the middle: the runner vents, the rows recorded so far are kept and can be read.
+  void stopVentsAndKeepsWhatWasRecorded() {
+    stop_mid_sweep([](Window& w) {
+      QTest::mouseClick(child<QPushButton>(w.page, "cal_stop"), Qt::LeftButton);
+    });
+  }
+
+  // Esc (the window's VENT key) stops the sweep the same way, whatever has the focus.
+  void escapeStopsTheSweep() {
+    stop_mid_sweep([](Window& w) { QTest::keyClick(w.window.get(), Qt::Key_Escape); });
+  }
+
+ private:
+  void stop_mid_sweep(const std::function<void(Window&)>& press_stop) {
+    Window w = open_window();
+    CalibrationPage* p = w.page;
+    set_staircase(p, 1, 60, 0.1, 50);  // thousands of holds: still running when Stop is pressed
+    QSignalSpy finished(p, &CalibrationPage::sweep_finished);
+    QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
+    auto* progress = child<QProgressBar>(p, "cal_progress");
+    QSignalSpy progressed(progress, &QProgressBar::valueChanged);
+    while (progress->value() < 20) QVERIFY(progressed.wait(30000));
+    press_stop(w);
+    QVERIFY(finished.wait(60000));
+    const QString status = child<QLabel>(p, "cal_status")->text();
+    QVERIFY2(status.startsWith("Stopped: every channel vented"), qPrintable(status));
+    QVERIFY(progress->value() < progress->maximum());
+    const std::string text = test_support::read_file(p->data_path().toStdString());
+    QVERIFY(text.find("# stopped:") != std::string::npos);
+    const SweepData data = read_sweep_csv(p->data_path().toStdString());
+    QVERIFY(data.points.size() >= 20);
+    QVERIFY(child<QPushButton>(p, "cal_fit")->isEnabled());
+    QVERIFY(w.window->run().state() != RigLifecycle::stopped);
+  }
+
+
+ private slots:
+  // Too few holds for the hysteresis fit: the library's refusal line on the page, nothing to save.
+  void fitRefusedWithTheLibraryLine() {
+    Window w = open_window();
+    CalibrationPage* p = w.page;
+    set_staircase(p, 10, 50, 10, 2);
+    QSignalSpy finished(p, &CalibrationPage::sweep_finished);
+    QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
+    QVERIFY(finished.wait(120000));
+    QTest::mouseClick(child<QPushButton>(p, "cal_fit"), Qt::LeftButton);
+    const QString status = child<QLabel>(p, "cal_status")->text();
+    QVERIFY2(status.startsWith("palprig: ") && status.contains("sweep.csv: channel 1 hysteresis"), qPrintable(status));
+    QVERIFY(!p->result().has_value());
+    QVERIFY(!child<QPushButton>(p, "cal_save")->isEnabled());
+  }
+
+  // A staircase that makes no sweep is refused on the page with the library's line; the live
+  // loop keeps the rig.
+  void badStaircaseIsRefusedAndTheLiveRigKeepsRunning() {
+    Window w = open_window();
+    CalibrationPage* p = w.page;
+    set_staircase(p, 50, 20, 10, 1);  // from above to
+    QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
+    QVERIFY(!p->sweeping());
+    const QString status = child<QLabel>(p, "cal_status")->text();
+    QVERIFY2(status.startsWith("palprig: ") && (status.contains("to_kPa") || status.contains("to-kPa")), qPrintable(status));
+    QVERIFY(w.window->run().state() != RigLifecycle::stopped);
+  }
+};
+
+QTEST_MAIN(CalibrationPageTest)
+#include "calibration_page_test.moc"
