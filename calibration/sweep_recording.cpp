@@ -13,7 +13,7 @@ SweepRecording record_calibration_sweep(RigBackend& backend, const RigConfig& ri
   info.date = utc_timestamp_now();
   info.p_max_kPa = rig.safety.p_max_kPa;
   info.rate_hz = options.rate_hz;
-  if (const char* s = backend.sensor_name()) info.sensor_name = s;
+  info.sensor_name = backend.sensor_name();
   info.notes = schedule.notes;
   SweepCsvWriter writer(out, info, options.channels);
   SweepRecording r;
