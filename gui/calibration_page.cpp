@@ -185,6 +185,7 @@ void CalibrationPage::start_sweep() {
   for (int c = 0; c < 3; ++c) any |= (run.channels[c] = channels_[c]->isChecked());
   // As `calibrate sweep`: the simulated rig runs in simulated time, hardware in real time.
   run.realtime = rig.backend != "simulated";
+  run.slew_kPa_per_s = rig.safety.slew_kPa_per_s;  // steps pass the safety stage at the rig's slew, as the CLI's
   SweepSchedule schedule;
   try {
     if (!any) throw std::invalid_argument("channels: at least one channel to sweep");
