@@ -34,7 +34,7 @@ void register_stats_trials(CLI::App* stats_app) {
   sub->add_flag("--json", a->json, "Same as --format json");
   sub->add_flag("--include-practice", a->include_practice, "Score practice trials too");
   sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson intervals")->default_val(0.95)
-      ->check(kConfidenceLevel);
+      ->check(cli::kConfidenceLevel);
   sub->callback([a] {
     SummaryOptions options;
     options.by = parse_summary_keys(a->by);
