@@ -97,7 +97,7 @@ TEST(BackendLifecycle, SimulatedRigGoesThroughEveryState) {
 }
 
 TEST(BackendLifecycle, ModbusRigIsConnectedAndReadingBeforeItIsArmed) {
-  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  const ModbusRigConfig map = *shipped_rig("wago_750_559.json").modbus;
   ModbusSimServer server(map, quiet_plants());
   server.set_log_sink(nullptr);
   server.start({ListenAddress{"127.0.0.1", 0}});
@@ -143,7 +143,7 @@ TEST(BackendCapabilities, DescribedUpFrontWithoutOpening) {
   EXPECT_EQ(c.link_kind, "in-process");
   EXPECT_EQ(simulated.sensor_name(), "");
 
-  ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  ModbusRigConfig map = *shipped_rig("wago_750_559.json").modbus;
   map.links[0].host = "192.0.2.7";
   map.links[0].port = 1502;
   const ModbusRig tcp(map);
