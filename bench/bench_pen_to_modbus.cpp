@@ -198,7 +198,7 @@ int main(int argc, char** argv) {
   std::vector<double> all = press_ms;
   all.insert(all.end(), lift_ms.begin(), lift_ms.end());
   std::printf("pen event -> Modbus register write at sim-rig on loopback, %.0f s, loop 1 kHz, bus %g Hz (%s)\n", seconds,
-              parse_modbus_config(rig).io_rate_hz, s.realtime_practices.c_str());
+              rig.modbus->io_rate_hz, s.realtime_practices.c_str());
   std::printf("  presses %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", press_ms.size(), pct(press_ms, .5), pct(press_ms, .99),
               pct(press_ms, 1.0));
   std::printf("  lifts   %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", lift_ms.size(), pct(lift_ms, .5), pct(lift_ms, .99),
