@@ -227,6 +227,7 @@ TEST(LoopRunner, VentRequestZeroesEverySetpointFromTheNextTickAndArmingSlewsBack
   const auto scene = hard_right_scene();
   TickConfig cfg;
   FailingRig rig(1 << 30);  // never fails; keeps the last write
+  rig.open();               // connected and vented: run_loop arms it
   RestingPen pen(50, 20);   // finger 2 over hard tissue: 11.75 kPa
   std::atomic<bool> vent{false}, stop{false};
   VentOperator op(vent, stop);
