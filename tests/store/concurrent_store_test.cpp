@@ -148,7 +148,7 @@ TEST(ConcurrentStore, ASecondStartWhileTheFirstRunsNamesTheRunningProcess) {
   EXPECT_EQ(scalar(db, "SELECT count(*) FROM trials"), 32);
 }
 
-TEST(ConcurrentStore, ResumeRefusalsSayWhatToDo) {
+TEST(ConcurrentStore, ResumeRefusalsNameTheNextStep) {
   ScratchDir dir;
   const std::string db = (dir / "stopped.db").string();
   {
