@@ -122,13 +122,13 @@ int pg_push_trials(PgConnection& db, std::int64_t session_id, std::span<const Tr
   return added;
 }
 
-std::vector<ServerSession> pg_read_sessions(PgConnection& db, const std::optional<std::string>& study) {
-  std::vector<PgParam> params;
-  if (study) params.push_back(*study);
+namespace {
+
+std::vector<ServerSession> read_sessions_where(PgConnection& db, const std::string& where, const std::vector<PgParam>& params) {
   const PgResult r = db.exec("SELECT s.id, p.code, p.simulated, p.created_utc, s.session_uid, s.host_name, s.origin, " +
                                  column_list(kSessionColumns, "s.") +
                                  " FROM sessions s JOIN participants p ON p.id = s.participant_id " +
-                                 (study ? "WHERE s.protocol_name = $1 " : "") + "ORDER BY s.id",
+                                 where + " ORDER BY s.id",
                              params);
   std::vector<ServerSession> sessions;
   for (int i = 0; i < r.rows(); ++i) {
@@ -148,6 +148,19 @@ std::vector<ServerSession> pg_read_sessions(PgConnection& db, const std::optiona
     sessions.push_back(std::move(s));
   }
   return sessions;
+}
+
+}  // namespace
+
+std::vector<ServerSession> pg_read_sessions(PgConnection& db, const std::optional<std::string>& study) {
+  if (!study) return read_sessions_where(db, "", {});
+  return read_sessions_where(db, "WHERE s.protocol_name = $1", {*study});
+}
+
+std::optional<ServerSession> pg_read_session(PgConnection& db, std::int64_t session_id) {
+  auto found = read_sessions_where(db, "WHERE s.id = $1", {pg_text(session_id)});
+  if (found.empty()) return std::nullopt;
+  return std::move(found.front());
 }
 
 std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id, std::int64_t from_position) {

@@ -30,6 +30,7 @@ struct ServerSession {
   SessionRows rows;
 };
 std::vector<ServerSession> pg_read_sessions(PgConnection& db, const std::optional<std::string>& study);
+std::optional<ServerSession> pg_read_session(PgConnection& db, std::int64_t session_id);
 std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id, std::int64_t from_position);
 
 }  // namespace palprig
