@@ -17,6 +17,7 @@
 
 #include "store/pg_connection.hpp"
 #include "store/pg_target.hpp"
+#include "store/session_rows.hpp"
 #include "store/trial_store.hpp"
 
 namespace palprig {
