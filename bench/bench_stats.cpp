@@ -14,7 +14,7 @@
 #include "experiments/session_plan.hpp"
 #include "statistics/statistics_proportion.hpp"
 #include "statistics/statistics_rank_tests.hpp"
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
 
@@ -32,7 +32,7 @@ std::filesystem::path bench_db() {
 bool has_all_trials(const std::filesystem::path& file) {
   if (!std::filesystem::exists(file)) return false;
   try {
-    TrialStore store = open_trial_store_for_reading(file);
+    SqliteTrialStore store(file, TrialStore::Access::read_only);
     auto q = store.database().prepare("SELECT count(*) FROM trials");
     return q.step() && q.integer(0) == static_cast<std::int64_t>(kParticipants) * kTrialsPerParticipant;
   } catch (const std::exception&) {
@@ -43,7 +43,7 @@ bool has_all_trials(const std::filesystem::path& file) {
 void build_db(const std::filesystem::path& file) {
   for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(file.string() + suffix);
   const Protocol p = load_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "protocols" / "discrimination_002.json");
-  TrialStore store(file, TrialStore::Access::read_write);
+  SqliteTrialStore store(file, TrialStore::Access::read_write);
   RandomSource random(2024);
   for (int who = 0; who < kParticipants; ++who) {
     const ParticipantRecord participant = store.enrol("sim:" + std::to_string(who), true);
@@ -77,7 +77,7 @@ TrialStore& store() {
     return true;
   }();
   (void)ready;
-  static TrialStore s = open_trial_store_for_reading(bench_db());
+  static SqliteTrialStore s(bench_db(), TrialStore::Access::read_only);
   return s;
 }
 

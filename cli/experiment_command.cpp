@@ -191,7 +191,8 @@ void run_experiment(const RunArgs& a) {
   std::unique_ptr<RigBackend> backend = make_backend(rig);
   backend->open();
 
-  TrialStore store(a.db, TrialStore::Access::read_write);
+  const auto opened_store = open_trial_store(a.db, TrialStore::Access::read_write);
+  TrialStore& store = *opened_store;
   SimulatedObserverModel model = a.model;
   model.seed = sim_seed;
   SessionRequest request;

@@ -51,7 +51,7 @@ std::filesystem::path plot_measures_by_condition(TrialStore& store, const std::f
     }
     chart.series.push_back(std::move(bars));
   }
-  if (chart.series.empty()) throw InputError(store.file(), "trials", "at least one scored trial to plot");
+  if (chart.series.empty()) throw InputError(store.location(), "trials", "at least one scored trial to plot");
   std::filesystem::create_directories(dir);
   const auto path = dir / "measures_by_condition.png";
   gui::write_chart_png(chart, path);
@@ -79,7 +79,8 @@ void register_export_command(CLI::App& app) {
                   "Also write DIR/measures_by_condition.png: Se, Sp, PPV, ACC per condition with Wilson 95 % error "
                   "bars (paper 002 fig. 15)");
   sub->callback([a] {
-    TrialStore store = open_trial_store_for_reading(a->db);
+    const auto opened = open_trial_store(a->db, TrialStore::Access::read_only);
+    TrialStore& store = *opened;
     ExportOptions options;
     options.include_practice = !a->no_practice;
     const ExportResult r =

@@ -290,8 +290,8 @@ void register_trials(CLI::App* stats_app) {
     options.by = parse_summary_keys(a->by);
     options.include_practice = a->include_practice;
     options.confidence = a->confidence;
-    TrialStore store = open_trial_store_for_reading(a->db);
-    const TrialSummary summary = summarise_trials(store, options);
+    const auto store = open_trial_store(a->db, TrialStore::Access::read_only);
+    const TrialSummary summary = summarise_trials(*store, options);
     const std::string format = a->json ? "json" : a->format;
     if (format == "json") std::cout << summary_json(summary, a->confidence).dump(2) << "\n";
     else if (format == "csv") std::cout << summary_csv(summary);

@@ -17,7 +17,7 @@ OpenedSession open_session(TrialStore& store, const Protocol& protocol, const Se
 
   if (request.resume) {
     if (!unfinished) {
-      throw InputError(store.file(), "--resume",
+      throw InputError(store.location(), "--resume",
                        "an unfinished session of participant '" + request.participant_code + "' with protocol '" +
                            protocol.name + "' (there is none)");
     }
@@ -38,7 +38,7 @@ OpenedSession open_session(TrialStore& store, const Protocol& protocol, const Se
 
   if (unfinished) {
     const StoredSession stored = store.load_session(*unfinished);
-    throw InputError(store.file(), "participant '" + request.participant_code + "'",
+    throw InputError(store.location(), "participant '" + request.participant_code + "'",
                      "no unfinished session with this protocol (session " + std::to_string(stored.id) + " stopped after " +
                          std::to_string(stored.completed_trials) + " of " + std::to_string(stored.plan.trials.size()) +
                          " trials: continue it with --resume)");

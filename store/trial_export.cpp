@@ -18,99 +18,30 @@ namespace palprig {
 
 namespace {
 
-// One trial as exported, joined with its session and participant.
-struct ExportTrial {
-  std::string participant;
-  bool simulated = false;
-  int participant_number = 0;
-  std::int64_t session = 0;
-  std::string protocol, task, bids_task;
-  std::int64_t id = 0;
-  int position = 0, block = 0;
-  std::string condition, mode;
-  bool practice = false;
-  int combination = -1;
-  std::string combination_label;
-  std::array<std::optional<double>, kFingerCount> stimulus_kPa{}, felt_kPa{};
-  std::string truth, answer;  // "010"; answer empty when unanswered
-  bool answered = false;
-  std::optional<double> response_time_s;
-  double onset_s = 0;
-  std::array<std::string, kFingerCount> outcome{};
-  std::optional<std::int64_t> false_marks;
-  std::string completed_utc;
-  std::vector<std::pair<std::string, std::string>> tumor_outcomes;  // localisation: (tumor, TP|FN)
+// One trial as exported: the stored trial with its protocol's finger names.
+struct ExportTrial : StoredTrial {
   std::array<std::string, kFingerCount> finger_names{"finger1", "finger2", "finger3"};
 };
 
-std::optional<double> real_or_null(const Statement& s, int column) {
-  if (s.is_null(column)) return std::nullopt;
-  return s.real(column);
-}
-
 std::vector<ExportTrial> read_trials(TrialStore& store, const ExportOptions& options) {
-  Database& db = store.database();
   std::map<std::int64_t, std::array<std::string, kFingerCount>> finger_names;  // per session, from the protocol
-  {
-    auto s = db.prepare("SELECT id, protocol_json FROM sessions");
-    while (s.step()) {
-      std::array<std::string, kFingerCount> names{"finger1", "finger2", "finger3"};
-      const auto protocol = nlohmann::json::parse(s.text(1), nullptr, false);
-      if (protocol.is_object() && protocol.contains("fingers") && protocol["fingers"].is_array() &&
-          protocol["fingers"].size() == kFingerCount) {
-        for (std::size_t f = 0; f < kFingerCount; ++f) {
-          if (protocol["fingers"][f].is_string()) names[f] = protocol["fingers"][f].get<std::string>();
-        }
+  for (const SessionOverview& session : store.list_sessions()) {
+    std::array<std::string, kFingerCount> names{"finger1", "finger2", "finger3"};
+    const nlohmann::json protocol = store.protocol_snapshot(session.id);
+    if (protocol.is_object() && protocol.contains("fingers") && protocol["fingers"].is_array() &&
+        protocol["fingers"].size() == kFingerCount) {
+      for (std::size_t f = 0; f < kFingerCount; ++f) {
+        if (protocol["fingers"][f].is_string()) names[f] = protocol["fingers"][f].get<std::string>();
       }
-      finger_names[s.integer(0)] = names;
     }
+    finger_names[session.id] = names;
   }
   std::vector<ExportTrial> trials;
-  auto q = db.prepare(
-      "SELECT p.code, p.simulated, p.number, s.id, s.protocol_name, s.task, s.bids_task, t.id, t.position, t.block, "
-      "t.condition, t.mode, t.practice, t.combination, t.combination_label, t.stimulus1_kPa, t.stimulus2_kPa, "
-      "t.stimulus3_kPa, t.felt1_kPa, t.felt2_kPa, t.felt3_kPa, t.truth, t.answered, t.answer, t.response_time_s, "
-      "t.onset_s, t.outcome1, t.outcome2, t.outcome3, t.false_marks, t.completed_utc "
-      "FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id " +
-      std::string(options.include_practice ? "" : "WHERE t.practice = 0 ") + "ORDER BY p.number, s.id, t.position");
-  while (q.step()) {
+  for (StoredTrial& stored : store.read_trials(options.include_practice)) {
     ExportTrial t;
-    t.participant = q.text(0);
-    t.simulated = q.integer(1) != 0;
-    t.participant_number = static_cast<int>(q.integer(2));
-    t.session = q.integer(3);
-    t.protocol = q.text(4);
-    t.task = q.text(5);
-    t.bids_task = q.text(6);
-    t.id = q.integer(7);
-    t.position = static_cast<int>(q.integer(8));
-    t.block = static_cast<int>(q.integer(9));
-    t.condition = q.text(10);
-    t.mode = q.text(11);
-    t.practice = q.integer(12) != 0;
-    t.combination = static_cast<int>(q.integer(13));
-    t.combination_label = q.text(14);
-    for (int f = 0; f < kFingerCount; ++f) {
-      t.stimulus_kPa[static_cast<std::size_t>(f)] = real_or_null(q, 15 + f);
-      t.felt_kPa[static_cast<std::size_t>(f)] = real_or_null(q, 18 + f);
-      t.outcome[static_cast<std::size_t>(f)] = q.text(26 + f);
-    }
-    t.truth = q.text(21);
-    t.answered = q.integer(22) != 0;
-    t.answer = q.text(23);
-    t.response_time_s = real_or_null(q, 24);
-    t.onset_s = q.real(25);
-    if (!q.is_null(29)) t.false_marks = q.integer(29);
-    t.completed_utc = q.text(30);
+    static_cast<StoredTrial&>(t) = std::move(stored);
     t.finger_names = finger_names[t.session];
     trials.push_back(std::move(t));
-  }
-  auto ts = db.prepare("SELECT tumor, outcome FROM tumor_scores WHERE trial_id = ?1 ORDER BY tumor");
-  for (ExportTrial& t : trials) {
-    if (t.mode != "scene") continue;
-    ts.bind(1, t.id);
-    while (ts.step()) t.tumor_outcomes.emplace_back(ts.text(0), ts.text(1));
-    ts.reset();
   }
   return trials;
 }
@@ -213,14 +144,11 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
   const auto marks_path = out_dir / "marks.csv";
   std::ofstream marks = open_for_writing(marks_path);
   marks << "participant,session,trial,mark,x_mm,y_mm,tumor\n";
-  auto q = store.database().prepare(
-      "SELECT p.code, s.id, t.position, m.mark, m.x_mm, m.y_mm, m.tumor FROM marks m JOIN trials t ON t.id = m.trial_id "
-      "JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id " +
-      std::string(options.include_practice ? "" : "WHERE t.practice = 0 ") + "ORDER BY p.number, s.id, t.position, m.mark");
-  while (q.step()) {
-    marks << csv_field(q.text(0)) << "," << q.integer(1) << "," << q.integer(2) + 1 << "," << q.integer(3) + 1 << ","
-          << number(q.real(4), 2) << "," << number(q.real(5), 2) << "," << (q.is_null(6) ? "n/a" : csv_field(q.text(6)))
-          << "\n";
+  for (const ExportTrial& t : trials) {  // ordered by participant, session, position; marks by mark
+    for (const StoredMark& m : t.marks) {
+      marks << csv_field(t.participant) << "," << t.session << "," << t.position + 1 << "," << m.mark + 1 << ","
+            << number(m.x_mm, 2) << "," << number(m.y_mm, 2) << "," << (m.tumor ? csv_field(*m.tumor) : "n/a") << "\n";
+    }
   }
   result.files.push_back(marks_path);
   return result;

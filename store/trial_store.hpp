@@ -1,32 +1,34 @@
 #pragma once
-// TrialStore: the SQLite trial database (DESIGN.md "Data"). WAL journal with full sync, one
-// committed transaction per trial, so killing the process loses at most the trial in
-// progress. Holds participants, sessions (protocol snapshot, seed, generated order, rig and
-// calibration ids, simulated participant model) and trials (stimuli, answers, per-finger and
-// per-tumor scores, times).
+// TrialStore: where a study's participants, sessions and trials live (DESIGN.md "Data"), as an
+// interface, so the session code, stats and export do not care whether the store is an SQLite
+// file (SqliteTrialStore, store/sqlite_trial_store.hpp) or a lab server.
 //
-// Identification: PRAGMA application_id = 0x50616C50 ("PalP") marks a palprig database and
-// PRAGMA user_version its schema version. Opening refuses a file that is not SQLite, a SQLite
-// database of another program, and a palprig database from a newer version (InputError).
+// Every implementation keeps these promises:
+//   - commit_trial is one transaction: killing the process loses at most the trial in progress;
+//   - a session's generated order is stored (create_session) before its first trial;
+//   - trials of a session are committed in position order, so a resumed session continues at
+//     StoredSession::completed_trials;
+//   - refusals of the store itself (missing, foreign or newer store) throw InputError naming
+//     the location.
+// open_trial_store(location, access) picks the implementation from the location's form.
+#include <array>
 #include <cstdint>
-#include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "experiments/protocol.hpp"
 #include "experiments/session_plan.hpp"
-#include "store/sqlite_db.hpp"
 #include "experiments/trial_record.hpp"
+#include "statistics/outcome.hpp"
 
 namespace palprig {
-
-inline constexpr std::int64_t kTrialStoreApplicationId = 0x50616C50;  // "PalP"
-inline constexpr std::int64_t kTrialStoreSchemaVersion = 1;
 
 struct ParticipantRecord {
   std::int64_t id = 0;
@@ -51,41 +53,119 @@ struct StoredSession {
   int completed_trials = 0;  // trials committed; the next position to run
 };
 
+// One line per session for readers (stats, export): no plan, no protocol text.
+struct SessionOverview {
+  std::int64_t id = 0;
+  ParticipantRecord participant;
+  std::string protocol_name, task, bids_task;
+  std::string status;
+};
+
+// Which trials a scan returns: discrimination (finger values) or localisation (scene) trials.
+enum class TrialFamily { discrimination, localisation };
+
+struct ScoredTumor {
+  std::string_view tumor;
+  Outcome outcome = Outcome::fn;  // TP: detected, FN: missed
+};
+
+// The scoring columns of one trial, as `stats trials` reads them. Views are valid only during
+// the visitor call that receives them.
+struct ScoredTrial {
+  std::int64_t trial_id = 0, session_id = 0;
+  std::string_view condition;
+  std::optional<std::string_view> combination_label;  // discrimination; absent for localisation
+  bool answered = false;
+  double response_time_s = 0;  // NaN when none was stored
+  std::array<std::optional<Outcome>, kFingerCount> finger_outcomes{};  // discrimination, when answered
+  std::span<const ScoredTumor> tumors;  // localisation, when answered
+  std::int64_t false_marks = 0;         // localisation, when answered
+};
+
+struct StoredMark {
+  int mark = 0;  // 0-based, in the order marked
+  double x_mm = 0, y_mm = 0;
+  std::optional<std::string> tumor;  // the tumor it hit; none for a false mark
+};
+
+// One stored trial with its session and participant, as export writes it. Text columns that
+// were stored empty read back as "" (truth, answer, combination label, outcomes).
+struct StoredTrial {
+  std::string participant;
+  bool simulated = false;
+  int participant_number = 0;
+  std::int64_t session = 0;
+  std::string protocol, task, bids_task;
+  std::int64_t id = 0;
+  int position = 0, block = 0;
+  std::string condition, mode;
+  bool practice = false;
+  int combination = -1;
+  std::string combination_label;
+  std::array<std::optional<double>, kFingerCount> stimulus_kPa{}, felt_kPa{};
+  std::string truth, answer;  // "010"; answer empty when unanswered
+  bool answered = false;
+  std::optional<double> response_time_s;
+  double onset_s = 0;
+  std::array<std::string, kFingerCount> outcome{};  // "TP", "FN", "TN", "FP" or ""
+  std::optional<std::int64_t> false_marks;
+  std::string completed_utc;
+  std::vector<std::pair<std::string, std::string>> tumor_outcomes;  // localisation: (tumor, TP|FN), by tumor
+  std::vector<StoredMark> marks;                                    // localisation, by mark
+};
+
 class TrialStore {
  public:
   enum class Access { read_only, read_write };
-  // Creates the schema in a new or empty file (read_write); refuses foreign or newer files.
-  TrialStore(const std::filesystem::path& file, Access access);
 
-  ParticipantRecord enrol(const std::string& code, bool simulated);
-  std::optional<ParticipantRecord> find_participant(const std::string& code);
+  virtual ~TrialStore() = default;
+  TrialStore() = default;
+  TrialStore(const TrialStore&) = delete;
+  TrialStore& operator=(const TrialStore&) = delete;
 
+  // The file or address the store was opened from, for messages (never a password).
+  virtual const std::string& location() const noexcept = 0;
+
+  // --- participants
+  // The participant of this code, enrolled with the next number when new.
+  virtual ParticipantRecord enrol(const std::string& code, bool simulated) = 0;
+  virtual std::optional<ParticipantRecord> find_participant(const std::string& code) = 0;
+
+  // --- sessions
   // The session of this participant and protocol that was started but not completed.
-  std::optional<std::int64_t> find_unfinished_session(const ParticipantRecord& who, const std::string& protocol_name);
-  std::int64_t create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
-                              const SessionSetup& setup);
-  StoredSession load_session(std::int64_t session_id);
-  void complete_session(std::int64_t session_id);
+  virtual std::optional<std::int64_t> find_unfinished_session(const ParticipantRecord& who,
+                                                              const std::string& protocol_name) = 0;
+  // Stores the session, its protocol snapshot and its whole planned order in one transaction.
+  virtual std::int64_t create_session(const ParticipantRecord& who, const Protocol& protocol,
+                                      const SessionPlan& plan, const SessionSetup& setup) = 0;
+  // Throws InputError when there is no such session or its trials are not positions 0..n-1.
+  virtual StoredSession load_session(std::int64_t session_id) = 0;
+  virtual void complete_session(std::int64_t session_id) = 0;
 
+  // --- trials
   // One transaction per trial (the crash-safety promise).
-  void commit_trial(std::int64_t session_id, const TrialRecord& trial);
+  virtual void commit_trial(std::int64_t session_id, const TrialRecord& trial) = 0;
   // Many trials in one transaction (imports, benchmarks, tests).
-  void commit_trials(std::int64_t session_id, std::span<const TrialRecord> trials);
+  virtual void commit_trials(std::int64_t session_id, std::span<const TrialRecord> trials) = 0;
 
-  Database& database() noexcept { return db_; }
-  const std::string& file() const noexcept { return db_.file(); }
-
- private:
-  bool is_blank();  // a new file: no tables, no palprig marks
-  void create_schema();
-  void check_identity();
-  void insert_trial(std::int64_t session_id, const TrialRecord& trial);
-
-  Database db_;
-  std::unique_ptr<Statement> insert_trial_;  // prepared once: trials are inserted one by one
+  // --- reading (stats, export)
+  virtual std::vector<SessionOverview> list_sessions() = 0;
+  // The protocol file as it was stored with the session.
+  virtual nlohmann::json protocol_snapshot(std::int64_t session_id) = 0;
+  // Calls `visit` for every trial of the family in commit order, practice trials only when
+  // asked. Streams: a million trials are never held in memory at once.
+  virtual void scan_scored_trials(TrialFamily family, bool include_practice,
+                                  const std::function<void(const ScoredTrial&)>& visit) = 0;
+  // Every trial (practice ones when asked), ordered by participant number, session, position.
+  virtual std::vector<StoredTrial> read_trials(bool include_practice) = 0;
 };
 
-// Open a database for reading (stats, export): refuses a missing, foreign or newer file.
-TrialStore open_trial_store_for_reading(const std::filesystem::path& file);
+// Opens the store at `location`. Today: a path is an SQLite file (created with its schema when
+// read_write and missing). A `postgresql://` or `postgres://` URI names a PostgreSQL store; a
+// build without it refuses the URI with InputError. read_only refuses a missing store.
+std::unique_ptr<TrialStore> open_trial_store(const std::string& location, TrialStore::Access access);
+
+// True when `location` is a URI of a server store rather than a file path.
+bool is_server_store_location(std::string_view location) noexcept;
 
 }  // namespace palprig

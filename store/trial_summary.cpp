@@ -108,8 +108,6 @@ class CachedIds {
   int last_ = -1;
 };
 
-std::optional<Outcome> outcome_of(std::string_view text) { return outcome_from_string(text); }
-
 }  // namespace
 
 const char* to_string(SummaryKey key) noexcept {
@@ -146,7 +144,6 @@ std::vector<SummaryKey> parse_summary_keys(const std::string& list) {
 }
 
 TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) {
-  Database& db = store.database();
   std::array<Interner, kKeyKinds> names;
   auto& conditions = names[static_cast<std::size_t>(SummaryKey::condition)];
   auto& participants = names[static_cast<std::size_t>(SummaryKey::participant)];
@@ -162,89 +159,64 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
 
   // Session -> participant and session ids (few rows), so the trial scan needs no join.
   std::unordered_map<std::int64_t, std::pair<int, int>> session_ids;
-  {
-    auto s = db.prepare("SELECT s.id, p.code FROM sessions s JOIN participants p ON p.id = s.participant_id");
-    while (s.step()) {
-      session_ids[s.integer(0)] = {participants.id(s.text_view(1)), sessions.id(std::to_string(s.integer(0)))};
-    }
+  for (const SessionOverview& s : store.list_sessions()) {
+    session_ids[s.id] = {participants.id(s.participant.code), sessions.id(std::to_string(s.id))};
   }
 
   Grouper grouper(options.by);
 
   // Discrimination: three finger values per trial.
   {
-    auto q = db.prepare(
-        "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, t.outcome1, t.outcome2, t.outcome3, "
-        "t.combination_label FROM trials t WHERE t.mode != 'scene'" +
-        std::string(options.include_practice ? "" : " AND t.practice = 0"));
     CachedIds condition_ids(conditions), combination_ids(combinations);
     const bool by_combination =
         std::find(options.by.begin(), options.by.end(), SummaryKey::combination) != options.by.end();
     std::int64_t last_session = -1;
     std::pair<int, int> session_key{};
-    while (q.step()) {
-      const std::int64_t trial_id = q.integer(0);
-      if (q.integer(1) != last_session) {
-        last_session = q.integer(1);
+    store.scan_scored_trials(TrialFamily::discrimination, options.include_practice, [&](const ScoredTrial& t) {
+      if (t.session_id != last_session) {
+        last_session = t.session_id;
         session_key = session_ids.at(last_session);
       }
       const auto& [participant, session] = session_key;
-      const bool answered = q.integer(3) != 0;
-      const double rt = q.is_null(4) ? std::numeric_limits<double>::quiet_NaN() : q.real(4);
       std::array<int, kKeyKinds> ids{};
-      ids[static_cast<std::size_t>(SummaryKey::condition)] = condition_ids.id(q.text_view(2));
+      ids[static_cast<std::size_t>(SummaryKey::condition)] = condition_ids.id(t.condition);
       ids[static_cast<std::size_t>(SummaryKey::participant)] = participant;
       ids[static_cast<std::size_t>(SummaryKey::session)] = session;
       ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
       ids[static_cast<std::size_t>(SummaryKey::combination)] =
-          !by_combination || q.is_null(8) ? no_combination : combination_ids.id(q.text_view(8));
+          !by_combination || !t.combination_label ? no_combination : combination_ids.id(*t.combination_label);
       for (int f = 0; f < kFingerCount; ++f) {
         ids[static_cast<std::size_t>(SummaryKey::finger)] = finger_ids[static_cast<std::size_t>(f)];
         Accumulator& a = grouper.group(ids);
-        a.add_trial(trial_id, answered, rt);
-        if (answered) {
-          if (auto o = outcome_of(q.text_view(5 + f))) a.counts.add(*o);
-        }
+        a.add_trial(t.trial_id, t.answered, t.response_time_s);
+        if (const auto& o = t.finger_outcomes[static_cast<std::size_t>(f)]) a.counts.add(*o);
       }
-    }
+    });
   }
 
   // Localisation: one value per tumor, plus one FP per false mark.
-  {
-    auto q = db.prepare(
-        "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, t.false_marks "
-        "FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
-        std::string(options.include_practice ? "" : " AND t.practice = 0") + " ORDER BY t.id");
-    std::int64_t previous_trial = -1;
-    while (q.step()) {
-      const std::int64_t trial_id = q.integer(0);
-      const auto& [participant, session] = session_ids.at(q.integer(1));
-      const bool answered = q.integer(3) != 0;
-      const double rt = q.is_null(4) ? std::numeric_limits<double>::quiet_NaN() : q.real(4);
-      std::array<int, kKeyKinds> ids{};
-      ids[static_cast<std::size_t>(SummaryKey::condition)] = conditions.id(q.text_view(2));
-      ids[static_cast<std::size_t>(SummaryKey::participant)] = participant;
-      ids[static_cast<std::size_t>(SummaryKey::session)] = session;
-      ids[static_cast<std::size_t>(SummaryKey::finger)] = no_finger;
-      ids[static_cast<std::size_t>(SummaryKey::combination)] = no_combination;
-      if (!q.is_null(5)) {
-        ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(q.text_view(5));
-        Accumulator& a = grouper.group(ids);
-        a.add_trial(trial_id, answered, rt);
-        if (auto o = outcome_of(q.text_view(6))) a.counts.add(*o);
-      }
-      if (trial_id != previous_trial) {  // the trial's false marks, and an unanswered trial, once
-        previous_trial = trial_id;
-        ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
-        const std::int64_t false_marks = q.is_null(7) ? 0 : q.integer(7);
-        if (!answered || false_marks > 0) {
-          Accumulator& a = grouper.group(ids);
-          a.add_trial(trial_id, answered, rt);
-          a.counts.fp += false_marks;
-        }
-      }
+  store.scan_scored_trials(TrialFamily::localisation, options.include_practice, [&](const ScoredTrial& t) {
+    const auto& [participant, session] = session_ids.at(t.session_id);
+    std::array<int, kKeyKinds> ids{};
+    ids[static_cast<std::size_t>(SummaryKey::condition)] = conditions.id(t.condition);
+    ids[static_cast<std::size_t>(SummaryKey::participant)] = participant;
+    ids[static_cast<std::size_t>(SummaryKey::session)] = session;
+    ids[static_cast<std::size_t>(SummaryKey::finger)] = no_finger;
+    ids[static_cast<std::size_t>(SummaryKey::combination)] = no_combination;
+    for (const ScoredTumor& score : t.tumors) {
+      ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(score.tumor);
+      Accumulator& a = grouper.group(ids);
+      a.add_trial(t.trial_id, t.answered, t.response_time_s);
+      a.counts.add(score.outcome);
     }
-  }
+    // The trial's false marks, and an unanswered trial, once.
+    ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
+    if (!t.answered || t.false_marks > 0) {
+      Accumulator& a = grouper.group(ids);
+      a.add_trial(t.trial_id, t.answered, t.response_time_s);
+      a.counts.fp += t.false_marks;
+    }
+  });
 
   TrialSummary summary;
   summary.by = options.by;

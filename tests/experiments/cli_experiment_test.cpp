@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 #include "process_support.hpp"
 #include "test_support.hpp"
 
@@ -21,7 +21,7 @@ const std::string kDiscrimination = (testing::protocols_dir() / "discrimination_
 const std::string kLocalisation = (testing::protocols_dir() / "localisation_002.json").string();
 
 std::int64_t scalar(const std::filesystem::path& db, const std::string& sql) {
-  TrialStore store = open_trial_store_for_reading(db);
+  SqliteTrialStore store(db, TrialStore::Access::read_only);
   auto q = store.database().prepare(sql);
   return q.step() ? q.integer(0) : -1;
 }

@@ -7,7 +7,7 @@
 #include <chrono>
 #include <thread>
 
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 #include "process_support.hpp"
 #include "test_support.hpp"
 
@@ -28,7 +28,7 @@ int reported_trials(const std::string& out) {
   return n;
 }
 
-std::int64_t scalar(TrialStore& store, const std::string& sql) {
+std::int64_t scalar(SqliteTrialStore& store, const std::string& sql) {
   auto q = store.database().prepare(sql);
   return q.step() ? q.integer(0) : -1;
 }
@@ -52,7 +52,7 @@ TEST(experiments_crash_resume, sigkill_mid_session_loses_at_most_the_trial_in_pr
   }
   std::int64_t committed = 0;
   {
-    TrialStore store = open_trial_store_for_reading(db);
+    SqliteTrialStore store(db, TrialStore::Access::read_only);
     auto check = store.database().prepare("PRAGMA integrity_check");
     ASSERT_TRUE(check.step());
     EXPECT_EQ(check.text(0), "ok");
@@ -72,7 +72,7 @@ TEST(experiments_crash_resume, sigkill_mid_session_loses_at_most_the_trial_in_pr
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_NE(resumed.out.find("resumed at trial " + std::to_string(committed + 1)), std::string::npos) << resumed.out;
 
-  TrialStore store = open_trial_store_for_reading(db);
+  SqliteTrialStore store(db, TrialStore::Access::read_only);
   EXPECT_EQ(scalar(store, "SELECT count(*) FROM trials"), 32);
   EXPECT_EQ(scalar(store, "SELECT count(DISTINCT position) FROM trials"), 32);
   EXPECT_EQ(scalar(store, "SELECT count(*) FROM sessions"), 1);

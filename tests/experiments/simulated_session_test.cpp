@@ -13,6 +13,7 @@
 #include "experiments/session_loop.hpp"
 #include "sessions/session_setup.hpp"
 #include "experiments/simulated_participant.hpp"
+#include "store/sqlite_trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "test_support.hpp"
 
@@ -31,7 +32,7 @@ struct SimulatedRigSetup {
 TEST(experiments_simulated_session, discrimination_on_the_simulated_rig) {
   ScratchDir dir;
   const Protocol p = load_protocol(testing::protocols_dir() / "discrimination_002.json");
-  TrialStore store(dir / "s.db", TrialStore::Access::read_write);
+  SqliteTrialStore store(dir / "s.db", TrialStore::Access::read_write);
   SessionRequest request;
   request.participant_code = "sim:11";
   request.simulated = true;

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "sessions/session_setup.hpp"
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 #include "models/parse_error.hpp"
 #include "test_support.hpp"
 
@@ -42,7 +42,7 @@ void raw_sql(const std::filesystem::path& file, const std::string& sql) {
 TEST(experiments_trial_store, new_database_is_marked_and_in_wal_mode) {
   ScratchDir dir;
   {
-    TrialStore store(dir / "t.db", TrialStore::Access::read_write);
+    SqliteTrialStore store(dir / "t.db", TrialStore::Access::read_write);
     EXPECT_EQ(store.database().pragma_integer("application_id"), kTrialStoreApplicationId);
     EXPECT_EQ(store.database().pragma_integer("user_version"), kTrialStoreSchemaVersion);
     auto mode = store.database().prepare("PRAGMA journal_mode");
@@ -50,8 +50,8 @@ TEST(experiments_trial_store, new_database_is_marked_and_in_wal_mode) {
     EXPECT_EQ(mode.text(0), "wal");
   }
   // Reopening an existing store works, read-only too.
-  TrialStore again(dir / "t.db", TrialStore::Access::read_write);
-  TrialStore reader = open_trial_store_for_reading(dir / "t.db");
+  SqliteTrialStore again(dir / "t.db", TrialStore::Access::read_write);
+  SqliteTrialStore reader(dir / "t.db", TrialStore::Access::read_only);
   EXPECT_EQ(reader.database().pragma_integer("user_version"), kTrialStoreSchemaVersion);
 }
 
@@ -59,16 +59,16 @@ TEST(experiments_trial_store, refuses_foreign_newer_and_non_sqlite_files) {
   ScratchDir dir;
   raw_sql(dir / "other.db", "CREATE TABLE t (x);");
   try {
-    TrialStore s(dir / "other.db", TrialStore::Access::read_write);
+    SqliteTrialStore s(dir / "other.db", TrialStore::Access::read_write);
     FAIL() << "a foreign database was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where(), "PRAGMA application_id");
   }
 
-  { TrialStore s(dir / "newer.db", TrialStore::Access::read_write); }
+  { SqliteTrialStore s(dir / "newer.db", TrialStore::Access::read_write); }
   raw_sql(dir / "newer.db", "PRAGMA user_version = 99;");
   try {
-    TrialStore s(dir / "newer.db", TrialStore::Access::read_write);
+    SqliteTrialStore s(dir / "newer.db", TrialStore::Access::read_write);
     FAIL() << "a newer database was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where(), "PRAGMA user_version");
@@ -76,15 +76,15 @@ TEST(experiments_trial_store, refuses_foreign_newer_and_non_sqlite_files) {
   }
 
   std::ofstream(dir / "text.db") << "participant,rt\n1,2\nthis is not a database at all, just text\n";
-  EXPECT_THROW(TrialStore(dir / "text.db", TrialStore::Access::read_write), InputError);
-  EXPECT_THROW(open_trial_store_for_reading(dir / "missing.db"), InputError);
-  EXPECT_THROW(TrialStore(dir / "no" / "such" / "folder.db", TrialStore::Access::read_write), InputError);
+  EXPECT_THROW(SqliteTrialStore(dir / "text.db", TrialStore::Access::read_write), InputError);
+  EXPECT_THROW(open_trial_store((dir / "missing.db").string(), TrialStore::Access::read_only), InputError);
+  EXPECT_THROW(SqliteTrialStore(dir / "no" / "such" / "folder.db", TrialStore::Access::read_write), InputError);
 }
 
 TEST(experiments_trial_store, session_order_and_trials_round_trip) {
   ScratchDir dir;
   const Protocol p = load_protocol(testing::protocols_dir() / "discrimination_002.json");
-  TrialStore store(dir / "t.db", TrialStore::Access::read_write);
+  SqliteTrialStore store(dir / "t.db", TrialStore::Access::read_write);
   SessionRequest request;
   request.participant_code = "P01";
   request.setup = {"sim-default", "simulated", "paper002", nullptr, testing::protocols_dir().string()};
@@ -119,7 +119,7 @@ TEST(experiments_trial_store, session_order_and_trials_round_trip) {
 TEST(experiments_trial_store, resume_rules) {
   ScratchDir dir;
   const Protocol p = load_protocol(testing::protocols_dir() / "discrimination_002.json");
-  TrialStore store(dir / "t.db", TrialStore::Access::read_write);
+  SqliteTrialStore store(dir / "t.db", TrialStore::Access::read_write);
   SessionRequest request;
   request.participant_code = "P07";
   const OpenedSession first = open_session(store, p, request);
@@ -161,7 +161,7 @@ TEST(experiments_trial_store, resume_rules) {
 
 TEST(experiments_trial_store, participants_are_numbered_in_enrolment_order) {
   ScratchDir dir;
-  TrialStore store(dir / "t.db", TrialStore::Access::read_write);
+  SqliteTrialStore store(dir / "t.db", TrialStore::Access::read_write);
   EXPECT_EQ(store.enrol("anna", false).number, 1);
   EXPECT_EQ(store.enrol("sim:3", true).number, 2);
   EXPECT_EQ(store.enrol("anna", false).number, 1);

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "sessions/session_setup.hpp"
+#include "store/sqlite_trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
 #include "models/parse_error.hpp"
@@ -46,7 +47,7 @@ SessionPlan fill_session(TrialStore& store, const Protocol& p, const std::string
 TEST(experiments_trial_summary, counts_measures_and_times) {
   ScratchDir dir;
   const Protocol p = load_protocol(testing::protocols_dir() / "discrimination_002.json");
-  TrialStore store(dir / "t.db", TrialStore::Access::read_write);
+  SqliteTrialStore store(dir / "t.db", TrialStore::Access::read_write);
   const SessionPlan plan_a = fill_session(store, p, "A", 4.0);
   const SessionPlan plan_b = fill_session(store, p, "B", 5.0);
 
@@ -125,7 +126,7 @@ TEST(experiments_trial_summary, counts_measures_and_times) {
 TEST(experiments_trial_summary, localisation_is_scored_per_tumor) {
   ScratchDir dir;
   const Protocol p = load_protocol(testing::protocols_dir() / "localisation_002.json");
-  TrialStore store(dir / "t.db", TrialStore::Access::read_write);
+  SqliteTrialStore store(dir / "t.db", TrialStore::Access::read_write);
   // Paper 002: 9 participants found A 6 times, B 9 times, C 8 times.
   for (int i = 0; i < 9; ++i) {
     SessionRequest request;

@@ -1,11 +1,14 @@
-#include "store/trial_store.hpp"
+#include "store/sqlite_trial_store.hpp"
 
 #include <sqlite3.h>
 
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <limits>
+#include <map>
 
+#include "experiments/scoring.hpp"
 #include "models/parse_error.hpp"
 
 namespace palprig {
@@ -110,9 +113,22 @@ std::optional<double> finite_or_null(double x) {
   return std::nullopt;
 }
 
+std::optional<double> real_or_null(const Statement& s, int column) {
+  if (s.is_null(column)) return std::nullopt;
+  return s.real(column);
+}
+
+double real_or_nan(const Statement& s, int column) {
+  return s.is_null(column) ? std::numeric_limits<double>::quiet_NaN() : s.real(column);
+}
+
+std::string practice_filter(bool include_practice, const char* keyword) {
+  return include_practice ? std::string() : std::string(" ") + keyword + " t.practice = 0";
+}
+
 }  // namespace
 
-TrialStore::TrialStore(const std::filesystem::path& file, Access access) try
+SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access access) try
     : db_(file, access == Access::read_only ? Database::Mode::read_only : Database::Mode::read_write_create) {
   if (access == Access::read_write && is_blank()) create_schema();
   check_identity();
@@ -134,14 +150,14 @@ TrialStore::TrialStore(const std::filesystem::path& file, Access access) try
   throw;
 }
 
-bool TrialStore::is_blank() {
+bool SqliteTrialStore::is_blank() {
   if (db_.pragma_integer("application_id") != 0 || db_.pragma_integer("user_version") != 0) return false;
   auto tables = db_.prepare("SELECT count(*) FROM sqlite_master");
   tables.step();
   return tables.integer(0) == 0;
 }
 
-void TrialStore::create_schema() {
+void SqliteTrialStore::create_schema() {
   Transaction tx(db_);
   db_.exec(kSchema);
   db_.exec("PRAGMA application_id = " + std::to_string(kTrialStoreApplicationId));
@@ -149,7 +165,7 @@ void TrialStore::create_schema() {
   tx.commit();
 }
 
-void TrialStore::check_identity() {
+void SqliteTrialStore::check_identity() {
   if (db_.pragma_integer("application_id") != kTrialStoreApplicationId) {
     throw InputError(db_.file(), "PRAGMA application_id",
                      "a palprig trial database (this SQLite file belongs to another program or is empty)");
@@ -163,14 +179,14 @@ void TrialStore::check_identity() {
   if (version < 1) throw InputError(db_.file(), "PRAGMA user_version", "a palprig schema version (found none)");
 }
 
-std::optional<ParticipantRecord> TrialStore::find_participant(const std::string& code) {
+std::optional<ParticipantRecord> SqliteTrialStore::find_participant(const std::string& code) {
   auto s = db_.prepare("SELECT id, code, number, simulated FROM participants WHERE code = ?1");
   s.bind(1, code);
   if (!s.step()) return std::nullopt;
   return ParticipantRecord{s.integer(0), s.text(1), static_cast<int>(s.integer(2)), s.integer(3) != 0};
 }
 
-ParticipantRecord TrialStore::enrol(const std::string& code, bool simulated) {
+ParticipantRecord SqliteTrialStore::enrol(const std::string& code, bool simulated) {
   if (auto p = find_participant(code)) return *p;
   Transaction tx(db_);
   auto next = db_.prepare("SELECT COALESCE(MAX(number), 0) + 1 FROM participants");
@@ -183,7 +199,7 @@ ParticipantRecord TrialStore::enrol(const std::string& code, bool simulated) {
   return ParticipantRecord{id, code, number, simulated};
 }
 
-std::optional<std::int64_t> TrialStore::find_unfinished_session(const ParticipantRecord& who, const std::string& protocol_name) {
+std::optional<std::int64_t> SqliteTrialStore::find_unfinished_session(const ParticipantRecord& who, const std::string& protocol_name) {
   auto s = db_.prepare(
       "SELECT id FROM sessions WHERE participant_id = ?1 AND protocol_name = ?2 AND status = 'running' "
       "ORDER BY id DESC LIMIT 1");
@@ -192,7 +208,7 @@ std::optional<std::int64_t> TrialStore::find_unfinished_session(const Participan
   return s.integer(0);
 }
 
-std::int64_t TrialStore::create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
+std::int64_t SqliteTrialStore::create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
                                         const SessionSetup& setup) {
   Transaction tx(db_);
   auto ins = db_.prepare(
@@ -233,7 +249,7 @@ std::int64_t TrialStore::create_session(const ParticipantRecord& who, const Prot
   return session_id;
 }
 
-StoredSession TrialStore::load_session(std::int64_t session_id) {
+StoredSession SqliteTrialStore::load_session(std::int64_t session_id) {
   StoredSession s;
   auto q = db_.prepare(
       "SELECT s.id, s.protocol_json, s.protocol_dir, s.status, s.seed, s.condition_order, p.id, p.code, p.number, "
@@ -270,14 +286,14 @@ StoredSession TrialStore::load_session(std::int64_t session_id) {
   return s;
 }
 
-void TrialStore::complete_session(std::int64_t session_id) {
+void SqliteTrialStore::complete_session(std::int64_t session_id) {
   Transaction tx(db_);
   auto u = db_.prepare("UPDATE sessions SET status = 'completed', finished_utc = ?2 WHERE id = ?1");
   u.bind(1, session_id).bind(2, utc_now()).run();
   tx.commit();
 }
 
-void TrialStore::insert_trial(std::int64_t session_id, const TrialRecord& r) {
+void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& r) {
   const bool discrimination = r.mode != PresentationMode::scene;
   if (!insert_trial_) {
     insert_trial_ = std::make_unique<Statement>(db_,
@@ -331,24 +347,163 @@ void TrialStore::insert_trial(std::int64_t session_id, const TrialRecord& r) {
   }
 }
 
-void TrialStore::commit_trial(std::int64_t session_id, const TrialRecord& trial) {
+void SqliteTrialStore::commit_trial(std::int64_t session_id, const TrialRecord& trial) {
   Transaction tx(db_);
   insert_trial(session_id, trial);
   tx.commit();
 }
 
-void TrialStore::commit_trials(std::int64_t session_id, std::span<const TrialRecord> trials) {
+void SqliteTrialStore::commit_trials(std::int64_t session_id, std::span<const TrialRecord> trials) {
   Transaction tx(db_);
   for (const TrialRecord& t : trials) insert_trial(session_id, t);
   tx.commit();
 }
 
-TrialStore open_trial_store_for_reading(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) {
-    throw InputError(file.string(), "file", "an existing palprig trial database");
+std::vector<SessionOverview> SqliteTrialStore::list_sessions() {
+  std::vector<SessionOverview> sessions;
+  auto q = db_.prepare(
+      "SELECT s.id, p.id, p.code, p.number, p.simulated, s.protocol_name, s.task, s.bids_task, s.status "
+      "FROM sessions s JOIN participants p ON p.id = s.participant_id ORDER BY s.id");
+  while (q.step()) {
+    sessions.push_back(SessionOverview{
+        q.integer(0), ParticipantRecord{q.integer(1), q.text(2), static_cast<int>(q.integer(3)), q.integer(4) != 0},
+        q.text(5), q.text(6), q.text(7), q.text(8)});
   }
-  return TrialStore(file, TrialStore::Access::read_only);
+  return sessions;
+}
+
+nlohmann::json SqliteTrialStore::protocol_snapshot(std::int64_t session_id) {
+  auto q = db_.prepare("SELECT protocol_json FROM sessions WHERE id = ?1");
+  q.bind(1, session_id);
+  if (!q.step()) throw InputError(db_.file(), "session " + std::to_string(session_id), "an existing session");
+  // A snapshot that no longer parses is reported as null: readers fall back to defaults.
+  return nlohmann::json::parse(q.text_view(0), nullptr, false);
+}
+
+void SqliteTrialStore::scan_scored_trials(TrialFamily family, bool include_practice,
+                                          const std::function<void(const ScoredTrial&)>& visit) {
+  if (family == TrialFamily::discrimination) {
+    auto q = db_.prepare(
+        "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, t.outcome1, t.outcome2, t.outcome3, "
+        "t.combination_label FROM trials t WHERE t.mode != 'scene'" + practice_filter(include_practice, "AND"));
+    ScoredTrial t;
+    while (q.step()) {
+      t.trial_id = q.integer(0);
+      t.session_id = q.integer(1);
+      t.condition = q.text_view(2);
+      t.answered = q.integer(3) != 0;
+      t.response_time_s = real_or_nan(q, 4);
+      for (int f = 0; f < kFingerCount; ++f) {
+        t.finger_outcomes[static_cast<std::size_t>(f)] = t.answered ? outcome_from_string(q.text_view(5 + f)) : std::nullopt;
+      }
+      t.combination_label = q.is_null(8) ? std::nullopt : std::optional<std::string_view>(q.text_view(8));
+      visit(t);
+    }
+    return;
+  }
+  // Localisation: one row per (trial, tumor score); the rows of a trial are gathered and the
+  // trial handed on when the next one starts.
+  auto q = db_.prepare(
+      "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, t.false_marks "
+      "FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
+      practice_filter(include_practice, "AND") + " ORDER BY t.id");
+  ScoredTrial t;
+  std::string condition;
+  std::vector<std::string> tumor_names;  // reused: the views in `tumors` point into it
+  std::vector<ScoredTumor> tumors;
+  std::size_t tumor_count = 0;
+  bool pending = false;
+  const auto flush = [&] {
+    if (!pending) return;
+    tumors.resize(tumor_count);
+    for (std::size_t i = 0; i < tumor_count; ++i) tumors[i].tumor = tumor_names[i];
+    t.condition = condition;
+    t.tumors = std::span<const ScoredTumor>(tumors.data(), tumor_count);
+    visit(t);
+    pending = false;
+  };
+  while (q.step()) {
+    const std::int64_t trial_id = q.integer(0);
+    if (!pending || trial_id != t.trial_id) {
+      flush();
+      pending = true;
+      tumor_count = 0;
+      t = ScoredTrial{};
+      t.trial_id = trial_id;
+      t.session_id = q.integer(1);
+      condition.assign(q.text_view(2));
+      t.answered = q.integer(3) != 0;
+      t.response_time_s = real_or_nan(q, 4);
+      t.false_marks = q.is_null(7) ? 0 : q.integer(7);
+    }
+    if (q.is_null(5)) continue;
+    const auto outcome = outcome_from_string(q.text_view(6));
+    if (!outcome) continue;
+    if (tumor_names.size() <= tumor_count) tumor_names.emplace_back();
+    if (tumors.size() <= tumor_count) tumors.emplace_back();
+    tumor_names[tumor_count].assign(q.text_view(5));
+    tumors[tumor_count].outcome = *outcome;
+    ++tumor_count;
+  }
+  flush();
+}
+
+std::vector<StoredTrial> SqliteTrialStore::read_trials(bool include_practice) {
+  std::vector<StoredTrial> trials;
+  auto q = db_.prepare(
+      "SELECT p.code, p.simulated, p.number, s.id, s.protocol_name, s.task, s.bids_task, t.id, t.position, t.block, "
+      "t.condition, t.mode, t.practice, t.combination, t.combination_label, t.stimulus1_kPa, t.stimulus2_kPa, "
+      "t.stimulus3_kPa, t.felt1_kPa, t.felt2_kPa, t.felt3_kPa, t.truth, t.answered, t.answer, t.response_time_s, "
+      "t.onset_s, t.outcome1, t.outcome2, t.outcome3, t.false_marks, t.completed_utc "
+      "FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
+      practice_filter(include_practice, "WHERE") + " ORDER BY p.number, s.id, t.position");
+  while (q.step()) {
+    StoredTrial t;
+    t.participant = q.text(0);
+    t.simulated = q.integer(1) != 0;
+    t.participant_number = static_cast<int>(q.integer(2));
+    t.session = q.integer(3);
+    t.protocol = q.text(4);
+    t.task = q.text(5);
+    t.bids_task = q.text(6);
+    t.id = q.integer(7);
+    t.position = static_cast<int>(q.integer(8));
+    t.block = static_cast<int>(q.integer(9));
+    t.condition = q.text(10);
+    t.mode = q.text(11);
+    t.practice = q.integer(12) != 0;
+    t.combination = static_cast<int>(q.integer(13));
+    t.combination_label = q.text(14);
+    for (int f = 0; f < kFingerCount; ++f) {
+      t.stimulus_kPa[static_cast<std::size_t>(f)] = real_or_null(q, 15 + f);
+      t.felt_kPa[static_cast<std::size_t>(f)] = real_or_null(q, 18 + f);
+      t.outcome[static_cast<std::size_t>(f)] = q.text(26 + f);
+    }
+    t.truth = q.text(21);
+    t.answered = q.integer(22) != 0;
+    t.answer = q.text(23);
+    t.response_time_s = real_or_null(q, 24);
+    t.onset_s = q.real(25);
+    if (!q.is_null(29)) t.false_marks = q.integer(29);
+    t.completed_utc = q.text(30);
+    trials.push_back(std::move(t));
+  }
+  auto ts = db_.prepare("SELECT tumor, outcome FROM tumor_scores WHERE trial_id = ?1 ORDER BY tumor");
+  auto mk = db_.prepare("SELECT mark, x_mm, y_mm, tumor FROM marks WHERE trial_id = ?1 ORDER BY mark");
+  for (StoredTrial& t : trials) {
+    if (t.mode != "scene") continue;
+    ts.bind(1, t.id);
+    while (ts.step()) t.tumor_outcomes.emplace_back(ts.text(0), ts.text(1));
+    ts.reset();
+    mk.bind(1, t.id);
+    while (mk.step()) {
+      StoredMark m{static_cast<int>(mk.integer(0)), mk.real(1), mk.real(2), std::nullopt};
+      if (!mk.is_null(3)) m.tumor = mk.text(3);
+      t.marks.push_back(std::move(m));
+    }
+    mk.reset();
+  }
+  return trials;
 }
 
 }  // namespace palprig
