@@ -37,3 +37,4 @@ __attribute__((weak)) void register_export_command(CLI::App& app);
 __attribute__((weak)) void register_sim_rig_command(CLI::App& app);
 __attribute__((weak)) void register_calibrate_command(CLI::App& app);
 __attribute__((weak)) void register_scene_command(CLI::App& app);
+__attribute__((weak)) void register_store_command(CLI::App& app);

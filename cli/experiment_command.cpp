@@ -7,7 +7,9 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -28,6 +30,7 @@
 #include "experiments/session_loop.hpp"
 #include "sessions/session_setup.hpp"
 #include "experiments/simulated_participant.hpp"
+#include "store/journaled_trial_store.hpp"
 #include "store/trial_store.hpp"
 #include "models/parse_error.hpp"
 
@@ -120,7 +123,7 @@ class TerminalParticipant final : public Participant {
 };
 
 struct RunArgs {
-  std::string protocol, participant, db, rig, cal;
+  std::string protocol, participant, db, rig, cal, journal;
   bool resume = false, quiet = false;
   std::optional<std::uint64_t> seed;
   double speed = 0;  // simulated participants: 0 = as fast as possible, else times real time
@@ -186,13 +189,19 @@ void run_experiment(const RunArgs& a) {
   check_levels_fit_rig(from_file, rig);
   const TickConfig config = make_tick_config(rig, cal);
 
-  // The rig is opened (and vented) before the session is stored, so an unreachable device does
-  // not leave an empty session behind.
-  std::unique_ptr<RigBackend> backend = make_backend(rig);
-  backend->open();
-
+  // The store is opened first (a lab server that cannot be reached is refused before anything
+  // moves); the rig is opened (and vented) before the session is stored, so an unreachable
+  // device does not leave an empty session behind.
+  if (!a.journal.empty()) ::setenv("PALPRIG_JOURNAL", a.journal.c_str(), 1);
   const auto opened_store = open_trial_store(a.db, TrialStore::Access::read_write);
   TrialStore& store = *opened_store;
+  auto* journaled = dynamic_cast<JournaledTrialStore*>(&store);
+  if (journaled && journaled->pushed_at_open() > 0) {
+    std::cout << "palprig experiment: " << journaled->pushed_at_open() << " trials left in the journal "
+              << journaled->journal_file().string() << " pushed to " << a.db << "\n";
+  }
+  std::unique_ptr<RigBackend> backend = make_backend(rig);
+  backend->open();
   SimulatedObserverModel model = a.model;
   model.seed = sim_seed;
   SessionRequest request;
@@ -255,8 +264,17 @@ void run_experiment(const RunArgs& a) {
   backend->close();
 
   const int done = session.start_position + recorder.committed();
+  if (result.completed) store.complete_session(session.session_id);
+  if (journaled) {
+    // Every trial is safe in the journal; give the pusher a moment to reach the server.
+    const std::int64_t pending = journaled->flush(std::chrono::seconds(10));
+    if (pending > 0) {
+      std::cerr << "palprig: the lab server has not confirmed every trial yet; they are kept in the journal "
+                << journaled->journal_file().string() << ": push them with palprig store sync --from "
+                << journaled->journal_file().string() << " --to " << a.db << "\n";
+    }
+  }
   if (result.completed) {
-    store.complete_session(session.session_id);
     std::cout << "session " << session.session_id << " completed: " << done << " trials in " << a.db << "\n";
     return;
   }
@@ -278,7 +296,12 @@ void register_run(CLI::App* experiment) {
   sub->add_option("--protocol", a->protocol, "Protocol file (JSON), e.g. data/protocols/discrimination_002.json")->required();
   sub->add_option("--participant", a->participant,
                   "Participant code, or sim:SEED for a simulated participant (model observer)")->required();
-  sub->add_option("--db", a->db, "Trial database (SQLite; created when missing)")->required();
+  sub->add_option("--db", a->db,
+                  "Trial store: an SQLite file (created when missing) or the lab's PostgreSQL server, "
+                  "postgresql://user@host:port/dbname (password from PGPASSWORD or ~/.pgpass)")->required();
+  sub->add_option("--journal", a->journal,
+                  "With a postgresql:// store: the bench's local journal (SQLite) every trial is written to first; "
+                  "default $PALPRIG_JOURNAL, else ~/.local/state/palprig/journal.sqlite");
   sub->add_option("--rig", a->rig, "Rig file (JSON); default: the simulated rig data/rigs/simulated.json");
   sub->add_option("--cal", a->cal, "Calibration file (JSON); default: paper 002's models");
   sub->add_flag("--resume", a->resume, "Continue this participant's unfinished session with this protocol");

@@ -36,7 +36,8 @@ int main(int argc, char** argv) {
   register_demo_command(app);
   register_telemetry_command(app);
   for (auto* reg : {register_stats_command, register_experiment_command, register_export_command,
-                    register_sim_rig_command, register_calibrate_command, register_scene_command})
+                    register_sim_rig_command, register_calibrate_command, register_scene_command,
+                    register_store_command})
     if (reg) reg(app);  // weak: a capability whose file is not in this build is simply absent
   try {
     app.parse(argc, argv);

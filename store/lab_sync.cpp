@@ -72,6 +72,12 @@ PushReport push_file_to_server(Database& file, PgConnection& server, const PushO
 
 CopyReport copy_study(const std::string& from, const std::string& to, const std::optional<std::string>& study) {
   const bool from_server = is_postgres_location(from), to_server = is_postgres_location(to);
+  // URIs are checked first: one with a password in it is refused before it can be quoted.
+  const std::optional<PgTarget> from_target = from_server ? std::optional(parse_pg_target(from)) : std::nullopt;
+  const std::optional<PgTarget> to_target = to_server ? std::optional(parse_pg_target(to)) : std::nullopt;
+  if (from_target && to_target && from_target->describe() == to_target->describe()) {
+    throw InputError(to_target->describe(), "to", "a store other than the source");
+  }
   if (from == to) throw InputError(to, "to", "a store other than the source");
   if (!from_server && !to_server) {
     std::error_code ec;
@@ -87,14 +93,14 @@ CopyReport copy_study(const std::string& from, const std::string& to, const std:
   std::unique_ptr<PostgresTrialStore> server_source;
   std::vector<std::pair<std::int64_t, SessionRows>> sessions;
   if (from_server) {
-    server_source = std::make_unique<PostgresTrialStore>(parse_pg_target(from), TrialStore::Access::read_only);
+    server_source = std::make_unique<PostgresTrialStore>(*from_target, TrialStore::Access::read_only);
     for (ServerSession& s : pg_read_sessions(server_source->connection(), study)) sessions.emplace_back(s.id, std::move(s.rows));
   } else {
     sqlite_source = std::make_unique<SqliteTrialStore>(from, TrialStore::Access::read_only);
     for (LocalSession& s : read_sqlite_sessions(sqlite_source->database(), study)) sessions.emplace_back(s.id, std::move(s.rows));
   }
   if (to_server) {
-    PostgresTrialStore target(parse_pg_target(to), TrialStore::Access::read_write);
+    PostgresTrialStore target(*to_target, TrialStore::Access::read_write);
     for (auto& [id, rows] : sessions) {
       rows.trials = from_server ? pg_read_trials(server_source->connection(), id, 0)
                                 : read_sqlite_trials(sqlite_source->database(), id, 0);
