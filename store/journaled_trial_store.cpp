@@ -43,7 +43,7 @@ JournaledTrialStore::JournaledTrialStore(const PgTarget& target, const std::file
   try {
     pushed_at_open_ = push_file_to_server(journal_.database(), server_.connection(), options).trials_added;
   } catch (const PgError& e) {
-    throw InputError(target.describe(), "connection", std::string("a reachable PostgreSQL server (") + e.what() + ")");
+    throw InputError(target.describe(), "connection", "a reachable PostgreSQL server (libpq: " + e.reason() + ")");
   }
   if (!say) say = [](const std::string& line) { std::cerr << "palprig: " << line << "\n" << std::flush; };
   pusher_ = std::make_unique<JournalPusher>(target, journal_file_, std::move(say));

@@ -10,9 +10,18 @@ namespace palprig {
 
 namespace {
 
+// libpq's messages span lines ("...failed: Connection refused\n\tIs the server running...");
+// a refusal is one line.
 std::string trim(const char* text) {
-  std::string s = text ? text : "";
-  while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+  std::string s;
+  for (const char* p = text ? text : ""; *p; ++p) {
+    if (*p == '\n' || *p == '\t') {
+      if (!s.empty() && s.back() != ' ') s += (*p == '\n' ? "; " : " ");
+    } else {
+      s += *p;
+    }
+  }
+  while (!s.empty() && (s.back() == ' ' || s.back() == ';')) s.pop_back();
   return s;
 }
 
@@ -80,7 +89,7 @@ PgConnection::PgConnection(const PgTarget& target, int connect_timeout_s) : targ
     const std::string reason = conn_ ? trim(PQerrorMessage(conn_)) : std::string("out of memory");
     PQfinish(conn_);
     conn_ = nullptr;
-    throw PgError("cannot connect to PostgreSQL at " + target_.describe() + ": " + reason, "", true);
+    throw PgError("cannot connect to PostgreSQL at " + target_.describe() + ": " + reason, "", true, reason);
   }
   // Notices (e.g. "relation already exists, skipping") are not for the participant's terminal.
   PQsetNoticeProcessor(conn_, [](void*, const char*) {}, nullptr);
@@ -101,7 +110,7 @@ void PgConnection::fail(std::string_view what, pg_result* r) {
   PQclear(r);
   // Class 08 is "connection exception"; a broken socket gives no SQLSTATE at all.
   const bool lost = PQstatus(conn_) != CONNECTION_OK || sqlstate.rfind("08", 0) == 0 || sqlstate.rfind("57P", 0) == 0;
-  throw PgError("PostgreSQL at " + target_.describe() + ": " + std::string(what) + ": " + reason, sqlstate, lost);
+  throw PgError("PostgreSQL at " + target_.describe() + ": " + std::string(what) + ": " + reason, sqlstate, lost, reason);
 }
 
 PgResult PgConnection::exec(std::string_view sql) {

@@ -20,15 +20,19 @@ namespace palprig {
 class PgError : public std::runtime_error {
  public:
   // sqlstate: the server's five-character SQLSTATE, empty when the connection itself failed.
-  PgError(const std::string& what, std::string sqlstate, bool connection_lost)
-      : std::runtime_error(what), sqlstate_(std::move(sqlstate)), connection_lost_(connection_lost) {}
+  PgError(const std::string& what, std::string sqlstate, bool connection_lost, std::string reason = {})
+      : std::runtime_error(what), sqlstate_(std::move(sqlstate)), connection_lost_(connection_lost),
+        reason_(std::move(reason)) {}
   const std::string& sqlstate() const noexcept { return sqlstate_; }
   // True when the server could not be reached or went away: the caller may retry later.
   bool connection_lost() const noexcept { return connection_lost_; }
+  // libpq's or the server's reason alone (one line), without the target.
+  const std::string& reason() const noexcept { return reason_; }
 
  private:
   std::string sqlstate_;
   bool connection_lost_;
+  std::string reason_;
 };
 
 // A text parameter, or SQL NULL.

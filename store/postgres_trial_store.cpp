@@ -136,7 +136,11 @@ PostgresTrialStore::PostgresTrialStore(const PgTarget& target, Access access, in
 } catch (const PgError& e) {
   // Nothing moves on the rig before the store is known to be writable: a server that cannot
   // be reached or refuses the login is a refused input (exit 2), named with libpq's reason.
-  throw InputError(target.describe(), "connection", std::string("a reachable PostgreSQL server (") + e.what() + ")");
+  if (e.connection_lost()) {
+    throw InputError(target.describe(), "connection", "a reachable PostgreSQL server (libpq: " + e.reason() + ")");
+  }
+  throw InputError(target.describe(), "palprig_schema",
+                   "a database where palprig may create and read its tables (server: " + e.reason() + ")");
 }
 
 std::optional<ParticipantRecord> PostgresTrialStore::find_participant(const std::string& code) {

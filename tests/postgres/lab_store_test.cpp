@@ -195,6 +195,42 @@ TEST(postgres_lab_store, kill_9_mid_session_and_resume_loses_and_duplicates_noth
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM sessions WHERE status = 'completed'"), 1);
 }
 
+TEST(postgres_lab_store, kill_9_while_the_server_is_down_then_resume_pushes_the_journal_first) {
+  PALPRIG_REQUIRE_PG_SERVER();
+  ScratchDir dir;
+  const std::string uri = testing::fresh_database("kill_offline");
+  const std::string journal = (dir / "journal.db").string();
+  int reported = 0;
+  {
+    auto args = session_args("sim:32", uri, journal);
+    for (const char* a : {"--speed", "25"}) args.push_back(a);
+    ChildProcess child(args);
+    wait_for_trials(child, 3);
+    ASSERT_EQ(testing::server_ctl("stop"), 0);
+    wait_for_trials(child, 9);  // these live only in the journal
+    ASSERT_EQ(::kill(child.pid(), SIGKILL), 0);
+    child.wait();
+    while (child.pump(0)) {
+    }
+    reported = reported_trials(child.out());
+  }
+  ASSERT_LT(reported, kTrialsPerSession) << "the kill came too late to test anything";
+  ASSERT_EQ(testing::server_ctl("start"), 0);
+  const std::int64_t on_server_before = testing::pg_scalar(uri, "SELECT count(*) FROM trials");
+  EXPECT_LT(on_server_before, reported) << "the journal had nothing unpushed: the test tests nothing";
+  const auto resumed = testing::run_palprig({"experiment", "run", "--protocol", protocol(), "--participant", "sim:32",
+                                             "--db", uri, "--journal", journal, "--resume", "--quiet"});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find("trials left in the journal"), std::string::npos) << resumed.out;
+  const auto at = resumed.out.find("resumed at trial ");
+  ASSERT_NE(at, std::string::npos) << resumed.out;
+  EXPECT_GE(std::stoi(resumed.out.substr(at + 17)), reported + 1) << resumed.out;
+  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), kTrialsPerSession);
+  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(DISTINCT position) FROM trials"), kTrialsPerSession);
+  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM sessions WHERE status = 'completed'"), 1);
+  EXPECT_EQ(stats_json(uri), stats_json(journal));
+}
+
 TEST(postgres_lab_store, copy_sqlite_to_postgresql_and_back_keeps_every_trial_once) {
   PALPRIG_REQUIRE_PG_SERVER();
   ScratchDir dir;
