@@ -148,6 +148,9 @@ TEST(postgres_lab_store, server_stopped_mid_session_the_session_finishes_and_eve
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("completed: 32 trials"), std::string::npos) << r.out;
   EXPECT_NE(r.err.find("lab server unreachable"), std::string::npos) << r.err;
+  // The server came back before the end: the pusher sent the backlog without being asked.
+  EXPECT_NE(r.err.find("lab server back"), std::string::npos) << r.err;
+  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), kTrialsPerSession);
 
   // The push (the pusher's, once the server was back; `store sync` pushes whatever is left).
   const auto sync = testing::run_palprig({"store", "sync", "--from", journal, "--to", uri});

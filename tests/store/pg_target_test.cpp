@@ -70,5 +70,17 @@ TEST(store_pg_target, cli_refuses_unreachable_server_and_password_with_exit_2) {
   EXPECT_EQ(secret.out.find("Sup3rSecret"), std::string::npos) << secret.out;
 }
 
+TEST(store_pg_target, session_with_unreachable_server_is_refused_before_the_rig_moves) {
+  const std::string protocol = std::string(PALPRIG_SOURCE_DIR) + "/data/protocols/discrimination_002.json";
+  const std::string journal = ::testing::TempDir() + "/palprig_unreachable_journal.db";
+  const auto r = testing::run_palprig({"experiment", "run", "--protocol", protocol, "--participant", "sim:1", "--db",
+                                       "postgresql://lab@127.0.0.1:1/labdb", "--journal", journal, "--quiet"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("host 127.0.0.1 port 1 database labdb: connection: a reachable PostgreSQL server"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(testing::count_lines(r.err), 1) << r.err;
+  EXPECT_EQ(r.out.find("trial "), std::string::npos) << "trials ran: " << r.out;
+}
+
 }  // namespace
 }  // namespace palprig
