@@ -1,6 +1,7 @@
 #include "store/lab_sync.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <map>
 
 #include "models/parse_error.hpp"
@@ -37,10 +38,18 @@ PushReport push_file_to_server(Database& file, PgConnection& server, const PushO
   PushReport report;
   const std::string server_key = server.target().describe();
   const auto links = journal_links(file);
-  for (LocalSession& local : read_sqlite_sessions(file, options.study)) {
-    const auto link = links.find(local.id);
-    const bool journal_session = link != links.end() && link->second.server == server_key;
-    if (options.journal_only && (!journal_session || link->second.synced)) continue;
+  const auto is_journal_session = [&](std::int64_t id) {
+    const auto link = links.find(id);
+    return link != links.end() && link->second.server == server_key;
+  };
+  // A journal's pass looks only at its sessions for this server not yet synced (the pusher
+  // runs after every trial; finished sessions cost nothing).
+  std::function<bool(std::int64_t)> wanted;
+  if (options.journal_only) {
+    wanted = [&](std::int64_t id) { return is_journal_session(id) && !links.at(id).synced; };
+  }
+  for (LocalSession& local : read_sqlite_sessions(file, options.study, wanted)) {
+    const bool journal_session = is_journal_session(local.id);
     ++report.sessions;
     std::int64_t server_id = 0;
     std::int64_t next_position = 0;

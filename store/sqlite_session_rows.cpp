@@ -64,7 +64,8 @@ bool has_lab_sessions_table(Database& db) {
   return s.integer(0) > 0;
 }
 
-std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional<std::string>& study) {
+std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional<std::string>& study,
+                                               const std::function<bool(std::int64_t)>& wanted) {
   const bool lab = has_lab_sessions_table(db);
   const std::string sql = "SELECT s.id, p.code, p.simulated, p.created_utc, " +
                           std::string(lab ? "l.session_uid, l.host_name" : "NULL, NULL") + ", " +
@@ -76,6 +77,7 @@ std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional
   if (study) q.bind(1, *study);
   std::vector<LocalSession> sessions;
   while (q.step()) {
+    if (wanted && !wanted(q.integer(0))) continue;
     LocalSession s;
     s.id = q.integer(0);
     s.rows.participant_code = q.text(1);

@@ -6,6 +6,7 @@
 // row there (a plain file) gets an identity derived from what makes it unique in its file, so
 // copying the same file twice stores it once.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -24,8 +25,10 @@ struct LocalSession {
   SessionRows rows;     // without trials
 };
 
-// Sessions of the file (of one study, i.e. protocol name, when given), by id.
-std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional<std::string>& study);
+// Sessions of the file (of one study, i.e. protocol name, when given; only those `wanted`
+// accepts, when given), by id.
+std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional<std::string>& study,
+                                               const std::function<bool(std::int64_t)>& wanted = {});
 // Trials of a local session at positions >= from_position, by position.
 std::vector<TrialRows> read_sqlite_trials(Database& db, std::int64_t session_id, std::int64_t from_position);
 
