@@ -26,7 +26,7 @@ struct Loopback {
   ModbusRigConfig map;
   std::unique_ptr<ModbusSimServer> server;
   Loopback() {
-    map = parse_modbus_config(load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/wago_750_559.json"));
+    map = load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/wago_750_559.json").modbus.value();
     const RigConfig rig = load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/wago_750_559.json");
     server = std::make_unique<ModbusSimServer>(map, rig.plants);
     server->set_log_sink(nullptr);

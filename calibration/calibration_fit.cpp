@@ -43,7 +43,7 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
   out.sensor_name = data.info.sensor_name;
   out.rig_id = o.rig_id.empty() ? data.info.rig_id : o.rig_id;
   if (out.rig_id.empty())
-    throw InputError(file, "rig_id", "the rig the data came from (a \"# rig_id: ...\" line, or --rig-id)");
+    throw InputError(file, "rig_id", "the rig the data came from (a \"# rig_id: ...\" line, or `rig_id`)");
   if (out.rig_id == "*")
     throw InputError(file, "rig_id", "a real rig id: a fitted calibration belongs to one rig, not \"*\"");
   if (data.points.empty())
@@ -54,9 +54,9 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
   const HysteresisSource source =
       o.hysteresis_from.value_or(data.has_monitor ? HysteresisSource::monitor : HysteresisSource::none);
   if (source == HysteresisSource::monitor && !data.has_monitor)
-    throw InputError(file, "monitor_kPa", "monitor readings to fit the hysteresis on (or --hysteresis-from sensor|none)");
+    throw InputError(file, "monitor_kPa", "monitor readings to fit the hysteresis on (or `hysteresis_from` sensor|none)");
   if (source == HysteresisSource::sensor && !data.has_sensor)
-    throw InputError(file, "sensor", "sensor readings to fit the hysteresis on (or --hysteresis-from monitor|none)");
+    throw InputError(file, "sensor", "sensor readings to fit the hysteresis on (or `hysteresis_from` monitor|none)");
 
   out.stress = o.base.stress;
   out.stress_file = o.stress_file;
@@ -101,7 +101,7 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
                                fixed(ch.regulator_check->worst_deviation_kPa, 2) + " kPa at " +
                                fixed(ch.regulator_check->at_command_kPa, 1) +
                                " kPa (check the regulator's supply, range and scaling, or raise "
-                               "--regulator-tolerance-kPa)");
+                               "`regulator_tolerance_kPa`)");
         }
       }
       if (data.has_sensor) {
@@ -144,8 +144,8 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
     if (!fit.converged)
       throw InputError(file, name + " hysteresis",
                        "a fit Ceres converges on; it did not (" + fit.solver_report +
-                           "). Record more holds (--excitation staircase,random,sine), use fewer operators "
-                           "(--operators), or fix the thresholds (--no-refine)");
+                           "). Record more holds (`excitation` staircase,random,sine), use fewer operators "
+                           "(`operator_count`), or fix the thresholds (`fixed_thresholds`)");
     ch.hysteresis = fit;
   }
   if (pooled.empty() && data.has_monitor)

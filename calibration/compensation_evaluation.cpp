@@ -136,15 +136,15 @@ EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig
   auto need = [](bool ok, const char* option, const std::string& expected) {
     if (!ok) throw InputError(option, "value", expected);
   };
-  need(std::isfinite(o.from_kPa) && o.from_kPa >= 0, "--from-kPa", "a pressure >= 0 kPa");
-  need(std::isfinite(hi) && hi > o.from_kPa + 1.0, "--to-kPa", "a pressure at least 1 kPa above --from-kPa");
+  need(std::isfinite(o.from_kPa) && o.from_kPa >= 0, "from_kPa", "a pressure >= 0 kPa");
+  need(std::isfinite(hi) && hi > o.from_kPa + 1.0, "to_kPa", "a pressure at least 1 kPa above `from_kPa`");
   std::ostringstream pmax;
   pmax << "at most the rig's p_max (" << p_max << " kPa) minus room for the compensation";
-  need(hi <= 0.95 * p_max, "--to-kPa", pmax.str());
-  need(o.ramp_kPa_per_s > 0 && o.ramp_kPa_per_s <= 1000, "--ramp-kPa-per-s", "a ramp rate in (0, 1000] kPa/s");
-  need(o.duration_s > 0 && o.duration_s <= 86400, "--duration-s", "a duration in (0, 86400] s");
-  need(o.rest_s >= 0 && o.rest_s <= 600, "--rest-s", "a rest of 0 to 600 s");
-  need(o.record_hz > 0 && o.record_hz <= o.rate_hz, "--record-hz", "a trace rate in (0, --rate-hz]");
+  need(hi <= 0.95 * p_max, "to_kPa", pmax.str());
+  need(o.ramp_kPa_per_s > 0 && o.ramp_kPa_per_s <= 1000, "ramp_kPa_per_s", "a ramp rate in (0, 1000] kPa/s");
+  need(o.duration_s > 0 && o.duration_s <= 86400, "duration_s", "a duration in (0, 86400] s");
+  need(o.rest_s >= 0 && o.rest_s <= 600, "rest_s", "a rest of 0 to 600 s");
+  need(o.record_hz > 0 && o.record_hz <= o.rate_hz, "record_hz", "a trace rate in (0, `rate_hz`]");
   bool any = false;
   for (std::size_t c = 0; c < kFingerCount; ++c) {
     if (!o.channels[c]) continue;
@@ -154,7 +154,7 @@ EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig
                        "a hysteresis model for channel " + std::to_string(c + 1) +
                            " to evaluate (run palprig calibrate fit first)");
   }
-  need(any, "--channels", "at least one channel");
+  need(any, "channels", "at least one channel");
 
   TickConfig compensated = make_tick_config(rig, cal);
   TickConfig plain = compensated;

@@ -158,9 +158,9 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
   if (!(o.min_threshold_step_kPa > 0) || !std::isfinite(o.min_threshold_step_kPa))
     throw InputError("hysteresis fit", "min_threshold_step_kPa", "a positive threshold step");
   if (!(o.max_threshold_kPa >= 0) || !std::isfinite(o.max_threshold_kPa))
-    throw InputError("--max-threshold-kPa", std::to_string(o.max_threshold_kPa), "a threshold >= 0 kPa (0: from the data)");
+    throw InputError("max_threshold_kPa", std::to_string(o.max_threshold_kPa), "a threshold >= 0 kPa (0: from the data)");
   if (o.loss != RobustLoss::none && (!(o.loss_scale_kPa > 0) || !std::isfinite(o.loss_scale_kPa)))
-    throw InputError("--robust-scale-kPa", std::to_string(o.loss_scale_kPa), "a positive scale in kPa");
+    throw InputError("loss_scale_kPa", std::to_string(o.loss_scale_kPa), "a positive scale in kPa");
   if (o.max_iterations < 1) throw InputError("hysteresis fit", "max_iterations", "at least 1 iteration");
   if (x.size() != y.size()) throw InputError(file, what, "as many inputs as outputs");
   const std::size_t parameters = 1 + 2 * n;

@@ -55,17 +55,17 @@ SweepSchedule plan_calibration_sweep(const SweepPlanOptions& o, double p_max_kPa
   auto need = [](bool ok, const char* option, const std::string& expected) {
     if (!ok) throw InputError(option, "value", expected);
   };
-  need(std::isfinite(o.from_kPa) && o.from_kPa >= 0, "--from-kPa", "a pressure >= 0 kPa");
-  need(std::isfinite(o.to_kPa) && o.to_kPa > o.from_kPa, "--to-kPa", "a pressure above --from-kPa");
-  need(std::isfinite(o.step_kPa) && o.step_kPa > 0, "--step-kPa", "a step > 0 kPa");
-  need((o.to_kPa - o.from_kPa) / o.step_kPa <= 1000, "--step-kPa", "at most 1000 levels between --from-kPa and --to-kPa");
-  need(o.repeats >= 1 && o.repeats <= 100, "--repeats", "1 to 100 repeats");
-  need(o.staircase || o.random || o.sine, "--excitation", "at least one of staircase, random, sine");
-  need(o.random_levels >= 2 && o.random_levels <= 100000, "--random-levels", "2 to 100000 levels");
-  need(o.sine_cycles >= 1 && o.sine_cycles <= 1000, "--sine-cycles", "1 to 1000 cycles");
-  need(o.sine_steps_per_cycle >= 4 && o.sine_steps_per_cycle <= 1000, "--sine-steps", "4 to 1000 steps per cycle");
+  need(std::isfinite(o.from_kPa) && o.from_kPa >= 0, "from_kPa", "a pressure >= 0 kPa");
+  need(std::isfinite(o.to_kPa) && o.to_kPa > o.from_kPa, "to_kPa", "a pressure above `from_kPa`");
+  need(std::isfinite(o.step_kPa) && o.step_kPa > 0, "step_kPa", "a step > 0 kPa");
+  need((o.to_kPa - o.from_kPa) / o.step_kPa <= 1000, "step_kPa", "at most 1000 levels between `from_kPa` and `to_kPa`");
+  need(o.repeats >= 1 && o.repeats <= 100, "repeats", "1 to 100 repeats");
+  need(o.staircase || o.random || o.sine, "excitation", "at least one of staircase, random, sine");
+  need(o.random_levels >= 2 && o.random_levels <= 100000, "random_levels", "2 to 100000 levels");
+  need(o.sine_cycles >= 1 && o.sine_cycles <= 1000, "sine_cycles", "1 to 1000 cycles");
+  need(o.sine_steps_per_cycle >= 4 && o.sine_steps_per_cycle <= 1000, "sine_steps_per_cycle", "4 to 1000 steps per cycle");
   need(p_max_kPa > 0, "rig", "a positive p_max");
-  need(o.from_kPa < p_max_kPa, "--from-kPa",
+  need(o.from_kPa < p_max_kPa, "from_kPa",
        "a level below the rig's p_max (" + kPa_text(p_max_kPa) + "), got " + kPa_text(o.from_kPa));
 
   SweepSchedule plan;

@@ -47,7 +47,7 @@ struct SweepSchedule {
   double p_max_kPa = 0;
 };
 
-// Throws InputError("--from-kPa", ...) and the like for arguments that make no sweep.
+// Throws InputError("from_kPa", ...) and the like (fields of the options) for arguments that make no sweep.
 SweepSchedule plan_calibration_sweep(const SweepPlanOptions& options, double p_max_kPa);
 
 }  // namespace palprig

@@ -1,6 +1,6 @@
 #pragma once
 // One registration function per capability; cli/main.cpp calls them all. Each subcommand is a
-// thin layer: parse arguments, call the library folders, print, return an exit code.
+// thin layer: parse arguments, call one library function, print, return an exit code.
 #include <atomic>
 #include <filesystem>
 #include <string>
@@ -26,15 +26,14 @@ std::filesystem::path data_dir();
 
 }  // namespace palprig::cli
 
-// Registration functions (each defined in its own cli/*_command.cpp).
+// Registration functions, each defined in its own cli/*_command.cpp.
 void register_run_command(CLI::App& app);
 void register_demo_command(CLI::App& app);
 void register_telemetry_command(CLI::App& app);
-// Capabilities built in parallel; declared weak so the program links while one is absent.
-__attribute__((weak)) void register_stats_command(CLI::App& app);
-__attribute__((weak)) void register_experiment_command(CLI::App& app);
-__attribute__((weak)) void register_export_command(CLI::App& app);
-__attribute__((weak)) void register_sim_rig_command(CLI::App& app);
-__attribute__((weak)) void register_calibrate_command(CLI::App& app);
-__attribute__((weak)) void register_scene_command(CLI::App& app);
-__attribute__((weak)) void register_store_command(CLI::App& app);
+void register_stats_command(CLI::App& app);
+void register_experiment_command(CLI::App& app);
+void register_export_command(CLI::App& app);
+void register_sim_rig_command(CLI::App& app);
+void register_calibrate_command(CLI::App& app);
+void register_scene_command(CLI::App& app);
+void register_store_command(CLI::App& app);

@@ -7,7 +7,8 @@
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "cli/run_setup.hpp"
+#include "controller/run_report.hpp"
+#include "controller/run_setup.hpp"
 
 using namespace palprig;
 
@@ -67,12 +68,12 @@ void register_demo_command(CLI::App& app) {
   sub->add_flag("--json", *json_out, "Print the run summary and the table as JSON");
   sub->callback([=]() {
     const auto data = cli::data_dir();
-    cli::RunArgs args;
-    args.scene_path = (data / "scenes" / "phantom_abc.json").string();
-    args.input_spec = "trace:" + (data / "traces" / "phantom_abc_pass.csv").string();
-    args.rig_path = (data / "rigs" / "simulated.json").string();
-    args.cal_path = (data / "calibration" / "paper002.json").string();
-    cli::LoadedRun run = cli::load_run(args);
+    RunFiles files;
+    files.scene = data / "scenes" / "phantom_abc.json";
+    files.input = "trace:" + (data / "traces" / "phantom_abc_pass.csv").string();
+    files.rig = data / "rigs" / "simulated.json";
+    files.calibration = data / "calibration" / "paper002.json";
+    LoadedRun run = load_run(files);
     std::filesystem::create_directories(*out_dir);
     RegionTable table(run.scene.tumors, run.config.layout, 8.0);
     RunOptions opt;
@@ -83,7 +84,7 @@ void register_demo_command(CLI::App& app) {
     opt.observer = &table;
     cli::install_stop_signals();
     opt.stop_signal = &cli::stop_signal();
-    const RunSummary s = cli::execute(run, opt);
+    const RunSummary s = execute_run(run, opt);
 
     const auto& rows = table.rows();
     const auto& soft = rows.back();
@@ -92,7 +93,7 @@ void register_demo_command(CLI::App& app) {
       all_higher = all_higher && rows[t].n > 0 && rows[t].target_mean() > soft.target_mean() &&
                    rows[t].plant_mean() > soft.plant_mean();
     if (*json_out) {
-      nlohmann::json j = cli::summary_json(s, run, opt);
+      nlohmann::json j = run_summary_json(s, run, opt);
       nlohmann::json regions = nlohmann::json::array();
       for (std::size_t t = 0; t <= run.scene.tumors.size(); ++t) {
         const auto& r = rows[t];
@@ -104,7 +105,7 @@ void register_demo_command(CLI::App& app) {
       j["tumors_feel_harder"] = all_higher;
       std::cout << j.dump(2) << "\n";
     } else {
-      cli::print_summary(std::cout, s, run, opt);
+      print_run_summary(std::cout, s, run, opt);
       std::cout << "\n  Pressure per region (fingers over it while the pen pressed; plant = regulator monitor)\n"
                 << "  region            finger-ticks   target kPa mean / max   plant kPa mean / max\n"
                 << std::fixed;

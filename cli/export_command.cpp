@@ -12,50 +12,21 @@
 #include "store/trial_summary.hpp"
 #include "models/parse_error.hpp"
 #ifdef PALPRIG_HAVE_GUI
-#include "gui/chart_png.hpp"
+#include "gui/trial_charts.hpp"
 #endif
 
 using namespace palprig;
 
 namespace {
 
-// Paper 002 fig. 15: Se, Sp, PPV and ACC per condition as bars with their Wilson 95 % intervals.
-// Returns the file written.
-std::filesystem::path plot_measures_by_condition(TrialStore& store, const std::filesystem::path& dir,
-                                                 bool include_practice) {
+// --plot needs gui's chart drawing (Qt); a build without it refuses the option.
+std::filesystem::path plot_measures(TrialStore& store, const std::filesystem::path& dir, bool include_practice) {
 #ifndef PALPRIG_HAVE_GUI
   (void)store;
   (void)include_practice;
   throw InputError("--plot", dir.string(), "a build with the chart drawing (configure with -DPALPRIG_GUI=ON; needs Qt6)");
 #else
-  SummaryOptions options;
-  options.by = {SummaryKey::condition};
-  options.include_practice = include_practice;
-  const TrialSummary summary = summarise_trials(store, options);
-  gui::Chart chart;
-  chart.title = "Se, Sp, PPV and ACC per condition (Wilson 95 % intervals)";
-  chart.y_label = "proportion";
-  chart.x_categories = {"Se", "Sp", "PPV", "ACC"};
-  chart.y_min = 0.0;
-  chart.y_max = 1.25;  // room above the bars for the legend
-  for (const SummaryRow& row : summary.rows) {
-    gui::ChartSeries bars;
-    bars.label = row.key.empty() ? "all" : row.key[0];
-    bars.style = gui::ChartSeries::Style::bars;
-    for (const Measure* m : {&row.measures.se, &row.measures.sp, &row.measures.ppv, &row.measures.acc}) {
-      bars.x.push_back(double(bars.x.size()));
-      // An undefined measure (no cases) is left out of the chart rather than drawn as 0.
-      bars.y.push_back(m->defined ? m->value : std::nan(""));
-      bars.y_low.push_back(m->defined ? m->lower : std::nan(""));
-      bars.y_high.push_back(m->defined ? m->upper : std::nan(""));
-    }
-    chart.series.push_back(std::move(bars));
-  }
-  if (chart.series.empty()) throw InputError(store.location(), "trials", "at least one scored trial to plot");
-  std::filesystem::create_directories(dir);
-  const auto path = dir / "measures_by_condition.png";
-  gui::write_chart_png(chart, path);
-  return path;
+  return gui::plot_measures_by_condition(store, dir, include_practice);
 #endif
 }
 
@@ -91,6 +62,6 @@ void register_export_command(CLI::App& app) {
     for (std::size_t i = 0; i < shown; ++i) std::cout << "  " << r.files[i].string() << "\n";
     if (shown < r.files.size()) std::cout << "  ... and " << r.files.size() - shown << " more\n";
     if (!a->plot_dir.empty())
-      std::cout << "  " << plot_measures_by_condition(store, a->plot_dir, !a->no_practice).string() << "\n";
+      std::cout << "  " << plot_measures(store, a->plot_dir, !a->no_practice).string() << "\n";
   });
 }

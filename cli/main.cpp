@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cli/field_flags.hpp"
 #include "models/parse_error.hpp"
 
 
@@ -35,10 +36,13 @@ int main(int argc, char** argv) {
   register_run_command(app);
   register_demo_command(app);
   register_telemetry_command(app);
-  for (auto* reg : {register_stats_command, register_experiment_command, register_export_command,
-                    register_sim_rig_command, register_calibrate_command, register_scene_command,
-                    register_store_command})
-    if (reg) reg(app);  // weak: a capability whose file is not in this build is simply absent
+  register_stats_command(app);
+  register_experiment_command(app);
+  register_export_command(app);
+  register_sim_rig_command(app);
+  register_calibrate_command(app);
+  register_scene_command(app);
+  register_store_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {
@@ -49,7 +53,7 @@ int main(int argc, char** argv) {
     std::cerr << "palprig: " << e.what() << " (see --help)\n";
     return palprig::cli::kExitBadInput;
   } catch (const palprig::InputError& e) {
-    std::cerr << "palprig: " << e.what() << "\n";
+    std::cerr << "palprig: " << palprig::cli::input_error_line(e) << "\n";
     return palprig::cli::kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "palprig: " << e.what() << "\n";

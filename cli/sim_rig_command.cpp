@@ -36,7 +36,7 @@ void register_sim_rig_command(CLI::App& app) {
     const RigConfig rig = load_rig_file(*rig_path);
     if (rig.backend != "modbus")
       throw InputError(rig.source, "backend", "\"modbus\" (sim-rig serves the rig's register map), got \"" + rig.backend + "\"");
-    const ModbusRigConfig map = parse_modbus_config(rig);
+    const ModbusRigConfig map = rig.modbus.value();
     std::vector<ListenAddress> addresses;
     if (listen->empty()) {
       for (std::size_t i = 0; i < map.links.size(); ++i) {

@@ -11,10 +11,11 @@ namespace palprig {
 
 std::unique_ptr<RigBackend> make_backend(const RigConfig& rig) {
   if (rig.backend == "simulated") return std::make_unique<SimulatedRig>(rig.plants, rig.safety.p_max_kPa);
-  if (rig.backend == "modbus") return std::make_unique<ModbusRig>(parse_modbus_config(rig));
-  if (rig.backend == "comedi") return std::make_unique<ComediRig>(parse_comedi_config(rig));
+  if (rig.backend == "modbus" && rig.modbus) return std::make_unique<ModbusRig>(*rig.modbus);
+  if (rig.backend == "comedi" && rig.comedi) return std::make_unique<ComediRig>(*rig.comedi);
   throw InputError(rig.source, "backend",
-                   "a backend this build supports (\"simulated\", \"modbus\", \"comedi\"), got \"" + rig.backend + "\"");
+                   "a backend this build supports (\"simulated\", \"modbus\", \"comedi\") with its section loaded, "
+                   "got \"" + rig.backend + "\"");
 }
 
 }  // namespace palprig

@@ -1,7 +1,7 @@
 #pragma once
 // Participant: who answers the trials. The session loop asks it, on every pass, whether it is
 // ready to go on and whether it has answered, and tells it what the fingers feel. A person at
-// the terminal (cli/experiment_command.cpp) and the simulated observer implement it.
+// the terminal (experiments/terminal_participant.hpp), the simulated observer and the GUI implement it.
 #include <optional>
 
 #include "inputs/input_source.hpp"

@@ -25,12 +25,12 @@ ComediChannelSpec parse_spec(const JsonObject& o) {
 
 }  // namespace
 
-ComediRigConfig parse_comedi_config(const RigConfig& rig) {
+ComediRigConfig parse_comedi_config(const RigConfig& rig, const nlohmann::json& backend_section) {
   ComediRigConfig cfg;
   cfg.source = rig.source;
   cfg.rig_id = rig.id;
   cfg.p_max_kPa = rig.safety.p_max_kPa;
-  nlohmann::json section = rig.backend_section;
+  nlohmann::json section = backend_section;
   if (!section.is_object()) throw InputError(rig.source, "comedi", "an object with the DAQ device");
   const nlohmann::json channels = section.contains("channels") ? section["channels"] : nlohmann::json();
   section.erase("channels");

@@ -17,6 +17,8 @@
 #include <array>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "models/regulator_scale.hpp"
 #include "models/finger_layout.hpp"
 
@@ -44,7 +46,9 @@ struct ComediRigConfig {
   double p_max_kPa = 60.0;
 };
 
-// Throws InputError naming the file and field.
-ComediRigConfig parse_comedi_config(const RigConfig& rig);
+// Parse and validate the "comedi" section (with the rig file's "channels" array under
+// "channels") of a rig being loaded; load_rig_file calls it once and keeps the result in
+// RigConfig::comedi. Throws InputError naming the file and field.
+ComediRigConfig parse_comedi_config(const RigConfig& rig, const nlohmann::json& backend_section);
 
 }  // namespace palprig

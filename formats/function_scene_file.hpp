@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "formats/json_file.hpp"
-#include "formats/scene_file.hpp"
+#include "formats/scene_description.hpp"
 #include "models/case_generator.hpp"
 #include "models/pulse_waveform.hpp"
 

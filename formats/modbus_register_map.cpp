@@ -120,14 +120,14 @@ std::string volts_text(double v) {
 
 }  // namespace
 
-ModbusRigConfig parse_modbus_config(const RigConfig& rig) {
+ModbusRigConfig parse_modbus_config(const RigConfig& rig, const nlohmann::json& backend_section) {
   ModbusRigConfig cfg;
   cfg.source = rig.source;
   cfg.rig_id = rig.id;
   cfg.p_max_kPa = rig.safety.p_max_kPa;
   cfg.slew_kPa_per_s = rig.safety.slew_kPa_per_s;
 
-  nlohmann::json section = rig.backend_section;
+  nlohmann::json section = backend_section;
   if (!section.is_object()) throw InputError(rig.source, "modbus", "an object with the Modbus links");
   const nlohmann::json channels = section.contains("channels") ? section["channels"] : nlohmann::json();
   section.erase("channels");

@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "models/regulator_scale.hpp"
 #include "models/finger_layout.hpp"
 
@@ -96,8 +98,10 @@ struct ModbusRigConfig {
   bool monitor_is_readback(std::size_t channel) const noexcept;
 };
 
-// Parse and validate the "modbus" section and the channels' "output"/"monitor" objects of a
-// loaded rig. Throws InputError naming the file and field.
-ModbusRigConfig parse_modbus_config(const RigConfig& rig);
+// Parse and validate the "modbus" section (with the rig file's "channels" array under
+// "channels": their "output"/"monitor" objects) of a rig being loaded; load_rig_file calls it
+// once and keeps the result in RigConfig::modbus. `rig` gives the file, id and safety limits.
+// Throws InputError naming the file and field.
+ModbusRigConfig parse_modbus_config(const RigConfig& rig, const nlohmann::json& backend_section);
 
 }  // namespace palprig

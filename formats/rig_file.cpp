@@ -67,13 +67,17 @@ static RigConfig parse_rig(const nlohmann::json& doc, const std::string& file) {
   for (const auto& p : rig.plants)
     if (rig.safety.p_max_kPa > p.max_kPa)
       root.fail("safety.p_max_kPa", "at most the regulators' max_kPa (" + std::to_string(p.max_kPa) + ")");
+  nlohmann::json backend_section;
   if (rig.backend != "simulated") {
     if (!root.has(rig.backend)) root.fail(rig.backend, "a \"" + rig.backend + "\" section for that backend");
-    rig.backend_section = root.raw(rig.backend);
-    if (root.has("channels")) rig.backend_section["channels"] = root.raw("channels");
+    backend_section = root.raw(rig.backend);
+    if (root.has("channels")) backend_section["channels"] = root.raw("channels");
   }
   root.refuse_unknown();
-  validate_backend_section(rig);  // a bad register map or DAQ section is refused at load
+  // A bad register map or DAQ section is refused at load, before anything is opened; the
+  // parsed config is what make_backend uses.
+  if (rig.backend == "modbus") rig.modbus = parse_modbus_config(rig, backend_section);
+  if (rig.backend == "comedi") rig.comedi = parse_comedi_config(rig, backend_section);
   return rig;
 }
 
@@ -84,11 +88,6 @@ RigConfig default_rig() {
   rig.source = "(built-in default rig)";
   rig.id = "sim-default";
   return rig;
-}
-
-void validate_backend_section(const RigConfig& rig) {
-  if (rig.backend == "modbus") parse_modbus_config(rig);
-  if (rig.backend == "comedi") parse_comedi_config(rig);
 }
 
 }  // namespace palprig

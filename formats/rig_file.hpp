@@ -1,15 +1,18 @@
 #pragma once
 // The rig file (JSON, versioned) describes one physical or simulated rig: which backend, its
 // safety limits, the virtual hand (finger spacing and orientation) and, for the simulated
-// backend, the plant of each channel. Backends other than "simulated" keep their own section
-// (e.g. "modbus") which their factory validates.
+// backend, the plant of each channel. Backends other than "simulated" have their own section
+// (e.g. "modbus"), parsed and checked once at load into a typed config.
 #include <array>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "formats/comedi_config.hpp"
+#include "formats/modbus_register_map.hpp"
 #include "formats/tablet_config.hpp"
 #include "models/finger_layout.hpp"
 #include "models/safety_limits.hpp"
@@ -27,8 +30,11 @@ struct RigConfig {
   FingerLayout layout;
   double contact_force_N = 0.05;
   std::array<PlantParams, kFingerCount> plants{};
-  nlohmann::json backend_section;  // the section named after the backend, if any
-  TabletConfig tablet;             // the pen tablet ("tablet" section; defaults when absent)
+  // The hardware backend's own configuration, parsed and checked at load: the one named by
+  // `backend` is set ("simulated" needs none beyond `plants` and `safety`).
+  std::optional<ModbusRigConfig> modbus;
+  std::optional<ComediRigConfig> comedi;
+  TabletConfig tablet;  // the pen tablet ("tablet" section; defaults when absent)
 };
 
 RigConfig load_rig_file(const std::filesystem::path& path);
@@ -37,9 +43,5 @@ RigConfig default_rig();
 // Plant parameters from a JSON object, starting from `base` (fields absent keep base's value).
 class JsonObject;
 PlantParams parse_plant(const JsonObject& obj, const PlantParams& base);
-
-// Validate the section of a hardware backend (register map, DAQ channels); throws InputError.
-// load_rig_file calls it, so a bad map is refused before anything is opened.
-void validate_backend_section(const RigConfig& rig);
 
 }  // namespace palprig

@@ -96,7 +96,7 @@ TouchSample TabletInput::latest(double t_s) noexcept {
 std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const TabletConfig& config) {
   std::string path = config.device;
   if (spec.rfind("tablet:", 0) == 0) path = spec.substr(7);
-  else if (spec != "tablet") throw InputError("--input", spec, "tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
+  else if (spec != "tablet") throw InputError("input", spec, "tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
   std::unique_ptr<PenEventSource> source;
   struct stat st{};
   if (path != "auto" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) source = std::make_unique<EvemuPenSource>(path);
@@ -104,7 +104,7 @@ std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const Ta
   try {
     return std::make_unique<TabletInput>(std::move(source), config);
   } catch (const std::invalid_argument& e) {
-    throw InputError("--input", spec, std::string("a tablet palprig can convert to mm and newtons (") + e.what() + ")");
+    throw InputError("input", spec, std::string("a tablet palprig can convert to mm and newtons (") + e.what() + ")");
   }
 }
 

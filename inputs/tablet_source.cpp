@@ -43,7 +43,7 @@ EvdevPenSource::EvdevPenSource(const std::string& path, bool grab) {
     const int fd = ::open(p.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
       if (path != "auto")
-        throw InputError("--input", "tablet:" + path, std::string("a readable event device (") + std::strerror(errno) +
+        throw InputError("input", "tablet:" + path, std::string("a readable event device (") + std::strerror(errno) +
                                                           (errno == EACCES ? "; join the 'input' group or add a udev rule" : "") + ")");
       if (errno == EACCES) refused += " " + p;
       continue;
@@ -53,7 +53,7 @@ EvdevPenSource::EvdevPenSource(const std::string& path, bool grab) {
       if (d) libevdev_free(d);
       ::close(fd);
       if (path != "auto")
-        throw InputError("--input", "tablet:" + path, "a pen tablet (ABS_X, ABS_Y, ABS_PRESSURE and a pen tool key)");
+        throw InputError("input", "tablet:" + path, "a pen tablet (ABS_X, ABS_Y, ABS_PRESSURE and a pen tool key)");
       continue;
     }
     fd_ = fd;
@@ -62,14 +62,14 @@ EvdevPenSource::EvdevPenSource(const std::string& path, bool grab) {
     break;
   }
   if (!dev_)
-    throw InputError("--input", "tablet", "a pen tablet under /dev/input (none of " + std::to_string(candidates.size()) +
+    throw InputError("input", "tablet", "a pen tablet under /dev/input (none of " + std::to_string(candidates.size()) +
                                               " event devices has ABS_X, ABS_Y, ABS_PRESSURE and a pen tool" +
                                               (refused.empty() ? std::string() : "; no permission to read" + refused) + ")");
   name_ = libevdev_get_name(dev_) ? libevdev_get_name(dev_) : "unnamed";
   // Event times on the loop's clock, so ages compare directly.
   libevdev_set_clock_id(dev_, CLOCK_MONOTONIC);
   if (grab && libevdev_grab(dev_, LIBEVDEV_GRAB) < 0)
-    throw InputError("--input", "tablet:" + path_, "a device palprig may grab (another program holds it)");
+    throw InputError("input", "tablet:" + path_, "a device palprig may grab (another program holds it)");
   const input_absinfo* x = libevdev_get_abs_info(dev_, ABS_X);
   const input_absinfo* y = libevdev_get_abs_info(dev_, ABS_Y);
   const input_absinfo* p = libevdev_get_abs_info(dev_, ABS_PRESSURE);

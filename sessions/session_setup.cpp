@@ -10,14 +10,14 @@ std::uint64_t default_session_seed(const std::string& participant_code, const st
 }
 
 OpenedSession open_session(TrialStore& store, const Protocol& protocol, const SessionRequest& request) {
-  if (request.participant_code.empty()) throw InputError("command line", "--participant", "a participant code");
+  if (request.participant_code.empty()) throw InputError("command line", "participant", "a participant code");
   OpenedSession opened;
   const auto existing = store.find_participant(request.participant_code);
   const auto unfinished = existing ? store.find_unfinished_session(*existing, protocol.name) : std::nullopt;
 
   if (request.resume) {
     if (!unfinished) {
-      throw InputError(store.location(), "--resume",
+      throw InputError(store.location(), "`resume`",
                        "an unfinished session of participant '" + request.participant_code + "' with protocol '" +
                            protocol.name + "' (there is none)");
     }
@@ -41,7 +41,7 @@ OpenedSession open_session(TrialStore& store, const Protocol& protocol, const Se
     throw InputError(store.location(), "participant '" + request.participant_code + "'",
                      "no unfinished session with this protocol (session " + std::to_string(stored.id) + " stopped after " +
                          std::to_string(stored.completed_trials) + " of " + std::to_string(stored.plan.trials.size()) +
-                         " trials: continue it with --resume)");
+                         " trials: continue it with `resume`)");
   }
   opened.participant = store.enrol(request.participant_code, request.simulated);
   opened.protocol = protocol;

@@ -37,7 +37,7 @@ std::vector<NumericGroup> two_groups(const CsvTable& table, std::string_view val
                                      std::string_view group_column,
                                      const std::vector<std::string>& selected_groups) {
   if (!selected_groups.empty() && selected_groups.size() != 2) {
-    throw InputError(table.source(), "--groups", "exactly two group labels");
+    throw InputError(table.source(), "`groups`", "exactly two group labels");
   }
   auto groups = group_numbers(table, value_column, group_column, selected_groups);
   if (groups.size() != 2) {
@@ -45,7 +45,7 @@ std::vector<NumericGroup> two_groups(const CsvTable& table, std::string_view val
     for (const auto& g : groups) found += (found.empty() ? "" : ", ") + g.label;
     throw InputError(table.source(), "column '" + std::string(group_column) + "'",
                      "exactly two groups (found " + std::to_string(groups.size()) + ": " + found +
-                         "); choose two with --groups A,B");
+                         "); choose two with `groups` A,B");
   }
   return groups;
 }

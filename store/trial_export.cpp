@@ -75,7 +75,7 @@ std::ofstream open_for_writing(const std::filesystem::path& path) {
 void make_dir(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir)) throw InputError(dir.string(), "--out", "a folder that can be created");
+  if (ec || !std::filesystem::is_directory(dir)) throw InputError(dir.string(), "`out_dir`", "a folder that can be created");
 }
 
 std::string bit(const std::string& flags, int f) {

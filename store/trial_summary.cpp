@@ -137,7 +137,7 @@ std::vector<SummaryKey> parse_summary_keys(const std::string& list) {
       }
     }
     if (!found) {
-      throw InputError("command line", "--by", "a list of condition, participant, finger, tumor, combination, session; got '" + word + "'");
+      throw InputError("command line", "group_by", "a list of condition, participant, finger, tumor, combination, session; got '" + word + "'");
     }
   }
   return keys;

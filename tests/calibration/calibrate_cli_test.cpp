@@ -145,6 +145,20 @@ TEST(CalibrateCli, RefusedInputExitsTwoWithOneLine) {
   EXPECT_EQ(r.err, "palprig: --fast: modbus: a simulated rig (hardware runs in real time)\n");
 }
 
+// The calibration library names option fields (to_kPa, `from_kPa` in prose); the command line
+// prints the flags the user typed, in the file, field and text of the refusal alike.
+TEST(CalibrateCli, RefusalsNameTheFlagsTheUserTyped) {
+  TempDir dir;
+  ProcessResult r = run_process(palprig_cmd() + " calibrate sweep --from-kPa 30 --to-kPa 20 --out " +
+                                (dir.path() / "d.csv").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "palprig: --to-kPa: value: a pressure above --from-kPa\n");
+  r = run_process(palprig_cmd() + " calibrate sweep --repeats 0 --out " + (dir.path() / "d.csv").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "palprig: --repeats: value: 1 to 100 repeats\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "d.csv"));
+}
+
 TEST(CalibrateCli, PlotWritesPngFilesOrIsRefusedWithoutTheChartDrawing) {
   TempDir dir;
   const std::string data = (dir.path() / "data.csv").string(), cal = (dir.path() / "cal.json").string();

@@ -128,8 +128,8 @@ TEST(CompensationEvaluation, RefusesWhatCannotBeEvaluated) {
   cal.hysteresis[1] = cal.hysteresis[2] = cal.hysteresis[0];
   EvaluationOptions o = fast();
   o.to_kPa = 59;
-  EXPECT_EQ(refusal(cal, o), "--to-kPa: value: at most the rig's p_max (60 kPa) minus room for the compensation");
+  EXPECT_EQ(refusal(cal, o), "to_kPa: value: at most the rig's p_max (60 kPa) minus room for the compensation");
   o = fast();
   o.ramp_kPa_per_s = 0;
-  EXPECT_EQ(refusal(cal, o), "--ramp-kPa-per-s: value: a ramp rate in (0, 1000] kPa/s");
+  EXPECT_EQ(refusal(cal, o), "ramp_kPa_per_s: value: a ramp rate in (0, 1000] kPa/s");
 }

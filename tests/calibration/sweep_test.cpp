@@ -175,10 +175,10 @@ TEST(SweepPlan, IdentificationExcitationsStayInRangeAndReverse) {
 TEST(SweepPlan, RefusesArgumentsThatMakeNoSweep) {
   SweepPlanOptions o;
   o.to_kPa = 5;
-  EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }), "--to-kPa: value: a pressure above --from-kPa");
+  EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }), "to_kPa: value: a pressure above `from_kPa`");
   o = {};
   o.step_kPa = 0;
-  EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }), "--step-kPa: value: a step > 0 kPa");
+  EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }), "step_kPa: value: a step > 0 kPa");
   o = {};
   o.from_kPa = 70;
   EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }),
@@ -186,7 +186,7 @@ TEST(SweepPlan, RefusesArgumentsThatMakeNoSweep) {
   o = {};
   o.staircase = false;
   EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }),
-            "--excitation: value: at least one of staircase, random, sine");
+            "excitation: value: at least one of staircase, random, sine");
 }
 
 TEST(SweepRunner, HoldsSettleOnTheSimulatedRigAndShowItsHysteresis) {

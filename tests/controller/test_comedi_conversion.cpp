@@ -116,7 +116,7 @@ TEST(ComediRigFile, ExampleLoadsAndBadSectionsAreRefused) {
     }
   };
   EXPECT_EQ(load(comedi_rig_doc()), "");
-  const ComediRigConfig cfg = parse_comedi_config(load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/ni_pcie_6259_comedi.json"));
+  const ComediRigConfig cfg = load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/ni_pcie_6259_comedi.json").comedi.value();
   EXPECT_EQ(cfg.device, "/dev/comedi0");
   EXPECT_DOUBLE_EQ(cfg.monitors[1].regulator.volts_at_0_kPa, 1.0);
   auto doc = comedi_rig_doc();
@@ -152,7 +152,7 @@ TEST(ComediDevice, AFileThatIsNotAComediDeviceIsRefused) {
   auto doc = comedi_rig_doc();
   doc["comedi"]["device"] = "/dev/null";
   const RigConfig rig = load_rig_file(dir.write("rig.json", doc.dump()));
-  ComediRig backend(parse_comedi_config(rig));
+  ComediRig backend(rig.comedi.value());
   try {
     backend.open();
     FAIL() << "/dev/null accepted as a comedi device";
@@ -174,7 +174,7 @@ TEST(ComediDevice, DrivesARealBoardWhenOneIsPresent) {
   doc["comedi"]["device"] = device;
   doc["comedi"]["calibration"] = "hard";  // no soft-calibration file needed for a smoke test
   for (auto& ch : doc["channels"]) ch["monitor"]["volts_span"] = {0, 5};
-  ComediRig rig(parse_comedi_config(load_rig_file(dir.write("rig.json", doc.dump()))));
+  ComediRig rig(load_rig_file(dir.write("rig.json", doc.dump())).comedi.value());
   rig.open();
   ChannelPressures monitors{};
   EXPECT_EQ(rig.write({0, 0, 0}, 0), BackendStatus::ok) << rig.last_error();

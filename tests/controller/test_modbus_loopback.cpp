@@ -86,7 +86,7 @@ struct Quiet {  // collects the rig's log lines instead of printing them
 }  // namespace
 
 TEST(ModbusLoopback, WritesTheExactWordsOfTheMapAndReadsMonitorsBack) {
-  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
   ModbusSimServer server(map, quiet_plants());
   server.set_log_sink(nullptr);
   const auto ports = serve(server, 1);
@@ -113,7 +113,7 @@ TEST(ModbusLoopback, WritesTheExactWordsOfTheMapAndReadsMonitorsBack) {
 }
 
 TEST(ModbusLoopback, ServesSeveralClientsAtOnce) {
-  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
   ModbusSimServer server(map, quiet_plants());
   server.set_log_sink(nullptr);
   const auto ports = serve(server, 1);
@@ -138,7 +138,7 @@ TEST(ModbusLoopback, ServesSeveralClientsAtOnce) {
 
 TEST(ModbusLoopback, LostPeerVentsAlarmsReconnectsAndRampsFromZero) {
   TempDir dir;
-  ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
   auto server = std::make_unique<ModbusSimServer>(map, quiet_plants());
   server->set_log_sink(nullptr);
   const auto ports = serve(*server, 1);
@@ -197,7 +197,7 @@ TEST(ModbusLoopback, LostPeerVentsAlarmsReconnectsAndRampsFromZero) {
 
 TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
   TempDir dir;
-  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
   ModbusSimServer server(map, quiet_plants());
   server.set_log_sink(nullptr);
   const auto log_path = dir.path() / "writes.csv";
@@ -228,7 +228,7 @@ TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
 }
 
 TEST(ModbusLoopback, TheBusThreadVentsWhenTheLoopFallsSilent) {
-  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
   ModbusSimServer server(map, quiet_plants());
   server.set_log_sink(nullptr);
   const auto ports = serve(server, 1);
@@ -245,7 +245,7 @@ TEST(ModbusLoopback, TheBusThreadVentsWhenTheLoopFallsSilent) {
 }
 
 TEST(ModbusLoopback, AnOutageLongerThanTheLimitIsABackendError) {
-  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
   auto server = std::make_unique<ModbusSimServer>(map, quiet_plants());
   server->set_log_sink(nullptr);
   ModbusRigConfig cmap = client_map(map, serve(*server, 1));
@@ -262,7 +262,7 @@ TEST(ModbusLoopback, AnOutageLongerThanTheLimitIsABackendError) {
 }
 
 TEST(ModbusLoopback, ADeviceThatRefusesTheMapIsRefusedAtOpen) {
-  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
   ModbusSimServer server(map, quiet_plants());  // serves holding registers 0..2 only
   server.set_log_sink(nullptr);
   ModbusRigConfig wrong = client_map(map, serve(server, 1));
@@ -279,7 +279,7 @@ TEST(ModbusLoopback, ADeviceThatRefusesTheMapIsRefusedAtOpen) {
 }
 
 TEST(ModbusLoopback, NothingListeningIsRefusedAtOpenWithTheReason) {
-  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
   int port;
   {
     ModbusSimServer probe(map, quiet_plants());
@@ -299,7 +299,7 @@ TEST(ModbusLoopback, NothingListeningIsRefusedAtOpenWithTheReason) {
 
 TEST(ModbusLoopback, TwoModuleMapsWriteEachRegisterOnItsOwnLink) {
   // Moxa: outputs on the E1241 at 1024..1026 (12 bit), monitors on the E1240 at 0..2 (16 bit).
-  const ModbusRigConfig map = parse_modbus_config(shipped_rig("moxa_iologik_e1241.json"));
+  const ModbusRigConfig map = shipped_rig("moxa_iologik_e1241.json").modbus.value();
   ModbusSimServer server(map, quiet_plants());
   server.set_log_sink(nullptr);
   const auto ports = serve(server, 2);
@@ -333,7 +333,7 @@ TEST(ModbusLoopback, TwoModuleMapsWriteEachRegisterOnItsOwnLink) {
 
 TEST(ModbusLoopback, RtuOnAPseudoTerminalCarriesTheSameMap) {
   // The map as a lab would wire it on RS-485: one RTU link, unit 7, 115200 8E1.
-  ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
   map.links[0].rtu = true;
   map.links[0].baud = 115200;
   map.links[0].parity = 'E';
@@ -373,7 +373,7 @@ TEST(ModbusLoopback, RtuOnAPseudoTerminalCarriesTheSameMap) {
 }
 
 TEST(ModbusLoopback, SimulatedModuleWatchdogZeroesOutputsOfASilentLink) {
-  const ModbusRigConfig map = parse_modbus_config(shipped_rig("wago_750_559.json"));
+  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
   ModbusSimServer server(map, quiet_plants());
   Quiet log;
   server.set_log_sink(log.sink());

@@ -121,7 +121,7 @@ TEST(ModbusRigFile, ShippedExamplesLoad) {
   for (const char* name : {"wago_750_559.json", "moxa_iologik_e1241.json", "advantech_adam_6024.json"}) {
     const RigConfig rig = load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/" + name);
     ASSERT_EQ(rig.backend, "modbus") << name;
-    const ModbusRigConfig map = parse_modbus_config(rig);
+    const ModbusRigConfig map = rig.modbus.value();
     for (std::size_t c = 0; c < kFingerCount; ++c) {
       // Every example must carry 0..p_max on its outputs.
       const auto& out = map.channels[c].output.scale;
@@ -132,7 +132,7 @@ TEST(ModbusRigFile, ShippedExamplesLoad) {
 }
 
 TEST(ModbusRigFile, WagoMapReadsAsWritten) {
-  const ModbusRigConfig map = parse_modbus_config(load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/wago_750_559.json"));
+  const ModbusRigConfig map = load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/wago_750_559.json").modbus.value();
   ASSERT_EQ(map.links.size(), 1u);
   EXPECT_EQ(map.links[0].endpoint(), "tcp 127.0.0.1:1502");
   EXPECT_EQ(map.channels[2].output.address, 2);

@@ -131,7 +131,7 @@ TEST(experiments_trial_store, resume_rules) {
     open_session(store, p, request);
     FAIL() << "an unfinished session was silently replaced";
   } catch (const InputError& e) {
-    EXPECT_NE(e.expected().find("--resume"), std::string::npos);
+    EXPECT_NE(e.expected().find("`resume`"), std::string::npos);
     EXPECT_NE(e.expected().find("after 2 of 32"), std::string::npos);
   }
   request.resume = true;

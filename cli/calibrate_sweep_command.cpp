@@ -1,0 +1,135 @@
+// palprig calibrate sweep: drive staircases (and optional identification excitations) on the
+// rig's backend and record command, monitor and sensor to a CSV file. Arguments are checked
+// before the backend opens (exit 2); a signal vents and keeps what was recorded (exit 1).
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "calibration/calibration_report.hpp"
+#include "calibration/calibration_writer.hpp"
+#include "calibration/sweep_csv.hpp"
+#include "calibration/sweep_plan.hpp"
+#include "calibration/sweep_runner.hpp"
+#include "cli/calibrate_arguments.hpp"
+#include "cli/commands.hpp"
+#include "controller/backend_factory.hpp"
+#include "models/parse_error.hpp"
+
+using namespace palprig;
+using namespace palprig::cli;
+
+namespace {
+
+struct SweepArgs {
+  std::string rig_path, channels = "1,2,3", excitation = "staircase", out;
+  SweepPlanOptions plan;
+  SweepRunOptions run;
+  bool realtime = false, fast = false, quiet = false;
+};
+
+void run_sweep(const SweepArgs& a) {
+  // Everything is validated before the backend opens.
+  const RigConfig rig = load_rig(a.rig_path);
+  SweepPlanOptions plan_options = a.plan;
+  plan_options.staircase = plan_options.random = plan_options.sine = false;
+  std::istringstream ex(a.excitation);
+  for (std::string item; std::getline(ex, item, ',');) {
+    if (item == "staircase") plan_options.staircase = true;
+    else if (item == "random") plan_options.random = true;
+    else if (item == "sine") plan_options.sine = true;
+    else throw InputError("--excitation", a.excitation, "a list of staircase, random, sine");
+  }
+  const SweepSchedule plan = plan_calibration_sweep(plan_options, rig.safety.p_max_kPa);
+  SweepRunOptions run = a.run;
+  run.channels = parse_channels(a.channels);
+  run.realtime = use_realtime(rig, a.realtime, a.fast);
+  if (!(run.settle_window_s > 0) || !(run.settle_band_kPa > 0) || !(run.average_s > 0) ||
+      !(run.max_hold_s > run.min_hold_s) || run.max_hold_s < run.settle_window_s + run.average_s ||
+      !(run.max_hold_s <= 3600))
+    throw InputError("--max-hold-s", std::to_string(run.max_hold_s),
+                     "settle window, band and averaging window > 0, and a max hold above the min hold and both "
+                     "windows, at most 3600 s");
+  for (const auto& n : plan.notes) std::cerr << "palprig: note: " << n << "\n";
+
+  auto backend = make_backend(rig);
+  SweepFileInfo info;
+  info.rig_id = rig.id;
+  info.backend = backend->describe();
+  info.date = utc_timestamp_now();
+  info.p_max_kPa = rig.safety.p_max_kPa;
+  info.rate_hz = run.rate_hz;
+  if (const char* s = backend->sensor_name()) info.sensor_name = s;
+  info.notes = plan.notes;
+  SweepCsvWriter writer(a.out, info, run.channels);  // a path that cannot be written fails here, before open
+  backend->open();
+
+  cli::install_stop_signals();
+  run.stop_signal = &cli::stop_signal();
+  SweepSegment last_segment = SweepSegment::vent;
+  int last_repeat = -1;
+  const bool quiet = a.quiet;
+  auto progress = [&](std::size_t done, std::size_t total, const SweepHold& hold, const HoldOutcome& result) {
+    if (!result.settled)
+      std::cerr << "palprig: warning: hold " << done << " (" << to_string(hold.segment) << " " << hold.level_kPa
+                << " kPa) did not settle within " << run.max_hold_s << " s; kept, marked unsettled\n";
+    if (quiet || hold.segment == SweepSegment::vent) return;
+    if (hold.segment != last_segment || hold.repeat != last_repeat) {
+      std::cerr << "sweep: " << to_string(hold.segment);
+      if (hold.segment == SweepSegment::staircase) std::cerr << " repeat " << hold.repeat << "/" << plan_options.repeats;
+      std::cerr << " (" << (100 * done / total) << " %, hold " << done << "/" << total << ")\n";
+      last_segment = hold.segment;
+      last_repeat = hold.repeat;
+    }
+  };
+  const SweepOutcome outcome = run_calibration_sweep(*backend, plan, run, writer, progress);
+  writer.finish(outcome);
+  backend->close();
+  std::cout << "palprig calibrate sweep: rig " << rig.id << " (" << info.backend << "), channels "
+            << channels_text(run.channels) << ", " << (run.realtime ? "real time" : "simulated time") << "\n"
+            << "  " << outcome.holds_done << " of " << outcome.holds_planned << " holds (" << outcome.holds_unsettled
+            << " not settled) in " << outcome.duration_s << " s of rig time; " << writer.rows() << " rows -> " << a.out
+            << "\n";
+  if (outcome.stopped || outcome.faulted) {
+    std::cerr << "palprig: sweep " << (outcome.stopped ? "stopped by signal " + std::to_string(outcome.stop_signal)
+                                                        : "faulted: " + outcome.fault)
+              << " after " << outcome.holds_done << " of " << outcome.holds_planned
+              << " holds; all channels vented; what was recorded is in " << a.out << "\n";
+    cli::finish(cli::kExitFault);
+  }
+}
+
+}  // namespace
+
+void register_calibrate_sweep(CLI::App* cal) {
+  auto sa = std::make_shared<SweepArgs>();
+  CLI::App* sweep = cal->add_subcommand("sweep", "Record inflation/deflation staircases (and identification excitations)");
+  sweep->add_option("--rig", sa->rig_path, "Rig file (JSON); default: the simulated rig in data/rigs/simulated.json");
+  sweep->add_option("--channels", sa->channels, "Channels to drive, e.g. 1,2,3 (the others stay vented)")->default_val("1,2,3");
+  sweep->add_option("--from-kPa", sa->plan.from_kPa, "Lowest staircase level")->default_val(10.0);
+  sweep->add_option("--to-kPa", sa->plan.to_kPa, "Highest staircase level (clamped to the rig's p_max)")->default_val(100.0);
+  sweep->add_option("--step-kPa", sa->plan.step_kPa, "Staircase step")->default_val(10.0);
+  sweep->add_option("--repeats", sa->plan.repeats, "Staircase repeats, each from vented")->default_val(5);
+  sweep->add_option("--excitation", sa->excitation,
+                    "staircase, random, sine (comma-separated); random and sine add reversals for the hysteresis fit")
+      ->default_val("staircase");
+  sweep->add_option("--random-levels", sa->plan.random_levels, "Levels of the random excitation")->default_val(60);
+  sweep->add_option("--sine-cycles", sa->plan.sine_cycles, "Cycles of the shrinking stepped sine")->default_val(4);
+  sweep->add_option("--sine-steps", sa->plan.sine_steps_per_cycle, "Levels per sine cycle")->default_val(16);
+  sweep->add_option("--seed", sa->plan.seed, "Seed of the random excitation")->default_val(1u);
+  sweep->add_option("--rate-hz", sa->run.rate_hz, "Command/record rate")->default_val(100.0)->check(CLI::Range(1.0, 10000.0));
+  sweep->add_option("--settle-band-kPa", sa->run.settle_band_kPa, "Settled: window halves differ by at most this")
+      ->default_val(0.2);
+  sweep->add_option("--settle-window-s", sa->run.settle_window_s, "Settle test window")->default_val(0.3);
+  sweep->add_option("--average-s", sa->run.average_s, "Averaging window once settled (the hold's reading)")
+      ->default_val(0.3);
+  sweep->add_option("--min-hold-s", sa->run.min_hold_s, "Shortest hold")->default_val(0.2);
+  sweep->add_option("--max-hold-s", sa->run.max_hold_s, "Longest hold; a hold that does not settle is marked")
+      ->default_val(10.0);
+  auto* rt = sweep->add_flag("--realtime", sa->realtime, "Real time even on the simulated rig");
+  sweep->add_flag("--fast", sa->fast, "Simulated time (simulated rig only; the default there)")->excludes(rt);
+  sweep->add_flag("--quiet", sa->quiet, "No progress lines");
+  sweep->add_option("--out", sa->out, "Data file to write (CSV)")->required();
+  sweep->callback([sa] { run_sweep(*sa); });
+}

@@ -1,0 +1,41 @@
+#pragma once
+// TerminalParticipant: a person at a text terminal. Prompts go to an output stream; answers are
+// typed lines read from a file descriptor without ever blocking the session loop ("2", "12",
+// "0" for no tumor); Enter goes on after a break; "q" or the end of input asks the session to
+// stop (it stays resumable). Discrimination only: a person palpates a scene with the pen,
+// which a terminal does not read.
+#include <atomic>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "experiments/participant.hpp"
+#include "experiments/protocol.hpp"
+
+namespace palprig {
+
+class TerminalParticipant final : public Participant {
+ public:
+  // `stop_request` is set (SIGTERM's number) when the person quits or the input ends.
+  TerminalParticipant(const Protocol& protocol, std::ostream& prompts, std::atomic<int>& stop_request,
+                      int input_fd = 0);
+
+  bool ready(double t_s) override;
+  void trial_started(const PlannedTrial& trial, const Condition& condition, double t_s) override;
+  void feel(const FeltSample&) override {}
+  std::optional<Response> answer(double t_s) override;
+
+ private:
+  // One complete line if one has arrived (never blocks).
+  std::optional<std::string> next_line();
+
+  const Protocol& protocol_;
+  std::ostream& out_;
+  std::atomic<int>& stop_request_;
+  int input_fd_;
+  std::string pending_;
+  bool eof_ = false;
+  bool prompted_ready_ = false;
+};
+
+}  // namespace palprig

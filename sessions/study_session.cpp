@@ -1,0 +1,171 @@
+#include "sessions/study_session.hpp"
+
+#include <chrono>
+
+#include "controller/backend_factory.hpp"
+#include "controller/tick_setup.hpp"
+#include "experiments/rig_stimulus.hpp"
+#include "experiments/session_clock.hpp"
+#include "experiments/session_loop.hpp"
+#include "formats/calibration_file.hpp"
+#include "formats/rig_file.hpp"
+#include "formats/scene_file.hpp"
+#include "models/parse_error.hpp"
+#include "sessions/session_setup.hpp"
+#include "store/journaled_trial_store.hpp"
+#include "store/pg_target.hpp"
+
+namespace palprig {
+
+namespace {
+
+void check_levels_fit_rig(const Protocol& protocol, const RigConfig& rig) {
+  for (double level : protocol.levels_kPa) {
+    if (level > rig.safety.p_max_kPa) {
+      throw InputError(protocol.source, "levels_kPa",
+                       "levels at or below the rig's p_max of " + std::to_string(rig.safety.p_max_kPa) + " kPa (" +
+                           rig.source + "), got " + std::to_string(level));
+    }
+  }
+}
+
+// Forwards the runner's events and commits every completed trial through the recorder.
+class ListenerBridge final : public RunnerListener {
+ public:
+  ListenerBridge(TrialStore& store, std::int64_t session_id, const SessionPlan& plan, const Protocol& protocol,
+                 SessionListener& listener)
+      : recorder_(store, session_id), plan_(plan), protocol_(protocol), listener_(listener) {}
+
+  void on_event(const RunnerEvent& e) override {
+    if (e.kind == RunnerEvent::Kind::state_changed && e.state == RunnerState::present && e.position >= 0 &&
+        e.position != last_started_) {
+      last_started_ = e.position;
+      const PlannedTrial& trial = plan_.trials.at(static_cast<std::size_t>(e.position));
+      listener_.trial_started(trial, protocol_.conditions.at(static_cast<std::size_t>(trial.condition)));
+    }
+    listener_.runner_event(e);
+  }
+  void on_trial_completed(const TrialRecord& trial) override {
+    recorder_.on_trial_completed(trial);  // committed before anyone is told
+    listener_.trial_committed(trial, static_cast<int>(plan_.trials.size()));
+  }
+  int committed() const noexcept { return recorder_.committed(); }
+
+ private:
+  SessionRecorder recorder_;
+  const SessionPlan& plan_;
+  const Protocol& protocol_;
+  SessionListener& listener_;
+  int last_started_ = -1;
+};
+
+}  // namespace
+
+std::uint64_t resumed_simulation_seed(std::uint64_t seed, int start_position) noexcept {
+  return seed + static_cast<std::uint64_t>(start_position) * 0x9E3779B97F4A7C15ULL;
+}
+
+SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person,
+                             SessionListener& listener, const std::atomic<int>* stop) {
+  // Everything is loaded and validated before the rig is opened.
+  const Protocol from_file = load_protocol(request.protocol_file);
+  std::uint64_t sim_seed = 0;
+  const bool simulated = parse_simulated_participant(request.participant_code, sim_seed);
+  if (!simulated && request.participant_code.rfind("sim:", 0) == 0) {
+    throw InputError("command line", "participant",
+                     "sim:SEED with a decimal seed, got '" + request.participant_code + "'");
+  }
+  if (!simulated && from_file.task == TaskKind::localisation && !request.person_palpates) {
+    throw InputError("command line", "participant",
+                     "sim:SEED for a localisation protocol (a person palpates with pen input, which the terminal "
+                     "session does not read; run localisation from the GUI)");
+  }
+  if (!simulated && !person) {
+    throw InputError("command line", "participant", "sim:SEED (this front end cannot ask a person)");
+  }
+  const RigConfig rig = load_rig_file(request.rig_file);
+  const CalibrationModels cal =
+      request.calibration_file.empty() ? CalibrationModels{} : load_calibration_file(request.calibration_file);
+  check_calibration_matches(cal, rig.id, rig.source);
+  check_levels_fit_rig(from_file, rig);
+  const TickConfig config = make_tick_config(rig, cal);
+
+  // The store is opened first: nothing moves before it is known to be writable (a lab server
+  // that cannot be reached is refused here). A postgresql:// store writes through the bench
+  // journal (offline first).
+  std::unique_ptr<TrialStore> store;
+  JournaledTrialStore* journaled = nullptr;
+  if (is_server_store_location(request.store_location)) {
+    auto lab = std::make_unique<JournaledTrialStore>(
+        parse_pg_target(request.store_location),
+        request.journal_file.empty() ? default_journal_file() : request.journal_file);
+    journaled = lab.get();
+    store = std::move(lab);
+  } else {
+    store = open_trial_store(request.store_location, TrialStore::Access::read_write);
+  }
+  // The rig is opened (and vented) before the session is stored, so an unreachable device does
+  // not leave an empty session behind.
+  std::unique_ptr<RigBackend> backend = make_backend(rig);
+  backend->open();
+  SimulatedObserverModel model = request.model;
+  model.seed = sim_seed;
+  SessionRequest opening;
+  opening.participant_code = request.participant_code;
+  opening.simulated = simulated;
+  opening.resume = request.resume;
+  opening.seed = request.seed;
+  opening.setup = {rig.id, rig.backend, cal.source, simulated ? to_json(model) : nlohmann::json(nullptr),
+                   std::filesystem::absolute(request.protocol_file).parent_path().string()};
+  const OpenedSession session = open_session(*store, from_file, opening);
+  const Protocol& protocol = session.protocol;
+
+  std::optional<SceneFile> scene;
+  if (protocol.task == TaskKind::localisation) scene = load_scene_file(protocol.localisation.scene_file);
+
+  std::unique_ptr<Participant> participant;
+  if (simulated) {
+    model.seed = resumed_simulation_seed(sim_seed, session.start_position);
+    participant = std::make_unique<SimulatedParticipant>(model, protocol, scene ? scene->scene.get() : nullptr, config.layout);
+  } else {
+    participant = person(protocol);
+  }
+
+  const int total = static_cast<int>(session.plan.trials.size());
+  listener.session_started(SessionStart{protocol.name, session.participant, session.session_id, session.resumed,
+                                        session.start_position, total, session.plan.seed, simulated,
+                                        journaled ? journaled->pushed_at_open() : 0});
+
+  RigStimulus output(config, *backend);
+  ListenerBridge bridge(*store, session.session_id, session.plan, protocol, listener);
+  TrialRunner runner(protocol, session.plan, session.start_position, output, bridge,
+                     scene ? scene->scene.get() : nullptr, participant->pen());
+
+  std::unique_ptr<SessionClock> clock;
+  if (simulated && request.speed <= 0) clock = std::make_unique<SimulatedClock>();
+  else clock = std::make_unique<SteadyClock>(simulated ? request.speed : 1.0);
+
+  SessionLoopOptions options;
+  options.stop = stop;
+  options.output = &output;
+  const SessionLoopResult result = run_session_loop(runner, *participant, *clock, options);
+  backend->vent();
+  backend->close();
+
+  SessionEnd end;
+  end.completed = result.completed;
+  end.stopped = result.stopped;
+  end.fault = result.fault;
+  end.committed_trials = session.start_position + bridge.committed();
+  end.total_trials = total;
+  if (result.completed) store->complete_session(session.session_id);
+  if (journaled) {
+    // Every trial is safe in the journal; give the pusher a moment to reach the server.
+    end.unpushed_trials = journaled->flush(std::chrono::seconds(10));
+    end.journal_file = journaled->journal_file();
+  }
+  listener.session_ended(end);
+  return end;
+}
+
+}  // namespace palprig

@@ -1,0 +1,96 @@
+#pragma once
+// A study session end to end, as `palprig experiment run` and the GUI both start it: files
+// loaded and checked, the rig opened and vented, the session started or resumed in the trial
+// store, the participant made, every trial committed as it completes, the rig vented and
+// closed at the end. What happens is reported to a SessionListener; the front end only shows
+// it.
+//
+// Order of refusals: every file and the participant code are checked, and the store opened (a
+// lab server that cannot be reached is refused here), before the rig is opened (InputError);
+// the rig is opened before the session is stored, so an unreachable device leaves no empty
+// session behind.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "experiments/participant.hpp"
+#include "experiments/protocol.hpp"
+#include "experiments/simulated_participant.hpp"
+#include "experiments/trial_record.hpp"
+#include "experiments/trial_runner.hpp"
+#include "store/trial_store.hpp"
+
+namespace palprig {
+
+struct StudySessionRequest {
+  std::filesystem::path protocol_file;
+  std::string participant_code;       // a person's code, or sim:SEED for the simulated observer
+  std::string store_location;         // trial store (open_trial_store): SQLite file, created when missing,
+                                      // or the lab's postgresql:// server
+  std::filesystem::path journal_file;  // postgresql:// store: the bench journal; empty: default_journal_file()
+  std::filesystem::path rig_file;     // the rig the stimuli go to
+  std::filesystem::path calibration_file;  // empty: paper 002's models
+  bool resume = false;                // continue the unfinished session of participant and protocol
+  std::optional<std::uint64_t> seed;  // of the generated order; default: derived from participant and protocol
+  double speed = 0;  // simulated participant: 0 = as fast as possible on simulated time, else times real time
+  SimulatedObserverModel model;  // simulated participant's parameters (its seed comes from sim:SEED)
+  bool person_palpates = false;  // the front end gives a person a pen (GUI); a terminal does not
+};
+
+// Known once the session is opened in the store.
+struct SessionStart {
+  std::string protocol_name;
+  ParticipantRecord participant;
+  std::int64_t session_id = 0;
+  bool resumed = false;
+  int start_position = 0;  // the first trial to run (0-based)
+  int total_trials = 0;
+  std::uint64_t seed = 0;
+  bool simulated = false;
+  int pushed_from_journal = 0;  // lab store: trials an earlier run left in the journal, pushed at the start
+};
+
+struct SessionEnd {
+  bool completed = false;  // every planned trial committed; the session is marked completed
+  bool stopped = false;    // a stop was requested; committed trials kept, resumable
+  std::string fault;       // non-empty when the rig faulted (channels vented); resumable
+  int committed_trials = 0;  // in the store for this session, including those before a resume
+  int total_trials = 0;
+  // Lab store: journal commits the server has not confirmed after a short wait at the end
+  // (kept in the journal, pushed by the next session or `palprig store sync`).
+  std::int64_t unpushed_trials = 0;
+  std::filesystem::path journal_file;
+};
+
+// What a front end shows. Calls come from the thread running the session.
+class SessionListener {
+ public:
+  virtual ~SessionListener() = default;
+  virtual void session_started(const SessionStart&) {}
+  // The runner's state changes and stimulus changes (a break is RunnerState::rest).
+  virtual void runner_event(const RunnerEvent&) {}
+  // A trial begins: its stimulus is about to be presented.
+  virtual void trial_started(const PlannedTrial&, const Condition&) {}
+  // A trial is committed to the store (its own transaction); `total` trials are planned.
+  virtual void trial_committed(const TrialRecord&, int /*total*/) {}
+  virtual void session_ended(const SessionEnd&) {}
+};
+
+// Makes the person who answers once the protocol is known (terminal, GUI). Not called for a
+// simulated participant (sim:SEED), which the session makes itself.
+using PersonFactory = std::function<std::unique_ptr<Participant>(const Protocol&)>;
+
+// Runs the session to its end, a stop (`stop` non-zero) or a rig fault. Throws InputError for
+// refused input (before anything moves, or when the store refuses the session).
+SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person,
+                             SessionListener& listener, const std::atomic<int>* stop);
+
+// The simulated observer's seed for a session resumed at `start_position`: moved on by the
+// trials done, so the answers differ from those of the lost attempt.
+std::uint64_t resumed_simulation_seed(std::uint64_t seed, int start_position) noexcept;
+
+}  // namespace palprig
