@@ -38,3 +38,4 @@ void register_calibrate_command(CLI::App& app);
 void register_scene_command(CLI::App& app);
 void register_gui_command(CLI::App& app);  // builds with Qt only (PALPRIG_HAVE_GUI)
 void register_rt_check_command(CLI::App& app);
+void register_store_command(CLI::App& app);

@@ -19,10 +19,12 @@
 #include "experiments/pulse_task.hpp"
 #include "experiments/threshold_protocol.hpp"
 #include "formats/json_file.hpp"
+#include "models/parse_error.hpp"
 #include "experiments/protocol.hpp"
 #include "experiments/terminal_participant.hpp"
 #include "sessions/session_setup.hpp"
 #include "sessions/study_session.hpp"
+#include "store/trial_store.hpp"
 
 using namespace palprig;
 
@@ -79,6 +81,11 @@ class TerminalReport final : public SessionListener {
               << s.total_trials << " trials, seed " << s.seed << ", database " << db_
               << (s.real_time_hardware && s.simulated ? ", real time (hardware rig)" : "") << "\n"
               << std::flush;
+    if (s.pushed_from_journal > 0) {
+      std::cout << "palprig experiment: " << s.pushed_from_journal
+                << " trials left in the journal by an earlier run pushed to " << db_ << "\n"
+                << std::flush;
+    }
     session_id_ = s.session_id;
   }
   void runner_event(const RunnerEvent& e) override {
@@ -103,6 +110,13 @@ void run_experiment(const RunArgs& a) {
   // Threshold protocols (staircases, QUEST) and the pulse task run in their own files (issue 13).
   const auto& r = a.request;
   const nlohmann::json document = read_json_file(r.protocol_file);
+  if ((is_threshold_protocol(document) || is_pulse_protocol(document)) && is_server_store_location(r.store_location)) {
+    // Threshold and pulse sessions (issue 13) have their own SQLite tables; the lab server
+    // (issue 12) stores the discrimination/localisation trials only. Refuse rather than create
+    // a local file named after the URI.
+    throw InputError(r.store_location, "`store`",
+                     "an SQLite file: threshold and pulse protocols are not stored on the PostgreSQL lab server");
+  }
   if (is_threshold_protocol(document)) {
     cli::run_threshold_experiment({r.protocol_file.string(), r.participant_code, r.store_location, r.rig_file.string(),
                                    r.calibration_file.string(), r.resume, a.quiet, r.seed, r.speed,
@@ -122,6 +136,11 @@ void run_experiment(const RunArgs& a) {
     return std::make_unique<TerminalParticipant>(protocol, std::cout, cli::stop_signal(), STDIN_FILENO);
   };
   const SessionEnd end = run_study_session(request, terminal, report, &cli::stop_signal());
+  if (end.unpushed_trials > 0) {
+    std::cerr << "palprig: the lab server has not confirmed every trial yet; they are kept in the journal "
+              << end.journal_file.string() << ": push them with palprig store sync --from " << end.journal_file.string()
+              << " --to " << request.store_location << "\n";
+  }
   if (end.completed) {
     std::cout << "session " << report.session_id() << " completed: " << end.committed_trials << " trials in "
               << request.store_location << "\n";
@@ -145,7 +164,12 @@ void register_run(CLI::App* experiment) {
   sub->add_option("--protocol", a->request.protocol_file, "Protocol file (JSON), e.g. data/protocols/discrimination_002.json")->required();
   sub->add_option("--participant", a->request.participant_code,
                   "Participant code, or sim:SEED for a simulated participant (model observer)")->required();
-  sub->add_option("--db", a->request.store_location, "Trial database (SQLite; created when missing)")->required();
+  sub->add_option("--db", a->request.store_location,
+                  "Trial store: an SQLite file (created when missing) or the lab's PostgreSQL server, "
+                  "postgresql://user@host:port/dbname (password from PGPASSWORD or ~/.pgpass)")->required();
+  sub->add_option("--journal", a->request.journal_file,
+                  "With a postgresql:// store: the bench's local journal (SQLite) every trial is written to first; "
+                  "default $PALPRIG_JOURNAL, else ~/.local/state/palprig/journal.sqlite");
   sub->add_option("--rig", a->request.rig_file, "Rig file (JSON); default: the simulated rig data/rigs/simulated.json");
   sub->add_option("--cal", a->request.calibration_file, "Calibration file (JSON); default: paper 002's models");
   sub->add_flag("--resume", a->request.resume, "Continue this participant's unfinished session with this protocol");

@@ -42,7 +42,7 @@ void register_export_command(CLI::App& app) {
   auto* sub = app.add_subcommand(
       "export", "Export a trial database: --format csv writes trials_long.csv (one row per finger value or tumor) and "
                 "marks.csv; --format bids writes sub-<id>/beh/sub-<id>_task-<task>_beh.tsv with JSON sidecars");
-  sub->add_option("db", a->db, "Trial database written by palprig experiment run")->required();
+  sub->add_option("db", a->db, "Trial store written by palprig experiment run: an SQLite file or postgresql://user@host:port/dbname")->required();
   sub->add_option("--format", a->format, "csv or bids")->check(CLI::IsMember({"csv", "bids"}))->default_val("csv");
   sub->add_option("--out", a->out, "Output folder (created when missing)")->required();
   sub->add_flag("--no-practice", a->no_practice, "Leave practice trials out (they are marked by a column otherwise)");

@@ -10,7 +10,7 @@ namespace {
 constexpr std::string_view kCommandLine = "command line";
 
 // field (as libraries name it) -> flag (as the user types it)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 34> kFieldFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 38> kFieldFlags{{
     {"participant", "--participant"},
     {"resume", "--resume"},
     {"seed", "--seed"},
@@ -45,6 +45,10 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 34> kFieldFl
     {"fixed_thresholds", "--no-refine"},
     {"cpu", "--cpu"},
     {"speed", "--speed"},
+    {"journal", "--journal"},  // palprig experiment run: the bench journal of a postgresql:// store
+    {"from", "--from"},        // palprig store sync/copy
+    {"to", "--to"},
+    {"study", "--study"},
 }};
 
 }  // namespace

@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
 #ifdef PALPRIG_HAVE_GUI
   register_gui_command(app);  // the window needs Qt: cli/CMakeLists.txt leaves its file out otherwise
 #endif
+  register_store_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

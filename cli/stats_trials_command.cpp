@@ -26,7 +26,7 @@ void register_stats_trials(CLI::App* stats_app) {
       "trials", "Scores of a trial database: TP/FN/TN/FP per finger value (discrimination) or per tumor "
                 "(localisation), Se, Sp, PPV, ACC (paper 002 eq. 5-8) with Wilson 95 % intervals (no continuity "
                 "correction), mean and sd of response times; practice trials left out");
-  sub->add_option("db", a->db, "Trial database written by palprig experiment run")->required();
+  sub->add_option("db", a->db, "Trial store written by palprig experiment run: an SQLite file or postgresql://user@host:port/dbname")->required();
   sub->add_option("--by", a->by, "Group by a comma list of: condition, participant, finger, tumor, combination, session "
                                  "(empty: everything in one row)")
       ->default_val("condition");

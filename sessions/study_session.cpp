@@ -1,5 +1,7 @@
 #include "sessions/study_session.hpp"
 
+#include <chrono>
+
 #include "controller/backend_factory.hpp"
 #include "controller/tick_setup.hpp"
 #include "experiments/rig_stimulus.hpp"
@@ -10,6 +12,8 @@
 #include "formats/scene_file.hpp"
 #include "models/parse_error.hpp"
 #include "sessions/session_setup.hpp"
+#include "store/journaled_trial_store.hpp"
+#include "store/pg_target.hpp"
 
 namespace palprig {
 
@@ -94,12 +98,24 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
                          "): hardware runs in real time");
   }
 
+  // The store is opened first: nothing moves before it is known to be writable (a lab server
+  // that cannot be reached is refused here). A postgresql:// store writes through the bench
+  // journal (offline first).
+  std::unique_ptr<TrialStore> store;
+  JournaledTrialStore* journaled = nullptr;
+  if (is_server_store_location(request.store_location)) {
+    auto lab = std::make_unique<JournaledTrialStore>(
+        parse_pg_target(request.store_location),
+        request.journal_file.empty() ? default_journal_file() : request.journal_file);
+    journaled = lab.get();
+    store = std::move(lab);
+  } else {
+    store = open_trial_store(request.store_location, TrialStore::Access::read_write);
+  }
   // The rig is opened (and vented) before the session is stored, so an unreachable device does
   // not leave an empty session behind.
   std::unique_ptr<RigBackend> backend = make_backend(rig);
   backend->open();
-
-  const std::unique_ptr<TrialStore> store = open_trial_store(request.store_location, TrialStore::Access::read_write);
   SimulatedObserverModel model = request.model;
   model.seed = sim_seed;
   SessionRequest opening;
@@ -125,7 +141,8 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
 
   const int total = static_cast<int>(session.plan.trials.size());
   listener.session_started(SessionStart{protocol.name, session.participant, session.session_id, session.resumed,
-                                        session.start_position, total, session.plan.seed, simulated, hardware});
+                                        session.start_position, total, session.plan.seed, simulated, hardware,
+                                        journaled ? journaled->pushed_at_open() : 0});
 
   RigStimulus output(config, *backend);
   ListenerBridge bridge(*store, session.session_id, session.plan, protocol, listener);
@@ -150,6 +167,11 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   end.committed_trials = session.start_position + bridge.committed();
   end.total_trials = total;
   if (result.completed) store->complete_session(session.session_id);
+  if (journaled) {
+    // Every trial is safe in the journal; give the pusher a moment to reach the server.
+    end.unpushed_trials = journaled->flush(std::chrono::seconds(10));
+    end.journal_file = journaled->journal_file();
+  }
   listener.session_ended(end);
   return end;
 }

@@ -5,9 +5,10 @@
 // closed at the end. What happens is reported to a SessionListener; the front end only shows
 // it.
 //
-// Order of refusals: every file and the participant code are checked before the rig is opened
-// (InputError), and the rig is opened before the session is stored, so an unreachable device
-// leaves no empty session behind.
+// Order of refusals: every file and the participant code are checked, and the store opened (a
+// lab server that cannot be reached is refused here), before the rig is opened (InputError);
+// the rig is opened before the session is stored, so an unreachable device leaves no empty
+// session behind.
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
@@ -28,7 +29,9 @@ namespace palprig {
 struct StudySessionRequest {
   std::filesystem::path protocol_file;
   std::string participant_code;       // a person's code, or sim:SEED for the simulated observer
-  std::string store_location;         // trial store (open_trial_store): SQLite file, created when missing
+  std::string store_location;         // trial store (open_trial_store): SQLite file, created when missing,
+                                      // or the lab's postgresql:// server
+  std::filesystem::path journal_file;  // postgresql:// store: the bench journal; empty: default_journal_file()
   std::filesystem::path rig_file;     // the rig the stimuli go to
   std::filesystem::path calibration_file;  // empty: paper 002's models
   bool resume = false;                // continue the unfinished session of participant and protocol
@@ -49,6 +52,7 @@ struct SessionStart {
   std::uint64_t seed = 0;
   bool simulated = false;
   bool real_time_hardware = false;  // a hardware rig: the session runs on the wall clock
+  int pushed_from_journal = 0;  // lab store: trials an earlier run left in the journal, pushed at the start
 };
 
 struct SessionEnd {
@@ -57,6 +61,10 @@ struct SessionEnd {
   std::string fault;       // non-empty when the rig faulted (channels vented); resumable
   int committed_trials = 0;  // in the store for this session, including those before a resume
   int total_trials = 0;
+  // Lab store: journal commits the server has not confirmed after a short wait at the end
+  // (kept in the journal, pushed by the next session or `palprig store sync`).
+  std::int64_t unpushed_trials = 0;
+  std::filesystem::path journal_file;
 };
 
 // What a front end shows. Calls come from the thread running the session.

@@ -2,6 +2,9 @@
 #include <filesystem>
 
 #include "models/parse_error.hpp"
+#include "store/journaled_trial_store.hpp"
+#include "store/pg_target.hpp"
+#include "store/postgres_trial_store.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "store/trial_store.hpp"
 
@@ -13,8 +16,11 @@ bool is_server_store_location(std::string_view location) noexcept {
 
 std::unique_ptr<TrialStore> open_trial_store(const std::string& location, TrialStore::Access access) {
   if (is_server_store_location(location)) {
-    throw InputError(location, "location",
-                     "an SQLite file path (this palprig was built without the PostgreSQL store)");
+    const PgTarget target = parse_pg_target(location);
+    // Readers (stats, export) read the server; a session writes through the bench's journal
+    // (offline first, store/journaled_trial_store.hpp).
+    if (access == TrialStore::Access::read_only) return std::make_unique<PostgresTrialStore>(target, access);
+    return std::make_unique<JournaledTrialStore>(target, default_journal_file());
   }
   const std::filesystem::path file(location);
   if (access == TrialStore::Access::read_only) {

@@ -12,7 +12,7 @@ namespace {
 
 using testing::ScratchDir;
 
-TEST(experiments_trial_store_interface, a_path_opens_an_sqlite_file_and_a_server_uri_is_refused_here) {
+TEST(experiments_trial_store_interface, a_path_opens_an_sqlite_file_and_a_server_uri_goes_to_the_server) {
   ScratchDir dir;
   const std::string file = (dir / "t.db").string();
   {
@@ -26,11 +26,16 @@ TEST(experiments_trial_store_interface, a_path_opens_an_sqlite_file_and_a_server
 
   EXPECT_TRUE(is_server_store_location("postgresql://lab/palprig"));
   EXPECT_FALSE(is_server_store_location("postgresql.db"));
-  try {
-    open_trial_store("postgresql://localhost/palprig", TrialStore::Access::read_write);
-    FAIL() << "a server URI was taken for a file";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "postgresql://localhost/palprig");
+  // Since issue 12 a server URI opens the PostgreSQL lab store; nothing listens on port 1, so
+  // both accesses are refused inputs naming the server, before any journal or file is made.
+  for (const auto access : {TrialStore::Access::read_only, TrialStore::Access::read_write}) {
+    try {
+      open_trial_store("postgresql://palprig@127.0.0.1:1/palprig", access);
+      FAIL() << "an unreachable server was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), "host 127.0.0.1 port 1 database palprig");
+      EXPECT_EQ(e.where(), "connection");
+    }
   }
   EXPECT_FALSE(std::filesystem::exists("postgresql:"));  // no file of that name was created
 }

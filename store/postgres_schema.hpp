@@ -1,0 +1,36 @@
+#pragma once
+// The lab store's schema on PostgreSQL: the SQLite store's tables (participants, sessions,
+// planned_trials, trials, tumor_scores, marks; same columns, so the same SQL reads both) plus
+// what a shared store needs: each session's globally unique id (session_uid, the key pushes and
+// copies are idempotent on), the host it ran on and where it came from, and the table
+// palprig_schema recording every schema version applied.
+//
+// Created on first use and migrated forward, under an advisory lock so rigs starting at the same
+// moment do not race. A schema newer than this program is refused with one line.
+#include <cstdint>
+
+#include "store/pg_connection.hpp"
+
+namespace palprig {
+
+// 1: the trial store's tables; 2: session_locks.
+inline constexpr int kPgSchemaVersion = 2;
+// Readers (stats, export, copy from) need only the tables of version 1: an older lab server is
+// read as it is, without writing to it.
+inline constexpr int kPgSchemaReadableFrom = 1;
+// pg_advisory_xact_lock key taken while the schema is checked, created or migrated.
+inline constexpr std::int64_t kPgSchemaLockKey = 0x50616C50;  // "PalP", as the SQLite application_id
+
+// The schema version found (0: a database palprig has not used yet).
+int pg_schema_version(PgConnection& db);
+
+// Read-write: creates or migrates the schema up to `target_version` (tests build an older
+// server with a smaller one), all steps in one transaction. Throws InputError (location = the
+// target's description) for a newer schema or a database whose tables palprig did not create.
+void ensure_pg_schema(PgConnection& db, int target_version = kPgSchemaVersion);
+
+// Read-only: refuses a database without palprig's schema, or with a newer one; reads one as old
+// as kPgSchemaReadableFrom as it is.
+void check_pg_schema(PgConnection& db);
+
+}  // namespace palprig

@@ -1,0 +1,443 @@
+#include "store/postgres_trial_store.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <map>
+#include <random>
+
+#include "experiments/scoring.hpp"
+#include "models/parse_error.hpp"
+#include "store/postgres_schema.hpp"
+#include "store/postgres_session_rows.hpp"
+
+namespace palprig {
+
+namespace {
+
+std::string flags_text(const FingerFlags& f) {
+  std::string s;
+  for (bool b : f) s += b ? '1' : '0';
+  return s;
+}
+
+SqlValue finite_or_null(double x) {
+  if (std::isfinite(x)) return x;
+  return std::monostate{};
+}
+
+std::string practice_filter(bool include_practice, const char* word) {
+  return include_practice ? std::string() : std::string(" ") + word + " t.practice = 0";
+}
+
+double real_or_nan(const PgResult& r, int row, int column) {
+  return r.is_null(row, column) ? std::nan("") : r.real(row, column);
+}
+
+std::optional<double> real_or_null(const PgResult& r, int row, int column) {
+  if (r.is_null(row, column)) return std::nullopt;
+  return r.real(row, column);
+}
+
+// Streams the rows of a query in batches through a cursor, inside one read-only snapshot, so
+// a million trials are never in memory at once.
+template <class RowFn>
+void stream_rows(PgConnection& db, const std::string& sql, RowFn on_row) {
+  PgTransaction tx(db, "BEGIN ISOLATION LEVEL REPEATABLE READ READ ONLY");
+  db.exec("DECLARE palprig_scan NO SCROLL CURSOR FOR " + sql);
+  for (;;) {
+    const PgResult batch = db.exec("FETCH FORWARD 50000 FROM palprig_scan");
+    if (batch.rows() == 0) break;
+    for (int i = 0; i < batch.rows(); ++i) on_row(batch, i);
+  }
+  db.exec("CLOSE palprig_scan");
+  tx.commit();
+}
+
+}  // namespace
+
+std::string this_host_name() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0) return "unknown";
+  return name;
+}
+
+std::string utc_now_text() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string new_session_uid() {
+  std::random_device device;
+  const std::uint64_t bits = (static_cast<std::uint64_t>(device()) << 32) ^ device();
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(bits));
+  return this_host_name() + "/" + utc_now_text() + "/" + hex;
+}
+
+TrialRows trial_rows_of(const TrialRecord& r) {
+  const bool discrimination = r.mode != PresentationMode::scene;
+  TrialRows rows;
+  SqlRow& t = rows.trial;
+  t.assign(kTrialColumns.size(), std::monostate{});
+  t[0] = std::int64_t{r.planned.position};
+  t[1] = std::int64_t{r.planned.block};
+  t[2] = r.condition;
+  t[3] = std::string(to_string(r.mode));
+  t[4] = std::int64_t{r.planned.practice ? 1 : 0};
+  t[5] = std::int64_t{r.planned.combination};
+  t[11] = std::int64_t{r.answered ? 1 : 0};
+  t[14] = r.onset_s;
+  t[22] = utc_now_text();
+  if (discrimination) {
+    t[6] = r.combination_label;
+    for (int f = 0; f < kFingerCount; ++f) t[static_cast<std::size_t>(7 + f)] = r.stimulus_kPa[static_cast<std::size_t>(f)];
+    t[10] = flags_text(r.truth);
+  }
+  for (int f = 0; f < kFingerCount; ++f) {
+    t[static_cast<std::size_t>(15 + f)] = finite_or_null(r.felt_kPa[static_cast<std::size_t>(f)]);
+  }
+  if (r.answered) {
+    t[13] = r.response_time_s;
+    if (discrimination) {
+      t[12] = flags_text(r.answer);
+      for (int f = 0; f < kFingerCount; ++f) {
+        t[static_cast<std::size_t>(18 + f)] = std::string(to_string(r.finger_outcomes[static_cast<std::size_t>(f)]));
+      }
+    } else {
+      t[21] = std::int64_t{r.localisation.false_marks};
+    }
+  }
+  if (!discrimination && r.answered) {
+    for (const TumorScore& score : r.localisation.tumors) {
+      rows.tumor_scores.push_back(SqlRow{score.tumor, std::string(score.hit ? "TP" : "FN"),
+                                         score.nearest_mark_mm >= 0 ? SqlValue(score.nearest_mark_mm) : SqlValue()});
+    }
+    for (std::size_t i = 0; i < r.marks.size(); ++i) {
+      const int hit = i < r.localisation.mark_tumor.size() ? r.localisation.mark_tumor[i] : -1;
+      rows.marks.push_back(SqlRow{static_cast<std::int64_t>(i), r.marks[i].x_mm, r.marks[i].y_mm,
+                                  hit >= 0 ? SqlValue(r.localisation.tumors[static_cast<std::size_t>(hit)].tumor)
+                                           : SqlValue()});
+    }
+  }
+  return rows;
+}
+
+PostgresTrialStore::PostgresTrialStore(const PgTarget& target, Access access, int connect_timeout_s) try
+    : db_(target, connect_timeout_s), location_(target.conninfo) {
+  if (access == Access::read_write) ensure_pg_schema(db_);
+  else check_pg_schema(db_);
+} catch (const PgError& e) {
+  // Nothing moves on the rig before the store is known to be writable: a server that cannot
+  // be reached or refuses the login is a refused input (exit 2), named with libpq's reason.
+  if (e.connection_lost()) {
+    throw InputError(target.describe(), "connection", "a reachable PostgreSQL server (libpq: " + e.reason() + ")");
+  }
+  throw InputError(target.describe(), "palprig_schema",
+                   "a database where palprig may create and read its tables (server: " + e.reason() + ")");
+}
+
+std::optional<ParticipantRecord> PostgresTrialStore::find_participant(const std::string& code) {
+  const PgResult r = db_.exec("SELECT id, code, number, simulated FROM participants WHERE code = $1", {code});
+  if (r.rows() == 0) return std::nullopt;
+  return ParticipantRecord{r.integer(0, 0), r.text(0, 1), static_cast<int>(r.integer(0, 2)), r.integer(0, 3) != 0};
+}
+
+ParticipantRecord PostgresTrialStore::enrol(const std::string& code, bool simulated) {
+  if (auto p = find_participant(code)) return *p;
+  PgTransaction tx(db_);
+  int number = 0;
+  const std::int64_t id = pg_participant_id(db_, code, simulated, utc_now_text(), &number);
+  tx.commit();
+  return find_participant(code).value_or(ParticipantRecord{id, code, number, simulated});
+}
+
+std::optional<std::int64_t> PostgresTrialStore::find_unfinished_session(const ParticipantRecord& who,
+                                                                        const std::string& protocol_name) {
+  const PgResult r = db_.exec(
+      "SELECT id FROM sessions WHERE participant_id = $1 AND protocol_name = $2 AND status = 'running' "
+      "ORDER BY id DESC LIMIT 1",
+      {pg_text(who.id), protocol_name});
+  if (r.rows() == 0) return std::nullopt;
+  return r.integer(0, 0);
+}
+
+std::int64_t PostgresTrialStore::create_session(const ParticipantRecord& who, const Protocol& protocol,
+                                                const SessionPlan& plan, const SessionSetup& setup) {
+  SessionRows s;
+  s.session_uid = new_session_uid();
+  s.host_name = this_host_name();
+  s.origin = "palprig";
+  s.participant_code = who.code;
+  s.simulated = who.simulated;
+  s.participant_created_utc = utc_now_text();
+  s.session = SqlRow{protocol.name,
+                     std::string(to_string(protocol.task)),
+                     protocol.bids_task,
+                     protocol.snapshot.dump(),
+                     setup.protocol_dir,
+                     static_cast<std::int64_t>(plan.seed),  // stored as the same 64 bits
+                     nlohmann::json(plan.condition_order).dump(),
+                     setup.rig_id,
+                     setup.rig_backend,
+                     setup.calibration,
+                     setup.participant_model.is_null() ? SqlValue() : SqlValue(setup.participant_model.dump()),
+                     std::string("running"),
+                     utc_now_text(),
+                     SqlValue()};
+  for (const PlannedTrial& t : plan.trials) {
+    s.planned.push_back(SqlRow{std::int64_t{t.position}, std::int64_t{t.block}, std::int64_t{t.condition},
+                               protocol.conditions.at(static_cast<std::size_t>(t.condition)).name,
+                               std::int64_t{t.practice ? 1 : 0}, std::int64_t{t.combination},
+                               std::int64_t{t.break_after ? 1 : 0}});
+  }
+  PgTransaction tx(db_);
+  // The participant's row locked for this transaction: another process may have started this
+  // participant's session since the caller looked for an unfinished one (the same participant
+  // started on two benches at once); the second waits here and then finds the first's session.
+  db_.exec("SELECT id FROM participants WHERE id = $1 FOR UPDATE", {pg_text(who.id)});
+  const PgResult running = db_.exec(
+      "SELECT id FROM sessions WHERE participant_id = $1 AND protocol_name = $2 AND status = 'running' "
+      "ORDER BY id DESC LIMIT 1",
+      {pg_text(who.id), protocol.name});
+  const std::string name = "participant '" + who.code + "'";
+  if (running.rows() > 0) {
+    const std::int64_t other = running.integer(0, 0);
+    refuse_if_held_elsewhere(other, name);
+    throw InputError(location_, name,
+                     "already has an unfinished session with protocol '" + protocol.name + "' (session " +
+                         std::to_string(other) + "); to continue it, run the same command again with --resume");
+  }
+  const std::int64_t id = pg_push_session(db_, s);
+  take_lock(id, name);  // the new session is claimed
+  try {
+    tx.commit();
+  } catch (...) {
+    drop_lock(id);
+    throw;
+  }
+  return id;
+}
+
+std::string PostgresTrialStore::session_uid(std::int64_t session_id) {
+  const PgResult r = db_.exec("SELECT session_uid FROM sessions WHERE id = $1", {pg_text(session_id)});
+  if (r.rows() == 0) throw InputError(location_, "session " + std::to_string(session_id), "an existing session");
+  return r.text(0, 0);
+}
+
+StoredSession PostgresTrialStore::load_session(std::int64_t session_id) {
+  StoredSession s;
+  const PgResult q = db_.exec(
+      "SELECT s.id, s.protocol_json, s.protocol_dir, s.status, s.seed, s.condition_order, p.id, p.code, p.number, "
+      "p.simulated FROM sessions s JOIN participants p ON p.id = s.participant_id WHERE s.id = $1",
+      {pg_text(session_id)});
+  if (q.rows() == 0) throw InputError(location_, "session " + std::to_string(session_id), "an existing session");
+  s.id = q.integer(0, 0);
+  s.protocol_snapshot = nlohmann::json::parse(q.text(0, 1));
+  s.protocol_dir = q.text(0, 2);
+  s.status = q.text(0, 3);
+  s.plan.seed = static_cast<std::uint64_t>(q.integer(0, 4));
+  s.plan.condition_order = nlohmann::json::parse(q.text(0, 5)).get<std::vector<int>>();
+  s.participant = ParticipantRecord{q.integer(0, 6), q.text(0, 7), static_cast<int>(q.integer(0, 8)), q.integer(0, 9) != 0};
+  s.plan.participant_number = s.participant.number;
+  const PgResult t = db_.exec(
+      "SELECT position, block, condition_index, practice, combination, break_after FROM planned_trials "
+      "WHERE session_id = $1 ORDER BY position",
+      {pg_text(session_id)});
+  for (int i = 0; i < t.rows(); ++i) {
+    s.plan.trials.push_back(PlannedTrial{static_cast<int>(t.integer(i, 0)), static_cast<int>(t.integer(i, 1)),
+                                         static_cast<int>(t.integer(i, 2)), t.integer(i, 3) != 0,
+                                         static_cast<int>(t.integer(i, 4)), t.integer(i, 5) != 0});
+  }
+  const PgResult done =
+      db_.exec("SELECT count(*), COALESCE(MAX(position), -1) FROM trials WHERE session_id = $1", {pg_text(session_id)});
+  s.completed_trials = static_cast<int>(done.integer(0, 0));
+  if (done.integer(0, 1) != s.completed_trials - 1) {
+    throw InputError(location_, "session " + std::to_string(session_id),
+                     "trials committed in order (positions are missing on the server: push the journal with "
+                     "palprig store sync)");
+  }
+  return s;
+}
+
+void PostgresTrialStore::complete_session(std::int64_t session_id) {
+  db_.exec("UPDATE sessions SET status = 'completed', finished_utc = $2 WHERE id = $1",
+           {pg_text(session_id), utc_now_text()});
+  release_session(session_id);
+}
+
+void PostgresTrialStore::commit_trial(std::int64_t session_id, const TrialRecord& trial) {
+  const TrialRows rows = trial_rows_of(trial);
+  PgTransaction tx(db_);
+  pg_push_trials(db_, session_id, std::span<const TrialRows>(&rows, 1));
+  tx.commit();
+}
+
+void PostgresTrialStore::commit_trials(std::int64_t session_id, std::span<const TrialRecord> trials) {
+  std::vector<TrialRows> rows;
+  rows.reserve(trials.size());
+  for (const TrialRecord& t : trials) rows.push_back(trial_rows_of(t));
+  PgTransaction tx(db_);
+  pg_push_trials(db_, session_id, rows);
+  tx.commit();
+}
+
+std::vector<SessionOverview> PostgresTrialStore::list_sessions() {
+  const PgResult q = db_.exec(
+      "SELECT s.id, p.id, p.code, p.number, p.simulated, s.protocol_name, s.task, s.bids_task, s.status "
+      "FROM sessions s JOIN participants p ON p.id = s.participant_id ORDER BY s.id");
+  std::vector<SessionOverview> sessions;
+  for (int i = 0; i < q.rows(); ++i) {
+    sessions.push_back(SessionOverview{
+        q.integer(i, 0),
+        ParticipantRecord{q.integer(i, 1), q.text(i, 2), static_cast<int>(q.integer(i, 3)), q.integer(i, 4) != 0},
+        q.text(i, 5), q.text(i, 6), q.text(i, 7), q.text(i, 8)});
+  }
+  return sessions;
+}
+
+nlohmann::json PostgresTrialStore::protocol_snapshot(std::int64_t session_id) {
+  const PgResult q = db_.exec("SELECT protocol_json FROM sessions WHERE id = $1", {pg_text(session_id)});
+  if (q.rows() == 0) throw InputError(location_, "session " + std::to_string(session_id), "an existing session");
+  return nlohmann::json::parse(q.text_view(0, 0), nullptr, false);
+}
+
+void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_practice,
+                                            const std::function<void(const ScoredTrial&)>& visit) {
+  if (family == TrialFamily::discrimination) {
+    ScoredTrial t;
+    // ORDER BY id: commit order, as the SQLite store's rowid scan (response-time means then add
+    // up in the same order, to the last bit).
+    stream_rows(db_,
+                "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, t.outcome1, t.outcome2, "
+                "t.outcome3, t.combination_label FROM trials t WHERE t.mode != 'scene'" +
+                    practice_filter(include_practice, "AND") + " ORDER BY t.id",
+                [&](const PgResult& q, int i) {
+                  t.trial_id = q.integer(i, 0);
+                  t.session_id = q.integer(i, 1);
+                  t.condition = q.text_view(i, 2);
+                  t.answered = q.integer(i, 3) != 0;
+                  t.response_time_s = real_or_nan(q, i, 4);
+                  for (int f = 0; f < kFingerCount; ++f) {
+                    t.finger_outcomes[static_cast<std::size_t>(f)] =
+                        t.answered && !q.is_null(i, 5 + f) ? outcome_from_string(q.text_view(i, 5 + f)) : std::nullopt;
+                  }
+                  t.combination_label =
+                      q.is_null(i, 8) ? std::nullopt : std::optional<std::string_view>(q.text_view(i, 8));
+                  visit(t);
+                });
+    return;
+  }
+  // Localisation: one row per (trial, tumor score), gathered per trial.
+  ScoredTrial t;
+  std::string condition;
+  std::vector<std::string> tumor_names;
+  std::vector<ScoredTumor> tumors;
+  std::size_t tumor_count = 0;
+  bool pending = false;
+  const auto flush = [&] {
+    if (!pending) return;
+    tumors.resize(tumor_count);
+    for (std::size_t i = 0; i < tumor_count; ++i) tumors[i].tumor = tumor_names[i];
+    t.condition = condition;
+    t.tumors = std::span<const ScoredTumor>(tumors.data(), tumor_count);
+    visit(t);
+    pending = false;
+  };
+  stream_rows(db_,
+              "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, "
+              "t.false_marks FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
+                  practice_filter(include_practice, "AND") + " ORDER BY t.id, ts.tumor COLLATE \"C\"",
+              [&](const PgResult& q, int i) {
+                const std::int64_t trial_id = q.integer(i, 0);
+                if (!pending || trial_id != t.trial_id) {
+                  flush();
+                  pending = true;
+                  tumor_count = 0;
+                  t = ScoredTrial{};
+                  t.trial_id = trial_id;
+                  t.session_id = q.integer(i, 1);
+                  condition.assign(q.text_view(i, 2));
+                  t.answered = q.integer(i, 3) != 0;
+                  t.response_time_s = real_or_nan(q, i, 4);
+                  t.false_marks = q.is_null(i, 7) ? 0 : q.integer(i, 7);
+                }
+                if (q.is_null(i, 5)) return;
+                const auto outcome = outcome_from_string(q.text_view(i, 6));
+                if (!outcome) return;
+                if (tumor_names.size() <= tumor_count) tumor_names.emplace_back();
+                if (tumors.size() <= tumor_count) tumors.emplace_back();
+                tumor_names[tumor_count].assign(q.text_view(i, 5));
+                tumors[tumor_count].outcome = *outcome;
+                ++tumor_count;
+              });
+  flush();
+}
+
+std::vector<StoredTrial> PostgresTrialStore::read_trials(bool include_practice) {
+  std::vector<StoredTrial> trials;
+  std::map<std::int64_t, std::size_t> scene_trials;  // trial id -> index, for scores and marks
+  stream_rows(
+      db_,
+      "SELECT p.code, p.simulated, p.number, s.id, s.protocol_name, s.task, s.bids_task, t.id, t.position, t.block, "
+      "t.condition, t.mode, t.practice, t.combination, t.combination_label, t.stimulus1_kPa, t.stimulus2_kPa, "
+      "t.stimulus3_kPa, t.felt1_kPa, t.felt2_kPa, t.felt3_kPa, t.truth, t.answered, t.answer, t.response_time_s, "
+      "t.onset_s, t.outcome1, t.outcome2, t.outcome3, t.false_marks, t.completed_utc "
+      "FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
+          practice_filter(include_practice, "WHERE") + " ORDER BY p.number, s.id, t.position",
+      [&](const PgResult& q, int i) {
+        StoredTrial t;
+        t.participant = q.text(i, 0);
+        t.simulated = q.integer(i, 1) != 0;
+        t.participant_number = static_cast<int>(q.integer(i, 2));
+        t.session = q.integer(i, 3);
+        t.protocol = q.text(i, 4);
+        t.task = q.text(i, 5);
+        t.bids_task = q.text(i, 6);
+        t.id = q.integer(i, 7);
+        t.position = static_cast<int>(q.integer(i, 8));
+        t.block = static_cast<int>(q.integer(i, 9));
+        t.condition = q.text(i, 10);
+        t.mode = q.text(i, 11);
+        t.practice = q.integer(i, 12) != 0;
+        t.combination = static_cast<int>(q.integer(i, 13));
+        t.combination_label = q.text(i, 14);
+        for (int f = 0; f < kFingerCount; ++f) {
+          t.stimulus_kPa[static_cast<std::size_t>(f)] = real_or_null(q, i, 15 + f);
+          t.felt_kPa[static_cast<std::size_t>(f)] = real_or_null(q, i, 18 + f);
+          t.outcome[static_cast<std::size_t>(f)] = q.text(i, 26 + f);
+        }
+        t.truth = q.text(i, 21);
+        t.answered = q.integer(i, 22) != 0;
+        t.answer = q.text(i, 23);
+        t.response_time_s = real_or_null(q, i, 24);
+        t.onset_s = q.real(i, 25);
+        if (!q.is_null(i, 29)) t.false_marks = q.integer(i, 29);
+        t.completed_utc = q.text(i, 30);
+        if (t.mode == "scene") scene_trials[t.id] = trials.size();
+        trials.push_back(std::move(t));
+      });
+  if (scene_trials.empty()) return trials;
+  stream_rows(db_, "SELECT trial_id, tumor, outcome FROM tumor_scores ORDER BY trial_id, tumor COLLATE \"C\"",
+              [&](const PgResult& q, int i) {
+                const auto it = scene_trials.find(q.integer(i, 0));
+                if (it != scene_trials.end()) trials[it->second].tumor_outcomes.emplace_back(q.text(i, 1), q.text(i, 2));
+              });
+  stream_rows(db_, "SELECT trial_id, mark, x_mm, y_mm, tumor FROM marks ORDER BY trial_id, mark",
+              [&](const PgResult& q, int i) {
+                const auto it = scene_trials.find(q.integer(i, 0));
+                if (it == scene_trials.end()) return;
+                StoredMark m{static_cast<int>(q.integer(i, 1)), q.real(i, 2), q.real(i, 3), std::nullopt};
+                if (!q.is_null(i, 4)) m.tumor = q.text(i, 4);
+                trials[it->second].marks.push_back(std::move(m));
+              });
+  return trials;
+}
+
+}  // namespace palprig

@@ -1,0 +1,77 @@
+#pragma once
+// A stored session as plain rows, store-neutral: what `palprig store copy` and `store sync`
+// and the journal's pushes move between an SQLite file and a PostgreSQL server. The columns are
+// the trial store's own (store/trial_store.hpp schema), listed once here with their types so
+// each side reads and writes them typed (a double crosses as the same 64 bits).
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace palprig {
+
+using SqlValue = std::variant<std::monostate, std::int64_t, double, std::string>;
+using SqlRow = std::vector<SqlValue>;
+
+struct SqlColumn {
+  const char* name;
+  char type;  // 'i' integer, 'r' real, 't' text
+};
+
+// Session columns moved as they are (ids, participant and the lab columns are handled apart).
+inline constexpr std::array<SqlColumn, 14> kSessionColumns{{
+    {"protocol_name", 't'}, {"task", 't'}, {"bids_task", 't'}, {"protocol_json", 't'}, {"protocol_dir", 't'},
+    {"seed", 'i'}, {"condition_order", 't'}, {"rig_id", 't'}, {"rig_backend", 't'}, {"calibration", 't'},
+    {"participant_model", 't'}, {"status", 't'}, {"started_utc", 't'}, {"finished_utc", 't'}}};
+inline constexpr std::size_t kSessionProtocolName = 0, kSessionSeed = 5, kSessionStatus = 11,
+                             kSessionStartedUtc = 12, kSessionFinishedUtc = 13;
+
+inline constexpr std::array<SqlColumn, 7> kPlannedColumns{{{"position", 'i'}, {"block", 'i'}, {"condition_index", 'i'},
+                                                           {"condition", 't'}, {"practice", 'i'}, {"combination", 'i'},
+                                                           {"break_after", 'i'}}};
+
+// trials without id and session_id; position first.
+inline constexpr std::array<SqlColumn, 23> kTrialColumns{{
+    {"position", 'i'}, {"block", 'i'}, {"condition", 't'}, {"mode", 't'}, {"practice", 'i'}, {"combination", 'i'},
+    {"combination_label", 't'}, {"stimulus1_kPa", 'r'}, {"stimulus2_kPa", 'r'}, {"stimulus3_kPa", 'r'},
+    {"truth", 't'}, {"answered", 'i'}, {"answer", 't'}, {"response_time_s", 'r'}, {"onset_s", 'r'},
+    {"felt1_kPa", 'r'}, {"felt2_kPa", 'r'}, {"felt3_kPa", 'r'}, {"outcome1", 't'}, {"outcome2", 't'},
+    {"outcome3", 't'}, {"false_marks", 'i'}, {"completed_utc", 't'}}};
+
+inline constexpr std::array<SqlColumn, 3> kTumorScoreColumns{{{"tumor", 't'}, {"outcome", 't'}, {"nearest_mark_mm", 'r'}}};
+inline constexpr std::array<SqlColumn, 4> kMarkColumns{{{"mark", 'i'}, {"x_mm", 'r'}, {"y_mm", 'r'}, {"tumor", 't'}}};
+
+struct TrialRows {
+  SqlRow trial;  // kTrialColumns
+  std::vector<SqlRow> tumor_scores, marks;
+  std::int64_t position() const { return std::get<std::int64_t>(trial.at(0)); }
+};
+
+struct SessionRows {
+  std::string session_uid;  // global identity
+  std::string host_name;    // '' when unknown (a plain file)
+  std::string origin;       // 'palprig' or 'copy:<file>'
+  std::string participant_code, participant_created_utc;
+  bool simulated = false;
+  SqlRow session;  // kSessionColumns
+  std::vector<SqlRow> planned;
+  std::vector<TrialRows> trials;  // by position; may start after 0 (a partial push)
+
+  const std::string& text(std::size_t column) const { return std::get<std::string>(session.at(column)); }
+};
+
+// The column list "a, b, c" of a table spec.
+template <std::size_t N>
+std::string column_list(const std::array<SqlColumn, N>& columns, const char* prefix = "") {
+  std::string s;
+  for (const SqlColumn& c : columns) {
+    if (!s.empty()) s += ", ";
+    s += prefix;
+    s += c.name;
+  }
+  return s;
+}
+
+}  // namespace palprig
