@@ -7,13 +7,25 @@
 # Where no server can be started (no PostgreSQL installed, cluster creation failed), the test
 # still runs, with PALPRIG_PG_SKIP set to the reason: the tests skip and print it.
 # Listing the tests (gtest discovery) needs no server.
+#
+# PALPRIG_PG_REQUIRED=1 (CI sets it: .ci/run) turns that skip into a failure with the same
+# reason: on a machine that must have a server, a skipped lab-store test is a broken set-up.
 set -u
+no_server() {  # no_server REASON COMMAND...
+  local reason=$1
+  shift
+  if [ "${PALPRIG_PG_REQUIRED:-0}" = 1 ]; then
+    echo "with_server.sh: PALPRIG_PG_REQUIRED=1 but $reason" >&2
+    exit 1
+  fi
+  PALPRIG_PG_SKIP="$reason" exec "$@"
+}
 for arg in "$@"; do
   if [ "$arg" = "--gtest_list_tests" ]; then exec "$@"; fi
 done
 
 if ! command -v pg_virtualenv >/dev/null 2>&1; then
-  PALPRIG_PG_SKIP="pg_virtualenv not found (install postgresql and postgresql-common)" exec "$@"
+  no_server "pg_virtualenv not found (install postgresql and postgresql-common)" "$@"
 fi
 
 started=$(mktemp -t palprig-pg-started.XXXXXX)
@@ -47,4 +59,4 @@ while :; do
   [ $attempt -lt 2 ] || break
 done
 reason=$(grep -v '^\s*$' "$log" | tail -3 | tr '\n' ' ')
-PALPRIG_PG_SKIP="no PostgreSQL server could be started by pg_virtualenv: ${reason}" exec "$@"
+no_server "no PostgreSQL server could be started by pg_virtualenv: ${reason}" "$@"
