@@ -128,14 +128,10 @@ StoredSession JournaledTrialStore::load_session(std::int64_t session_id) {
 void JournaledTrialStore::complete_session(std::int64_t session_id) {
   journal_.complete_session(journal_session(session_id));  // releases the journal's lock
   pusher_->committed();
-  // The server's lock is given up once the server knows the session is complete; until then (the
-  // server is down) it ends with this store's connection.
-  if (pusher_->flush(std::chrono::seconds(10)) != 0) return;
-  try {
-    server_.release_session(session_id);
-  } catch (const PgError& e) {
-    if (!e.connection_lost()) throw;  // lost: the lock went with the connection
-  }
+  // The server's lock is kept until this store closes: by then the pusher has stopped (members
+  // end in reverse order) and the server has every trial it could be given, so no other bench
+  // resumes a session whose last trials are still on their way. It ends with the connection
+  // at the latest.
 }
 
 void JournaledTrialStore::commit_trial(std::int64_t session_id, const TrialRecord& trial) {
