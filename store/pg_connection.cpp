@@ -2,7 +2,9 @@
 
 #include <libpq-fe.h>
 
+#include <bit>
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 
@@ -46,8 +48,31 @@ std::string_view PgResult::text_view(int row, int column) const noexcept {
   return {PQgetvalue(r_, row, column), static_cast<std::size_t>(PQgetlength(r_, row, column))};
 }
 
+namespace {
+
+// Binary results (exec_binary) carry integers and doubles in network byte order.
+std::uint64_t big_endian(std::string_view bytes) {
+  std::uint64_t v = 0;
+  for (const char c : bytes) v = (v << 8) | static_cast<unsigned char>(c);
+  return v;
+}
+
+constexpr unsigned kInt2Oid = 21, kInt4Oid = 23, kInt8Oid = 20, kFloat4Oid = 700, kFloat8Oid = 701;
+
+}  // namespace
+
 std::int64_t PgResult::integer(int row, int column) const {
   const std::string_view t = text_view(row, column);
+  if (PQfformat(r_, column) == 1) {
+    const unsigned type = PQftype(r_, column);
+    const std::uint64_t bits = big_endian(t);
+    if (type == kInt8Oid && t.size() == 8) return static_cast<std::int64_t>(bits);
+    if (type == kInt4Oid && t.size() == 4) return static_cast<std::int32_t>(static_cast<std::uint32_t>(bits));
+    if (type == kInt2Oid && t.size() == 2) return static_cast<std::int16_t>(static_cast<std::uint16_t>(bits));
+    throw PgError("PostgreSQL: column " + std::string(PQfname(r_, column)) + ": an integer, got binary type " +
+                      std::to_string(type),
+                  "", false);
+  }
   std::int64_t v = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
   if (ec != std::errc() || end != t.data() + t.size()) {
@@ -59,6 +84,17 @@ std::int64_t PgResult::integer(int row, int column) const {
 
 double PgResult::real(int row, int column) const {
   const std::string_view t = text_view(row, column);
+  if (PQfformat(r_, column) == 1) {
+    // The IEEE bits as the server holds them: the same double as the text form reads back to.
+    const unsigned type = PQftype(r_, column);
+    if (type == kFloat8Oid && t.size() == 8) return std::bit_cast<double>(big_endian(t));
+    if (type == kFloat4Oid && t.size() == 4) {
+      return std::bit_cast<float>(static_cast<std::uint32_t>(big_endian(t)));
+    }
+    throw PgError("PostgreSQL: column " + std::string(PQfname(r_, column)) + ": a number, got binary type " +
+                      std::to_string(type),
+                  "", false);
+  }
   // PostgreSQL spells the special values out; from_chars reads "inf"/"nan" but not these.
   if (t == "NaN") return std::nan("");
   if (t == "Infinity") return HUGE_VAL;
@@ -116,6 +152,14 @@ void PgConnection::fail(std::string_view what, pg_result* r) {
 PgResult PgConnection::exec(std::string_view sql) {
   const std::string text(sql);
   pg_result* r = PQexec(conn_, text.c_str());
+  const auto status = r ? PQresultStatus(r) : PGRES_FATAL_ERROR;
+  if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) fail(sql.substr(0, 60), r);
+  return PgResult(r);
+}
+
+PgResult PgConnection::exec_binary(std::string_view sql) {
+  const std::string text(sql);
+  pg_result* r = PQexecParams(conn_, text.c_str(), 0, nullptr, nullptr, nullptr, nullptr, 1);
   const auto status = r ? PQresultStatus(r) : PGRES_FATAL_ERROR;
   if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) fail(sql.substr(0, 60), r);
   return PgResult(r);

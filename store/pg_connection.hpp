@@ -73,6 +73,10 @@ class PgConnection {
 
   PgResult exec(std::string_view sql);
   PgResult exec(std::string_view sql, const std::vector<PgParam>& params);
+  // Results in binary format (integers and doubles as their bits: no printing on the server,
+  // no parsing here), for large scans. text_view is raw bytes then: read numbers with
+  // integer() and real() (int2/4/8, float4/8), and text() only for text columns.
+  PgResult exec_binary(std::string_view sql);
   bool ok() const noexcept;  // the connection is still up
   const PgTarget& target() const noexcept { return target_; }
 

@@ -42,13 +42,15 @@ std::optional<double> real_or_null(const PgResult& r, int row, int column) {
 }
 
 // Streams the rows of a query in batches through a cursor, inside one read-only snapshot, so
-// a million trials are never in memory at once.
+// a million trials are never in memory at once. `binary`: the rows come in binary format
+// (the scans for `stats trials`, whose columns are read only through integer/real/text_view).
 template <class RowFn>
-void stream_rows(PgConnection& db, const std::string& sql, RowFn on_row) {
+void stream_rows(PgConnection& db, const std::string& sql, RowFn on_row, bool binary = false) {
   PgTransaction tx(db, "BEGIN ISOLATION LEVEL REPEATABLE READ READ ONLY");
   db.exec("DECLARE palprig_scan NO SCROLL CURSOR FOR " + sql);
   for (;;) {
-    const PgResult batch = db.exec("FETCH FORWARD 50000 FROM palprig_scan");
+    const std::string fetch = "FETCH FORWARD 50000 FROM palprig_scan";
+    const PgResult batch = binary ? db.exec_binary(fetch) : db.exec(fetch);
     if (batch.rows() == 0) break;
     for (int i = 0; i < batch.rows(); ++i) on_row(batch, i);
   }
@@ -331,7 +333,8 @@ void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_pra
                   t.combination_label =
                       q.is_null(i, 8) ? std::nullopt : std::optional<std::string_view>(q.text_view(i, 8));
                   visit(t);
-                });
+                },
+                true);
     return;
   }
   // Localisation: one row per (trial, tumor score), gathered per trial.
@@ -376,7 +379,8 @@ void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_pra
                 tumor_names[tumor_count].assign(q.text_view(i, 5));
                 tumors[tumor_count].outcome = *outcome;
                 ++tumor_count;
-              });
+              },
+              true);
   flush();
 }
 
