@@ -10,7 +10,7 @@ namespace {
 constexpr std::string_view kCommandLine = "command line";
 
 // field (as libraries name it) -> flag (as the user types it)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 34> kFieldFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 37> kFieldFlags{{
     {"participant", "--participant"},
     {"resume", "--resume"},
     {"seed", "--seed"},
@@ -45,6 +45,9 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 34> kFieldFl
     {"fixed_thresholds", "--no-refine"},
     {"cpu", "--cpu"},
     {"speed", "--speed"},
+    {"level", "--level"},
+    {"response", "--response"},
+    {"n", "--n"},
 }};
 
 }  // namespace
