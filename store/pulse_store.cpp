@@ -6,9 +6,9 @@
 #include <map>
 
 #include "models/parse_error.hpp"
-#include "store/utc_time.hpp"
 #include "statistics/statistics_describe.hpp"
 #include "statistics/statistics_proportion.hpp"
+#include "store/utc_time.hpp"
 
 namespace palprig {
 
