@@ -22,9 +22,9 @@
 #include "models/parse_error.hpp"
 #include "experiments/protocol.hpp"
 #include "experiments/terminal_participant.hpp"
+#include "experiments/session_plan.hpp"
 #include "sessions/session_setup.hpp"
 #include "sessions/study_session.hpp"
-#include "store/trial_store.hpp"
 
 using namespace palprig;
 
@@ -36,20 +36,12 @@ struct RunArgs {
   double sim_threshold_noise_kPa = 0.8, sim_threshold_criterion_kPa = 0.5;  // threshold protocols (issue 13)
 };
 
-std::string flags_text(const FingerFlags& f) {
-  std::string s;
-  for (int i = 0; i < kFingerCount; ++i) {
-    if (f[static_cast<std::size_t>(i)]) s += std::to_string(i + 1);
-  }
-  return s.empty() ? "none" : s;
-}
-
 std::string trial_line(const TrialRecord& t, int total) {
   std::string line = "trial " + std::to_string(t.planned.position + 1) + "/" + std::to_string(total) + " " + t.condition +
                      (t.planned.practice ? " (practice)" : "");
   if (t.mode != PresentationMode::scene) {
-    line += " " + t.combination_label + " kPa, tumor " + flags_text(t.truth);
-    line += t.answered ? ", answer " + flags_text(t.answer) + " (" + to_string(t.finger_outcomes[0]) + " " +
+    line += " " + t.combination_label + " kPa, tumor " + finger_numbers_text(t.truth);
+    line += t.answered ? ", answer " + finger_numbers_text(t.answer) + " (" + to_string(t.finger_outcomes[0]) + " " +
                              to_string(t.finger_outcomes[1]) + " " + to_string(t.finger_outcomes[2]) + ")"
                        : ", no answer";
   } else if (t.answered) {
@@ -107,29 +99,21 @@ class TerminalReport final : public SessionListener {
 };
 
 void run_experiment(const RunArgs& a) {
+  StudySessionRequest request = a.request;
+  if (request.rig_file.empty()) request.rig_file = cli::data_dir() / "rigs" / "simulated.json";
   // Threshold protocols (staircases, QUEST) and the pulse task run in their own files (issue 13).
-  const auto& r = a.request;
-  const nlohmann::json document = read_json_file(r.protocol_file);
-  if ((is_threshold_protocol(document) || is_pulse_protocol(document)) && is_server_store_location(r.store_location)) {
-    // Threshold and pulse sessions (issue 13) have their own SQLite tables; the lab server
-    // (issue 12) stores the discrimination/localisation trials only. Refuse rather than create
-    // a local file named after the URI.
-    throw InputError(r.store_location, "`store`",
-                     "an SQLite file: threshold and pulse protocols are not stored on the PostgreSQL lab server");
-  }
+  const nlohmann::json document = read_json_file(request.protocol_file);
   if (is_threshold_protocol(document)) {
-    cli::run_threshold_experiment({r.protocol_file.string(), r.participant_code, r.store_location, r.rig_file.string(),
-                                   r.calibration_file.string(), r.resume, a.quiet, r.seed, r.speed,
-                                   a.sim_threshold_noise_kPa, a.sim_threshold_criterion_kPa});
+    ThresholdStudyRequest threshold{request, {}};
+    threshold.observer.noise_kPa = a.sim_threshold_noise_kPa;
+    threshold.observer.criterion_kPa = a.sim_threshold_criterion_kPa;
+    cli::run_threshold_experiment(threshold, a.quiet);
     return;
   }
   if (is_pulse_protocol(document)) {
-    cli::run_pulse_experiment({r.protocol_file.string(), r.participant_code, r.store_location, r.rig_file.string(),
-                               r.calibration_file.string(), r.resume, a.quiet, r.seed, r.speed});
+    cli::run_pulse_experiment(request, a.quiet);
     return;
   }
-  StudySessionRequest request = a.request;
-  if (request.rig_file.empty()) request.rig_file = cli::data_dir() / "rigs" / "simulated.json";
   TerminalReport report(request.store_location, a.quiet);
   cli::install_stop_signals();
   const PersonFactory terminal = [](const Protocol& protocol) {
@@ -222,19 +206,7 @@ void register_plan(CLI::App* experiment) {
   sub->callback([a] {
     const Protocol p = load_protocol(a->protocol);
     const std::uint64_t seed = a->seed ? *a->seed : default_session_seed(a->participant, p.name);
-    const SessionPlan plan = make_session_plan(p, a->number, seed);
-    std::cout << "position,block,condition,mode,practice,stimulus_kPa,tumor_fingers,break_after\n";
-    for (const PlannedTrial& t : plan.trials) {
-      const Condition& c = p.conditions[static_cast<std::size_t>(t.condition)];
-      std::string stimulus = "scene", tumor = "";
-      if (t.combination >= 0) {
-        const auto& combination = p.combinations[static_cast<std::size_t>(t.combination)];
-        stimulus = combination.label;
-        tumor = flags_text(combination.tumor);
-      }
-      std::cout << t.position + 1 << "," << t.block + 1 << "," << c.name << "," << to_string(c.mode) << ","
-                << (t.practice ? 1 : 0) << "," << stimulus << "," << tumor << "," << (t.break_after ? 1 : 0) << "\n";
-    }
+    write_plan_csv(std::cout, p, make_session_plan(p, a->number, seed));
   });
 }
 

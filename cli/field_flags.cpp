@@ -10,7 +10,7 @@ namespace {
 constexpr std::string_view kCommandLine = "command line";
 
 // field (as libraries name it) -> flag (as the user types it)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 38> kFieldFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 41> kFieldFlags{{
     {"participant", "--participant"},
     {"resume", "--resume"},
     {"seed", "--seed"},
@@ -49,6 +49,9 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 38> kFieldFl
     {"from", "--from"},        // palprig store sync/copy
     {"to", "--to"},
     {"study", "--study"},
+    {"level", "--level"},
+    {"response", "--response"},
+    {"n", "--n"},
 }};
 
 }  // namespace

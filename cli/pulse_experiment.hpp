@@ -1,19 +1,11 @@
 #pragma once
 // `palprig experiment run` for pulse-localisation protocols (issue 13, paper 000).
-// cli/experiment_command.cpp hands over when the protocol file says "task": "pulse".
-#include <cstdint>
-#include <optional>
-#include <string>
+// cli/experiment_command.cpp hands over when the protocol file says "task": "pulse"; the session
+// is sessions/pulse_study's run_pulse_study; this file prints.
+#include "sessions/study_session.hpp"
 
 namespace palprig::cli {
 
-struct PulseRunRequest {
-  std::string protocol, participant, db, rig, cal;
-  bool resume = false, quiet = false;
-  std::optional<std::uint64_t> seed;
-  double speed = 0;
-};
-
-void run_pulse_experiment(const PulseRunRequest& request);
+void run_pulse_experiment(const StudySessionRequest& request, bool quiet);
 
 }  // namespace palprig::cli

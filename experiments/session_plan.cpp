@@ -1,6 +1,7 @@
 #include "experiments/session_plan.hpp"
 
 #include <algorithm>
+#include <ostream>
 #include <numeric>
 
 #include "experiments/random_source.hpp"
@@ -129,6 +130,29 @@ SessionPlan make_session_plan(const Protocol& protocol, int participant_number, 
   for (std::size_t i = 0; i < plan.trials.size(); ++i) plan.trials[i].position = static_cast<int>(i);
   if (!plan.trials.empty()) plan.trials.back().break_after = false;  // the session simply ends
   return plan;
+}
+
+std::string finger_numbers_text(const FingerFlags& f) {
+  std::string s;
+  for (int i = 0; i < kFingerCount; ++i) {
+    if (f[static_cast<std::size_t>(i)]) s += std::to_string(i + 1);
+  }
+  return s.empty() ? "none" : s;
+}
+
+void write_plan_csv(std::ostream& out, const Protocol& p, const SessionPlan& plan) {
+  out << "position,block,condition,mode,practice,stimulus_kPa,tumor_fingers,break_after\n";
+  for (const PlannedTrial& t : plan.trials) {
+    const Condition& c = p.conditions[static_cast<std::size_t>(t.condition)];
+    std::string stimulus = "scene", tumor = "";
+    if (t.combination >= 0) {
+      const auto& combination = p.combinations[static_cast<std::size_t>(t.combination)];
+      stimulus = combination.label;
+      tumor = finger_numbers_text(combination.tumor);
+    }
+    out << t.position + 1 << "," << t.block + 1 << "," << c.name << "," << to_string(c.mode) << "," << (t.practice ? 1 : 0)
+        << "," << stimulus << "," << tumor << "," << (t.break_after ? 1 : 0) << "\n";
+  }
 }
 
 }  // namespace palprig

@@ -8,6 +8,8 @@
 // protocol's scheme and constraints) cut into `blocks_per_condition` blocks. A break follows
 // every block but the last, and every `break_every_trials` trials inside a block.
 #include <cstdint>
+#include <iosfwd>
+#include <string>
 #include <vector>
 
 #include "experiments/protocol.hpp"
@@ -38,5 +40,12 @@ SessionPlan make_session_plan(const Protocol& protocol, int participant_number, 
 // The condition order for a participant under a counterbalancing scheme (random uses `random`).
 std::vector<int> counterbalanced_order(Counterbalancing scheme, int conditions, int participant_number,
                                        RandomSource& random);
+
+// Finger numbers with a flag set ("23"), or "none".
+std::string finger_numbers_text(const FingerFlags& fingers);
+
+// The order as `palprig experiment plan` prints it: a header, then one CSV row per trial
+// (position, block, condition, mode, practice, stimulus_kPa, tumor_fingers, break_after).
+void write_plan_csv(std::ostream& out, const Protocol& protocol, const SessionPlan& plan);
 
 }  // namespace palprig

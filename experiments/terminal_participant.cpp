@@ -1,23 +1,19 @@
 #include "experiments/terminal_participant.hpp"
 
-#include <poll.h>
-#include <unistd.h>
-
-#include <csignal>
 #include <ostream>
 
 namespace palprig {
 
 TerminalParticipant::TerminalParticipant(const Protocol& protocol, std::ostream& prompts,
                                          std::atomic<int>& stop_request, int input_fd)
-    : protocol_(protocol), out_(prompts), stop_request_(stop_request), input_fd_(input_fd) {}
+    : protocol_(protocol), out_(prompts), lines_(input_fd, stop_request) {}
 
 bool TerminalParticipant::ready(double) {
   if (!prompted_ready_) {
     out_ << "Ready? Press Enter to start (q + Enter stops; the session can be resumed).\n" << std::flush;
     prompted_ready_ = true;
   }
-  const auto line = next_line();
+  const auto line = lines_.next();
   if (!line) return false;
   prompted_ready_ = false;
   return true;
@@ -34,7 +30,7 @@ void TerminalParticipant::trial_started(const PlannedTrial& trial, const Conditi
 }
 
 std::optional<Response> TerminalParticipant::answer(double) {
-  const auto line = next_line();
+  const auto line = lines_.next();
   if (!line) return std::nullopt;
   Response r;
   bool ok = !line->empty();
@@ -50,33 +46,6 @@ std::optional<Response> TerminalParticipant::answer(double) {
     return std::nullopt;
   }
   return r;
-}
-
-std::optional<std::string> TerminalParticipant::next_line() {
-  pollfd p{input_fd_, POLLIN, 0};
-  while (!eof_ && ::poll(&p, 1, 0) > 0 && (p.revents & (POLLIN | POLLHUP))) {
-    char buf[256];
-    const ssize_t n = ::read(input_fd_, buf, sizeof buf);
-    if (n <= 0) {
-      eof_ = true;
-      break;
-    }
-    pending_.append(buf, static_cast<std::size_t>(n));
-    if (pending_.find('\n') != std::string::npos) break;
-  }
-  const auto newline = pending_.find('\n');
-  if (newline == std::string::npos) {
-    if (eof_) stop_request_.store(SIGTERM);
-    return std::nullopt;
-  }
-  std::string line = pending_.substr(0, newline);
-  pending_.erase(0, newline + 1);
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  if (line == "q") {
-    stop_request_.store(SIGTERM);
-    return std::nullopt;
-  }
-  return line;
 }
 
 }  // namespace palprig

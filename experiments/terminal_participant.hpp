@@ -11,6 +11,7 @@
 
 #include "experiments/participant.hpp"
 #include "experiments/protocol.hpp"
+#include "experiments/terminal_lines.hpp"
 
 namespace palprig {
 
@@ -26,15 +27,9 @@ class TerminalParticipant final : public Participant {
   std::optional<Response> answer(double t_s) override;
 
  private:
-  // One complete line if one has arrived (never blocks).
-  std::optional<std::string> next_line();
-
   const Protocol& protocol_;
   std::ostream& out_;
-  std::atomic<int>& stop_request_;
-  int input_fd_;
-  std::string pending_;
-  bool eof_ = false;
+  TerminalLines lines_;
   bool prompted_ready_ = false;
 };
 

@@ -176,6 +176,9 @@ PulseWaveform parse_waveform(const JsonObject& w, const std::filesystem::path& s
   } else {
     std::filesystem::path file = w.string("file");
     if (file.is_relative()) file = scene_path.parent_path() / file;
+    // Checked before it is opened: opening a FIFO blocks, /dev/zero reads for ever.
+    const std::string refusal = waveform_file_refusal(file);
+    if (!refusal.empty()) w.fail("file", refusal);
     out = load_waveform_csv(file);
   }
   w.refuse_unknown();
@@ -226,8 +229,29 @@ ArterySpec parse_artery(const JsonObject& a, const std::filesystem::path& scene_
 
 }  // namespace
 
+std::string waveform_file_refusal(const std::filesystem::path& path) {
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  const std::string expected = "a regular file of at most " + std::to_string(kMaxWaveformFileBytes / 1024) +
+                               " KiB holding a waveform table, got " + path.string();
+  if (error || !std::filesystem::exists(status)) return "";  // opening it says "cannot open"
+  if (!std::filesystem::is_regular_file(status)) {
+    const char* kind = std::filesystem::is_directory(status)  ? "a directory"
+                       : std::filesystem::is_fifo(status)     ? "a FIFO"
+                       : std::filesystem::is_character_file(status) || std::filesystem::is_block_file(status) ? "a device"
+                       : std::filesystem::is_socket(status)   ? "a socket"
+                                                              : "not a regular file";
+    return expected + " (" + kind + ")";
+  }
+  const auto bytes = std::filesystem::file_size(path, error);
+  if (!error && bytes > kMaxWaveformFileBytes) return expected + " (" + std::to_string(bytes) + " bytes)";
+  return "";
+}
+
 PulseWaveform load_waveform_csv(const std::filesystem::path& path) {
   const std::string file = path.string();
+  const std::string refusal = waveform_file_refusal(path);
+  if (!refusal.empty()) throw InputError(file, "file", refusal);
   std::ifstream in(path);
   if (!in) throw InputError(file, "file", "a readable waveform table (cannot open it)");
   std::vector<double> t, v;

@@ -16,6 +16,7 @@
 // Everything is validated on load: unknown fields, negative or zero sizes and moduli, rates
 // outside 20..250 BPM, empty or non-periodic waveform tables are refused with the file, the
 // field and the reason (InputError).
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -35,6 +36,12 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
 // One recorded beat as CSV: "t_s,value" rows (a header line and '#' comments allowed), times
 // strictly increasing, the last row closing the beat.
 PulseWaveform load_waveform_csv(const std::filesystem::path& path);
+
+// A waveform table is a few hundred rows; anything that is not a regular file (a FIFO blocks,
+// /dev/zero never ends) or is larger than this is refused before it is opened.
+inline constexpr std::uintmax_t kMaxWaveformFileBytes = 1024 * 1024;
+// Why `path` cannot be a waveform table (empty: it may be read).
+std::string waveform_file_refusal(const std::filesystem::path& path);
 
 // A generated rehearsal case as a function scene file (with its generator provenance), and the
 // writer that puts it on disk (throws std::runtime_error when the file cannot be written).

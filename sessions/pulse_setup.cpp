@@ -6,23 +6,16 @@
 namespace palprig {
 
 OpenedPulseSession open_pulse_session(SqliteTrialStore& store, const PulseProtocol& protocol, const PulseSessionRequest& request) {
-  if (request.participant_code.empty()) throw InputError("command line", "participant", "a participant code");
   PulseStore pulse_store(store);
   OpenedPulseSession opened;
-  const auto existing = store.find_participant(request.participant_code);
-  const auto unfinished = existing ? store.find_unfinished_session(*existing, protocol.name) : std::nullopt;
-  if (request.resume) {
-    if (!unfinished) {
-      throw InputError(store.location(), "`resume`",
-                       "an unfinished session of participant '" + request.participant_code + "' with protocol '" +
-                           protocol.name + "' (there is none)");
-    }
-    const StoredPulseSession stored = pulse_store.load_session(*unfinished);
-    if (stored.protocol_snapshot != protocol.snapshot) {
-      throw InputError(protocol.source, "protocol",
-                       "the protocol of the session being resumed (session " + std::to_string(stored.id) +
-                           " started with a different version of this file)");
-    }
+  const int total = static_cast<int>(protocol.conditions.size()) * protocol.repetitions;
+  const auto resumed = session_to_resume(store, request.participant_code, protocol.name, request.resume, [&](std::int64_t id) {
+    return "stopped after " + std::to_string(pulse_store.load_session(id).completed_trials) + " of " +
+           std::to_string(total) + " trials";
+  });
+  if (resumed) {
+    const StoredPulseSession stored = pulse_store.load_session(*resumed);
+    refuse_changed_protocol(stored.id, stored.protocol_snapshot, protocol.snapshot, protocol.source);
     opened.protocol = parse_pulse_protocol(stored.protocol_snapshot, protocol.source, stored.protocol_dir);
     opened.session_id = stored.id;
     opened.participant = stored.participant;
@@ -30,11 +23,6 @@ OpenedPulseSession open_pulse_session(SqliteTrialStore& store, const PulseProtoc
     opened.start_position = stored.completed_trials;
     opened.resumed = true;
     return opened;
-  }
-  if (unfinished) {
-    throw InputError(store.location(), "participant '" + request.participant_code + "'",
-                     "no unfinished session with this protocol (session " + std::to_string(*unfinished) +
-                         " is unfinished: continue it with `resume`)");
   }
   opened.participant = store.enrol(request.participant_code, request.simulated);
   opened.protocol = protocol;

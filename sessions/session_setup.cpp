@@ -9,27 +9,57 @@ std::uint64_t default_session_seed(const std::string& participant_code, const st
   return stable_hash(participant_code + '\n' + protocol_name);
 }
 
-OpenedSession open_session(TrialStore& store, const Protocol& protocol, const SessionRequest& request) {
-  if (request.participant_code.empty()) throw InputError("command line", "participant", "a participant code");
-  OpenedSession opened;
-  const auto existing = store.find_participant(request.participant_code);
-  const auto unfinished = existing ? store.find_unfinished_session(*existing, protocol.name) : std::nullopt;
+void refuse_server_store_for_task_session(const std::string& store_location) {
+  if (!is_server_store_location(store_location)) return;
+  throw InputError(store_location, "`store`",
+                   "an SQLite file: threshold and pulse protocols are not stored on the PostgreSQL lab server");
+}
 
-  if (request.resume) {
+std::optional<std::int64_t> session_to_resume(TrialStore& store, const std::string& participant_code,
+                                              const std::string& protocol_name, bool resume,
+                                              const std::function<std::string(std::int64_t)>& progress) {
+  if (participant_code.empty()) throw InputError("command line", "participant", "a participant code");
+  const auto existing = store.find_participant(participant_code);
+  const auto unfinished = existing ? store.find_unfinished_session(*existing, protocol_name) : std::nullopt;
+  if (resume) {
     if (!unfinished) {
       throw InputError(store.location(), "resume",
-                       "participant '" + request.participant_code + "' has no unfinished session with protocol '" +
-                           protocol.name + "' to continue (none was started, or it was completed); to start a new "
+                       "participant '" + participant_code + "' has no unfinished session with protocol '" +
+                           protocol_name + "' to continue (none was started, or it was completed); to start a new "
                            "session, run the same command without `resume`");
     }
     // Held from here on: a second --resume of the same session at the same time is refused.
     store.claim_session(*unfinished);
-    StoredSession stored = store.load_session(*unfinished);
-    if (stored.protocol_snapshot != protocol.snapshot) {
-      throw InputError(protocol.source, "protocol",
-                       "the protocol of the session being resumed (session " + std::to_string(stored.id) +
-                           " started with a different version of this file)");
-    }
+    return unfinished;
+  }
+  if (unfinished) {
+    store.refuse_if_running_elsewhere(*unfinished);  // "another process runs it" says more than "--resume"
+    throw InputError(store.location(), "participant '" + participant_code + "'",
+                     "already has an unfinished session with protocol '" + protocol_name + "' (session " +
+                         std::to_string(*unfinished) + ", " + progress(*unfinished) +
+                         "); to continue it, run the same command again with `resume`");
+  }
+  return std::nullopt;
+}
+
+void refuse_changed_protocol(std::int64_t session_id, const nlohmann::json& stored_snapshot,
+                             const nlohmann::json& file_snapshot, const std::string& protocol_file) {
+  if (stored_snapshot == file_snapshot) return;
+  throw InputError(protocol_file, "protocol",
+                   "the protocol of the session being resumed (session " + std::to_string(session_id) +
+                       " started with a different version of this file)");
+}
+
+OpenedSession open_session(TrialStore& store, const Protocol& protocol, const SessionRequest& request) {
+  OpenedSession opened;
+  const auto resumed = session_to_resume(store, request.participant_code, protocol.name, request.resume, [&](std::int64_t id) {
+    const StoredSession stored = store.load_session(id);
+    return "stopped after " + std::to_string(stored.completed_trials) + " of " + std::to_string(stored.plan.trials.size()) +
+           " trials";
+  });
+  if (resumed) {
+    StoredSession stored = store.load_session(*resumed);
+    refuse_changed_protocol(stored.id, stored.protocol_snapshot, protocol.snapshot, protocol.source);
     opened.protocol = parse_protocol(stored.protocol_snapshot, protocol.source, stored.protocol_dir);
     opened.plan = std::move(stored.plan);
     opened.session_id = stored.id;
@@ -37,16 +67,6 @@ OpenedSession open_session(TrialStore& store, const Protocol& protocol, const Se
     opened.start_position = stored.completed_trials;
     opened.resumed = true;
     return opened;
-  }
-
-  if (unfinished) {
-    store.refuse_if_running_elsewhere(*unfinished);  // "another process runs it" says more than "--resume"
-    const StoredSession stored = store.load_session(*unfinished);
-    throw InputError(store.location(), "participant '" + request.participant_code + "'",
-                     "already has an unfinished session with protocol '" + protocol.name + "' (session " +
-                         std::to_string(stored.id) + ", stopped after " + std::to_string(stored.completed_trials) +
-                         " of " + std::to_string(stored.plan.trials.size()) +
-                         " trials); to continue it, run the same command again with `resume`");
   }
   opened.participant = store.enrol(request.participant_code, request.simulated);
   opened.protocol = protocol;

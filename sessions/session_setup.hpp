@@ -40,6 +40,23 @@ struct SessionRequest {
 // Throws InputError (file, field, reason) for every refusal above.
 OpenedSession open_session(TrialStore& store, const Protocol& protocol, const SessionRequest& request);
 
+// The rules above, shared by every task (discrimination, threshold, pulse): the unfinished
+// session of this participant and protocol when resuming, claimed by this process (one process
+// per session); nothing when starting anew. `progress` says how far an unfinished session got
+// ("stopped after 12 of 32 trials") for the refusal to start it again.
+std::optional<std::int64_t> session_to_resume(TrialStore& store, const std::string& participant_code,
+                                              const std::string& protocol_name, bool resume,
+                                              const std::function<std::string(std::int64_t)>& progress);
+
+// On resume: refuses a protocol file that changed since the session started.
+void refuse_changed_protocol(std::int64_t session_id, const nlohmann::json& stored_snapshot,
+                             const nlohmann::json& file_snapshot, const std::string& protocol_file);
+
+// Threshold and pulse sessions have their own SQLite tables; the PostgreSQL lab server stores
+// discrimination and localisation trials only. Refuses a server location (InputError on the
+// `store` field) before anything is opened, rather than creating a local file named after it.
+void refuse_server_store_for_task_session(const std::string& store_location);
+
 // The default seed of a participant's session with a protocol.
 std::uint64_t default_session_seed(const std::string& participant_code, const std::string& protocol_name);
 

@@ -1,15 +1,14 @@
 #include "store/pulse_store.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <limits>
 #include <map>
 
 #include "models/parse_error.hpp"
 #include "statistics/statistics_describe.hpp"
 #include "statistics/statistics_proportion.hpp"
+#include "store/utc_time.hpp"
 
 namespace palprig {
 
@@ -33,15 +32,6 @@ CREATE TABLE IF NOT EXISTS pulse_trials (
 ) WITHOUT ROWID;
 )sql";
 
-std::string utc_now() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 }  // namespace
 
 PulseStore::PulseStore(SqliteTrialStore& store, bool writable) : store_(store) {
@@ -50,53 +40,13 @@ PulseStore::PulseStore(SqliteTrialStore& store, bool writable) : store_(store) {
 
 std::int64_t PulseStore::create_session(const ParticipantRecord& who, const PulseProtocol& protocol, std::uint64_t seed,
                                         const SessionSetup& setup) {
-  Database& db = store_.database();
-  Transaction tx(db);
-  auto ins = db.prepare(
-      "INSERT INTO sessions (participant_id, protocol_name, task, bids_task, protocol_json, protocol_dir, seed, "
-      "condition_order, rig_id, rig_backend, calibration, participant_model, status, started_utc) "
-      "VALUES (?1, ?2, 'pulse', ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, 'running', ?12)");
-  ins.bind(1, who.id)
-      .bind(2, protocol.name)
-      .bind(3, protocol.bids_task)
-      .bind(4, protocol.snapshot.dump())
-      .bind(5, setup.protocol_dir)
-      .bind(6, static_cast<std::int64_t>(seed))
-      .bind(7, nlohmann::json(pulse_trial_order(protocol, seed)).dump())
-      .bind(8, setup.rig_id)
-      .bind(9, setup.rig_backend)
-      .bind(10, setup.calibration);
-  if (setup.participant_model.is_null()) ins.bind_null(11);
-  else ins.bind(11, setup.participant_model.dump());
-  ins.bind(12, utc_now()).run();
-  const std::int64_t id = db.last_insert_rowid();
-  tx.commit();
-  return id;
+  return store_.create_task_session(
+      who, {"pulse", protocol.name, protocol.bids_task, protocol.snapshot, seed, nlohmann::json(pulse_trial_order(protocol, seed))},
+      setup);
 }
 
 StoredPulseSession PulseStore::load_session(std::int64_t session_id) {
-  Database& db = store_.database();
-  auto q = db.prepare(
-      "SELECT s.id, s.protocol_json, s.protocol_dir, s.seed, p.id, p.code, p.number, p.simulated, s.task FROM sessions s "
-      "JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
-  q.bind(1, session_id);
-  if (!q.step() || q.text(8) != "pulse") {
-    throw InputError(store_.location(), "session " + std::to_string(session_id), "an existing pulse session");
-  }
-  StoredPulseSession s;
-  s.id = q.integer(0);
-  s.protocol_snapshot = nlohmann::json::parse(q.text(1));
-  s.protocol_dir = q.text(2);
-  s.seed = static_cast<std::uint64_t>(q.integer(3));
-  s.participant = ParticipantRecord{q.integer(4), q.text(5), static_cast<int>(q.integer(6)), q.integer(7) != 0};
-  auto done = db.prepare("SELECT count(*), COALESCE(MAX(position), -1) FROM pulse_trials WHERE session_id = ?1");
-  done.bind(1, session_id);
-  done.step();
-  s.completed_trials = static_cast<int>(done.integer(0));
-  if (done.integer(1) != s.completed_trials - 1) {
-    throw InputError(store_.location(), "session " + std::to_string(session_id), "pulse trials committed in order");
-  }
-  return s;
+  return store_.load_task_session(session_id, "pulse", "pulse_trials");
 }
 
 void PulseStore::commit_trial(std::int64_t session_id, const PulseTrialRecord& r) {
@@ -106,7 +56,7 @@ void PulseStore::commit_trial(std::int64_t session_id, const PulseTrialRecord& r
       "INSERT INTO pulse_trials (session_id, position, condition, answered, mark_x_mm, mark_y_mm, artery, distance_mm, "
       "hit, response_time_s, onset_s, completed_utc, scene_seed) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)");
   ins.bind(1, session_id).bind(2, r.position).bind(3, r.condition).bind(4, r.answered ? 1 : 0).bind(9, r.hit ? 1 : 0);
-  ins.bind(11, r.onset_s).bind(12, utc_now());
+  ins.bind(11, r.onset_s).bind(12, utc_now_text());
   if (r.scene_seed) ins.bind(13, static_cast<std::int64_t>(*r.scene_seed));
   if (r.answered) {
     ins.bind(5, r.mark_x_mm).bind(6, r.mark_y_mm).bind(7, r.artery).bind(8, r.distance_mm).bind(10, r.response_time_s);

@@ -16,14 +16,7 @@
 
 namespace palprig {
 
-struct StoredPulseSession {
-  std::int64_t id = 0;
-  ParticipantRecord participant;
-  nlohmann::json protocol_snapshot;
-  std::string protocol_dir;
-  std::uint64_t seed = 0;
-  int completed_trials = 0;
-};
+using StoredPulseSession = StoredTaskSession;
 
 struct PulseConditionSummary {
   std::string condition;

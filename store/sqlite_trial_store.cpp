@@ -6,15 +6,14 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <fstream>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <map>
 
 #include "experiments/scoring.hpp"
 #include "models/parse_error.hpp"
+#include "store/utc_time.hpp"
 
 namespace palprig {
 
@@ -140,15 +139,6 @@ bool process_alive(pid_t pid, const std::string& start) {
   return ::kill(pid, 0) == 0 || errno == EPERM;  // no /proc: trust the pid alone
 }
 
-std::string utc_now() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 std::string flags_text(const FingerFlags& f) {
   std::string s;
   for (bool b : f) s += b ? '1' : '0';
@@ -257,7 +247,7 @@ void SqliteTrialStore::write_lock_row(std::int64_t session_id) {
       .bind(2, static_cast<std::int64_t>(::getpid()))
       .bind(3, this_host())
       .bind(4, process_start(::getpid()))
-      .bind(5, utc_now())
+      .bind(5, utc_now_text())
       .run();
   if (std::find(held_.begin(), held_.end(), session_id) == held_.end()) held_.push_back(session_id);
 }
@@ -342,7 +332,7 @@ ParticipantRecord SqliteTrialStore::enrol(const std::string& code, bool simulate
   next.step();
   const int number = static_cast<int>(next.integer(0));
   auto ins = db_.prepare("INSERT INTO participants (code, number, simulated, created_utc) VALUES (?1, ?2, ?3, ?4)");
-  ins.bind(1, code).bind(2, number).bind(3, simulated ? 1 : 0).bind(4, utc_now()).run();
+  ins.bind(1, code).bind(2, number).bind(3, simulated ? 1 : 0).bind(4, utc_now_text()).run();
   const std::int64_t id = db_.last_insert_rowid();
   tx.commit();
   return ParticipantRecord{id, code, number, simulated};
@@ -357,22 +347,21 @@ std::optional<std::int64_t> SqliteTrialStore::find_unfinished_session(const Part
   return s.integer(0);
 }
 
-std::int64_t SqliteTrialStore::create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
-                                        const SessionSetup& setup) {
-  Transaction tx(db_);
+std::int64_t SqliteTrialStore::insert_session_row(const ParticipantRecord& who, const TaskSessionRow& row,
+                                                 const SessionSetup& setup) {
   // Under the write lock: another process may have started this participant's session since
   // the caller looked for an unfinished one (the same participant started twice at once).
   {
     auto running = db_.prepare(
         "SELECT id FROM sessions WHERE participant_id = ?1 AND protocol_name = ?2 AND status = 'running' "
         "ORDER BY id DESC LIMIT 1");
-    running.bind(1, who.id).bind(2, protocol.name);
+    running.bind(1, who.id).bind(2, row.protocol_name);
     if (running.step()) {
       const std::int64_t other = running.integer(0);
       const std::string name = "participant '" + who.code + "'";
       refuse_if_held_elsewhere(other, name);
       throw InputError(db_.file(), name,
-                       "already has an unfinished session with protocol '" + protocol.name + "' (session " +
+                       "already has an unfinished session with protocol '" + row.protocol_name + "' (session " +
                            std::to_string(other) + "); to continue it, run the same command again with --resume");
     }
   }
@@ -381,20 +370,65 @@ std::int64_t SqliteTrialStore::create_session(const ParticipantRecord& who, cons
       "condition_order, rig_id, rig_backend, calibration, participant_model, status, started_utc) "
       "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, 'running', ?13)");
   ins.bind(1, who.id)
-      .bind(2, protocol.name)
-      .bind(3, to_string(protocol.task))
-      .bind(4, protocol.bids_task)
-      .bind(5, protocol.snapshot.dump())
+      .bind(2, row.protocol_name)
+      .bind(3, row.task)
+      .bind(4, row.bids_task)
+      .bind(5, row.protocol_snapshot.dump())
       .bind(6, setup.protocol_dir)
-      .bind(7, static_cast<std::int64_t>(plan.seed))  // stored as the same 64 bits
-      .bind(8, nlohmann::json(plan.condition_order).dump())
+      .bind(7, static_cast<std::int64_t>(row.seed))  // stored as the same 64 bits
+      .bind(8, row.condition_order.dump())
       .bind(9, setup.rig_id)
       .bind(10, setup.rig_backend)
       .bind(11, setup.calibration);
   if (setup.participant_model.is_null()) ins.bind_null(12);
   else ins.bind(12, setup.participant_model.dump());
-  ins.bind(13, utc_now()).run();
-  const std::int64_t session_id = db_.last_insert_rowid();
+  ins.bind(13, utc_now_text()).run();
+  return db_.last_insert_rowid();
+}
+
+std::int64_t SqliteTrialStore::create_task_session(const ParticipantRecord& who, const TaskSessionRow& row,
+                                                   const SessionSetup& setup) {
+  Transaction tx(db_);
+  const std::int64_t session_id = insert_session_row(who, row, setup);
+  write_lock_row(session_id);
+  tx.commit();
+  return session_id;
+}
+
+StoredTaskSession SqliteTrialStore::load_task_session(std::int64_t session_id, const std::string& task,
+                                                      const std::string& trial_table) {
+  auto q = db_.prepare(
+      "SELECT s.id, s.protocol_json, s.protocol_dir, s.seed, s.status, p.id, p.code, p.number, p.simulated, s.task "
+      "FROM sessions s JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
+  q.bind(1, session_id);
+  const std::string which = "session " + std::to_string(session_id);
+  if (!q.step()) throw InputError(db_.file(), which, "an existing " + task + " session");
+  if (q.text(9) != task) throw InputError(db_.file(), which, "a " + task + " session, got task " + q.text(9));
+  StoredTaskSession s;
+  s.id = q.integer(0);
+  s.protocol_snapshot = nlohmann::json::parse(q.text(1));
+  s.protocol_dir = q.text(2);
+  s.seed = static_cast<std::uint64_t>(q.integer(3));
+  s.status = q.text(4);
+  s.participant = ParticipantRecord{q.integer(5), q.text(6), static_cast<int>(q.integer(7)), q.integer(8) != 0};
+  // trial_table is one of the store's own table names (threshold_trials, pulse_trials), never user text.
+  auto done = db_.prepare("SELECT count(*), COALESCE(MAX(position), -1) FROM " + trial_table + " WHERE session_id = ?1");
+  done.bind(1, session_id);
+  done.step();
+  s.completed_trials = static_cast<int>(done.integer(0));
+  if (done.integer(1) != s.completed_trials - 1) {
+    throw InputError(db_.file(), which,
+                     task + " trials committed in order (positions are missing; the database was edited)");
+  }
+  return s;
+}
+
+std::int64_t SqliteTrialStore::create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
+                                        const SessionSetup& setup) {
+  Transaction tx(db_);
+  const TaskSessionRow row{to_string(protocol.task), protocol.name, protocol.bids_task, protocol.snapshot, plan.seed,
+                           nlohmann::json(plan.condition_order)};
+  const std::int64_t session_id = insert_session_row(who, row, setup);
 
   auto planned = db_.prepare(
       "INSERT INTO planned_trials (session_id, position, block, condition_index, condition, practice, combination, "
@@ -455,7 +489,7 @@ StoredSession SqliteTrialStore::load_session(std::int64_t session_id) {
 void SqliteTrialStore::complete_session(std::int64_t session_id) {
   Transaction tx(db_);
   auto u = db_.prepare("UPDATE sessions SET status = 'completed', finished_utc = ?2 WHERE id = ?1");
-  u.bind(1, session_id).bind(2, utc_now()).run();
+  u.bind(1, session_id).bind(2, utc_now_text()).run();
   auto del = db_.prepare("DELETE FROM session_locks WHERE session_id = ?1");
   del.bind(1, session_id).run();
   tx.commit();
@@ -481,7 +515,7 @@ void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& 
       .bind(7, r.planned.combination)
       .bind(13, r.answered ? 1 : 0)
       .bind(16, r.onset_s)
-      .bind(24, utc_now());
+      .bind(24, utc_now_text());
   if (discrimination) {
     ins.bind(8, r.combination_label);
     for (int f = 0; f < kFingerCount; ++f) ins.bind(9 + f, r.stimulus_kPa[static_cast<std::size_t>(f)]);

@@ -18,6 +18,26 @@
 
 namespace palprig {
 
+// The `sessions` row of a session; discrimination sessions add their planned order, threshold
+// and pulse sessions keep their trials in tables of their own (store/threshold_store,
+// store/pulse_store).
+struct TaskSessionRow {
+  std::string task, protocol_name, bids_task;
+  nlohmann::json protocol_snapshot;
+  std::uint64_t seed = 0;
+  nlohmann::json condition_order = nlohmann::json::array();
+};
+
+// A threshold or pulse session as stored, with the count of its trials committed in order.
+struct StoredTaskSession {
+  std::int64_t id = 0;
+  ParticipantRecord participant;
+  nlohmann::json protocol_snapshot;
+  std::string protocol_dir, status;
+  std::uint64_t seed = 0;
+  int completed_trials = 0;
+};
+
 inline constexpr std::int64_t kTrialStoreApplicationId = 0x50616C50;  // "PalP"
 inline constexpr std::int64_t kTrialStoreSchemaVersion = 1;
 
@@ -37,6 +57,12 @@ class SqliteTrialStore final : public TrialStore {
                                                       const std::string& protocol_name) override;
   std::int64_t create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
                               const SessionSetup& setup) override;
+  // A threshold or pulse session: the same refusal as create_session when this participant
+  // already runs one with this protocol; inserted and claimed in one transaction.
+  std::int64_t create_task_session(const ParticipantRecord& who, const TaskSessionRow& row, const SessionSetup& setup);
+  // Refuses (InputError) a missing session, one of another task, or trials not at positions
+  // 0..n-1 in `trial_table` (one of the store's own table names).
+  StoredTaskSession load_task_session(std::int64_t session_id, const std::string& task, const std::string& trial_table);
   // session_locks rows name the holder (pid, host, process start time).
   void claim_session(std::int64_t session_id) override;
   void refuse_if_running_elsewhere(std::int64_t session_id) override;
@@ -64,6 +90,8 @@ class SqliteTrialStore final : public TrialStore {
   void create_lock_table();
   void refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who);
   void write_lock_row(std::int64_t session_id);  // inside a transaction
+  // Inside a transaction: refuses a running session of this participant and protocol, inserts.
+  std::int64_t insert_session_row(const ParticipantRecord& who, const TaskSessionRow& row, const SessionSetup& setup);
   void check_identity();
   void insert_trial(std::int64_t session_id, const TrialRecord& trial);
 

@@ -1,11 +1,10 @@
 #include "store/threshold_store.hpp"
 
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <limits>
 
 #include "models/parse_error.hpp"
+#include "store/utc_time.hpp"
 
 namespace palprig {
 
@@ -34,15 +33,6 @@ CREATE TABLE IF NOT EXISTS threshold_trials (
 ) WITHOUT ROWID;
 )sql";
 
-std::string utc_now() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 }  // namespace
 
 ThresholdStore::ThresholdStore(SqliteTrialStore& store, bool writable) : store_(store) {
@@ -57,55 +47,14 @@ bool ThresholdStore::has_table() {
 
 std::int64_t ThresholdStore::create_session(const ParticipantRecord& who, const ThresholdProtocol& protocol,
                                             std::uint64_t seed, const SessionSetup& setup) {
-  Database& db = store_.database();
-  Transaction tx(db);
-  auto ins = db.prepare(
-      "INSERT INTO sessions (participant_id, protocol_name, task, bids_task, protocol_json, protocol_dir, seed, "
-      "condition_order, rig_id, rig_backend, calibration, participant_model, status, started_utc) "
-      "VALUES (?1, ?2, 'threshold', ?3, ?4, ?5, ?6, '[]', ?7, ?8, ?9, ?10, 'running', ?11)");
-  ins.bind(1, who.id)
-      .bind(2, protocol.name)
-      .bind(3, protocol.bids_task)
-      .bind(4, protocol.snapshot.dump())
-      .bind(5, setup.protocol_dir)
-      .bind(6, static_cast<std::int64_t>(seed))
-      .bind(7, setup.rig_id)
-      .bind(8, setup.rig_backend)
-      .bind(9, setup.calibration);
-  if (setup.participant_model.is_null()) ins.bind_null(10);
-  else ins.bind(10, setup.participant_model.dump());
-  ins.bind(11, utc_now()).run();
-  const std::int64_t id = db.last_insert_rowid();
-  tx.commit();
-  return id;
+  return store_.create_task_session(who, {"threshold", protocol.name, protocol.bids_task, protocol.snapshot, seed}, setup);
 }
 
 StoredThresholdSession ThresholdStore::load_session(std::int64_t session_id) {
-  Database& db = store_.database();
-  auto q = db.prepare(
-      "SELECT s.id, s.protocol_json, s.seed, s.status, p.id, p.code, p.number, p.simulated, s.task FROM sessions s "
-      "JOIN participants p ON p.id = s.participant_id WHERE s.id = ?1");
-  q.bind(1, session_id);
-  if (!q.step()) throw InputError(store_.location(), "session " + std::to_string(session_id), "an existing session");
-  if (q.text(8) != "threshold") {
-    throw InputError(store_.location(), "session " + std::to_string(session_id), "a threshold session, got task " + q.text(8));
-  }
   StoredThresholdSession s;
-  s.id = q.integer(0);
-  s.protocol_snapshot = nlohmann::json::parse(q.text(1));
-  s.seed = static_cast<std::uint64_t>(q.integer(2));
-  s.status = q.text(3);
-  s.participant = ParticipantRecord{q.integer(4), q.text(5), static_cast<int>(q.integer(6)), q.integer(7) != 0};
-  auto done = db.prepare("SELECT count(*), COALESCE(MAX(position), -1) FROM threshold_trials WHERE session_id = ?1");
-  done.bind(1, session_id);
-  done.step();
-  s.completed_trials = static_cast<int>(done.integer(0));
-  if (done.integer(1) != s.completed_trials - 1) {
-    throw InputError(store_.location(), "session " + std::to_string(session_id),
-                     "threshold trials committed in order (positions are missing; the database was edited)");
-  }
+  static_cast<StoredTaskSession&>(s) = store_.load_task_session(session_id, "threshold", "threshold_trials");
   if (s.completed_trials > 0) {
-    auto last = db.prepare("SELECT state FROM threshold_trials WHERE session_id = ?1 AND position = ?2");
+    auto last = store_.database().prepare("SELECT state FROM threshold_trials WHERE session_id = ?1 AND position = ?2");
     last.bind(1, session_id).bind(2, s.completed_trials - 1);
     last.step();
     s.last_state = nlohmann::json::parse(last.text(0));
@@ -132,7 +81,7 @@ void ThresholdStore::commit_trial(std::int64_t session_id, const ThresholdTrialR
       .bind(12, r.reversal ? 1 : 0)
       .bind(14, r.onset_s)
       .bind(17, r.state.dump())
-      .bind(18, utc_now());
+      .bind(18, utc_now_text());
   if (r.answered) {
     ins.bind(10, r.response).bind(11, r.correct ? 1 : 0).bind(13, r.response_time_s);
   }

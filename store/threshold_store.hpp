@@ -18,14 +18,8 @@
 
 namespace palprig {
 
-struct StoredThresholdSession {
-  std::int64_t id = 0;
-  ParticipantRecord participant;
-  nlohmann::json protocol_snapshot;
-  std::uint64_t seed = 0;
-  std::string status;
-  int completed_trials = 0;
-  nlohmann::json last_state;  // null before the first trial
+struct StoredThresholdSession : StoredTaskSession {
+  nlohmann::json last_state;  // every track's state after the last committed trial; null before the first
 };
 
 // One stored trial, for statistics and plots.

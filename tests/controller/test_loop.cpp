@@ -9,78 +9,20 @@
 #include "rigs/simulated_rig.hpp"
 #include "controller/telemetry_writer.hpp"
 #include "models/parse_error.hpp"
+#include "tests/controller/test_rigs.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
 using palprig::test_support::TempDir;
 
-namespace {
-
-MapScene hard_right_scene() {
-  std::vector<float> v(11 * 11);
-  for (int r = 0; r < 11; ++r)
-    for (int c = 0; c < 11; ++c) v[r * 11 + c] = c >= 6 ? 1.0f : 0.0f;
-  return MapScene(StiffnessMap(11, 11, 100, 100, v), MapSampling::nearest);
-}
-
-std::array<PlantParams, kFingerCount> quiet_plants() {
-  PlantParams p;
-  p.noise_sd_kPa = 0;
-  p.hysteresis_kPa = 0;
-  return {p, p, p};
-}
-
-// A pen resting at one place, pressing 2 N.
-class RestingPen final : public InputSource {
- public:
-  RestingPen(double x, double y) : x_(x), y_(y) {}
-  TouchSample latest(double t) noexcept override { return {t, x_, y_, 2.0, true}; }
-  double duration_s() const noexcept override { return 0; }
-  std::string describe() const override { return "resting pen"; }
-
- private:
-  double x_, y_;
-};
+using test_rigs::hard_right_scene;
+using test_rigs::quiet_plants;
+using test_rigs::RestingPen;
 
 // A backend that fails on the n-th write, to see the loop vent and stop.
-class FailingRig final : public RigBackend {
- public:
-  explicit FailingRig(int fail_at) : RigBackend(60), fail_at_(fail_at) {}
-  std::string describe() const override { return "failing"; }
-  BackendCapabilities capabilities() const override {
-    BackendCapabilities c;
-    c.link_kind = "in-process";
-    return c;
-  }
-  int vents = 0, writes = 0;
-  ChannelPressures last{};
-
- protected:
-  void do_open() override {}
-  void do_close() noexcept override {}
-  BackendStatus do_write(const ChannelPressures& p, double) noexcept override {
-    last = p;
-    if (++writes == fail_at_) {
-      set_error("bus timeout on channel 2");
-      return BackendStatus::error;
-    }
-    return BackendStatus::ok;
-  }
-  BackendStatus do_read(ChannelPressures& m, double) noexcept override {
-    m = last;
-    return BackendStatus::ok;
-  }
-  BackendStatus do_vent() noexcept override {
-    ++vents;
-    last = {};
-    return BackendStatus::ok;
-  }
-
- private:
-  int fail_at_;
+struct FailingRig : test_rigs::RecordingRig {
+  explicit FailingRig(int fail_at) : RecordingRig(fail_at, "bus timeout on channel 2") {}
 };
-
-}  // namespace
 
 TEST(LoopRunner, ReplayDrivesThePlantToTheTarget) {
   const auto scene = hard_right_scene();

@@ -10,72 +10,21 @@
 #include "controller/loop_runner.hpp"
 #include "controller/rig_step.hpp"
 #include "rigs/simulated_rig.hpp"
+#include "tests/controller/test_rigs.hpp"
 
 using namespace palprig;
 
+using test_rigs::hard_right_scene;
+using test_rigs::quiet_plants;
+using test_rigs::RecordingRig;
+using test_rigs::RestingPen;
+
 namespace {
-
-// Finger 2 (16 mm along x from the pen) over hard tissue when the pen is at x = 50.
-MapScene hard_right_scene() {
-  std::vector<float> v(11 * 11);
-  for (int r = 0; r < 11; ++r)
-    for (int c = 0; c < 11; ++c) v[r * 11 + c] = c >= 6 ? 1.0f : 0.0f;
-  return MapScene(StiffnessMap(11, 11, 100, 100, v), MapSampling::nearest);
-}
-
-std::array<PlantParams, kFingerCount> quiet_plants() {
-  PlantParams p;
-  p.noise_sd_kPa = 0;
-  p.hysteresis_kPa = 0;
-  return {p, p, p};
-}
-
-class RestingPen final : public InputSource {
- public:
-  TouchSample latest(double t) noexcept override { return {t, 50, 20, 2.0, true}; }
-  double duration_s() const noexcept override { return 0; }
-  std::string describe() const override { return "resting pen"; }
-};
 
 class Recorder final : public TickObserver {
  public:
   std::vector<TelemetryRecord> records;
   void on_tick(const TelemetryRecord& r) noexcept override { records.push_back(r); }
-};
-
-// Records every setpoint that reaches the device, and fails a write on request.
-class RecordingRig final : public RigBackend {
- public:
-  RecordingRig() : RigBackend(60) {}
-  std::string describe() const override { return "recording"; }
-  BackendCapabilities capabilities() const override {
-    BackendCapabilities c;
-    c.link_kind = "in-process";
-    return c;
-  }
-  std::vector<ChannelPressures> writes;
-  int vents = 0;
-  int fail_at_write = -1;
-
- protected:
-  void do_open() override {}
-  void do_close() noexcept override {}
-  BackendStatus do_write(const ChannelPressures& p, double) noexcept override {
-    writes.push_back(p);
-    if (int(writes.size()) == fail_at_write) {
-      set_error("valve driver overheated on channel 3");
-      return BackendStatus::error;
-    }
-    return BackendStatus::ok;
-  }
-  BackendStatus do_read(ChannelPressures& m, double) noexcept override {
-    m = writes.empty() ? ChannelPressures{} : writes.back();
-    return BackendStatus::ok;
-  }
-  BackendStatus do_vent() noexcept override {
-    ++vents;
-    return BackendStatus::ok;
-  }
 };
 
 }  // namespace

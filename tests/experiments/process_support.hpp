@@ -99,6 +99,7 @@ class ChildProcess {
   }
 
   const std::string& out() const { return out_; }
+  const std::string& err() const { return err_; }
 
  private:
   pid_t pid_ = -1;

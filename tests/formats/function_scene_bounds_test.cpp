@@ -3,6 +3,8 @@
 // plain scan of its parts gives (the grid that makes it linear changes no answer).
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <random>
 #include <string>
 
@@ -115,4 +117,35 @@ TEST(FrepUnionGrid, ValuesEqualAPlainScanOfTheParts) {
     inside += indexed.contains(p);
   }
   EXPECT_GT(inside, 1000);  // the comparison covered inside points too
+}
+
+// A waveform `file` that is not a small regular file is refused before it is opened: a FIFO
+// would block the load, /dev/zero would be read for ever, a huge file is not a beat's table.
+TEST(FunctionSceneBounds, AWaveformFileThatIsNotASmallRegularFileIsRefused) {
+  TempDir dir;
+  const auto fifo = dir.path() / "wave.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto big = dir.write("big.csv", std::string(kMaxWaveformFileBytes + 1, '#'));
+  std::filesystem::create_directory(dir.path() / "folder");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"/dev/zero", "a device"}, {fifo.string(), "a FIFO"}, {(dir.path() / "folder").string(), "a directory"},
+      {big.string(), std::to_string(kMaxWaveformFileBytes + 1) + " bytes"}};
+  for (const auto& [file, kind] : cases) {
+    SCOPED_TRACE(file);
+    nlohmann::json scene = sphere_union_scene(1);
+    scene["arteries"] = {{{"name", "radial"}, {"path_mm", {{20, 0}, {20, 200}}}, {"radius_mm", 1.5}, {"depth_mm", 4},
+                          {"amplitude_kPa", 5}, {"rate_bpm", 72}, {"waveform", {{"shape", "table"}, {"file", file}}}}};
+    const auto f = dir.write("scene.json", scene.dump());
+    const std::string why = refusal(f);
+    EXPECT_EQ(why.rfind(f.string() + ": arteries[0].waveform.file: a regular file of at most 1024 KiB", 0), 0u) << why;
+    EXPECT_NE(why.find(file + " (" + kind + ")"), std::string::npos) << why;
+    EXPECT_EQ(why.find('\n'), std::string::npos) << why;
+  }
+  // The same scene with a real table loads: the refusals above are the file's doing.
+  nlohmann::json scene = sphere_union_scene(1);
+  scene["arteries"] = {{{"name", "radial"}, {"path_mm", {{20, 0}, {20, 200}}}, {"radius_mm", 1.5}, {"depth_mm", 4},
+                        {"amplitude_kPa", 5}, {"rate_bpm", 72},
+                        {"waveform", {{"shape", "table"},
+                                      {"file", std::string(PALPRIG_SOURCE_DIR) + "/data/waveforms/brachial_pressure.csv"}}}}};
+  EXPECT_EQ(refusal(dir.write("good.json", scene.dump())), "accepted");
 }

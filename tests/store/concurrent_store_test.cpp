@@ -171,5 +171,43 @@ TEST(ConcurrentStore, ResumeRefusalsNameTheNextStep) {
   EXPECT_NE(none.err.find("without --resume"), std::string::npos) << none.err;
 }
 
+// Threshold and pulse sessions keep their trials in tables of their own but are held the same
+// way: a second start or --resume while the first process runs is refused naming it; after a
+// kill -9 the --resume takes the session over and finishes it.
+void expect_task_session_held_by_one_process(const std::string& protocol, const std::string& trial_table) {
+  ScratchDir dir;
+  const std::string db = (dir / "held.db").string();
+  auto args = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> a{"experiment", "run", "--protocol", (testing::protocols_dir() / protocol).string(),
+                               "--participant", "sim:9", "--db", db, "--quiet"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  ChildProcess first(args({"--speed", "5"}));
+  ASSERT_TRUE(wait_for_output(first, "session 1", 30)) << first.out() << first.err();
+  for (const std::vector<std::string>& extra : {std::vector<std::string>{}, std::vector<std::string>{"--resume"}}) {
+    const auto second = testing::run_palprig(args(extra));
+    EXPECT_EQ(second.exit_code, 2) << protocol << ": " << second.out << second.err;
+    EXPECT_EQ(count_lines(second.err), 1) << second.err;
+    EXPECT_NE(second.err.find("process " + std::to_string(first.pid())), std::string::npos) << second.err;
+  }
+  EXPECT_EQ(scalar(db, "SELECT count(*) FROM sessions"), 1) << "the refused start stored a session";
+  ::kill(first.pid(), SIGKILL);
+  first.wait();
+  const auto resumed = testing::run_palprig(args({"--resume"}));
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(scalar(db, "SELECT count(*) FROM sessions WHERE status = 'completed'"), 1);
+  EXPECT_EQ(scalar(db, "SELECT count(*) FROM session_locks"), 0) << "a completed session keeps its lock row";
+  EXPECT_EQ(scalar(db, "SELECT max(position) + 1 - count(*) FROM " + trial_table), 0) << "positions 0..n-1";
+}
+
+TEST(ConcurrentStore, AThresholdSessionIsHeldByOneProcess) {
+  expect_task_session_held_by_one_process("threshold_1up3down.json", "threshold_trials");
+}
+
+TEST(ConcurrentStore, APulseSessionIsHeldByOneProcess) {
+  expect_task_session_held_by_one_process("pulse_localisation_000.json", "pulse_trials");
+}
+
 }  // namespace
 }  // namespace palprig

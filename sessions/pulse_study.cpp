@@ -1,0 +1,73 @@
+#include "sessions/pulse_study.hpp"
+
+#include "experiments/rig_stimulus.hpp"
+#include "formats/scene_file.hpp"
+#include "models/parse_error.hpp"
+#include "sessions/pulse_setup.hpp"
+#include "sessions/session_setup.hpp"
+#include "sessions/study_rig.hpp"
+
+namespace palprig {
+
+SessionEnd run_pulse_study(const StudySessionRequest& r, PulseSessionListener& listener, const std::atomic<int>* stop) {
+  refuse_server_store_for_task_session(r.store_location);
+  const PulseProtocol from_file = load_pulse_protocol(r.protocol_file);
+  std::uint64_t sim_seed = 0;
+  if (!simulated_participant(r.participant_code, sim_seed)) {
+    throw InputError("command line", "participant",
+                     "sim:SEED for a pulse protocol (a person palpates with pen input, which the terminal session does "
+                     "not read; run it from the GUI)");
+  }
+  std::vector<SceneFile> scenes;
+  for (const auto& c : from_file.conditions) scenes.push_back(c.generated ? SceneFile{} : load_scene_file(c.scene_file));
+  StudyRig rig = load_study_rig(r.rig_file, r.calibration_file);
+  refuse_speed_on_hardware(rig, r.speed);
+  rig.open();  // before the session is stored: an unreachable device leaves no empty session
+
+  SqliteTrialStore store(r.store_location, TrialStore::Access::read_write);
+  PulseObserverModel model;
+  model.seed = sim_seed;
+  PulseSessionRequest opening;
+  opening.participant_code = r.participant_code;
+  opening.simulated = true;
+  opening.resume = r.resume;
+  opening.seed = r.seed;
+  opening.setup = {rig.rig.id, rig.rig.backend, rig.cal.source,
+                   nlohmann::json{{"model", "pulse observer"}, {"seed", sim_seed}, {"press_force_N", model.press_force_N},
+                                  {"sweep_speed_mm_per_s", model.sweep_speed_mm_per_s},
+                                  {"sweep_row_step_mm", model.sweep_row_step_mm}, {"mark_noise_mm", model.mark_noise_mm}},
+                   std::filesystem::absolute(r.protocol_file).parent_path().string()};
+  const OpenedPulseSession session = open_pulse_session(store, from_file, opening);
+  PulseStore pulse_store(store);
+  model.seed = resumed_simulation_seed(sim_seed, session.start_position);
+  SimulatedPulseObserver participant(model, rig.config.layout);
+  const int total = static_cast<int>(session.protocol.conditions.size()) * session.protocol.repetitions;
+  listener.session_started(SessionStart{session.protocol.name, session.participant, session.session_id, session.resumed,
+                                        session.start_position, total, session.seed, true, rig.hardware()});
+
+  RigStimulus output(rig.config, *rig.backend);
+  const std::unique_ptr<SessionClock> clock = session_clock(rig, true, r.speed);
+  PulseSessionOptions options;
+  options.seed = session.seed;
+  options.start_position = session.start_position;
+  options.stop = stop;
+  int committed = 0;
+  options.on_trial = [&](const PulseTrialRecord& t) {
+    pulse_store.commit_trial(session.session_id, t);  // committed before anyone is told
+    ++committed;
+    listener.trial_committed(t, total);
+  };
+  const PulseSessionResult result = run_pulse_session(session.protocol, scenes, output, participant, *clock, options);
+  rig.vent_and_close();
+
+  SessionEnd end;
+  end.completed = result.completed;
+  end.stopped = result.stopped;
+  end.fault = result.fault;
+  end.committed_trials = session.start_position + committed;
+  end.total_trials = total;
+  if (result.completed) store.complete_session(session.session_id);
+  return end;
+}
+
+}  // namespace palprig
