@@ -140,6 +140,8 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   table_->setSelectionMode(QAbstractItemView::NoSelection);
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->horizontalHeader()->setStretchLastSection(true);
+  table_->verticalHeader()->setDefaultSectionSize(table_->fontMetrics().height() + 6);
   left_layout->addWidget(table_, 1);
   files_ = new QLabel;
   files_->setObjectName("files_written");
@@ -316,8 +318,9 @@ void ExperimentPage::show_plan(const Protocol& p, const SessionPlan& plan) {
       stimulus = QString::fromStdString(combination.label);
       tumor = flags_text(combination.tumor);
     }
-    const QStringList cells = {QString::number(t.position + 1) + (t.practice ? " p" : ""), QString::number(t.block + 1),
-                               QString::fromStdString(c.name), stimulus, tumor, "", "", "", ""};
+    const QStringList cells = {QString::number(t.position + 1), QString::number(t.block + 1),
+                               QString::fromStdString(c.name) + (t.practice ? " (practice)" : ""), stimulus, tumor,
+                               "", "", "", ""};
     for (int col = 0; col < kColumns; ++col) table_->setItem(t.position, col, new QTableWidgetItem(cells[col]));
   }
 }

@@ -98,6 +98,7 @@ void ParticipantScreen::start_session(const Protocol& protocol, std::shared_ptr<
         QString("%1  %2").arg(f + 1).arg(QString::fromStdString(finger_names_[static_cast<std::size_t>(f)])));
   }
   pages_->setCurrentWidget(localisation_ ? static_cast<QWidget*>(marking_) : finger_page_);
+  pages_->setVisible(channel_ != nullptr || localisation_);  // a pilot run has nobody to answer
   if (localisation_) marking_->start_session(protocol, channel_ ? &channel_->pen() : nullptr);
   set_answering(false);
   show_wait(channel_ ? "Please wait" : "Simulated participant (pilot run)");

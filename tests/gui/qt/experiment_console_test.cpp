@@ -145,6 +145,13 @@ struct EndSeen {
   }
 };
 
+// With PALPRIG_SCREENSHOT_DIR set, saves `what` there (the README's pictures come from here).
+void keep_screenshot(QWidget& what, const char* name) {
+  const char* dir = std::getenv("PALPRIG_SCREENSHOT_DIR");
+  if (dir == nullptr) return;
+  what.grab().save(QString("%1/%2").arg(dir, name), "PNG");
+}
+
 int committed_rows(QTableWidget& t) {
   int n = 0;
   for (int r = 0; r < t.rowCount(); ++r) n += t.item(r, t.columnCount() - 1)->text().isEmpty() ? 0 : 1;
@@ -203,6 +210,12 @@ class ExperimentConsoleTest : public QObject {
       }
       QVERIFY2(wait_until(*w.window, [&] { return screen.answering_position() == k; }),
                qPrintable(QString("trial %1 never asked").arg(k + 1)));
+      if (k == 3) {
+        QTest::keyClick(&screen, Qt::Key_2);  // chosen, not yet answered: seen on the screenshot
+        keep_screenshot(*w.window, "experiment_console.png");
+        keep_screenshot(screen, "participant_screen.png");
+        QTest::keyClick(&screen, Qt::Key_2);  // and unchosen again
+      }
       answer_by_hand(screen, answers[static_cast<std::size_t>(k)], k);
       typed += answers[static_cast<std::size_t>(k)] + "\n";
       QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == k + 1; }));
@@ -420,6 +433,7 @@ class ExperimentConsoleTest : public QObject {
     QTest::mouseClick(marking.findChild<QPushButton*>("undo_mark"), Qt::LeftButton);
     QCOMPARE(marking.marks().size(), std::size_t(1));
     QTest::mouseClick(&view, Qt::RightButton, {}, b.toPoint());
+    keep_screenshot(screen, "participant_localisation.png");
     QTest::mouseClick(marking.findChild<QPushButton*>("marks_done"), Qt::LeftButton);
     QVERIFY(wait_until(*w.window, [&] { return ended.count == 1; }));
     QVERIFY(ended.end.completed);
