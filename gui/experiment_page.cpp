@@ -18,6 +18,7 @@
 
 #include "experiments/simulated_participant.hpp"
 #include "gui/participant_screen.hpp"
+#include "gui/statistics_view.hpp"
 #include "models/parse_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "store/trial_store.hpp"
@@ -58,9 +59,13 @@ QPushButton* button(const char* name, const QString& text) {
 
 ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(parent), host_(std::move(host)) {
   setObjectName("experiment_page");
-  auto* outer = new QHBoxLayout(this);
+  // Top: the session (left) and the participant's screen (right); below, full width, the
+  // live statistics, whose charts need the room.
+  auto* outer = new QVBoxLayout(this);
+  auto* rows = new QSplitter(Qt::Vertical);
+  outer->addWidget(rows);
   auto* split = new QSplitter(Qt::Horizontal);
-  outer->addWidget(split);
+  rows->addWidget(split);
 
   // Left: the session's files, controls, and the trial list.
   auto* left = new QWidget;
@@ -150,9 +155,10 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   left_layout->addWidget(files_);
   split->addWidget(left);
 
-  // Right: the participant's screen above the live statistics.
+  // Right: the participant's screen.
   auto* right = new QWidget;
   auto* right_layout = new QVBoxLayout(right);
+  right_layout->setContentsMargins(0, 0, 0, 0);
   auto* screen_box = new QGroupBox("Participant screen");
   auto* screen_layout = new QVBoxLayout(screen_box);
   screen_ = new ParticipantScreen;
@@ -169,13 +175,18 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   statistics_area_ = new QGroupBox("Statistics");
   statistics_area_->setObjectName("statistics_area");
   statistics_layout_ = new QVBoxLayout(statistics_area_);
-  auto* waiting = new QLabel("The live statistics view appears here.");
-  waiting->setObjectName("statistics_placeholder");
-  statistics_layout_->addWidget(waiting);
-  right_layout->addWidget(statistics_area_, 1);
+  statistics_ = new StatisticsView;
+  statistics_layout_->addWidget(statistics_);
+  connect(statistics_, &StatisticsView::exported, this, [this](const QStringList& written) {
+    files_written_ << written;
+    show_files();
+  });
   split->addWidget(right);
   split->setStretchFactor(0, 3);
   split->setStretchFactor(1, 2);
+  rows->addWidget(statistics_area_);
+  rows->setStretchFactor(0, 1);
+  rows->setStretchFactor(1, 1);
 
   connect(&run_, &SessionRun::started, this, &ExperimentPage::on_started);
   connect(&run_, &SessionRun::trialStarted, this,
@@ -196,6 +207,7 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   });
   connect(&run_, &SessionRun::trialCommitted, this, [this](const TrialRecord& t, int) {
     tick_row(t);
+    statistics_->refresh();  // coalesced with the view's own refresh on the file change
     emit trialCommitted(t.planned.position);
   });
   connect(&run_, &SessionRun::ended, this, &ExperimentPage::on_ended);
@@ -266,6 +278,7 @@ void ExperimentPage::update_plan() {
   int number = 1;
   try {
     if (!f.store.empty() && std::filesystem::exists(f.store)) {
+      if (statistics_->store_location() != QString::fromStdString(f.store)) statistics_->set_store(QString::fromStdString(f.store));
       const auto store = open_trial_store(f.store, TrialStore::Access::read_only);
       if (const auto who = store->find_participant(f.participant)) {
         number = who->number;
@@ -413,6 +426,10 @@ void ExperimentPage::on_started(const SessionStart& s) {
                              : QString("Session %1 started: %2 trials.").arg(s.session_id).arg(s.total_trials));
   // The runner starts in `ready` (no event says so): the participant's go-ahead is awaited.
   if (s.start_position < s.total_trials) screen_->show_ready();
+  // The store exists now (created by the session): the statistics follow it.
+  statistics_->set_export_directory(QString::fromStdString(
+      (std::filesystem::path(fields().store).parent_path() / "exports").string()));
+  statistics_->set_store(QString::fromStdString(fields().store));
   emit sessionStarted();
 }
 
@@ -426,9 +443,17 @@ void ExperimentPage::on_ended(const SessionEnd& e) {
   status_->setText(text);
   screen_->show_wait(e.completed ? "Thank you, the session is complete." : "The session has stopped.");
   files_written_ = {QString::fromStdString(fields().store)};
-  files_->setText("Files written:\n  trial database " + files_written_.front() +
-                  QString(" (%1 of %2 trials committed)").arg(e.committed_trials).arg(e.total_trials));
+  store_note_ = QString(" (%1 of %2 trials committed)").arg(e.committed_trials).arg(e.total_trials);
+  show_files();
+  statistics_->refresh();
   emit sessionEnded(e);
+}
+
+void ExperimentPage::show_files() {
+  if (files_written_.isEmpty()) return;
+  QString text = "Files written:\n  trial database " + files_written_.front() + store_note_;
+  for (int i = 1; i < files_written_.size(); ++i) text += "\n  " + files_written_[i];
+  files_->setText(text);
 }
 
 void ExperimentPage::pause() {
@@ -460,14 +485,6 @@ void ExperimentPage::abort_and_wait(bool give_back_rig) {
   if (give_back_rig && rig_taken_ && host_.give_back_rig) host_.give_back_rig();
   rig_taken_ = false;
   set_buttons();
-}
-
-void ExperimentPage::set_statistics_widget(QWidget* view) {
-  while (QLayoutItem* item = statistics_layout_->takeAt(0)) {
-    delete item->widget();
-    delete item;
-  }
-  statistics_layout_->addWidget(view);
 }
 
 void ExperimentPage::set_buttons() {

@@ -30,6 +30,7 @@ class QVBoxLayout;
 namespace palprig::gui {
 
 class ParticipantScreen;
+class StatisticsView;
 
 // What the page needs from the window: the rig it is on, and the rig for the session's length
 // (the live loop stops and vents while a session owns the rig, and starts again after).
@@ -70,10 +71,9 @@ class ExperimentPage final : public QWidget {
   QStringList files_written() const { return files_written_; }
   ParticipantScreen* participant_screen() const noexcept { return screen_; }
   QTableWidget* trial_table() const noexcept { return table_; }
-  QWidget* statistics_area() const noexcept { return statistics_area_; }
+  // The live statistics of the session's store (gui/statistics_view), refreshed on every commit.
+  StatisticsView* statistics() const noexcept { return statistics_; }
   SessionRun& session_run() noexcept { return run_; }
-  // Places a statistics view (H12's StatisticsView) in the console.
-  void set_statistics_widget(QWidget* view);
 
  signals:
   void sessionStarted();
@@ -87,6 +87,7 @@ class ExperimentPage final : public QWidget {
   void tick_row(const TrialRecord& trial);
   void refuse(const QString& line);
   void set_buttons();
+  void show_files();
   void on_started(const SessionStart& s);
   void on_ended(const SessionEnd& e);
 
@@ -99,7 +100,8 @@ class ExperimentPage final : public QWidget {
   bool rig_taken_ = false;
   bool simulated_ = false;
   bool pause_held_ = false;  // the session loop reported the pause (vented, holding)
-  QStringList files_written_;
+  QStringList files_written_;  // the database first, then exports
+  QString store_note_;
 
   QLineEdit* protocol_edit_ = nullptr;
   QLineEdit* participant_edit_ = nullptr;
@@ -118,6 +120,7 @@ class ExperimentPage final : public QWidget {
   QTableWidget* table_ = nullptr;
   ParticipantScreen* screen_ = nullptr;
   QWidget* statistics_area_ = nullptr;
+  StatisticsView* statistics_ = nullptr;
   QVBoxLayout* statistics_layout_ = nullptr;
 };
 

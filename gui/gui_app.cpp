@@ -12,6 +12,7 @@
 
 #include "gui/experiment_page.hpp"
 #include "gui/main_window.hpp"
+#include "gui/statistics_view.hpp"
 #include "experiments/simulated_participant.hpp"
 #include "models/parse_error.hpp"
 
@@ -60,8 +61,8 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
   window.show();
   int exit_code = 0;
   bool shot_taken = false;
-  // The screenshot: the whole window, or with a session the experiment console (its
-  // statistics), when the session ended or after_s passed, whichever comes first.
+  // The screenshot: the whole window, or with a session its statistics view, when the session
+  // ended (and the statistics were refreshed) or after_s passed, whichever comes first.
   auto take_screenshot = [&](QWidget& what) {
     if (shot_taken) return;
     shot_taken = true;
@@ -102,7 +103,17 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
       }
     });
     if (!interactive) {
-      QObject::connect(&page.session_run(), &SessionRun::finished, &window, [&] { take_screenshot(page); });
+      // At the end: one more refresh of the statistics, then their picture (a store that cannot
+      // be read is pictured with its message).
+      StatisticsView& stats = *page.statistics();
+      QObject::connect(&page.session_run(), &SessionRun::finished, &window, [&] {
+        if (shot_taken) return;
+        QObject::connect(&stats, &StatisticsView::refreshed, &window, [&] {
+          if (!stats.refreshing()) take_screenshot(stats);  // the last of a coalesced chain
+        });
+        QObject::connect(&stats, &StatisticsView::refresh_failed, &window, [&] { take_screenshot(stats); });
+        stats.refresh();
+      });
     }
     page.set_fields({o.session.protocol, o.session.participant, o.session.store, o.session.speed});
     std::uint64_t seed = 0;
@@ -114,7 +125,7 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
   }
   if (!o.screenshot_path.empty()) {
     QTimer::singleShot(int(o.after_s * 1000), &window, [&] {
-      if (!o.session.protocol.empty()) take_screenshot(*window.experiment_page());
+      if (!o.session.protocol.empty()) take_screenshot(*window.experiment_page()->statistics());
       else take_screenshot(window);
     });
   }
