@@ -12,6 +12,7 @@
 #include <QPushButton>
 #include <QScreen>
 #include <QSplitter>
+#include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <cmath>
@@ -147,12 +148,15 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->horizontalHeader()->setStretchLastSection(true);
   table_->verticalHeader()->setDefaultSectionSize(table_->fontMetrics().height() + 6);
-  left_layout->addWidget(table_, 1);
   files_ = new QLabel;
   files_->setObjectName("files_written");
   files_->setWordWrap(true);
   files_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  left_layout->addWidget(files_);
+  auto* trials_page = new QWidget;
+  auto* trials_layout = new QVBoxLayout(trials_page);
+  trials_layout->addWidget(table_, 1);
+  trials_layout->addWidget(files_);
+  left_layout->addStretch(1);
   split->addWidget(left);
 
   // Right: the participant's screen.
@@ -172,7 +176,7 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   });
   screen_layout->addWidget(full_screen_);
   right_layout->addWidget(screen_box, 1);
-  statistics_area_ = new QGroupBox("Statistics");
+  statistics_area_ = new QWidget;
   statistics_area_->setObjectName("statistics_area");
   statistics_layout_ = new QVBoxLayout(statistics_area_);
   statistics_ = new StatisticsView;
@@ -184,9 +188,15 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   split->addWidget(right);
   split->setStretchFactor(0, 3);
   split->setStretchFactor(1, 2);
-  rows->addWidget(statistics_area_);
-  rows->setStretchFactor(0, 1);
-  rows->setStretchFactor(1, 1);
+  // Below: the trial list ticking as trials commit, and the live statistics (their charts need
+  // the window's width).
+  results_ = new QTabWidget;
+  results_->setObjectName("results_tabs");
+  results_->addTab(trials_page, "Trials");
+  results_->addTab(statistics_area_, "Statistics");
+  rows->addWidget(results_);
+  rows->setStretchFactor(0, 2);
+  rows->setStretchFactor(1, 3);
 
   connect(&run_, &SessionRun::started, this, &ExperimentPage::on_started);
   connect(&run_, &SessionRun::trialStarted, this,
@@ -448,6 +458,8 @@ void ExperimentPage::on_ended(const SessionEnd& e) {
   statistics_->refresh();
   emit sessionEnded(e);
 }
+
+void ExperimentPage::show_statistics() { results_->setCurrentWidget(statistics_area_); }
 
 void ExperimentPage::show_files() {
   if (files_written_.isEmpty()) return;

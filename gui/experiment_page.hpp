@@ -24,6 +24,7 @@ class QDoubleSpinBox;
 class QLabel;
 class QLineEdit;
 class QPushButton;
+class QTabWidget;
 class QTableWidget;
 class QVBoxLayout;
 
@@ -73,6 +74,7 @@ class ExperimentPage final : public QWidget {
   QTableWidget* trial_table() const noexcept { return table_; }
   // The live statistics of the session's store (gui/statistics_view), refreshed on every commit.
   StatisticsView* statistics() const noexcept { return statistics_; }
+  void show_statistics();  // brings the Statistics tab to the front
   SessionRun& session_run() noexcept { return run_; }
 
  signals:
@@ -120,6 +122,7 @@ class ExperimentPage final : public QWidget {
   QTableWidget* table_ = nullptr;
   ParticipantScreen* screen_ = nullptr;
   QWidget* statistics_area_ = nullptr;
+  QTabWidget* results_ = nullptr;
   StatisticsView* statistics_ = nullptr;
   QVBoxLayout* statistics_layout_ = nullptr;
 };

@@ -108,6 +108,7 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
       StatisticsView& stats = *page.statistics();
       QObject::connect(&page.session_run(), &SessionRun::finished, &window, [&] {
         if (shot_taken) return;
+        page.show_statistics();
         QObject::connect(&stats, &StatisticsView::refreshed, &window, [&] {
           if (!stats.refreshing()) take_screenshot(stats);  // the last of a coalesced chain
         });
@@ -125,7 +126,10 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
   }
   if (!o.screenshot_path.empty()) {
     QTimer::singleShot(int(o.after_s * 1000), &window, [&] {
-      if (!o.session.protocol.empty()) take_screenshot(*window.experiment_page()->statistics());
+      if (!o.session.protocol.empty()) {
+        window.experiment_page()->show_statistics();
+        take_screenshot(*window.experiment_page()->statistics());
+      }
       else take_screenshot(window);
     });
   }

@@ -134,6 +134,11 @@ void MainWindow::poll() {
   }
   run_->poll_finished();
   const FeedStatus st = live_page_->poll();
+  if (experiment_page_->session_running()) {
+    status_->setText("study session running: it owns the rig (the live loop is stopped and vented until it ends)");
+    emit polled();
+    return;
+  }
   status_->setText(QString("loop %1 Hz   overruns %2   wake-up p50 %3 us  p99 %4 us   ticks %5%6")
                        .arg(st.loop_rate_hz, 0, 'f', 0)
                        .arg(st.overruns)

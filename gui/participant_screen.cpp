@@ -24,6 +24,8 @@ ParticipantScreen::ParticipantScreen(QWidget* parent) : QWidget(parent) {
   QFont big = prompt_->font();
   big.setPointSizeF(big.pointSizeF() * 1.5);
   prompt_->setFont(big);
+  // Room for three lines whatever the layout gives: a clipped question is worse than none.
+  prompt_->setMinimumHeight(QFontMetrics(big).lineSpacing() * 3 + 8);
   layout->addWidget(prompt_);
 
   ready_ = new QPushButton("Ready (Space)");
