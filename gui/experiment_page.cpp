@@ -228,6 +228,16 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   connect(&run_, &SessionRun::finished, this, [this] {
     if (rig_taken_ && host_.give_back_rig) host_.give_back_rig();
     rig_taken_ = false;
+    // A session that stopped or faulted is resumable: offer it at once (the list keeps its
+    // ticks, read back from the store). A completed one stays on show as it ended.
+    if (!last_completed_ && refusal_text().isEmpty()) {
+      const QStringList files = files_written_;
+      const QString status = status_->text();
+      update_plan();
+      files_written_ = files;
+      show_files();
+      status_->setText(status);
+    }
     set_buttons();
   });
   set_buttons();
@@ -406,6 +416,7 @@ bool ExperimentPage::begin(bool resume) {
   }
   files_written_.clear();
   files_->clear();
+  last_completed_ = false;
   status_->setStyleSheet("");
   status_->setProperty("refusal", QString());
   status_->setText(resume ? "Resuming..." : "Starting...");
@@ -444,6 +455,7 @@ void ExperimentPage::on_started(const SessionStart& s) {
 }
 
 void ExperimentPage::on_ended(const SessionEnd& e) {
+  last_completed_ = e.completed;
   QString text;
   if (e.completed) text = QString("Session completed: %1 trials committed.").arg(e.committed_trials);
   else if (!e.fault.empty()) text = QString("Rig fault: %1. Every channel vented; %2 of %3 trials kept; resume to go on.")

@@ -101,7 +101,8 @@ class ExperimentPage final : public QWidget {
   int offered_start_ = 0;
   bool rig_taken_ = false;
   bool simulated_ = false;
-  bool pause_held_ = false;  // the session loop reported the pause (vented, holding)
+  bool pause_held_ = false;
+  bool last_completed_ = false;  // the last session ended completed  // the session loop reported the pause (vented, holding)
   QStringList files_written_;  // the database first, then exports
   QString store_note_;
 

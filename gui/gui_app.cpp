@@ -134,6 +134,8 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
     });
   }
   app.exec();
+  // SIGINT/SIGTERM ends the run (and a session: vented, committed trials kept) as a stop, exit 1.
+  if (o.run.stop_signal && o.run.stop_signal->load() != 0 && exit_code == 0) exit_code = 1;
   window.run().stop();
   const RunSummary& s = window.run().last_summary();
   if (o.json) std::cout << summary_json(s).dump(2) << "\n";

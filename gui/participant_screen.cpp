@@ -1,6 +1,7 @@
 #include "gui/participant_screen.hpp"
 
 #include <QGuiApplication>
+#include <QBoxLayout>
 #include <QHBoxLayout>
 #include <QKeyEvent>
 #include <QLabel>
@@ -203,7 +204,7 @@ void ParticipantScreen::back_to_console() {
   if (!console_parent_) return;
   showNormal();
   setParent(console_parent_);
-  if (console_parent_->layout()) console_parent_->layout()->addWidget(this);
+  if (auto* box = qobject_cast<QBoxLayout*>(console_parent_->layout())) box->insertWidget(0, this, 1);
   show();
   console_parent_ = nullptr;
 }

@@ -41,6 +41,7 @@ class ParticipantScreen final : public QWidget {
   // Leaves the console and fills `screen` (a second display); back_to_console() returns.
   void show_full_screen_on(QScreen* screen);
   void back_to_console();
+  bool in_console() const noexcept { return console_parent_ == nullptr; }
 
  signals:
   void answerGiven(int position);  // handed to the session thread

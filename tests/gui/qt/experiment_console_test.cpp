@@ -271,11 +271,38 @@ class ExperimentConsoleTest : public QObject {
     QVERIFY(ended.end.stopped);
     QCOMPARE(ended.end.committed_trials, 1);
     QCOMPARE(stored_rows(db).size(), std::size_t(1));
-    // The console now offers to resume at trial 2.
+    // The console now offers to resume at trial 2, by itself and when the fields are set again.
     QVERIFY(wait_until(*w.window, [&] { return !page.session_running(); }));
+    QVERIFY(page.resume_offered());
+    QVERIFY(page.findChild<QPushButton*>("resume_session")->isEnabled());
+    QVERIFY(!page.findChild<QPushButton*>("begin_session")->isEnabled());
     page.set_fields({protocol, "P02", db, 0});
     QVERIFY(page.resume_offered());
     QCOMPARE(page.offered_start_position(), 1);
+  }
+
+  void participantScreenLeavesTheConsoleAndComesBack() {
+    TempDir dir;
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({short_discrimination(dir), "P05", (dir.path() / "p.db").string(), 0});
+    QVERIFY(page.begin(false));
+    ParticipantScreen& screen = *page.participant_screen();
+    QWidget* console_box = screen.parentWidget();
+    screen.show_full_screen_on(QGuiApplication::screens().back());
+    QVERIFY(screen.isWindow());
+    QVERIFY(!screen.in_console());
+    // The participant answers on their own screen while the console stays.
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::keyClick(&screen, Qt::Key_Space);
+    QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 0; }));
+    QTest::keyClick(&screen, Qt::Key_0);
+    QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == 1; }));
+    screen.back_to_console();
+    QVERIFY(!screen.isWindow());
+    QCOMPARE(screen.parentWidget(), console_box);
+    page.abort_and_wait();
   }
 
   void closingMidSessionAsksVentsAndKeepsWhatWasCommitted() {
