@@ -10,10 +10,10 @@
 
 namespace palprig {
 
-const char* to_string(Response r) noexcept { return r == Response::monitor ? "monitor" : "sensor"; }
+const char* to_string(MeasuredSignal r) noexcept { return r == MeasuredSignal::monitor ? "monitor" : "sensor"; }
 
-double response_of(const HoldPoint& p, Response r) noexcept {
-  return r == Response::monitor ? p.monitor_kPa : p.sensor;
+double response_of(const HoldPoint& p, MeasuredSignal r) noexcept {
+  return r == MeasuredSignal::monitor ? p.monitor_kPa : p.sensor;
 }
 
 namespace {
@@ -28,7 +28,7 @@ std::string describe(const HoldPoint& p) {
   return s.str();
 }
 
-void require_values(std::span<const HoldPoint> pts, Response r, const std::string& file, const std::string& what) {
+void require_values(std::span<const HoldPoint> pts, MeasuredSignal r, const std::string& file, const std::string& what) {
   for (const auto& p : pts)
     if (!std::isfinite(response_of(p, r)))
       throw InputError(file, describe(p), "a " + std::string(to_string(r)) + " reading for " + what);
@@ -36,7 +36,7 @@ void require_values(std::span<const HoldPoint> pts, Response r, const std::strin
 
 }  // namespace
 
-BranchFits fit_branches(std::span<const HoldPoint> pts, Response r, const std::string& file, const std::string& what) {
+BranchFits fit_branches(std::span<const HoldPoint> pts, MeasuredSignal r, const std::string& file, const std::string& what) {
   require_values(pts, r, file, what);
   std::vector<double> xi, yi, xd, yd, xb, yb;
   // level -> (inflation values, deflation values)
@@ -86,7 +86,7 @@ BranchFits fit_branches(std::span<const HoldPoint> pts, Response r, const std::s
   return f;
 }
 
-void check_staircase_monotone(std::span<const HoldPoint> pts, Response r, double tolerance_fraction,
+void check_staircase_monotone(std::span<const HoldPoint> pts, MeasuredSignal r, double tolerance_fraction,
                               const std::string& file, const std::string& what) {
   require_values(pts, r, file, what);
   // Branch runs in file order: (repeat, branch) -> points.
@@ -124,7 +124,7 @@ void check_staircase_monotone(std::span<const HoldPoint> pts, Response r, double
   }
 }
 
-void check_response_moves(std::span<const HoldPoint> pts, Response r, const std::string& file, const std::string& what) {
+void check_response_moves(std::span<const HoldPoint> pts, MeasuredSignal r, const std::string& file, const std::string& what) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   std::size_t n = 0;
   for (const auto& p : pts) {

@@ -13,9 +13,10 @@
 
 namespace palprig {
 
-enum class Response { monitor, sensor };
-const char* to_string(Response r) noexcept;
-double response_of(const HoldPoint& p, Response r) noexcept;
+// What a branch fit is fitted to: the regulator's monitor reading or the external sensor.
+enum class MeasuredSignal { monitor, sensor };
+const char* to_string(MeasuredSignal r) noexcept;
+double response_of(const HoldPoint& p, MeasuredSignal r) noexcept;
 
 struct BranchFits {
   LineFit inflation, deflation, both;  // response against the commanded pressure
@@ -26,17 +27,17 @@ struct BranchFits {
 
 // Staircase points only (segment staircase, branch inflation or deflation), one channel or
 // pooled. Throws InputError naming `what` when a branch is missing or a fit is degenerate.
-BranchFits fit_branches(std::span<const HoldPoint> staircase, Response response, const std::string& file,
+BranchFits fit_branches(std::span<const HoldPoint> staircase, MeasuredSignal response, const std::string& file,
                         const std::string& what);
 
 // Every repeat's inflation branch must rise with the command and its deflation branch fall;
 // a reading may step back by at most `tolerance_fraction` of the branch's span (noise).
-void check_staircase_monotone(std::span<const HoldPoint> staircase, Response response, double tolerance_fraction,
+void check_staircase_monotone(std::span<const HoldPoint> staircase, MeasuredSignal response, double tolerance_fraction,
                               const std::string& file, const std::string& what);
 
 // Refuses a response that stays constant over the whole record (a sensor not wired, a
 // regulator without supply).
-void check_response_moves(std::span<const HoldPoint> points, Response response, const std::string& file,
+void check_response_moves(std::span<const HoldPoint> points, MeasuredSignal response, const std::string& file,
                           const std::string& what);
 
 struct RegulatorCheck {

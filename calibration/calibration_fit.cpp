@@ -85,12 +85,12 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
     }
     const std::string name = "channel " + std::to_string(c);
     const std::vector<HoldPoint> stairs = staircase_of(pts);
-    if (data.has_monitor) check_response_moves(pts, Response::monitor, file, name + " monitor");
-    if (data.has_sensor) check_response_moves(pts, Response::sensor, file, name + " sensor");
+    if (data.has_monitor) check_response_moves(pts, MeasuredSignal::monitor, file, name + " monitor");
+    if (data.has_sensor) check_response_moves(pts, MeasuredSignal::sensor, file, name + " sensor");
     if (!stairs.empty()) {
       if (data.has_monitor) {
-        check_staircase_monotone(stairs, Response::monitor, o.monotone_tolerance, file, name);
-        ch.regulator = fit_branches(stairs, Response::monitor, file, name + " regulator");
+        check_staircase_monotone(stairs, MeasuredSignal::monitor, o.monotone_tolerance, file, name);
+        ch.regulator = fit_branches(stairs, MeasuredSignal::monitor, file, name + " regulator");
         ch.regulator_check = check_regulator(ch.regulator->both, o.regulator_tolerance_kPa);
         if (!ch.regulator_check->passed()) {
           const LineFit& l = ch.regulator->both;
@@ -105,8 +105,8 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
         }
       }
       if (data.has_sensor) {
-        check_staircase_monotone(stairs, Response::sensor, o.monotone_tolerance, file, name);
-        ch.response = fit_branches(stairs, Response::sensor, file, name + " sensor");
+        check_staircase_monotone(stairs, MeasuredSignal::sensor, o.monotone_tolerance, file, name);
+        ch.response = fit_branches(stairs, MeasuredSignal::sensor, file, name + " sensor");
       }
       pooled.insert(pooled.end(), stairs.begin(), stairs.end());
     }
@@ -168,8 +168,8 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
     bool several = false;
     for (const auto& p : pooled) several = several || p.channel != pooled.front().channel;
     if (several) {
-      if (data.has_monitor) out.pooled_regulator = fit_branches(pooled, Response::monitor, file, "all channels regulator");
-      if (data.has_sensor) out.pooled_response = fit_branches(pooled, Response::sensor, file, "all channels sensor");
+      if (data.has_monitor) out.pooled_regulator = fit_branches(pooled, MeasuredSignal::monitor, file, "all channels regulator");
+      if (data.has_sensor) out.pooled_response = fit_branches(pooled, MeasuredSignal::sensor, file, "all channels sensor");
     }
   }
   if (o.stress_pairs.empty()) out.notes.push_back("actuator stress lines from " + o.base.source + " (no --stress pairs)");

@@ -27,9 +27,24 @@ void register_gui_command(CLI::App& app) {
   sub->add_option("--screenshot", o->gui.screenshot_path, "Save the whole window as PNG after --after-s seconds, then exit");
   sub->add_option("--after-s", o->gui.after_s, "Seconds of live operation before the screenshot")
       ->default_val(2.0)->check(CLI::Range(0.1, 3600.0));
+  sub->add_option("--protocol", o->gui.session.protocol,
+                  "Open the experiment console on this protocol (with --participant and --db)");
+  sub->add_option("--participant", o->gui.session.participant,
+                  "Participant code, or sim:SEED for a pilot run with the simulated participant (it begins at once)");
+  sub->add_option("--db", o->gui.session.store, "Trial database (SQLite; created when missing)");
+  sub->add_option("--speed", o->gui.session.speed,
+                  "Simulated participant on the simulated rig: 0 = as fast as possible (default), 1 = real time")
+      ->check(CLI::Range(0.0, 1e6));
+  sub->add_flag("--resume", o->gui.session.resume,
+                "Continue this participant's unfinished session with this protocol at once");
   sub->add_flag("--json", o->gui.json, "At exit, print the loop's summary (ticks, overruns, wake-up latency) as JSON");
   sub->callback([o, sub]() {
     gui::GuiOptions g = o->gui;
+    const auto& session = g.session;
+    if (!session.protocol.empty() && (session.participant.empty() || session.store.empty())) {
+      throw InputError("command line", session.participant.empty() ? "participant" : "store",
+                       "a value with --protocol (the session needs a participant code and a trial database)");
+    }
     g.files.data_dir = cli::data_dir();
     g.run.telemetry_path = o->telemetry;
     g.run.want_fifo = !o->no_fifo;

@@ -6,6 +6,7 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
                                    const SessionLoopOptions& options) {
   SessionLoopResult result;
   int started_position = -1;
+  bool paused = false;
   double next_s = clock.now_s();
   try {
     while (runner.state() != RunnerState::done) {
@@ -15,7 +16,22 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
         result.stopped = true;
         return result;
       }
+      const bool pause_asked = options.pause && options.pause->load();
+      if (pause_asked != paused) {
+        paused = pause_asked;
+        if (paused) {
+          runner.pause(t);
+          started_position = -1;  // the held trial is presented (and announced) again
+        } else {
+          runner.begin(t);
+        }
+      }
       runner.advance(t);
+      if (paused) {
+        next_s += options.period_s;
+        clock.wait_until(next_s);
+        continue;
+      }
       const RunnerState s = runner.state();
       if (s == RunnerState::ready && participant.ready(t)) runner.begin(t);
       if (runner.state() == RunnerState::present || runner.state() == RunnerState::respond) {

@@ -161,6 +161,22 @@ void TrialRunner::advance(double t_s) {
   sample_felt(t_s);
 }
 
+void TrialRunner::pause(double t_s) {
+  switch (state_) {
+    case RunnerState::ready:
+    case RunnerState::done: return;
+    case RunnerState::present:
+    case RunnerState::respond: break;  // dropped: the same position is presented again
+    case RunnerState::inter_trial:
+      ++position_;  // committed on entry to inter_trial: go on with the next one
+      break;
+    case RunnerState::rest: break;
+  }
+  active_ = {};
+  output_.vent(t_s);
+  enter(position_ >= total_trials() ? RunnerState::done : RunnerState::ready, t_s);
+}
+
 bool TrialRunner::respond(const Response& response, double t_s) {
   if (state_ != RunnerState::present && state_ != RunnerState::respond) return false;
   finish_trial(&response, t_s);

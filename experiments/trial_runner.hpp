@@ -79,6 +79,10 @@ class TrialRunner {
   bool respond(const Response& response, double t_s);
   // Stop now (operator or signal): vents; the trial in progress is not recorded.
   void abort(double t_s);
+  // The experimenter pauses: vents now and holds the session in `ready`. A trial in progress
+  // is not recorded and is presented again from its start by the next begin(); a trial
+  // already committed (inter-trial pause) is not repeated; a break is cut short.
+  void pause(double t_s);
 
  private:
   void enter(RunnerState s, double t_s);

@@ -26,7 +26,7 @@ ChartSeries line_series(const std::string& label, const LineFit& f, unsigned rgb
 
 // Staircase readings per branch with the fitted lines (paper 002 fig. 8).
 Chart branch_chart(const std::string& title, const std::string& y_label, const std::vector<HoldPoint>& pts,
-                   Response response, const BranchFits& fits) {
+                   MeasuredSignal response, const BranchFits& fits) {
   Chart c;
   c.title = title;
   c.x_label = "commanded pressure (kPa)";
@@ -70,10 +70,10 @@ std::vector<std::filesystem::path> plot_fit(const std::filesystem::path& dir, co
     const auto pts = data.channel_points(ch.channel);
     if (ch.regulator)
       save(branch_chart("Channel " + n + ": regulator monitor against command", "monitored pressure (kPa)", pts,
-                        Response::monitor, *ch.regulator),
+                        MeasuredSignal::monitor, *ch.regulator),
            "channel_" + n + "_regulator.png");
     if (ch.response)
-      save(branch_chart("Channel " + n + ": " + r.sensor_name + " against command", r.sensor_name, pts, Response::sensor,
+      save(branch_chart("Channel " + n + ": " + r.sensor_name + " against command", r.sensor_name, pts, MeasuredSignal::sensor,
                         *ch.response),
            "channel_" + n + "_sensor.png");
     if (ch.hysteresis) {

@@ -1,5 +1,7 @@
 #include "gui/calibration_job.hpp"
 
+#include "gui/calibration_charts.hpp"
+
 namespace palprig::gui {
 
 CalibrationJob::CalibrationJob(RigBackend& backend, RigConfig rig, SweepSchedule schedule, SweepRunOptions options,
@@ -14,6 +16,23 @@ CalibrationJob::CalibrationJob(RigBackend& backend, RigConfig rig, SweepSchedule
     } catch (const std::exception& e) {
       error_ = e.what();
       backend.vent();  // the runner vents on its own errors; this covers the data file's
+    }
+    finished_.store(true, std::memory_order_release);
+  });
+}
+
+CalibrationJob::CalibrationJob(RigBackend& backend, RigConfig rig, CalibrationModels cal, EvaluationOptions options,
+                               std::filesystem::path chart_dir)
+    : evaluation_channels_(options.channels) {
+  options.stop_signal = &stop_flag_;
+  worker_ = std::thread([this, &backend, rig = std::move(rig), cal = std::move(cal), options,
+                         chart_dir = std::move(chart_dir)] {
+    try {
+      evaluation_ = evaluate_compensation(backend, rig, cal, options);
+      charts_ = plot_evaluation(chart_dir, *evaluation_, options.channels);
+    } catch (const std::exception& e) {
+      error_ = e.what();
+      backend.vent();
     }
     finished_.store(true, std::memory_order_release);
   });

@@ -1,34 +1,48 @@
 #pragma once
-// CalibrationJob: one calibration sweep on its own thread, so the window keeps drawing while
-// the rig holds its levels. It calls calibration/sweep_recording (the same plan, runner and
-// data file as `palprig calibrate sweep`) on a backend the window has handed over: the live
-// loop is stopped and vented first, so the backend has one owner at a time. The GUI reads
-// progress from atomics on its poll timer; the worker never emits a Qt signal. stop() sets the
-// sweep's stop flag: the runner vents every channel and the data recorded so far is kept.
+// CalibrationJob: one calibration sweep, or one compensation evaluation, on its own thread, so
+// the window keeps drawing while the rig holds its levels. A sweep calls
+// calibration/sweep_recording (the same plan, runner and data file as `palprig calibrate
+// sweep`); an evaluation calls evaluate_compensation (as `palprig calibrate evaluate`) and draws
+// its charts (gui/calibration_charts' plot_evaluation) before it finishes. Both run on a backend
+// the window has handed over: the live loop is stopped and vented first, so the backend has one
+// owner at a time. The GUI reads progress from atomics on its poll timer; the worker never emits
+// a Qt signal. stop() sets the stop flag: the runner vents every channel and what was recorded
+// so far is kept.
 #include <atomic>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "calibration/compensation_evaluation.hpp"
 #include "calibration/sweep_recording.hpp"
 
 namespace palprig::gui {
 
 class CalibrationJob {
  public:
-  // Starts at once. The backend must stay alive until finished() (the destructor waits).
+  // A sweep; starts at once. The backend must stay alive until finished() (the destructor waits).
   CalibrationJob(RigBackend& backend, RigConfig rig, SweepSchedule schedule, SweepRunOptions options,
                  std::filesystem::path data_path);
+  // An evaluation of `cal` (read from its file as the CLI reads it); its charts go to chart_dir.
+  CalibrationJob(RigBackend& backend, RigConfig rig, CalibrationModels cal, EvaluationOptions options,
+                 std::filesystem::path chart_dir);
   ~CalibrationJob();  // stop() and join
   CalibrationJob(const CalibrationJob&) = delete;
   CalibrationJob& operator=(const CalibrationJob&) = delete;
 
   void stop() noexcept { stop_flag_.store(1); }
   bool finished() const noexcept { return finished_.load(std::memory_order_acquire); }
+  bool is_evaluation() const noexcept { return evaluation_channels_.has_value(); }
   std::size_t holds_done() const noexcept { return done_.load(std::memory_order_relaxed); }
-  std::size_t holds_total() const noexcept { return total_; }
-  // Valid once finished(): the outcome, or error() when the data file could not be written.
+  std::size_t holds_total() const noexcept { return total_; }  // 0 for an evaluation (no progress count)
+  // Valid once finished(): the outcome, or error() when the data file could not be written or
+  // the library refused the evaluation.
   const SweepRecording& recording() const noexcept { return recording_; }
+  const std::optional<EvaluationResult>& evaluation() const noexcept { return evaluation_; }
+  const std::vector<std::filesystem::path>& evaluation_charts() const noexcept { return charts_; }
+  const std::array<bool, kFingerCount>& evaluated_channels() const noexcept { return *evaluation_channels_; }
   const std::string& error() const noexcept { return error_; }
   const std::filesystem::path& data_path() const noexcept { return data_path_; }
 
@@ -38,7 +52,11 @@ class CalibrationJob {
   std::atomic<int> stop_flag_{0};
   std::atomic<std::size_t> done_{0};
   std::atomic<bool> finished_{false};
-  SweepRecording recording_;  // written by the worker before finished_, read after
+  // Written by the worker before finished_, read after.
+  SweepRecording recording_;
+  std::optional<EvaluationResult> evaluation_;
+  std::optional<std::array<bool, kFingerCount>> evaluation_channels_;
+  std::vector<std::filesystem::path> charts_;
   std::string error_;
   std::thread worker_;
 };

@@ -17,10 +17,12 @@
 #include <QSpinBox>
 #include <QTableWidget>
 #include <QTimer>
+#include <QtConcurrent/QtConcurrentRun>
 #include <cmath>
 
 #include "calibration/calibration_report.hpp"
 #include "calibration/calibration_writer.hpp"
+#include "formats/calibration_file.hpp"
 #include "gui/calibration_charts.hpp"
 
 namespace palprig::gui {
@@ -107,6 +109,12 @@ CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidge
   save_row->addWidget(save_);
   save_row->addWidget(use_);
   fit_form->addRow(save_row);
+  evaluate_ = new QPushButton("Evaluate (with / without compensation)");
+  evaluate_->setObjectName("cal_evaluate");
+  evaluate_->setEnabled(false);
+  evaluate_->setToolTip("palprig calibrate evaluate with the fitted file: the same test trajectory without and with "
+                        "the hysteresis compensation, RMS tracking error per channel");
+  fit_form->addRow(evaluate_);
 
   status_ = new QLabel("Start runs the sweep on the connected rig; the live loop is vented meanwhile.");
   status_->setObjectName("cal_status");
@@ -131,7 +139,7 @@ CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidge
 
   auto* chart_host = new QWidget;
   charts_ = new QGridLayout(chart_host);
-  auto* scroll = new QScrollArea;
+  auto* scroll = chart_scroll_ = new QScrollArea;
   scroll->setObjectName("cal_charts");
   scroll->setWidget(chart_host);
   scroll->setWidgetResizable(true);
@@ -139,7 +147,9 @@ CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidge
   auto* right = new QVBoxLayout;
   right->addWidget(new QLabel("Fit table (paper 002 fig. 8 layout)"));
   right->addWidget(table_, 2);
-  right->addWidget(new QLabel("Per channel: branch lines; recorded holds (the loop before compensation) and the fitted model's loops"));
+  right->addWidget(new QLabel("Per channel: branch lines; recorded holds (the loop before compensation) and the fitted "
+                              "model's loops; after Evaluate, tracking error and output against target without and with "
+                              "compensation"));
   right->addWidget(scroll, 3);
 
   auto* layout = new QHBoxLayout(this);
@@ -152,13 +162,18 @@ CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidge
   connect(start_, &QPushButton::clicked, this, &CalibrationPage::start_sweep);
   connect(stop_, &QPushButton::clicked, this, &CalibrationPage::stop_sweep);
   connect(fit_, &QPushButton::clicked, this, &CalibrationPage::fit);
+  connect(&fit_watcher_, &QFutureWatcher<CalibrationFitOutcome>::finished, this, &CalibrationPage::fit_done);
+  connect(evaluate_, &QPushButton::clicked, this, &CalibrationPage::evaluate);
   connect(save_, &QPushButton::clicked, this, &CalibrationPage::save);
   connect(use_, &QPushButton::clicked, this, [this] {
     if (host_.use_calibration(saved_path_.toStdString())) say("The live rig now uses " + saved_path_ + ".");
   });
 }
 
-CalibrationPage::~CalibrationPage() { cancel_sweep(); }
+CalibrationPage::~CalibrationPage() {
+  cancel_sweep();
+  fit_watcher_.waitForFinished();  // the fit touches only its own copies and the work folder
+}
 
 void CalibrationPage::cancel_sweep() {
   timer_->stop();
@@ -196,9 +211,11 @@ void CalibrationPage::start_sweep() {
   }
   result_.reset();
   data_.reset();
+  evaluation_.reset();
   fit_->setEnabled(false);
   save_->setEnabled(false);
   use_->setEnabled(false);
+  evaluate_->setEnabled(false);
   table_->setRowCount(0);
   RigBackend& backend = host_.take_backend();
   job_ = std::make_unique<CalibrationJob>(backend, rig, std::move(schedule), run, data_path().toStdString());
@@ -216,10 +233,17 @@ void CalibrationPage::stop_sweep() {
 
 void CalibrationPage::poll_job() {
   if (!job_) return;
-  progress_->setValue(int(job_->holds_done()));
+  if (!job_->is_evaluation()) progress_->setValue(int(job_->holds_done()));
   if (!job_->finished()) return;
   timer_->stop();
   std::unique_ptr<CalibrationJob> job = std::move(job_);
+  if (job->is_evaluation()) {
+    evaluation_done(*job);
+    job.reset();  // joined: the backend is free again
+    host_.give_back_backend();
+    emit evaluation_finished();
+    return;
+  }
   const std::string error = job->error();
   const SweepOutcome o = job->recording().outcome;
   job.reset();  // joined: the backend is free again
@@ -245,28 +269,6 @@ void CalibrationPage::poll_job() {
     fit_->setEnabled(o.holds_done > 0);
   }
   emit sweep_finished();
-}
-
-void CalibrationPage::fit() {
-  // The same calls as `palprig calibrate fit DATA` with its defaults (paper 002's base models).
-  // Ceres takes well under a second on a staircase; it runs here, beside the loop's own thread.
-  try {
-    CalibrationFitOptions options;
-    options.date = utc_timestamp_now();
-    data_ = read_sweep_csv(data_path().toStdString());
-    result_ = fit_calibration(*data_, options);
-  } catch (const std::exception& e) {
-    result_.reset();
-    say(QString("palprig: ") + e.what(), true);
-    return;
-  }
-  show_table();
-  show_charts();
-  save_->setEnabled(true);
-  QStringList notes;
-  for (const auto& n : result_->notes) notes << QString::fromStdString(n);
-  say("Fitted." + (notes.isEmpty() ? QString() : " " + notes.join("; ")));
-  emit fitted();
 }
 
 void CalibrationPage::show_table() {
@@ -303,18 +305,19 @@ void CalibrationPage::show_charts() {
     delete item->widget();
     delete item;
   }
-  const std::filesystem::path dir = work_dir_.filePath("charts").toStdString();
-  std::filesystem::remove_all(dir);
   // Per channel one row: its regulator (and sensor) branch lines, then the hysteresis chart:
   // the recorded holds (the loop before compensation) with the fitted model's major and minor
-  // loops (what the tick inverts).
+  // loops (what the tick inverts). After an evaluation, one more row per channel: its tracking
+  // error and its output-against-target loops without and with compensation.
   int row = -1, column = 0;
-  std::string channel;
-  for (const auto& png : plot_fit(dir, *data_, *result_)) {
-    const std::string stem = png.stem().string();  // channel_N_regulator / _sensor / _hysteresis
-    const std::string this_channel = stem.substr(0, stem.find('_', 8));
-    if (this_channel != channel) {
-      channel = this_channel;
+  std::string group;
+  std::vector<std::filesystem::path> pngs = fit_charts_;
+  pngs.insert(pngs.end(), evaluation_charts_.begin(), evaluation_charts_.end());
+  for (const auto& png : pngs) {
+    const std::string stem = png.stem().string();  // channel_N_regulator, evaluate_channel_N_loops, ...
+    const std::string this_group = stem.substr(0, stem.rfind('_'));
+    if (this_group != group) {
+      group = this_group;
       ++row;
       column = 0;
     }

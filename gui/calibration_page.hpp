@@ -7,7 +7,12 @@
 // fit_calibration as `calibrate fit` does and shows paper 002's fig. 8 table and the charts of
 // gui/calibration_charts (branch lines; recorded hysteresis and the fitted model's loops).
 // Save writes the file through calibration_writer (checked by the controller's own reader
-// before it replaces anything); "Use in live rig" reloads the window with it.
+// before it replaces anything); "Use in live rig" reloads the window with it. Evaluate runs
+// `palprig calibrate evaluate`'s call (evaluate_compensation with its defaults) with the fitted
+// file on a CalibrationJob: tracking errors and output-against-target loops without and with
+// compensation (gui/calibration_charts' plot_evaluation). The Ceres fit runs on a worker
+// (QtConcurrent) too, with the buttons disabled and the progress bar busy meanwhile.
+#include <QFutureWatcher>
 #include <QWidget>
 #include <functional>
 #include <memory>
@@ -16,6 +21,8 @@
 #include <QTemporaryDir>
 
 #include "calibration/calibration_fit.hpp"
+#include "calibration/compensation_evaluation.hpp"
+#include "calibration/sweep_csv.hpp"
 #include "formats/rig_file.hpp"
 #include "gui/calibration_job.hpp"
 
@@ -24,6 +31,7 @@ class QDoubleSpinBox;
 class QLabel;
 class QLineEdit;
 class QProgressBar;
+class QScrollArea;
 class QPushButton;
 class QSpinBox;
 class QTableWidget;
@@ -31,6 +39,15 @@ class QTimer;
 class QGridLayout;
 
 namespace palprig::gui {
+
+// One fit, made on a worker: the data read, the library's result and the charts drawn, or the
+// library's refusal.
+struct CalibrationFitOutcome {
+  std::optional<SweepData> data;
+  std::optional<CalibrationResult> result;
+  std::vector<std::filesystem::path> charts;
+  std::string error;
+};
 
 // What the page needs from the window that owns the rig.
 struct CalibrationHost {
@@ -46,23 +63,31 @@ class CalibrationPage final : public QWidget {
   explicit CalibrationPage(CalibrationHost host, QWidget* parent = nullptr);
   ~CalibrationPage() override;
 
-  bool sweeping() const noexcept { return job_ != nullptr; }
+  bool sweeping() const noexcept { return job_ != nullptr; }  // a sweep or an evaluation holds the rig
+  bool fitting() const noexcept { return fit_watcher_.isRunning(); }
   void stop_sweep();  // VENT while calibrating: the runner vents every channel, data kept
   // The window is closing: stop and join the sweep now, before the backend goes; the rig is
   // not handed back.
   void cancel_sweep();
   const std::optional<CalibrationResult>& result() const noexcept { return result_; }
+  const std::optional<EvaluationResult>& evaluation() const noexcept { return evaluation_; }
   QString data_path() const;
 
  signals:
   void sweep_finished();  // tests wait on these
   void fitted();
+  void fit_finished();  // after fitted(), or after the library refused the fit
   void saved(const QString& path);
+  void evaluation_finished();  // after the evaluation completed, stopped, faulted or was refused
 
  private:
   void start_sweep();
   void poll_job();
   void fit();
+  void fit_done();
+  void evaluate();
+  void evaluation_done(const CalibrationJob& job);
+  void set_busy(bool busy);
   void save();
   void show_table();
   void show_charts();
@@ -73,14 +98,19 @@ class CalibrationPage final : public QWidget {
   std::unique_ptr<CalibrationJob> job_;
   std::optional<CalibrationResult> result_;
   std::optional<SweepData> data_;
+  std::optional<EvaluationResult> evaluation_;
+  std::vector<std::filesystem::path> fit_charts_, evaluation_charts_;
+  QFutureWatcher<CalibrationFitOutcome> fit_watcher_;
   QCheckBox* channels_[3] = {};
   QDoubleSpinBox *from_ = nullptr, *to_ = nullptr, *step_ = nullptr;
   QSpinBox* repeats_ = nullptr;
-  QPushButton *start_ = nullptr, *stop_ = nullptr, *fit_ = nullptr, *save_ = nullptr, *use_ = nullptr;
+  QPushButton *start_ = nullptr, *stop_ = nullptr, *fit_ = nullptr, *save_ = nullptr, *use_ = nullptr,
+              *evaluate_ = nullptr;
   QProgressBar* progress_ = nullptr;
   QLabel* status_ = nullptr;
   QTableWidget* table_ = nullptr;
   QGridLayout* charts_ = nullptr;
+  QScrollArea* chart_scroll_ = nullptr;
   QLineEdit* save_path_ = nullptr;
   QTimer* timer_ = nullptr;
   QString saved_path_;

@@ -70,7 +70,7 @@ struct Range {
 
 }  // namespace
 
-void write_chart_png(const Chart& chart, const std::filesystem::path& path) {
+void paint_chart(QPainter& p, const Chart& chart) {
   Range xr, yr;
   bool bars = false;
   std::size_t bar_series = 0;
@@ -78,6 +78,8 @@ void write_chart_png(const Chart& chart, const std::filesystem::path& path) {
     if (s.x.size() != s.y.size()) throw std::invalid_argument("chart series \"" + s.label + "\": x and y differ in size");
     if ((!s.y_low.empty() && s.y_low.size() != s.y.size()) || (!s.y_high.empty() && s.y_high.size() != s.y.size()))
       throw std::invalid_argument("chart series \"" + s.label + "\": error bars and y differ in size");
+    if (!s.bar_labels.empty() && s.bar_labels.size() != s.y.size())
+      throw std::invalid_argument("chart series \"" + s.label + "\": bar labels and y differ in size");
     for (std::size_t i = 0; i < s.x.size(); ++i) {
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
       xr.add(s.x[i]);
@@ -114,10 +116,7 @@ void write_chart_png(const Chart& chart, const std::filesystem::path& path) {
   if (chart.y_max) yr.hi = *chart.y_max;
   if (!(xr.hi > xr.lo) || !(yr.hi > yr.lo)) throw std::invalid_argument("chart \"" + chart.title + "\": empty axis range");
 
-  ensure_application();
-  QImage image(chart.width_px, chart.height_px, QImage::Format_ARGB32);
-  image.fill(Qt::white);
-  QPainter p(&image);
+  p.fillRect(QRectF(0, 0, chart.width_px, chart.height_px), Qt::white);
   p.setRenderHint(QPainter::Antialiasing, true);
   QFont font("DejaVu Sans");
   font.setPixelSize(13);
@@ -235,6 +234,46 @@ void write_chart_png(const Chart& chart, const std::filesystem::path& path) {
   }
   p.restore();
 
+  // Bar labels (n, or "n/a" for a measure with no cases) stand inside each bar from its foot, so
+  // neighbouring bars' labels never collide: across when the bar is wide enough, upright
+  // otherwise; above a bar too short to hold them, and on the baseline where a bar is missing.
+  {
+    QFont small = font;
+    small.setPixelSize(11);
+    p.setFont(small);
+    const QFontMetrics sm(small);
+    std::size_t index = 0;
+    const double slot = 0.8 / double(std::max<std::size_t>(bar_series, 1));
+    for (const auto& s : chart.series) {
+      if (s.style != ChartSeries::Style::bars) continue;
+      const double offset = -0.4 + slot * (double(index++) + 0.5);
+      for (std::size_t i = 0; i < s.bar_labels.size(); ++i) {
+        if (s.bar_labels[i].empty() || !std::isfinite(s.x[i])) continue;
+        const QString t = QString::fromStdString(s.bar_labels[i]);
+        const double bar_w = std::abs(px(s.x[i] + offset + 0.45 * slot) - px(s.x[i] + offset - 0.45 * slot));
+        const double foot = py(std::max(yr.lo, 0.0));
+        const bool has_bar = std::isfinite(s.y[i]);
+        const double bar_h = has_bar ? foot - py(std::min(std::max(s.y[i], 0.0), yr.hi)) : 0.0;
+        const bool across = sm.horizontalAdvance(t) + 4 <= bar_w;
+        const double extent = (across ? sm.height() : sm.horizontalAdvance(t)) + 6;
+        const bool inside = has_bar && bar_h >= extent;
+        const double base = inside ? foot - 3 : foot - bar_h - 3;  // bottom of the text
+        p.setPen(inside ? QColor(Qt::white) : has_bar ? QColor(Qt::black) : QColor(150, 40, 40));
+        const double cx = px(s.x[i] + offset);
+        if (across) {
+          p.drawText(QPointF(cx - sm.horizontalAdvance(t) / 2.0, base - sm.descent()), t);
+        } else {
+          p.save();
+          p.translate(cx + sm.ascent() / 2.0 - 1, base);
+          p.rotate(-90);
+          p.drawText(QPointF(0, 0), t);
+          p.restore();
+        }
+      }
+    }
+    p.setFont(font);
+  }
+
   // Labels, title and legend.
   p.setPen(axis);
   if (!chart.x_label.empty()) {
@@ -279,7 +318,22 @@ void write_chart_png(const Chart& chart, const std::filesystem::path& path) {
       p.drawText(QPointF(box.left() + 32, y + fm.ascent() / 2.0 - 1), text);
     }
   }
+}
+
+void ensure_chart_application() { ensure_application(); }
+
+QImage render_chart(const Chart& chart) {
+  ensure_application();
+  QImage image(chart.width_px, chart.height_px, QImage::Format_ARGB32);
+  image.fill(Qt::white);
+  QPainter p(&image);
+  paint_chart(p, chart);
   p.end();
+  return image;
+}
+
+void write_chart_png(const Chart& chart, const std::filesystem::path& path) {
+  const QImage image = render_chart(chart);
   if (!image.save(QString::fromStdString(path.string()), "PNG"))
     throw std::runtime_error("cannot write " + path.string());
 }

@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+class QPainter;
+class QImage;
+
 namespace palprig::gui {
 
 struct ChartSeries {
@@ -17,6 +20,7 @@ struct ChartSeries {
   Style style = Style::line;
   std::vector<double> x, y;   // non-finite points are skipped (a line breaks there)
   std::vector<double> y_low, y_high;  // optional error bar ends (absolute values), same size as y
+  std::vector<std::string> bar_labels;  // bars: optional text above each bar ("n=42", "n/a"), same size as y
   unsigned color_rgb = 0;     // 0xRRGGBB; 0 picks the next palette colour
   double width_px = 2.0;      // line width, point diameter / 3
 };
@@ -34,5 +38,12 @@ struct Chart {
 // Throws std::invalid_argument for a chart with nothing to draw or series of mismatched sizes,
 // std::runtime_error when the file cannot be written.
 void write_chart_png(const Chart& chart, const std::filesystem::path& path);
+
+// The same drawing on any paint device (a widget, an SVG generator) of chart.width_px x
+// chart.height_px. Throws std::invalid_argument as write_chart_png, before painting anything.
+void paint_chart(QPainter& painter, const Chart& chart);
+QImage render_chart(const Chart& chart);
+// Makes the offscreen application the fonts need when none exists (see write_chart_png).
+void ensure_chart_application();
 
 }  // namespace palprig::gui

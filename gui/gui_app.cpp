@@ -10,7 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gui/experiment_page.hpp"
 #include "gui/main_window.hpp"
+#include "gui/statistics_view.hpp"
+#include "experiments/simulated_participant.hpp"
 #include "models/parse_error.hpp"
 
 namespace palprig::gui {
@@ -57,17 +60,82 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
   MainWindow window(std::move(run), o.files, o.run);
   window.show();
   int exit_code = 0;
+  bool shot_taken = false;
+  // The screenshot: the whole window, or with a session its statistics view, when the session
+  // ended (and the statistics were refreshed) or after_s passed, whichever comes first.
+  auto take_screenshot = [&](QWidget& what) {
+    if (shot_taken) return;
+    shot_taken = true;
+    const QPixmap shot = what.grab();
+    if (!shot.save(QString::fromStdString(o.screenshot_path), "PNG")) {
+      std::cerr << "palprig: " << o.screenshot_path << ": cannot write the screenshot\n";
+      if (exit_code == 0) exit_code = 1;
+    }
+    window.set_close_without_asking(true);
+    window.close();
+  };
+  if (!o.session.protocol.empty()) {
+    ExperimentPage& page = *window.experiment_page();
+    window.pages()->setCurrentWidget(&page);
+    QObject::connect(&page.session_run(), &SessionRun::started, &window, [&](const SessionStart& s) {
+      std::cout << "palprig gui: " << s.protocol_name << ", participant " << s.participant.code << ", session "
+                << s.session_id << ", "
+                << (s.resumed ? "resumed at trial " + std::to_string(s.start_position + 1) : std::string("new")) << ", "
+                << s.total_trials << " trials, database " << o.session.store << "\n" << std::flush;
+    });
+    QObject::connect(&page, &ExperimentPage::sessionEnded, &window, [&](const SessionEnd& e) {
+      if (!e.fault.empty()) {
+        std::cerr << "palprig: rig fault: " << e.fault << "; " << e.committed_trials << " of " << e.total_trials
+                  << " trials kept, continue with --resume\n";
+        exit_code = 1;
+      } else {
+        std::cout << "palprig gui: session " << (e.completed ? "completed" : "stopped") << ": " << e.committed_trials
+                  << " of " << e.total_trials << " trials in " << o.session.store << "\n" << std::flush;
+      }
+    });
+    QObject::connect(&page, &ExperimentPage::sessionRefused, &window, [&](const QString& line, int code) {
+      refuse(line.toStdString(), code, interactive);
+      exit_code = code;
+      if (!interactive) {
+        shot_taken = true;  // nothing to show: the refusal is the result
+        window.set_close_without_asking(true);
+        window.close();
+      }
+    });
+    if (!interactive) {
+      // At the end: one more refresh of the statistics, then their picture (a store that cannot
+      // be read is pictured with its message).
+      StatisticsView& stats = *page.statistics();
+      QObject::connect(&page.session_run(), &SessionRun::finished, &window, [&] {
+        if (shot_taken) return;
+        page.show_statistics();
+        QObject::connect(&stats, &StatisticsView::refreshed, &window, [&] {
+          if (!stats.refreshing()) take_screenshot(stats);  // the last of a coalesced chain
+        });
+        QObject::connect(&stats, &StatisticsView::refresh_failed, &window, [&] { take_screenshot(stats); });
+        stats.refresh();
+      });
+    }
+    page.set_fields({o.session.protocol, o.session.participant, o.session.store, o.session.speed});
+    std::uint64_t seed = 0;
+    const bool pilot = parse_simulated_participant(o.session.participant, seed);
+    if ((pilot || o.session.resume) && !page.begin(o.session.resume)) {
+      window.set_close_without_asking(true);
+      return refuse(page.refusal_text().toStdString(), 2, interactive);
+    }
+  }
   if (!o.screenshot_path.empty()) {
     QTimer::singleShot(int(o.after_s * 1000), &window, [&] {
-      const QPixmap shot = window.grab();
-      if (!shot.save(QString::fromStdString(o.screenshot_path), "PNG")) {
-        std::cerr << "palprig: " << o.screenshot_path << ": cannot write the screenshot\n";
-        exit_code = 1;
+      if (!o.session.protocol.empty()) {
+        window.experiment_page()->show_statistics();
+        take_screenshot(*window.experiment_page()->statistics());
       }
-      window.close();
+      else take_screenshot(window);
     });
   }
   app.exec();
+  // SIGINT/SIGTERM ends the run (and a session: vented, committed trials kept) as a stop, exit 1.
+  if (o.run.stop_signal && o.run.stop_signal->load() != 0 && exit_code == 0) exit_code = 1;
   window.run().stop();
   const RunSummary& s = window.run().last_summary();
   if (o.json) std::cout << summary_json(s).dump(2) << "\n";

@@ -10,15 +10,27 @@
 
 namespace palprig::gui {
 
+// `palprig gui --protocol F --participant CODE --db F`: the console opens on that session. A
+// simulated participant (sim:SEED, a pilot run) begins at once; a person's session begins on
+// Begin (or at once with resume, continuing the unfinished session at the exact trial).
+struct GuiSessionOptions {
+  std::string protocol, participant, store;
+  double speed = 0;
+  bool resume = false;
+};
+
 struct GuiOptions {
   LiveRunFiles files;
   LiveRunOptions run;
   std::string screenshot_path;  // empty: interactive
-  double after_s = 2.0;         // with a screenshot: seconds of live operation first
+  double after_s = 2.0;         // with a screenshot: seconds of live operation first (a session:
+                                // the screenshot is taken when it ends or after_s passed)
+  GuiSessionOptions session;    // protocol empty: no session
   bool json = false;            // print the loop's summary as JSON at exit
 };
 
-// Exit codes as the CLI's: 0 done, 1 the rig faulted (vented), 2 a file was refused.
+// Exit codes as the CLI's: 0 done, 1 the rig faulted (vented), 2 a file was refused. With a
+// session: 1 also when the session faulted, 2 when it was refused.
 int run_gui(int argc, char** argv, const GuiOptions& options);
 
 }  // namespace palprig::gui

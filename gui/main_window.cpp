@@ -14,6 +14,7 @@
 #include <QTimer>
 
 #include "gui/calibration_page.hpp"
+#include "gui/experiment_page.hpp"
 #include "gui/live_page.hpp"
 #include "gui/rig_panel.hpp"
 #include "models/parse_error.hpp"
@@ -27,6 +28,7 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
   setCentralWidget(tabs_);
   build_live_page();
   build_calibration_page();
+  build_experiment_page();
 
   status_ = new QLabel;
   status_->setObjectName("loop_status");
@@ -45,10 +47,13 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
   vent->setContext(Qt::ApplicationShortcut);
   connect(vent, &QShortcut::activated, this, [this] {
     if (calibration_page_->sweeping()) calibration_page_->stop_sweep();  // the sweep owns the rig
+    if (experiment_page_->session_running()) experiment_page_->pause();  // vents, holds the trial
     live_page_->rig_panel()->vent_now();
   });
-  auto* pause = new QShortcut(QKeySequence(Qt::Key_Space), this);
-  connect(pause, &QShortcut::activated, this, [this] { live_page_->toggle_pause(); });
+  live_pause_ = new QShortcut(QKeySequence(Qt::Key_Space), this);
+  connect(live_pause_, &QShortcut::activated, this, [this] { live_page_->toggle_pause(); });
+  connect(tabs_, &QTabWidget::currentChanged, this,
+          [this] { live_pause_->setEnabled(tabs_->currentWidget() == live_page_); });
   auto* outlines = new QShortcut(QKeySequence(Qt::CTRL | Qt::Key_T), this);
   connect(outlines, &QShortcut::activated, this, [this] { live_page_->tumor_outlines()->toggle(); });
 
@@ -61,6 +66,7 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
 }
 
 MainWindow::~MainWindow() {
+  experiment_page_->abort_and_wait(false);  // the session vents and closes its rig first
   calibration_page_->cancel_sweep();  // before the backend it borrowed goes with run_
   if (run_) run_->stop();
 }
@@ -90,6 +96,25 @@ void MainWindow::build_calibration_page() {
   tabs_->addTab(calibration_page_, "Calibration");
 }
 
+void MainWindow::build_experiment_page() {
+  ExperimentHost host;
+  host.rig_file = [this] {
+    return files_.rig_path.empty() ? files_.data_dir / "rigs" / "simulated.json" : std::filesystem::path(files_.rig_path);
+  };
+  host.calibration_file = [this] { return std::filesystem::path(files_.cal_path); };
+  host.take_rig = [this] {
+    live_page_->setEnabled(false);  // no Arm while a session owns the rig
+    run_->stop();                   // the live loop vents and ends: one user of the rig at a time
+  };
+  host.give_back_rig = [this] {
+    QWidget* current = tabs_->currentWidget();
+    open_files(files_);  // the live loop starts again on the same files
+    tabs_->setCurrentWidget(current);
+  };
+  experiment_page_ = new ExperimentPage(std::move(host));
+  tabs_->addTab(experiment_page_, "Experiment");
+}
+
 void MainWindow::build_live_page() {
   const int index = live_page_ ? tabs_->indexOf(live_page_) : -1;
   if (live_page_) {
@@ -103,11 +128,17 @@ void MainWindow::build_live_page() {
 
 void MainWindow::poll() {
   if (options_.stop_signal && options_.stop_signal->load() != 0) {
+    close_without_asking_ = true;
     close();  // SIGINT/SIGTERM: the loop has vented on its own already
     return;
   }
   run_->poll_finished();
   const FeedStatus st = live_page_->poll();
+  if (experiment_page_->session_running()) {
+    status_->setText("study session running: it owns the rig (the live loop is stopped and vented until it ends)");
+    emit polled();
+    return;
+  }
   status_->setText(QString("loop %1 Hz   overruns %2   wake-up p50 %3 us  p99 %4 us   ticks %5%6")
                        .arg(st.loop_rate_hz, 0, 'f', 0)
                        .arg(st.overruns)
@@ -161,6 +192,24 @@ void MainWindow::choose_file(const QString& what, std::string LiveRunFiles::*fie
 }
 
 void MainWindow::closeEvent(QCloseEvent* e) {
+  if (experiment_page_->session_running()) {
+    if (!close_without_asking_) {
+      QMessageBox question(QMessageBox::Question, "palprig",
+                           "A study session is running. Stop it and close? Every channel is vented; every committed "
+                           "trial is kept and the session can be resumed.",
+                           QMessageBox::Yes | QMessageBox::No, this);
+      question.setObjectName("close_question");
+      question.setDefaultButton(QMessageBox::No);
+      close_question_ = &question;
+      const int answer = question.exec();
+      close_question_ = nullptr;
+      if (answer != QMessageBox::Yes) {
+        e->ignore();
+        return;
+      }
+    }
+    experiment_page_->abort_and_wait(false);  // vents, keeps what was committed
+  }
   timer_->stop();
   calibration_page_->cancel_sweep();  // the runner vents every channel
   run_->stop();  // the loop vents every channel as it ends

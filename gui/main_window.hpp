@@ -1,6 +1,6 @@
 #pragma once
-// MainWindow: the palprig application window. One page per job in a QTabWidget ("Live rig"
-// and "Calibration"; the experiment console adds a page beside them), a status bar with the
+// MainWindow: the palprig application window. One page per job in a QTabWidget ("Live rig",
+// "Calibration" and "Experiment", the study session console), a status bar with the
 // loop's rate, overruns and wake-up latency, and the window-wide shortcuts (Esc is VENT).
 // It owns the LiveRun; closing the window stops the loop, which vents every channel.
 #include <QMainWindow>
@@ -11,12 +11,14 @@
 
 class QLabel;
 class QMessageBox;
+class QShortcut;
 class QTabWidget;
 class QTimer;
 
 namespace palprig::gui {
 
 class CalibrationPage;
+class ExperimentPage;
 class LivePage;
 
 class MainWindow final : public QMainWindow {
@@ -28,6 +30,11 @@ class MainWindow final : public QMainWindow {
   LiveRun& run() noexcept { return *run_; }
   LivePage* live_page() const noexcept { return live_page_; }
   CalibrationPage* calibration_page() const noexcept { return calibration_page_; }
+  ExperimentPage* experiment_page() const noexcept { return experiment_page_; }
+  // Closing during a study session asks first (the session is aborted, vented, and every
+  // committed trial kept); scripted runs (screenshot, signals) close without asking.
+  void set_close_without_asking(bool on) noexcept { close_without_asking_ = on; }
+  QMessageBox* close_question() const noexcept { return close_question_; }
   QTabWidget* pages() const noexcept { return tabs_; }
   QLabel* status_text() const noexcept { return status_; }
   // Load other files (File menu). A refused file shows the same one line as the CLI in a
@@ -45,6 +52,7 @@ class MainWindow final : public QMainWindow {
   void poll();
   void build_live_page();
   void build_calibration_page();
+  void build_experiment_page();
   void choose_file(const QString& what, std::string LiveRunFiles::*field, const QString& filter);
 
   std::unique_ptr<LiveRun> run_;
@@ -53,6 +61,10 @@ class MainWindow final : public QMainWindow {
   QTabWidget* tabs_ = nullptr;
   LivePage* live_page_ = nullptr;
   CalibrationPage* calibration_page_ = nullptr;
+  ExperimentPage* experiment_page_ = nullptr;
+  QShortcut* live_pause_ = nullptr;  // Space on the Live tab only (the participant's Space is Ready)
+  bool close_without_asking_ = false;
+  QMessageBox* close_question_ = nullptr;
   QLabel* status_ = nullptr;
   QTimer* timer_ = nullptr;
   QMessageBox* refusal_ = nullptr;

@@ -56,6 +56,16 @@ void SceneView::set_mouse_force_N(double f) {
   if (pen_.in_contact) pen_.force_N = mouse_force_N_;
 }
 
+void SceneView::set_map_visible(bool on) {
+  map_visible_ = on;
+  update();
+}
+
+void SceneView::set_marks(const std::vector<QPointF>& marks_mm) {
+  marks_mm_ = marks_mm;
+  update();
+}
+
 void SceneView::set_tumors_visible(bool on) {
   tumors_visible_ = on;
   update();
@@ -94,6 +104,11 @@ void SceneView::heartbeat() {
 }
 
 void SceneView::mousePressEvent(QMouseEvent* e) {
+  if (e->button() == Qt::RightButton) {
+    const QPointF mm = mm_of(e->position());
+    emit markRequested(mm.x(), mm.y());
+    return;
+  }
   if (e->button() != Qt::LeftButton) return;
   publish_pen(e->position(), mouse_force_N_, true);
 }
@@ -200,7 +215,8 @@ void SceneView::render_to(QPainter& p) {
   p.setRenderHint(QPainter::Antialiasing);
   p.fillRect(rect(), QColor(60, 60, 66));
   const QRectF r = scene_rect();
-  p.drawImage(r, image_);
+  if (map_visible_) p.drawImage(r, image_);
+  else p.fillRect(r, QColor(222, 184, 160));  // plain tissue: nothing to see, only to feel
   p.save();
   p.setClipRect(r);  // the tissue, its arteries and dimples end at the scene's edge
   const double px_per_mm = r.width() / (bounds_.x1_mm - bounds_.x0_mm);
@@ -234,6 +250,14 @@ void SceneView::render_to(QPainter& p) {
       p.drawEllipse(c, rad, rad);
       p.drawText(c + QPointF(rad + 3, -rad), QString::fromStdString(t.name));
     }
+  }
+  // The participant's marks, numbered in the order placed.
+  for (std::size_t i = 0; i < marks_mm_.size(); ++i) {
+    const QPointF c = pixel_of(marks_mm_[i].x(), marks_mm_[i].y());
+    p.setPen(QPen(QColor(0, 90, 200), 3));
+    p.drawLine(c + QPointF(-8, -8), c + QPointF(8, 8));
+    p.drawLine(c + QPointF(-8, 8), c + QPointF(8, -8));
+    p.drawText(c + QPointF(10, -6), QString::number(i + 1));
   }
   if (!have_record_) {
     p.restore();

@@ -37,6 +37,10 @@ class SceneView final : public QWidget {
   double mouse_force_N() const noexcept { return mouse_force_N_; }
   void set_tumors_visible(bool on);
   bool tumors_visible() const noexcept { return tumors_visible_; }
+  // The participant's view: the stiffness map hidden too (it would show the tumors), and the
+  // marks placed so far (x, y in mm; drawn numbered). Right-click asks for a mark there.
+  void set_map_visible(bool on);
+  void set_marks(const std::vector<QPointF>& marks_mm);
   void heartbeat();                                // GUI poll: re-publish the pen state
   void show_record(const TelemetryRecord& r);      // what the loop did last
   void advance_scene_time(double t_s);             // breathing scenes: re-render now and then
@@ -51,6 +55,7 @@ class SceneView final : public QWidget {
 
  signals:
   void mouseForceChanged(double force_N);
+  void markRequested(double x_mm, double y_mm);  // right button (the pen's side button)
 
  protected:
   void paintEvent(QPaintEvent*) override;
@@ -84,6 +89,8 @@ class SceneView final : public QWidget {
   WindowPen pen_;
   double mouse_force_N_ = 2.0;
   bool tumors_visible_ = true;
+  bool map_visible_ = true;
+  std::vector<QPointF> marks_mm_;
   bool have_record_ = false;
   TelemetryRecord record_;
   IndentationModel indentation_;

@@ -37,6 +37,7 @@ class ListenerBridge final : public RunnerListener {
       : recorder_(store, session_id), plan_(plan), protocol_(protocol), listener_(listener) {}
 
   void on_event(const RunnerEvent& e) override {
+    if (e.kind == RunnerEvent::Kind::state_changed && e.state == RunnerState::ready) last_started_ = -1;  // a pause holds the trial
     if (e.kind == RunnerEvent::Kind::state_changed && e.state == RunnerState::present && e.position >= 0 &&
         e.position != last_started_) {
       last_started_ = e.position;
@@ -66,7 +67,7 @@ std::uint64_t resumed_simulation_seed(std::uint64_t seed, int start_position) no
 }
 
 SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person,
-                             SessionListener& listener, const std::atomic<int>* stop) {
+                             SessionListener& listener, const std::atomic<int>* stop, const std::atomic<bool>* pause) {
   // Everything is loaded and validated before the rig is opened.
   const Protocol from_file = load_protocol(request.protocol_file);
   std::uint64_t sim_seed = 0;
@@ -155,6 +156,7 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
 
   SessionLoopOptions options;
   options.stop = stop;
+  options.pause = pause;
   options.output = &output;
   const SessionLoopResult result = run_session_loop(runner, *participant, *clock, options);
   backend->vent();

@@ -87,8 +87,11 @@ using PersonFactory = std::function<std::unique_ptr<Participant>(const Protocol&
 
 // Runs the session to its end, a stop (`stop` non-zero) or a rig fault. Throws InputError for
 // refused input (before anything moves, or when the store refuses the session).
+// `pause` (optional): true vents and holds the session at the trial in progress, false goes on
+// with it (experiments/session_loop.hpp).
 SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person,
-                             SessionListener& listener, const std::atomic<int>* stop);
+                             SessionListener& listener, const std::atomic<int>* stop,
+                             const std::atomic<bool>* pause = nullptr);
 
 // The simulated observer's seed for a session resumed at `start_position`: moved on by the
 // trials done, so the answers differ from those of the lost attempt.

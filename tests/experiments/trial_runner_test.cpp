@@ -172,5 +172,34 @@ TEST(experiments_trial_runner, resume_starts_at_the_given_position_and_abort_ven
   EXPECT_EQ(finished.state(), RunnerState::done);
 }
 
+TEST(experiments_trial_runner, pause_vents_and_holds_the_trial_in_progress) {
+  const Protocol p = small_protocol();
+  const SessionPlan plan = make_session_plan(p, 1, 1);
+  RecordingOutput out;
+  Collector c;
+  TrialRunner r(p, plan, 0, out, c);
+  r.begin(0);
+  r.advance(0.5);
+  ASSERT_EQ(r.state(), RunnerState::present);
+  r.pause(0.6);
+  EXPECT_EQ(r.state(), RunnerState::ready);
+  EXPECT_EQ(out.calls.back().what, "vent");
+  EXPECT_EQ(r.next_position(), 0) << "the interrupted trial is held";
+  EXPECT_TRUE(c.trials.empty()) << "an interrupted trial is not recorded";
+  r.advance(5.0);
+  EXPECT_EQ(r.state(), RunnerState::ready) << "a paused session waits";
+  r.begin(10.0);
+  EXPECT_EQ(r.state(), RunnerState::present);
+  EXPECT_EQ(out.calls.back().kPa, (ChannelPressures{0, 30, 0})) << "the held trial again from its start";
+  ASSERT_TRUE(r.respond(Response{}, 11.0));
+  ASSERT_EQ(c.trials.size(), 1u);
+  EXPECT_DOUBLE_EQ(c.trials[0].response_time_s, 1.0) << "timed from the new onset";
+  EXPECT_EQ(r.state(), RunnerState::inter_trial);
+  r.pause(11.2);  // in the inter-trial pause: the committed trial is not repeated
+  EXPECT_EQ(r.state(), RunnerState::ready);
+  EXPECT_EQ(r.next_position(), 1);
+  EXPECT_EQ(out.calls.back().what, "vent");
+}
+
 }  // namespace
 }  // namespace palprig

@@ -1,0 +1,131 @@
+#pragma once
+// ExperimentPage: the experimenter's console for a study session (the "Experiment" tab).
+// Protocol, participant code and trial database; the planned order before Begin (the same
+// library call as `palprig experiment plan`, or the stored order of a session to resume);
+// Begin, Pause (vents, holds the trial), Resume, Abort (vents, keeps what was committed); the
+// offer to resume this participant's unfinished session at the exact trial, as `--resume`;
+// pilot runs with the simulated participant (sim:SEED) at a chosen speed; a trial list ticked
+// as each trial is committed; the participant screen (which can go full screen on a second
+// display); the files written, listed at the end. The session itself is run_study_session on
+// SessionRun's thread: the same code as `palprig experiment run`.
+#include <QWidget>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "experiments/protocol.hpp"
+#include "experiments/session_plan.hpp"
+#include "gui/gui_participant.hpp"
+#include "gui/session_run.hpp"
+
+class QDoubleSpinBox;
+class QLabel;
+class QLineEdit;
+class QPushButton;
+class QTabWidget;
+class QTableWidget;
+class QVBoxLayout;
+
+namespace palprig::gui {
+
+class ParticipantScreen;
+class StatisticsView;
+
+// What the page needs from the window: the rig it is on, and the rig for the session's length
+// (the live loop stops and vents while a session owns the rig, and starts again after).
+struct ExperimentHost {
+  std::function<std::filesystem::path()> rig_file;
+  std::function<std::filesystem::path()> calibration_file;  // empty: paper 002's models
+  std::function<void()> take_rig;
+  std::function<void()> give_back_rig;
+};
+
+struct ExperimentFields {
+  std::string protocol, participant, store;
+  double speed = 0;  // simulated participant only (0: as fast as the simulated rig allows)
+};
+
+class ExperimentPage final : public QWidget {
+  Q_OBJECT
+ public:
+  explicit ExperimentPage(ExperimentHost host, QWidget* parent = nullptr);
+  ~ExperimentPage() override;
+
+  void set_fields(const ExperimentFields& fields);  // and shows the plan / resume offer
+  ExperimentFields fields() const;
+  // Begin (resume=false) or resume the unfinished session. False when refused at once (the
+  // line is in refusal_text()); a refusal from the session thread comes as sessionRefused.
+  bool begin(bool resume);
+  void pause();
+  void resume();
+  void abort();
+  // Abort and wait for the session thread; every committed trial is kept. `give_back_rig`:
+  // restart the live loop (not when the window is closing).
+  void abort_and_wait(bool give_back_rig = true);
+
+  bool session_running() const noexcept { return run_.running(); }
+  bool resume_offered() const noexcept { return offered_session_.has_value(); }
+  int offered_start_position() const noexcept { return offered_start_; }
+  QString refusal_text() const;
+  QStringList files_written() const { return files_written_; }
+  ParticipantScreen* participant_screen() const noexcept { return screen_; }
+  QTableWidget* trial_table() const noexcept { return table_; }
+  // The live statistics of the session's store (gui/statistics_view), refreshed on every commit.
+  StatisticsView* statistics() const noexcept { return statistics_; }
+  void show_statistics();  // brings the Statistics tab to the front
+  SessionRun& session_run() noexcept { return run_; }
+
+ signals:
+  void sessionStarted();
+  void trialCommitted(int position);
+  void sessionEnded(const palprig::SessionEnd& end);
+  void sessionRefused(const QString& line, int exit_code);
+
+ private:
+  void update_plan();  // the planned order (or stored order) and the resume offer
+  void show_plan(const Protocol& protocol, const SessionPlan& plan);
+  void tick_row(const TrialRecord& trial);
+  void refuse(const QString& line);
+  void set_buttons();
+  void show_files();
+  void on_started(const SessionStart& s);
+  void on_ended(const SessionEnd& e);
+
+  ExperimentHost host_;
+  SessionRun run_;
+  std::shared_ptr<ParticipantChannel> channel_;
+  std::optional<Protocol> protocol_;
+  std::optional<std::int64_t> offered_session_;
+  int offered_start_ = 0;
+  bool rig_taken_ = false;
+  bool simulated_ = false;
+  bool pause_held_ = false;
+  bool last_completed_ = false;  // the last session ended completed  // the session loop reported the pause (vented, holding)
+  QStringList files_written_;  // the database first, then exports
+  QString store_note_;
+
+  QLineEdit* protocol_edit_ = nullptr;
+  QLineEdit* participant_edit_ = nullptr;
+  QLineEdit* store_edit_ = nullptr;
+  QDoubleSpinBox* speed_ = nullptr;
+  QLabel* plan_note_ = nullptr;
+  QLabel* resume_note_ = nullptr;
+  QPushButton* begin_ = nullptr;
+  QPushButton* resume_session_ = nullptr;
+  QPushButton* pause_ = nullptr;
+  QPushButton* continue_ = nullptr;
+  QPushButton* abort_ = nullptr;
+  QPushButton* full_screen_ = nullptr;
+  QLabel* status_ = nullptr;
+  QLabel* files_ = nullptr;
+  QTableWidget* table_ = nullptr;
+  ParticipantScreen* screen_ = nullptr;
+  QWidget* statistics_area_ = nullptr;
+  QTabWidget* results_ = nullptr;
+  StatisticsView* statistics_ = nullptr;
+  QVBoxLayout* statistics_layout_ = nullptr;
+};
+
+}  // namespace palprig::gui

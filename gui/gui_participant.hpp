@@ -1,0 +1,65 @@
+#pragma once
+// GuiParticipant: a person at the window, as experiments' Participant (the terminal and the
+// simulated observer are the others). The participant screen (GUI thread) and the session loop
+// (session thread) share a ParticipantChannel: "ready" is an atomic flag, answers travel in a
+// wait-free LatestValue tagged with the trial's position and a serial number, so an answer
+// given for one trial can never be taken for the next, and neither thread ever waits.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include "experiments/participant.hpp"
+#include "gui/window_pen_input.hpp"
+#include "runtime/latest_value.hpp"
+
+namespace palprig::gui {
+
+inline constexpr int kMaxMarks = 32;  // marks per localisation answer (a scene has a handful of tumors)
+
+struct GivenAnswer {
+  int position = -1;      // the trial answered
+  std::uint64_t serial = 0;  // 0: nothing given yet
+  FingerFlags tumor_under{};
+  int mark_count = 0;
+  std::array<Mark, kMaxMarks> marks{};
+};
+
+class ParticipantChannel {
+ public:
+  // GUI thread.
+  void say_ready() noexcept { ready_.store(true); }
+  // Returns false when `marks` has more than kMaxMarks marks (nothing is handed over then).
+  bool give_answer(int position, const Response& response) noexcept;
+  WindowPenInput& pen() noexcept { return pen_; }  // the participant's pen (localisation)
+
+  // Session thread.
+  bool take_ready() noexcept { return ready_.exchange(false); }
+  std::optional<Response> take_answer(int position);
+
+ private:
+  std::atomic<bool> ready_{false};
+  LatestValue<GivenAnswer> answers_;
+  std::uint64_t next_serial_ = 1;   // GUI thread
+  std::uint64_t taken_serial_ = 0;  // session thread
+  WindowPenInput pen_;
+};
+
+class GuiParticipant final : public Participant {
+ public:
+  GuiParticipant(std::shared_ptr<ParticipantChannel> channel, bool palpates)
+      : channel_(std::move(channel)), palpates_(palpates) {}
+  bool ready(double) override { return channel_->take_ready(); }
+  void trial_started(const PlannedTrial& trial, const Condition&, double) override { position_ = trial.position; }
+  void feel(const FeltSample&) override {}
+  std::optional<Response> answer(double) override { return channel_->take_answer(position_); }
+  InputSource* pen() override { return palpates_ ? &channel_->pen() : nullptr; }
+
+ private:
+  std::shared_ptr<ParticipantChannel> channel_;
+  bool palpates_;
+  int position_ = -1;
+};
+
+}  // namespace palprig::gui

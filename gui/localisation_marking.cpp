@@ -1,0 +1,97 @@
+#include "gui/localisation_marking.hpp"
+
+#include <QHBoxLayout>
+#include <QCoreApplication>
+#include <QKeyEvent>
+#include <QPushButton>
+#include <QTimer>
+#include <QVBoxLayout>
+
+#include "gui/scene_view.hpp"
+
+namespace palprig::gui {
+
+LocalisationMarking::LocalisationMarking(QWidget* parent) : QWidget(parent) {
+  setObjectName("localisation_marking");
+  setFocusPolicy(Qt::StrongFocus);
+  layout_ = new QVBoxLayout(this);
+  auto* buttons = new QHBoxLayout;
+  auto add = [&](const char* name, const char* text, void (LocalisationMarking::*slot)()) {
+    auto* b = new QPushButton(text);
+    b->setObjectName(name);
+    b->setFocusPolicy(Qt::NoFocus);
+    connect(b, &QPushButton::clicked, this, slot);
+    buttons->addWidget(b);
+  };
+  add("undo_mark", "Undo (Backspace)", &LocalisationMarking::undo);
+  add("clear_marks", "Clear", &LocalisationMarking::clear_marks);
+  add("marks_done", "Done (Enter)", &LocalisationMarking::finish);
+  layout_->addLayout(buttons);
+  // The pen state is re-published on this heartbeat so a held pen does not age into a stale
+  // input fault (gui/window_pen_input.hpp).
+  heartbeat_ = new QTimer(this);
+  heartbeat_->setInterval(16);
+  connect(heartbeat_, &QTimer::timeout, this, [this] {
+    if (view_) view_->heartbeat();
+  });
+}
+
+LocalisationMarking::~LocalisationMarking() = default;
+
+void LocalisationMarking::start_session(const Protocol& protocol, WindowPenInput* pen) {
+  delete view_;
+  view_ = nullptr;
+  scene_ = load_scene_file(protocol.localisation.scene_file);
+  view_ = new SceneView(*scene_, FingerLayout{}, 100.0);
+  view_->set_tumors_visible(false);
+  view_->set_map_visible(false);
+  if (pen) view_->set_pen_target(pen, PressureCurve{});
+  connect(view_, &SceneView::markRequested, this, &LocalisationMarking::add_mark);
+  layout_->insertWidget(0, view_, 1);
+  marks_.clear();
+  show_marks();
+  heartbeat_->start();
+}
+
+void LocalisationMarking::add_mark(double x_mm, double y_mm) {
+  if (!isEnabled()) return;
+  marks_.push_back({x_mm, y_mm});
+  show_marks();
+}
+
+void LocalisationMarking::undo() {
+  if (!marks_.empty()) marks_.pop_back();
+  show_marks();
+}
+
+void LocalisationMarking::clear_marks() {
+  marks_.clear();
+  show_marks();
+}
+
+void LocalisationMarking::finish() {
+  if (isEnabled()) emit done();
+}
+
+void LocalisationMarking::show_marks() {
+  if (!view_) return;
+  std::vector<QPointF> mm;
+  for (const Mark& m : marks_) mm.emplace_back(m.x_mm, m.y_mm);
+  view_->set_marks(mm);
+}
+
+void LocalisationMarking::keyPressEvent(QKeyEvent* e) {
+  if (e->key() == Qt::Key_Backspace) return undo();
+  if (e->key() == Qt::Key_Return || e->key() == Qt::Key_Enter) return finish();
+  if (e->key() == Qt::Key_M && view_) {
+    const QPoint at = view_->mapFromGlobal(QCursor::pos());
+    QMouseEvent right(QEvent::MouseButtonPress, QPointF(at), view_->mapToGlobal(QPointF(at)), Qt::RightButton,
+                      Qt::RightButton, Qt::NoModifier);
+    QCoreApplication::sendEvent(view_, &right);
+    return;
+  }
+  QWidget::keyPressEvent(e);
+}
+
+}  // namespace palprig::gui
+

@@ -1,0 +1,58 @@
+#pragma once
+// LocalisationMarking: the participant's view of a tumor-localisation trial. The scene is drawn
+// without its stiffness map or tumor outlines (gui/scene_view with both hidden); the left
+// button (or the pen) palpates through the participant's WindowPenInput, which the session
+// runs the trial with (Participant::pen()); the right button (the pen's side button) or M
+// marks a suspected tumor where the pointer is. Undo, Clear and Done; Done hands the marks
+// over, to be scored by experiments/scoring exactly as the CLI scores them.
+#include <QWidget>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "experiments/protocol.hpp"
+#include "experiments/scoring.hpp"
+#include "formats/scene_file.hpp"
+#include "gui/window_pen_input.hpp"
+
+class QPushButton;
+class QTimer;
+class QVBoxLayout;
+
+namespace palprig::gui {
+
+class SceneView;
+
+class LocalisationMarking final : public QWidget {
+  Q_OBJECT
+ public:
+  explicit LocalisationMarking(QWidget* parent = nullptr);
+  ~LocalisationMarking() override;
+
+  // The protocol's scene (loaded here; the protocol was validated) and the pen to palpate with.
+  void start_session(const Protocol& protocol, WindowPenInput* pen);
+  SceneView* scene_view() const noexcept { return view_; }
+  const std::vector<Mark>& marks() const noexcept { return marks_; }
+
+  void add_mark(double x_mm, double y_mm);
+  void undo();
+  void clear_marks();
+  void finish();  // Done
+
+ signals:
+  void done();
+
+ protected:
+  void keyPressEvent(QKeyEvent*) override;
+
+ private:
+  void show_marks();
+
+  std::optional<SceneFile> scene_;
+  SceneView* view_ = nullptr;
+  QVBoxLayout* layout_ = nullptr;
+  QTimer* heartbeat_ = nullptr;
+  std::vector<Mark> marks_;
+};
+
+}  // namespace palprig::gui

@@ -1,0 +1,213 @@
+#include "gui/participant_screen.hpp"
+
+#include <QGuiApplication>
+#include <QBoxLayout>
+#include <QHBoxLayout>
+#include <QKeyEvent>
+#include <QLabel>
+#include <QPushButton>
+#include <QScreen>
+#include <QStackedWidget>
+#include <QVBoxLayout>
+
+#include "gui/localisation_marking.hpp"
+
+namespace palprig::gui {
+
+ParticipantScreen::ParticipantScreen(QWidget* parent) : QWidget(parent) {
+  setObjectName("participant_screen");
+  setFocusPolicy(Qt::StrongFocus);
+  auto* layout = new QVBoxLayout(this);
+  prompt_ = new QLabel("No session");
+  prompt_->setObjectName("participant_prompt");
+  prompt_->setAlignment(Qt::AlignCenter);
+  prompt_->setWordWrap(true);
+  QFont big = prompt_->font();
+  big.setPointSizeF(big.pointSizeF() * 1.5);
+  prompt_->setFont(big);
+  // Room for three lines whatever the layout gives: a clipped question is worse than none.
+  prompt_->setMinimumHeight(QFontMetrics(big).lineSpacing() * 3 + 8);
+  layout->addWidget(prompt_);
+
+  ready_ = new QPushButton("Ready (Space)");
+  ready_->setObjectName("ready_button");
+  ready_->setFont(big);
+  connect(ready_, &QPushButton::clicked, this, [this] {
+    if (!channel_) return;
+    channel_->say_ready();
+    ready_->setEnabled(false);
+  });
+  layout->addWidget(ready_);
+
+  pages_ = new QStackedWidget;
+  finger_page_ = new QWidget;
+  auto* fingers = new QHBoxLayout(finger_page_);
+  for (int f = 0; f < kFingerCount; ++f) {
+    auto* b = new QPushButton;
+    b->setObjectName(QString("finger_%1").arg(f + 1));
+    b->setCheckable(true);
+    b->setFont(big);
+    b->setMinimumHeight(70);
+    b->setFocusPolicy(Qt::NoFocus);  // keys go to the screen, not to one button
+    fingers->addWidget(b);
+    fingers_[static_cast<std::size_t>(f)] = b;
+  }
+  none_ = new QPushButton("None (0)");
+  none_->setObjectName("none_button");
+  none_->setFont(big);
+  none_->setMinimumHeight(70);
+  none_->setFocusPolicy(Qt::NoFocus);
+  connect(none_, &QPushButton::clicked, this, [this] { give({}); });
+  fingers->addWidget(none_);
+  answer_ = new QPushButton("Answer (Enter)");
+  answer_->setObjectName("answer_button");
+  answer_->setFont(big);
+  answer_->setMinimumHeight(70);
+  answer_->setFocusPolicy(Qt::NoFocus);
+  connect(answer_, &QPushButton::clicked, this, [this] {
+    FingerFlags chosen{};
+    bool any = false;
+    for (std::size_t f = 0; f < kFingerCount; ++f) any |= chosen[f] = fingers_[f]->isChecked();
+    if (any) give(chosen);  // no finger chosen: "None" says so explicitly
+  });
+  fingers->addWidget(answer_);
+  pages_->addWidget(finger_page_);
+
+  marking_ = new LocalisationMarking;
+  connect(marking_, &LocalisationMarking::done, this, [this] {
+    if (!channel_ || answering_ < 0) return;
+    Response r;
+    r.marks = marking_->marks();
+    if (!channel_->give_answer(answering_, r)) {
+      prompt_->setText(QString("At most %1 marks, please undo some.").arg(kMaxMarks));
+      return;
+    }
+    const int given = answering_;
+    set_answering(false);
+    emit answerGiven(given);
+  });
+  pages_->addWidget(marking_);
+  layout->addWidget(pages_, 1);
+  set_answering(false);
+  ready_->setVisible(false);
+}
+
+void ParticipantScreen::start_session(const Protocol& protocol, std::shared_ptr<ParticipantChannel> channel) {
+  channel_ = std::move(channel);
+  finger_names_ = protocol.finger_names;
+  localisation_ = protocol.task == TaskKind::localisation;
+  for (int f = 0; f < kFingerCount; ++f) {
+    fingers_[static_cast<std::size_t>(f)]->setText(
+        QString("%1  %2").arg(f + 1).arg(QString::fromStdString(finger_names_[static_cast<std::size_t>(f)])));
+  }
+  pages_->setCurrentWidget(localisation_ ? static_cast<QWidget*>(marking_) : finger_page_);
+  pages_->setVisible(channel_ != nullptr || localisation_);  // a pilot run has nobody to answer
+  if (localisation_) marking_->start_session(protocol, channel_ ? &channel_->pen() : nullptr);
+  set_answering(false);
+  show_wait(channel_ ? "Please wait" : "Simulated participant (pilot run)");
+}
+
+void ParticipantScreen::show_ready() {
+  set_answering(false);
+  if (!channel_) return;
+  prompt_->setText("Ready? Press Space or the Ready button to start.");
+  ready_->setVisible(true);
+  ready_->setEnabled(true);
+  setFocus();
+}
+
+void ParticipantScreen::show_trial(const PlannedTrial& trial, const Condition& condition) {
+  ready_->setVisible(false);
+  if (!channel_) {
+    prompt_->setText(QString("Simulated participant (pilot run): trial %1").arg(trial.position + 1));
+    return;
+  }
+  QString text = QString("Trial %1%2. ").arg(trial.position + 1).arg(trial.practice ? " (practice)" : "");
+  if (localisation_) {
+    text += "Palpate the tissue with the pen. Right-click (or press M) where you feel a tumor; Done when finished.";
+    marking_->clear_marks();
+  } else {
+    text += condition.mode == PresentationMode::sequential ? "The fingers are presented one after another. "
+                                                           : "All fingers at once. ";
+    text += "Which fingers feel a tumor? 1/2/3 choose, Enter answers; 0 for none.";
+    for (QPushButton* b : fingers_) b->setChecked(false);
+  }
+  prompt_->setText(text);
+  answering_ = trial.position;
+  set_answering(true);
+  setFocus();
+}
+
+void ParticipantScreen::show_wait(const QString& text) {
+  set_answering(false);
+  ready_->setVisible(false);
+  prompt_->setText(text);
+}
+
+void ParticipantScreen::set_answering(bool on) {
+  if (!on) answering_ = -1;
+  for (QPushButton* b : fingers_) b->setEnabled(on);
+  none_->setEnabled(on);
+  answer_->setEnabled(on);
+  marking_->setEnabled(on);
+}
+
+void ParticipantScreen::toggle_finger(int finger) {
+  if (answering_ < 0 || localisation_) return;
+  QPushButton* b = fingers_[static_cast<std::size_t>(finger)];
+  b->setChecked(!b->isChecked());
+}
+
+void ParticipantScreen::give(const FingerFlags& fingers) {
+  if (!channel_ || answering_ < 0) return;
+  Response r;
+  r.tumor_under = fingers;
+  channel_->give_answer(answering_, r);
+  const int given = answering_;
+  set_answering(false);
+  prompt_->setText("Answer recorded.");  // the same words for every answer: no feedback on correctness
+  emit answerGiven(given);
+}
+
+void ParticipantScreen::keyPressEvent(QKeyEvent* e) {
+  switch (e->key()) {
+    case Qt::Key_1: toggle_finger(0); return;
+    case Qt::Key_2: toggle_finger(1); return;
+    case Qt::Key_3: toggle_finger(2); return;
+    case Qt::Key_0:
+      if (!localisation_) give({});
+      return;
+    case Qt::Key_Return:
+    case Qt::Key_Enter:
+      if (localisation_) marking_->finish();
+      else answer_->click();
+      return;
+    case Qt::Key_Space:
+      if (ready_->isVisible() && ready_->isEnabled()) ready_->click();
+      return;
+    default: QWidget::keyPressEvent(e);
+  }
+}
+
+void ParticipantScreen::show_full_screen_on(QScreen* screen) {
+  if (!console_parent_) console_parent_ = parentWidget();
+  setParent(nullptr);
+  setWindowTitle("palprig - participant");
+  if (screen) {
+    setScreen(screen);
+    move(screen->geometry().topLeft());
+  }
+  showFullScreen();
+}
+
+void ParticipantScreen::back_to_console() {
+  if (!console_parent_) return;
+  showNormal();
+  setParent(console_parent_);
+  if (auto* box = qobject_cast<QBoxLayout*>(console_parent_->layout())) box->insertWidget(0, this, 1);
+  show();
+  console_parent_ = nullptr;
+}
+
+}  // namespace palprig::gui
+

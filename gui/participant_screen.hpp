@@ -1,0 +1,72 @@
+#pragma once
+// ParticipantScreen: what the participant sees and answers with. Discrimination: after (or
+// during) the stimulus, which fingers felt a tumor: finger buttons and keys 1/2/3 toggle,
+// "None" or 0 answers no tumor, Answer or Enter hands the answer over; Space or "Ready" goes on
+// at the start and after a break. No feedback on correctness (it would train the participant
+// during the study; the scores are in the database and on the experimenter's console).
+// Localisation: LocalisationMarking (gui/localisation_marking.hpp) is shown instead.
+// Answers go to the session thread through the ParticipantChannel (gui/gui_participant.hpp).
+// The screen can leave the console and go full screen on another display (show_full_screen_on).
+#include <QWidget>
+#include <array>
+#include <memory>
+
+#include "experiments/protocol.hpp"
+#include "experiments/session_plan.hpp"
+#include "gui/gui_participant.hpp"
+
+class QLabel;
+class QPushButton;
+class QScreen;
+class QStackedWidget;
+
+namespace palprig::gui {
+
+class LocalisationMarking;
+
+class ParticipantScreen final : public QWidget {
+  Q_OBJECT
+ public:
+  explicit ParticipantScreen(QWidget* parent = nullptr);
+
+  // A new session: its protocol (finger names, task) and the channel answers go through; null
+  // channel: a simulated participant answers (the screen only shows what happens).
+  void start_session(const Protocol& protocol, std::shared_ptr<ParticipantChannel> channel);
+  void show_ready();                    // waiting for the participant's go-ahead
+  void show_trial(const PlannedTrial& trial, const Condition& condition);
+  void show_wait(const QString& text);  // between trials, paused, done
+  int answering_position() const noexcept { return answering_; }  // -1: no answer is taken now
+  LocalisationMarking* marking() const noexcept { return marking_; }
+
+  // Leaves the console and fills `screen` (a second display); back_to_console() returns.
+  void show_full_screen_on(QScreen* screen);
+  void back_to_console();
+  bool in_console() const noexcept { return console_parent_ == nullptr; }
+
+ signals:
+  void answerGiven(int position);  // handed to the session thread
+
+ protected:
+  void keyPressEvent(QKeyEvent*) override;
+
+ private:
+  void toggle_finger(int finger);
+  void give(const FingerFlags& fingers);
+  void set_answering(bool on);
+
+  std::shared_ptr<ParticipantChannel> channel_;
+  std::array<std::string, kFingerCount> finger_names_{};
+  bool localisation_ = false;
+  int answering_ = -1;
+  QLabel* prompt_ = nullptr;
+  QPushButton* ready_ = nullptr;
+  std::array<QPushButton*, kFingerCount> fingers_{};
+  QPushButton* none_ = nullptr;
+  QPushButton* answer_ = nullptr;
+  QStackedWidget* pages_ = nullptr;
+  QWidget* finger_page_ = nullptr;
+  LocalisationMarking* marking_ = nullptr;
+  QWidget* console_parent_ = nullptr;
+};
+
+}  // namespace palprig::gui

@@ -1,0 +1,95 @@
+#include "gui/session_run.hpp"
+
+#include <QMetaObject>
+#include <csignal>
+
+#include "models/parse_error.hpp"
+
+namespace palprig::gui {
+
+namespace {
+
+// Runs on the session thread: copies each report and queues it to the GUI thread. Nothing
+// here waits: invokeMethod with a queued connection only posts an event.
+class QueuedListener final : public SessionListener {
+ public:
+  explicit QueuedListener(SessionRun* run) : run_(run) {}
+  void session_started(const SessionStart& s) override {
+    post([run = run_, s] { emit run->started(s); });
+  }
+  void runner_event(const RunnerEvent& e) override {
+    if (e.kind != RunnerEvent::Kind::state_changed) return;
+    post([run = run_, state = e.state, position = e.position] { emit run->runnerState(state, position); });
+  }
+  void trial_started(const PlannedTrial& trial, const Condition& condition) override {
+    post([run = run_, trial, condition] { emit run->trialStarted(trial.position, trial, condition); });
+  }
+  void trial_committed(const TrialRecord& trial, int total) override {
+    post([run = run_, trial, total] { emit run->trialCommitted(trial, total); });
+  }
+  void session_ended(const SessionEnd& end) override {
+    post([run = run_, end] { emit run->ended(end); });
+  }
+
+ private:
+  template <typename F>
+  void post(F&& f) {
+    QMetaObject::invokeMethod(run_, std::forward<F>(f), Qt::QueuedConnection);
+  }
+  SessionRun* run_;
+};
+
+}  // namespace
+
+SessionRun::SessionRun(QObject* parent) : QObject(parent) {}
+
+SessionRun::~SessionRun() { abort_and_wait(); }
+
+void SessionRun::start(const StudySessionRequest& request, PersonFactory person) {
+  abort_and_wait();
+  stop_.store(0);
+  pause_.store(false);
+  running_ = true;
+  const int generation = ++generation_;
+  thread_ = std::thread([this, generation, request, person = std::move(person)] {
+    QueuedListener listener(this);
+    QString refusal;
+    int code = 0;
+    try {
+      run_study_session(request, person, listener, &stop_, &pause_);
+    } catch (const InputError& e) {
+      refusal = QString::fromStdString(e.what());
+      code = 2;
+    } catch (const std::exception& e) {
+      refusal = QString::fromStdString(e.what());
+      code = 1;
+    }
+    QMetaObject::invokeMethod(
+        this,
+        [this, generation, refusal, code] {
+          if (generation != generation_) return;  // a session already waited for and replaced
+          join();
+          if (code != 0) emit refused(refusal, code);
+          emit finished();
+        },
+        Qt::QueuedConnection);
+  });
+}
+
+void SessionRun::pause() { pause_.store(true); }
+void SessionRun::resume() { pause_.store(false); }
+void SessionRun::abort() { stop_.store(SIGTERM); }
+
+void SessionRun::abort_and_wait() {
+  if (!thread_.joinable()) return;
+  abort();
+  join();
+}
+
+void SessionRun::join() {
+  if (thread_.joinable()) thread_.join();
+  running_ = false;
+}
+
+}  // namespace palprig::gui
+

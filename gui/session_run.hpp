@@ -1,0 +1,54 @@
+#pragma once
+// SessionRun: the GUI's one adapter to sessions/study_session's run_study_session, as LiveRun
+// is to run_loop. The session runs on its own thread; what it reports (SessionListener calls,
+// on that thread) is copied and handed to the GUI thread with queued calls, so the session
+// thread never waits for the window. Pause, Resume and Abort reach the session loop through
+// atomics it reads every pass.
+#include <QObject>
+#include <QString>
+#include <atomic>
+#include <memory>
+#include <thread>
+
+#include "sessions/study_session.hpp"
+
+namespace palprig::gui {
+
+class SessionRun final : public QObject {
+  Q_OBJECT
+ public:
+  explicit SessionRun(QObject* parent = nullptr);
+  ~SessionRun() override;  // aborts (vents) and joins a running session
+
+  // Starts the session thread. `person` makes the GUI participant (null for sim:SEED).
+  // A refusal (InputError) or a failure to open the rig arrives as refused().
+  void start(const StudySessionRequest& request, PersonFactory person);
+  bool running() const noexcept { return running_; }
+  bool paused() const noexcept { return pause_.load(); }
+
+  void pause();   // vents and holds the trial in progress
+  void resume();  // presents the held trial again from its start
+  void abort();   // vents; every committed trial is kept and the session stays resumable
+  // Abort and wait for the session thread (it reads the stop flag every loop period).
+  void abort_and_wait();
+
+ signals:
+  void started(const palprig::SessionStart& start);
+  void trialStarted(int position, const palprig::PlannedTrial& trial, const palprig::Condition& condition);
+  void runnerState(palprig::RunnerState state, int position);
+  void trialCommitted(const palprig::TrialRecord& trial, int total);
+  void ended(const palprig::SessionEnd& end);
+  void refused(const QString& line, int exit_code);  // the CLI's one line; 2 input, 1 rig
+  void finished();  // after ended() or refused(): the thread is gone
+
+ private:
+  void join();
+
+  std::thread thread_;
+  std::atomic<int> stop_{0};
+  std::atomic<bool> pause_{false};
+  bool running_ = false;
+  int generation_ = 0;  // GUI thread: which start() a queued end belongs to
+};
+
+}  // namespace palprig::gui

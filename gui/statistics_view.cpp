@@ -1,0 +1,272 @@
+#include "gui/statistics_view.hpp"
+
+#include <QDateTime>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFileSystemWatcher>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QPushButton>
+#include <QSplitter>
+#include <QTableWidget>
+#include <QTimer>
+#include <QVBoxLayout>
+#include <QtConcurrent/QtConcurrentRun>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+
+#include "gui/chart_svg.hpp"
+#include "gui/chart_view.hpp"
+#include "gui/measures_chart.hpp"
+#include "gui/statistics_tables.hpp"
+#include "store/trial_export.hpp"
+#include "store/trial_summary_report.hpp"
+
+namespace palprig::gui {
+
+namespace {
+
+// The options of `palprig stats trials` with no flags: practice left out, 95 % intervals.
+SummaryOptions view_options() {
+  SummaryOptions options;
+  options.by = {SummaryKey::condition};
+  return options;
+}
+
+// Runs on the worker: its own read-only connection, closed before returning.
+StatisticsRefresh compute(const std::string& location) {
+  StatisticsRefresh r;
+  try {
+    const auto store = open_trial_store(location, TrialStore::Access::read_only);
+    r.statistics = std::make_shared<const TrialStatistics>(compute_trial_statistics(*store, view_options()));
+  } catch (const std::exception& e) {
+    r.error = QString::fromStdString(e.what());
+  }
+  return r;
+}
+
+Chart detail_chart(const TrialStatistics& s) {
+  if (!s.by_tumor.rows.empty() && s.by_finger.rows.empty()) return tumor_sensitivity_chart(s.by_tumor);
+  return measures_chart(s.by_finger, "Se, Sp, PPV and ACC per finger value (Wilson 95 % intervals)", "finger ");
+}
+
+std::string detail_chart_name(const TrialStatistics& s) {
+  return !s.by_tumor.rows.empty() && s.by_finger.rows.empty() ? "sensitivity_by_tumor" : "measures_by_finger";
+}
+
+bool has_bars(const Chart& chart) {
+  for (const auto& series : chart.series)
+    if (!series.y.empty()) return true;
+  return false;
+}
+
+// Runs on the worker; the same library calls as `palprig export` and `palprig stats trials --json`.
+StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& location, const std::filesystem::path& dir,
+                            std::shared_ptr<const TrialStatistics> shown) {
+  using Kind = StatisticsView::ExportKind;
+  StatisticsExport out;
+  try {
+    std::filesystem::create_directories(dir);
+    std::vector<std::filesystem::path> files;
+    if (kind == Kind::long_csv || kind == Kind::bids || kind == Kind::statistics_json) {
+      const auto store = open_trial_store(location, TrialStore::Access::read_only);
+      if (kind == Kind::statistics_json) {
+        const SummaryOptions options = view_options();
+        const auto path = dir / "statistics.json";
+        std::ofstream file(path);
+        file << summary_json(summarise_trials(*store, options), options.confidence).dump(2) << "\n";
+        if (!file.flush()) throw std::runtime_error("cannot write " + path.string());
+        files.push_back(path);
+      } else {
+        const ExportResult r = kind == Kind::bids ? export_bids(*store, dir, ExportOptions{})
+                                                  : export_long_csv(*store, dir, ExportOptions{});
+        files = r.files;
+      }
+    } else {
+      // The charts as the view shows them (the numbers of the last refresh).
+      if (!shown) throw std::runtime_error("no statistics shown yet: refresh first");
+      const char* ext = kind == Kind::chart_png ? ".png" : ".svg";
+      auto write = [&](const Chart& chart, const std::string& name) {
+        const auto path = dir / (name + ext);
+        if (kind == Kind::chart_png) write_chart_png(chart, path);
+        else write_chart_svg(chart, path);
+        files.push_back(path);
+      };
+      write(measures_chart(shown->by_condition), "measures_by_condition");
+      const Chart detail = detail_chart(*shown);
+      if (has_bars(detail)) write(detail, detail_chart_name(*shown));
+    }
+    for (const auto& f : files) out.files << QString::fromStdString(f.string());
+  } catch (const std::exception& e) {
+    out.error = QString::fromStdString(e.what());
+  }
+  return out;
+}
+
+QTableWidget* make_table(QWidget* parent, const char* name) {
+  auto* table = new QTableWidget(parent);
+  table->setObjectName(name);
+  table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  table->verticalHeader()->setVisible(false);
+  table->setAlternatingRowColors(true);
+  return table;
+}
+
+}  // namespace
+
+StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
+  auto* layout = new QVBoxLayout(this);
+  auto* top = new QHBoxLayout;
+  status_ = new QLabel(tr("no trial store"), this);
+  status_->setObjectName("statisticsStatus");
+  status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  top->addWidget(status_, 1);
+  auto* refresh_button = new QPushButton(tr("Refresh"), this);
+  refresh_button->setObjectName("refreshStatistics");
+  connect(refresh_button, &QPushButton::clicked, this, &StatisticsView::refresh);
+  top->addWidget(refresh_button);
+  const std::pair<ExportKind, const char*> buttons[] = {
+      {ExportKind::long_csv, "Long CSV"}, {ExportKind::bids, "BIDS"}, {ExportKind::statistics_json, "Statistics JSON"},
+      {ExportKind::chart_png, "Chart PNG"}, {ExportKind::chart_svg, "Chart SVG"}};
+  const char* names[] = {"exportLongCsv", "exportBids", "exportStatisticsJson", "exportChartPng", "exportChartSvg"};
+  for (std::size_t i = 0; i < std::size(buttons); ++i) {
+    auto* b = new QPushButton(tr(buttons[i].second), this);
+    b->setObjectName(names[i]);
+    b->setEnabled(false);
+    const ExportKind kind = buttons[i].first;
+    connect(b, &QPushButton::clicked, this, [this, kind] { ask_and_export(kind); });
+    top->addWidget(b);
+    export_buttons_.push_back(b);
+  }
+  layout->addLayout(top);
+
+  auto* charts = new QSplitter(Qt::Horizontal, this);
+  condition_chart_ = new ChartView(charts);
+  condition_chart_->setObjectName("conditionChart");
+  detail_chart_ = new ChartView(charts);
+  detail_chart_->setObjectName("detailChart");
+  auto* vertical = new QSplitter(Qt::Vertical, this);
+  vertical->addWidget(charts);
+  measures_table_ = make_table(vertical, "measuresTable");
+  comparisons_table_ = make_table(vertical, "comparisonsTable");
+  vertical->setSizes({520, 230, 170});  // the charts get most of the height (scaled with the view)
+  layout->addWidget(vertical, 1);
+
+  file_watcher_ = new QFileSystemWatcher(this);
+  change_delay_ = new QTimer(this);
+  change_delay_->setSingleShot(true);
+  change_delay_->setInterval(250);  // a commit touches the WAL several times: one refresh for them
+  connect(change_delay_, &QTimer::timeout, this, &StatisticsView::refresh);
+  connect(file_watcher_, &QFileSystemWatcher::fileChanged, this, [this] { change_delay_->start(); });
+  connect(&refresh_watcher_, &QFutureWatcher<StatisticsRefresh>::finished, this, &StatisticsView::refresh_done);
+  connect(&export_watcher_, &QFutureWatcher<StatisticsExport>::finished, this, [this] {
+    const StatisticsExport r = export_watcher_.result();
+    for (auto* b : export_buttons_) b->setEnabled(statistics_ != nullptr);
+    if (!r.error.isEmpty()) {
+      status_->setText(tr("export refused: %1").arg(r.error));
+      emit export_failed(r.error);
+    } else {
+      status_->setText(tr("exported %1 file(s) to %2").arg(r.files.size()).arg(QFileInfo(r.files.value(0)).absolutePath()));
+      emit exported(r.files);
+    }
+  });
+  condition_chart_->set_chart(Chart{}, tr("no scored trial yet"));
+  detail_chart_->set_chart(Chart{}, tr("no scored trial yet"));
+}
+
+StatisticsView::~StatisticsView() {
+  // The workers hold only their own connections and copies; wait so none outlives the view.
+  refresh_watcher_.waitForFinished();
+  export_watcher_.waitForFinished();
+}
+
+void StatisticsView::set_store(const QString& store_location) {
+  location_ = store_location;
+  statistics_.reset();
+  if (!file_watcher_->files().isEmpty()) file_watcher_->removePaths(file_watcher_->files());
+  refresh();
+}
+
+const std::vector<SummaryRow>& StatisticsView::condition_rows() const {
+  static const std::vector<SummaryRow> none;
+  return statistics_ ? statistics_->by_condition.rows : none;
+}
+
+void StatisticsView::refresh() {
+  if (location_.isEmpty()) return;
+  if (running_) {
+    pending_ = true;  // coalesced: one more refresh after the running one, however many asked
+    return;
+  }
+  start_refresh();
+}
+
+void StatisticsView::start_refresh() {
+  running_ = true;
+  pending_ = false;
+  status_->setText(tr("%1: refreshing…").arg(location_));
+  refresh_watcher_.setFuture(QtConcurrent::run(compute, location_.toStdString()));
+}
+
+void StatisticsView::refresh_done() {
+  running_ = false;
+  const StatisticsRefresh r = refresh_watcher_.result();
+  watch_store_files();
+  if (r.statistics) {
+    statistics_ = r.statistics;
+    display(*statistics_);
+  } else {
+    status_->setText(tr("cannot read: %1").arg(r.error));
+  }
+  if (pending_) start_refresh();
+  if (r.statistics) emit refreshed();
+  else emit refresh_failed(r.error);
+}
+
+void StatisticsView::display(const TrialStatistics& s) {
+  std::int64_t trials = 0;
+  for (const SummaryRow& row : s.by_condition.rows) trials += row.trials;
+  status_->setText(tr("%1: %2 scored trials, %3 conditions (practice left out) · %4")
+                       .arg(location_)
+                       .arg(trials)
+                       .arg(s.by_condition.rows.size())
+                       .arg(QDateTime::currentDateTime().toString("HH:mm:ss")));
+  condition_chart_->set_chart(measures_chart(s.by_condition), tr("no scored trial yet"));
+  detail_chart_->set_chart(detail_chart(s), tr("no finger values or tumors scored yet"));
+  fill_measures_table(*measures_table_, s);
+  fill_comparisons_table(*comparisons_table_, s);
+  for (auto* b : export_buttons_) b->setEnabled(!export_watcher_.isRunning());
+}
+
+void StatisticsView::watch_store_files() {
+  // Files only: a server store has nothing to watch (the console calls refresh() per trial).
+  // Re-added after every refresh because a checkpoint may replace the WAL.
+  for (const QString& f : {location_, location_ + "-wal"}) {
+    if (QFileInfo::exists(f) && !file_watcher_->files().contains(f)) file_watcher_->addPath(f);
+  }
+}
+
+void StatisticsView::ask_and_export(ExportKind kind) {
+  QString dir = export_dir_;
+  if (dir.isEmpty()) {
+    dir = QFileDialog::getExistingDirectory(this, tr("Export into folder"), QFileInfo(location_).absolutePath());
+    if (dir.isEmpty()) return;
+  }
+  export_to(kind, dir);
+}
+
+void StatisticsView::export_to(ExportKind kind, const QString& dir) {
+  if (export_watcher_.isRunning()) {
+    emit export_failed(tr("an export is still running"));
+    return;
+  }
+  for (auto* b : export_buttons_) b->setEnabled(false);
+  status_->setText(tr("exporting to %1…").arg(dir));
+  export_watcher_.setFuture(
+      QtConcurrent::run(run_export, kind, location_.toStdString(), std::filesystem::path(dir.toStdString()), statistics_));
+}
+
+}  // namespace palprig::gui

@@ -1,0 +1,480 @@
+// Qt Test suite for the experiment console and the participant screens (gui/experiment_page,
+// gui/participant_screen, gui/localisation_marking), offscreen (ctest gui.ExperimentConsole.*).
+// Sessions run for real: run_study_session on its own thread against the default simulated rig
+// and a real SQLite trial store; answers are QTest clicks and keys; the command line runs as a
+// real process. Tests wait on signals, never on fixed sleeps.
+#include <QApplication>
+#include <QLabel>
+#include <QMessageBox>
+#include <QProcess>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QTableWidget>
+#include <QTimer>
+#include <QtTest>
+#include <chrono>
+#include <functional>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "gui/experiment_page.hpp"
+#include "gui/localisation_marking.hpp"
+#include "gui/main_window.hpp"
+#include "gui/participant_screen.hpp"
+#include "gui/scene_view.hpp"
+#include "store/trial_store.hpp"
+#include "tests/support/run_process.hpp"
+#include "tests/support/temp_dir.hpp"
+
+using namespace palprig;
+using namespace palprig::gui;
+using palprig::test_support::TempDir;
+
+namespace {
+
+std::string data_dir() { return std::string(PALPRIG_SOURCE_DIR) + "/data"; }
+
+// The shipped discrimination protocol cut to 3 combinations x 2 conditions with short timings,
+// so a person's session (real time) takes seconds.
+std::string short_discrimination(const TempDir& dir, double inter_trial_s = 0.05) {
+  auto doc = nlohmann::json::parse(test_support::read_file(data_dir() + "/protocols/discrimination_002.json"));
+  doc["combinations"]["list_kPa"] = {{0, 30, 0}, {0, 0, 0}, {30, 10, 10}};
+  doc["practice_trials"] = 0;
+  doc["timing"] = {{"max_present_s", 0.2}, {"sequential_step_s", 0.05}, {"sequential_gap_s", 0.02},
+                   {"response_timeout_s", 60}, {"inter_trial_s", inter_trial_s}, {"break_s", 0}};
+  return dir.write("short.json", doc.dump(2)).string();
+}
+
+std::string short_localisation(const TempDir& dir) {
+  auto doc = nlohmann::json::parse(test_support::read_file(data_dir() + "/protocols/localisation_002.json"));
+  doc["localisation"]["scene"] = data_dir() + "/scenes/phantom_abc.json";
+  doc["timing"]["inter_trial_s"] = 0.05;
+  return dir.write("loc.json", doc.dump(2)).string();
+}
+
+struct Window {
+  LiveRunFiles files;
+  std::unique_ptr<MainWindow> window;
+  ExperimentPage& page() { return *window->experiment_page(); }
+};
+
+Window open_window() {
+  Window w;
+  w.files.data_dir = data_dir();
+  LiveRunOptions opt;
+  opt.want_fifo = false;
+  w.window = std::make_unique<MainWindow>(std::make_unique<LiveRun>(load_live_run(w.files), opt), w.files, opt);
+  w.window->show();
+  w.window->pages()->setCurrentWidget(w.window->experiment_page());
+  return w;
+}
+
+// Process events until cond holds or timeout_s passes (waits on the window's poll signal).
+bool wait_until(MainWindow& w, const std::function<bool()>& cond, double timeout_s = 30.0) {
+  QSignalSpy spy(&w, &MainWindow::polled);
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (!cond()) {
+    if (std::chrono::steady_clock::now() > end) return false;
+    spy.wait(100);
+  }
+  return true;
+}
+
+// The stored trials without what depends on the wall clock (times, felt pressures, dates).
+std::vector<std::string> stored_rows(const std::string& db) {
+  std::vector<std::string> rows;
+  const auto store = open_trial_store(db, TrialStore::Access::read_only);
+  for (const StoredTrial& t : store->read_trials(true)) {
+    rows.push_back(t.participant + "|" + std::to_string(t.simulated) + "|" + std::to_string(t.participant_number) + "|" +
+                   std::to_string(t.position) + "|" + std::to_string(t.block) + "|" + t.condition + "|" + t.mode + "|" +
+                   std::to_string(t.practice) + "|" + t.combination_label + "|" + t.truth + "|" + t.answer + "|" +
+                   std::to_string(t.answered) + "|" + t.outcome[0] + t.outcome[1] + t.outcome[2]);
+  }
+  return rows;
+}
+
+// `palprig stats trials DB --json` without the response-time figures (a person's times differ).
+nlohmann::json stats_without_times(const std::string& db) {
+  const auto r = test_support::run_process(test_support::palprig_bin() + " stats trials " + db + " --json");
+  if (r.exit_code != 0) return {{"error", r.err}};
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  std::function<void(nlohmann::json&)> strip = [&](nlohmann::json& v) {
+    if (v.is_object()) {
+      for (auto it = v.begin(); it != v.end();) {
+        const std::string key = it.key();
+        if (key.find("rt") == 0 || key.find("response_time") != std::string::npos || key.find("time") != std::string::npos) it = v.erase(it);
+        else {
+          strip(*it);
+          ++it;
+        }
+      }
+    } else if (v.is_array()) {
+      for (auto& e : v) strip(e);
+    }
+  };
+  strip(j);
+  return j;
+}
+
+// Answers one discrimination trial through the participant screen: "0" by key, "13" by keys
+// and Enter, "2" by clicking the finger button and Answer.
+void answer_by_hand(ParticipantScreen& screen, const std::string& answer, int style) {
+  if (answer == "0") {
+    if (style % 2 == 0) QTest::keyClick(&screen, Qt::Key_0);
+    else QTest::mouseClick(screen.findChild<QPushButton*>("none_button"), Qt::LeftButton);
+    return;
+  }
+  for (char c : answer) {
+    if (style % 2 == 0) QTest::keyClick(&screen, Qt::Key(Qt::Key_0 + (c - '0')));
+    else QTest::mouseClick(screen.findChild<QPushButton*>(QString("finger_%1").arg(c)), Qt::LeftButton);
+  }
+  if (style % 2 == 0) QTest::keyClick(&screen, Qt::Key_Return);
+  else QTest::mouseClick(screen.findChild<QPushButton*>("answer_button"), Qt::LeftButton);
+}
+
+// What the page reported at its end (a lambda, not QSignalSpy: SessionEnd is no QVariant type).
+struct EndSeen {
+  int count = 0;
+  SessionEnd end;
+  explicit EndSeen(ExperimentPage& page) {
+    QObject::connect(&page, &ExperimentPage::sessionEnded, &page, [this](const SessionEnd& e) {
+      ++count;
+      end = e;
+    });
+  }
+};
+
+// With PALPRIG_SCREENSHOT_DIR set, saves `what` there (the README's pictures come from here).
+void keep_screenshot(QWidget& what, const char* name) {
+  const char* dir = std::getenv("PALPRIG_SCREENSHOT_DIR");
+  if (dir == nullptr) return;
+  what.grab().save(QString("%1/%2").arg(dir, name), "PNG");
+}
+
+int committed_rows(QTableWidget& t) {
+  int n = 0;
+  for (int r = 0; r < t.rowCount(); ++r) n += t.item(r, t.columnCount() - 1)->text().isEmpty() ? 0 : 1;
+  return n;
+}
+
+}  // namespace
+
+class ExperimentConsoleTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void planShownBeforeBeginIsTheCliPlan() {
+    TempDir dir;
+    const std::string protocol = short_discrimination(dir);
+    Window w = open_window();
+    w.page().set_fields({protocol, "P07", (dir.path() / "p.db").string(), 0});
+    QTableWidget& table = *w.page().trial_table();
+    QCOMPARE(table.rowCount(), 6);
+    const auto r = test_support::run_process(test_support::palprig_bin() + " experiment plan --protocol " + protocol +
+                                             " --participant P07");
+    QCOMPARE(r.exit_code, 0);
+    const QStringList lines = QString::fromStdString(r.out).trimmed().split('\n');
+    QCOMPARE(lines.size(), 7);
+    for (int row = 0; row < 6; ++row) {
+      const QStringList cli = lines[row + 1].split(',');
+      QCOMPARE(table.item(row, 2)->text(), cli[2]);  // condition
+      QCOMPARE(table.item(row, 3)->text(), cli[5]);  // stimulus
+      QCOMPARE(table.item(row, 4)->text(), cli[6]);  // tumor fingers
+    }
+  }
+
+  void clickedSessionEqualsTheCliSession() {
+    TempDir dir;
+    const std::string protocol = short_discrimination(dir);
+    const std::vector<std::string> answers = {"2", "0", "13", "1", "23", "0"};
+    const std::string gui_db = (dir.path() / "gui.db").string(), cli_db = (dir.path() / "cli.db").string();
+
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({protocol, "P01", gui_db, 0});
+    EndSeen ended(page);
+    // Where the plan has a break (between the condition blocks) the participant says Ready again.
+    const auto plan = test_support::run_process(test_support::palprig_bin() + " experiment plan --protocol " + protocol +
+                                                " --participant P01");
+    const QStringList plan_lines = QString::fromStdString(plan.out).trimmed().split('\n');
+    QCOMPARE(plan_lines.size(), 7);
+    QVERIFY2(page.begin(false), qPrintable(page.refusal_text()));
+    ParticipantScreen& screen = *page.participant_screen();
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    std::string typed;  // the same, typed at the terminal
+    for (int k = 0; k < int(answers.size()); ++k) {
+      if (k == 0 || plan_lines[k].split(',').at(7) == "1") {
+        QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+        QTest::keyClick(&screen, Qt::Key_Space);
+        typed += "\n";
+      }
+      QVERIFY2(wait_until(*w.window, [&] { return screen.answering_position() == k; }),
+               qPrintable(QString("trial %1 never asked").arg(k + 1)));
+      if (k == 3) {
+        QTest::keyClick(&screen, Qt::Key_2);  // chosen, not yet answered: seen on the screenshot
+        keep_screenshot(*w.window, "experiment_console.png");
+        keep_screenshot(screen, "participant_screen.png");
+        QTest::keyClick(&screen, Qt::Key_2);  // and unchosen again
+      }
+      answer_by_hand(screen, answers[static_cast<std::size_t>(k)], k);
+      typed += answers[static_cast<std::size_t>(k)] + "\n";
+      QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == k + 1; }));
+    }
+    QVERIFY(wait_until(*w.window, [&] { return ended.count == 1 && !page.session_running(); }));
+    QVERIFY(ended.end.completed);
+    QCOMPARE(ended.end.committed_trials, 6);
+
+    // The command line, the same participant code (same seed and order), the same answers typed.
+    const auto input = dir.write("answers.txt", typed);
+    const auto r = test_support::run_process("(" + test_support::palprig_bin() + " experiment run --protocol " + protocol +
+                                             " --participant P01 --db " + cli_db + " < " + input.string() + ")");
+    QVERIFY2(r.exit_code == 0, (r.out + r.err).c_str());
+
+    const auto gui_rows = stored_rows(gui_db), cli_rows = stored_rows(cli_db);
+    QCOMPARE(gui_rows.size(), std::size_t(6));
+    for (std::size_t i = 0; i < gui_rows.size(); ++i) QCOMPARE(QString::fromStdString(gui_rows[i]), QString::fromStdString(cli_rows[i]));
+    QCOMPARE(QString::fromStdString(stats_without_times(gui_db).dump()), QString::fromStdString(stats_without_times(cli_db).dump()));
+    // The console's list shows the same answers.
+    QCOMPARE(page.files_written(), QStringList{QString::fromStdString(gui_db)});
+  }
+
+  void pauseVentsHoldsAndContinuesTheSameTrial() {
+    TempDir dir;
+    const std::string protocol = short_discrimination(dir);
+    const std::string db = (dir.path() / "p.db").string();
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({protocol, "P02", db, 0});
+    QVERIFY(page.begin(false));
+    ParticipantScreen& screen = *page.participant_screen();
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::mouseClick(ready, Qt::LeftButton);
+    QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 0; }));
+    std::vector<int> started;
+    connect(&page.session_run(), &SessionRun::trialStarted, &page,
+            [&](int position, const PlannedTrial&, const Condition&) { started.push_back(position); });
+    QTest::mouseClick(page.findChild<QPushButton*>("pause_session"), Qt::LeftButton);
+    QVERIFY(page.session_run().paused());
+    QCOMPARE(screen.answering_position(), -1);  // nothing can be answered while paused
+    auto* go_on = page.findChild<QPushButton*>("continue_session");
+    QVERIFY(wait_until(*w.window, [&] { return go_on->isEnabled(); }));  // the loop holds, vented
+    QTest::mouseClick(go_on, Qt::LeftButton);
+    QVERIFY(wait_until(*w.window, [&] { return !started.empty(); }));
+    QCOMPARE(started.front(), 0);  // the held trial, presented again
+    QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 0; }));
+    QTest::keyClick(&screen, Qt::Key_0);
+    QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == 1; }));
+    EndSeen ended(page);
+    QTest::mouseClick(page.findChild<QPushButton*>("abort_session"), Qt::LeftButton);
+    QVERIFY(wait_until(*w.window, [&] { return ended.count == 1; }));
+    QVERIFY(ended.end.stopped);
+    QCOMPARE(ended.end.committed_trials, 1);
+    QCOMPARE(stored_rows(db).size(), std::size_t(1));
+    // The console now offers to resume at trial 2, by itself and when the fields are set again.
+    QVERIFY(wait_until(*w.window, [&] { return !page.session_running(); }));
+    QVERIFY(page.resume_offered());
+    QVERIFY(page.findChild<QPushButton*>("resume_session")->isEnabled());
+    QVERIFY(!page.findChild<QPushButton*>("begin_session")->isEnabled());
+    page.set_fields({protocol, "P02", db, 0});
+    QVERIFY(page.resume_offered());
+    QCOMPARE(page.offered_start_position(), 1);
+  }
+
+  void participantScreenLeavesTheConsoleAndComesBack() {
+    TempDir dir;
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({short_discrimination(dir), "P05", (dir.path() / "p.db").string(), 0});
+    QVERIFY(page.begin(false));
+    ParticipantScreen& screen = *page.participant_screen();
+    QWidget* console_box = screen.parentWidget();
+    screen.show_full_screen_on(QGuiApplication::screens().back());
+    QVERIFY(screen.isWindow());
+    QVERIFY(!screen.in_console());
+    // The participant answers on their own screen while the console stays.
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::keyClick(&screen, Qt::Key_Space);
+    QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 0; }));
+    QTest::keyClick(&screen, Qt::Key_0);
+    QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == 1; }));
+    screen.back_to_console();
+    QVERIFY(!screen.isWindow());
+    QCOMPARE(screen.parentWidget(), console_box);
+    page.abort_and_wait();
+  }
+
+  void closingMidSessionAsksVentsAndKeepsWhatWasCommitted() {
+    TempDir dir;
+    const std::string protocol = short_discrimination(dir);
+    const std::string db = (dir.path() / "p.db").string();
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({protocol, "P03", db, 0});
+    QVERIFY(page.begin(false));
+    ParticipantScreen& screen = *page.participant_screen();
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::keyClick(&screen, Qt::Key_Space);
+    for (int k = 0; k < 2; ++k) {
+      QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == k; }));
+      QTest::keyClick(&screen, Qt::Key_0);
+    }
+    QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == 2; }));
+    // First "No": the window stays and the session goes on; then "Yes".
+    bool asked_no = false, asked_yes = false;
+    QTimer::singleShot(0, [&] {
+      QVERIFY(w.window->close_question());
+      asked_no = true;
+      w.window->close_question()->button(QMessageBox::No)->click();
+    });
+    QVERIFY(!w.window->close());
+    QVERIFY(asked_no);
+    QVERIFY(page.session_running());
+    QTimer::singleShot(0, [&] {
+      QVERIFY(w.window->close_question());
+      asked_yes = true;
+      w.window->close_question()->button(QMessageBox::Yes)->click();
+    });
+    QVERIFY(w.window->close());
+    QVERIFY(asked_yes);
+    QVERIFY(!page.session_running());
+    QCOMPARE(stored_rows(db).size(), std::size_t(2));
+    const auto store = open_trial_store(db, TrialStore::Access::read_only);
+    const auto sessions = store->list_sessions();
+    QCOMPARE(sessions.size(), std::size_t(1));
+    QCOMPARE(QString::fromStdString(sessions[0].status), QString("running"));  // resumable
+  }
+
+  void killedGuiResumesAtTheRightTrial() {
+    TempDir dir;
+    const std::string protocol = short_discrimination(dir, 0.4);
+    const std::string db = (dir.path() / "p.db").string();
+    QProcess gui;
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert("QT_QPA_PLATFORM", "offscreen");
+    gui.setProcessEnvironment(env);
+    gui.start(QString::fromStdString(test_support::palprig_bin()),
+              {"gui", "--protocol", QString::fromStdString(protocol), "--participant", "sim:11", "--db",
+               QString::fromStdString(db), "--speed", "1"});
+    QVERIFY(gui.waitForStarted(10000));
+    // Wait (polling the database the GUI writes) until two trials are committed, then kill -9.
+    std::size_t before = 0;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (before < 2 && std::chrono::steady_clock::now() < end) {
+      gui.waitForFinished(50);  // returns at once if it exited; otherwise a 50 ms wait on the process
+      if (std::filesystem::exists(db)) {
+        try {
+          before = stored_rows(db).size();
+        } catch (const std::exception&) {
+          // the schema may not be complete yet
+        }
+      }
+    }
+    QVERIFY2(before >= 2, gui.readAllStandardError().constData());
+    gui.kill();  // SIGKILL
+    QVERIFY(gui.waitForFinished(10000));
+    QCOMPARE(gui.exitStatus(), QProcess::CrashExit);
+    const auto kept = stored_rows(db);
+    QVERIFY(kept.size() >= 2 && kept.size() < 6);
+
+    const auto png = dir.path() / "resumed.png";
+    const auto r = test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --protocol " +
+                                             protocol + " --participant sim:11 --db " + db +
+                                             " --resume --screenshot " + png.string() + " --after-s 120");
+    QVERIFY2(r.exit_code == 0, (r.out + r.err).c_str());
+    QVERIFY2(r.out.find("resumed at trial " + std::to_string(kept.size() + 1)) != std::string::npos, r.out.c_str());
+    QVERIFY2(r.out.find("session completed: 6 of 6") != std::string::npos, r.out.c_str());
+    QVERIFY(std::filesystem::file_size(png) > 1000);
+    const auto after = stored_rows(db);
+    QCOMPARE(after.size(), std::size_t(6));  // none lost, none twice
+    for (std::size_t i = 0; i < kept.size(); ++i) QCOMPARE(QString::fromStdString(after[i]), QString::fromStdString(kept[i]));
+    const auto store = open_trial_store(db, TrialStore::Access::read_only);
+    const auto trials = store->read_trials(true);
+    for (int p = 0; p < 6; ++p) QCOMPARE(trials[static_cast<std::size_t>(p)].position, p);
+    QCOMPARE(QString::fromStdString(store->list_sessions().at(0).status), QString("completed"));
+  }
+
+  void pilotScreenshotRunsTheSimulatedParticipantThroughTheWindow() {
+    TempDir dir;
+    const auto png = dir.path() / "pilot.png";
+    const std::string db = (dir.path() / "pilot.db").string();
+    const auto r = test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() +
+                                             " gui --protocol " + data_dir() + "/protocols/discrimination_002.json" +
+                                             " --participant sim:3 --db " + db + " --screenshot " + png.string() +
+                                             " --after-s 120");
+    QVERIFY2(r.exit_code == 0, (r.out + r.err).c_str());
+    QVERIFY2(r.out.find("session completed: 32 of 32") != std::string::npos, r.out.c_str());
+    QVERIFY(std::filesystem::file_size(png) > 1000);
+    const auto rows = stored_rows(db);
+    QCOMPARE(rows.size(), std::size_t(32));
+    QVERIFY(rows[0].find("sim:3|1|") == 0);  // stored as simulated
+    // The same seed through the command line gives the same trials.
+    const std::string cli_db = (dir.path() / "cli.db").string();
+    const auto c = test_support::run_process(test_support::palprig_bin() + " experiment run --protocol " + data_dir() +
+                                             "/protocols/discrimination_002.json --participant sim:3 --quiet --db " + cli_db);
+    QVERIFY2(c.exit_code == 0, c.err.c_str());
+    QCOMPARE(stored_rows(cli_db), rows);
+  }
+
+  void refusedProtocolExitsTwoWithOneLine() {
+    TempDir dir;
+    const auto bad = dir.write("bad.json", R"({"version": 1, "name": "x", "task": "discrimination", "repetitons": 2})");
+    const auto r = test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --protocol " +
+                                             bad.string() + " --participant sim:1 --db " + (dir.path() / "x.db").string() +
+                                             " --screenshot " + (dir.path() / "x.png").string());
+    QCOMPARE(r.exit_code, 2);
+    QVERIFY2(r.err.find("bad.json") != std::string::npos, r.err.c_str());
+    QVERIFY(!std::filesystem::exists(dir.path() / "x.db"));
+  }
+
+  void localisationMarkedByClicksIsScoredPerTumor() {
+    TempDir dir;
+    const std::string protocol = short_localisation(dir);
+    const std::string db = (dir.path() / "loc.db").string();
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({protocol, "P04", db, 0});
+    EndSeen ended(page);
+    QVERIFY2(page.begin(false), qPrintable(page.refusal_text()));
+    ParticipantScreen& screen = *page.participant_screen();
+    LocalisationMarking& marking = *screen.marking();
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::keyClick(&screen, Qt::Key_Space);
+    QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 0; }));
+    SceneView& view = *marking.scene_view();
+    QVERIFY(!view.tumors_visible());
+    // Palpate with the pen (left button), then mark tumor B and a false spot, undo, mark again.
+    const auto scene = load_scene_file(data_dir() + "/scenes/phantom_abc.json");
+    QPointF b, far;
+    for (const TumorTruth& t : scene.tumors)
+      if (t.name == "B") b = view.pixel_of(t.x_mm, t.y_mm);
+    far = view.pixel_of(scene.scene->bounds().x0_mm + 2, scene.scene->bounds().y0_mm + 2);
+    QTest::mousePress(&view, Qt::LeftButton, {}, b.toPoint());
+    QTest::mouseRelease(&view, Qt::LeftButton, {}, b.toPoint());
+    QTest::mouseClick(&view, Qt::RightButton, {}, far.toPoint());
+    QTest::mouseClick(&view, Qt::RightButton, {}, b.toPoint());
+    QCOMPARE(marking.marks().size(), std::size_t(2));
+    QTest::mouseClick(marking.findChild<QPushButton*>("undo_mark"), Qt::LeftButton);
+    QCOMPARE(marking.marks().size(), std::size_t(1));
+    QTest::mouseClick(&view, Qt::RightButton, {}, b.toPoint());
+    keep_screenshot(screen, "participant_localisation.png");
+    QTest::mouseClick(marking.findChild<QPushButton*>("marks_done"), Qt::LeftButton);
+    QVERIFY(wait_until(*w.window, [&] { return ended.count == 1; }));
+    QVERIFY(ended.end.completed);
+    const auto store = open_trial_store(db, TrialStore::Access::read_only);
+    const auto trials = store->read_trials(true);
+    QCOMPARE(trials.size(), std::size_t(1));
+    QCOMPARE(trials[0].false_marks.value_or(-1), std::int64_t(1));
+    QCOMPARE(trials[0].marks.size(), std::size_t(2));
+    std::map<std::string, std::string> outcome(trials[0].tumor_outcomes.begin(), trials[0].tumor_outcomes.end());
+    QCOMPARE(QString::fromStdString(outcome["A"]), QString("FN"));
+    QCOMPARE(QString::fromStdString(outcome["B"]), QString("TP"));
+    QCOMPARE(QString::fromStdString(outcome["C"]), QString("FN"));
+  }
+};
+
+QTEST_MAIN(ExperimentConsoleTest)
+#include "experiment_console_test.moc"
