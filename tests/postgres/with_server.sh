@@ -8,7 +8,7 @@
 # still runs, with PALPRIG_PG_SKIP set to the reason: the tests skip and print it.
 # Listing the tests (gtest discovery) needs no server.
 #
-# PALPRIG_PG_REQUIRED=1 (CI sets it: .ci/run) turns that skip into a failure with the same
+# PALPRIG_PG_REQUIRED=1 (set it on a machine that must have a server) turns that skip into a failure with the same
 # reason: on a machine that must have a server, a skipped lab-store test is a broken set-up.
 set -u
 no_server() {  # no_server REASON COMMAND...
