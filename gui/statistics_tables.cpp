@@ -89,7 +89,9 @@ void fill_comparisons_table(QTableWidget& table, const TrialStatistics& s) {
     set_cell(table, row, 0, QString::fromStdString(c.measure) + QObject::tr(" (combined interval, eq. 10)"));
     set_cell(table, row, 1, QString::fromStdString(c.first + " vs " + c.second));
     set_cell(table, row, 2, QStringLiteral("%1 vs %2, difference %3").arg(number(p.first.p), number(p.second.p), number(p.difference)));
-    set_cell(table, row, 3, QStringLiteral("|difference| > CI = %1").arg(number(p.combined_interval)));
+    // Eq. 10: different when |difference| exceeds the combined interval; say which way it went.
+    set_cell(table, row, 3, QStringLiteral("|difference| %1 combined CI %2")
+                                .arg(p.significant ? QStringLiteral(">") : QStringLiteral("<="), number(p.combined_interval)));
     set_cell(table, row, 4, p.significant ? QObject::tr("different") : QObject::tr("not different"));
   }
   table.resizeColumnsToContents();
