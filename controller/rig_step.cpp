@@ -110,6 +110,10 @@ void RigStep::finish(std::int64_t tick_start, bool linked, double t_s) noexcept 
   if (armed) io_ok = backend_.write(r.setpoint_kPa, t_s) == BackendStatus::ok;
   else backend_.vent();
   io_ok = io_ok && backend_.read_monitors(result_.monitor_kPa, t_s) == BackendStatus::ok;
+  // A tick that began with the link down has no reading it can vouch for: the bus thread may
+  // publish the first fresh monitors of a reconnect between our linked() and read_monitors(),
+  // and an alarm row must not carry them (they belong to the next, linked tick).
+  if (!linked) result_.monitor_kPa.fill(std::numeric_limits<double>::quiet_NaN());
   if (io_ok && read_sensors_) io_ok = backend_.read_sensors(result_.sensor, t_s) == BackendStatus::ok;
   const std::int64_t io_end = mono_ns();
   if (!io_ok) enter_fault(FaultCode::backend_error, backend_.last_error());
