@@ -128,11 +128,20 @@ class CalibrationPageTest : public QObject {
     QCOMPARE(table->item(8, 0)->text(), QString("all"));
     // The simulated regulator follows the command: slope near 1 on both branches together, each
     // branch a straight line (R^2 near 1; the two together less so, the hysteresis is between).
-    QVERIFY(std::abs(table->item(2, 4)->text().toDouble() - 1.0) < 0.1);
-    QVERIFY(table->item(0, 6)->text().toDouble() > 0.99);
-    QVERIFY(table->item(1, 6)->text().toDouble() > 0.99);
+    // Columns by their header, so a reordered table fails by name rather than reading another value.
+    const auto column = [table](const QString& header) {
+      for (int c = 0; c < table->columnCount(); ++c)
+        if (table->horizontalHeaderItem(c) && table->horizontalHeaderItem(c)->text() == header) return c;
+      return -1;
+    };
+    const int slope = column("slope"), r_squared = column("R^2"), gap = column("gap");
+    QVERIFY(slope >= 0 && r_squared >= 0 && gap >= 0);
+    const int ch1_inflation = 0, ch1_deflation = 1, ch1_both = 2;  // rows: channel 1's three branches
+    QVERIFY(std::abs(table->item(ch1_both, slope)->text().toDouble() - 1.0) < 0.1);
+    QVERIFY(table->item(ch1_inflation, r_squared)->text().toDouble() > 0.99);
+    QVERIFY(table->item(ch1_deflation, r_squared)->text().toDouble() > 0.99);
     // The gap between the branches is the simulated plant's hysteresis: deflation above inflation.
-    QVERIFY(table->item(0, 8)->text().toDouble() > 0.0);
+    QVERIFY(table->item(ch1_inflation, gap)->text().toDouble() > 0.0);
     auto* hysteresis = p->findChild<QLabel*>("cal_chart_channel_1_hysteresis");
     QVERIFY(hysteresis);
     QVERIFY(!hysteresis->pixmap().isNull());
