@@ -103,6 +103,10 @@ void run_experiment(const RunArgs& a) {
   if (request.rig_file.empty()) request.rig_file = cli::data_dir() / "rigs" / "simulated.json";
   // Threshold protocols (staircases, QUEST) and the pulse task run in their own files (issue 13).
   const nlohmann::json document = read_json_file(request.protocol_file);
+  if (!request.telemetry_file.empty() && (is_threshold_protocol(document) || is_pulse_protocol(document))) {
+    throw InputError("command line", "telemetry", "a discrimination or localisation protocol (threshold and pulse "
+                     "sessions do not record telemetry yet)");
+  }
   if (is_threshold_protocol(document)) {
     ThresholdStudyRequest threshold{request, {}};
     threshold.observer.noise_kPa = a.sim_threshold_noise_kPa;
@@ -120,6 +124,11 @@ void run_experiment(const RunArgs& a) {
     return std::make_unique<TerminalParticipant>(protocol, std::cout, cli::stop_signal(), STDIN_FILENO);
   };
   const SessionEnd end = run_study_session(request, terminal, report, &cli::stop_signal());
+  if (!end.telemetry_file.empty()) {
+    std::cout << "telemetry: " << end.telemetry_records << " ticks in " << end.telemetry_file.string()
+              << (end.telemetry_dropped > 0 ? " (" + std::to_string(end.telemetry_dropped) + " dropped: the disk fell behind)" : "")
+              << "\n";
+  }
   if (end.unpushed_trials > 0) {
     std::cerr << "palprig: the lab server has not confirmed every trial yet; they are kept in the journal "
               << end.journal_file.string() << ": push them with palprig store sync --from " << end.journal_file.string()
@@ -156,6 +165,9 @@ void register_run(CLI::App* experiment) {
                   "default $PALPRIG_JOURNAL, else ~/.local/state/palprig/journal.sqlite");
   sub->add_option("--rig", a->request.rig_file, "Rig file (JSON); default: the simulated rig data/rigs/simulated.json");
   sub->add_option("--cal", a->request.calibration_file, "Calibration file (JSON); default: paper 002's models");
+  sub->add_option("--telemetry", a->request.telemetry_file,
+                  "Record every rig tick of the session to FILE (.bin binary, else CSV; as run --telemetry), on the "
+                  "session clock of the stored onsets; a new file (an existing one is never overwritten)");
   sub->add_flag("--resume", a->request.resume, "Continue this participant's unfinished session with this protocol");
   sub->add_option("--seed", a->request.seed, "Seed of the generated order; default: derived from participant and protocol");
   sub->add_option("--speed", a->request.speed,

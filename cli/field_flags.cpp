@@ -10,7 +10,7 @@ namespace {
 constexpr std::string_view kCommandLine = "command line";
 
 // field (as libraries name it) -> flag (as the user types it)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 41> kFieldFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 42> kFieldFlags{{
     {"participant", "--participant"},
     {"resume", "--resume"},
     {"seed", "--seed"},
@@ -52,6 +52,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 41> kFieldFl
     {"level", "--level"},
     {"response", "--response"},
     {"n", "--n"},
+    {"telemetry", "--telemetry"},  // palprig experiment run: the session's tick recording
 }};
 
 }  // namespace

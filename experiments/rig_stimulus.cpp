@@ -49,6 +49,11 @@ ChannelPressures RigStimulus::service(double t_s) {
     fault(std::string("safety stage: ") + to_string(rig_.fault()));
   }
   last_ = result.tick.record;
+  if (telemetry_) {
+    if (telemetry_->failed()) fault("telemetry: " + telemetry_->failure());
+    if (keep_every_record_) telemetry_->push_wait(last_);
+    else telemetry_->try_push(last_);
+  }
   return result.monitor_kPa;
 }
 

@@ -7,6 +7,7 @@
 // channel and throws RigFault.
 #include "controller/rig_step.hpp"
 #include "controller/telemetry.hpp"
+#include "controller/telemetry_writer.hpp"
 #include "experiments/stimulus_output.hpp"
 
 namespace palprig {
@@ -28,6 +29,15 @@ class RigStimulus final : public StimulusOutput {
   // The record of the last serviced tick (pen position and per-finger values, for observers).
   const TelemetryRecord* last_record() const noexcept override { return &last_; }
 
+  // Every serviced tick from now on also goes to `writer` (null: none). keep_every_record: wait
+  // for room in its queue (a session on simulated time, which has no deadline) instead of
+  // dropping and counting (real time: the rig is never made to wait for the disk). A writer
+  // that failed (disk full, its size budget) is a fault: every channel vented.
+  void record_to(TelemetryWriter* writer, bool keep_every_record) noexcept {
+    telemetry_ = writer;
+    keep_every_record_ = keep_every_record;
+  }
+
  private:
   enum class Mode { vented, hold, scene };
   [[noreturn]] void fault(const std::string& why);
@@ -38,6 +48,8 @@ class RigStimulus final : public StimulusOutput {
   const Scene* scene_ = nullptr;
   InputSource* pen_ = nullptr;
   TelemetryRecord last_{};
+  TelemetryWriter* telemetry_ = nullptr;
+  bool keep_every_record_ = false;
 };
 
 }  // namespace palprig

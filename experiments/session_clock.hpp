@@ -13,6 +13,9 @@ class SessionClock {
   virtual ~SessionClock() = default;
   virtual double now_s() = 0;
   virtual void wait_until(double t_s) = 0;
+  // False when time only moves as the loop waits for it: nothing has a deadline, so a consumer
+  // (the telemetry writer) may be waited for instead of dropping.
+  virtual bool real_time() const { return true; }
 };
 
 class SteadyClock final : public SessionClock {
@@ -32,6 +35,7 @@ class SimulatedClock final : public SessionClock {
   void wait_until(double t_s) override {
     if (t_s > t_s_) t_s_ = t_s;
   }
+  bool real_time() const override { return false; }
 
  private:
   double t_s_ = 0;

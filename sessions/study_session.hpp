@@ -39,6 +39,11 @@ struct StudySessionRequest {
   double speed = 0;  // simulated participant: 0 = as fast as possible on simulated time, else times real time
   SimulatedObserverModel model;  // simulated participant's parameters (its seed comes from sim:SEED)
   bool person_palpates = false;  // the front end gives a person a pen (GUI); a terminal does not
+  // Every rig tick of the session (target, setpoint, monitor per finger, pen, faults) as
+  // `palprig run --telemetry` writes it (.bin: binary, else CSV), on the session clock that
+  // the stored onset_s of each trial uses. Empty: none. An existing non-empty file is refused
+  // (a resumed session's earlier recording is never overwritten).
+  std::filesystem::path telemetry_file;
 };
 
 // Known once the session is opened in the store.
@@ -65,6 +70,10 @@ struct SessionEnd {
   // (kept in the journal, pushed by the next session or `palprig store sync`).
   std::int64_t unpushed_trials = 0;
   std::filesystem::path journal_file;
+  // The request's telemetry file when one was written; records written and dropped (a real-time
+  // session drops rather than make the rig wait for the disk; a simulated one keeps all).
+  std::filesystem::path telemetry_file;
+  std::uint64_t telemetry_records = 0, telemetry_dropped = 0;
 };
 
 // What a front end shows. Calls come from the thread running the session.
@@ -96,5 +105,9 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
 // The simulated observer's seed for a session resumed at `start_position`: moved on by the
 // trials done, so the answers differ from those of the lost attempt.
 std::uint64_t resumed_simulation_seed(std::uint64_t seed, int start_position) noexcept;
+
+// Refuses (InputError) a telemetry path that cannot take a new recording: an existing non-empty
+// file, or a folder that does not exist. Checked before the rig moves.
+void refuse_unusable_telemetry_file(const std::filesystem::path& file);
 
 }  // namespace palprig
