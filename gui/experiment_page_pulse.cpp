@@ -5,6 +5,7 @@
 // and each committed trial fills its row: mark x/y mm, distance to the artery mm, hit, RT.
 #include <QHeaderView>
 #include <QLabel>
+#include <QLineEdit>
 #include <QTableWidget>
 #include <cmath>
 #include <filesystem>
