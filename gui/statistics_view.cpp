@@ -158,7 +158,7 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   condition_chart_->setObjectName("conditionChart");
   detail_chart_ = new ChartView(charts);
   detail_chart_->setObjectName("detailChart");
-  auto* vertical = new QSplitter(Qt::Vertical, this);
+  auto* vertical = tables_ = new QSplitter(Qt::Vertical, this);
   vertical->addWidget(charts);
   measures_table_ = make_table(vertical, "measuresTable");
   comparisons_table_ = make_table(vertical, "comparisonsTable");
@@ -248,18 +248,30 @@ void StatisticsView::display(const TrialStatistics& s) {
   for (const SummaryRow& row : s.by_condition.rows) trials += row.trials;
   int pulse_trials = 0;
   for (const PulseConditionSummary& row : s.pulse) pulse_trials += row.trials;
-  status_->setText(tr("%1: %2 scored trials, %3 conditions (practice left out)%4 · %5")
-                       .arg(location_)
-                       .arg(trials)
-                       .arg(s.by_condition.rows.size())
-                       .arg(s.pulse.empty() ? QString() : tr("; %1 pulse-localisation trials").arg(pulse_trials))
-                       .arg(QDateTime::currentDateTime().toString("HH:mm:ss")));
+  const QString pulse_text = tr("%1 pulse-localisation trials, %2 conditions").arg(pulse_trials).arg(s.pulse.size());
+  if (pulse_only(s)) {
+    status_->setText(tr("%1: %2 · %3").arg(location_, pulse_text, QDateTime::currentDateTime().toString("HH:mm:ss")));
+  } else {
+    status_->setText(tr("%1: %2 scored trials, %3 conditions (practice left out)%4 · %5")
+                         .arg(location_)
+                         .arg(trials)
+                         .arg(s.by_condition.rows.size())
+                         .arg(s.pulse.empty() ? QString() : "; " + pulse_text)
+                         .arg(QDateTime::currentDateTime().toString("HH:mm:ss")));
+  }
   condition_chart_->set_chart(condition_chart(s), tr("no scored trial yet"));
   detail_chart_->set_chart(detail_chart(s), tr("no finger values or tumors scored yet"));
   fill_measures_table(*measures_table_, s);
   fill_comparisons_table(*comparisons_table_, s);
   fill_pulse_table(*pulse_table_, s.pulse, s.confidence);
+  // A pulse-only store has nothing for the Se/Sp tables: the pulse table takes their room.
+  const bool was_pulse_only = measures_table_->isHidden();
   pulse_table_->setVisible(!s.pulse.empty());
+  measures_table_->setVisible(!pulse_only(s));
+  comparisons_table_->setVisible(!pulse_only(s));
+  if (pulse_only(s) != was_pulse_only) {
+    tables_->setSizes(pulse_only(s) ? QList<int>{520, 0, 0, 230} : QList<int>{520, 230, 170, s.pulse.empty() ? 0 : 150});
+  }
   for (auto* b : export_buttons_) b->setEnabled(!export_watcher_.isRunning());
 }
 

@@ -31,6 +31,7 @@
 class QFileSystemWatcher;
 class QLabel;
 class QPushButton;
+class QSplitter;
 class QTableWidget;
 class QTimer;
 
@@ -107,6 +108,7 @@ class StatisticsView : public QWidget {
   QTableWidget* measures_table_ = nullptr;
   QTableWidget* comparisons_table_ = nullptr;
   QTableWidget* pulse_table_ = nullptr;
+  QSplitter* tables_ = nullptr;  // charts, measures, comparisons, pulse
   std::vector<QPushButton*> export_buttons_;
 };
 
