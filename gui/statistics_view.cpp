@@ -87,7 +87,7 @@ StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& 
         const SummaryOptions options = view_options();
         const auto path = dir / "statistics.json";
         std::ofstream file(path);
-        file << summary_json(summarise_trials(*store, options), options.confidence).dump(2) << "\n";
+        file << stats_trials_text(*store, options, "json");  // byte for byte `stats trials --json`
         if (!file.flush()) throw std::runtime_error("cannot write " + path.string());
         files.push_back(path);
       } else {

@@ -250,6 +250,12 @@ class PulseConsoleTest : public QObject {
       QCOMPARE(c["distance_mean_mm"].get<double>(), s.distance_mean_mm);
       QCOMPARE(c["distance_median_mm"].get<double>(), s.distance_median_mm);
     }
+    // The Statistics JSON export is byte for byte `stats trials --json`.
+    QSignalSpy exported(&view, &StatisticsView::exported);
+    view.export_to(StatisticsView::ExportKind::statistics_json, QString::fromStdString((dir.path() / "exports").string()));
+    QVERIFY(exported.wait(30000));
+    QCOMPARE(QString::fromStdString(test_support::read_file(dir.path() / "exports" / "statistics.json")),
+             QString::fromStdString(r.out));
     auto* pulse_table = view.findChild<QTableWidget*>("pulseTable");
     QVERIFY(pulse_table && !pulse_table->isHidden());  // shown for a store with pulse trials
     QCOMPARE(pulse_table->rowCount(), 2);
