@@ -50,7 +50,7 @@ class TerminalPulseReport final : public PulseSessionListener {
 void run_pulse_experiment(const StudySessionRequest& request, bool quiet) {
   TerminalPulseReport report(request.store_location, quiet);
   install_stop_signals();
-  const SessionEnd end = run_pulse_study(request, report, &stop_signal());
+  const SessionEnd end = run_pulse_study(request, nullptr, report, &stop_signal());
   if (end.completed) {
     std::cout << "session " << report.session_id() << " completed: " << end.committed_trials << " trials in "
               << request.store_location << "\n";

@@ -7,8 +7,6 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/stats_printing.hpp"
-#include "store/pulse_store.hpp"
-#include "store/sqlite_trial_store.hpp"
 #include "store/trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
@@ -41,22 +39,8 @@ void register_stats_trials(CLI::App* stats_app) {
     options.include_practice = a->include_practice;
     options.confidence = a->confidence;
     const auto store = open_trial_store(a->db, TrialStore::Access::read_only);
-    const std::string format = a->json ? "json" : a->format;
-    // Issue 13: pulse-localisation trials (their own table, SQLite files only so far) are
-    // summarised per condition.
-    if (auto* sqlite = dynamic_cast<SqliteTrialStore*>(store.get())) {
-      PulseStore pulse(*sqlite, false);
-      if (pulse.has_trials()) {
-        const auto rows = pulse.summarise(a->confidence);
-        if (format == "json") std::cout << pulse_summary_json(rows, a->confidence).dump(2) << "\n";
-        else std::cout << pulse_summary_table(rows, a->confidence);
-        auto any = sqlite->database().prepare("SELECT count(*) FROM trials");
-        if (!any.step() || any.integer(0) == 0) return;
-      }
-    }
-    const TrialSummary summary = summarise_trials(*store, options);
-    if (format == "json") std::cout << summary_json(summary, a->confidence).dump(2) << "\n";
-    else if (format == "csv") std::cout << summary_csv(summary);
-    else std::cout << summary_table(summary);
+    // Pulse-localisation trials (issue 13) first, then the rest: one library call, which the
+    // GUI's statistics.json export makes too.
+    std::cout << stats_trials_text(*store, options, a->json ? "json" : a->format);
   });
 }

@@ -137,8 +137,36 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
     clock.wait_until(next_s);
     return t;
   };
+  auto pause_asked = [&] { return options.pause && options.pause->load(); };
+  // The participant's go-ahead (the rig is serviced, vented, meanwhile). The simulated observer
+  // is ready at once: no pass, no time, so its sessions are unchanged by this wait.
+  auto wait_ready = [&](int position) {
+    bool told = false;
+    while (!participant.ready(clock.now_s())) {
+      if (!told && options.on_waiting) options.on_waiting(position, false);
+      told = true;
+      pass();
+      if (pause_asked()) return false;  // paused again before the Ready: hold first
+    }
+    return true;
+  };
+  // A pause: vent at once and hold (servicing the vented rig) until it is lifted.
+  auto hold = [&](int position) {
+    output.vent(clock.now_s());
+    if (options.on_waiting) options.on_waiting(position, true);
+    while (pause_asked()) pass();
+  };
   try {
-    for (int position = options.start_position; position < static_cast<int>(order.size()); ++position) {
+    bool need_ready = true;  // before the first trial and after a pause
+    for (int position = options.start_position; position < static_cast<int>(order.size());) {
+      if (pause_asked()) {
+        hold(position);
+        need_ready = true;
+      }
+      if (need_ready) {
+        if (!wait_ready(position)) continue;
+        need_ready = false;
+      }
       const auto c = static_cast<std::size_t>(order[static_cast<std::size_t>(position)]);
       const PulseCondition& condition = protocol.conditions[c];
       PulseTrialRecord r;
@@ -151,11 +179,17 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
       }
       const Scene& scene = condition.generated ? *generated.scene : *scenes.at(c).scene;
       r.onset_s = clock.now_s();
-      InputSource& pen = participant.trial_started(condition, scene, r.onset_s);
+      if (options.on_trial_started) options.on_trial_started(PulseTrialStart{position, static_cast<int>(c), r.scene_seed, r.onset_s});
+      InputSource& pen = participant.trial_started(position, condition, scene, r.onset_s);
       output.palpate(scene, pen, r.onset_s);
       std::optional<Mark> mark;
+      bool interrupted = false;
       for (double t = r.onset_s; t - r.onset_s < protocol.max_present_s + protocol.response_timeout_s && !mark;) {
         t = pass();
+        if (pause_asked()) {
+          interrupted = true;  // the trial is held: not scored, presented again from its start
+          break;
+        }
         if (t - r.onset_s >= protocol.max_present_s) output.vent(t);
         FeltSample sample;
         sample.t_s = t;
@@ -167,6 +201,7 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
         if (mark) r.response_time_s = t - r.onset_s;
       }
       output.vent(clock.now_s());
+      if (interrupted) continue;  // the loop's top holds the pause, then waits for the Ready
       r.answered = mark.has_value();
       r.distance_mm = std::numeric_limits<double>::quiet_NaN();
       if (mark) {
@@ -181,8 +216,10 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
         r.response_time_s = std::numeric_limits<double>::quiet_NaN();
       }
       if (options.on_trial) options.on_trial(r);
+      ++position;
+      // The inter-trial interval; a pause here cuts it short (the trial is committed).
       const double pause = clock.now_s();
-      for (double t = pause; t - pause < protocol.inter_trial_s;) t = pass();
+      for (double t = pause; t - pause < protocol.inter_trial_s && !pause_asked();) t = pass();
     }
   } catch (const Stopped&) {
     result.stopped = true;
@@ -195,7 +232,7 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
   return result;
 }
 
-InputSource& SimulatedPulseObserver::trial_started(const PulseCondition&, const Scene& scene, double t_s) {
+InputSource& SimulatedPulseObserver::trial_started(int, const PulseCondition&, const Scene& scene, double t_s) {
   // A pen raster (the model's sweep_* fields keep their stored names).
   RasterPlan plan;
   plan.speed_mm_per_s = model_.sweep_speed_mm_per_s;

@@ -80,18 +80,40 @@ struct PulseTrialRecord {
 class PulseParticipant {
  public:
   virtual ~PulseParticipant() = default;
-  // A trial begins on this scene; returns the pen the participant palpates with.
-  virtual InputSource& trial_started(const PulseCondition& condition, const Scene& scene, double t_s) = 0;
+  // Before the first trial and after a pause: true when the participant wants to go on (a
+  // person's Ready). The simulated observer is always ready, so its sessions pass no time here.
+  virtual bool ready(double /*t_s*/) { return true; }
+  // Trial `position` begins on this scene (again from its start after a pause); returns the pen
+  // the participant palpates with. An answer belongs to the position it was given for.
+  virtual InputSource& trial_started(int position, const PulseCondition& condition, const Scene& scene, double t_s) = 0;
   virtual void feel(const FeltSample& sample) = 0;
   virtual std::optional<Mark> answer(double t_s) = 0;
+};
+
+// A trial about to be presented: what a front end needs to show its scene (a generated
+// condition's scene is generated_pulse_scene(scene_seed, difficulty)).
+struct PulseTrialStart {
+  int position = 0;
+  int condition = 0;  // index into protocol.conditions
+  std::optional<std::uint64_t> scene_seed;
+  double onset_s = 0;
 };
 
 struct PulseSessionOptions {
   std::uint64_t seed = 1;
   int start_position = 0;
   double period_s = 0.002;  // the pulse is a 72 BPM wave: service the rig often
-  const std::atomic<int>* stop = nullptr;
+  const std::atomic<int>* stop = nullptr;  // non-zero: vent and stop (the trial in progress is not kept)
+  // true: pause, with the discrimination session's semantics (experiments/session_loop.hpp): vents
+  // at once and holds the trial in progress, which is presented again from its start once the
+  // pause is lifted and the participant is ready; a pause in the inter-trial interval (the trial
+  // is committed) cuts it short. Nothing committed is lost.
+  const std::atomic<bool>* pause = nullptr;
   std::function<void(const PulseTrialRecord&)> on_trial;
+  std::function<void(const PulseTrialStart&)> on_trial_started;
+  // The session waits: `paused` true once a pause is taken (vented, holding); false while it
+  // waits for the participant's ready (before the first trial and after a pause).
+  std::function<void(int position, bool paused)> on_waiting;
 };
 
 struct PulseSessionResult {
@@ -120,7 +142,7 @@ struct PulseObserverModel {
 class SimulatedPulseObserver final : public PulseParticipant {
  public:
   SimulatedPulseObserver(const PulseObserverModel& model, FingerLayout layout) : model_(model), layout_(layout), random_(model.seed) {}
-  InputSource& trial_started(const PulseCondition& condition, const Scene& scene, double t_s) override;
+  InputSource& trial_started(int position, const PulseCondition& condition, const Scene& scene, double t_s) override;
   void feel(const FeltSample& sample) override;
   std::optional<Mark> answer(double t_s) override;
 

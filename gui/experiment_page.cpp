@@ -142,7 +142,7 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
 
   table_ = new QTableWidget(0, kColumns);
   table_->setObjectName("trial_table");
-  table_->setHorizontalHeaderLabels({"#", "Block", "Condition", "Stimulus kPa", "Tumor", "Answer", "Score", "RT s", ""});
+  set_table_columns(false);
   table_->verticalHeader()->setVisible(false);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   table_->setSelectionMode(QAbstractItemView::NoSelection);
@@ -226,6 +226,7 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
     emit trialCommitted(t.planned.position);
   });
   connect(&run_, &SessionRun::ended, this, &ExperimentPage::on_ended);
+  connect_pulse();
   connect(&run_, &SessionRun::refused, this, [this](const QString& line, int code) {
     refuse(line);
     emit sessionRefused(line, code);
@@ -275,6 +276,7 @@ void ExperimentPage::update_plan() {
   if (run_.running()) return;
   const ExperimentFields f = fields();
   protocol_.reset();
+  pulse_protocol_.reset();
   offered_session_.reset();
   resume_note_->clear();
   plan_note_->clear();
@@ -282,10 +284,12 @@ void ExperimentPage::update_plan() {
   status_->setProperty("refusal", QString());
   speed_->setEnabled(is_simulated_code(f.participant));
   table_->setRowCount(0);
+  set_table_columns(false);
   if (f.protocol.empty()) {
     set_buttons();
     return;
   }
+  if (update_pulse_plan(f)) return;
   try {
     protocol_ = load_protocol(f.protocol);
   } catch (const std::exception& e) {
@@ -388,7 +392,7 @@ bool ExperimentPage::begin(bool resume) {
   if (run_.running()) return false;
   update_plan();
   const ExperimentFields f = fields();
-  if (!protocol_) {
+  if (!protocol_ && !pulse_protocol_) {
     if (refusal_text().isEmpty()) refuse("choose a protocol file");
     return false;
   }
@@ -414,7 +418,8 @@ bool ExperimentPage::begin(bool resume) {
     };
   }
   try {
-    screen_->start_session(*protocol_, channel_);
+    if (pulse_protocol_) screen_->start_pulse_session(*pulse_protocol_, channel_);
+    else screen_->start_session(*protocol_, channel_);
   } catch (const std::exception& e) {  // a localisation scene that does not load
     refuse(e.what());
     return false;
@@ -427,7 +432,8 @@ bool ExperimentPage::begin(bool resume) {
   status_->setText(resume ? "Resuming..." : "Starting...");
   if (host_.take_rig) host_.take_rig();
   rig_taken_ = true;
-  run_.start(request, person);
+  if (pulse_protocol_) start_pulse_run(request);
+  else run_.start(request, person);
   set_buttons();
   return true;
 }
@@ -437,9 +443,11 @@ void ExperimentPage::on_started(const SessionStart& s) {
   offered_session_.reset();
   // The order being run, as stored (a new participant's number is known only now).
   try {
-    const auto store = open_trial_store(fields().store, TrialStore::Access::read_only);
-    const StoredSession stored = store->load_session(s.session_id);
-    if (table_->rowCount() != static_cast<int>(stored.plan.trials.size()) || !s.resumed) show_plan(*protocol_, stored.plan);
+    if (protocol_) {  // a pulse session's order is the one shown (same seed, same protocol)
+      const auto store = open_trial_store(fields().store, TrialStore::Access::read_only);
+      const StoredSession stored = store->load_session(s.session_id);
+      if (table_->rowCount() != static_cast<int>(stored.plan.trials.size()) || !s.resumed) show_plan(*protocol_, stored.plan);
+    }
   } catch (const std::exception&) {
     // Reading the order back is for display only; the session goes on.
   }
@@ -521,7 +529,7 @@ void ExperimentPage::abort_and_wait(bool give_back_rig) {
 
 void ExperimentPage::set_buttons() {
   const bool running = run_.running();
-  const bool ready = protocol_.has_value() && !participant_edit_->text().trimmed().isEmpty() &&
+  const bool ready = (protocol_.has_value() || pulse_protocol_.has_value()) && !participant_edit_->text().trimmed().isEmpty() &&
                      !store_edit_->text().trimmed().isEmpty();
   begin_->setEnabled(!running && ready && !offered_session_);
   resume_session_->setVisible(offered_session_.has_value());

@@ -7,7 +7,9 @@
 // pilot runs with the simulated participant (sim:SEED) at a chosen speed; a trial list ticked
 // as each trial is committed; the participant screen (which can go full screen on a second
 // display); the files written, listed at the end. The session itself is run_study_session on
-// SessionRun's thread: the same code as `palprig experiment run`.
+// SessionRun's thread: the same code as `palprig experiment run`. A pulse-localisation protocol
+// ("task": "pulse") runs run_pulse_study the same way, with its own plan, rows and marking
+// screen (experiment_page_pulse.cpp).
 #include <QWidget>
 #include <filesystem>
 #include <functional>
@@ -16,6 +18,7 @@
 #include <string>
 
 #include "experiments/protocol.hpp"
+#include "experiments/pulse_task.hpp"
 #include "experiments/session_plan.hpp"
 #include "gui/gui_participant.hpp"
 #include "gui/session_run.hpp"
@@ -76,6 +79,8 @@ class ExperimentPage final : public QWidget {
   StatisticsView* statistics() const noexcept { return statistics_; }
   void show_statistics();  // brings the Statistics tab to the front
   SessionRun& session_run() noexcept { return run_; }
+  // The pulse protocol chosen (null for the other tasks).
+  const PulseProtocol* pulse_protocol() const noexcept { return pulse_protocol_ ? &*pulse_protocol_ : nullptr; }
 
  signals:
   void sessionStarted();
@@ -92,11 +97,19 @@ class ExperimentPage final : public QWidget {
   void show_files();
   void on_started(const SessionStart& s);
   void on_ended(const SessionEnd& e);
+  // Pulse localisation (experiment_page_pulse.cpp).
+  void set_table_columns(bool pulse);
+  bool update_pulse_plan(const ExperimentFields& f);  // false: not a pulse protocol
+  void show_pulse_order(const PulseProtocol& protocol, const std::vector<int>& order);
+  void tick_pulse_row(const PulseTrialRecord& trial);
+  void start_pulse_run(const StudySessionRequest& request);
+  void connect_pulse();
 
   ExperimentHost host_;
   SessionRun run_;
   std::shared_ptr<ParticipantChannel> channel_;
   std::optional<Protocol> protocol_;
+  std::optional<PulseProtocol> pulse_protocol_;
   std::optional<std::int64_t> offered_session_;
   int offered_start_ = 0;
   bool rig_taken_ = false;

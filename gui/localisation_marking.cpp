@@ -39,12 +39,18 @@ LocalisationMarking::LocalisationMarking(QWidget* parent) : QWidget(parent) {
 LocalisationMarking::~LocalisationMarking() = default;
 
 void LocalisationMarking::start_session(const Protocol& protocol, WindowPenInput* pen) {
-  delete view_;
+  single_mark_ = false;
+  show_scene(load_scene_file(protocol.localisation.scene_file), pen);
+}
+
+void LocalisationMarking::show_scene(SceneFile scene, WindowPenInput* pen) {
+  delete view_;  // before the scene it points into is replaced
   view_ = nullptr;
-  scene_ = load_scene_file(protocol.localisation.scene_file);
+  scene_ = std::move(scene);
   view_ = new SceneView(*scene_, FingerLayout{}, 100.0);
   view_->set_tumors_visible(false);
   view_->set_map_visible(false);
+  view_->set_arteries_visible(false);
   if (pen) view_->set_pen_target(pen, PressureCurve{});
   connect(view_, &SceneView::markRequested, this, &LocalisationMarking::add_mark);
   layout_->insertWidget(0, view_, 1);
@@ -55,6 +61,7 @@ void LocalisationMarking::start_session(const Protocol& protocol, WindowPenInput
 
 void LocalisationMarking::add_mark(double x_mm, double y_mm) {
   if (!isEnabled()) return;
+  if (single_mark_) marks_.clear();  // marking again moves the one mark
   marks_.push_back({x_mm, y_mm});
   show_marks();
 }

@@ -5,6 +5,9 @@
 // runs the trial with (Participant::pen()); the right button (the pen's side button) or M
 // marks a suspected tumor where the pointer is. Undo, Clear and Done; Done hands the marks
 // over, to be scored by experiments/scoring exactly as the CLI scores them.
+// Pulse localisation uses the same screen (show_scene per trial, single_mark): the arteries are
+// hidden as well, and there is one mark, where the pulse is strongest (marking again moves it),
+// scored by models/pulse_localisation as the CLI scores it.
 #include <QWidget>
 #include <memory>
 #include <optional>
@@ -31,6 +34,11 @@ class LocalisationMarking final : public QWidget {
 
   // The protocol's scene (loaded here; the protocol was validated) and the pen to palpate with.
   void start_session(const Protocol& protocol, WindowPenInput* pen);
+  // One scene to palpate (a pulse trial's): shown without map, tumor outlines or arteries; the
+  // marks are cleared.
+  void show_scene(SceneFile scene, WindowPenInput* pen);
+  // true: at most one mark, a new one replaces it (pulse localisation).
+  void set_single_mark(bool on) { single_mark_ = on; }
   SceneView* scene_view() const noexcept { return view_; }
   const std::vector<Mark>& marks() const noexcept { return marks_; }
 
@@ -53,6 +61,7 @@ class LocalisationMarking final : public QWidget {
   QVBoxLayout* layout_ = nullptr;
   QTimer* heartbeat_ = nullptr;
   std::vector<Mark> marks_;
+  bool single_mark_ = false;
 };
 
 }  // namespace palprig::gui

@@ -76,18 +76,7 @@ ParticipantScreen::ParticipantScreen(QWidget* parent) : QWidget(parent) {
   pages_->addWidget(finger_page_);
 
   marking_ = new LocalisationMarking;
-  connect(marking_, &LocalisationMarking::done, this, [this] {
-    if (!channel_ || answering_ < 0) return;
-    Response r;
-    r.marks = marking_->marks();
-    if (!channel_->give_answer(answering_, r)) {
-      prompt_->setText(QString("At most %1 marks, please undo some.").arg(kMaxMarks));
-      return;
-    }
-    const int given = answering_;
-    set_answering(false);
-    emit answerGiven(given);
-  });
+  connect(marking_, &LocalisationMarking::done, this, &ParticipantScreen::give_marks);
   pages_->addWidget(marking_);
   layout->addWidget(pages_, 1);
   set_answering(false);
@@ -98,6 +87,7 @@ void ParticipantScreen::start_session(const Protocol& protocol, std::shared_ptr<
   channel_ = std::move(channel);
   finger_names_ = protocol.finger_names;
   localisation_ = protocol.task == TaskKind::localisation;
+  pulse_ = false;
   for (int f = 0; f < kFingerCount; ++f) {
     fingers_[static_cast<std::size_t>(f)]->setText(
         QString("%1  %2").arg(f + 1).arg(QString::fromStdString(finger_names_[static_cast<std::size_t>(f)])));
@@ -155,9 +145,27 @@ void ParticipantScreen::set_answering(bool on) {
 }
 
 void ParticipantScreen::toggle_finger(int finger) {
-  if (answering_ < 0 || localisation_) return;
+  if (answering_ < 0 || marks_answer()) return;
   QPushButton* b = fingers_[static_cast<std::size_t>(finger)];
   b->setChecked(!b->isChecked());
+}
+
+void ParticipantScreen::give_marks() {
+  if (!channel_ || answering_ < 0) return;
+  Response r;
+  r.marks = marking_->marks();
+  if (pulse_ && r.marks.size() != 1) {
+    prompt_->setText("Mark the point where the pulse is strongest first (right-click or M).");
+    return;
+  }
+  if (!channel_->give_answer(answering_, r)) {
+    prompt_->setText(QString("At most %1 marks, please undo some.").arg(kMaxMarks));
+    return;
+  }
+  const int given = answering_;
+  set_answering(false);
+  if (pulse_) prompt_->setText("Mark recorded.");  // the same words for every mark: no feedback on correctness
+  emit answerGiven(given);
 }
 
 void ParticipantScreen::give(const FingerFlags& fingers) {
@@ -177,11 +185,11 @@ void ParticipantScreen::keyPressEvent(QKeyEvent* e) {
     case Qt::Key_2: toggle_finger(1); return;
     case Qt::Key_3: toggle_finger(2); return;
     case Qt::Key_0:
-      if (!localisation_) give({});
+      if (!marks_answer()) give({});
       return;
     case Qt::Key_Return:
     case Qt::Key_Enter:
-      if (localisation_) marking_->finish();
+      if (marks_answer()) marking_->finish();
       else answer_->click();
       return;
     case Qt::Key_Space:

@@ -4,7 +4,8 @@
 // "None" or 0 answers no tumor, Answer or Enter hands the answer over; Space or "Ready" goes on
 // at the start and after a break. No feedback on correctness (it would train the participant
 // during the study; the scores are in the database and on the experimenter's console).
-// Localisation: LocalisationMarking (gui/localisation_marking.hpp) is shown instead.
+// Localisation: LocalisationMarking (gui/localisation_marking.hpp) is shown instead; pulse
+// localisation shows it too, one trial's scene at a time with one mark (participant_screen_pulse.cpp).
 // Answers go to the session thread through the ParticipantChannel (gui/gui_participant.hpp).
 // The screen can leave the console and go full screen on another display (show_full_screen_on).
 #include <QWidget>
@@ -12,6 +13,7 @@
 #include <memory>
 
 #include "experiments/protocol.hpp"
+#include "experiments/pulse_task.hpp"
 #include "experiments/session_plan.hpp"
 #include "gui/gui_participant.hpp"
 
@@ -35,6 +37,11 @@ class ParticipantScreen final : public QWidget {
   void show_ready();                    // waiting for the participant's go-ahead
   void show_trial(const PlannedTrial& trial, const Condition& condition);
   void show_wait(const QString& text);  // between trials, paused, done
+  // Pulse localisation: a session of `protocol` (conditions and their scenes), and one trial's
+  // scene to palpate and mark (a generated condition's scene made from the trial's seed, as the
+  // session made it). Null channel: the simulated participant palpates (the scene is shown).
+  void start_pulse_session(const PulseProtocol& protocol, std::shared_ptr<ParticipantChannel> channel);
+  void show_pulse_trial(const PulseTrialStart& start, const PulseCondition& condition);
   int answering_position() const noexcept { return answering_; }  // -1: no answer is taken now
   LocalisationMarking* marking() const noexcept { return marking_; }
 
@@ -57,10 +64,13 @@ class ParticipantScreen final : public QWidget {
   void toggle_finger(int finger);
   void give(const FingerFlags& fingers);
   void set_answering(bool on);
+  bool marks_answer() const noexcept { return localisation_ || pulse_; }  // the marking screen answers
+  void give_marks();
 
   std::shared_ptr<ParticipantChannel> channel_;
   std::array<std::string, kFingerCount> finger_names_{};
   bool localisation_ = false;
+  bool pulse_ = false;
   int answering_ = -1;
   QLabel* prompt_ = nullptr;
   QPushButton* ready_ = nullptr;

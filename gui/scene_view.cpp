@@ -66,6 +66,11 @@ void SceneView::set_marks(const std::vector<QPointF>& marks_mm) {
   update();
 }
 
+void SceneView::set_arteries_visible(bool on) {
+  arteries_visible_ = on;
+  update();
+}
+
 void SceneView::set_tumors_visible(bool on) {
   tumors_visible_ = on;
   update();
@@ -225,7 +230,7 @@ void SceneView::render_to(QPainter& p) {
   for (double x = bounds_.x0_mm + 10; x < bounds_.x1_mm; x += 10) p.drawLine(pixel_of(x, bounds_.y0_mm), pixel_of(x, bounds_.y1_mm));
   for (double y = bounds_.y0_mm + 10; y < bounds_.y1_mm; y += 10) p.drawLine(pixel_of(bounds_.x0_mm, y), pixel_of(bounds_.x1_mm, y));
   // Arteries.
-  for (std::size_t a = 0; a < arteries_.size(); ++a) {
+  for (std::size_t a = 0; arteries_visible_ && a < arteries_.size(); ++a) {
     QPainterPath path;
     for (std::size_t i = 0; i < arteries_[a].size(); ++i) {
       const QPointF q = pixel_of(arteries_[a][i].x_mm, arteries_[a][i].y_mm);

@@ -41,6 +41,9 @@ class SceneView final : public QWidget {
   // marks placed so far (x, y in mm; drawn numbered). Right-click asks for a mark there.
   void set_map_visible(bool on);
   void set_marks(const std::vector<QPointF>& marks_mm);
+  // The pulse-localisation participant's view hides the arteries (and their names) too.
+  void set_arteries_visible(bool on);
+  bool arteries_visible() const noexcept { return arteries_visible_; }
   void heartbeat();                                // GUI poll: re-publish the pen state
   void show_record(const TelemetryRecord& r);      // what the loop did last
   void advance_scene_time(double t_s);             // breathing scenes: re-render now and then
@@ -90,6 +93,7 @@ class SceneView final : public QWidget {
   double mouse_force_N_ = 2.0;
   bool tumors_visible_ = true;
   bool map_visible_ = true;
+  bool arteries_visible_ = true;
   std::vector<QPointF> marks_mm_;
   bool have_record_ = false;
   TelemetryRecord record_;

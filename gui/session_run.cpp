@@ -39,6 +39,38 @@ class QueuedListener final : public SessionListener {
   SessionRun* run_;
 };
 
+// The pulse session's reports, queued the same way. Waiting (for the Ready or in a pause) is
+// reported as the discrimination runner's `ready` state, so the console treats both alike.
+class QueuedPulseListener final : public PulseSessionListener {
+ public:
+  explicit QueuedPulseListener(SessionRun* run) : run_(run) {}
+  void session_started(const SessionStart& s) override {
+    post([run = run_, s] { emit run->started(s); });
+  }
+  void trial_started(const PulseTrialStart& start, const PulseCondition& condition) override {
+    post([run = run_, start, condition] {
+      emit run->runnerState(RunnerState::present, start.position);
+      emit run->pulseTrialStarted(start, condition);
+    });
+  }
+  void waiting(int position, bool) override {
+    post([run = run_, position] { emit run->runnerState(RunnerState::ready, position); });
+  }
+  void trial_committed(const PulseTrialRecord& trial, int total) override {
+    post([run = run_, trial, total] { emit run->pulseTrialCommitted(trial, total); });
+  }
+  void session_ended(const SessionEnd& end) override {
+    post([run = run_, end] { emit run->ended(end); });
+  }
+
+ private:
+  template <typename F>
+  void post(F&& f) {
+    QMetaObject::invokeMethod(run_, std::forward<F>(f), Qt::QueuedConnection);
+  }
+  SessionRun* run_;
+};
+
 }  // namespace
 
 SessionRun::SessionRun(QObject* parent) : QObject(parent) {}
@@ -46,17 +78,30 @@ SessionRun::SessionRun(QObject* parent) : QObject(parent) {}
 SessionRun::~SessionRun() { abort_and_wait(); }
 
 void SessionRun::start(const StudySessionRequest& request, PersonFactory person) {
+  launch([this, request, person = std::move(person)] {
+    QueuedListener listener(this);
+    run_study_session(request, person, listener, &stop_, &pause_);
+  });
+}
+
+void SessionRun::start_pulse(const StudySessionRequest& request, PulsePersonFactory person) {
+  launch([this, request, person = std::move(person)] {
+    QueuedPulseListener listener(this);
+    run_pulse_study(request, person, listener, &stop_, &pause_);
+  });
+}
+
+void SessionRun::launch(std::function<void()> session) {
   abort_and_wait();
   stop_.store(0);
   pause_.store(false);
   running_ = true;
   const int generation = ++generation_;
-  thread_ = std::thread([this, generation, request, person = std::move(person)] {
-    QueuedListener listener(this);
+  thread_ = std::thread([this, generation, session = std::move(session)] {
     QString refusal;
     int code = 0;
     try {
-      run_study_session(request, person, listener, &stop_, &pause_);
+      session();
     } catch (const InputError& e) {
       refusal = QString::fromStdString(e.what());
       code = 2;

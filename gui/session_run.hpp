@@ -1,6 +1,6 @@
 #pragma once
-// SessionRun: the GUI's one adapter to sessions/study_session's run_study_session, as LiveRun
-// is to run_loop. The session runs on its own thread; what it reports (SessionListener calls,
+// SessionRun: the GUI's one adapter to sessions/study_session's run_study_session (and to
+// sessions/pulse_study's run_pulse_study for pulse protocols), as LiveRun is to run_loop. The session runs on its own thread; what it reports (SessionListener calls,
 // on that thread) is copied and handed to the GUI thread with queued calls, so the session
 // thread never waits for the window. Pause, Resume and Abort reach the session loop through
 // atomics it reads every pass.
@@ -10,6 +10,9 @@
 #include <memory>
 #include <thread>
 
+#include <functional>
+
+#include "sessions/pulse_study.hpp"
 #include "sessions/study_session.hpp"
 
 namespace palprig::gui {
@@ -23,6 +26,10 @@ class SessionRun final : public QObject {
   // Starts the session thread. `person` makes the GUI participant (null for sim:SEED).
   // A refusal (InputError) or a failure to open the rig arrives as refused().
   void start(const StudySessionRequest& request, PersonFactory person);
+  // The same for a pulse-localisation protocol (run_pulse_study): started, runnerState (ready
+  // while waiting for the participant or holding a pause), ended, refused and finished as above,
+  // and the pulse trials as pulseTrialStarted / pulseTrialCommitted.
+  void start_pulse(const StudySessionRequest& request, PulsePersonFactory person);
   bool running() const noexcept { return running_; }
   bool paused() const noexcept { return pause_.load(); }
 
@@ -38,11 +45,15 @@ class SessionRun final : public QObject {
   void runnerState(palprig::RunnerState state, int position);
   void trialCommitted(const palprig::TrialRecord& trial, int total);
   void ended(const palprig::SessionEnd& end);
+  void pulseTrialStarted(const palprig::PulseTrialStart& start, const palprig::PulseCondition& condition);
+  void pulseTrialCommitted(const palprig::PulseTrialRecord& trial, int total);
   void refused(const QString& line, int exit_code);  // the CLI's one line; 2 input, 1 rig
   void finished();  // after ended() or refused(): the thread is gone
 
  private:
   void join();
+  // Starts the session thread running `session` (which throws InputError for a refusal).
+  void launch(std::function<void()> session);
 
   std::thread thread_;
   std::atomic<int> stop_{0};

@@ -21,6 +21,7 @@
 #include "gui/chart_svg.hpp"
 #include "gui/chart_view.hpp"
 #include "gui/measures_chart.hpp"
+#include "gui/pulse_statistics.hpp"
 #include "gui/statistics_tables.hpp"
 #include "store/trial_export.hpp"
 #include "store/trial_summary_report.hpp"
@@ -48,12 +49,21 @@ StatisticsRefresh compute(const std::string& location) {
   return r;
 }
 
+// A store with pulse trials only: its charts are the pulse ones.
+bool pulse_only(const TrialStatistics& s) { return !s.pulse.empty() && s.by_condition.rows.empty(); }
+
+Chart condition_chart(const TrialStatistics& s) {
+  return pulse_only(s) ? pulse_hit_rate_chart(s.pulse, s.confidence) : measures_chart(s.by_condition);
+}
+
 Chart detail_chart(const TrialStatistics& s) {
+  if (pulse_only(s)) return pulse_distance_chart(s.pulse);
   if (!s.by_tumor.rows.empty() && s.by_finger.rows.empty()) return tumor_sensitivity_chart(s.by_tumor);
   return measures_chart(s.by_finger, "Se, Sp, PPV and ACC per finger value (Wilson 95 % intervals)", "finger ");
 }
 
 std::string detail_chart_name(const TrialStatistics& s) {
+  if (pulse_only(s)) return "pulse_distance_by_condition";
   return !s.by_tumor.rows.empty() && s.by_finger.rows.empty() ? "sensitivity_by_tumor" : "measures_by_finger";
 }
 
@@ -77,7 +87,7 @@ StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& 
         const SummaryOptions options = view_options();
         const auto path = dir / "statistics.json";
         std::ofstream file(path);
-        file << summary_json(summarise_trials(*store, options), options.confidence).dump(2) << "\n";
+        file << stats_trials_text(*store, options, "json");  // byte for byte `stats trials --json`
         if (!file.flush()) throw std::runtime_error("cannot write " + path.string());
         files.push_back(path);
       } else {
@@ -95,7 +105,7 @@ StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& 
         else write_chart_svg(chart, path);
         files.push_back(path);
       };
-      write(measures_chart(shown->by_condition), "measures_by_condition");
+      write(condition_chart(*shown), pulse_only(*shown) ? "pulse_hit_rate_by_condition" : "measures_by_condition");
       const Chart detail = detail_chart(*shown);
       if (has_bars(detail)) write(detail, detail_chart_name(*shown));
     }
@@ -148,10 +158,12 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   condition_chart_->setObjectName("conditionChart");
   detail_chart_ = new ChartView(charts);
   detail_chart_->setObjectName("detailChart");
-  auto* vertical = new QSplitter(Qt::Vertical, this);
+  auto* vertical = tables_ = new QSplitter(Qt::Vertical, this);
   vertical->addWidget(charts);
   measures_table_ = make_table(vertical, "measuresTable");
   comparisons_table_ = make_table(vertical, "comparisonsTable");
+  pulse_table_ = make_table(vertical, "pulseTable");
+  pulse_table_->setVisible(false);
   vertical->setSizes({520, 230, 170});  // the charts get most of the height (scaled with the view)
   layout->addWidget(vertical, 1);
 
@@ -188,6 +200,11 @@ void StatisticsView::set_store(const QString& store_location) {
   statistics_.reset();
   if (!file_watcher_->files().isEmpty()) file_watcher_->removePaths(file_watcher_->files());
   refresh();
+}
+
+const std::vector<PulseConditionSummary>& StatisticsView::pulse_rows() const {
+  static const std::vector<PulseConditionSummary> none;
+  return statistics_ ? statistics_->pulse : none;
 }
 
 const std::vector<SummaryRow>& StatisticsView::condition_rows() const {
@@ -229,15 +246,32 @@ void StatisticsView::refresh_done() {
 void StatisticsView::display(const TrialStatistics& s) {
   std::int64_t trials = 0;
   for (const SummaryRow& row : s.by_condition.rows) trials += row.trials;
-  status_->setText(tr("%1: %2 scored trials, %3 conditions (practice left out) · %4")
-                       .arg(location_)
-                       .arg(trials)
-                       .arg(s.by_condition.rows.size())
-                       .arg(QDateTime::currentDateTime().toString("HH:mm:ss")));
-  condition_chart_->set_chart(measures_chart(s.by_condition), tr("no scored trial yet"));
+  int pulse_trials = 0;
+  for (const PulseConditionSummary& row : s.pulse) pulse_trials += row.trials;
+  const QString pulse_text = tr("%1 pulse-localisation trials, %2 conditions").arg(pulse_trials).arg(s.pulse.size());
+  if (pulse_only(s)) {
+    status_->setText(tr("%1: %2 · %3").arg(location_, pulse_text, QDateTime::currentDateTime().toString("HH:mm:ss")));
+  } else {
+    status_->setText(tr("%1: %2 scored trials, %3 conditions (practice left out)%4 · %5")
+                         .arg(location_)
+                         .arg(trials)
+                         .arg(s.by_condition.rows.size())
+                         .arg(s.pulse.empty() ? QString() : "; " + pulse_text)
+                         .arg(QDateTime::currentDateTime().toString("HH:mm:ss")));
+  }
+  condition_chart_->set_chart(condition_chart(s), tr("no scored trial yet"));
   detail_chart_->set_chart(detail_chart(s), tr("no finger values or tumors scored yet"));
   fill_measures_table(*measures_table_, s);
   fill_comparisons_table(*comparisons_table_, s);
+  fill_pulse_table(*pulse_table_, s.pulse, s.confidence);
+  // A pulse-only store has nothing for the Se/Sp tables: the pulse table takes their room.
+  const bool was_pulse_only = measures_table_->isHidden();
+  pulse_table_->setVisible(!s.pulse.empty());
+  measures_table_->setVisible(!pulse_only(s));
+  comparisons_table_->setVisible(!pulse_only(s));
+  if (pulse_only(s) != was_pulse_only) {
+    tables_->setSizes(pulse_only(s) ? QList<int>{520, 0, 0, 230} : QList<int>{520, 230, 170, s.pulse.empty() ? 0 : 150});
+  }
   for (auto* b : export_buttons_) b->setEnabled(!export_watcher_.isRunning());
 }
 

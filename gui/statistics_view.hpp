@@ -13,6 +13,11 @@
 // Exports (buttons, or export_to for the console and tests) run on a worker too and call the
 // same library functions as `palprig export` (long CSV, BIDS) and `palprig stats trials --json`
 // (statistics.json); the charts are written as PNG and SVG from the same drawing as the screen.
+//
+// Pulse-localisation trials (issue 15): hit rate per condition with its Wilson interval and n,
+// distance to the artery mean / median / IQR, from PulseStore::summarise (the same call as
+// `palprig stats trials`), in their own table and, when the store has only pulse trials, in the
+// two charts (gui/pulse_statistics).
 #include <QFutureWatcher>
 #include <QString>
 #include <QStringList>
@@ -26,6 +31,7 @@
 class QFileSystemWatcher;
 class QLabel;
 class QPushButton;
+class QSplitter;
 class QTableWidget;
 class QTimer;
 
@@ -60,6 +66,8 @@ class StatisticsView : public QWidget {
   // Numbers of the last completed refresh (for tests and the screenshot): the same rows
   // `palprig stats trials --json` prints (store/trial_summary.hpp).
   const std::vector<SummaryRow>& condition_rows() const;
+  // Pulse rows of the last completed refresh (empty without pulse trials).
+  const std::vector<PulseConditionSummary>& pulse_rows() const;
   // Everything of the last completed refresh; null before the first one.
   const TrialStatistics* statistics() const { return statistics_.get(); }
   bool refreshing() const { return running_; }
@@ -99,6 +107,8 @@ class StatisticsView : public QWidget {
   ChartView* detail_chart_ = nullptr;  // per finger value (discrimination) or per tumor (localisation)
   QTableWidget* measures_table_ = nullptr;
   QTableWidget* comparisons_table_ = nullptr;
+  QTableWidget* pulse_table_ = nullptr;
+  QSplitter* tables_ = nullptr;  // charts, measures, comparisons, pulse
   std::vector<QPushButton*> export_buttons_;
 };
 

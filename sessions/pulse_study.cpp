@@ -9,11 +9,13 @@
 
 namespace palprig {
 
-SessionEnd run_pulse_study(const StudySessionRequest& r, PulseSessionListener& listener, const std::atomic<int>* stop) {
+SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactory& person, PulseSessionListener& listener,
+                           const std::atomic<int>* stop, const std::atomic<bool>* pause) {
   refuse_server_store_for_task_session(r.store_location);
   const PulseProtocol from_file = load_pulse_protocol(r.protocol_file);
   std::uint64_t sim_seed = 0;
-  if (!simulated_participant(r.participant_code, sim_seed)) {
+  const bool simulated = simulated_participant(r.participant_code, sim_seed);
+  if (!simulated && !person) {
     throw InputError("command line", "participant",
                      "sim:SEED for a pulse protocol (a person palpates with pen input, which the terminal session does "
                      "not read; run it from the GUI)");
@@ -29,35 +31,45 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, PulseSessionListener& l
   model.seed = sim_seed;
   PulseSessionRequest opening;
   opening.participant_code = r.participant_code;
-  opening.simulated = true;
+  opening.simulated = simulated;
   opening.resume = r.resume;
   opening.seed = r.seed;
   opening.setup = {rig.rig.id, rig.rig.backend, rig.cal.source,
-                   nlohmann::json{{"model", "pulse observer"}, {"seed", sim_seed}, {"press_force_N", model.press_force_N},
+                   !simulated ? nlohmann::json(nullptr) : nlohmann::json{{"model", "pulse observer"}, {"seed", sim_seed}, {"press_force_N", model.press_force_N},
                                   {"sweep_speed_mm_per_s", model.sweep_speed_mm_per_s},
                                   {"sweep_row_step_mm", model.sweep_row_step_mm}, {"mark_noise_mm", model.mark_noise_mm}},
                    std::filesystem::absolute(r.protocol_file).parent_path().string()};
   const OpenedPulseSession session = open_pulse_session(store, from_file, opening);
   PulseStore pulse_store(store);
-  model.seed = resumed_simulation_seed(sim_seed, session.start_position);
-  SimulatedPulseObserver participant(model, rig.config.layout);
+  std::unique_ptr<PulseParticipant> participant;
+  if (simulated) {
+    model.seed = resumed_simulation_seed(sim_seed, session.start_position);
+    participant = std::make_unique<SimulatedPulseObserver>(model, rig.config.layout);
+  } else {
+    participant = person(session.protocol);
+  }
   const int total = static_cast<int>(session.protocol.conditions.size()) * session.protocol.repetitions;
   listener.session_started(SessionStart{session.protocol.name, session.participant, session.session_id, session.resumed,
-                                        session.start_position, total, session.seed, true, rig.hardware()});
+                                        session.start_position, total, session.seed, simulated, rig.hardware()});
 
   RigStimulus output(rig.config, *rig.backend);
-  const std::unique_ptr<SessionClock> clock = session_clock(rig, true, r.speed);
+  const std::unique_ptr<SessionClock> clock = session_clock(rig, simulated, r.speed);
   PulseSessionOptions options;
   options.seed = session.seed;
   options.start_position = session.start_position;
   options.stop = stop;
+  options.pause = pause;
+  options.on_trial_started = [&](const PulseTrialStart& s) {
+    listener.trial_started(s, session.protocol.conditions.at(static_cast<std::size_t>(s.condition)));
+  };
+  options.on_waiting = [&](int position, bool paused) { listener.waiting(position, paused); };
   int committed = 0;
   options.on_trial = [&](const PulseTrialRecord& t) {
     pulse_store.commit_trial(session.session_id, t);  // committed before anyone is told
     ++committed;
     listener.trial_committed(t, total);
   };
-  const PulseSessionResult result = run_pulse_session(session.protocol, scenes, output, participant, *clock, options);
+  const PulseSessionResult result = run_pulse_session(session.protocol, scenes, output, *participant, *clock, options);
   rig.vent_and_close();
 
   SessionEnd end;
@@ -67,6 +79,7 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, PulseSessionListener& l
   end.committed_trials = session.start_position + committed;
   end.total_trials = total;
   if (result.completed) store.complete_session(session.session_id);
+  listener.session_ended(end);
   return end;
 }
 

@@ -74,6 +74,32 @@ bool PulseStore::has_trials() {
   return q.integer(0) > 0;
 }
 
+std::vector<PulseTrialRecord> PulseStore::read_trials(std::int64_t session_id) {
+  std::vector<PulseTrialRecord> out;
+  if (!has_trials()) return out;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto q = store_.database().prepare(
+      "SELECT position, condition, scene_seed, answered, mark_x_mm, mark_y_mm, artery, distance_mm, hit, "
+      "response_time_s, onset_s FROM pulse_trials WHERE session_id = ?1 ORDER BY position");
+  q.bind(1, session_id);
+  while (q.step()) {
+    PulseTrialRecord r;
+    r.position = static_cast<int>(q.integer(0));
+    r.condition = q.text(1);
+    if (!q.is_null(2)) r.scene_seed = static_cast<std::uint64_t>(q.integer(2));
+    r.answered = q.integer(3) != 0;
+    r.mark_x_mm = q.is_null(4) ? 0.0 : q.real(4);
+    r.mark_y_mm = q.is_null(5) ? 0.0 : q.real(5);
+    r.artery = q.is_null(6) ? std::string() : q.text(6);
+    r.distance_mm = q.is_null(7) ? nan : q.real(7);
+    r.hit = q.integer(8) != 0;
+    r.response_time_s = q.is_null(9) ? nan : q.real(9);
+    r.onset_s = q.real(10);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
 std::vector<PulseConditionSummary> PulseStore::summarise(double confidence) {
   std::vector<PulseConditionSummary> out;
   if (!has_trials()) return out;
@@ -100,9 +126,10 @@ std::vector<PulseConditionSummary> PulseStore::summarise(double confidence) {
     s.hit_rate = w.p;
     s.hit_low = w.lower;
     s.hit_high = w.upper;
-    s.distance_median_mm = s.distance_q1_mm = s.distance_q3_mm = s.distance_iqr_mm = nan;
+    s.distance_mean_mm = s.distance_median_mm = s.distance_q1_mm = s.distance_q3_mm = s.distance_iqr_mm = nan;
     if (!distances[c].empty()) {
       const auto d = stats::describe(distances[c]);
+      s.distance_mean_mm = d.mean;
       s.distance_median_mm = d.median;
       s.distance_q1_mm = d.q1;
       s.distance_q3_mm = d.q3;
@@ -123,7 +150,7 @@ nlohmann::ordered_json pulse_summary_json(const std::vector<PulseConditionSummar
   for (const auto& r : rows) {
     j["conditions"].push_back({{"condition", r.condition}, {"trials", r.trials}, {"answered", r.answered},
                                {"hits", r.hits}, {"hit_rate", r.hit_rate}, {"hit_rate_low", r.hit_low},
-                               {"hit_rate_high", r.hit_high}, {"distance_median_mm", r.distance_median_mm},
+                               {"hit_rate_high", r.hit_high}, {"distance_mean_mm", r.distance_mean_mm}, {"distance_median_mm", r.distance_median_mm},
                                {"distance_q1_mm", r.distance_q1_mm}, {"distance_q3_mm", r.distance_q3_mm},
                                {"distance_iqr_mm", r.distance_iqr_mm}});
   }
@@ -134,12 +161,13 @@ std::string pulse_summary_table(const std::vector<PulseConditionSummary>& rows, 
   std::string out = "Pulse localisation (hit rate with " + std::to_string(static_cast<int>(std::round(confidence * 100))) +
                     " % Wilson interval; distance to the artery centreline)\n";
   char line[256];
-  std::snprintf(line, sizeof line, "  %-16s %6s %6s %22s %12s %10s\n", "condition", "trials", "hits", "hit rate [CI]",
-                "median mm", "IQR mm");
+  std::snprintf(line, sizeof line, "  %-16s %6s %6s %22s %10s %12s %10s\n", "condition", "trials", "hits", "hit rate [CI]",
+                "mean mm", "median mm", "IQR mm");
   out += line;
   for (const auto& r : rows) {
-    std::snprintf(line, sizeof line, "  %-16s %6d %6d %6.3f [%.3f, %.3f] %12.2f %10.2f\n", r.condition.c_str(), r.trials,
-                  r.hits, r.hit_rate, r.hit_low, r.hit_high, r.distance_median_mm, r.distance_iqr_mm);
+    std::snprintf(line, sizeof line, "  %-16s %6d %6d %6.3f [%.3f, %.3f] %10.2f %12.2f %10.2f\n", r.condition.c_str(),
+                  r.trials, r.hits, r.hit_rate, r.hit_low, r.hit_high, r.distance_mean_mm, r.distance_median_mm,
+                  r.distance_iqr_mm);
     out += line;
   }
   return out;

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "statistics/statistics_error.hpp"
+#include "store/sqlite_trial_store.hpp"
 
 namespace palprig {
 
@@ -44,6 +45,7 @@ TrialStatistics compute_trial_statistics(TrialStore& store, const SummaryOptions
   s.by_tumor = summary_by(store, options, SummaryKey::tumor);
   drop_placeholder_rows(s.by_finger);
   drop_placeholder_rows(s.by_tumor);
+  if (auto* sqlite = dynamic_cast<SqliteTrialStore*>(&store)) s.pulse = PulseStore(*sqlite, false).summarise(options.confidence);
 
   const auto times = response_times_by_condition(store, options.include_practice);
   const auto& rows = s.by_condition.rows;  // sorted by condition

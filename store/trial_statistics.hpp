@@ -10,6 +10,7 @@
 
 #include "statistics/statistics_proportion.hpp"
 #include "statistics/statistics_ttest.hpp"
+#include "store/pulse_store.hpp"
 #include "store/trial_summary.hpp"
 
 namespace palprig {
@@ -38,6 +39,9 @@ struct TrialStatistics {
   TrialSummary by_tumor;      // localisation: per-tumor sensitivity ("-" = false marks, left out)
   std::vector<ResponseTimeComparison> response_times;  // every pair of conditions
   std::vector<MeasureComparison> measures;             // every pair of conditions x measure
+  // Pulse-localisation trials per condition: exactly what `palprig stats trials` prints for them
+  // (PulseStore::summarise; SQLite stores only, as there). Empty without pulse trials.
+  std::vector<PulseConditionSummary> pulse;
 };
 
 // Reads `store` (a read-only connection is enough). `options.by` is ignored: each part has its

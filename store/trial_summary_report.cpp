@@ -1,5 +1,8 @@
 #include "store/trial_summary_report.hpp"
 
+#include "store/pulse_store.hpp"
+#include "store/sqlite_trial_store.hpp"
+
 #include <cmath>
 #include <array>
 #include <cstdio>
@@ -125,6 +128,26 @@ nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence) {
     j["rows"].push_back(std::move(row));
   }
   return j;
+}
+
+std::string stats_trials_text(TrialStore& store, const SummaryOptions& options, const std::string& format) {
+  std::string out;
+  // Pulse-localisation trials (their own table, SQLite files only so far) per condition.
+  if (auto* sqlite = dynamic_cast<SqliteTrialStore*>(&store)) {
+    PulseStore pulse(*sqlite, false);
+    if (pulse.has_trials()) {
+      const auto rows = pulse.summarise(options.confidence);
+      out += format == "json" ? pulse_summary_json(rows, options.confidence).dump(2) + "\n"
+                              : pulse_summary_table(rows, options.confidence);
+      auto any = sqlite->database().prepare("SELECT count(*) FROM trials");
+      if (!any.step() || any.integer(0) == 0) return out;
+    }
+  }
+  const TrialSummary summary = summarise_trials(store, options);
+  if (format == "json") out += summary_json(summary, options.confidence).dump(2) + "\n";
+  else if (format == "csv") out += summary_csv(summary);
+  else out += summary_table(summary);
+  return out;
 }
 
 }  // namespace palprig
