@@ -2,6 +2,7 @@
 // TrialRecord: everything one completed trial leaves behind. The runner fills it, the store
 // commits it in one transaction, stats and export read it back.
 #include <array>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,7 +27,7 @@ struct TrialRecord {
   double response_time_s = 0;         // from onset to the answer (paper 002's measure); NaN when not answered
   // When the stimulus ended on the same clock: the runner left `present` (the sequence or
   // max_present_s ran out, or an answer during the presentation ended it at the answer's time).
-  double stimulus_end_s = 0;
+  double stimulus_end_s = std::numeric_limits<double>::quiet_NaN();  // NaN: unknown (stored NULL)
   std::optional<int> confidence;      // 1..levels when the protocol asks and it was answered
   std::array<double, kFingerCount> felt_kPa{};  // mean actuator pressure while the stimulus was on
   std::array<Outcome, kFingerCount> finger_outcomes{};  // discrimination, when answered

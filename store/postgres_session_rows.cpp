@@ -1,5 +1,7 @@
 #include "store/postgres_session_rows.hpp"
 
+#include "store/postgres_schema.hpp"
+
 #include <algorithm>
 #include <functional>
 #include <map>
@@ -208,7 +210,8 @@ std::optional<ServerSession> pg_read_session(PgConnection& db, std::int64_t sess
 }
 
 std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id, std::int64_t from_position) {
-  const PgResult r = db.exec("SELECT id, " + column_list(kTrialColumns) +
+  const bool rating_columns = pg_schema_version(db) >= kPgSchemaRatingColumnsFrom;
+  const PgResult r = db.exec("SELECT id, " + trial_select_list(rating_columns) +
                                  " FROM trials WHERE session_id = $1 AND position >= $2 ORDER BY position",
                              {pg_text(session_id), pg_text(from_position)});
   std::vector<TrialRows> trials;
