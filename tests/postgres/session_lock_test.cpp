@@ -153,6 +153,14 @@ TEST(PostgresSessionLock, ASecondBenchIsRefusedWhileTheFirstRunsAndTakesOverAfte
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM session_locks"), 0);
 }
 
+// The trial columns a version-1 server has (every value of an older trial, compared across
+// migrations that append columns).
+std::string version1_trial_columns() {
+  std::string s;
+  for (std::size_t i = 0; i < kTrialConfidence; ++i) s += (i ? ", t." : "t.") + std::string(kTrialColumns[i].name);
+  return s;
+}
+
 TEST(PostgresSchemaMigration, Version1ServerHoldingTrialsMigratesToVersion2AndKeepsEveryTrial) {
   PALPRIG_REQUIRE_PG_SERVER();
   ScratchDir dir;
@@ -188,7 +196,8 @@ TEST(PostgresSchemaMigration, Version1ServerHoldingTrialsMigratesToVersion2AndKe
   // Every stored value of the older trials, to compare after the migration.
   const auto digest = [&uri] {
     return PgConnection(parse_pg_target(uri))
-        .exec("SELECT md5(string_agg(t::text, '|' ORDER BY t.id)) FROM trials t JOIN sessions s ON s.id = t.session_id "
+        .exec("SELECT md5(string_agg(ROW(t.id, t.session_id, " + version1_trial_columns() +
+              ")::text, '|' ORDER BY t.id)) FROM trials t JOIN sessions s ON s.id = t.session_id "
               "JOIN participants p ON p.id = s.participant_id WHERE p.code IN ('sim:21', 'sim:22')")
         .text(0, 0);
   };
@@ -202,8 +211,8 @@ TEST(PostgresSchemaMigration, Version1ServerHoldingTrialsMigratesToVersion2AndKe
   const auto run = testing::run_palprig({"experiment", "run", "--protocol", protocol_file(), "--participant", "sim:23",
                                          "--db", uri, "--journal", (dir / "journal.sqlite").string(), "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 2);
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM palprig_schema"), 2);
+  EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), kPgSchemaVersion);
+  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM palprig_schema"), kPgSchemaVersion);
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), 3 * kTrialsPerSession);
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id "
                                     "JOIN participants p ON p.id = s.participant_id WHERE p.code IN ('sim:21', 'sim:22')"),
