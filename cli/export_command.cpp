@@ -48,7 +48,7 @@ void register_export_command(CLI::App& app) {
   sub->add_flag("--no-practice", a->no_practice, "Leave practice trials out (they are marked by a column otherwise)");
   sub->add_option("--plot", a->plot_dir,
                   "Also write DIR/measures_by_condition.png: Se, Sp, PPV, ACC per condition with Wilson 95 % error "
-                  "bars (paper 002 fig. 15)");
+                  "bars (paper 002 fig. 15), practice trials left out as in stats trials");
   sub->callback([a] {
     const auto opened = open_trial_store(a->db, TrialStore::Access::read_only);
     TrialStore& store = *opened;
@@ -62,6 +62,8 @@ void register_export_command(CLI::App& app) {
     for (std::size_t i = 0; i < shown; ++i) std::cout << "  " << r.files[i].string() << "\n";
     if (shown < r.files.size()) std::cout << "  ... and " << r.files.size() - shown << " more\n";
     if (!a->plot_dir.empty())
-      std::cout << "  " << plot_measures(store, a->plot_dir, !a->no_practice).string() << "\n";
+      // The chart is a statistic: practice trials are left out, as `stats trials` and the
+      // statistics view leave them out (a chart cannot mark them as the data files do).
+      std::cout << "  " << plot_measures(store, a->plot_dir, false).string() << "\n";
   });
 }

@@ -37,6 +37,10 @@ void register_gui_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 1e6));
   sub->add_flag("--resume", o->gui.session.resume,
                 "Continue this participant's unfinished session with this protocol at once");
+  sub->add_option("--participant-display", o->gui.session.participant_display,
+                  "Show the participant screen full screen on display N (1 = the first) from the start; "
+                  "0 (default): inside the console")
+      ->check(CLI::Range(0, 16));
   sub->add_flag("--json", o->gui.json, "At exit, print the loop's summary (ticks, overruns, wake-up latency) as JSON");
   sub->callback([o, sub]() {
     gui::GuiOptions g = o->gui;
@@ -44,6 +48,9 @@ void register_gui_command(CLI::App& app) {
     if (!session.protocol.empty() && (session.participant.empty() || session.store.empty())) {
       throw InputError("command line", session.participant.empty() ? "participant" : "store",
                        "a value with --protocol (the session needs a participant code and a trial database)");
+    }
+    if (session.participant_display > 0 && session.protocol.empty()) {
+      throw InputError("command line", "participant-display", "--protocol as well (the participant screen belongs to a session)");
     }
     g.files.data_dir = cli::data_dir();
     g.run.telemetry_path = o->telemetry;

@@ -22,9 +22,8 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
         if (paused) {
           runner.pause(t);
           started_position = -1;  // the held trial is presented (and announced) again
-        } else {
-          runner.begin(t);
         }
+        // On resume the runner stays in `ready`: the participant's go-ahead begins the trial.
       }
       runner.advance(t);
       if (paused) {

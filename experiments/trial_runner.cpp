@@ -188,8 +188,10 @@ void TrialRunner::advance(double t_s) {
 
 void TrialRunner::pause(double t_s) {
   switch (state_) {
-    case RunnerState::ready:
     case RunnerState::done: return;
+    // Waiting for the participant: nothing to drop, but the pause is still entered (vent, and
+    // the state event that tells a front end the loop holds).
+    case RunnerState::ready: break;
     case RunnerState::present:
     case RunnerState::respond: break;  // dropped: the same position is presented again
     case RunnerState::inter_trial:

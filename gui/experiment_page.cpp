@@ -10,6 +10,7 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QSignalBlocker>
 #include <QScreen>
 #include <QSplitter>
 #include <QTabWidget>
@@ -128,7 +129,7 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   pause_ = button("pause_session", "Pause");
   continue_ = button("continue_session", "Continue");
   abort_ = button("abort_session", "Abort");
-  pause_->setToolTip("Vents every channel and holds the trial in progress (it is presented again on Continue)");
+  pause_->setToolTip("Vents every channel and holds the trial in progress (it is presented again after Continue, once the participant says Ready)");
   abort_->setToolTip("Vents and ends the session; every committed trial is kept and the session can be resumed");
   for (QPushButton* b : {begin_, resume_session_, pause_, continue_, abort_}) buttons->addWidget(b);
   connect(begin_, &QPushButton::clicked, this, [this] { begin(false); });
@@ -177,6 +178,10 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
     const auto screens = QGuiApplication::screens();
     if (on) screen_->show_full_screen_on(screens.size() > 1 ? screens.back() : nullptr);
     else screen_->back_to_console();
+  });
+  connect(screen_, &ParticipantScreen::backInConsole, this, [this] {
+    const QSignalBlocker quiet(full_screen_);
+    full_screen_->setChecked(false);
   });
   screen_layout->addWidget(full_screen_);
   right_layout->addWidget(screen_box, 1);
@@ -494,8 +499,9 @@ void ExperimentPage::show_files() {
 void ExperimentPage::pause() {
   if (!run_.running()) return;
   run_.pause();
+  if (channel_) channel_->withdraw_ready();
   pause_held_ = false;
-  status_->setText("Paused: every channel vented; the trial in progress is presented again on Continue.");
+  status_->setText("Paused: every channel vented; the trial in progress is presented again after Continue and the participant's Ready.");
   screen_->show_wait("Paused. Please wait.");
   set_buttons();
 }
@@ -505,7 +511,9 @@ void ExperimentPage::resume() {
   if (!pause_held_) return;  // the loop has not taken the pause yet
   pause_held_ = false;
   run_.resume();
-  status_->setText("Continuing.");
+  // The held trial starts again when the participant says ready (fingers back on the actuators).
+  if (!simulated_) screen_->show_ready();
+  status_->setText(simulated_ ? "Continuing." : "Continuing: waiting for the participant's Ready.");
   set_buttons();
 }
 

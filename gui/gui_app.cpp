@@ -3,6 +3,7 @@
 #include <QApplication>
 #include <QMessageBox>
 #include <QPixmap>
+#include <QScreen>
 #include <QTimer>
 #include <cstdio>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gui/experiment_page.hpp"
+#include "gui/participant_screen.hpp"
 #include "gui/main_window.hpp"
 #include "gui/statistics_view.hpp"
 #include "experiments/simulated_participant.hpp"
@@ -43,6 +45,24 @@ nlohmann::json summary_json(const RunSummary& s) {
           {"fault", s.fault == FaultCode::none ? nlohmann::json(nullptr) : nlohmann::json(to_string(s.fault))}};
 }
 
+// Where the participant screen and the console ended up (which display, which rectangle):
+// `--participant-display` runs are checked with it under a two-screen X server.
+nlohmann::json participant_screen_json(MainWindow& window) {
+  auto rect = [](const QRect& r) { return nlohmann::json{r.x(), r.y(), r.width(), r.height()}; };
+  auto screen_index = [](const QScreen* screen) {
+    const auto screens = QGuiApplication::screens();
+    return static_cast<int>(screens.indexOf(const_cast<QScreen*>(screen))) + 1;
+  };
+  const ParticipantScreen& p = *window.experiment_page()->participant_screen();
+  return {{"own_window", p.isWindow()},
+          {"full_screen", p.isFullScreen()},
+          {"display", screen_index(p.screen())},
+          {"display_geometry", rect(p.screen()->geometry())},
+          {"window_geometry", rect(p.frameGeometry())},
+          {"console_display", screen_index(window.screen())},
+          {"console_window_geometry", rect(window.frameGeometry())}};
+}
+
 }  // namespace
 
 int run_gui(int argc, char** argv, const GuiOptions& o) {
@@ -61,11 +81,13 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
   window.show();
   int exit_code = 0;
   bool shot_taken = false;
+  nlohmann::json participant_screen_seen;  // --participant-display: where it was while the session was open
   // The screenshot: the whole window, or with a session its statistics view, when the session
   // ended (and the statistics were refreshed) or after_s passed, whichever comes first.
   auto take_screenshot = [&](QWidget& what) {
     if (shot_taken) return;
     shot_taken = true;
+    if (o.session.participant_display > 0) participant_screen_seen = participant_screen_json(window);
     const QPixmap shot = what.grab();
     if (!shot.save(QString::fromStdString(o.screenshot_path), "PNG")) {
       std::cerr << "palprig: " << o.screenshot_path << ": cannot write the screenshot\n";
@@ -117,6 +139,16 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
       });
     }
     page.set_fields({o.session.protocol, o.session.participant, o.session.store, o.session.speed});
+    if (o.session.participant_display > 0) {
+      const auto screens = QGuiApplication::screens();
+      if (o.session.participant_display > screens.size()) {
+        window.set_close_without_asking(true);
+        return refuse("command line: participant-display: a display this X server has (1 to " +
+                          std::to_string(screens.size()) + "), got " + std::to_string(o.session.participant_display),
+                      2, interactive);
+      }
+      page.participant_screen()->show_full_screen_on(screens[o.session.participant_display - 1]);
+    }
     std::uint64_t seed = 0;
     const bool pilot = parse_simulated_participant(o.session.participant, seed);
     if ((pilot || o.session.resume) && !page.begin(o.session.resume)) {
@@ -138,7 +170,12 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
   if (o.run.stop_signal && o.run.stop_signal->load() != 0 && exit_code == 0) exit_code = 1;
   window.run().stop();
   const RunSummary& s = window.run().last_summary();
-  if (o.json) std::cout << summary_json(s).dump(2) << "\n";
+  if (o.json) {
+    nlohmann::json summary = summary_json(s);
+    if (o.session.participant_display > 0)
+      summary["participant_screen"] = participant_screen_seen.is_null() ? participant_screen_json(window) : participant_screen_seen;
+    std::cout << summary.dump(2) << "\n";
+  }
   if (s.fault != FaultCode::none) {
     std::cerr << "palprig: fault at t=" << s.fault_t_s << " s: " << to_string(s.fault)
               << (s.fault_detail.empty() ? "" : " (" + s.fault_detail + ")") << "; all channels vented\n";

@@ -17,6 +17,9 @@ struct GuiSessionOptions {
   std::string protocol, participant, store;
   double speed = 0;
   bool resume = false;
+  // 1-based display (QGuiApplication::screens() order) the participant screen fills at start,
+  // while the console stays on its own; 0: the participant screen stays inside the console.
+  int participant_display = 0;
 };
 
 struct GuiOptions {

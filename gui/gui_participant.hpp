@@ -31,6 +31,8 @@ class ParticipantChannel {
  public:
   // GUI thread.
   void say_ready() noexcept { ready_.store(true); }
+  // A pause: a go-ahead given before it does not start the held trial after it.
+  void withdraw_ready() noexcept { ready_.store(false); }
   // Returns false when `marks` has more than kMaxMarks marks (nothing is handed over then).
   bool give_answer(int position, const Response& response) noexcept;
   WindowPenInput& pen() noexcept { return pen_; }  // the participant's pen (localisation)

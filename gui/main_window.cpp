@@ -1,4 +1,5 @@
 #include "gui/main_window.hpp"
+#include "gui/participant_screen.hpp"
 
 #include <QAction>
 #include <QApplication>
@@ -210,6 +211,9 @@ void MainWindow::closeEvent(QCloseEvent* e) {
     }
     experiment_page_->abort_and_wait(false);  // vents, keeps what was committed
   }
+  // A participant screen on its own display is a second top-level window: it comes back, or
+  // the application would not end with the console's window.
+  experiment_page_->participant_screen()->back_to_console();
   timer_->stop();
   calibration_page_->cancel_sweep();  // the runner vents every channel
   run_->stop();  // the loop vents every channel as it ends

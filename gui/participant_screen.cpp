@@ -1,5 +1,7 @@
 #include "gui/participant_screen.hpp"
 
+#include <QCloseEvent>
+
 #include <QGuiApplication>
 #include <QBoxLayout>
 #include <QHBoxLayout>
@@ -246,9 +248,21 @@ void ParticipantScreen::show_full_screen_on(QScreen* screen) {
   setWindowTitle("palprig - participant");
   if (screen) {
     setScreen(screen);
-    move(screen->geometry().topLeft());
+    // The whole display even where no window manager honours the full-screen request (a bare X
+    // server on a lab PC): the window system's full-screen state alone would leave it small.
+    setGeometry(screen->geometry());
   }
   showFullScreen();
+}
+
+void ParticipantScreen::closeEvent(QCloseEvent* e) {
+  if (in_console()) {
+    QWidget::closeEvent(e);
+    return;
+  }
+  e->ignore();
+  back_to_console();
+  emit backInConsole();
 }
 
 void ParticipantScreen::back_to_console() {

@@ -53,9 +53,13 @@ class ParticipantScreen final : public QWidget {
 
  signals:
   void answerGiven(int position);  // handed to the session thread
+  void backInConsole();            // its own window was closed: it is back in the console
 
  protected:
   void keyPressEvent(QKeyEvent*) override;
+  // Its own window closed (by the window system or the participant): back into the console
+  // rather than gone, so the experimenter still sees and can move it.
+  void closeEvent(QCloseEvent*) override;
 
  private:
   void toggle_finger(int finger);

@@ -1,5 +1,7 @@
 #include "store/sqlite_db.hpp"
 
+#include <unistd.h>
+
 #include <sqlite3.h>
 
 #include <chrono>
@@ -24,18 +26,38 @@ namespace {
 Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.string()) {
   // NOMUTEX: a connection is used by one thread at a time, so SQLite's per-call mutex (a tenth
   // of the time of a million-row scan) buys nothing.
-  const int flags = (mode == Mode::read_only ? SQLITE_OPEN_READONLY : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE)) |
-                    SQLITE_OPEN_NOMUTEX;
-  const int rc = sqlite3_open_v2(file_.c_str(), &db_, flags, nullptr);
-  if (rc != SQLITE_OK) {
-    const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
-    sqlite3_close(db_);
-    db_ = nullptr;
-    throw SqliteError(file_ + ": " + message, rc);
+  // Read-only where we may write the file is query_only on a read-write connection: an
+  // SQLITE_OPEN_READONLY connection can neither checkpoint nor delete the -wal and -shm files
+  // when it is the last to close, so every `stats`/`export` run and the GUI's statistics view
+  // left them beside a database that had been closed cleanly. query_only refuses every change.
+  const bool query_only = mode == Mode::read_only && ::access(file_.c_str(), W_OK) == 0 &&
+                          open(SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX) == SQLITE_OK;
+  if (!query_only) {
+    const int flags = (mode == Mode::read_only ? SQLITE_OPEN_READONLY : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE)) |
+                      SQLITE_OPEN_NOMUTEX;
+    const int rc = open(flags);
+    if (rc != SQLITE_OK) {
+      const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+      sqlite3_close(db_);
+      db_ = nullptr;
+      throw SqliteError(file_ + ": " + message, rc);
+    }
   }
   // A writer holds the lock only for one short transaction per trial: readers (stats, export,
   // the GUI) wait for it rather than failing.
   sqlite3_busy_timeout(db_, kBusyTimeoutMs);
+  if (query_only && sqlite3_exec(db_, "PRAGMA query_only = ON", nullptr, nullptr, nullptr) != SQLITE_OK) {
+    const std::string message = sqlite3_errmsg(db_);
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw SqliteError(file_ + ": PRAGMA query_only: " + message, SQLITE_ERROR);
+  }
+}
+
+int Database::open(int flags) {
+  if (db_) sqlite3_close(db_);
+  db_ = nullptr;
+  return sqlite3_open_v2(file_.c_str(), &db_, flags, nullptr);
 }
 
 Database::~Database() { sqlite3_close(db_); }

@@ -53,6 +53,8 @@ class Database {
   [[noreturn]] void fail(const std::string& what, int code) const;
 
  private:
+  int open(int flags);  // sqlite3_open_v2 into db_ (closing any earlier handle); its result code
+
   sqlite3* db_ = nullptr;
   std::string file_;
 };

@@ -201,5 +201,23 @@ TEST(experiments_trial_runner, pause_vents_and_holds_the_trial_in_progress) {
   EXPECT_EQ(out.calls.back().what, "vent");
 }
 
+// A pause while the runner waits for the participant's go-ahead is acknowledged like any other
+// (a front end enables Continue on that state event) and holds the same trial.
+TEST(experiments_trial_runner, a_pause_while_waiting_for_ready_is_acknowledged) {
+  const Protocol p = small_protocol();
+  const SessionPlan plan = make_session_plan(p, 1, 1);
+  RecordingOutput out;
+  Collector c;
+  TrialRunner r(p, plan, 0, out, c);
+  ASSERT_EQ(r.state(), RunnerState::ready);
+  const std::size_t states_before = c.states.size();
+  r.pause(0.2);
+  EXPECT_EQ(r.state(), RunnerState::ready);
+  EXPECT_EQ(out.calls.back().what, "vent");
+  ASSERT_EQ(c.states.size(), states_before + 1) << "the pause is announced";
+  EXPECT_EQ(c.states.back(), RunnerState::ready);
+  EXPECT_EQ(r.next_position(), 0);
+}
+
 }  // namespace
 }  // namespace palprig

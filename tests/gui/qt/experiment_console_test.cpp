@@ -281,6 +281,11 @@ class ExperimentConsoleTest : public QObject {
     auto* go_on = page.findChild<QPushButton*>("continue_session");
     QVERIFY(wait_until(*w.window, [&] { return go_on->isEnabled(); }));  // the loop holds, vented
     QTest::mouseClick(go_on, Qt::LeftButton);
+    // Continue alone presents nothing: the participant is asked for Ready again first.
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QVERIFY(started.empty());
+    QCOMPARE(screen.answering_position(), -1);
+    QTest::mouseClick(ready, Qt::LeftButton);
     QVERIFY(wait_until(*w.window, [&] { return !started.empty(); }));
     QCOMPARE(started.front(), 0);  // the held trial, presented again
     QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 0; }));
@@ -300,6 +305,30 @@ class ExperimentConsoleTest : public QObject {
     page.set_fields({protocol, "P02", db, 0});
     QVERIFY(page.resume_offered());
     QCOMPARE(page.offered_start_position(), 1);
+  }
+
+  // Paused before the participant's first Ready: the loop holds (Continue enabled), and after
+  // Continue the first trial still waits for Ready.
+  void pauseWhileWaitingForReadyCanContinue() {
+    TempDir dir;
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({short_discrimination(dir), "P07", (dir.path() / "p.db").string(), 0});
+    QVERIFY(page.begin(false));
+    ParticipantScreen& screen = *page.participant_screen();
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::mouseClick(page.findChild<QPushButton*>("pause_session"), Qt::LeftButton);
+    auto* go_on = page.findChild<QPushButton*>("continue_session");
+    QVERIFY(wait_until(*w.window, [&] { return go_on->isEnabled(); }));
+    QTest::mouseClick(go_on, Qt::LeftButton);
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::mouseClick(ready, Qt::LeftButton);
+    QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 0; }));
+    EndSeen ended(page);
+    QTest::mouseClick(page.findChild<QPushButton*>("abort_session"), Qt::LeftButton);
+    QVERIFY(wait_until(*w.window, [&] { return ended.count == 1; }));
+    QCOMPARE(ended.end.committed_trials, 0);
   }
 
   void participantScreenLeavesTheConsoleAndComesBack() {
@@ -437,6 +466,50 @@ class ExperimentConsoleTest : public QObject {
                                              "/protocols/discrimination_002.json --participant sim:3 --quiet --db " + cli_db);
     QVERIFY2(c.exit_code == 0, c.err.c_str());
     QCOMPARE(stored_rows(cli_db), rows);
+  }
+
+  // A real window on a real X server with two displays: one Xvfb screen split into two RandR
+  // monitors (as a desktop with two monitors is), 1600x1000 and 1280x800 beside it, and no window
+  // manager. `--participant-display 2` puts the participant screen over exactly the second
+  // display; the console stays on the first.
+  void participantScreenFillsTheSecondDisplayUnderXvfb() {
+    if (std::system("command -v xvfb-run >/dev/null 2>&1 && command -v xrandr >/dev/null 2>&1") != 0)
+      QSKIP("xvfb-run or xrandr is not installed (packages xvfb, x11-xserver-utils)");
+    TempDir dir;
+    const std::string protocol = short_discrimination(dir);
+    const std::string gui = "env QT_QPA_PLATFORM=xcb " + test_support::palprig_bin() + " gui --protocol " + protocol +
+                            " --participant P08 --db " + (dir.path() / "p.db").string() + " --json --screenshot " +
+                            (dir.path() / "s.png").string() + " --after-s 1";
+    // -noreset: the monitors set by xrandr would go with a server reset when xrandr disconnects.
+    auto under_two_displays = [&](const std::string& display) {
+      const auto script = dir.write("two_displays.sh",
+                                    "set -e\n"
+                                    "xrandr --setmonitor A 1600/400x1000/250+0+0 none\n"
+                                    "xrandr --setmonitor B 1280/300x800/200+1600+0 none\n" +
+                                        gui + " --participant-display " + display + "\n");
+      return test_support::run_process("xvfb-run -a -s '-noreset -screen 0 2880x1000x24' bash " + script.string());
+    };
+    const auto r = under_two_displays("2");
+    if (r.exit_code != 0 && (r.err.find("xvfb-run: error") != std::string::npos ||
+                             r.err.find("could not connect to display") != std::string::npos))
+      QSKIP(qPrintable("Xvfb could not start here: " + QString::fromStdString(r.err).left(200)));
+    QVERIFY2(r.exit_code == 0, (r.out + r.err).c_str());
+    const auto json_at = r.out.find('{');
+    QVERIFY2(json_at != std::string::npos, r.out.c_str());
+    const auto summary = nlohmann::json::parse(r.out.substr(json_at));
+    const auto& p = summary.at("participant_screen");
+    QVERIFY2(p.at("own_window").get<bool>(), r.out.c_str());
+    QVERIFY2(p.at("full_screen").get<bool>(), r.out.c_str());
+    QCOMPARE(p.at("display").get<int>(), 2);
+    QVERIFY2(p.at("display_geometry") == (nlohmann::json{1600, 0, 1280, 800}), r.out.c_str());
+    QVERIFY2(p.at("window_geometry") == p.at("display_geometry"), r.out.c_str());  // covers exactly the second display
+    QCOMPARE(p.at("console_display").get<int>(), 1);
+    const auto console = p.at("console_window_geometry");
+    QVERIFY2(console.at(0).get<int>() + console.at(2).get<int>() <= 1600, r.out.c_str());  // within the first display
+    // A display the server does not have (A, B and the whole screen's own monitor: 3): one line, exit 2.
+    const auto bad = under_two_displays("4");
+    QCOMPARE(bad.exit_code, 2);
+    QVERIFY2(bad.err.find("participant-display") != std::string::npos, bad.err.c_str());
   }
 
   void refusedProtocolExitsTwoWithOneLine() {

@@ -230,8 +230,8 @@ void StatisticsViewTest::exportsEqualPalprigExport() {
   const QString dbq = QString::fromStdString(db.string());
   run_cli({"export", dbq, "--format", "csv", "--out", QString::fromStdString((dir.path() / "cli_csv").string())});
   run_cli({"export", dbq, "--format", "bids", "--out", QString::fromStdString((dir.path() / "cli_bids").string())});
-  // --no-practice: the view's chart, like `stats trials`, leaves practice trials out.
-  run_cli({"export", dbq, "--format", "csv", "--no-practice", "--out", QString::fromStdString((dir.path() / "unused").string()),
+  // The chart leaves practice trials out (as `stats trials` does) without --no-practice.
+  run_cli({"export", dbq, "--format", "csv", "--out", QString::fromStdString((dir.path() / "unused").string()),
            "--plot", QString::fromStdString((dir.path() / "cli_plot").string())});
   const QByteArray cli_json = run_cli({"stats", "trials", dbq, "--json"});
 
