@@ -154,6 +154,26 @@ void read_randomisation(const JsonObject& root, Protocol& p) {
   r.refuse_unknown();
 }
 
+void read_confidence(const JsonObject& root, Protocol& p) {
+  if (!root.has("confidence")) return;
+  if (p.task != TaskKind::discrimination) root.fail("confidence", "no confidence rating (it is asked after a discrimination answer only)");
+  const JsonObject c = root.object("confidence");
+  p.confidence.levels = static_cast<int>(c.integer("levels", kMinConfidenceLevels, kMaxConfidenceLevels));
+  if (c.has("labels")) {
+    const auto& raw = c.raw("labels");
+    if (!raw.is_array() || raw.size() != static_cast<std::size_t>(p.confidence.levels)) {
+      c.fail("labels", "an array of exactly " + std::to_string(p.confidence.levels) + " labels (one per level), got " + raw.dump());
+    }
+    for (std::size_t i = 0; i < raw.size(); ++i) {
+      if (!raw[i].is_string() || raw[i].get<std::string>().empty()) {
+        throw InputError(root.file(), c.path("labels") + "[" + std::to_string(i) + "]", "a non-empty label, got " + raw[i].dump());
+      }
+      p.confidence.labels.push_back(raw[i].get<std::string>());
+    }
+  }
+  c.refuse_unknown();
+}
+
 // Refuse ordering constraints that no order of one condition's trials can meet.
 void check_order_feasible(const Protocol& p) {
   const std::size_t kinds = p.task == TaskKind::discrimination ? p.combinations.size() : 1;
@@ -289,6 +309,7 @@ Protocol parse_protocol(const nlohmann::json& document, const std::string& sourc
                                               : Counterbalancing::none;
   read_randomisation(root, p);
   read_timing(root, p);
+  read_confidence(root, p);
   root.refuse_unknown();
   check_order_feasible(p);
   return p;

@@ -68,6 +68,18 @@ struct LocalisationTask {
   double tolerance_mm = 5.0;         // a mark within radius + tolerance of a tumor's centre hits it
 };
 
+// The optional confidence rating after each discrimination answer ("confidence" in the file).
+// levels == 0: not asked (every protocol without the field); otherwise ratings 1..levels.
+struct ConfidenceScale {
+  int levels = 0;
+  std::vector<std::string> labels;  // empty, or exactly `levels` names ("guess" .. "sure")
+  bool asked() const noexcept { return levels > 0; }
+  bool valid(int rating) const noexcept { return rating >= 1 && rating <= levels; }
+};
+
+inline constexpr int kMinConfidenceLevels = 2;
+inline constexpr int kMaxConfidenceLevels = 9;  // one key 1..9 per level
+
 struct Protocol {
   std::string source;  // the file it came from, for messages
   std::string name;
@@ -88,6 +100,7 @@ struct Protocol {
   Randomisation randomisation;
   Timing timing;
   LocalisationTask localisation;  // task == localisation only
+  ConfidenceScale confidence;     // discrimination only; not asked unless the file says so
   nlohmann::json snapshot;        // the file as read, stored with every session
 };
 

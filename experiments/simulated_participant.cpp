@@ -32,6 +32,13 @@ nlohmann::json to_json(const SimulatedObserverModel& m) {
   };
 }
 
+int confidence_from_margin(double margin_in_noise_units, int levels) noexcept {
+  if (!(margin_in_noise_units > 0)) return 1;
+  const double p = normal_cdf(margin_in_noise_units);  // 0.5 .. 1
+  const int rating = 1 + static_cast<int>(std::floor((p - 0.5) * 2.0 * levels));
+  return std::clamp(rating, 1, levels);
+}
+
 bool parse_simulated_participant(const std::string& spec, std::uint64_t& seed) {
   if (spec.rfind("sim:", 0) != 0 || spec.size() == 4) return false;
   const std::string digits = spec.substr(4);
@@ -131,6 +138,15 @@ Response SimulatedParticipant::discrimination_answer() {
   const double lowest = *std::min_element(perceived.begin(), perceived.end());
   Response r;
   for (std::size_t f = 0; f < kFingerCount; ++f) r.tumor_under[f] = perceived[f] - lowest > model_.criterion_kPa;
+  if (protocol_.confidence.asked()) {
+    double margin_kPa = std::numeric_limits<double>::infinity();
+    for (std::size_t f = 0; f < kFingerCount; ++f) {
+      margin_kPa = std::min(margin_kPa, std::abs(perceived[f] - lowest - model_.criterion_kPa));
+    }
+    // A noiseless observer is sure of every decision not exactly on its criterion.
+    const double margin = noise > 0 ? margin_kPa / noise : (margin_kPa > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+    r.confidence = confidence_from_margin(margin, protocol_.confidence.levels);
+  }
   return r;
 }
 

@@ -6,6 +6,10 @@
 // stimulus was on) is perceived with Gaussian noise (noise_kPa; times sequential_noise_factor
 // when the values come one after another and must be held in memory). The observer reports a
 // tumor under every finger perceived more than criterion_kPa above the lowest one.
+// When the protocol asks for a confidence rating, the observer rates from its decision margin
+// (the smallest distance of any finger's perceived excess from the criterion, in units of its
+// noise): rating = 1 + floor((Phi(margin) - 0.5) * 2 * levels), at most levels. Deterministic:
+// no random number is drawn for it, so sessions without ratings stay bit-identical.
 // Response times are log-normal with the mean and sd of paper 002 per mode (4.6 +/- 2.3 s
 // three fingers, 8.3 +/- 2.9 s one finger), never before every finger has been felt.
 //
@@ -52,6 +56,9 @@ struct SimulatedObserverModel {
 };
 
 nlohmann::json to_json(const SimulatedObserverModel& m);
+
+// The simulated observer's rating 1..levels from its decision margin (in noise units, >= 0).
+int confidence_from_margin(double margin_in_noise_units, int levels) noexcept;
 
 // "sim:SEED" -> true and the seed; anything else -> false.
 bool parse_simulated_participant(const std::string& spec, std::uint64_t& seed);

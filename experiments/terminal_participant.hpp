@@ -1,7 +1,8 @@
 #pragma once
 // TerminalParticipant: a person at a text terminal. Prompts go to an output stream; answers are
 // typed lines read from a file descriptor without ever blocking the session loop ("2", "12",
-// "0" for no tumor); Enter goes on after a break; "q" or the end of input asks the session to
+// "0" for no tumor) and, when the protocol asks for a confidence rating, one more line with the
+// rating 1..levels (both re-asked on bad input); Enter goes on after a break; "q" or the end of input asks the session to
 // stop (it stays resumable). Discrimination only: a person palpates a scene with the pen,
 // which a terminal does not read.
 #include <atomic>
@@ -31,6 +32,8 @@ class TerminalParticipant final : public Participant {
   std::ostream& out_;
   TerminalLines lines_;
   bool prompted_ready_ = false;
+  std::optional<Response> pending_;  // the finger answer, waiting for its confidence rating
+  void ask_confidence();
 };
 
 }  // namespace palprig

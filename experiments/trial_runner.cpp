@@ -1,9 +1,23 @@
 #include "experiments/trial_runner.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace palprig {
+
+double response_time_after_stimulus_s(double onset_s, double response_time_s, double stimulus_end_s) noexcept {
+  if (!std::isfinite(onset_s) || !std::isfinite(response_time_s) || !std::isfinite(stimulus_end_s)) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  // An answer during the stimulus ended it at the answer's time: 0, never a small negative.
+  return std::max(0.0, onset_s + response_time_s - stimulus_end_s);
+}
+
+double response_time_after_stimulus_s(const TrialRecord& trial) noexcept {
+  if (!trial.answered) return std::numeric_limits<double>::quiet_NaN();
+  return response_time_after_stimulus_s(trial.onset_s, trial.response_time_s, trial.stimulus_end_s);
+}
 
 const char* to_string(RunnerState s) noexcept {
   switch (s) {
@@ -68,6 +82,10 @@ double TrialRunner::sequence_length_s() const {
   return kFingerCount * tm.sequential_step_s + (kFingerCount - 1) * tm.sequential_gap_s;
 }
 
+double TrialRunner::presentation_length_s(PresentationMode mode) const {
+  return mode == PresentationMode::sequential ? sequence_length_s() : protocol_.timing.max_present_s;
+}
+
 void TrialRunner::begin(double t_s) {
   if (state_ != RunnerState::ready) return;
   start_trial(t_s);
@@ -111,8 +129,7 @@ void TrialRunner::update_presentation(double t_s) {
   if (mode == PresentationMode::sequential) {
     const Timing& tm = protocol_.timing;
     if (elapsed >= sequence_length_s()) {
-      set_active({}, t_s);
-      output_.vent(t_s);
+      end_stimulus(onset_s_ + sequence_length_s(), t_s);
       enter(RunnerState::respond, t_s);
       return;
     }
@@ -126,10 +143,18 @@ void TrialRunner::update_presentation(double t_s) {
     return;
   }
   if (elapsed >= protocol_.timing.max_present_s) {
-    set_active({}, t_s);
-    output_.vent(t_s);
+    end_stimulus(onset_s_ + protocol_.timing.max_present_s, t_s);
     enter(RunnerState::respond, t_s);
   }
+}
+
+void TrialRunner::end_stimulus(double planned_end_s, double t_s) {
+  // Recorded at the planned end, not at the (possibly later) pass that noticed it: a caller's
+  // coarse steps do not lengthen the stimulus the after-stimulus RT is measured from. The rig
+  // is vented now (its clock only goes forward).
+  stimulus_end_s_ = planned_end_s;
+  set_active({}, t_s);
+  output_.vent(t_s);
 }
 
 void TrialRunner::advance(double t_s) {
@@ -181,6 +206,7 @@ void TrialRunner::pause(double t_s) {
 
 bool TrialRunner::respond(const Response& response, double t_s) {
   if (state_ != RunnerState::present && state_ != RunnerState::respond) return false;
+  if (response.confidence && !protocol_.confidence.valid(*response.confidence)) return false;
   finish_trial(&response, t_s);
   return true;
 }
@@ -195,6 +221,11 @@ void TrialRunner::finish_trial(const Response* response, double t_s) {
   r.onset_s = onset_s_;
   r.answered = response != nullptr;
   r.response_time_s = r.answered ? t_s - onset_s_ : std::numeric_limits<double>::quiet_NaN();
+  // An answer during the presentation ends the stimulus at the answer's time (or at its
+  // planned end, when that passed before the loop noticed it).
+  r.stimulus_end_s = state_ == RunnerState::present ? std::min(t_s, onset_s_ + presentation_length_s(condition.mode))
+                                                    : stimulus_end_s_;
+  if (response && protocol_.confidence.asked()) r.confidence = response->confidence;
   for (std::size_t f = 0; f < kFingerCount; ++f) {
     r.felt_kPa[f] = felt_count_[f] ? felt_sum_[f] / felt_count_[f] : std::numeric_limits<double>::quiet_NaN();
   }

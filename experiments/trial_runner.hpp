@@ -1,7 +1,8 @@
 #pragma once
 // TrialRunner: the state machine of a session, with no knowledge of Qt, the terminal or the
 // clock. The caller feeds it the time (seconds on a monotonic clock) and the participant's
-// actions; it drives the StimulusOutput, times responses from stimulus onset, scores answers
+// actions; it drives the StimulusOutput, times responses from stimulus onset (and notes when the
+// stimulus ended, for the response time after the stimulus), scores answers
 // and reports events and completed trials to a listener (the CLI, the GUI, the trial store).
 //
 //   ready ──begin──> present ──(stimulus over)──> respond ──(answer | timeout)──> inter_trial
@@ -31,10 +32,13 @@ enum class RunnerState { ready, present, respond, inter_trial, rest, done };
 
 const char* to_string(RunnerState s) noexcept;
 
-// A participant's answer: the fingers with a tumor (discrimination) or marks (localisation).
+// A participant's answer: the fingers with a tumor (discrimination) or marks (localisation),
+// and the confidence rating 1..levels when the protocol asks for one (handed over with the
+// answer in one piece; the runner stores none that is out of range or not asked for).
 struct Response {
   FingerFlags tumor_under{};
   std::vector<Mark> marks;
+  std::optional<int> confidence;
 };
 
 struct RunnerEvent {
@@ -75,7 +79,9 @@ class TrialRunner {
   void begin(double t_s);
   // Time passes: presentation steps, timeouts and pauses; also services the rig. Call often.
   void advance(double t_s);
-  // An answer. Accepted in present and respond (returns true), ignored otherwise.
+  // An answer. Accepted in present and respond (returns true), ignored otherwise. A confidence
+  // rating outside 1..levels (or one the protocol does not ask for) is refused: returns false
+  // and the trial goes on, so no invalid rating is ever stored.
   bool respond(const Response& response, double t_s);
   // Stop now (operator or signal): vents; the trial in progress is not recorded.
   void abort(double t_s);
@@ -91,7 +97,9 @@ class TrialRunner {
   void set_active(const FingerFlags& active, double t_s);
   void finish_trial(const Response* response, double t_s);
   void sample_felt(double t_s);
+  void end_stimulus(double planned_end_s, double t_s);
   double sequence_length_s() const;
+  double presentation_length_s(PresentationMode mode) const;
 
   const Protocol& protocol_;
   const SessionPlan& plan_;
@@ -104,6 +112,7 @@ class TrialRunner {
   int position_ = 0;
   double state_since_s_ = 0;
   double onset_s_ = 0;
+  double stimulus_end_s_ = 0;  // when the runner left `present` (set on leaving it)
   FingerFlags active_{};
   std::array<double, kFingerCount> felt_sum_{};
   std::array<int, kFingerCount> felt_count_{};

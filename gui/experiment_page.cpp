@@ -29,7 +29,10 @@ namespace palprig::gui {
 
 namespace {
 
-enum Column { kPosition, kBlock, kCondition, kStimulus, kTumor, kAnswer, kScore, kResponseTime, kCommitted, kColumns };
+// kResponseTime: from onset (paper 002's measure, its t-test); kRtAfterStimulus: from the end of
+// the stimulus (what the participant was asked to answer after). kCommitted stays last.
+enum Column { kPosition, kBlock, kCondition, kStimulus, kTumor, kAnswer, kScore, kResponseTime, kRtAfterStimulus,
+              kConfidence, kCommitted, kColumns };
 
 QString flags_text(const FingerFlags& f) {
   QString s;
@@ -211,7 +214,7 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
                                  .arg(QString::fromStdString(condition.name)));
             if (trial.position < table_->rowCount()) table_->scrollToItem(table_->item(trial.position, 0));
           });
-  connect(&run_, &SessionRun::runnerState, this, [this](RunnerState s, int) {
+  connect(&run_, &SessionRun::runnerState, this, [this](RunnerState s, int position) {
     if (s == RunnerState::ready && !run_.paused()) screen_->show_ready();
     else if (s == RunnerState::ready) {
       screen_->show_wait("Paused. Please wait.");
@@ -219,6 +222,7 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
       set_buttons();
     }
     else if (s == RunnerState::rest) screen_->show_wait("Break. Please rest.");
+    else if (s == RunnerState::respond) screen_->stimulus_ended(position);
   });
   connect(&run_, &SessionRun::trialCommitted, this, [this](const TrialRecord& t, int) {
     tick_row(t);
@@ -321,6 +325,9 @@ void ExperimentPage::update_plan() {
             table_->item(t.position, kAnswer)->setText(t.answered ? stored_flags_text(t.answer) : "no answer");
             table_->item(t.position, kScore)->setText(QString::fromStdString(t.outcome[0] + " " + t.outcome[1] + " " + t.outcome[2]).trimmed());
             table_->item(t.position, kResponseTime)->setText(t.response_time_s ? QString::number(*t.response_time_s, 'f', 2) : "");
+            table_->item(t.position, kRtAfterStimulus)
+                ->setText(t.rt_after_stimulus_s ? QString::number(*t.rt_after_stimulus_s, 'f', 2) : "");
+            table_->item(t.position, kConfidence)->setText(t.confidence ? QString::number(*t.confidence) : "");
             table_->item(t.position, kCommitted)->setText("\u2713");
           }
           resume_note_->setText(QString("%1 has an unfinished session (%2) with this protocol: %3 of %4 trials committed. "
@@ -362,7 +369,7 @@ void ExperimentPage::show_plan(const Protocol& p, const SessionPlan& plan) {
     }
     const QStringList cells = {QString::number(t.position + 1), QString::number(t.block + 1),
                                QString::fromStdString(c.name) + (t.practice ? " (practice)" : ""), stimulus, tumor,
-                               "", "", "", ""};
+                               "", "", "", "", "", ""};
     for (int col = 0; col < kColumns; ++col) table_->setItem(t.position, col, new QTableWidgetItem(cells[col]));
   }
 }
@@ -384,6 +391,9 @@ void ExperimentPage::tick_row(const TrialRecord& t) {
   table_->item(row, kAnswer)->setText(answer);
   table_->item(row, kScore)->setText(score);
   table_->item(row, kResponseTime)->setText(t.answered ? QString::number(t.response_time_s, 'f', 2) : "");
+  const double after_s = response_time_after_stimulus_s(t);
+  table_->item(row, kRtAfterStimulus)->setText(std::isfinite(after_s) ? QString::number(after_s, 'f', 2) : "");
+  table_->item(row, kConfidence)->setText(t.confidence ? QString::number(*t.confidence) : "");
   table_->item(row, kCommitted)->setText("\u2713");
   table_->scrollToItem(table_->item(row, 0));
 }

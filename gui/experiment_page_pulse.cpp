@@ -33,8 +33,11 @@ void ExperimentPage::set_table_columns(bool pulse) {
     table_->setColumnCount(kPulseColumns);
     table_->setHorizontalHeaderLabels({"#", "Condition", "Mark x mm", "Mark y mm", "Distance mm", "Hit", "RT s", ""});
   } else {
-    table_->setColumnCount(9);
-    table_->setHorizontalHeaderLabels({"#", "Block", "Condition", "Stimulus kPa", "Tumor", "Answer", "Score", "RT s", ""});
+    // experiment_page.cpp's Column enum, in order.
+    const QStringList headers = {"#",     "Block", "Condition",  "Stimulus kPa",        "Tumor", "Answer",
+                                 "Score", "RT onset s", "RT after stimulus s", "Rating", ""};
+    table_->setColumnCount(static_cast<int>(headers.size()));
+    table_->setHorizontalHeaderLabels(headers);
   }
 }
 

@@ -8,6 +8,7 @@ bool ParticipantChannel::give_answer(int position, const Response& response) noe
   a.position = position;
   a.serial = next_serial_++;
   a.tumor_under = response.tumor_under;
+  a.confidence = response.confidence.value_or(0);
   a.mark_count = static_cast<int>(response.marks.size());
   for (std::size_t i = 0; i < response.marks.size(); ++i) a.marks[i] = response.marks[i];
   answers_.publish(a);
@@ -20,6 +21,7 @@ std::optional<Response> ParticipantChannel::take_answer(int position) {
   taken_serial_ = a.serial;
   Response r;
   r.tumor_under = a.tumor_under;
+  if (a.confidence > 0) r.confidence = a.confidence;
   r.marks.assign(a.marks.begin(), a.marks.begin() + a.mark_count);
   return r;
 }

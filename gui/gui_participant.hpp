@@ -22,6 +22,7 @@ struct GivenAnswer {
   int position = -1;      // the trial answered
   std::uint64_t serial = 0;  // 0: nothing given yet
   FingerFlags tumor_under{};
+  int confidence = 0;      // the rating 1..levels given with the answer; 0: none asked
   int mark_count = 0;
   std::array<Mark, kMaxMarks> marks{};
 };

@@ -12,6 +12,7 @@
 #include <QStackedWidget>
 #include <QVBoxLayout>
 
+#include "gui/confidence_row.hpp"
 #include "gui/localisation_marking.hpp"
 
 namespace palprig::gui {
@@ -74,6 +75,9 @@ ParticipantScreen::ParticipantScreen(QWidget* parent) : QWidget(parent) {
   });
   fingers->addWidget(answer_);
   pages_->addWidget(finger_page_);
+  confidence_ = new ConfidenceRow;
+  connect(confidence_, &ConfidenceRow::rated, this, &ParticipantScreen::rate);
+  pages_->addWidget(confidence_);
 
   marking_ = new LocalisationMarking;
   connect(marking_, &LocalisationMarking::done, this, &ParticipantScreen::give_marks);
@@ -88,6 +92,8 @@ void ParticipantScreen::start_session(const Protocol& protocol, std::shared_ptr<
   finger_names_ = protocol.finger_names;
   localisation_ = protocol.task == TaskKind::localisation;
   pulse_ = false;
+  confidence_->set_scale(protocol.confidence);
+  pending_.reset();
   for (int f = 0; f < kFingerCount; ++f) {
     fingers_[static_cast<std::size_t>(f)]->setText(
         QString("%1  %2").arg(f + 1).arg(QString::fromStdString(finger_names_[static_cast<std::size_t>(f)])));
@@ -121,23 +127,44 @@ void ParticipantScreen::show_trial(const PlannedTrial& trial, const Condition& c
   } else {
     text += condition.mode == PresentationMode::sequential ? "The fingers are presented one after another. "
                                                            : "All fingers at once. ";
-    text += "Which fingers feel a tumor? 1/2/3 choose, Enter answers; 0 for none.";
+    text += "Feel the stimulus; you answer when it has ended.";
     for (QPushButton* b : fingers_) b->setChecked(false);
+    pending_.reset();
+    pages_->setCurrentWidget(finger_page_);
   }
   prompt_->setText(text);
-  answering_ = trial.position;
+  presented_ = trial.position;
+  if (localisation_) {
+    answering_ = trial.position;  // marks are made while palpating
+    set_answering(true);
+  } else {
+    set_answering(false);  // "after the stimulus the participant answers"
+  }
+  setFocus();
+}
+
+void ParticipantScreen::stimulus_ended(int position) {
+  if (!channel_ || marks_answer() || position != presented_ || answering_ == position) return;
+  prompt_->setText(QString("Trial %1. Which fingers feel a tumor? 1/2/3 choose, Enter answers; 0 for none.").arg(position + 1));
+  answering_ = position;
   set_answering(true);
   setFocus();
 }
 
 void ParticipantScreen::show_wait(const QString& text) {
   set_answering(false);
+  presented_ = -1;
   ready_->setVisible(false);
   prompt_->setText(text);
 }
 
 void ParticipantScreen::set_answering(bool on) {
-  if (!on) answering_ = -1;
+  if (!on) {
+    answering_ = -1;
+    pending_.reset();
+    if (!marks_answer()) pages_->setCurrentWidget(finger_page_);
+  }
+  confidence_->setEnabled(on);
   for (QPushButton* b : fingers_) b->setEnabled(on);
   none_->setEnabled(on);
   answer_->setEnabled(on);
@@ -145,7 +172,7 @@ void ParticipantScreen::set_answering(bool on) {
 }
 
 void ParticipantScreen::toggle_finger(int finger) {
-  if (answering_ < 0 || marks_answer()) return;
+  if (answering_ < 0 || marks_answer() || pending_) return;
   QPushButton* b = fingers_[static_cast<std::size_t>(finger)];
   b->setChecked(!b->isChecked());
 }
@@ -169,9 +196,27 @@ void ParticipantScreen::give_marks() {
 }
 
 void ParticipantScreen::give(const FingerFlags& fingers) {
-  if (!channel_ || answering_ < 0) return;
+  if (!channel_ || answering_ < 0 || pending_) return;
   Response r;
   r.tumor_under = fingers;
+  if (confidence_->levels() > 0) {
+    // The rating step: the answer waits here and goes over with its rating.
+    pending_ = r;
+    pages_->setCurrentWidget(confidence_);
+    prompt_->setText(QString("How confident are you? %1 (keys 1-%2).").arg(confidence_->legend()).arg(confidence_->levels()));
+    return;
+  }
+  hand_over(r);
+}
+
+void ParticipantScreen::rate(int rating) {
+  if (!pending_ || answering_ < 0 || rating < 1 || rating > confidence_->levels()) return;
+  Response r = *pending_;
+  r.confidence = rating;
+  hand_over(r);
+}
+
+void ParticipantScreen::hand_over(const Response& r) {
   channel_->give_answer(answering_, r);
   const int given = answering_;
   set_answering(false);
@@ -180,6 +225,12 @@ void ParticipantScreen::give(const FingerFlags& fingers) {
 }
 
 void ParticipantScreen::keyPressEvent(QKeyEvent* e) {
+  if (pending_) {  // the rating step: digits 1..levels rate, nothing else answers
+    const int digit = e->key() - Qt::Key_0;
+    if (digit >= 1 && digit <= confidence_->levels()) rate(digit);
+    else QWidget::keyPressEvent(e);
+    return;
+  }
   switch (e->key()) {
     case Qt::Key_1: toggle_finger(0); return;
     case Qt::Key_2: toggle_finger(1); return;

@@ -1,7 +1,10 @@
 #pragma once
-// ParticipantScreen: what the participant sees and answers with. Discrimination: after (or
-// during) the stimulus, which fingers felt a tumor: finger buttons and keys 1/2/3 toggle,
-// "None" or 0 answers no tumor, Answer or Enter hands the answer over; Space or "Ready" goes on
+// ParticipantScreen: what the participant sees and answers with. Discrimination: after the
+// stimulus (the buttons are enabled when the runner enters `respond`), which fingers felt a
+// tumor: finger buttons and keys 1/2/3 toggle, "None" or 0 answers no tumor, Answer or Enter
+// hands the answer over; when the protocol asks for a confidence rating, a row of rating
+// buttons (keys 1..levels) follows first (gui/confidence_row.hpp) and the answer goes over with
+// its rating in one piece. Space or "Ready" goes on
 // at the start and after a break. No feedback on correctness (it would train the participant
 // during the study; the scores are in the database and on the experimenter's console).
 // Localisation: LocalisationMarking (gui/localisation_marking.hpp) is shown instead; pulse
@@ -11,6 +14,7 @@
 #include <QWidget>
 #include <array>
 #include <memory>
+#include <optional>
 
 #include "experiments/protocol.hpp"
 #include "experiments/pulse_task.hpp"
@@ -24,6 +28,7 @@ class QStackedWidget;
 
 namespace palprig::gui {
 
+class ConfidenceRow;
 class LocalisationMarking;
 
 class ParticipantScreen final : public QWidget {
@@ -36,6 +41,8 @@ class ParticipantScreen final : public QWidget {
   void start_session(const Protocol& protocol, std::shared_ptr<ParticipantChannel> channel);
   void show_ready();                    // waiting for the participant's go-ahead
   void show_trial(const PlannedTrial& trial, const Condition& condition);
+  // The runner left `present` for `respond` at this trial: discrimination answers are taken now.
+  void stimulus_ended(int position);
   void show_wait(const QString& text);  // between trials, paused, done
   // Pulse localisation: a session of `protocol` (conditions and their scenes), and one trial's
   // scene to palpate and mark (a generated condition's scene made from the trial's seed, as the
@@ -43,6 +50,7 @@ class ParticipantScreen final : public QWidget {
   void start_pulse_session(const PulseProtocol& protocol, std::shared_ptr<ParticipantChannel> channel);
   void show_pulse_trial(const PulseTrialStart& start, const PulseCondition& condition);
   int answering_position() const noexcept { return answering_; }  // -1: no answer is taken now
+  bool rating() const noexcept { return pending_.has_value(); }    // in the confidence step
   LocalisationMarking* marking() const noexcept { return marking_; }
 
   // Leaves the console and fills `screen` (a second display); back_to_console() returns.
@@ -63,15 +71,19 @@ class ParticipantScreen final : public QWidget {
  private:
   void toggle_finger(int finger);
   void give(const FingerFlags& fingers);
+  void hand_over(const Response& response);
   void set_answering(bool on);
   bool marks_answer() const noexcept { return localisation_ || pulse_; }  // the marking screen answers
   void give_marks();
+  void rate(int rating);
 
   std::shared_ptr<ParticipantChannel> channel_;
   std::array<std::string, kFingerCount> finger_names_{};
   bool localisation_ = false;
   bool pulse_ = false;
   int answering_ = -1;
+  int presented_ = -1;               // the trial on show (answers wait for its stimulus to end)
+  std::optional<Response> pending_;  // the finger answer waiting for its rating
   QLabel* prompt_ = nullptr;
   QPushButton* ready_ = nullptr;
   std::array<QPushButton*, kFingerCount> fingers_{};
@@ -79,6 +91,7 @@ class ParticipantScreen final : public QWidget {
   QPushButton* answer_ = nullptr;
   QStackedWidget* pages_ = nullptr;
   QWidget* finger_page_ = nullptr;
+  ConfidenceRow* confidence_ = nullptr;
   LocalisationMarking* marking_ = nullptr;
   QWidget* console_parent_ = nullptr;
 };

@@ -34,6 +34,12 @@ void add_rows(QTableWidget& table, const TrialSummary& summary, const QString& p
     set_cell(table, row, ppv_column, measure_text(r.measures.ppv));
     set_cell(table, row, acc_column, measure_text(r.measures.acc));
     set_cell(table, row, rt_column, std::isfinite(r.mean_rt_s) ? number(r.mean_rt_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_s, 2) : QStringLiteral("n/a"));
+    set_cell(table, row, rt_after_column,
+             std::isfinite(r.mean_rt_after_stimulus_s)
+                 ? number(r.mean_rt_after_stimulus_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_after_stimulus_s, 2)
+                 : QStringLiteral("n/a"));
+    set_cell(table, row, confidence_column,
+             r.rated > 0 ? number(r.mean_confidence, 2) + QStringLiteral(" (n=%1)").arg(r.rated) : QStringLiteral("n/a"));
   }
 }
 
@@ -51,10 +57,14 @@ void fill_measures_table(QTableWidget& table, const TrialStatistics& s) {
   const int percent = int(std::lround(s.confidence * 100));
   table.setHorizontalHeaderLabels({QObject::tr("group"), QObject::tr("trials"), "TP", "FN", "TN", "FP",
                                    QObject::tr("Se [%1 % Wilson]").arg(percent), "Sp", "PPV", "ACC",
-                                   QObject::tr("RT mean ± sd (s)")});
+                                   QObject::tr("RT from onset, mean ± sd (s)"),
+                                   QObject::tr("RT after stimulus, mean ± sd (s)"), QObject::tr("confidence mean")});
+  // The rating column only when some trial has a rating (as `stats trials` shows it).
+  const bool rated = s.by_condition.any_rated;
   add_rows(table, s.by_condition, QObject::tr("condition "));
   add_rows(table, s.by_finger, QObject::tr("finger "));
   add_rows(table, s.by_tumor, QObject::tr("tumor "));
+  table.setColumnHidden(confidence_column, !rated);
   table.resizeColumnsToContents();
 }
 

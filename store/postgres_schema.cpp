@@ -109,6 +109,12 @@ CREATE TABLE session_locks (
   since_utc  text NOT NULL
 );
 )sql",
+      // 3: the optional confidence rating and when the stimulus ended (the response time after
+      // the stimulus), as the SQLite store's schema 2; existing trials keep NULL in both.
+      R"sql(
+ALTER TABLE trials ADD COLUMN confidence integer CHECK (confidence BETWEEN 1 AND 9);
+ALTER TABLE trials ADD COLUMN stimulus_end_s double precision;
+)sql",
   };
   return steps;
 }

@@ -14,7 +14,9 @@
 namespace palprig {
 
 // 1: the trial store's tables; 2: session_locks.
-inline constexpr int kPgSchemaVersion = 2;
+inline constexpr int kPgSchemaVersion = 3;  // 3: trials.confidence, trials.stimulus_end_s
+// The first version whose trials have the rating columns; older servers read them as NULL.
+inline constexpr int kPgSchemaRatingColumnsFrom = 3;
 // Readers (stats, export, copy from) need only the tables of version 1: an older lab server is
 // read as it is, without writing to it.
 inline constexpr int kPgSchemaReadableFrom = 1;

@@ -1,8 +1,12 @@
 #include "store/postgres_session_rows.hpp"
 
+#include "models/parse_error.hpp"
+#include "store/postgres_schema.hpp"
+
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <variant>
 
 namespace palprig {
 
@@ -133,18 +137,29 @@ std::int64_t pg_push_session(PgConnection& db, const SessionRows& in, bool* adde
 int pg_push_trials(PgConnection& db, std::int64_t session_id, std::span<const TrialRows> trials) {
   // Trials first; those the server already has are skipped (ON CONFLICT: pushing twice stores
   // once) and only the added ones come back, with their ids, for their scores and marks.
+  // A server older than the rating columns (writers migrate it first; a push straight onto one,
+  // as an older palprig's server, is only ever made by tests) takes the columns it has.
+  const bool rating_columns = pg_schema_version(db) >= kPgSchemaRatingColumnsFrom;
+  const std::size_t column_count = rating_columns ? kTrialColumns.size() : kTrialConfidence;
+  std::string columns;
+  for (std::size_t i = 0; i < column_count; ++i) columns += (i ? ", " : "") + std::string(kTrialColumns[i].name);
   std::vector<PgParam> rows;
-  rows.reserve(trials.size() * kTrialColumns.size());
+  rows.reserve(trials.size() * column_count);
   std::map<std::int64_t, const TrialRows*> by_position;
   for (const TrialRows& t : trials) {
-    append_params(rows, t.trial);
+    if (!rating_columns && (!std::holds_alternative<std::monostate>(t.trial.at(kTrialConfidence)))) {
+      throw InputError(db.target().describe(), "palprig_schema.version",
+                       "schema version " + std::to_string(kPgSchemaRatingColumnsFrom) +
+                           " or newer for trials with a confidence rating (open it for writing to migrate)");
+    }
+    append_params(rows, SqlRow(t.trial.begin(), t.trial.begin() + static_cast<std::ptrdiff_t>(column_count)));
     by_position[t.position()] = &t;
   }
   std::vector<PgParam> scores, marks;
   int added = 0;
-  insert_many(db, "INSERT INTO trials (session_id, " + column_list(kTrialColumns) + ")",
+  insert_many(db, "INSERT INTO trials (session_id, " + columns + ")",
               " ON CONFLICT (session_id, position) DO NOTHING RETURNING id, position", {pg_text(session_id)},
-              kTrialColumns.size(), rows, [&](const PgResult& r) {
+              column_count, rows, [&](const PgResult& r) {
                 for (int i = 0; i < r.rows(); ++i) {
                   ++added;
                   const TrialRows& t = *by_position.at(r.integer(i, 1));
@@ -208,7 +223,8 @@ std::optional<ServerSession> pg_read_session(PgConnection& db, std::int64_t sess
 }
 
 std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id, std::int64_t from_position) {
-  const PgResult r = db.exec("SELECT id, " + column_list(kTrialColumns) +
+  const bool rating_columns = pg_schema_version(db) >= kPgSchemaRatingColumnsFrom;
+  const PgResult r = db.exec("SELECT id, " + trial_select_list(rating_columns) +
                                  " FROM trials WHERE session_id = $1 AND position >= $2 ORDER BY position",
                              {pg_text(session_id), pg_text(from_position)});
   std::vector<TrialRows> trials;

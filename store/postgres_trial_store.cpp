@@ -97,6 +97,8 @@ TrialRows trial_rows_of(const TrialRecord& r) {
   t[11] = std::int64_t{r.answered ? 1 : 0};
   t[14] = r.onset_s;
   t[22] = utc_now_text();
+  t[kTrialStimulusEnd] = finite_or_null(r.stimulus_end_s);
+  if (r.answered && r.confidence) t[kTrialConfidence] = std::int64_t{*r.confidence};
   if (discrimination) {
     t[6] = r.combination_label;
     for (int f = 0; f < kFingerCount; ++f) t[static_cast<std::size_t>(7 + f)] = r.stimulus_kPa[static_cast<std::size_t>(f)];
@@ -135,6 +137,7 @@ PostgresTrialStore::PostgresTrialStore(const PgTarget& target, Access access, in
     : db_(target, connect_timeout_s), location_(target.conninfo) {
   if (access == Access::read_write) ensure_pg_schema(db_);
   else check_pg_schema(db_);
+  rating_columns_ = pg_schema_version(db_) >= kPgSchemaRatingColumnsFrom;
 } catch (const PgError& e) {
   // Nothing moves on the rig before the store is known to be writable: a server that cannot
   // be reached or refuses the login is a refused input (exit 2), named with libpq's reason.
@@ -310,6 +313,11 @@ nlohmann::json PostgresTrialStore::protocol_snapshot(std::int64_t session_id) {
   return nlohmann::json::parse(q.text_view(0, 0), nullptr, false);
 }
 
+std::string PostgresTrialStore::rating_columns() const {
+  if (!rating_columns_) return "NULL::integer, NULL::double precision";  // an older server read as it is
+  return "t.confidence, t.stimulus_end_s";
+}
+
 void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_practice,
                                             const std::function<void(const ScoredTrial&)>& visit) {
   if (family == TrialFamily::discrimination) {
@@ -318,7 +326,7 @@ void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_pra
     // up in the same order, to the last bit).
     stream_rows(db_,
                 "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, t.outcome1, t.outcome2, "
-                "t.outcome3, t.combination_label FROM trials t WHERE t.mode != 'scene'" +
+                "t.outcome3, t.combination_label, t.onset_s, " + rating_columns() + " FROM trials t WHERE t.mode != 'scene'" +
                     practice_filter(include_practice, "AND") + " ORDER BY t.id",
                 [&](const PgResult& q, int i) {
                   t.trial_id = q.integer(i, 0);
@@ -332,6 +340,9 @@ void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_pra
                   }
                   t.combination_label =
                       q.is_null(i, 8) ? std::nullopt : std::optional<std::string_view>(q.text_view(i, 8));
+                  t.rt_after_stimulus_s =
+                      response_time_after_stimulus_s(q.real(i, 9), t.response_time_s, real_or_nan(q, i, 11));
+                  t.confidence = q.is_null(i, 10) ? std::nullopt : std::optional<int>(static_cast<int>(q.integer(i, 10)));
                   visit(t);
                 },
                 true);
@@ -355,7 +366,7 @@ void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_pra
   };
   stream_rows(db_,
               "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, "
-              "t.false_marks FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
+              "t.false_marks, t.onset_s, " + rating_columns() + " FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
                   practice_filter(include_practice, "AND") + " ORDER BY t.id, ts.tumor COLLATE \"C\"",
               [&](const PgResult& q, int i) {
                 const std::int64_t trial_id = q.integer(i, 0);
@@ -370,6 +381,8 @@ void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_pra
                   t.answered = q.integer(i, 3) != 0;
                   t.response_time_s = real_or_nan(q, i, 4);
                   t.false_marks = q.is_null(i, 7) ? 0 : q.integer(i, 7);
+                  t.rt_after_stimulus_s =
+                      response_time_after_stimulus_s(q.real(i, 8), t.response_time_s, real_or_nan(q, i, 10));
                 }
                 if (q.is_null(i, 5)) return;
                 const auto outcome = outcome_from_string(q.text_view(i, 6));
@@ -392,8 +405,8 @@ std::vector<StoredTrial> PostgresTrialStore::read_trials(bool include_practice) 
       "SELECT p.code, p.simulated, p.number, s.id, s.protocol_name, s.task, s.bids_task, t.id, t.position, t.block, "
       "t.condition, t.mode, t.practice, t.combination, t.combination_label, t.stimulus1_kPa, t.stimulus2_kPa, "
       "t.stimulus3_kPa, t.felt1_kPa, t.felt2_kPa, t.felt3_kPa, t.truth, t.answered, t.answer, t.response_time_s, "
-      "t.onset_s, t.outcome1, t.outcome2, t.outcome3, t.false_marks, t.completed_utc "
-      "FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
+      "t.onset_s, t.outcome1, t.outcome2, t.outcome3, t.false_marks, t.completed_utc, " + rating_columns() +
+          " FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
           practice_filter(include_practice, "WHERE") + " ORDER BY p.number, s.id, t.position",
       [&](const PgResult& q, int i) {
         StoredTrial t;
@@ -424,6 +437,11 @@ std::vector<StoredTrial> PostgresTrialStore::read_trials(bool include_practice) 
         t.onset_s = q.real(i, 25);
         if (!q.is_null(i, 29)) t.false_marks = q.integer(i, 29);
         t.completed_utc = q.text(i, 30);
+        if (!q.is_null(i, 31)) t.confidence = static_cast<int>(q.integer(i, 31));
+        t.stimulus_end_s = real_or_null(q, i, 32);
+        if (t.answered && t.response_time_s && t.stimulus_end_s) {
+          t.rt_after_stimulus_s = response_time_after_stimulus_s(t.onset_s, *t.response_time_s, *t.stimulus_end_s);
+        }
         if (t.mode == "scene") scene_trials[t.id] = trials.size();
         trials.push_back(std::move(t));
       });

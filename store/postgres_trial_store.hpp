@@ -69,10 +69,12 @@ class PostgresTrialStore final : public TrialStore {
   void refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who);
   void take_lock(std::int64_t session_id, const std::string& who);  // inside a transaction
   void drop_lock(std::int64_t session_id);
+  std::string rating_columns() const;  // "t.confidence, t.stimulus_end_s", or NULLs on an older server
 
   PgConnection db_;
   std::string location_;
   std::vector<std::int64_t> held_;  // sessions whose advisory lock this connection holds
+  bool rating_columns_ = true;       // false: a server older than schema 3 opened for reading
 };
 
 // The host name of this machine (sessions record where they ran).

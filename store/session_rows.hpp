@@ -32,13 +32,16 @@ inline constexpr std::array<SqlColumn, 7> kPlannedColumns{{{"position", 'i'}, {"
                                                            {"condition", 't'}, {"practice", 'i'}, {"combination", 'i'},
                                                            {"break_after", 'i'}}};
 
-// trials without id and session_id; position first.
-inline constexpr std::array<SqlColumn, 23> kTrialColumns{{
+// trials without id and session_id; position first. confidence and stimulus_end_s came with
+// schema 2 (SQLite) / 3 (PostgreSQL): a store older than that reads them as NULL
+// (trial_select_list).
+inline constexpr std::array<SqlColumn, 25> kTrialColumns{{
     {"position", 'i'}, {"block", 'i'}, {"condition", 't'}, {"mode", 't'}, {"practice", 'i'}, {"combination", 'i'},
     {"combination_label", 't'}, {"stimulus1_kPa", 'r'}, {"stimulus2_kPa", 'r'}, {"stimulus3_kPa", 'r'},
     {"truth", 't'}, {"answered", 'i'}, {"answer", 't'}, {"response_time_s", 'r'}, {"onset_s", 'r'},
     {"felt1_kPa", 'r'}, {"felt2_kPa", 'r'}, {"felt3_kPa", 'r'}, {"outcome1", 't'}, {"outcome2", 't'},
-    {"outcome3", 't'}, {"false_marks", 'i'}, {"completed_utc", 't'}}};
+    {"outcome3", 't'}, {"false_marks", 'i'}, {"completed_utc", 't'}, {"confidence", 'i'}, {"stimulus_end_s", 'r'}}};
+inline constexpr std::size_t kTrialConfidence = 23, kTrialStimulusEnd = 24;
 
 inline constexpr std::array<SqlColumn, 3> kTumorScoreColumns{{{"tumor", 't'}, {"outcome", 't'}, {"nearest_mark_mm", 'r'}}};
 inline constexpr std::array<SqlColumn, 4> kMarkColumns{{{"mark", 'i'}, {"x_mm", 'r'}, {"y_mm", 'r'}, {"tumor", 't'}}};
@@ -70,6 +73,22 @@ std::string column_list(const std::array<SqlColumn, N>& columns, const char* pre
     if (!s.empty()) s += ", ";
     s += prefix;
     s += c.name;
+  }
+  return s;
+}
+
+// kTrialColumns for a SELECT; a store without the rating columns gives NULL in their place.
+inline std::string trial_select_list(bool has_rating_columns, const char* prefix = "") {
+  std::string s;
+  for (std::size_t i = 0; i < kTrialColumns.size(); ++i) {
+    if (!s.empty()) s += ", ";
+    const bool rating = i == kTrialConfidence || i == kTrialStimulusEnd;
+    if (rating && !has_rating_columns) {
+      s += "NULL";
+    } else {
+      s += prefix;
+      s += kTrialColumns[i].name;
+    }
   }
   return s;
 }

@@ -58,6 +58,12 @@ void ensure_lab_sessions_table(Database& db) {
       ")");
 }
 
+bool sqlite_trials_have_rating_columns(Database& db) {
+  auto s = db.prepare("SELECT count(*) FROM pragma_table_info('trials') WHERE name IN ('confidence', 'stimulus_end_s')");
+  s.step();
+  return s.integer(0) == 2;
+}
+
 bool has_lab_sessions_table(Database& db) {
   auto s = db.prepare("SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'lab_store_sessions'");
   s.step();
@@ -105,7 +111,7 @@ std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional
 std::vector<TrialRows> read_sqlite_trials(Database& db, std::int64_t session_id, std::int64_t from_position) {
   std::vector<TrialRows> trials;
   std::vector<std::int64_t> ids;
-  auto q = db.prepare("SELECT id, " + column_list(kTrialColumns) +
+  auto q = db.prepare("SELECT id, " + trial_select_list(sqlite_trials_have_rating_columns(db)) +
                       " FROM trials WHERE session_id = ?1 AND position >= ?2 ORDER BY position");
   q.bind(1, session_id).bind(2, from_position);
   while (q.step()) {

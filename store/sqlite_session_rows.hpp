@@ -19,6 +19,9 @@ namespace palprig {
 
 void ensure_lab_sessions_table(Database& db);
 bool has_lab_sessions_table(Database& db);
+// Whether `trials` has the schema-2 columns (confidence, stimulus_end_s); an older file opened
+// for reading has not.
+bool sqlite_trials_have_rating_columns(Database& db);
 
 struct LocalSession {
   std::int64_t id = 0;  // in the file

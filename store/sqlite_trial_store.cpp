@@ -13,6 +13,7 @@
 
 #include "experiments/scoring.hpp"
 #include "models/parse_error.hpp"
+#include "store/sqlite_session_rows.hpp"
 #include "store/utc_time.hpp"
 
 namespace palprig {
@@ -78,6 +79,8 @@ CREATE TABLE trials (
   outcome3          TEXT CHECK (outcome3 IN ('TP', 'FN', 'TN', 'FP')),
   false_marks       INTEGER,
   completed_utc     TEXT NOT NULL,
+  confidence        INTEGER CHECK (confidence BETWEEN 1 AND 9),  -- NULL: not asked or not answered
+  stimulus_end_s    REAL,                      -- when the stimulus ended (onset_s's clock)
   UNIQUE (session_id, position)
 );
 CREATE TABLE tumor_scores (
@@ -95,6 +98,13 @@ CREATE TABLE marks (
   tumor    TEXT,                               -- the tumor it hit; NULL for a false mark
   PRIMARY KEY (trial_id, mark)
 ) WITHOUT ROWID;
+)sql";
+
+// Schema 1 -> 2: the confidence rating and the stimulus end (appended, as in kSchema).
+constexpr const char* kMigrationTo2 = R"sql(
+ALTER TABLE trials ADD COLUMN confidence INTEGER CHECK (confidence BETWEEN 1 AND 9);
+ALTER TABLE trials ADD COLUMN stimulus_end_s REAL;
+PRAGMA user_version = 2;
 )sql";
 
 // Which process runs a session (DESIGN.md "Data": one process per session). Created on every
@@ -173,6 +183,8 @@ SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access acc
   // SQLite may make the damage worse), and never compute statistics or exports from one (the
   // trials on bad pages would silently be missing).
   db_.refuse_if_damaged();
+  if (access == Access::read_write) migrate_if_older();
+  rating_columns_ = sqlite_trials_have_rating_columns(db_);
   if (access == Access::read_write) create_lock_table();
   // Scans of large stores (stats, export) read through a memory map instead of copying pages.
   db_.exec("PRAGMA mmap_size = 1073741824");
@@ -299,6 +311,16 @@ void SqliteTrialStore::create_schema_if_blank() {
   db_.exec(kSchema);
   db_.exec("PRAGMA application_id = " + std::to_string(kTrialStoreApplicationId));
   db_.exec("PRAGMA user_version = " + std::to_string(kTrialStoreSchemaVersion));
+  tx.commit();
+}
+
+void SqliteTrialStore::migrate_if_older() {
+  if (db_.pragma_integer("user_version") >= kTrialStoreSchemaVersion) return;
+  // One transaction under the write lock: another process may have migrated it meanwhile, and a
+  // failure half-way leaves the file (and every trial) as it was.
+  Transaction tx(db_);
+  if (db_.pragma_integer("user_version") >= kTrialStoreSchemaVersion) return;
+  db_.exec(kMigrationTo2);
   tx.commit();
 }
 
@@ -502,8 +524,9 @@ void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& 
     insert_trial_ = std::make_unique<Statement>(db_,
       "INSERT INTO trials (session_id, position, block, condition, mode, practice, combination, combination_label, "
       "stimulus1_kPa, stimulus2_kPa, stimulus3_kPa, truth, answered, answer, response_time_s, onset_s, felt1_kPa, "
-      "felt2_kPa, felt3_kPa, outcome1, outcome2, outcome3, false_marks, completed_utc) VALUES (?1, ?2, ?3, ?4, ?5, "
-      "?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24)");
+      "felt2_kPa, felt3_kPa, outcome1, outcome2, outcome3, false_marks, completed_utc, confidence, stimulus_end_s) "
+      "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, "
+      "?23, ?24, ?25, ?26)");
   }
   Statement& ins = *insert_trial_;
   ins.bind(1, session_id)
@@ -516,6 +539,8 @@ void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& 
       .bind(13, r.answered ? 1 : 0)
       .bind(16, r.onset_s)
       .bind(24, utc_now_text());
+  if (auto end = finite_or_null(r.stimulus_end_s)) ins.bind(26, *end);
+  if (r.answered && r.confidence) ins.bind(25, static_cast<std::int64_t>(*r.confidence));
   if (discrimination) {
     ins.bind(8, r.combination_label);
     for (int f = 0; f < kFingerCount; ++f) ins.bind(9 + f, r.stimulus_kPa[static_cast<std::size_t>(f)]);
@@ -583,12 +608,18 @@ nlohmann::json SqliteTrialStore::protocol_snapshot(std::int64_t session_id) {
   return nlohmann::json::parse(q.text_view(0), nullptr, false);
 }
 
+std::string SqliteTrialStore::rating_columns(const char* prefix) const {
+  if (!rating_columns_) return "NULL, NULL";  // a schema-1 file read as it is
+  return std::string(prefix) + "confidence, " + prefix + "stimulus_end_s";
+}
+
 void SqliteTrialStore::scan_scored_trials(TrialFamily family, bool include_practice,
                                           const std::function<void(const ScoredTrial&)>& visit) {
   if (family == TrialFamily::discrimination) {
     auto q = db_.prepare(
         "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, t.outcome1, t.outcome2, t.outcome3, "
-        "t.combination_label FROM trials t WHERE t.mode != 'scene'" + practice_filter(include_practice, "AND"));
+        "t.combination_label, t.onset_s, " + rating_columns("t.") + " FROM trials t WHERE t.mode != 'scene'" +
+        practice_filter(include_practice, "AND"));
     ScoredTrial t;
     while (q.step()) {
       t.trial_id = q.integer(0);
@@ -600,6 +631,8 @@ void SqliteTrialStore::scan_scored_trials(TrialFamily family, bool include_pract
         t.finger_outcomes[static_cast<std::size_t>(f)] = t.answered ? outcome_from_string(q.text_view(5 + f)) : std::nullopt;
       }
       t.combination_label = q.is_null(8) ? std::nullopt : std::optional<std::string_view>(q.text_view(8));
+      t.rt_after_stimulus_s = response_time_after_stimulus_s(q.real(9), t.response_time_s, real_or_nan(q, 11));
+      t.confidence = q.is_null(10) ? std::nullopt : std::optional<int>(static_cast<int>(q.integer(10)));
       visit(t);
     }
     return;
@@ -607,8 +640,8 @@ void SqliteTrialStore::scan_scored_trials(TrialFamily family, bool include_pract
   // Localisation: one row per (trial, tumor score); the rows of a trial are gathered and the
   // trial handed on when the next one starts.
   auto q = db_.prepare(
-      "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, t.false_marks "
-      "FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
+      "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, t.false_marks, "
+      "t.onset_s, " + rating_columns("t.") + " FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
       practice_filter(include_practice, "AND") + " ORDER BY t.id");
   ScoredTrial t;
   std::string condition;
@@ -638,6 +671,7 @@ void SqliteTrialStore::scan_scored_trials(TrialFamily family, bool include_pract
       t.answered = q.integer(3) != 0;
       t.response_time_s = real_or_nan(q, 4);
       t.false_marks = q.is_null(7) ? 0 : q.integer(7);
+      t.rt_after_stimulus_s = response_time_after_stimulus_s(q.real(8), t.response_time_s, real_or_nan(q, 10));
     }
     if (q.is_null(5)) continue;
     const auto outcome = outcome_from_string(q.text_view(6));
@@ -657,8 +691,8 @@ std::vector<StoredTrial> SqliteTrialStore::read_trials(bool include_practice) {
       "SELECT p.code, p.simulated, p.number, s.id, s.protocol_name, s.task, s.bids_task, t.id, t.position, t.block, "
       "t.condition, t.mode, t.practice, t.combination, t.combination_label, t.stimulus1_kPa, t.stimulus2_kPa, "
       "t.stimulus3_kPa, t.felt1_kPa, t.felt2_kPa, t.felt3_kPa, t.truth, t.answered, t.answer, t.response_time_s, "
-      "t.onset_s, t.outcome1, t.outcome2, t.outcome3, t.false_marks, t.completed_utc "
-      "FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
+      "t.onset_s, t.outcome1, t.outcome2, t.outcome3, t.false_marks, t.completed_utc, " + rating_columns("t.") +
+      " FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
       practice_filter(include_practice, "WHERE") + " ORDER BY p.number, s.id, t.position");
   while (q.step()) {
     StoredTrial t;
@@ -689,6 +723,11 @@ std::vector<StoredTrial> SqliteTrialStore::read_trials(bool include_practice) {
     t.onset_s = q.real(25);
     if (!q.is_null(29)) t.false_marks = q.integer(29);
     t.completed_utc = q.text(30);
+    if (!q.is_null(31)) t.confidence = static_cast<int>(q.integer(31));
+    t.stimulus_end_s = real_or_null(q, 32);
+    if (t.answered && t.response_time_s && t.stimulus_end_s) {
+      t.rt_after_stimulus_s = response_time_after_stimulus_s(t.onset_s, *t.response_time_s, *t.stimulus_end_s);
+    }
     trials.push_back(std::move(t));
   }
   auto ts = db_.prepare("SELECT tumor, outcome FROM tumor_scores WHERE trial_id = ?1 ORDER BY tumor");

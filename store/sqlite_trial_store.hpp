@@ -39,7 +39,10 @@ struct StoredTaskSession {
 };
 
 inline constexpr std::int64_t kTrialStoreApplicationId = 0x50616C50;  // "PalP"
-inline constexpr std::int64_t kTrialStoreSchemaVersion = 1;
+// 2: trials.confidence and trials.stimulus_end_s. A version-1 file opened for writing is
+// migrated in one transaction (every trial kept, the new columns NULL); opened for reading it
+// is read as it is (the new columns read as NULL).
+inline constexpr std::int64_t kTrialStoreSchemaVersion = 2;
 
 class SqliteTrialStore final : public TrialStore {
  public:
@@ -93,11 +96,14 @@ class SqliteTrialStore final : public TrialStore {
   // Inside a transaction: refuses a running session of this participant and protocol, inserts.
   std::int64_t insert_session_row(const ParticipantRecord& who, const TaskSessionRow& row, const SessionSetup& setup);
   void check_identity();
+  void migrate_if_older();
+  std::string rating_columns(const char* prefix) const;  // "confidence, stimulus_end_s" or NULLs  // read_write: schema 1 -> 2 in one transaction
   void insert_trial(std::int64_t session_id, const TrialRecord& trial);
 
   Database db_;
   std::unique_ptr<Statement> insert_trial_;  // prepared once: trials are inserted one by one
   std::vector<std::int64_t> held_;            // sessions whose lock row this process wrote
+  bool rating_columns_ = true;                // false: a schema-1 file opened for reading
 };
 
 // Open an existing SQLite trial database for reading; refuses a missing, foreign or newer file.

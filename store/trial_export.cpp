@@ -21,6 +21,7 @@ namespace {
 // One trial as exported: the stored trial with its protocol's finger names.
 struct ExportTrial : StoredTrial {
   std::array<std::string, kFingerCount> finger_names{"finger1", "finger2", "finger3"};
+  nlohmann::json confidence_scale;  // the protocol's "confidence" object; null when not asked
 };
 
 // The finger names of a session's stored protocol, by the protocol file's rules (absent:
@@ -51,14 +52,19 @@ std::array<std::string, kFingerCount> stored_finger_names(const std::string& fil
 
 std::vector<ExportTrial> read_trials(TrialStore& store, const ExportOptions& options) {
   std::map<std::int64_t, std::array<std::string, kFingerCount>> finger_names;  // per session, from the protocol
+  std::map<std::int64_t, nlohmann::json> confidence_scales;
   for (const SessionOverview& session : store.list_sessions()) {
-    finger_names[session.id] = stored_finger_names(store.location(), session.id, store.protocol_snapshot(session.id));
+    const nlohmann::json protocol = store.protocol_snapshot(session.id);
+    finger_names[session.id] = stored_finger_names(store.location(), session.id, protocol);
+    const auto scale = protocol.find("confidence");  // checked when the session started
+    if (scale != protocol.end() && scale->is_object()) confidence_scales[session.id] = *scale;
   }
   std::vector<ExportTrial> trials;
   for (StoredTrial& stored : store.read_trials(options.include_practice)) {
     ExportTrial t;
     static_cast<StoredTrial&>(t) = std::move(stored);
     t.finger_names = finger_names[t.session];
+    if (auto it = confidence_scales.find(t.session); it != confidence_scales.end()) t.confidence_scale = it->second;
     trials.push_back(std::move(t));
   }
   return trials;
@@ -69,6 +75,10 @@ std::string number(const std::optional<double>& x, int decimals = 4) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, *x);
   return buf;
+}
+
+std::string rating_text(const std::optional<int>& rating, const char* none) {
+  return rating ? std::to_string(*rating) : std::string(none);
 }
 
 std::string csv_field(const std::string& s) {
@@ -131,14 +141,17 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
   std::ofstream out = open_for_writing(long_path);
   out << "participant,simulated,session,protocol,task,trial,block,condition,mode,practice,combination,unit,finger,"
          "finger_name,tumor,stimulus_kPa,felt_kPa,tumor_present,answered,answered_tumor,outcome,response_time_s,"
-         "onset_s,completed_utc\n";
+         "onset_s,completed_utc,rt_after_stimulus_s,confidence\n";
   for (const ExportTrial& t : trials) {
     const std::string head = csv_field(t.participant) + "," + (t.simulated ? "1" : "0") + "," + std::to_string(t.session) +
                              "," + csv_field(t.protocol) + "," + t.task + "," + std::to_string(t.position + 1) + "," +
                              std::to_string(t.block + 1) + "," + csv_field(t.condition) + "," + t.mode + "," +
                              (t.practice ? "1" : "0") + "," + (t.combination_label.empty() ? "n/a" : t.combination_label);
     const std::string tail = std::string(t.answered ? "1" : "0");
-    const std::string times = number(t.response_time_s) + "," + number(t.onset_s) + "," + t.completed_utc;
+    // rt_after_stimulus_s: from the stimulus end (n/a when unanswered or stored before the
+    // column existed); confidence: empty when the protocol did not ask or no answer was given.
+    const std::string times = number(t.response_time_s) + "," + number(t.onset_s) + "," + t.completed_utc + "," +
+                              number(t.rt_after_stimulus_s) + "," + rating_text(t.confidence, "");
     if (t.mode != "scene") {
       for (int f = 0; f < kFingerCount; ++f) {
         const auto fi = static_cast<std::size_t>(f);
@@ -285,9 +298,28 @@ ExportResult export_bids(TrialStore& store, const std::filesystem::path& out_dir
         tsv << "\tfalse_marks";
         side["false_marks"] = column("Marks near no tumor");
       }
-      tsv << "\tresponse_time\tonset\n";
-      side["response_time"] = column("Time from stimulus onset to the answer (n/a when the response timed out)", "s");
+      tsv << "\tresponse_time\tonset\trt_after_stimulus";
+      side["response_time"] = column("Time from stimulus onset to the answer (n/a when the response timed out); "
+                                     "paper 002's measure, which includes a sequential presentation", "s");
       side["onset"] = column("Stimulus onset on the session's monotonic clock", "s");
+      side["rt_after_stimulus"] = column("Time from the end of the stimulus to the answer (0 when answered during the "
+                                         "stimulus; n/a when the response timed out or was not recorded)", "s");
+      const nlohmann::json& scale = rows.empty() ? nlohmann::json() : rows.front()->confidence_scale;
+      if (!scale.is_null()) {
+        tsv << "\tconfidence";
+        nlohmann::ordered_json levels;
+        const int count = scale.value("levels", 0);
+        const auto labels = scale.find("labels");
+        for (int level = 1; level <= count; ++level) {
+          const bool labelled = labels != scale.end() && labels->is_array() && labels->size() == static_cast<std::size_t>(count);
+          levels[std::to_string(level)] = labelled ? (*labels)[static_cast<std::size_t>(level - 1)].get<std::string>()
+                                                   : "rating " + std::to_string(level) + " of " + std::to_string(count);
+        }
+        side["confidence"] = column("Confidence rating the participant gave after the answer (1 = least, " +
+                                        std::to_string(count) + " = most confident; n/a when not answered)",
+                                    "", levels);
+      }
+      tsv << "\n";
 
       for (const ExportTrial* t : rows) {
         tsv << t->position + 1 << "\t" << t->block + 1 << "\t" << tsv_field(t->condition) << "\t" << t->mode << "\t"
@@ -310,7 +342,9 @@ ExportResult export_bids(TrialStore& store, const std::filesystem::path& out_dir
           }
           tsv << "\t" << (t->false_marks ? std::to_string(*t->false_marks) : "n/a");
         }
-        tsv << "\t" << number(t->response_time_s) << "\t" << number(t->onset_s) << "\n";
+        tsv << "\t" << number(t->response_time_s) << "\t" << number(t->onset_s) << "\t" << number(t->rt_after_stimulus_s);
+        if (!scale.is_null()) tsv << "\t" << rating_text(t->confidence, "n/a");
+        tsv << "\n";
       }
       result.files.push_back(dir / (stem + "_beh.tsv"));
       auto js = open_for_writing(dir / (stem + "_beh.json"));

@@ -77,6 +77,8 @@ struct ScoredTrial {
   std::optional<std::string_view> combination_label;  // discrimination; absent for localisation
   bool answered = false;
   double response_time_s = 0;  // NaN when none was stored
+  double rt_after_stimulus_s = 0;  // from the stimulus end to the answer; NaN when unknown
+  std::optional<int> confidence;   // the rating, when asked and given
   std::array<std::optional<Outcome>, kFingerCount> finger_outcomes{};  // discrimination, when answered
   std::span<const ScoredTumor> tumors;  // localisation, when answered
   std::int64_t false_marks = 0;         // localisation, when answered
@@ -107,6 +109,9 @@ struct StoredTrial {
   bool answered = false;
   std::optional<double> response_time_s;
   double onset_s = 0;
+  std::optional<double> stimulus_end_s;       // NULL in stores older than the column
+  std::optional<double> rt_after_stimulus_s;  // response_time_after_stimulus_s; none when not answered or unknown
+  std::optional<int> confidence;
   std::array<std::string, kFingerCount> outcome{};  // "TP", "FN", "TN", "FP" or ""
   std::optional<std::int64_t> false_marks;
   std::string completed_utc;

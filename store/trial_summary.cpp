@@ -44,27 +44,46 @@ struct GroupKeyHash {
   }
 };
 
+// Running mean and sd (Welford), over finite values only.
+struct RunningMoments {
+  std::int64_t n = 0;
+  double mean = 0, m2 = 0;
+  void add(double x) {
+    if (!std::isfinite(x)) return;
+    ++n;
+    const double d = x - mean;
+    mean += d / static_cast<double>(n);
+    m2 += d * (x - mean);
+  }
+  double mean_or_nan() const { return n > 0 ? mean : std::numeric_limits<double>::quiet_NaN(); }
+  double sd_or_nan() const {
+    return n > 1 ? std::sqrt(m2 / static_cast<double>(n - 1)) : std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
 struct Accumulator {
   ConfusionCounts counts;
   std::int64_t trials = 0, unanswered = 0;
-  std::int64_t rt_n = 0;
-  double rt_mean = 0, rt_m2 = 0;  // Welford
+  RunningMoments rt, rt_after;     // from onset (paper 002) and from the stimulus end
+  std::int64_t rated = 0;
+  double confidence_sum = 0;
   std::int64_t last_trial = -1;   // a trial adds its response time once per group
   bool localisation = false;      // holds localisation values (no true negatives)
 
-  void add_trial(std::int64_t trial_id, bool answered, double rt_s) {
-    if (trial_id == last_trial) return;
-    last_trial = trial_id;
+  void add_trial(const ScoredTrial& t) {
+    if (t.trial_id == last_trial) return;
+    last_trial = t.trial_id;
     ++trials;
-    if (!answered) {
+    if (!t.answered) {
       ++unanswered;
       return;
     }
-    if (!std::isfinite(rt_s)) return;
-    ++rt_n;
-    const double d = rt_s - rt_mean;
-    rt_mean += d / static_cast<double>(rt_n);
-    rt_m2 += d * (rt_s - rt_mean);
+    rt.add(t.response_time_s);
+    rt_after.add(t.rt_after_stimulus_s);
+    if (t.confidence) {
+      ++rated;
+      confidence_sum += *t.confidence;
+    }
   }
 };
 
@@ -206,7 +225,7 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
       for (int f = 0; f < kFingerCount; ++f) {
         ids[static_cast<std::size_t>(SummaryKey::finger)] = finger_ids[static_cast<std::size_t>(f)];
         Accumulator& a = grouper.group(ids);
-        a.add_trial(t.trial_id, t.answered, t.response_time_s);
+        a.add_trial(t);
         if (const auto& o = t.finger_outcomes[static_cast<std::size_t>(f)]) a.counts.add(*o);
       }
     });
@@ -225,7 +244,7 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
       ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(score.tumor);
       Accumulator& a = grouper.group(ids);
       a.localisation = true;
-      a.add_trial(t.trial_id, t.answered, t.response_time_s);
+      a.add_trial(t);
       a.counts.add(score.outcome);
     }
     // The trial's false marks, and an unanswered trial, once.
@@ -233,7 +252,7 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     if (!t.answered || t.false_marks > 0) {
       Accumulator& a = grouper.group(ids);
       a.localisation = true;
-      a.add_trial(t.trial_id, t.answered, t.response_time_s);
+      a.add_trial(t);
       a.counts.fp += t.false_marks;
     }
   });
@@ -254,8 +273,13 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     }
     row.trials = a.trials;
     row.unanswered = a.unanswered;
-    row.mean_rt_s = a.rt_n > 0 ? a.rt_mean : std::numeric_limits<double>::quiet_NaN();
-    row.sd_rt_s = a.rt_n > 1 ? std::sqrt(a.rt_m2 / static_cast<double>(a.rt_n - 1)) : std::numeric_limits<double>::quiet_NaN();
+    row.mean_rt_s = a.rt.mean_or_nan();
+    row.sd_rt_s = a.rt.sd_or_nan();
+    row.mean_rt_after_stimulus_s = a.rt_after.mean_or_nan();
+    row.sd_rt_after_stimulus_s = a.rt_after.sd_or_nan();
+    row.rated = a.rated;
+    row.mean_confidence = a.rated > 0 ? a.confidence_sum / static_cast<double>(a.rated) : std::numeric_limits<double>::quiet_NaN();
+    if (a.rated > 0) summary.any_rated = true;
     summary.rows.push_back(std::move(row));
   }
   std::sort(summary.rows.begin(), summary.rows.end(), [](const SummaryRow& a, const SummaryRow& b) { return a.key < b.key; });

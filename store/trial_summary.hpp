@@ -6,7 +6,8 @@
 // every tumor of a localisation trial (TP detected / FN missed), plus one FP per false mark
 // (tumor "-"). Unanswered (timed-out) trials are counted, not scored. Practice trials are left
 // out unless asked for. Response times: mean and sd over answered trials, each trial counted
-// once per group it contributes to.
+// once per group it contributes to, from onset (paper 002's measure) and from the stimulus end;
+// the mean confidence rating and the count rated when any trial has one.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -34,7 +35,12 @@ struct SummaryRow {
   DiagnosticMeasures measures;
   std::int64_t trials = 0;      // trials that contributed (answered or not)
   std::int64_t unanswered = 0;  // of which timed out
-  double mean_rt_s = 0, sd_rt_s = 0;  // NaN when fewer than 1 (mean) or 2 (sd) answered trials
+  double mean_rt_s = 0, sd_rt_s = 0;  // from onset (paper 002); NaN when fewer than 1 (mean) or 2 (sd) answered trials
+  // From the end of the stimulus (0 for an answer during it); NaN likewise, and for trials
+  // stored before the stimulus end was.
+  double mean_rt_after_stimulus_s = 0, sd_rt_after_stimulus_s = 0;
+  std::int64_t rated = 0;       // answered trials with a confidence rating
+  double mean_confidence = 0;   // NaN when none was rated
   // False for localisation: true negatives are not counted (every tumor-free spot would be
   // one), so TN, Sp and ACC have no denominator and are n/a, never 0.
   bool negatives_counted = true;
@@ -43,6 +49,7 @@ struct SummaryRow {
 struct TrialSummary {
   std::vector<SummaryKey> by;
   std::vector<SummaryRow> rows;  // sorted by key
+  bool any_rated = false;        // some trial has a confidence rating: reports show the columns
 };
 
 TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options);

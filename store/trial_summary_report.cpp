@@ -47,8 +47,12 @@ std::string summary_table(const TrialSummary& s) {
   std::vector<std::string> header;
   for (SummaryKey k : s.by) header.push_back(to_string(k));
   for (const char* h : {"trials", "no answer", "TP", "FN", "TN", "FP", "Se [95% CI]", "Sp [95% CI]", "PPV [95% CI]",
-                        "ACC [95% CI]", "RT mean s", "RT sd s"}) {
+                        "ACC [95% CI]", "RT mean s", "RT sd s", "RT after stim mean s", "RT after stim sd s"}) {
     header.push_back(h);
+  }
+  if (s.any_rated) {
+    header.push_back("rated");
+    header.push_back("confidence mean");
   }
   cells.push_back(header);
   for (const SummaryRow& r : s.rows) {
@@ -63,6 +67,12 @@ std::string summary_table(const TrialSummary& s) {
     }
     line.push_back(fixed(r.mean_rt_s, 2));
     line.push_back(fixed(r.sd_rt_s, 2));
+    line.push_back(fixed(r.mean_rt_after_stimulus_s, 2));
+    line.push_back(fixed(r.sd_rt_after_stimulus_s, 2));
+    if (s.any_rated) {
+      line.push_back(std::to_string(r.rated));
+      line.push_back(fixed(r.mean_confidence, 2));
+    }
     cells.push_back(line);
   }
   std::vector<std::size_t> width(header.size(), 0);
@@ -84,7 +94,9 @@ std::string summary_csv(const TrialSummary& s) {
   for (SummaryKey k : s.by) out << to_string(k) << ",";
   out << "trials,unanswered,TP,FN,TN,FP";
   for (const char* m : {"Se", "Sp", "PPV", "ACC"}) out << "," << m << "," << m << "_lower," << m << "_upper";
-  out << ",rt_mean_s,rt_sd_s\n";
+  out << ",rt_mean_s,rt_sd_s,rt_after_stimulus_mean_s,rt_after_stimulus_sd_s";
+  if (s.any_rated) out << ",rated,confidence_mean";
+  out << "\n";
   for (const SummaryRow& r : s.rows) {
     for (const auto& k : r.key) out << csv_field(k) << ",";
     out << r.trials << "," << r.unanswered << "," << r.counts.tp << "," << r.counts.fn << ","
@@ -93,7 +105,10 @@ std::string summary_csv(const TrialSummary& s) {
       if (nm.m.defined) out << "," << fixed(nm.m.value, 6) << "," << fixed(nm.m.lower, 6) << "," << fixed(nm.m.upper, 6);
       else out << ",NA,NA,NA";
     }
-    out << "," << fixed(r.mean_rt_s, 4) << "," << fixed(r.sd_rt_s, 4) << "\n";
+    out << "," << fixed(r.mean_rt_s, 4) << "," << fixed(r.sd_rt_s, 4) << "," << fixed(r.mean_rt_after_stimulus_s, 4) << ","
+        << fixed(r.sd_rt_after_stimulus_s, 4);
+    if (s.any_rated) out << "," << r.rated << "," << fixed(r.mean_confidence, 4);
+    out << "\n";
   }
   return out.str();
 }
@@ -125,6 +140,13 @@ nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence) {
     }
     row["rt_mean_s"] = number_or_null(r.mean_rt_s);
     row["rt_sd_s"] = number_or_null(r.sd_rt_s);
+    // From the end of the stimulus; rt_mean_s above is from onset (paper 002's t-test).
+    row["rt_after_stimulus_mean_s"] = number_or_null(r.mean_rt_after_stimulus_s);
+    row["rt_after_stimulus_sd_s"] = number_or_null(r.sd_rt_after_stimulus_s);
+    if (s.any_rated) {
+      row["rated"] = r.rated;
+      row["confidence_mean"] = number_or_null(r.mean_confidence);
+    }
     j["rows"].push_back(std::move(row));
   }
   return j;

@@ -46,6 +46,17 @@ std::string short_discrimination(const TempDir& dir, double inter_trial_s = 0.05
   return dir.write("short.json", doc.dump(2)).string();
 }
 
+// The shipped confidence protocol (4 rating levels) cut like short_discrimination; the
+// stimulus is on for `present_s` (simultaneous) before the participant may answer.
+std::string short_confidence(const TempDir& dir, double present_s = 0.2) {
+  auto doc = nlohmann::json::parse(test_support::read_file(data_dir() + "/protocols/discrimination_002_confidence.json"));
+  doc["combinations"]["list_kPa"] = {{0, 30, 0}, {0, 0, 0}, {30, 30, 0}};
+  doc["practice_trials"] = 0;
+  doc["timing"] = {{"max_present_s", present_s}, {"sequential_step_s", 0.05}, {"sequential_gap_s", 0.02},
+                   {"response_timeout_s", 60}, {"inter_trial_s", 0.05}, {"break_s", 0}};
+  return dir.write("rated.json", doc.dump(2)).string();
+}
+
 std::string short_localisation(const TempDir& dir) {
   auto doc = nlohmann::json::parse(test_support::read_file(data_dir() + "/protocols/localisation_002.json"));
   doc["localisation"]["scene"] = data_dir() + "/scenes/phantom_abc.json";
@@ -89,7 +100,8 @@ std::vector<std::string> stored_rows(const std::string& db) {
     rows.push_back(t.participant + "|" + std::to_string(t.simulated) + "|" + std::to_string(t.participant_number) + "|" +
                    std::to_string(t.position) + "|" + std::to_string(t.block) + "|" + t.condition + "|" + t.mode + "|" +
                    std::to_string(t.practice) + "|" + t.combination_label + "|" + t.truth + "|" + t.answer + "|" +
-                   std::to_string(t.answered) + "|" + t.outcome[0] + t.outcome[1] + t.outcome[2]);
+                   std::to_string(t.answered) + "|" + t.outcome[0] + t.outcome[1] + t.outcome[2] + "|" +
+                   (t.confidence ? std::to_string(*t.confidence) : std::string("-")));
   }
   return rows;
 }
@@ -150,6 +162,15 @@ void keep_screenshot(QWidget& what, const char* name) {
   const char* dir = std::getenv("PALPRIG_SCREENSHOT_DIR");
   if (dir == nullptr) return;
   what.grab().save(QString("%1/%2").arg(dir, name), "PNG");
+}
+
+// The rating step after the finger answer: key `rating` (even styles) or its button.
+void rate_by_hand(MainWindow& w, ParticipantScreen& screen, int rating, int style) {
+  QVERIFY(wait_until(w, [&] { return screen.rating(); }, 30.0));
+  auto* button = screen.findChild<QPushButton*>(QString("confidence_%1").arg(rating));
+  QVERIFY(button != nullptr && button->isVisible() && button->isEnabled());
+  if (style % 2 == 0) QTest::keyClick(&screen, Qt::Key(Qt::Key_0 + rating));
+  else QTest::mouseClick(button, Qt::LeftButton);
 }
 
 int committed_rows(QTableWidget& t) {
@@ -500,6 +521,116 @@ class ExperimentConsoleTest : public QObject {
     QCOMPARE(r.exit_code, 2);
     QVERIFY2(r.err.find("bad.json") != std::string::npos, r.err.c_str());
     QVERIFY(!std::filesystem::exists(dir.path() / "x.db"));
+  }
+
+  void ratedSessionByClicksAndKeysEqualsTheCliSession() {
+    TempDir dir;
+    const std::string protocol = short_confidence(dir);
+    const std::vector<std::string> answers = {"2", "0", "12", "1", "0", "2"};
+    const std::vector<int> ratings = {4, 1, 3, 2, 4, 1};
+    const std::string gui_db = (dir.path() / "gui.db").string(), cli_db = (dir.path() / "cli.db").string();
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({protocol, "R01", gui_db, 0});
+    EndSeen ended(page);
+    const auto plan = test_support::run_process(test_support::palprig_bin() + " experiment plan --protocol " + protocol +
+                                                " --participant R01");
+    const QStringList plan_lines = QString::fromStdString(plan.out).trimmed().split('\n');
+    QCOMPARE(plan_lines.size(), 7);
+    QVERIFY2(page.begin(false), qPrintable(page.refusal_text()));
+    ParticipantScreen& screen = *page.participant_screen();
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    std::string typed;
+    for (int k = 0; k < int(answers.size()); ++k) {
+      if (k == 0 || plan_lines[k].split(',').at(7) == "1") {
+        QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+        QTest::keyClick(&screen, Qt::Key_Space);
+        typed += "\n";
+      }
+      QVERIFY2(wait_until(*w.window, [&] { return screen.answering_position() == k; }),
+               qPrintable(QString("trial %1 never asked").arg(k + 1)));
+      answer_by_hand(screen, answers[static_cast<std::size_t>(k)], k);
+      if (k == 2) {
+        keep_screenshot(screen, "participant_rating.png");
+        // Nothing is handed over before the rating: the trial is still open.
+        QCOMPARE(committed_rows(*page.trial_table()), k);
+        QTest::keyClick(&screen, Qt::Key_9);  // not a level: ignored
+        QTest::keyClick(&screen, Qt::Key_Return);
+        QVERIFY(screen.rating());
+      }
+      rate_by_hand(*w.window, screen, ratings[static_cast<std::size_t>(k)], k + 1);
+      typed += answers[static_cast<std::size_t>(k)] + "\n" + std::to_string(ratings[static_cast<std::size_t>(k)]) + "\n";
+      QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == k + 1; }));
+      // The console's list shows the rating and the RT after the stimulus.
+      QTableWidget& table = *page.trial_table();
+      QCOMPARE(table.item(k, 9)->text(), QString::number(ratings[static_cast<std::size_t>(k)]));
+      bool ok = false;
+      const double after_s = table.item(k, 8)->text().toDouble(&ok);
+      QVERIFY(ok);
+      QVERIFY(after_s >= 0.0 && after_s < table.item(k, 7)->text().toDouble());
+    }
+    keep_screenshot(*w.window, "experiment_console_rated.png");
+    QVERIFY(wait_until(*w.window, [&] { return ended.count == 1 && !page.session_running(); }));
+    QVERIFY(ended.end.completed);
+
+    const auto input = dir.write("answers.txt", typed);
+    const auto r = test_support::run_process("(" + test_support::palprig_bin() + " experiment run --protocol " + protocol +
+                                             " --participant R01 --db " + cli_db + " < " + input.string() + ")");
+    QVERIFY2(r.exit_code == 0, (r.out + r.err).c_str());
+    const auto gui_rows = stored_rows(gui_db), cli_rows = stored_rows(cli_db);
+    QCOMPARE(gui_rows.size(), std::size_t(6));
+    for (std::size_t i = 0; i < gui_rows.size(); ++i) QCOMPARE(QString::fromStdString(gui_rows[i]), QString::fromStdString(cli_rows[i]));
+    const auto gui_stats = stats_without_times(gui_db);
+    QCOMPARE(QString::fromStdString(gui_stats.dump()), QString::fromStdString(stats_without_times(cli_db).dump()));
+    QCOMPARE(gui_stats["rows"][0]["rated"].get<int>() + gui_stats["rows"][1]["rated"].get<int>(), 6);
+    // Every GUI answer came after its stimulus ended.
+    const auto store = open_trial_store(gui_db, TrialStore::Access::read_only);
+    for (const StoredTrial& t : store->read_trials(true)) {
+      QVERIFY(t.stimulus_end_s && t.response_time_s);
+      QVERIFY(t.onset_s + *t.response_time_s >= *t.stimulus_end_s);
+    }
+  }
+
+  void answerButtonsDisabledWhilePresenting() {
+    TempDir dir;
+    const std::string protocol = short_confidence(dir, 1.5);
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({protocol, "R02", (dir.path() / "p.db").string(), 0});
+    std::vector<RunnerState> states;
+    connect(&page.session_run(), &SessionRun::runnerState, &page, [&](RunnerState s, int) { states.push_back(s); });
+    QVERIFY(page.begin(false));
+    ParticipantScreen& screen = *page.participant_screen();
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::keyClick(&screen, Qt::Key_Space);
+    QVERIFY(wait_until(*w.window, [&] { return !states.empty() && states.back() == RunnerState::present; }));
+    QVERIFY(wait_until(*w.window, [&] { return screen.findChild<QLabel*>("participant_prompt")->text().startsWith("Trial 1"); }));
+    // Presenting: nothing can be answered, by click or key.
+    for (const char* name : {"finger_1", "finger_2", "finger_3", "none_button", "answer_button"}) {
+      QVERIFY2(!screen.findChild<QPushButton*>(name)->isEnabled(), name);
+    }
+    QCOMPARE(screen.answering_position(), -1);
+    QTest::keyClick(&screen, Qt::Key_0);
+    QTest::mouseClick(screen.findChild<QPushButton*>("none_button"), Qt::LeftButton);
+    QVERIFY(!screen.rating());
+    QVERIFY(states.back() == RunnerState::present);  // still presenting: the keys did nothing
+    keep_screenshot(screen, "participant_presenting.png");
+    // The stimulus ends: the buttons come on.
+    QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 0; }));
+    QVERIFY(states.back() == RunnerState::respond);
+    for (const char* name : {"finger_1", "none_button", "answer_button"}) {
+      QVERIFY2(screen.findChild<QPushButton*>(name)->isEnabled(), name);
+    }
+    QTest::keyClick(&screen, Qt::Key_0);
+    rate_by_hand(*w.window, screen, 2, 0);
+    QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == 1; }));
+    page.abort_and_wait();
+    const auto store = open_trial_store((dir.path() / "p.db").string(), TrialStore::Access::read_only);
+    const auto trials = store->read_trials(true);
+    QCOMPARE(trials.size(), std::size_t(1));
+    QCOMPARE(trials[0].confidence.value_or(0), 2);
+    QVERIFY(*trials[0].stimulus_end_s - trials[0].onset_s > 1.49);
   }
 
   void localisationMarkedByClicksIsScoredPerTumor() {

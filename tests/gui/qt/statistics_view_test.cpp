@@ -91,6 +91,7 @@ class StatisticsViewTest : public QObject {
  private slots:
   void numbersEqualStatsTrialsJson();
   void measureWithNoCasesShowsNa();
+  void ratingAndRtAfterStimulusEqualStatsTrialsJson();
   void exportsEqualPalprigExport();
   void refreshesAskedWhileOneRunsAreCoalesced();
   void refreshesByItselfWhenTrialsAreCommitted();
@@ -146,9 +147,39 @@ void StatisticsViewTest::numbersEqualStatsTrialsJson() {
   auto* comparisons = table(view, "comparisonsTable");
   QCOMPARE(comparisons->rowCount(), int(1 + s.measures.size()));
   QVERIFY(comparisons->item(0, 3)->text().startsWith("t("));
+  QVERIFY(measures->isColumnHidden(confidence_column));  // the protocol asks no rating
 
   // For the README: the view with its numbers, when asked.
   if (const char* shot = std::getenv("PALPRIG_STATISTICS_SCREENSHOT")) QVERIFY(view.grab().save(shot));
+}
+
+void StatisticsViewTest::ratingAndRtAfterStimulusEqualStatsTrialsJson() {
+  TempDir dir;
+  const fs::path db = dir.path() / "rated.db";
+  run_participant(db, "discrimination_002_confidence.json", "sim:7");
+  run_participant(db, "discrimination_002_confidence.json", "sim:8");
+  const auto cli = nlohmann::ordered_json::parse(run_cli({"stats", "trials", QString::fromStdString(db.string()), "--json"}));
+  StatisticsView view;
+  view.resize(1400, 900);
+  view.show();
+  QSignalSpy refreshed(&view, &StatisticsView::refreshed);
+  view.set_store(QString::fromStdString(db.string()));
+  wait_idle(view, refreshed);
+  TrialSummary shown{{SummaryKey::condition}, view.condition_rows()};
+  shown.any_rated = view.statistics()->by_condition.any_rated;
+  QCOMPARE(QString::fromStdString(summary_json(shown, 0.95).dump(2)), QString::fromStdString(cli.dump(2)));
+  auto* measures = table(view, "measuresTable");
+  QVERIFY(!measures->isColumnHidden(confidence_column));
+  for (const auto& row : cli["rows"]) {
+    const int r = row_of(measures, "condition " + QString::fromStdString(row["condition"].get<std::string>()));
+    QVERIFY(r >= 0);
+    QCOMPARE(measures->item(r, rt_after_column)->text(),
+             QString::number(row["rt_after_stimulus_mean_s"].get<double>(), 'f', 2) + QStringLiteral(" ± ") +
+                 QString::number(row["rt_after_stimulus_sd_s"].get<double>(), 'f', 2));
+    QVERIFY(row["rated"].get<int>() > 0);
+    QCOMPARE(measures->item(r, confidence_column)->text(),
+             QString::number(row["confidence_mean"].get<double>(), 'f', 2) + QStringLiteral(" (n=%1)").arg(row["rated"].get<int>()));
+  }
 }
 
 void StatisticsViewTest::measureWithNoCasesShowsNa() {
