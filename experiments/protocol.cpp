@@ -137,6 +137,7 @@ void read_timing(const JsonObject& root, Protocol& p) {
   if (p.task == TaskKind::discrimination) {
     d.sequential_step_s = t.number_or("sequential_step_s", d.sequential_step_s, 0.05, 600);
     d.sequential_gap_s = t.number_or("sequential_gap_s", d.sequential_gap_s, 0.0, 600);
+    d.answer_during_stimulus = t.boolean_or("answer_during_stimulus", d.answer_during_stimulus);
   }
   d.response_timeout_s = t.number_or("response_timeout_s", d.response_timeout_s, 0.1, 3600);
   d.inter_trial_s = t.number_or("inter_trial_s", d.inter_trial_s, 0.0, 600);

@@ -54,6 +54,11 @@ struct Timing {
   double response_timeout_s = 30.0; // after the stimulus ends, wait this long for an answer
   double inter_trial_s = 2.0;       // vented pause after each answer
   double break_s = 0.0;             // length of a break; 0: until the participant is ready
+  // Simultaneous discrimination: the participant may answer while the stimulus is on, which
+  // ends it (paper 002's three-finger trials, the stimulus staying until the answer; true), or
+  // only once max_present_s has passed (a fixed-length stimulus, the response time after it is a
+  // decision time; false). A sequence is always answered after its last finger.
+  bool answer_during_stimulus = true;
 };
 
 struct Randomisation {

@@ -1,5 +1,7 @@
 #include "experiments/session_loop.hpp"
 
+#include <optional>
+
 namespace palprig {
 
 SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant, SessionClock& clock,
@@ -7,6 +9,7 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
   SessionLoopResult result;
   int started_position = -1;
   bool paused = false;
+  std::optional<Response> pending;  // an answer the runner does not take yet
   double next_s = clock.now_s();
   try {
     while (runner.state() != RunnerState::done) {
@@ -37,6 +40,7 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
         // Tell the participant once per trial that it began (the onset is the present entry).
         if (started_position != runner.next_position()) {
           started_position = runner.next_position();
+          pending.reset();  // an answer belongs to the trial it was given in
           const PlannedTrial& trial = *runner.current_trial();
           participant.trial_started(trial, runner.protocol().conditions.at(static_cast<std::size_t>(trial.condition)), t);
         }
@@ -46,7 +50,14 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
         felt.active = runner.active_fingers();
         felt.record = options.output ? options.output->last_record() : nullptr;
         participant.feel(felt);
-        if (auto answer = participant.answer(t)) runner.respond(*answer, t);
+        // An answer given before the runner takes answers (typed during a sequence) waits for
+        // the end of the presentation; the participant is not asked again meanwhile (a terminal's
+        // next typed line belongs to the next trial).
+        if (!pending) pending = participant.answer(t);
+        if (pending && runner.takes_answers()) {
+          runner.respond(*pending, t);  // a refused one (an invalid rating) is dropped
+          pending.reset();
+        }
       }
       next_s += options.period_s;
       clock.wait_until(next_s);

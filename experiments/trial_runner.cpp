@@ -204,8 +204,24 @@ void TrialRunner::pause(double t_s) {
   enter(position_ >= total_trials() ? RunnerState::done : RunnerState::ready, t_s);
 }
 
+bool answers_during_presentation(const Protocol& protocol, PresentationMode mode) noexcept {
+  switch (mode) {
+    case PresentationMode::scene: return true;
+    case PresentationMode::simultaneous: return protocol.timing.answer_during_stimulus;
+    case PresentationMode::sequential: return false;
+  }
+  return false;
+}
+
+bool TrialRunner::takes_answers() const noexcept {
+  if (state_ == RunnerState::respond) return true;
+  if (state_ != RunnerState::present) return false;
+  const PlannedTrial* t = current_trial();
+  return t && answers_during_presentation(protocol_, protocol_.conditions.at(static_cast<std::size_t>(t->condition)).mode);
+}
+
 bool TrialRunner::respond(const Response& response, double t_s) {
-  if (state_ != RunnerState::present && state_ != RunnerState::respond) return false;
+  if (!takes_answers()) return false;
   if (response.confidence && !protocol_.confidence.valid(*response.confidence)) return false;
   finish_trial(&response, t_s);
   return true;

@@ -32,6 +32,13 @@ enum class RunnerState { ready, present, respond, inter_trial, rest, done };
 
 const char* to_string(RunnerState s) noexcept;
 
+// Whether a participant answers while the stimulus is still on: during a scene (localisation
+// marks are made while palpating); during a simultaneous presentation when the protocol's
+// timing.answer_during_stimulus says so (paper 002's three-finger trials stay until the answer);
+// never during a sequence (answered after its last finger; an answer typed ahead is held by the
+// session loop until then). The GUI enables its answer buttons by this same rule.
+bool answers_during_presentation(const Protocol& protocol, PresentationMode mode) noexcept;
+
 // A participant's answer: the fingers with a tumor (discrimination) or marks (localisation),
 // and the confidence rating 1..levels when the protocol asks for one (handed over with the
 // answer in one piece; the runner stores none that is out of range or not asked for).
@@ -79,7 +86,10 @@ class TrialRunner {
   void begin(double t_s);
   // Time passes: presentation steps, timeouts and pauses; also services the rig. Call often.
   void advance(double t_s);
-  // An answer. Accepted in present and respond (returns true), ignored otherwise. A confidence
+  // True when an answer is taken now: in `respond`, and during the presentation of a condition
+  // whose stimulus stays until the answer (answers_during_presentation).
+  bool takes_answers() const noexcept;
+  // An answer. Accepted when takes_answers() (returns true), ignored otherwise. A confidence
   // rating outside 1..levels (or one the protocol does not ask for) is refused: returns false
   // and the trial goes on, so no invalid rating is ever stored.
   bool respond(const Response& response, double t_s);

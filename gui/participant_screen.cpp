@@ -91,6 +91,7 @@ void ParticipantScreen::start_session(const Protocol& protocol, std::shared_ptr<
   channel_ = std::move(channel);
   finger_names_ = protocol.finger_names;
   localisation_ = protocol.task == TaskKind::localisation;
+  protocol_ = protocol;
   pulse_ = false;
   confidence_->set_scale(protocol.confidence);
   pending_.reset();
@@ -125,20 +126,25 @@ void ParticipantScreen::show_trial(const PlannedTrial& trial, const Condition& c
     text += "Palpate the tissue with the pen. Right-click (or press M) where you feel a tumor; Done when finished.";
     marking_->clear_marks();
   } else {
-    text += condition.mode == PresentationMode::sequential ? "The fingers are presented one after another. "
-                                                           : "All fingers at once. ";
-    text += "Feel the stimulus; you answer when it has ended.";
+    if (condition.mode == PresentationMode::sequential)
+      text += "The fingers are presented one after another; you answer when the last one has ended.";
+    else if (protocol_ && answers_during_presentation(*protocol_, condition.mode))
+      text += "All fingers at once. Which fingers feel a tumor? 1/2/3 choose, Enter answers; 0 for none.";
+    else
+      text += "All fingers at once. Feel the stimulus; you answer when it has ended.";
     for (QPushButton* b : fingers_) b->setChecked(false);
     pending_.reset();
     pages_->setCurrentWidget(finger_page_);
   }
   prompt_->setText(text);
   presented_ = trial.position;
-  if (localisation_) {
-    answering_ = trial.position;  // marks are made while palpating
+  // Marks are made while palpating; a stimulus that stays until the answer is answered while it
+  // is on; a sequence after its last finger (stimulus_ended). The runner's rule, not a copy.
+  if (localisation_ || (protocol_ && answers_during_presentation(*protocol_, condition.mode))) {
+    answering_ = trial.position;
     set_answering(true);
   } else {
-    set_answering(false);  // "after the stimulus the participant answers"
+    set_answering(false);
   }
   setFocus();
 }

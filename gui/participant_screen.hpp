@@ -78,6 +78,7 @@ class ParticipantScreen final : public QWidget {
   void rate(int rating);
 
   std::shared_ptr<ParticipantChannel> channel_;
+  std::optional<Protocol> protocol_;  // the discrimination/localisation session's (answer timing)
   std::array<std::string, kFingerCount> finger_names_{};
   bool localisation_ = false;
   bool pulse_ = false;

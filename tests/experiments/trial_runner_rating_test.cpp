@@ -87,11 +87,41 @@ TEST(experiments_trial_runner_rating, coarse_steps_record_the_planned_end_not_th
 
 TEST(experiments_trial_runner_rating, an_answer_during_the_stimulus_ends_it_and_gives_zero) {
   const Protocol p = rated_protocol(false);
-  for (int condition : {0, 1}) {
-    const TrialRecord t = run_one(p, condition, 2.5, Response{{false, true, false}, {}, std::nullopt});
-    EXPECT_DOUBLE_EQ(t.stimulus_end_s, 2.5) << "condition " << condition;
-    EXPECT_DOUBLE_EQ(response_time_after_stimulus_s(t), 0.0) << "condition " << condition;
-    EXPECT_DOUBLE_EQ(t.response_time_s, 1.5);
+  const TrialRecord t = run_one(p, 0, 2.5, Response{{false, true, false}, {}, std::nullopt});  // simultaneous
+  EXPECT_DOUBLE_EQ(t.stimulus_end_s, 2.5);
+  EXPECT_DOUBLE_EQ(response_time_after_stimulus_s(t), 0.0);
+  EXPECT_DOUBLE_EQ(t.response_time_s, 1.5);
+}
+
+// A sequence is answered after its last finger; a fixed-length simultaneous stimulus
+// (timing.answer_during_stimulus false) after max_present_s. Both runner and GUI follow
+// answers_during_presentation.
+TEST(experiments_trial_runner_rating, answers_are_taken_during_the_stimulus_only_where_the_protocol_says) {
+  Protocol p = rated_protocol(false);
+  EXPECT_TRUE(answers_during_presentation(p, PresentationMode::simultaneous));
+  EXPECT_FALSE(answers_during_presentation(p, PresentationMode::sequential));
+  EXPECT_TRUE(answers_during_presentation(p, PresentationMode::scene));
+  for (bool during : {true, false}) {
+    p.timing.answer_during_stimulus = during;
+    for (int condition : {0, 1}) {
+      const SessionPlan plan = make_session_plan(p, 1, 1);
+      RecordingOutput out;
+      Collector c;
+      TrialRunner r(p, plan, first_of_condition(plan, condition), out, c);
+      r.begin(1.0);
+      r.advance(2.0);
+      ASSERT_EQ(r.state(), RunnerState::present);
+      const bool taken = condition == 0 && during;
+      EXPECT_EQ(r.takes_answers(), taken) << "condition " << condition << " during " << during;
+      EXPECT_EQ(r.respond(Response{}, 2.0), taken);
+      if (taken) continue;
+      EXPECT_TRUE(c.trials.empty());
+      r.advance(1.0 + 5.0 + 0.01);  // past either stimulus: respond
+      ASSERT_EQ(r.state(), RunnerState::respond);
+      EXPECT_TRUE(r.takes_answers());
+      EXPECT_TRUE(r.respond(Response{}, 7.0));
+      ASSERT_EQ(c.trials.size(), 1u);
+    }
   }
 }
 

@@ -146,9 +146,11 @@ TEST(experiments_trial_runner, break_between_blocks_then_ready_then_done) {
   r.advance(t += 10);
   EXPECT_EQ(r.state(), RunnerState::ready);  // waits as long as the participant needs
   r.begin(t);
-  r.respond(none, t += 1);
+  r.advance(t += 4);  // the second block is sequential: answered after its last finger (4 s)
+  r.respond(none, t += 0.1);
   r.advance(t += 1);
-  r.respond(none, t += 1);
+  r.advance(t += 4);
+  r.respond(none, t += 0.1);
   r.advance(t += 1);
   EXPECT_EQ(r.state(), RunnerState::done);
   EXPECT_EQ(c.trials.size(), 4u);

@@ -53,7 +53,8 @@ std::string short_confidence(const TempDir& dir, double present_s = 0.2) {
   doc["combinations"]["list_kPa"] = {{0, 30, 0}, {0, 0, 0}, {30, 30, 0}};
   doc["practice_trials"] = 0;
   doc["timing"] = {{"max_present_s", present_s}, {"sequential_step_s", 0.05}, {"sequential_gap_s", 0.02},
-                   {"response_timeout_s", 60}, {"inter_trial_s", 0.05}, {"break_s", 0}};
+                   {"response_timeout_s", 60}, {"inter_trial_s", 0.05}, {"break_s", 0},
+                   {"answer_during_stimulus", false}};  // as the shipped file: a fixed-length stimulus
   return dir.write("rated.json", doc.dump(2)).string();
 }
 
@@ -589,6 +590,39 @@ class ExperimentConsoleTest : public QObject {
       QVERIFY(t.stimulus_end_s && t.response_time_s);
       QVERIFY(t.onset_s + *t.response_time_s >= *t.stimulus_end_s);
     }
+  }
+
+  // Paper 002's three-finger trials (timing.answer_during_stimulus true, the default): the
+  // stimulus stays until the answer, so the buttons are on while it is presented and the answer
+  // ends it (after-stimulus RT 0), as the terminal and the runner have it.
+  void simultaneousStimulusIsAnsweredWhileItIsOn() {
+    TempDir dir;
+    auto doc = nlohmann::json::parse(test_support::read_file(short_discrimination(dir)));
+    doc["timing"]["max_present_s"] = 30;
+    const std::string protocol = dir.write("long.json", doc.dump(2)).string();
+    const std::string db = (dir.path() / "p.db").string();
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({protocol, "S01", db, 0});
+    std::vector<RunnerState> states;
+    connect(&page.session_run(), &SessionRun::runnerState, &page, [&](RunnerState s, int) { states.push_back(s); });
+    QVERIFY(page.begin(false));
+    ParticipantScreen& screen = *page.participant_screen();
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::keyClick(&screen, Qt::Key_Space);
+    QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 0; }));
+    QVERIFY(!states.empty() && states.back() == RunnerState::present);  // 30 s stimulus, still on
+    QVERIFY(screen.findChild<QPushButton*>("none_button")->isEnabled());
+    QTest::keyClick(&screen, Qt::Key_0);
+    QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == 1; }));
+    page.abort_and_wait();
+    const auto store = open_trial_store(db, TrialStore::Access::read_only);
+    const auto trials = store->read_trials(true);
+    QCOMPARE(trials.size(), std::size_t(1));
+    QVERIFY(trials[0].response_time_s && *trials[0].response_time_s < 29.0);
+    QVERIFY(trials[0].stimulus_end_s);
+    QVERIFY(std::abs(*trials[0].stimulus_end_s - (trials[0].onset_s + *trials[0].response_time_s)) < 1e-9);
   }
 
   void answerButtonsDisabledWhilePresenting() {
