@@ -1,6 +1,7 @@
 #pragma once
-// ParticipantScreen: what the participant sees and answers with. Discrimination: after the
-// stimulus (the buttons are enabled when the runner enters `respond`), which fingers felt a
+// ParticipantScreen: what the participant sees and answers with. Discrimination: when the
+// runner takes answers (answers_during_presentation: during a simultaneous stimulus unless the
+// protocol fixes its length, after a sequence's last finger), which fingers felt a
 // tumor: finger buttons and keys 1/2/3 toggle, "None" or 0 answers no tumor, Answer or Enter
 // hands the answer over; when the protocol asks for a confidence rating, a row of rating
 // buttons (keys 1..levels) follows first (gui/confidence_row.hpp) and the answer goes over with
