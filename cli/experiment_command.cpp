@@ -24,6 +24,7 @@
 #include "experiments/terminal_participant.hpp"
 #include "experiments/session_plan.hpp"
 #include "sessions/session_setup.hpp"
+#include "sessions/session_telemetry.hpp"
 #include "sessions/study_session.hpp"
 
 using namespace palprig;
@@ -103,10 +104,6 @@ void run_experiment(const RunArgs& a) {
   if (request.rig_file.empty()) request.rig_file = cli::data_dir() / "rigs" / "simulated.json";
   // Threshold protocols (staircases, QUEST) and the pulse task run in their own files (issue 13).
   const nlohmann::json document = read_json_file(request.protocol_file);
-  if (!request.telemetry_file.empty() && (is_threshold_protocol(document) || is_pulse_protocol(document))) {
-    throw InputError("command line", "telemetry", "a discrimination or localisation protocol (threshold and pulse "
-                     "sessions do not record telemetry yet)");
-  }
   if (is_threshold_protocol(document)) {
     ThresholdStudyRequest threshold{request, {}};
     threshold.observer.noise_kPa = a.sim_threshold_noise_kPa;
@@ -124,11 +121,7 @@ void run_experiment(const RunArgs& a) {
     return std::make_unique<TerminalParticipant>(protocol, std::cout, cli::stop_signal(), STDIN_FILENO);
   };
   const SessionEnd end = run_study_session(request, terminal, report, &cli::stop_signal());
-  if (!end.telemetry_file.empty()) {
-    std::cout << "telemetry: " << end.telemetry_records << " ticks in " << end.telemetry_file.string()
-              << (end.telemetry_dropped > 0 ? " (" + std::to_string(end.telemetry_dropped) + " dropped: the disk fell behind)" : "")
-              << "\n";
-  }
+  if (const std::string telemetry = telemetry_summary(end); !telemetry.empty()) std::cout << telemetry << "\n";
   if (end.unpushed_trials > 0) {
     std::cerr << "palprig: the lab server has not confirmed every trial yet; they are kept in the journal "
               << end.journal_file.string() << ": push them with palprig store sync --from " << end.journal_file.string()

@@ -35,6 +35,9 @@ void register_gui_command(CLI::App& app) {
   sub->add_option("--speed", o->gui.session.speed,
                   "Simulated participant on the simulated rig: 0 = as fast as possible (default), 1 = real time")
       ->check(CLI::Range(0.0, 1e6));
+  sub->add_option("--session-telemetry", o->gui.session.telemetry,
+                  "With --protocol: record every rig tick of the session to FILE (.bin or .csv), as experiment run "
+                  "--telemetry does (--telemetry records the live loop)");
   sub->add_flag("--resume", o->gui.session.resume,
                 "Continue this participant's unfinished session with this protocol at once");
   sub->add_option("--participant-display", o->gui.session.participant_display,

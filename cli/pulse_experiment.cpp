@@ -9,6 +9,7 @@
 
 #include "cli/commands.hpp"
 #include "sessions/pulse_study.hpp"
+#include "sessions/session_telemetry.hpp"
 
 namespace palprig::cli {
 
@@ -51,6 +52,7 @@ void run_pulse_experiment(const StudySessionRequest& request, bool quiet) {
   TerminalPulseReport report(request.store_location, quiet);
   install_stop_signals();
   const SessionEnd end = run_pulse_study(request, nullptr, report, &stop_signal());
+  if (const std::string telemetry = telemetry_summary(end); !telemetry.empty()) std::cout << telemetry << "\n";
   if (end.completed) {
     std::cout << "session " << report.session_id() << " completed: " << end.committed_trials << " trials in "
               << request.store_location << "\n";

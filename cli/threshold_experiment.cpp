@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "sessions/session_telemetry.hpp"
 #include "experiments/terminal_threshold_participant.hpp"
 
 namespace palprig::cli {
@@ -75,6 +76,7 @@ void run_threshold_experiment(const ThresholdStudyRequest& request, bool quiet) 
     return std::make_unique<TerminalThresholdParticipant>(method, std::cout, stop_signal(), STDIN_FILENO);
   };
   const ThresholdEnd end = run_threshold_study(request, terminal, report, &stop_signal());
+  if (const std::string telemetry = telemetry_summary(end.session); !telemetry.empty()) std::cout << telemetry << "\n";
   const int done = end.session.committed_trials;
   if (end.session.completed) {
     std::cout << "session " << end.session_id << " completed: " << done << " trials in " << db << "\n";

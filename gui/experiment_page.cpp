@@ -20,6 +20,7 @@
 
 #include "experiments/simulated_participant.hpp"
 #include "gui/participant_screen.hpp"
+#include "sessions/session_telemetry.hpp"
 #include "gui/statistics_view.hpp"
 #include "models/parse_error.hpp"
 #include "sessions/session_setup.hpp"
@@ -111,6 +112,22 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   speed_->setToolTip("Simulated participant on the simulated rig: 0 = as fast as possible, 1 = real time (to watch "
                      "it). People and hardware rigs always run in real time.");
   form->addRow("Pilot speed", speed_);
+  {  // Optional: every rig tick of the session, as `experiment run --telemetry` records it.
+    auto* row = new QHBoxLayout;
+    telemetry_edit_ = new QLineEdit;
+    telemetry_edit_->setObjectName("telemetry_file");
+    telemetry_edit_->setPlaceholderText("none; or a new .bin / .csv file for every rig tick of the session");
+    row->addWidget(telemetry_edit_, 1);
+    auto* browse = new QPushButton("...");
+    browse->setMaximumWidth(32);
+    connect(browse, &QPushButton::clicked, this, [this] {
+      const QString path = QFileDialog::getSaveFileName(this, "Session telemetry", telemetry_edit_->text(),
+                                                        "Telemetry (*.bin *.csv)");
+      if (!path.isEmpty()) telemetry_edit_->setText(path);
+    });
+    row->addWidget(browse);
+    form->addRow("Telemetry", row);
+  }
   left_layout->addWidget(form_box);
 
   plan_note_ = new QLabel;
@@ -260,12 +277,13 @@ void ExperimentPage::set_fields(const ExperimentFields& f) {
   participant_edit_->setText(QString::fromStdString(f.participant));
   store_edit_->setText(QString::fromStdString(f.store));
   speed_->setValue(f.speed);
+  telemetry_edit_->setText(QString::fromStdString(f.telemetry));
   update_plan();
 }
 
 ExperimentFields ExperimentPage::fields() const {
   return {protocol_edit_->text().trimmed().toStdString(), participant_edit_->text().trimmed().toStdString(),
-          store_edit_->text().trimmed().toStdString(), speed_->value()};
+          store_edit_->text().trimmed().toStdString(), speed_->value(), telemetry_edit_->text().trimmed().toStdString()};
 }
 
 QString ExperimentPage::refusal_text() const { return status_->property("refusal").toString(); }
@@ -417,6 +435,7 @@ bool ExperimentPage::begin(bool resume) {
   request.rig_file = host_.rig_file ? host_.rig_file() : std::filesystem::path{};
   request.calibration_file = host_.calibration_file ? host_.calibration_file() : std::filesystem::path{};
   request.resume = resume;
+  request.telemetry_file = f.telemetry;
   simulated_ = is_simulated_code(f.participant);
   request.speed = simulated_ ? f.speed : 0;
   request.person_palpates = true;  // the window gives a person a pen
@@ -489,6 +508,7 @@ void ExperimentPage::on_ended(const SessionEnd& e) {
   screen_->show_wait(e.completed ? "Thank you, the session is complete." : "The session has stopped.");
   files_written_ = {QString::fromStdString(fields().store)};
   store_note_ = QString(" (%1 of %2 trials committed)").arg(e.committed_trials).arg(e.total_trials);
+  if (const std::string telemetry = telemetry_summary(e); !telemetry.empty()) files_written_ << QString::fromStdString(telemetry);
   show_files();
   statistics_->refresh();
   emit sessionEnded(e);

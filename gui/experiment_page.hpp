@@ -48,6 +48,7 @@ struct ExperimentHost {
 struct ExperimentFields {
   std::string protocol, participant, store;
   double speed = 0;  // simulated participant only (0: as fast as the simulated rig allows)
+  std::string telemetry;  // the session's rig ticks to this new file (.bin or .csv); empty: none
 };
 
 class ExperimentPage final : public QWidget {
@@ -122,6 +123,7 @@ class ExperimentPage final : public QWidget {
   QLineEdit* protocol_edit_ = nullptr;
   QLineEdit* participant_edit_ = nullptr;
   QLineEdit* store_edit_ = nullptr;
+  QLineEdit* telemetry_edit_ = nullptr;
   QDoubleSpinBox* speed_ = nullptr;
   QLabel* plan_note_ = nullptr;
   QLabel* resume_note_ = nullptr;

@@ -15,6 +15,7 @@
 #include "gui/participant_screen.hpp"
 #include "gui/main_window.hpp"
 #include "gui/statistics_view.hpp"
+#include "sessions/session_telemetry.hpp"
 #include "experiments/simulated_participant.hpp"
 #include "models/parse_error.hpp"
 
@@ -114,6 +115,8 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
         std::cout << "palprig gui: session " << (e.completed ? "completed" : "stopped") << ": " << e.committed_trials
                   << " of " << e.total_trials << " trials in " << o.session.store << "\n" << std::flush;
       }
+      if (const std::string telemetry = telemetry_summary(e); !telemetry.empty())
+        std::cout << "palprig gui: " << telemetry << "\n" << std::flush;
     });
     QObject::connect(&page, &ExperimentPage::sessionRefused, &window, [&](const QString& line, int code) {
       refuse(line.toStdString(), code, interactive);
@@ -138,7 +141,7 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
         stats.refresh();
       });
     }
-    page.set_fields({o.session.protocol, o.session.participant, o.session.store, o.session.speed});
+    page.set_fields({o.session.protocol, o.session.participant, o.session.store, o.session.speed, o.session.telemetry});
     if (o.session.participant_display > 0) {
       const auto screens = QGuiApplication::screens();
       if (o.session.participant_display > screens.size()) {

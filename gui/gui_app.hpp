@@ -20,6 +20,7 @@ struct GuiSessionOptions {
   // 1-based display (QGuiApplication::screens() order) the participant screen fills at start,
   // while the console stays on its own; 0: the participant screen stays inside the console.
   int participant_display = 0;
+  std::string telemetry;  // the session's rig ticks (--session-telemetry); empty: none
 };
 
 struct GuiOptions {

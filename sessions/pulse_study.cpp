@@ -4,6 +4,7 @@
 #include "formats/scene_file.hpp"
 #include "models/parse_error.hpp"
 #include "sessions/pulse_setup.hpp"
+#include "sessions/session_telemetry.hpp"
 #include "sessions/session_setup.hpp"
 #include "sessions/study_rig.hpp"
 
@@ -24,6 +25,7 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
   for (const auto& c : from_file.conditions) scenes.push_back(c.generated ? SceneFile{} : load_scene_file(c.scene_file));
   StudyRig rig = load_study_rig(r.rig_file, r.calibration_file);
   refuse_speed_on_hardware(rig, r.speed);
+  if (!r.telemetry_file.empty()) refuse_unusable_telemetry_file(r.telemetry_file);
   rig.open();  // before the session is stored: an unreachable device leaves no empty session
 
   SqliteTrialStore store(r.store_location, TrialStore::Access::read_write);
@@ -54,6 +56,7 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
 
   RigStimulus output(rig.config, *rig.backend);
   const std::unique_ptr<SessionClock> clock = session_clock(rig, simulated, r.speed);
+  SessionTelemetry telemetry(r.telemetry_file, output, *clock);
   PulseSessionOptions options;
   options.seed = session.seed;
   options.start_position = session.start_position;
@@ -76,6 +79,7 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
   end.completed = result.completed;
   end.stopped = result.stopped;
   end.fault = result.fault;
+  telemetry.finish(end);
   end.committed_trials = session.start_position + committed;
   end.total_trials = total;
   if (result.completed) store.complete_session(session.session_id);

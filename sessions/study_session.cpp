@@ -4,7 +4,6 @@
 
 #include "controller/backend_factory.hpp"
 #include "controller/tick_setup.hpp"
-#include "controller/telemetry_writer.hpp"
 #include "experiments/rig_stimulus.hpp"
 #include "experiments/session_clock.hpp"
 #include "experiments/session_loop.hpp"
@@ -13,6 +12,7 @@
 #include "formats/scene_file.hpp"
 #include "models/parse_error.hpp"
 #include "sessions/session_setup.hpp"
+#include "sessions/session_telemetry.hpp"
 #include "store/journaled_trial_store.hpp"
 #include "store/pg_target.hpp"
 
@@ -62,19 +62,6 @@ class ListenerBridge final : public RunnerListener {
 };
 
 }  // namespace
-
-void refuse_unusable_telemetry_file(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (std::filesystem::exists(file, ec) && (!std::filesystem::is_regular_file(file, ec) || std::filesystem::file_size(file, ec) > 0)) {
-    throw InputError(file.string(), "telemetry",
-                     "a new file (this one exists and is not empty, e.g. an earlier attempt's recording; nothing is "
-                     "overwritten: choose another name)");
-  }
-  const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
-  if (!std::filesystem::is_directory(folder, ec)) {
-    throw InputError(file.string(), "telemetry", "a file in an existing folder (" + folder.string() + " does not exist)");
-  }
-}
 
 std::uint64_t resumed_simulation_seed(std::uint64_t seed, int start_position) noexcept {
   return seed + static_cast<std::uint64_t>(start_position) * 0x9E3779B97F4A7C15ULL;
@@ -170,11 +157,7 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   if (simulated && !hardware && request.speed <= 0) clock = std::make_unique<SimulatedClock>();
   else clock = std::make_unique<SteadyClock>(simulated && !hardware ? request.speed : 1.0);
 
-  std::unique_ptr<TelemetryWriter> telemetry;
-  if (!request.telemetry_file.empty()) {
-    telemetry = std::make_unique<TelemetryWriter>(request.telemetry_file, telemetry_format_for(request.telemetry_file));
-    output.record_to(telemetry.get(), !clock->real_time());
-  }
+  SessionTelemetry telemetry(request.telemetry_file, output, *clock);
 
   SessionLoopOptions options;
   options.stop = stop;
@@ -188,17 +171,7 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   end.completed = result.completed;
   end.stopped = result.stopped;
   end.fault = result.fault;
-  if (telemetry) {
-    output.record_to(nullptr, false);
-    end.telemetry_file = request.telemetry_file;
-    try {
-      telemetry->finish();
-    } catch (const std::exception& e) {
-      if (end.fault.empty()) end.fault = std::string("telemetry: ") + e.what();
-    }
-    end.telemetry_records = telemetry->written();
-    end.telemetry_dropped = telemetry->dropped();
-  }
+  telemetry.finish(end);
   end.committed_trials = session.start_position + bridge.committed();
   end.total_trials = total;
   if (result.completed) store->complete_session(session.session_id);

@@ -106,8 +106,4 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
 // trials done, so the answers differ from those of the lost attempt.
 std::uint64_t resumed_simulation_seed(std::uint64_t seed, int start_position) noexcept;
 
-// Refuses (InputError) a telemetry path that cannot take a new recording: an existing non-empty
-// file, or a folder that does not exist. Checked before the rig moves.
-void refuse_unusable_telemetry_file(const std::filesystem::path& file);
-
 }  // namespace palprig

@@ -5,6 +5,7 @@
 #include "experiments/rig_stimulus.hpp"
 #include "models/parse_error.hpp"
 #include "sessions/session_setup.hpp"
+#include "sessions/session_telemetry.hpp"
 #include "sessions/study_rig.hpp"
 #include "sessions/threshold_setup.hpp"
 #include "store/threshold_store.hpp"
@@ -30,6 +31,7 @@ ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const Thr
   const bool simulated = simulated_participant(r.participant_code, sim_seed);
   if (!simulated && !person) throw InputError("command line", "participant", "sim:SEED (this front end cannot ask a person)");
   StudyRig rig = load_study_rig(r.rig_file, r.calibration_file);
+  if (!r.telemetry_file.empty()) refuse_unusable_telemetry_file(r.telemetry_file);
   if (from_file.max_pressure_kPa() > rig.rig.safety.p_max_kPa) {
     throw InputError(from_file.source, "threshold.reference_kPa",
                      "reference + the largest track level at or below the rig's p_max of " +
@@ -66,6 +68,7 @@ ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const Thr
 
   RigStimulus output(rig.config, *rig.backend);
   const std::unique_ptr<SessionClock> clock = session_clock(rig, simulated, r.speed);
+  SessionTelemetry telemetry(r.telemetry_file, output, *clock);
   ThresholdSessionOptions options;
   options.seed = session.seed;
   options.start_position = session.start_position;
@@ -84,6 +87,7 @@ ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const Thr
   end.session.completed = result.completed;
   end.session.stopped = result.stopped;
   end.session.fault = result.fault;
+  telemetry.finish(end.session);
   end.session.committed_trials = session.start_position + committed;
   end.session_id = session.session_id;
   if (result.completed) store.complete_session(session.session_id);

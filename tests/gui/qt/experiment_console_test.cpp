@@ -454,9 +454,10 @@ class ExperimentConsoleTest : public QObject {
     const auto r = test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() +
                                              " gui --protocol " + data_dir() + "/protocols/discrimination_002.json" +
                                              " --participant sim:3 --db " + db + " --screenshot " + png.string() +
-                                             " --after-s 120");
+                                             " --after-s 120 --session-telemetry " + (dir.path() / "gui.bin").string());
     QVERIFY2(r.exit_code == 0, (r.out + r.err).c_str());
     QVERIFY2(r.out.find("session completed: 32 of 32") != std::string::npos, r.out.c_str());
+    QVERIFY2(r.out.find("palprig gui: telemetry: ") != std::string::npos, r.out.c_str());
     QVERIFY(std::filesystem::file_size(png) > 1000);
     const auto rows = stored_rows(db);
     QCOMPARE(rows.size(), std::size_t(32));
@@ -464,9 +465,14 @@ class ExperimentConsoleTest : public QObject {
     // The same seed through the command line gives the same trials.
     const std::string cli_db = (dir.path() / "cli.db").string();
     const auto c = test_support::run_process(test_support::palprig_bin() + " experiment run --protocol " + data_dir() +
-                                             "/protocols/discrimination_002.json --participant sim:3 --quiet --db " + cli_db);
+                                             "/protocols/discrimination_002.json --participant sim:3 --quiet --db " + cli_db +
+                                             " --telemetry " + (dir.path() / "cli.bin").string());
     QVERIFY2(c.exit_code == 0, c.err.c_str());
     QCOMPARE(stored_rows(cli_db), rows);
+    // The session's telemetry: the same ticks on simulated time (record for record in number; the
+    // wake-up and I/O times in each record are measured, so the bytes differ).
+    QVERIFY(std::filesystem::file_size(dir.path() / "gui.bin") > 100000);
+    QCOMPARE(std::filesystem::file_size(dir.path() / "gui.bin"), std::filesystem::file_size(dir.path() / "cli.bin"));
   }
 
   // A real window on a real X server with two displays: one Xvfb screen split into two RandR
