@@ -90,6 +90,9 @@ class TerminalReport final : public SessionListener {
     if (!simulated_) std::cout << "  Answer recorded (" << t.planned.position + 1 << " of " << total << ").\n" << std::flush;
     else if (!quiet_) std::cout << trial_line(t, total) << "\n" << std::flush;
   }
+  void participant_feedback(int, const std::string& text) override {
+    if (!simulated_) std::cout << "  " << text << "\n" << std::flush;
+  }
   std::int64_t session_id() const noexcept { return session_id_; }
 
  private:

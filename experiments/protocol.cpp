@@ -308,6 +308,8 @@ Protocol parse_protocol(const nlohmann::json& document, const std::string& sourc
                        : cb == "latin-square" ? Counterbalancing::latin_square
                        : cb == "random"       ? Counterbalancing::random
                                               : Counterbalancing::none;
+  const std::string feedback = root.choice_or("feedback", "none", {"none", "practice", "all"});
+  p.feedback = feedback == "all" ? Feedback::all : feedback == "practice" ? Feedback::practice : Feedback::none;
   read_randomisation(root, p);
   read_timing(root, p);
   read_confidence(root, p);

@@ -85,6 +85,9 @@ struct ConfidenceScale {
 inline constexpr int kMinConfidenceLevels = 2;
 inline constexpr int kMaxConfidenceLevels = 9;  // one key 1..9 per level
 
+// Whether the participant is told how each trial went (experiments/trial_feedback.hpp).
+enum class Feedback { none, practice, all };
+
 struct Protocol {
   std::string source;  // the file it came from, for messages
   std::string name;
@@ -106,6 +109,7 @@ struct Protocol {
   Timing timing;
   LocalisationTask localisation;  // task == localisation only
   ConfidenceScale confidence;     // discrimination only; not asked unless the file says so
+  Feedback feedback = Feedback::none;  // "feedback": none (default), practice trials only, all
   nlohmann::json snapshot;        // the file as read, stored with every session
 };
 

@@ -246,6 +246,7 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
     statistics_->refresh();  // coalesced with the view's own refresh on the file change
     emit trialCommitted(t.planned.position);
   });
+  connect(&run_, &SessionRun::participantFeedback, screen_, &ParticipantScreen::show_feedback);
   connect(&run_, &SessionRun::ended, this, &ExperimentPage::on_ended);
   connect_pulse();
   connect(&run_, &SessionRun::refused, this, [this](const QString& line, int code) {

@@ -157,6 +157,11 @@ void ParticipantScreen::stimulus_ended(int position) {
   setFocus();
 }
 
+void ParticipantScreen::show_feedback(int position, const QString& text) {
+  if (!channel_ || presented_ != position) return;  // a later trial is already on show
+  prompt_->setText(text);
+}
+
 void ParticipantScreen::show_wait(const QString& text) {
   set_answering(false);
   presented_ = -1;

@@ -45,6 +45,8 @@ class ParticipantScreen final : public QWidget {
   // The runner left `present` for `respond` at this trial: discrimination answers are taken now.
   void stimulus_ended(int position);
   void show_wait(const QString& text);  // between trials, paused, done
+  // After a committed trial, when the protocol asks for feedback (experiments/trial_feedback).
+  void show_feedback(int position, const QString& text);
   // Pulse localisation: a session of `protocol` (conditions and their scenes), and one trial's
   // scene to palpate and mark (a generated condition's scene made from the trial's seed, as the
   // session made it). Null channel: the simulated participant palpates (the scene is shown).

@@ -27,6 +27,9 @@ class QueuedListener final : public SessionListener {
   void trial_committed(const TrialRecord& trial, int total) override {
     post([run = run_, trial, total] { emit run->trialCommitted(trial, total); });
   }
+  void participant_feedback(int position, const std::string& text) override {
+    post([run = run_, position, text = QString::fromStdString(text)] { emit run->participantFeedback(position, text); });
+  }
   void session_ended(const SessionEnd& end) override {
     post([run = run_, end] { emit run->ended(end); });
   }

@@ -44,6 +44,8 @@ class SessionRun final : public QObject {
   void trialStarted(int position, const palprig::PlannedTrial& trial, const palprig::Condition& condition);
   void runnerState(palprig::RunnerState state, int position);
   void trialCommitted(const palprig::TrialRecord& trial, int total);
+  // The protocol asks for feedback: what the participant is told about the trial just committed.
+  void participantFeedback(int position, const QString& text);
   void ended(const palprig::SessionEnd& end);
   void pulseTrialStarted(const palprig::PulseTrialStart& start, const palprig::PulseCondition& condition);
   void pulseTrialCommitted(const palprig::PulseTrialRecord& trial, int total);

@@ -7,6 +7,7 @@
 #include "experiments/rig_stimulus.hpp"
 #include "experiments/session_clock.hpp"
 #include "experiments/session_loop.hpp"
+#include "experiments/trial_feedback.hpp"
 #include "formats/calibration_file.hpp"
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"
@@ -50,6 +51,7 @@ class ListenerBridge final : public RunnerListener {
   void on_trial_completed(const TrialRecord& trial) override {
     recorder_.on_trial_completed(trial);  // committed before anyone is told
     listener_.trial_committed(trial, static_cast<int>(plan_.trials.size()));
+    if (const auto text = trial_feedback(protocol_, trial)) listener_.participant_feedback(trial.planned.position, *text);
   }
   int committed() const noexcept { return recorder_.committed(); }
 

@@ -87,6 +87,9 @@ class SessionListener {
   virtual void trial_started(const PlannedTrial&, const Condition&) {}
   // A trial is committed to the store (its own transaction); `total` trials are planned.
   virtual void trial_committed(const TrialRecord&, int /*total*/) {}
+  // After a committed trial, what the participant is told about it, when the protocol asks
+  // for feedback (experiments/trial_feedback.hpp); never called otherwise.
+  virtual void participant_feedback(int /*position*/, const std::string& /*text*/) {}
   virtual void session_ended(const SessionEnd&) {}
 };
 

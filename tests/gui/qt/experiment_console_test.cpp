@@ -631,6 +631,35 @@ class ExperimentConsoleTest : public QObject {
     QVERIFY(std::abs(*trials[0].stimulus_end_s - (trials[0].onset_s + *trials[0].response_time_s)) < 1e-9);
   }
 
+  // "feedback": "all": after each committed trial the participant is told how it went, in the
+  // words the terminal prints (experiments/trial_feedback); without it only "Answer recorded."
+  void feedbackIsShownOnlyWhenTheProtocolAsks() {
+    TempDir dir;
+    auto doc = nlohmann::json::parse(test_support::read_file(short_discrimination(dir, 1.0)));
+    doc["feedback"] = "all";
+    const std::string protocol = dir.write("feedback.json", doc.dump(2)).string();
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    page.set_fields({protocol, "F01", (dir.path() / "f.db").string(), 0});
+    QVERIFY(page.begin(false));
+    ParticipantScreen& screen = *page.participant_screen();
+    auto* prompt = screen.findChild<QLabel*>("participant_prompt");
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::keyClick(&screen, Qt::Key_Space);
+    for (int k = 0; k < 2; ++k) {
+      QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == k; }));
+      QTest::keyClick(&screen, Qt::Key_0);
+      QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == k + 1; }));
+      // The trial list's Tumor column says where the tumor was: "none" when there was none.
+      const bool no_tumor = page.trial_table()->item(k, 4)->text() == "none";
+      const QString expected = no_tumor ? "Correct." : "Not quite: the tumor was under";
+      QVERIFY2(wait_until(*w.window, [&] { return prompt->text().startsWith(expected); }),
+               qPrintable(prompt->text() + " / tumor column: " + page.trial_table()->item(k, 4)->text()));
+    }
+    page.abort_and_wait();
+  }
+
   void answerButtonsDisabledWhilePresenting() {
     TempDir dir;
     const std::string protocol = short_confidence(dir, 1.5);
