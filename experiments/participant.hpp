@@ -31,6 +31,9 @@ class Participant {
   virtual void feel(const FeltSample& sample) = 0;
   // The answer, once given (asked every pass while the trial runs).
   virtual std::optional<Response> answer(double t_s) = 0;
+  // True while an answer is being completed (the finger answer given, its confidence rating
+  // awaited): the response timeout waits (TrialRunner::hold_timeout).
+  virtual bool answering() { return false; }
   // The pen this participant palpates with (localisation); null when it has none.
   virtual InputSource* pen() { return nullptr; }
 };

@@ -28,6 +28,7 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
         }
         // On resume the runner stays in `ready`: the participant's go-ahead begins the trial.
       }
+      runner.hold_timeout(!paused && participant.answering());
       runner.advance(t);
       if (paused) {
         next_s += options.period_s;
@@ -53,7 +54,10 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
         // An answer given before the runner takes answers (typed during a sequence) waits for
         // the end of the presentation; the participant is not asked again meanwhile (a terminal's
         // next typed line belongs to the next trial).
-        if (!pending) pending = participant.answer(t);
+        if (!pending) {
+          pending = participant.answer(t);
+          if (pending && !pending->given_at_s) pending->given_at_s = t;  // timed when given, not when taken
+        }
         if (pending && runner.takes_answers()) {
           runner.respond(*pending, t);  // a refused one (an invalid rating) is dropped
           pending.reset();

@@ -41,7 +41,7 @@ void TerminalParticipant::ask_confidence() {
   out_ << ", then Enter.\n" << std::flush;
 }
 
-std::optional<Response> TerminalParticipant::answer(double) {
+std::optional<Response> TerminalParticipant::answer(double t_s) {
   const auto line = lines_.next();
   if (!line) return std::nullopt;
   if (pending_) {
@@ -73,6 +73,7 @@ std::optional<Response> TerminalParticipant::answer(double) {
     return std::nullopt;
   }
   if (protocol_.confidence.asked()) {
+    r.given_at_s = t_s;  // the response time ends with the finger answer, not with the rating
     pending_ = r;
     ask_confidence();
     return std::nullopt;

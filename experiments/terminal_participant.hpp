@@ -26,6 +26,7 @@ class TerminalParticipant final : public Participant {
   void trial_started(const PlannedTrial& trial, const Condition& condition, double t_s) override;
   void feel(const FeltSample&) override {}
   std::optional<Response> answer(double t_s) override;
+  bool answering() override { return pending_.has_value(); }  // the rating line is awaited
 
  private:
   const Protocol& protocol_;

@@ -166,7 +166,7 @@ void TrialRunner::advance(double t_s) {
       case RunnerState::done: break;
       case RunnerState::present: update_presentation(t_s); break;
       case RunnerState::respond:
-        if (t_s - state_since_s_ >= protocol_.timing.response_timeout_s) finish_trial(nullptr, t_s);
+        if (!timeout_held_ && t_s - state_since_s_ >= protocol_.timing.response_timeout_s) finish_trial(nullptr, t_s);
         break;
       case RunnerState::inter_trial:
         if (t_s - state_since_s_ >= protocol_.timing.inter_trial_s) {
@@ -236,11 +236,18 @@ void TrialRunner::finish_trial(const Response* response, double t_s) {
   r.mode = condition.mode;
   r.onset_s = onset_s_;
   r.answered = response != nullptr;
-  r.response_time_s = r.answered ? t_s - onset_s_ : std::numeric_limits<double>::quiet_NaN();
+  // The moment the participant answered: when it reached the runner, or earlier when the
+  // participant says so (a rating given after the finger answer; an answer typed during a
+  // sequence), never before this presentation's onset.
+  const double answered_t_s =
+      response && response->given_at_s ? std::clamp(*response->given_at_s, onset_s_, t_s) : t_s;
+  r.response_time_s = r.answered ? answered_t_s - onset_s_ : std::numeric_limits<double>::quiet_NaN();
   // An answer during the presentation ends the stimulus at the answer's time (or at its
-  // planned end, when that passed before the loop noticed it).
-  r.stimulus_end_s = state_ == RunnerState::present ? std::min(t_s, onset_s_ + presentation_length_s(condition.mode))
-                                                    : stimulus_end_s_;
+  // planned end, when that passed before the loop noticed it). With a rating after the finger
+  // answer the actuators stay on until the rating is in; the end recorded is the finger answer.
+  r.stimulus_end_s = state_ == RunnerState::present
+                         ? std::min(answered_t_s, onset_s_ + presentation_length_s(condition.mode))
+                         : stimulus_end_s_;
   if (response && protocol_.confidence.asked()) r.confidence = response->confidence;
   for (std::size_t f = 0; f < kFingerCount; ++f) {
     r.felt_kPa[f] = felt_count_[f] ? felt_sum_[f] / felt_count_[f] : std::numeric_limits<double>::quiet_NaN();

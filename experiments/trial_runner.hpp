@@ -46,6 +46,10 @@ struct Response {
   FingerFlags tumor_under{};
   std::vector<Mark> marks;
   std::optional<int> confidence;
+  // When the participant gave the answer (session clock), if before it reached the runner: a
+  // confidence rating is given after the finger answer, and an answer typed during a sequence
+  // waits for its end. The response time is measured to this moment, not to the rating's.
+  std::optional<double> given_at_s;
 };
 
 struct RunnerEvent {
@@ -89,6 +93,9 @@ class TrialRunner {
   // True when an answer is taken now: in `respond`, and during the presentation of a condition
   // whose stimulus stays until the answer (answers_during_presentation).
   bool takes_answers() const noexcept;
+  // While the participant completes an answer (a confidence rating after the finger answer),
+  // the response timeout waits: a finger answer given in time is never lost to a slow rating.
+  void hold_timeout(bool hold) noexcept { timeout_held_ = hold; }
   // An answer. Accepted when takes_answers() (returns true), ignored otherwise. A confidence
   // rating outside 1..levels (or one the protocol does not ask for) is refused: returns false
   // and the trial goes on, so no invalid rating is ever stored.
@@ -122,7 +129,8 @@ class TrialRunner {
   int position_ = 0;
   double state_since_s_ = 0;
   double onset_s_ = 0;
-  double stimulus_end_s_ = 0;  // when the runner left `present` (set on leaving it)
+  double stimulus_end_s_ = 0;
+  bool timeout_held_ = false;  // when the runner left `present` (set on leaving it)
   FingerFlags active_{};
   std::array<double, kFingerCount> felt_sum_{};
   std::array<int, kFingerCount> felt_count_{};

@@ -33,6 +33,8 @@ class ParticipantChannel {
   void say_ready() noexcept { ready_.store(true); }
   // A pause: a go-ahead given before it does not start the held trial after it.
   void withdraw_ready() noexcept { ready_.store(false); }
+  // The finger answer of trial `position` is given and its rating awaited (-1: none).
+  void say_rating(int position) noexcept { rating_for_.store(position); }
   // Returns false when `marks` has more than kMaxMarks marks (nothing is handed over then).
   bool give_answer(int position, const Response& response) noexcept;
   WindowPenInput& pen() noexcept { return pen_; }  // the participant's pen (localisation)
@@ -40,9 +42,11 @@ class ParticipantChannel {
   // Session thread.
   bool take_ready() noexcept { return ready_.exchange(false); }
   std::optional<Response> take_answer(int position);
+  int rating_for() const noexcept { return rating_for_.load(); }
 
  private:
   std::atomic<bool> ready_{false};
+  std::atomic<int> rating_for_{-1};
   LatestValue<GivenAnswer> answers_;
   std::uint64_t next_serial_ = 1;   // GUI thread
   std::uint64_t taken_serial_ = 0;  // session thread
@@ -54,15 +58,27 @@ class GuiParticipant final : public Participant {
   GuiParticipant(std::shared_ptr<ParticipantChannel> channel, bool palpates)
       : channel_(std::move(channel)), palpates_(palpates) {}
   bool ready(double) override { return channel_->take_ready(); }
-  void trial_started(const PlannedTrial& trial, const Condition&, double) override { position_ = trial.position; }
+  void trial_started(const PlannedTrial& trial, const Condition&, double) override {
+    position_ = trial.position;
+    finger_answer_at_s_.reset();
+    (void)channel_->take_answer(position_);  // one given before a pause does not answer it presented again
+  }
   void feel(const FeltSample&) override {}
-  std::optional<Response> answer(double) override { return channel_->take_answer(position_); }
+  // The finger answer's time is noted on the first pass that sees it (the rating comes later).
+  bool answering() override { return channel_->rating_for() == position_; }
+  std::optional<Response> answer(double t_s) override {
+    if (answering() && !finger_answer_at_s_) finger_answer_at_s_ = t_s;
+    auto r = channel_->take_answer(position_);
+    if (r && finger_answer_at_s_) r->given_at_s = finger_answer_at_s_;
+    return r;
+  }
   InputSource* pen() override { return palpates_ ? &channel_->pen() : nullptr; }
 
  private:
   std::shared_ptr<ParticipantChannel> channel_;
   bool palpates_;
   int position_ = -1;
+  std::optional<double> finger_answer_at_s_;
 };
 
 }  // namespace palprig::gui

@@ -172,6 +172,7 @@ void ParticipantScreen::show_wait(const QString& text) {
 void ParticipantScreen::set_answering(bool on) {
   if (!on) {
     answering_ = -1;
+    if (pending_ && channel_) channel_->say_rating(-1);
     pending_.reset();
     if (!marks_answer()) pages_->setCurrentWidget(finger_page_);
   }
@@ -211,8 +212,10 @@ void ParticipantScreen::give(const FingerFlags& fingers) {
   Response r;
   r.tumor_under = fingers;
   if (confidence_->levels() > 0) {
-    // The rating step: the answer waits here and goes over with its rating.
+    // The rating step: the answer waits here and goes over with its rating; the session notes
+    // the finger answer's time now and holds the response timeout meanwhile.
     pending_ = r;
+    channel_->say_rating(answering_);
     pages_->setCurrentWidget(confidence_);
     prompt_->setText(QString("How confident are you? %1 (keys 1-%2).").arg(confidence_->legend()).arg(confidence_->levels()));
     return;
@@ -229,6 +232,7 @@ void ParticipantScreen::rate(int rating) {
 
 void ParticipantScreen::hand_over(const Response& r) {
   channel_->give_answer(answering_, r);
+  channel_->say_rating(-1);
   const int given = answering_;
   set_answering(false);
   prompt_->setText("Answer recorded.");  // the same words for every answer: no feedback on correctness

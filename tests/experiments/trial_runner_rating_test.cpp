@@ -209,3 +209,43 @@ TEST(experiments_trial_runner_rating, protocol_confidence_field_is_checked) {
 
 }  // namespace
 }  // namespace palprig
+
+namespace palprig {
+namespace {
+
+// The rating comes after the finger answer: the response time ends with the finger answer
+// (Response::given_at_s), and the response timeout waits while the rating is awaited
+// (hold_timeout), so a finger answer given in time is never lost to a slow rating.
+TEST(experiments_trial_runner_rating, a_slow_rating_neither_lengthens_the_response_time_nor_loses_the_answer) {
+  const Protocol p = rated_protocol(true);
+  const SessionPlan plan = make_session_plan(p, 1, 1);
+  RecordingOutput out;
+  Collector c;
+  TrialRunner r(p, plan, first_of_condition(plan, 1), out, c);  // sequential: 4 s, then respond
+  r.begin(0.0);
+  r.advance(4.0);
+  ASSERT_EQ(r.state(), RunnerState::respond);
+  // Finger answer at 5 s; the rating takes until 12 s, past the 3 s response timeout.
+  r.hold_timeout(true);
+  for (double t = 5.0; t < 12.0; t += 0.5) r.advance(t);
+  EXPECT_EQ(r.state(), RunnerState::respond) << "no timeout while the rating is awaited";
+  r.hold_timeout(false);
+  Response answer{{false, true, false}, {}, 3};
+  answer.given_at_s = 5.0;
+  ASSERT_TRUE(r.respond(answer, 12.0));
+  ASSERT_EQ(c.trials.size(), 1u);
+  EXPECT_DOUBLE_EQ(c.trials[0].response_time_s, 5.0);
+  EXPECT_DOUBLE_EQ(response_time_after_stimulus_s(c.trials[0]), 1.0);
+  EXPECT_EQ(c.trials[0].confidence, 3);
+  // A given_at_s before this presentation's onset (a stale clock) is clamped to the onset.
+  TrialRunner again(p, plan, first_of_condition(plan, 0), out, c);
+  again.begin(20.0);
+  Response early;
+  early.given_at_s = 1.0;
+  early.confidence = 1;
+  ASSERT_TRUE(again.respond(early, 21.0));
+  EXPECT_DOUBLE_EQ(c.trials.back().response_time_s, 0.0);
+}
+
+}  // namespace
+}  // namespace palprig
