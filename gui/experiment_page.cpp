@@ -568,7 +568,7 @@ void ExperimentPage::set_buttons() {
   pause_->setEnabled(running && !run_.paused());
   continue_->setEnabled(running && run_.paused() && pause_held_);
   abort_->setEnabled(running);
-  for (QWidget* w : std::initializer_list<QWidget*>{protocol_edit_, participant_edit_, store_edit_}) w->setEnabled(!running);
+  for (QWidget* w : std::initializer_list<QWidget*>{protocol_edit_, participant_edit_, store_edit_, telemetry_edit_}) w->setEnabled(!running);
   speed_->setEnabled(!running && is_simulated_code(participant_edit_->text().trimmed().toStdString()));
   full_screen_->setEnabled(QGuiApplication::screens().size() > 1 || full_screen_->isChecked());
 }
