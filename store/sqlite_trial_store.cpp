@@ -320,7 +320,17 @@ void SqliteTrialStore::migrate_if_older() {
   // failure half-way leaves the file (and every trial) as it was.
   Transaction tx(db_);
   if (db_.pragma_integer("user_version") >= kTrialStoreSchemaVersion) return;
-  db_.exec(kMigrationTo2);
+  try {
+    db_.exec(kMigrationTo2);
+  } catch (const SqliteError& e) {
+    // Busy: another writer; try again later (not the file's fault). Anything else: the file's
+    // tables are not what schema 1 says (hand-edited, or a foreign tool): refused, unchanged.
+    const int primary = e.code() & 0xff;
+    if (primary == SQLITE_BUSY || primary == SQLITE_LOCKED) throw;
+    throw InputError(db_.file(), "trials (schema 1 -> 2 migration)",
+                     std::string("a schema-1 trial database palprig can migrate (SQLite: ") + e.what() +
+                         "); the file was not changed");
+  }
   tx.commit();
 }
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "models/parse_error.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
@@ -289,7 +290,14 @@ TEST(store_rating_columns, a_failed_migration_leaves_the_file_as_it_was) {
   make_version1_file(file, p, make_session_plan(p, 1, 7));
   // A column of that name already there (an edited file): the ALTER fails half-way.
   raw_sql(file, "ALTER TABLE trials ADD COLUMN stimulus_end_s REAL;");
-  EXPECT_ANY_THROW(SqliteTrialStore(file, TrialStore::Access::read_write));
+  try {
+    SqliteTrialStore refused(file, TrialStore::Access::read_write);
+    ADD_FAILURE() << "a file that cannot be migrated was opened";
+  } catch (const InputError& e) {  // one line naming the file and what was expected: exit 2
+    EXPECT_EQ(e.file(), file.string());
+    EXPECT_EQ(e.where(), "trials (schema 1 -> 2 migration)");
+    EXPECT_NE(e.expected().find("the file was not changed"), std::string::npos) << e.what();
+  }
   SqliteTrialStore reader(file, TrialStore::Access::read_only);
   EXPECT_EQ(reader.database().pragma_integer("user_version"), 1);
   auto q = reader.database().prepare("SELECT count(*) FROM pragma_table_info('trials') WHERE name = 'confidence'");
