@@ -24,16 +24,16 @@
 #include "gui/participant_screen.hpp"
 #include "gui/scene_view.hpp"
 #include "store/trial_store.hpp"
+#include "tests/gui/qt/console_support.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
 using namespace palprig::gui;
 using palprig::test_support::TempDir;
+using namespace palprig::gui::console_test;
 
 namespace {
-
-std::string data_dir() { return std::string(PALPRIG_SOURCE_DIR) + "/data"; }
 
 // The shipped discrimination protocol cut to 3 combinations x 2 conditions with short timings,
 // so a person's session (real time) takes seconds.
@@ -63,34 +63,6 @@ std::string short_localisation(const TempDir& dir) {
   doc["localisation"]["scene"] = data_dir() + "/scenes/phantom_abc.json";
   doc["timing"]["inter_trial_s"] = 0.05;
   return dir.write("loc.json", doc.dump(2)).string();
-}
-
-struct Window {
-  LiveRunFiles files;
-  std::unique_ptr<MainWindow> window;
-  ExperimentPage& page() { return *window->experiment_page(); }
-};
-
-Window open_window() {
-  Window w;
-  w.files.data_dir = data_dir();
-  LiveRunOptions opt;
-  opt.want_fifo = false;
-  w.window = std::make_unique<MainWindow>(std::make_unique<LiveRun>(load_live_run(w.files), opt), w.files, opt);
-  w.window->show();
-  w.window->pages()->setCurrentWidget(w.window->experiment_page());
-  return w;
-}
-
-// Process events until cond holds or timeout_s passes (waits on the window's poll signal).
-bool wait_until(MainWindow& w, const std::function<bool()>& cond, double timeout_s = 30.0) {
-  QSignalSpy spy(&w, &MainWindow::polled);
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (!cond()) {
-    if (std::chrono::steady_clock::now() > end) return false;
-    spy.wait(100);
-  }
-  return true;
 }
 
 // The stored trials without what depends on the wall clock (times, felt pressures, dates).
@@ -146,25 +118,6 @@ void answer_by_hand(ParticipantScreen& screen, const std::string& answer, int st
   else QTest::mouseClick(screen.findChild<QPushButton*>("answer_button"), Qt::LeftButton);
 }
 
-// What the page reported at its end (a lambda, not QSignalSpy: SessionEnd is no QVariant type).
-struct EndSeen {
-  int count = 0;
-  SessionEnd end;
-  explicit EndSeen(ExperimentPage& page) {
-    QObject::connect(&page, &ExperimentPage::sessionEnded, &page, [this](const SessionEnd& e) {
-      ++count;
-      end = e;
-    });
-  }
-};
-
-// With PALPRIG_SCREENSHOT_DIR set, saves `what` there (the README's pictures come from here).
-void keep_screenshot(QWidget& what, const char* name) {
-  const char* dir = std::getenv("PALPRIG_SCREENSHOT_DIR");
-  if (dir == nullptr) return;
-  what.grab().save(QString("%1/%2").arg(dir, name), "PNG");
-}
-
 // The rating step after the finger answer: key `rating` (even styles) or its button.
 void rate_by_hand(MainWindow& w, ParticipantScreen& screen, int rating, int style) {
   QVERIFY(wait_until(w, [&] { return screen.rating(); }, 30.0));
@@ -172,12 +125,6 @@ void rate_by_hand(MainWindow& w, ParticipantScreen& screen, int rating, int styl
   QVERIFY(button != nullptr && button->isVisible() && button->isEnabled());
   if (style % 2 == 0) QTest::keyClick(&screen, Qt::Key(Qt::Key_0 + rating));
   else QTest::mouseClick(button, Qt::LeftButton);
-}
-
-int committed_rows(QTableWidget& t) {
-  int n = 0;
-  for (int r = 0; r < t.rowCount(); ++r) n += t.item(r, t.columnCount() - 1)->text().isEmpty() ? 0 : 1;
-  return n;
 }
 
 }  // namespace

@@ -27,16 +27,16 @@
 #include "gui/statistics_view.hpp"
 #include "models/pulse_localisation.hpp"
 #include "store/pulse_store.hpp"
+#include "tests/gui/qt/console_support.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
 using namespace palprig::gui;
 using palprig::test_support::TempDir;
+using namespace palprig::gui::console_test;
 
 namespace {
-
-std::string data_dir() { return std::string(PALPRIG_SOURCE_DIR) + "/data"; }
 
 // The shipped pulse protocol (groin and brachial scenes), each scene `repetitions` times, with a
 // short inter-trial interval so a person's session (real time) takes seconds.
@@ -46,56 +46,6 @@ std::string short_pulse(const TempDir& dir, int repetitions) {
   doc["repetitions"] = repetitions;
   doc["pulse"]["inter_trial_s"] = 0.05;
   return dir.write("pulse.json", doc.dump(2)).string();
-}
-
-struct Window {
-  LiveRunFiles files;
-  std::unique_ptr<MainWindow> window;
-  ExperimentPage& page() { return *window->experiment_page(); }
-};
-
-Window open_window() {
-  Window w;
-  w.files.data_dir = data_dir();
-  LiveRunOptions opt;
-  opt.want_fifo = false;
-  w.window = std::make_unique<MainWindow>(std::make_unique<LiveRun>(load_live_run(w.files), opt), w.files, opt);
-  w.window->show();
-  w.window->pages()->setCurrentWidget(w.window->experiment_page());
-  return w;
-}
-
-bool wait_until(MainWindow& w, const std::function<bool()>& cond, double timeout_s = 60.0) {
-  QSignalSpy spy(&w, &MainWindow::polled);
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (!cond()) {
-    if (std::chrono::steady_clock::now() > end) return false;
-    spy.wait(100);
-  }
-  return true;
-}
-
-struct EndSeen {
-  int count = 0;
-  SessionEnd end;
-  explicit EndSeen(ExperimentPage& page) {
-    QObject::connect(&page, &ExperimentPage::sessionEnded, &page, [this](const SessionEnd& e) {
-      ++count;
-      end = e;
-    });
-  }
-};
-
-void keep_screenshot(QWidget& what, const char* name) {
-  const char* dir = std::getenv("PALPRIG_SCREENSHOT_DIR");
-  if (dir == nullptr) return;
-  what.grab().save(QString("%1/%2").arg(dir, name), "PNG");
-}
-
-int committed_rows(QTableWidget& t) {
-  int n = 0;
-  for (int r = 0; r < t.rowCount(); ++r) n += t.item(r, t.columnCount() - 1)->text().isEmpty() ? 0 : 1;
-  return n;
 }
 
 std::vector<PulseTrialRecord> stored_pulse_trials(const std::string& db) {
