@@ -3,12 +3,14 @@
 #   make test   same set-up, then the whole test suite
 #   make fuzz   run every fuzz target for a minute (make test runs each for a second)
 #   make test-tsan  the threaded suites under ThreadSanitizer
+#   make test-analyst  the analyst-only build (-DPALPRIG_RIG=OFF: stats, export, store) and its suites
 # Both are idempotent: packages already present are not touched and the build is incremental.
 
 BUILD      ?= build
 BUILD_ASAN ?= build-asan
 BUILD_FUZZ ?= build-fuzz
 BUILD_TSAN ?= build-tsan
+BUILD_ANALYST ?= build-analyst
 FUZZ_SECONDS ?= 60
 JOBS       ?= 2
 CMAKE_ARGS ?=
@@ -17,7 +19,7 @@ CMAKE_ARGS ?=
 PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages.txt | tr '\n' ' ')
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build demo test test-asan test-tsan fuzz fuzz-build fuzz-smoke bench clean
+.PHONY: all deps configure build demo test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean
 
 all: build
 
@@ -77,8 +79,17 @@ test-asan: deps
 	cmake --build $(BUILD_ASAN) -j$(JOBS)
 	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j$(JOBS) --timeout 900
 
+# The analyst-only build: the study-data floor and the palprig command without any rig library
+# (no libmodbus, comedilib or libevdev linked); its suites, the layout check and the refusal of
+# the rig's commands. CI builds it once.
+test-analyst: deps
+	@[ -f $(BUILD_ANALYST)/CMakeCache.txt ] || cmake -S . -B $(BUILD_ANALYST) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DPALPRIG_RIG=OFF -DPALPRIG_GUI=OFF -DPALPRIG_BENCH=OFF
+	cmake --build $(BUILD_ANALYST) -j$(JOBS)
+	cd $(BUILD_ANALYST) && ctest --output-on-failure -j$(JOBS) --timeout 600
+
 bench: build
 	bench/run_all.sh $(BUILD)
 
 clean:
-	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ) $(BUILD_TSAN)
+	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ) $(BUILD_TSAN) $(BUILD_ANALYST)

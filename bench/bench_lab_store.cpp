@@ -14,9 +14,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "experiments/protocol.hpp"
-#include "experiments/scoring.hpp"
-#include "experiments/session_plan.hpp"
+#include "study/protocol.hpp"
+#include "study/scoring.hpp"
+#include "study/session_plan.hpp"
 #include "store/journaled_trial_store.hpp"
 #include "store/lab_sync.hpp"
 #include "store/postgres_trial_store.hpp"

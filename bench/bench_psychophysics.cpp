@@ -10,7 +10,7 @@
 
 #include "controller/backend_factory.hpp"
 #include "controller/tick_setup.hpp"
-#include "experiments/random_source.hpp"
+#include "study/random_source.hpp"
 #include "experiments/rig_stimulus.hpp"
 #include "experiments/threshold_observer.hpp"
 #include "experiments/threshold_session.hpp"

@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "experiments/protocol.hpp"
-#include "experiments/random_source.hpp"
-#include "experiments/session_plan.hpp"
+#include "study/protocol.hpp"
+#include "study/random_source.hpp"
+#include "study/session_plan.hpp"
 #include "statistics/statistics_proportion.hpp"
 #include "statistics/statistics_rank_tests.hpp"
 #include "store/sqlite_trial_store.hpp"

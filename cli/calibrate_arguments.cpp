@@ -7,16 +7,6 @@
 
 namespace palprig::cli {
 
-void check_plot_available(const std::string& dir) {
-#ifndef PALPRIG_HAVE_GUI
-  if (!dir.empty())
-    throw InputError("--plot", dir, "a build with the chart drawing (configure with -DPALPRIG_GUI=ON; needs Qt6)");
-#else
-  (void)dir;
-#endif
-}
-
-
 std::array<bool, kFingerCount> parse_channels(const std::string& text) {
   std::array<bool, kFingerCount> on{};
   std::istringstream in(text);

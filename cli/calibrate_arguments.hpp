@@ -1,6 +1,6 @@
 #pragma once
 // Arguments the calibrate subcommands share: the channel list, the rig (default: the simulated
-// one), simulated or real time, and whether --plot can be honoured in this build.
+// one) and simulated or real time.
 #include <array>
 #include <string>
 
@@ -15,7 +15,5 @@ std::string channels_text(const std::array<bool, kFingerCount>& on);
 RigConfig load_rig(const std::string& path);
 // Simulated backends run on simulated time unless asked otherwise; hardware always in real time.
 bool use_realtime(const RigConfig& rig, bool realtime_flag, bool fast_flag);
-// --plot needs gui's chart drawing (Qt); a build without it refuses the option up front.
-void check_plot_available(const std::string& dir);
 
 }  // namespace palprig::cli

@@ -13,9 +13,7 @@
 #include "controller/backend_factory.hpp"
 #include "formats/calibration_file.hpp"
 #include "models/parse_error.hpp"
-#ifdef PALPRIG_HAVE_GUI
-#include "gui/calibration_charts.hpp"
-#endif
+#include "charts/calibration_charts.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;
@@ -30,7 +28,6 @@ struct EvaluateArgs {
 };
 
 void run_evaluate(const EvaluateArgs& a) {
-  check_plot_available(a.plot_dir);
   const RigConfig rig = load_rig(a.rig_path);
   const CalibrationModels cal = load_calibration_file(a.cal_path);
   check_calibration_matches(cal, rig.id, rig.source);
@@ -51,10 +48,8 @@ void run_evaluate(const EvaluateArgs& a) {
     print_evaluation_report(std::cout, r, o.channels);
   }
   if (!a.out.empty()) write_evaluation_trace_csv(a.out, r);
-#ifdef PALPRIG_HAVE_GUI
   if (!a.plot_dir.empty())
-    for (const auto& p : gui::plot_evaluation(a.plot_dir, r, o.channels)) std::cout << "  plot: " << p.string() << "\n";
-#endif
+    for (const auto& p : charts::plot_evaluation(a.plot_dir, r, o.channels)) std::cout << "  plot: " << p.string() << "\n";
   if (!r.complete()) {
     std::cerr << "palprig: evaluation did not complete (signal or fault); all channels vented\n";
     cli::finish(cli::kExitFault);

@@ -15,9 +15,7 @@
 #include "cli/commands.hpp"
 #include "formats/calibration_file.hpp"
 #include "models/parse_error.hpp"
-#ifdef PALPRIG_HAVE_GUI
-#include "gui/calibration_charts.hpp"
-#endif
+#include "charts/calibration_charts.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;
@@ -33,7 +31,6 @@ struct FitArgs {
 };
 
 void run_fit(const FitArgs& a) {
-  check_plot_available(a.plot_dir);
   CalibrationFitOptions o;
   o.hysteresis = a.hysteresis;
   o.operators_from_data = !a.operators_given;
@@ -61,10 +58,8 @@ void run_fit(const FitArgs& a) {
   write_calibration_file(a.out, doc);
   if (a.json) std::cout << doc.dump(2) << "\n";
   else print_fit_report(std::cout, result, a.out);
-#ifdef PALPRIG_HAVE_GUI
   if (!a.plot_dir.empty())
-    for (const auto& p : gui::plot_fit(a.plot_dir, data, result)) std::cout << "  plot: " << p.string() << "\n";
-#endif
+    for (const auto& p : charts::plot_fit(a.plot_dir, data, result)) std::cout << "  plot: " << p.string() << "\n";
 }
 
 }  // namespace

@@ -26,7 +26,8 @@ std::filesystem::path data_dir();
 
 }  // namespace palprig::cli
 
-// Registration functions, each defined in its own cli/*_command.cpp.
+// Registration functions, each defined in its own cli/*_command.cpp. The process context
+// (stop_signal, data_dir) is cli/process_context.cpp.
 void register_run_command(CLI::App& app);
 void register_demo_command(CLI::App& app);
 void register_telemetry_command(CLI::App& app);
@@ -36,6 +37,10 @@ void register_export_command(CLI::App& app);
 void register_sim_rig_command(CLI::App& app);
 void register_calibrate_command(CLI::App& app);
 void register_scene_command(CLI::App& app);
-void register_gui_command(CLI::App& app);  // builds with Qt only (PALPRIG_HAVE_GUI)
+// The window: gui_command.cpp, or gui_command_absent.cpp (a `gui` that says the build has none).
+void register_gui_command(CLI::App& app);
 void register_rt_check_command(CLI::App& app);
 void register_store_command(CLI::App& app);
+// Every command that needs the rig stack: rig_commands.cpp, or rig_commands_absent.cpp in the
+// analyst-only build (-DPALPRIG_RIG=OFF).
+void register_rig_commands(CLI::App& app);

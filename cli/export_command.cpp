@@ -11,26 +11,9 @@
 #include "store/trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "models/parse_error.hpp"
-#ifdef PALPRIG_HAVE_GUI
-#include "gui/trial_charts.hpp"
-#endif
+#include "charts/trial_charts.hpp"
 
 using namespace palprig;
-
-namespace {
-
-// --plot needs gui's chart drawing (Qt); a build without it refuses the option.
-std::filesystem::path plot_measures(TrialStore& store, const std::filesystem::path& dir, bool include_practice) {
-#ifndef PALPRIG_HAVE_GUI
-  (void)store;
-  (void)include_practice;
-  throw InputError("--plot", dir.string(), "a build with the chart drawing (configure with -DPALPRIG_GUI=ON; needs Qt6)");
-#else
-  return gui::plot_measures_by_condition(store, dir, include_practice);
-#endif
-}
-
-}  // namespace
 
 void register_export_command(CLI::App& app) {
   struct Args {
@@ -64,6 +47,6 @@ void register_export_command(CLI::App& app) {
     if (!a->plot_dir.empty())
       // The chart is a statistic: practice trials are left out, as `stats trials` and the
       // statistics view leave them out (a chart cannot mark them as the data files do).
-      std::cout << "  " << plot_measures(store, a->plot_dir, false).string() << "\n";
+      std::cout << "  " << charts::plot_measures_by_condition(store, a->plot_dir, false).string() << "\n";
   });
 }

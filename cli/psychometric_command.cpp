@@ -23,9 +23,7 @@
 #include "statistics/statistics_report.hpp"
 #include "statistics/psychometric_groups.hpp"
 #include "store/threshold_psychometric.hpp"
-#ifdef PALPRIG_HAVE_GUI
-#include "gui/psychometric_charts.hpp"
-#endif
+#include "charts/psychometric_charts.hpp"
 
 using namespace palprig;
 
@@ -104,24 +102,18 @@ void run(const Args& a) {
     one.update(stats::psychometric_report(fit, a.confidence));
     report["groups"].push_back(std::move(one));
     if (!a.plot.empty()) {
-#ifdef PALPRIG_HAVE_GUI
       std::filesystem::create_directories(a.plot);
       const auto path = std::filesystem::path(a.plot) / ("psychometric_" + file_label(g.label) + ".png");
-      gui::write_chart_png(gui::psychometric_chart(g.label, fit, report["level"].get<std::string>()), path);
+      charts::write_chart_png(charts::psychometric_chart(g.label, fit, report["level"].get<std::string>()), path);
       plots.push_back(path.string());
-#endif
     }
   }
   if (!a.plot.empty()) {
-#ifdef PALPRIG_HAVE_GUI
     if (database) {
-      const auto tracks = gui::write_track_charts(rows, a.plot);
+      const auto tracks = charts::write_track_charts(rows, a.plot);
       plots.insert(plots.end(), tracks.begin(), tracks.end());
     }
     report["plots"] = plots;
-#else
-    throw InputError("--plot", a.plot, "a build with the chart drawing (configure with -DPALPRIG_GUI=ON; needs Qt6)");
-#endif
   }
   if (a.json) std::cout << report.dump(2) << "\n";
   else std::cout << stats::render_text(report);

@@ -6,8 +6,8 @@
 
 #include "inputs/input_source.hpp"
 #include "controller/telemetry.hpp"
-#include "experiments/protocol.hpp"
-#include "experiments/session_plan.hpp"
+#include "study/protocol.hpp"
+#include "study/session_plan.hpp"
 #include "experiments/trial_runner.hpp"
 
 namespace palprig {

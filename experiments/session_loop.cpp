@@ -1,5 +1,7 @@
 #include "experiments/session_loop.hpp"
 
+#include "experiments/session_pacer.hpp"
+
 #include <optional>
 
 namespace palprig {
@@ -10,11 +12,12 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
   int started_position = -1;
   bool paused = false;
   std::optional<Response> pending;  // an answer the runner does not take yet
-  double next_s = clock.now_s();
+  SessionPacer pacer(clock, options.period_s, options.stop);
   try {
     while (runner.state() != RunnerState::done) {
-      const double t = clock.now_s();
-      if (options.stop && options.stop->load() != 0) {
+      const double t = pacer.now_s();
+      // The runner's own stop (it vents): the pass is the pacer's, the servicing is the runner's.
+      if (pacer.stop_requested()) {
         runner.abort(t);
         result.stopped = true;
         return result;
@@ -31,8 +34,7 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
       runner.hold_timeout(!paused && participant.answering());
       runner.advance(t);
       if (paused) {
-        next_s += options.period_s;
-        clock.wait_until(next_s);
+        pacer.wait_next();
         continue;
       }
       const RunnerState s = runner.state();
@@ -63,8 +65,7 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
           pending.reset();
         }
       }
-      next_s += options.period_s;
-      clock.wait_until(next_s);
+      pacer.wait_next();
     }
   } catch (const RigFault& fault) {
     result.fault = fault.what();

@@ -27,7 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/participant.hpp"
-#include "experiments/random_source.hpp"
+#include "study/random_source.hpp"
 #include "experiments/shifted_input.hpp"
 #include "models/finger_layout.hpp"
 #include "models/scene.hpp"

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "experiments/participant.hpp"
-#include "experiments/protocol.hpp"
+#include "study/protocol.hpp"
 #include "experiments/terminal_lines.hpp"
 
 namespace palprig {

@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiments/random_source.hpp"
+#include "study/random_source.hpp"
 #include "experiments/simulated_participant.hpp"
 #include "experiments/threshold_session.hpp"
 

@@ -1,68 +1,25 @@
 #include "experiments/threshold_session.hpp"
 
+#include "experiments/session_pacer.hpp"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "experiments/random_source.hpp"
+#include "study/random_source.hpp"
 
 namespace palprig {
-
-nlohmann::json tracks_state(const std::vector<AdaptiveTrack>& tracks) {
-  nlohmann::json all = nlohmann::json::array();
-  for (const AdaptiveTrack& t : tracks) all.push_back(t.state_json());
-  return all;
-}
-
-void restore_tracks(std::vector<AdaptiveTrack>& tracks, const nlohmann::json& state) {
-  if (!state.is_array() || state.size() != tracks.size()) {
-    throw std::invalid_argument("stored track state: one entry per track of the protocol");
-  }
-  for (std::size_t i = 0; i < tracks.size(); ++i) tracks[i].restore(state[i]);
-}
-
-namespace {
-
-struct Stopped {};
-
-class Pacer {
- public:
-  Pacer(StimulusOutput& output, SessionClock& clock, const ThresholdSessionOptions& o)
-      : output_(output), clock_(clock), o_(o), next_s_(clock.now_s()) {}
-
-  // One loop pass: stop check, service the rig, wait for the next period. Returns the time.
-  double pass(ChannelPressures& felt) {
-    const double t = clock_.now_s();
-    if (o_.stop && o_.stop->load() != 0) {
-      output_.vent(t);
-      throw Stopped{};
-    }
-    felt = output_.service(t);
-    next_s_ += o_.period_s;
-    clock_.wait_until(next_s_);
-    return t;
-  }
-  double now() { return clock_.now_s(); }
-
- private:
-  StimulusOutput& output_;
-  SessionClock& clock_;
-  const ThresholdSessionOptions& o_;
-  double next_s_;
-};
-
-}  // namespace
 
 ThresholdSessionResult run_threshold_session(const ThresholdProtocol& protocol, std::vector<AdaptiveTrack>& tracks,
                                              StimulusOutput& output, ThresholdParticipant& participant,
                                              SessionClock& clock, const ThresholdSessionOptions& options) {
   ThresholdSessionResult result;
-  Pacer pacer(output, clock, options);
+  SessionPacer pacer(clock, options.period_s, options.stop);
   const ThresholdTiming& tm = protocol.timing;
   ChannelPressures felt{};
   try {
-    output.vent(pacer.now());
-    while (!participant.ready(pacer.now())) pacer.pass(felt);
+    output.vent(pacer.now_s());
+    while (!participant.ready(pacer.now_s())) pacer.pass(output, felt);
     for (int position = options.start_position;; ++position) {
       const int index = choose_track(tracks, options.seed, position);
       if (index < 0) break;
@@ -88,20 +45,20 @@ ThresholdSessionResult run_threshold_session(const ThresholdProtocol& protocol, 
       r.signal_interval = protocol.method == ThresholdMethod::two_afc
                               ? static_cast<int>(RandomSource(trial_seed(options.seed, position, 2)).below(2))
                               : 1;
-      r.onset_s = pacer.now();
+      r.onset_s = pacer.now_s();
       participant.trial_started(info, r.onset_s);
 
       for (int interval = 0; interval < 2; ++interval) {
         ChannelPressures target{};
         const double p = protocol.reference_kPa + (interval == r.signal_interval ? info.level_kPa : 0.0);
         for (std::size_t f = 0; f < kFingerCount; ++f) target[f] = info.active[f] ? p : 0.0;
-        const double start = pacer.now();
+        const double start = pacer.now_s();
         output.hold(target, start);
         participant.interval_started(interval, start);
         double sum = 0;
         int count = 0;
         for (double t = start; t - start < tm.interval_s;) {
-          t = pacer.pass(felt);
+          t = pacer.pass(output, felt);
           FeltSample sample;
           sample.t_s = t;
           sample.felt_kPa = felt;
@@ -119,17 +76,17 @@ ThresholdSessionResult run_threshold_session(const ThresholdProtocol& protocol, 
           }
         }
         r.felt_kPa[static_cast<std::size_t>(interval)] = count ? sum / count : std::numeric_limits<double>::quiet_NaN();
-        const double gap_start = pacer.now();
+        const double gap_start = pacer.now_s();
         output.vent(gap_start);
         if (interval == 0) {
-          for (double t = gap_start; t - gap_start < tm.gap_s;) t = pacer.pass(felt);
+          for (double t = gap_start; t - gap_start < tm.gap_s;) t = pacer.pass(output, felt);
         }
       }
 
-      const double respond_start = pacer.now();
+      const double respond_start = pacer.now_s();
       std::optional<int> answer;
       for (double t = respond_start; t - respond_start < tm.response_timeout_s && !answer;) {
-        t = pacer.pass(felt);
+        t = pacer.pass(output, felt);
         answer = participant.answer(t);
         if (answer) r.response_time_s = t - respond_start;
       }
@@ -144,17 +101,17 @@ ThresholdSessionResult run_threshold_session(const ThresholdProtocol& protocol, 
       r.state = tracks_state(tracks);
       if (options.on_trial) options.on_trial(r);
       ++result.trials;
-      const double pause_start = pacer.now();
-      for (double t = pause_start; t - pause_start < tm.inter_trial_s;) t = pacer.pass(felt);
+      const double pause_start = pacer.now_s();
+      for (double t = pause_start; t - pause_start < tm.inter_trial_s;) t = pacer.pass(output, felt);
     }
-  } catch (const Stopped&) {
+  } catch (const SessionStopped&) {
     result.stopped = true;
     return result;
   } catch (const RigFault& fault) {
     result.fault = fault.what();
     return result;
   }
-  output.vent(pacer.now());
+  output.vent(pacer.now_s());
   result.completed = true;
   return result;
 }

@@ -17,11 +17,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiments/adaptive_track.hpp"
 #include "experiments/participant.hpp"
 #include "experiments/session_clock.hpp"
 #include "experiments/stimulus_output.hpp"
-#include "experiments/threshold_protocol.hpp"
+#include "study/threshold_protocol.hpp"
+#include "study/threshold_record.hpp"
 
 namespace palprig {
 
@@ -32,22 +32,6 @@ struct ThresholdTrialInfo {
   ThresholdMethod method = ThresholdMethod::two_afc;
   double level_kPa = 0;      // the increment (a person is not told)
   FingerFlags active{};      // fingers carrying the stimulus
-};
-
-struct ThresholdTrialRecord {
-  int position = 0;
-  int track = 0;
-  std::string track_name;
-  std::string fingers;       // "one" or "three"
-  double level_kPa = 0, reference_kPa = 0;
-  int signal_interval = 1;   // 0 or 1: the interval with reference + level
-  bool answered = false;
-  int response = -1;         // 2afc: chosen interval 0/1; yes-no: 1 yes, 0 no; -1 no answer
-  bool correct = false;      // 2afc: chose the signal interval; yes-no: answered yes
-  bool reversal = false;
-  double onset_s = 0, response_time_s = 0;  // response time from the end of the second interval
-  std::array<double, 2> felt_kPa{};          // mean pressure on the active fingers per interval
-  nlohmann::json state;      // every track's state after this trial (resume from here)
 };
 
 class ThresholdParticipant {
@@ -74,10 +58,6 @@ struct ThresholdSessionResult {
   std::string fault;
   int trials = 0;  // recorded in this run
 };
-
-// Every track's state as one JSON array, and back (throws std::invalid_argument).
-nlohmann::json tracks_state(const std::vector<AdaptiveTrack>& tracks);
-void restore_tracks(std::vector<AdaptiveTrack>& tracks, const nlohmann::json& state);
 
 ThresholdSessionResult run_threshold_session(const ThresholdProtocol& protocol, std::vector<AdaptiveTrack>& tracks,
                                              StimulusOutput& output, ThresholdParticipant& participant,

@@ -20,11 +20,11 @@
 #include <vector>
 
 #include "inputs/input_source.hpp"
-#include "experiments/protocol.hpp"
-#include "experiments/scoring.hpp"
-#include "experiments/session_plan.hpp"
+#include "study/protocol.hpp"
+#include "study/scoring.hpp"
+#include "study/session_plan.hpp"
 #include "experiments/stimulus_output.hpp"
-#include "experiments/trial_record.hpp"
+#include "study/trial_record.hpp"
 
 namespace palprig {
 

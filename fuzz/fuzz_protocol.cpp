@@ -1,5 +1,5 @@
 // Experiment protocols through their validator.
-#include "experiments/protocol.hpp"
+#include "study/protocol.hpp"
 #include "fuzz/fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,6 +1,6 @@
 #include "gui/calibration_job.hpp"
 
-#include "gui/calibration_charts.hpp"
+#include "charts/calibration_charts.hpp"
 
 namespace palprig::gui {
 
@@ -29,7 +29,7 @@ CalibrationJob::CalibrationJob(RigBackend& backend, RigConfig rig, CalibrationMo
                          chart_dir = std::move(chart_dir)] {
     try {
       evaluation_ = evaluate_compensation(backend, rig, cal, options);
-      charts_ = plot_evaluation(chart_dir, *evaluation_, options.channels);
+      charts_ = charts::plot_evaluation(chart_dir, *evaluation_, options.channels);
     } catch (const std::exception& e) {
       error_ = e.what();
       backend.vent();

@@ -23,7 +23,7 @@
 #include "calibration/calibration_report.hpp"
 #include "calibration/calibration_writer.hpp"
 #include "formats/calibration_file.hpp"
-#include "gui/calibration_charts.hpp"
+#include "charts/calibration_charts.hpp"
 
 namespace palprig::gui {
 

@@ -12,7 +12,7 @@
 #include "calibration/calibration_report.hpp"
 #include "calibration/calibration_writer.hpp"
 #include "formats/calibration_file.hpp"
-#include "gui/calibration_charts.hpp"
+#include "charts/calibration_charts.hpp"
 #include "gui/calibration_page.hpp"
 
 namespace palprig::gui {
@@ -39,7 +39,7 @@ void CalibrationPage::fit() {
       o.data = read_sweep_csv(data_file);
       o.result = fit_calibration(*o.data, options);
       std::filesystem::remove_all(dir);
-      o.charts = plot_fit(dir, *o.data, *o.result);
+      o.charts = charts::plot_fit(dir, *o.data, *o.result);
     } catch (const std::exception& e) {
       o = CalibrationFitOutcome{};
       o.error = e.what();

@@ -11,7 +11,7 @@ ChartView::ChartView(QWidget* parent) : QWidget(parent) {
   setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Expanding);
 }
 
-void ChartView::set_chart(Chart chart, const QString& empty_text) {
+void ChartView::set_chart(charts::Chart chart, const QString& empty_text) {
   chart_ = std::move(chart);
   empty_text_ = empty_text;
   update();
@@ -28,11 +28,11 @@ void ChartView::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.fillRect(rect(), Qt::white);
   if (has_data()) {
-    Chart sized = chart_;
+    charts::Chart sized = chart_;
     sized.width_px = width();
     sized.height_px = height();
     try {
-      paint_chart(p, sized);
+      charts::paint_chart(p, sized);
       return;
     } catch (const std::invalid_argument&) {
       // Too narrow for the legend, say: fall through to the text.

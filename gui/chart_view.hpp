@@ -1,10 +1,10 @@
 #pragma once
-// A chart (gui/chart_png.hpp) as a widget: the same drawing as the PNG and SVG files, scaled to
+// A chart (charts/chart_png.hpp) as a widget: the same drawing as the PNG and SVG files, scaled to
 // the widget's size, so what the experimenter sees is what the export writes.
 #include <QString>
 #include <QWidget>
 
-#include "gui/chart_png.hpp"
+#include "charts/chart_png.hpp"
 
 namespace palprig::gui {
 
@@ -13,15 +13,15 @@ class ChartView : public QWidget {
  public:
   explicit ChartView(QWidget* parent = nullptr);
   // Shows `chart`; `empty_text` replaces it while it has nothing to draw.
-  void set_chart(Chart chart, const QString& empty_text);
-  const Chart& chart() const { return chart_; }
+  void set_chart(charts::Chart chart, const QString& empty_text);
+  const charts::Chart& chart() const { return chart_; }
   bool has_data() const;
 
  protected:
   void paintEvent(QPaintEvent* event) override;
 
  private:
-  Chart chart_;
+  charts::Chart chart_;
   QString empty_text_;
 };
 

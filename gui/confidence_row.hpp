@@ -5,7 +5,7 @@
 #include <QWidget>
 #include <vector>
 
-#include "experiments/protocol.hpp"
+#include "study/protocol.hpp"
 
 class QPushButton;
 

@@ -17,9 +17,9 @@
 #include <optional>
 #include <string>
 
-#include "experiments/protocol.hpp"
-#include "experiments/pulse_task.hpp"
-#include "experiments/session_plan.hpp"
+#include "study/protocol.hpp"
+#include "experiments/pulse_session.hpp"
+#include "study/session_plan.hpp"
 #include "gui/gui_participant.hpp"
 #include "gui/session_run.hpp"
 
@@ -90,6 +90,17 @@ class ExperimentPage final : public QWidget {
   void sessionRefused(const QString& line, int exit_code);
 
  private:
+  // The trial table's columns. kResponseTime: from onset (paper 002's measure, its t-test); kRtAfterStimulus: from the end of
+  // the stimulus (what the participant was asked to answer after). kCommitted stays last.
+  enum Column { kPosition, kBlock, kCondition, kStimulus, kTumor, kAnswer, kScore, kResponseTime, kRtAfterStimulus,
+                kConfidence, kCommitted, kColumns };
+
+  // The widgets (experiment_page_layout.cpp).
+  QWidget* build_session_form();
+  void build_session_controls(QVBoxLayout* left_layout);
+  QWidget* build_trial_list();
+  QWidget* build_participant_side();
+  void connect_session();  // the session run's signals to the page
   void update_plan();  // the planned order (or stored order) and the resume offer
   void show_plan(const Protocol& protocol, const SessionPlan& plan);
   void tick_row(const TrialRecord& trial);

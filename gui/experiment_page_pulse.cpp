@@ -15,6 +15,7 @@
 #include "gui/gui_pulse_participant.hpp"
 #include "gui/participant_screen.hpp"
 #include "gui/statistics_view.hpp"
+#include "sessions/session_preview.hpp"
 #include "sessions/session_setup.hpp"
 #include "store/pulse_store.hpp"
 
@@ -60,40 +61,32 @@ bool ExperimentPage::update_pulse_plan(const ExperimentFields& f) {
     set_buttons();
     return true;
   }
+  PulseSessionPreview preview;
   try {
-    if (!f.store.empty() && std::filesystem::exists(f.store)) {
-      if (statistics_->store_location() != QString::fromStdString(f.store)) statistics_->set_store(QString::fromStdString(f.store));
-      SqliteTrialStore store(f.store, TrialStore::Access::read_only);
-      const auto who = store.find_participant(f.participant);
-      if (const auto id = who ? store.find_unfinished_session(*who, pulse_protocol_->name) : std::nullopt) {
-        // The order a resumed session continues with: the stored protocol and seed.
-        PulseStore pulse(store, false);
-        const StoredPulseSession stored = pulse.load_session(*id);
-        const PulseProtocol run = parse_pulse_protocol(stored.protocol_snapshot, pulse_protocol_->source, stored.protocol_dir);
-        const std::vector<int> order = pulse_trial_order(run, stored.seed);
-        offered_session_ = *id;
-        offered_start_ = stored.completed_trials;
-        show_pulse_order(run, order);
-        for (const PulseTrialRecord& t : pulse.read_trials(*id)) tick_pulse_row(t);
-        resume_note_->setText(QString("%1 has an unfinished session (%2) with this protocol: %3 of %4 trials committed. "
-                                      "Resume session continues at trial %5.")
-                                  .arg(participant_edit_->text()).arg(*id).arg(stored.completed_trials)
-                                  .arg(order.size()).arg(stored.completed_trials + 1));
-        plan_note_->setText(QString("Stored order of session %1 (seed %2).").arg(*id).arg(stored.seed));
-        set_buttons();
-        return true;
-      }
+    if (!f.store.empty() && std::filesystem::exists(f.store) &&
+        statistics_->store_location() != QString::fromStdString(f.store)) {
+      statistics_->set_store(QString::fromStdString(f.store));
     }
+    preview = preview_pulse_session(f.store, *pulse_protocol_, f.participant);
   } catch (const std::exception& e) {
     refuse(e.what());
     set_buttons();
     return true;
   }
-  // A new session's order: the seed open_pulse_session derives from participant and protocol.
-  const std::uint64_t seed = default_session_seed(f.participant, pulse_protocol_->name);
-  show_pulse_order(*pulse_protocol_, pulse_trial_order(*pulse_protocol_, seed));
-  plan_note_->setText(QString("Planned order of the pulse-localisation session (seed %1), as `palprig experiment "
-                              "run` presents it.").arg(seed));
+  show_pulse_order(preview.protocol, preview.order);
+  if (const auto id = preview.unfinished_session) {
+    offered_session_ = *id;
+    offered_start_ = preview.completed_trials;
+    for (const PulseTrialRecord& t : preview.committed) tick_pulse_row(t);
+    resume_note_->setText(QString("%1 has an unfinished session (%2) with this protocol: %3 of %4 trials committed. "
+                                  "Resume session continues at trial %5.")
+                              .arg(participant_edit_->text()).arg(*id).arg(preview.completed_trials)
+                              .arg(preview.order.size()).arg(preview.completed_trials + 1));
+    plan_note_->setText(QString("Stored order of session %1 (seed %2).").arg(*id).arg(preview.seed));
+  } else {
+    plan_note_->setText(QString("Planned order of the pulse-localisation session (seed %1), as `palprig experiment "
+                                "run` presents it.").arg(preview.seed));
+  }
   set_buttons();
   return true;
 }

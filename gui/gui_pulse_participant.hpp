@@ -8,7 +8,7 @@
 #include <memory>
 #include <optional>
 
-#include "experiments/pulse_task.hpp"
+#include "experiments/pulse_session.hpp"
 #include "gui/gui_participant.hpp"
 
 namespace palprig::gui {

@@ -13,8 +13,8 @@
 #include <optional>
 #include <vector>
 
-#include "experiments/protocol.hpp"
-#include "experiments/scoring.hpp"
+#include "study/protocol.hpp"
+#include "study/scoring.hpp"
 #include "formats/scene_file.hpp"
 #include "gui/window_pen_input.hpp"
 

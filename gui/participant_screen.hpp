@@ -17,9 +17,9 @@
 #include <memory>
 #include <optional>
 
-#include "experiments/protocol.hpp"
-#include "experiments/pulse_task.hpp"
-#include "experiments/session_plan.hpp"
+#include "study/protocol.hpp"
+#include "experiments/pulse_session.hpp"
+#include "study/session_plan.hpp"
 #include "gui/gui_participant.hpp"
 
 class QLabel;

@@ -5,6 +5,7 @@
 #include <QStackedWidget>
 
 #include "formats/scene_file.hpp"
+#include "study/pulse_scene.hpp"
 #include "gui/localisation_marking.hpp"
 #include "gui/participant_screen.hpp"
 

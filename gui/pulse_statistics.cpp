@@ -14,14 +14,14 @@ std::string percent(double confidence) { return std::to_string(static_cast<int>(
 
 }  // namespace
 
-Chart pulse_hit_rate_chart(const std::vector<PulseConditionSummary>& rows, double confidence) {
-  Chart chart;
+charts::Chart pulse_hit_rate_chart(const std::vector<PulseConditionSummary>& rows, double confidence) {
+  charts::Chart chart;
   chart.title = "Pulse localisation: hit rate per condition (Wilson " + percent(confidence) + " % intervals)";
   chart.y_label = "hit rate";
   chart.y_min = 0.0;
   chart.y_max = 1.0;
-  ChartSeries bars;
-  bars.style = ChartSeries::Style::bars;
+  charts::ChartSeries bars;
+  bars.style = charts::ChartSeries::Style::bars;
   for (const PulseConditionSummary& r : rows) {
     chart.x_categories.push_back(r.condition);
     bars.x.push_back(double(bars.x.size()));
@@ -34,13 +34,13 @@ Chart pulse_hit_rate_chart(const std::vector<PulseConditionSummary>& rows, doubl
   return chart;
 }
 
-Chart pulse_distance_chart(const std::vector<PulseConditionSummary>& rows) {
-  Chart chart;
+charts::Chart pulse_distance_chart(const std::vector<PulseConditionSummary>& rows) {
+  charts::Chart chart;
   chart.title = "Distance from the mark to the artery (median, quartiles; answered trials)";
   chart.y_label = "distance mm";
   chart.y_min = 0.0;
-  ChartSeries bars;
-  bars.style = ChartSeries::Style::bars;
+  charts::ChartSeries bars;
+  bars.style = charts::ChartSeries::Style::bars;
   for (const PulseConditionSummary& r : rows) {
     chart.x_categories.push_back(r.condition);
     bars.x.push_back(double(bars.x.size()));

@@ -5,15 +5,15 @@
 // and median (bars: median with the quartiles as its range).
 #include <vector>
 
-#include "gui/chart_png.hpp"
+#include "charts/chart_png.hpp"
 #include "store/pulse_store.hpp"
 
 class QTableWidget;
 
 namespace palprig::gui {
 
-Chart pulse_hit_rate_chart(const std::vector<PulseConditionSummary>& rows, double confidence);
-Chart pulse_distance_chart(const std::vector<PulseConditionSummary>& rows);
+charts::Chart pulse_hit_rate_chart(const std::vector<PulseConditionSummary>& rows, double confidence);
+charts::Chart pulse_distance_chart(const std::vector<PulseConditionSummary>& rows);
 
 enum PulseStatisticsColumn { pulse_condition_column = 0, pulse_trials_column, pulse_answered_column, pulse_hits_column,
                              pulse_hit_rate_column, pulse_mean_column, pulse_median_column, pulse_iqr_column,

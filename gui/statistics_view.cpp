@@ -18,9 +18,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "gui/chart_svg.hpp"
+#include "charts/chart_svg.hpp"
 #include "gui/chart_view.hpp"
-#include "gui/measures_chart.hpp"
+#include "charts/measures_chart.hpp"
 #include "gui/pulse_statistics.hpp"
 #include "gui/statistics_tables.hpp"
 #include "store/trial_export.hpp"
@@ -52,14 +52,14 @@ StatisticsRefresh compute(const std::string& location) {
 // A store with pulse trials only: its charts are the pulse ones.
 bool pulse_only(const TrialStatistics& s) { return !s.pulse.empty() && s.by_condition.rows.empty(); }
 
-Chart condition_chart(const TrialStatistics& s) {
-  return pulse_only(s) ? pulse_hit_rate_chart(s.pulse, s.confidence) : measures_chart(s.by_condition);
+charts::Chart condition_chart(const TrialStatistics& s) {
+  return pulse_only(s) ? pulse_hit_rate_chart(s.pulse, s.confidence) : charts::measures_chart(s.by_condition);
 }
 
-Chart detail_chart(const TrialStatistics& s) {
+charts::Chart detail_chart(const TrialStatistics& s) {
   if (pulse_only(s)) return pulse_distance_chart(s.pulse);
-  if (!s.by_tumor.rows.empty() && s.by_finger.rows.empty()) return tumor_sensitivity_chart(s.by_tumor);
-  return measures_chart(s.by_finger, "Se, Sp, PPV and ACC per finger value (Wilson 95 % intervals)", "finger ");
+  if (!s.by_tumor.rows.empty() && s.by_finger.rows.empty()) return charts::tumor_sensitivity_chart(s.by_tumor);
+  return charts::measures_chart(s.by_finger, "Se, Sp, PPV and ACC per finger value (Wilson 95 % intervals)", "finger ");
 }
 
 std::string detail_chart_name(const TrialStatistics& s) {
@@ -67,7 +67,7 @@ std::string detail_chart_name(const TrialStatistics& s) {
   return !s.by_tumor.rows.empty() && s.by_finger.rows.empty() ? "sensitivity_by_tumor" : "measures_by_finger";
 }
 
-bool has_bars(const Chart& chart) {
+bool has_bars(const charts::Chart& chart) {
   for (const auto& series : chart.series)
     if (!series.y.empty()) return true;
   return false;
@@ -99,14 +99,14 @@ StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& 
       // The charts as the view shows them (the numbers of the last refresh).
       if (!shown) throw std::runtime_error("no statistics shown yet: refresh first");
       const char* ext = kind == Kind::chart_png ? ".png" : ".svg";
-      auto write = [&](const Chart& chart, const std::string& name) {
+      auto write = [&](const charts::Chart& chart, const std::string& name) {
         const auto path = dir / (name + ext);
-        if (kind == Kind::chart_png) write_chart_png(chart, path);
-        else write_chart_svg(chart, path);
+        if (kind == Kind::chart_png) charts::write_chart_png(chart, path);
+        else charts::write_chart_svg(chart, path);
         files.push_back(path);
       };
       write(condition_chart(*shown), pulse_only(*shown) ? "pulse_hit_rate_by_condition" : "measures_by_condition");
-      const Chart detail = detail_chart(*shown);
+      const charts::Chart detail = detail_chart(*shown);
       if (has_bars(detail)) write(detail, detail_chart_name(*shown));
     }
     for (const auto& f : files) out.files << QString::fromStdString(f.string());
@@ -140,7 +140,7 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   top->addWidget(refresh_button);
   const std::pair<ExportKind, const char*> buttons[] = {
       {ExportKind::long_csv, "Long CSV"}, {ExportKind::bids, "BIDS"}, {ExportKind::statistics_json, "Statistics JSON"},
-      {ExportKind::chart_png, "Chart PNG"}, {ExportKind::chart_svg, "Chart SVG"}};
+      {ExportKind::chart_png, "charts::Chart PNG"}, {ExportKind::chart_svg, "charts::Chart SVG"}};
   const char* names[] = {"exportLongCsv", "exportBids", "exportStatisticsJson", "exportChartPng", "exportChartSvg"};
   for (std::size_t i = 0; i < std::size(buttons); ++i) {
     auto* b = new QPushButton(tr(buttons[i].second), this);
@@ -185,8 +185,8 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
       emit exported(r.files);
     }
   });
-  condition_chart_->set_chart(Chart{}, tr("no scored trial yet"));
-  detail_chart_->set_chart(Chart{}, tr("no scored trial yet"));
+  condition_chart_->set_chart(charts::Chart{}, tr("no scored trial yet"));
+  detail_chart_->set_chart(charts::Chart{}, tr("no scored trial yet"));
 }
 
 StatisticsView::~StatisticsView() {

@@ -6,17 +6,13 @@
 #include <optional>
 #include <string>
 
-#include "experiments/pulse_task.hpp"
+#include "experiments/pulse_session.hpp"
+#include "sessions/session_setup.hpp"
 #include "store/pulse_store.hpp"
 
 namespace palprig {
 
-struct PulseSessionRequest {
-  std::string participant_code;
-  bool simulated = false, resume = false;
-  std::optional<std::uint64_t> seed;
-  SessionSetup setup;
-};
+using PulseSessionRequest = SessionRequest;
 
 struct OpenedPulseSession {
   PulseProtocol protocol;

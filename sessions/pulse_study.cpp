@@ -1,6 +1,7 @@
 #include "sessions/pulse_study.hpp"
 
 #include "experiments/rig_stimulus.hpp"
+#include "experiments/simulated_pulse_observer.hpp"
 #include "formats/scene_file.hpp"
 #include "models/parse_error.hpp"
 #include "sessions/pulse_setup.hpp"

@@ -9,7 +9,7 @@
 #include <functional>
 #include <memory>
 
-#include "experiments/pulse_task.hpp"
+#include "experiments/pulse_session.hpp"
 #include "sessions/study_session.hpp"
 
 namespace palprig {

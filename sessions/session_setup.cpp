@@ -1,6 +1,6 @@
 #include "sessions/session_setup.hpp"
 
-#include "experiments/random_source.hpp"
+#include "study/random_source.hpp"
 #include "models/parse_error.hpp"
 
 namespace palprig {
@@ -50,29 +50,54 @@ void refuse_changed_protocol(std::int64_t session_id, const nlohmann::json& stor
                        " started with a different version of this file)");
 }
 
-OpenedSession open_session(TrialStore& store, const Protocol& protocol, const SessionRequest& request) {
-  OpenedSession opened;
-  const auto resumed = session_to_resume(store, request.participant_code, protocol.name, request.resume, [&](std::int64_t id) {
-    const StoredSession stored = store.load_session(id);
-    return "stopped after " + std::to_string(stored.completed_trials) + " of " + std::to_string(stored.plan.trials.size()) +
-           " trials";
-  });
+OpenedSessionHead open_task_session(TrialStore& store, const std::string& protocol_name,
+                                    const nlohmann::json& file_snapshot, const std::string& protocol_file,
+                                    const SessionRequest& request, const TaskSessionSteps& steps) {
+  OpenedSessionHead opened;
+  const auto resumed = session_to_resume(store, request.participant_code, protocol_name, request.resume, steps.progress);
   if (resumed) {
-    StoredSession stored = store.load_session(*resumed);
-    refuse_changed_protocol(stored.id, stored.protocol_snapshot, protocol.snapshot, protocol.source);
-    opened.protocol = parse_protocol(stored.protocol_snapshot, protocol.source, stored.protocol_dir);
-    opened.plan = std::move(stored.plan);
+    const StoredSessionHead stored = steps.load(*resumed);
+    refuse_changed_protocol(stored.id, stored.protocol_snapshot, file_snapshot, protocol_file);
     opened.session_id = stored.id;
     opened.participant = stored.participant;
+    opened.seed = stored.seed;
     opened.start_position = stored.completed_trials;
     opened.resumed = true;
     return opened;
   }
   opened.participant = store.enrol(request.participant_code, request.simulated);
-  opened.protocol = protocol;
-  const std::uint64_t seed = request.seed ? *request.seed : default_session_seed(request.participant_code, protocol.name);
-  opened.plan = make_session_plan(protocol, opened.participant.number, seed);
-  opened.session_id = store.create_session(opened.participant, protocol, opened.plan, request.setup);
+  opened.seed = request.seed ? *request.seed : default_session_seed(request.participant_code, protocol_name);
+  opened.session_id = steps.create(opened.participant, opened.seed);
+  return opened;
+}
+
+OpenedSession open_session(TrialStore& store, const Protocol& protocol, const SessionRequest& request) {
+  OpenedSession opened;
+  std::optional<StoredSession> stored;
+  TaskSessionSteps steps;
+  steps.progress = [&](std::int64_t id) {
+    const StoredSession s = store.load_session(id);
+    return "stopped after " + std::to_string(s.completed_trials) + " of " + std::to_string(s.plan.trials.size()) + " trials";
+  };
+  steps.load = [&](std::int64_t id) {
+    stored = store.load_session(id);
+    return StoredSessionHead{stored->id, stored->participant, 0, stored->completed_trials, stored->protocol_snapshot};
+  };
+  steps.create = [&](const ParticipantRecord& who, std::uint64_t seed) {
+    opened.plan = make_session_plan(protocol, who.number, seed);
+    return store.create_session(who, protocol, opened.plan, request.setup);
+  };
+  const OpenedSessionHead head = open_task_session(store, protocol.name, protocol.snapshot, protocol.source, request, steps);
+  if (head.resumed) {
+    opened.protocol = parse_protocol(stored->protocol_snapshot, protocol.source, stored->protocol_dir);
+    opened.plan = std::move(stored->plan);
+  } else {
+    opened.protocol = protocol;
+  }
+  opened.session_id = head.session_id;
+  opened.participant = head.participant;
+  opened.start_position = head.start_position;
+  opened.resumed = head.resumed;
   return opened;
 }
 

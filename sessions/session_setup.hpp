@@ -13,8 +13,8 @@
 #include <optional>
 #include <string>
 
-#include "experiments/protocol.hpp"
-#include "experiments/session_plan.hpp"
+#include "study/protocol.hpp"
+#include "study/session_plan.hpp"
 #include "experiments/trial_runner.hpp"
 #include "store/trial_store.hpp"
 
@@ -39,6 +39,34 @@ struct SessionRequest {
 
 // Throws InputError (file, field, reason) for every refusal above.
 OpenedSession open_session(TrialStore& store, const Protocol& protocol, const SessionRequest& request);
+
+// The one new-or-resume assembly every task kind uses (discrimination and localisation here,
+// threshold_setup and pulse_setup): the task says how far a stored session got, how to load
+// one (keeping its own parts, e.g. the plan or the tracks' state) and how to create one.
+struct StoredSessionHead {
+  std::int64_t id = 0;
+  ParticipantRecord participant;
+  std::uint64_t seed = 0;
+  int completed_trials = 0;
+  nlohmann::json protocol_snapshot;
+};
+struct TaskSessionSteps {
+  std::function<std::string(std::int64_t)> progress;     // "stopped after 12 of 32 trials"
+  std::function<StoredSessionHead(std::int64_t)> load;    // the unfinished session being resumed
+  std::function<std::int64_t(const ParticipantRecord&, std::uint64_t seed)> create;  // a new one
+};
+struct OpenedSessionHead {
+  std::int64_t session_id = 0;
+  ParticipantRecord participant;
+  std::uint64_t seed = 0;
+  int start_position = 0;
+  bool resumed = false;
+};
+// Resume (claimed; a changed protocol file refused) or start anew (participant enrolled, seed
+// given or derived, session created); every refusal is an InputError.
+OpenedSessionHead open_task_session(TrialStore& store, const std::string& protocol_name,
+                                    const nlohmann::json& file_snapshot, const std::string& protocol_file,
+                                    const SessionRequest& request, const TaskSessionSteps& steps);
 
 // The rules above, shared by every task (discrimination, threshold, pulse): the unfinished
 // session of this participant and protocol when resuming, claimed by this process (one process

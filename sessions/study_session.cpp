@@ -7,7 +7,7 @@
 #include "experiments/rig_stimulus.hpp"
 #include "experiments/session_clock.hpp"
 #include "experiments/session_loop.hpp"
-#include "experiments/trial_feedback.hpp"
+#include "study/trial_feedback.hpp"
 #include "formats/calibration_file.hpp"
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"

@@ -18,9 +18,9 @@
 #include <string>
 
 #include "experiments/participant.hpp"
-#include "experiments/protocol.hpp"
+#include "study/protocol.hpp"
 #include "experiments/simulated_participant.hpp"
-#include "experiments/trial_record.hpp"
+#include "study/trial_record.hpp"
 #include "experiments/trial_runner.hpp"
 #include "store/trial_store.hpp"
 
@@ -88,7 +88,7 @@ class SessionListener {
   // A trial is committed to the store (its own transaction); `total` trials are planned.
   virtual void trial_committed(const TrialRecord&, int /*total*/) {}
   // After a committed trial, what the participant is told about it, when the protocol asks
-  // for feedback (experiments/trial_feedback.hpp); never called otherwise.
+  // for feedback (study/trial_feedback.hpp); never called otherwise.
   virtual void participant_feedback(int /*position*/, const std::string& /*text*/) {}
   virtual void session_ended(const SessionEnd&) {}
 };

@@ -11,33 +11,38 @@ OpenedThresholdSession open_threshold_session(SqliteTrialStore& store, const Thr
                                               const ThresholdSessionRequest& request) {
   ThresholdStore threshold_store(store);
   OpenedThresholdSession opened;
-  const auto resumed = session_to_resume(store, request.participant_code, protocol.name, request.resume, [&](std::int64_t id) {
+  std::optional<StoredThresholdSession> stored;
+  TaskSessionSteps steps;
+  steps.progress = [&](std::int64_t id) {
     return "stopped after " + std::to_string(threshold_store.load_session(id).completed_trials) + " trials";
-  });
-  if (resumed) {
-    const StoredThresholdSession stored = threshold_store.load_session(*resumed);
-    refuse_changed_protocol(stored.id, stored.protocol_snapshot, protocol.snapshot, protocol.source);
-    opened.protocol = parse_threshold_protocol(stored.protocol_snapshot, protocol.source);
+  };
+  steps.load = [&](std::int64_t id) {
+    stored = threshold_store.load_session(id);
+    return StoredSessionHead{stored->id, stored->participant, stored->seed, stored->completed_trials, stored->protocol_snapshot};
+  };
+  steps.create = [&](const ParticipantRecord& who, std::uint64_t seed) {
+    return threshold_store.create_session(who, protocol, seed, request.setup);
+  };
+  const OpenedSessionHead head = open_task_session(store, protocol.name, protocol.snapshot, protocol.source, request, steps);
+  if (head.resumed) {
+    opened.protocol = parse_threshold_protocol(stored->protocol_snapshot, protocol.source);
     for (const TrackSpec& spec : opened.protocol.tracks) opened.tracks.emplace_back(spec);
-    if (!stored.last_state.is_null()) {
+    if (!stored->last_state.is_null()) {
       try {
-        restore_tracks(opened.tracks, stored.last_state);
+        restore_tracks(opened.tracks, stored->last_state);
       } catch (const std::invalid_argument& e) {
-        throw InputError(store.location(), "threshold_trials.state of session " + std::to_string(stored.id), e.what());
+        throw InputError(store.location(), "threshold_trials.state of session " + std::to_string(stored->id), e.what());
       }
     }
-    opened.session_id = stored.id;
-    opened.participant = stored.participant;
-    opened.seed = stored.seed;
-    opened.start_position = stored.completed_trials;
-    opened.resumed = true;
-    return opened;
+  } else {
+    opened.protocol = protocol;
+    for (const TrackSpec& spec : protocol.tracks) opened.tracks.emplace_back(spec);
   }
-  opened.participant = store.enrol(request.participant_code, request.simulated);
-  opened.protocol = protocol;
-  for (const TrackSpec& spec : protocol.tracks) opened.tracks.emplace_back(spec);
-  opened.seed = request.seed ? *request.seed : default_session_seed(request.participant_code, protocol.name);
-  opened.session_id = threshold_store.create_session(opened.participant, protocol, opened.seed, request.setup);
+  opened.session_id = head.session_id;
+  opened.participant = head.participant;
+  opened.seed = head.seed;
+  opened.start_position = head.start_position;
+  opened.resumed = head.resumed;
   return opened;
 }
 

@@ -8,19 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "experiments/adaptive_track.hpp"
-#include "experiments/threshold_protocol.hpp"
+#include "study/adaptive_track.hpp"
+#include "study/threshold_protocol.hpp"
+#include "sessions/session_setup.hpp"
 #include "store/threshold_store.hpp"
 
 namespace palprig {
 
-struct ThresholdSessionRequest {
-  std::string participant_code;
-  bool simulated = false;
-  bool resume = false;
-  std::optional<std::uint64_t> seed;
-  SessionSetup setup;
-};
+using ThresholdSessionRequest = SessionRequest;
 
 struct OpenedThresholdSession {
   ThresholdProtocol protocol;

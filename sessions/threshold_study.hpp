@@ -10,7 +10,7 @@
 #include <memory>
 #include <vector>
 
-#include "experiments/adaptive_track.hpp"
+#include "study/adaptive_track.hpp"
 #include "experiments/threshold_observer.hpp"
 #include "experiments/threshold_session.hpp"
 #include "sessions/study_session.hpp"

@@ -62,6 +62,8 @@ class JournaledTrialStore final : public TrialStore {
     server_.scan_scored_trials(family, include_practice, visit);
   }
   std::vector<StoredTrial> read_trials(bool include_practice) override { return server_.read_trials(include_practice); }
+  std::vector<StoredTrial> read_session_trials(std::int64_t session_id) override { return server_.read_session_trials(session_id); }
+  int next_participant_number() override { return server_.next_participant_number(); }
 
   // Waits up to `timeout` for the pushes; returns the journal commits still pending.
   std::int64_t flush(std::chrono::milliseconds timeout) { return pusher_->flush(timeout); }

@@ -11,6 +11,8 @@
 
 #include "models/parse_error.hpp"
 #include "store/postgres_trial_store.hpp"
+#include "store/host_identity.hpp"
+#include "store/utc_time.hpp"
 
 namespace palprig {
 

@@ -8,38 +8,32 @@
 #include <map>
 #include <random>
 
-#include "experiments/scoring.hpp"
+#include "study/scoring.hpp"
 #include "models/parse_error.hpp"
 #include "store/postgres_schema.hpp"
 #include "store/postgres_session_rows.hpp"
+#include "store/host_identity.hpp"
+#include "store/trial_rows.hpp"
+#include "store/utc_time.hpp"
 
 namespace palprig {
 
 namespace {
-
-std::string flags_text(const FingerFlags& f) {
-  std::string s;
-  for (bool b : f) s += b ? '1' : '0';
-  return s;
-}
 
 SqlValue finite_or_null(double x) {
   if (std::isfinite(x)) return x;
   return std::monostate{};
 }
 
-std::string practice_filter(bool include_practice, const char* word) {
-  return include_practice ? std::string() : std::string(" ") + word + " t.practice = 0";
-}
-
-double real_or_nan(const PgResult& r, int row, int column) {
-  return r.is_null(row, column) ? std::nan("") : r.real(row, column);
-}
-
-std::optional<double> real_or_null(const PgResult& r, int row, int column) {
-  if (r.is_null(row, column)) return std::nullopt;
-  return r.real(row, column);
-}
+// One row of a result as the decoders of store/trial_rows.hpp read it.
+struct PgRow {
+  const PgResult& r;
+  int row;
+  bool is_null(int c) const noexcept { return r.is_null(row, c); }
+  std::int64_t integer(int c) const { return r.integer(row, c); }
+  double real(int c) const { return r.real(row, c); }
+  std::string_view text_view(int c) const noexcept { return r.text_view(row, c); }
+};
 
 // Streams the rows of a query in batches through a cursor, inside one read-only snapshot, so
 // a million trials are never in memory at once. `binary`: the rows come in binary format
@@ -59,21 +53,6 @@ void stream_rows(PgConnection& db, const std::string& sql, RowFn on_row, bool bi
 }
 
 }  // namespace
-
-std::string this_host_name() {
-  char name[256] = {};
-  if (::gethostname(name, sizeof name - 1) != 0) return "unknown";
-  return name;
-}
-
-std::string utc_now_text() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
 
 std::string new_session_uid() {
   std::random_device device;
@@ -102,7 +81,7 @@ TrialRows trial_rows_of(const TrialRecord& r) {
   if (discrimination) {
     t[6] = r.combination_label;
     for (int f = 0; f < kFingerCount; ++f) t[static_cast<std::size_t>(7 + f)] = r.stimulus_kPa[static_cast<std::size_t>(f)];
-    t[10] = flags_text(r.truth);
+    t[10] = trial_rows::flags_text(r.truth);
   }
   for (int f = 0; f < kFingerCount; ++f) {
     t[static_cast<std::size_t>(15 + f)] = finite_or_null(r.felt_kPa[static_cast<std::size_t>(f)]);
@@ -110,7 +89,7 @@ TrialRows trial_rows_of(const TrialRecord& r) {
   if (r.answered) {
     t[13] = r.response_time_s;
     if (discrimination) {
-      t[12] = flags_text(r.answer);
+      t[12] = trial_rows::flags_text(r.answer);
       for (int f = 0; f < kFingerCount; ++f) {
         t[static_cast<std::size_t>(18 + f)] = std::string(to_string(r.finger_outcomes[static_cast<std::size_t>(f)]));
       }
@@ -320,144 +299,68 @@ std::string PostgresTrialStore::rating_columns() const {
 
 void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_practice,
                                             const std::function<void(const ScoredTrial&)>& visit) {
+  using namespace trial_rows;
   if (family == TrialFamily::discrimination) {
     ScoredTrial t;
     // ORDER BY id: commit order, as the SQLite store's rowid scan (response-time means then add
     // up in the same order, to the last bit).
     stream_rows(db_,
-                "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, t.outcome1, t.outcome2, "
-                "t.outcome3, t.combination_label, t.onset_s, " + rating_columns() + " FROM trials t WHERE t.mode != 'scene'" +
-                    practice_filter(include_practice, "AND") + " ORDER BY t.id",
+                std::string("SELECT ") + kScoredDiscriminationColumns + rating_columns() +
+                    " FROM trials t WHERE t.mode != 'scene'" + practice_filter(include_practice, "AND") + " ORDER BY t.id",
                 [&](const PgResult& q, int i) {
-                  t.trial_id = q.integer(i, 0);
-                  t.session_id = q.integer(i, 1);
-                  t.condition = q.text_view(i, 2);
-                  t.answered = q.integer(i, 3) != 0;
-                  t.response_time_s = real_or_nan(q, i, 4);
-                  for (int f = 0; f < kFingerCount; ++f) {
-                    t.finger_outcomes[static_cast<std::size_t>(f)] =
-                        t.answered && !q.is_null(i, 5 + f) ? outcome_from_string(q.text_view(i, 5 + f)) : std::nullopt;
-                  }
-                  t.combination_label =
-                      q.is_null(i, 8) ? std::nullopt : std::optional<std::string_view>(q.text_view(i, 8));
-                  t.rt_after_stimulus_s =
-                      response_time_after_stimulus_s(q.real(i, 9), t.response_time_s, real_or_nan(q, i, 11));
-                  t.confidence = q.is_null(i, 10) ? std::nullopt : std::optional<int>(static_cast<int>(q.integer(i, 10)));
+                  decode_scored_discrimination(PgRow{q, i}, t);
                   visit(t);
                 },
                 true);
     return;
   }
   // Localisation: one row per (trial, tumor score), gathered per trial.
-  ScoredTrial t;
-  std::string condition;
-  std::vector<std::string> tumor_names;
-  std::vector<ScoredTumor> tumors;
-  std::size_t tumor_count = 0;
-  bool pending = false;
-  const auto flush = [&] {
-    if (!pending) return;
-    tumors.resize(tumor_count);
-    for (std::size_t i = 0; i < tumor_count; ++i) tumors[i].tumor = tumor_names[i];
-    t.condition = condition;
-    t.tumors = std::span<const ScoredTumor>(tumors.data(), tumor_count);
-    visit(t);
-    pending = false;
-  };
+  LocalisationGatherer gather(visit);
   stream_rows(db_,
-              "SELECT t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, "
-              "t.false_marks, t.onset_s, " + rating_columns() + " FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
+              std::string("SELECT ") + kScoredLocalisationColumns + rating_columns() +
+                  " FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
                   practice_filter(include_practice, "AND") + " ORDER BY t.id, ts.tumor COLLATE \"C\"",
-              [&](const PgResult& q, int i) {
-                const std::int64_t trial_id = q.integer(i, 0);
-                if (!pending || trial_id != t.trial_id) {
-                  flush();
-                  pending = true;
-                  tumor_count = 0;
-                  t = ScoredTrial{};
-                  t.trial_id = trial_id;
-                  t.session_id = q.integer(i, 1);
-                  condition.assign(q.text_view(i, 2));
-                  t.answered = q.integer(i, 3) != 0;
-                  t.response_time_s = real_or_nan(q, i, 4);
-                  t.false_marks = q.is_null(i, 7) ? 0 : q.integer(i, 7);
-                  t.rt_after_stimulus_s =
-                      response_time_after_stimulus_s(q.real(i, 8), t.response_time_s, real_or_nan(q, i, 10));
-                }
-                if (q.is_null(i, 5)) return;
-                const auto outcome = outcome_from_string(q.text_view(i, 6));
-                if (!outcome) return;
-                if (tumor_names.size() <= tumor_count) tumor_names.emplace_back();
-                if (tumors.size() <= tumor_count) tumors.emplace_back();
-                tumor_names[tumor_count].assign(q.text_view(i, 5));
-                tumors[tumor_count].outcome = *outcome;
-                ++tumor_count;
-              },
-              true);
-  flush();
+              [&](const PgResult& q, int i) { gather.add(PgRow{q, i}); }, true);
+  gather.finish();
 }
 
 std::vector<StoredTrial> PostgresTrialStore::read_trials(bool include_practice) {
+  return read_trials_where(trial_rows::practice_filter(include_practice, "WHERE"));
+}
+
+std::vector<StoredTrial> PostgresTrialStore::read_session_trials(std::int64_t session_id) {
+  return read_trials_where(" WHERE s.id = " + std::to_string(session_id));
+}
+
+int PostgresTrialStore::next_participant_number() {
+  const PgResult r = db_.exec("SELECT COALESCE(MAX(number), 0) + 1 FROM participants");
+  return static_cast<int>(r.integer(0, 0));
+}
+
+std::vector<StoredTrial> PostgresTrialStore::read_trials_where(const std::string& where) {
+  using namespace trial_rows;
   std::vector<StoredTrial> trials;
   std::map<std::int64_t, std::size_t> scene_trials;  // trial id -> index, for scores and marks
-  stream_rows(
-      db_,
-      "SELECT p.code, p.simulated, p.number, s.id, s.protocol_name, s.task, s.bids_task, t.id, t.position, t.block, "
-      "t.condition, t.mode, t.practice, t.combination, t.combination_label, t.stimulus1_kPa, t.stimulus2_kPa, "
-      "t.stimulus3_kPa, t.felt1_kPa, t.felt2_kPa, t.felt3_kPa, t.truth, t.answered, t.answer, t.response_time_s, "
-      "t.onset_s, t.outcome1, t.outcome2, t.outcome3, t.false_marks, t.completed_utc, " + rating_columns() +
-          " FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
-          practice_filter(include_practice, "WHERE") + " ORDER BY p.number, s.id, t.position",
-      [&](const PgResult& q, int i) {
-        StoredTrial t;
-        t.participant = q.text(i, 0);
-        t.simulated = q.integer(i, 1) != 0;
-        t.participant_number = static_cast<int>(q.integer(i, 2));
-        t.session = q.integer(i, 3);
-        t.protocol = q.text(i, 4);
-        t.task = q.text(i, 5);
-        t.bids_task = q.text(i, 6);
-        t.id = q.integer(i, 7);
-        t.position = static_cast<int>(q.integer(i, 8));
-        t.block = static_cast<int>(q.integer(i, 9));
-        t.condition = q.text(i, 10);
-        t.mode = q.text(i, 11);
-        t.practice = q.integer(i, 12) != 0;
-        t.combination = static_cast<int>(q.integer(i, 13));
-        t.combination_label = q.text(i, 14);
-        for (int f = 0; f < kFingerCount; ++f) {
-          t.stimulus_kPa[static_cast<std::size_t>(f)] = real_or_null(q, i, 15 + f);
-          t.felt_kPa[static_cast<std::size_t>(f)] = real_or_null(q, i, 18 + f);
-          t.outcome[static_cast<std::size_t>(f)] = q.text(i, 26 + f);
-        }
-        t.truth = q.text(i, 21);
-        t.answered = q.integer(i, 22) != 0;
-        t.answer = q.text(i, 23);
-        t.response_time_s = real_or_null(q, i, 24);
-        t.onset_s = q.real(i, 25);
-        if (!q.is_null(i, 29)) t.false_marks = q.integer(i, 29);
-        t.completed_utc = q.text(i, 30);
-        if (!q.is_null(i, 31)) t.confidence = static_cast<int>(q.integer(i, 31));
-        t.stimulus_end_s = real_or_null(q, i, 32);
-        if (t.answered && t.response_time_s && t.stimulus_end_s) {
-          t.rt_after_stimulus_s = response_time_after_stimulus_s(t.onset_s, *t.response_time_s, *t.stimulus_end_s);
-        }
-        if (t.mode == "scene") scene_trials[t.id] = trials.size();
-        trials.push_back(std::move(t));
-      });
+  stream_rows(db_,
+              std::string("SELECT ") + kStoredTrialColumns + rating_columns() +
+                  " FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
+                  where + " ORDER BY p.number, s.id, t.position",
+              [&](const PgResult& q, int i) {
+                StoredTrial t = decode_stored_trial(PgRow{q, i});
+                if (t.mode == "scene") scene_trials[t.id] = trials.size();
+                trials.push_back(std::move(t));
+              });
   if (scene_trials.empty()) return trials;
   stream_rows(db_, "SELECT trial_id, tumor, outcome FROM tumor_scores ORDER BY trial_id, tumor COLLATE \"C\"",
               [&](const PgResult& q, int i) {
                 const auto it = scene_trials.find(q.integer(i, 0));
-                if (it != scene_trials.end()) trials[it->second].tumor_outcomes.emplace_back(q.text(i, 1), q.text(i, 2));
+                if (it != scene_trials.end()) trials[it->second].tumor_outcomes.push_back(decode_tumor_outcome(PgRow{q, i}, 1));
               });
   stream_rows(db_, "SELECT trial_id, mark, x_mm, y_mm, tumor FROM marks ORDER BY trial_id, mark",
               [&](const PgResult& q, int i) {
                 const auto it = scene_trials.find(q.integer(i, 0));
                 if (it == scene_trials.end()) return;
-                StoredMark m{static_cast<int>(q.integer(i, 1)), q.real(i, 2), q.real(i, 3), std::nullopt};
-                if (!q.is_null(i, 4)) m.tumor = q.text(i, 4);
-                trials[it->second].marks.push_back(std::move(m));
+                trials[it->second].marks.push_back(decode_mark(PgRow{q, i}, 1));
               });
   return trials;
 }

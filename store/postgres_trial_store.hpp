@@ -58,6 +58,8 @@ class PostgresTrialStore final : public TrialStore {
   void scan_scored_trials(TrialFamily family, bool include_practice,
                           const std::function<void(const ScoredTrial&)>& visit) override;
   std::vector<StoredTrial> read_trials(bool include_practice) override;
+  std::vector<StoredTrial> read_session_trials(std::int64_t session_id) override;
+  int next_participant_number() override;
 
   // The session's global identity (what the journal and copies key on).
   std::string session_uid(std::int64_t session_id);
@@ -65,6 +67,7 @@ class PostgresTrialStore final : public TrialStore {
   const PgTarget& target() const noexcept { return db_.target(); }
 
  private:
+  std::vector<StoredTrial> read_trials_where(const std::string& where);  // " WHERE ..." or ""
   // Session locks (postgres_session_lock.cpp).
   void refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who);
   void take_lock(std::int64_t session_id, const std::string& who);  // inside a transaction
@@ -77,14 +80,8 @@ class PostgresTrialStore final : public TrialStore {
   bool rating_columns_ = true;       // false: a server older than schema 3 opened for reading
 };
 
-// The host name of this machine (sessions record where they ran).
-std::string this_host_name();
-
 // A new session's global identity: host, UTC time and 64 random bits.
 std::string new_session_uid();
-
-// "2026-11-23T05:52:30Z"
-std::string utc_now_text();
 
 // The trial's rows as the SQLite store writes them (columns of store/session_rows.hpp).
 TrialRows trial_rows_of(const TrialRecord& trial);

@@ -12,7 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiments/pulse_task.hpp"
+#include "study/pulse_protocol.hpp"
+#include "study/pulse_record.hpp"
 #include "store/sqlite_trial_store.hpp"
 
 namespace palprig {

@@ -81,12 +81,15 @@ class SqliteTrialStore final : public TrialStore {
   void scan_scored_trials(TrialFamily family, bool include_practice,
                           const std::function<void(const ScoredTrial&)>& visit) override;
   std::vector<StoredTrial> read_trials(bool include_practice) override;
+  std::vector<StoredTrial> read_session_trials(std::int64_t session_id) override;
+  int next_participant_number() override;
 
   // The SQL connection, for tests and tools that check the file itself.
   Database& database() noexcept { return db_; }
   const std::string& file() const noexcept { return db_.file(); }
 
  private:
+  std::vector<StoredTrial> read_trials_where(const std::string& where);  // " WHERE ..." or ""
   bool is_blank();  // a new file: no tables, no palprig marks
   void create_schema_if_blank();
   bool has_lock_table();

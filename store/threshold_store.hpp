@@ -12,8 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiments/threshold_protocol.hpp"
-#include "experiments/threshold_session.hpp"
+#include "study/threshold_protocol.hpp"
+#include "study/threshold_record.hpp"
 #include "store/sqlite_trial_store.hpp"
 
 namespace palprig {

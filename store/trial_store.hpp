@@ -23,9 +23,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiments/protocol.hpp"
-#include "experiments/session_plan.hpp"
-#include "experiments/trial_record.hpp"
+#include "study/protocol.hpp"
+#include "study/session_plan.hpp"
+#include "study/trial_record.hpp"
 #include "statistics/outcome.hpp"
 
 namespace palprig {
@@ -172,6 +172,11 @@ class TrialStore {
                                   const std::function<void(const ScoredTrial&)>& visit) = 0;
   // Every trial (practice ones when asked), ordered by participant number, session, position.
   virtual std::vector<StoredTrial> read_trials(bool include_practice) = 0;
+  // One session's trials (practice included), by position: a console showing a session to
+  // resume reads these, not the whole store.
+  virtual std::vector<StoredTrial> read_session_trials(std::int64_t session_id) = 0;
+  // The number the next enrolled participant gets (1 in an empty store).
+  virtual int next_participant_number() = 0;
 };
 
 // Opens the store at `location`. Today: a path is an SQLite file (created with its schema when

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "calibration/sweep_csv.hpp"
-#include "tests/controller/test_modbus_support.hpp"
+#include "tests/support/modbus_support.hpp"
 #include "tests/support/run_process.hpp"
 
 using namespace palprig;

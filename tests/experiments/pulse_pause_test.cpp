@@ -10,10 +10,10 @@
 
 #include "controller/backend_factory.hpp"
 #include "controller/tick_setup.hpp"
-#include "experiments/pulse_task.hpp"
+#include "experiments/pulse_session.hpp"
 #include "experiments/rig_stimulus.hpp"
 #include "formats/rig_file.hpp"
-#include "test_support.hpp"
+#include "tests/support/test_support.hpp"
 
 namespace palprig {
 namespace {

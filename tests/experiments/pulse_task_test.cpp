@@ -7,12 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiments/pulse_task.hpp"
+#include "experiments/pulse_session.hpp"
+#include "experiments/simulated_pulse_observer.hpp"
+#include "study/pulse_scene.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "models/parse_error.hpp"
 #include "statistics/statistics_proportion.hpp"
-#include "process_support.hpp"
-#include "test_support.hpp"
+#include "tests/support/process_support.hpp"
+#include "tests/support/test_support.hpp"
 
 namespace palprig {
 namespace {

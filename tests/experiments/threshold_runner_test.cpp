@@ -8,7 +8,7 @@
 #include <set>
 
 #include "experiments/threshold_session.hpp"
-#include "test_support.hpp"
+#include "tests/support/recording_output.hpp"
 
 namespace palprig {
 namespace {

@@ -17,8 +17,8 @@
 #include "experiments/threshold_session.hpp"
 #include "formats/rig_file.hpp"
 #include "store/threshold_store.hpp"
-#include "process_support.hpp"
-#include "test_support.hpp"
+#include "tests/support/process_support.hpp"
+#include "tests/support/test_support.hpp"
 
 namespace palprig {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "experiments/trial_runner.hpp"
-#include "test_support.hpp"
+#include "tests/support/recording_output.hpp"
 
 namespace palprig {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "experiments/protocol.hpp"
+#include "study/protocol.hpp"
 #include "formats/calibration_file.hpp"
 #include "formats/json_file.hpp"
 #include "formats/rig_file.hpp"

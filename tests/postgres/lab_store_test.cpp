@@ -14,10 +14,11 @@
 #include <vector>
 
 #include "models/parse_error.hpp"
+#include "store/host_identity.hpp"
 #include "store/postgres_schema.hpp"
 #include "store/postgres_trial_store.hpp"
-#include "tests/experiments/process_support.hpp"
-#include "tests/experiments/test_support.hpp"
+#include "tests/support/process_support.hpp"
+#include "tests/support/test_support.hpp"
 #include "tests/postgres/pg_test_support.hpp"
 
 namespace palprig {

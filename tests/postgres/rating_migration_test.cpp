@@ -16,8 +16,8 @@
 #include "store/sqlite_db.hpp"
 #include "store/sqlite_session_rows.hpp"
 #include "store/sqlite_trial_store.hpp"
-#include "tests/experiments/process_support.hpp"
-#include "tests/experiments/test_support.hpp"
+#include "tests/support/process_support.hpp"
+#include "tests/support/test_support.hpp"
 #include "tests/postgres/pg_test_support.hpp"
 
 namespace palprig {

@@ -13,16 +13,17 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiments/protocol.hpp"
-#include "experiments/session_plan.hpp"
+#include "study/protocol.hpp"
+#include "study/session_plan.hpp"
 #include "models/parse_error.hpp"
+#include "store/host_identity.hpp"
 #include "store/postgres_schema.hpp"
 #include "store/postgres_session_rows.hpp"
 #include "store/postgres_trial_store.hpp"
 #include "store/sqlite_db.hpp"
 #include "store/sqlite_session_rows.hpp"
-#include "tests/experiments/process_support.hpp"
-#include "tests/experiments/test_support.hpp"
+#include "tests/support/process_support.hpp"
+#include "tests/support/test_support.hpp"
 #include "tests/postgres/pg_test_support.hpp"
 
 namespace palprig {

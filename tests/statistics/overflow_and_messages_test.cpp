@@ -13,8 +13,8 @@
 #include "statistics/statistics_describe.hpp"
 #include "statistics/statistics_error.hpp"
 #include "statistics/statistics_ttest.hpp"
-#include "tests/experiments/process_support.hpp"
-#include "tests/experiments/test_support.hpp"
+#include "tests/support/process_support.hpp"
+#include "tests/support/test_support.hpp"
 
 namespace palprig {
 namespace {

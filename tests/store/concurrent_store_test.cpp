@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "store/sqlite_trial_store.hpp"
-#include "tests/experiments/process_support.hpp"
-#include "tests/experiments/test_support.hpp"
+#include "tests/support/process_support.hpp"
+#include "tests/support/test_support.hpp"
 
 namespace palprig {
 namespace {

@@ -5,7 +5,7 @@
 #include "models/parse_error.hpp"
 #include "store/pg_target.hpp"
 #include "store/postgres_trial_store.hpp"
-#include "tests/experiments/process_support.hpp"
+#include "tests/support/process_support.hpp"
 
 namespace palprig {
 namespace {

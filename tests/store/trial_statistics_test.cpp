@@ -8,8 +8,8 @@
 
 #include "store/trial_statistics.hpp"
 #include "store/trial_store.hpp"
-#include "tests/experiments/process_support.hpp"
-#include "tests/experiments/test_support.hpp"
+#include "tests/support/process_support.hpp"
+#include "tests/support/test_support.hpp"
 
 namespace palprig {
 namespace {

@@ -1,0 +1,14 @@
+#pragma once
+// A chart (charts/chart_png.hpp) as an SVG file: the same drawing on a QSvgGenerator, so the PNG
+// and the SVG of a figure never differ, and a journal gets vector lines and text.
+#include <filesystem>
+
+#include "charts/chart_png.hpp"
+
+namespace palprig::charts {
+
+// Throws std::invalid_argument as write_chart_png, std::runtime_error when the file cannot be
+// written.
+void write_chart_svg(const Chart& chart, const std::filesystem::path& path);
+
+}  // namespace palprig::charts

@@ -1,0 +1,157 @@
+#include "store/sqlite_trial_store.hpp"
+
+// The SQLite store's schema: creation of a blank file, identity checks, and migration of older
+// files in one transaction (the PostgreSQL side's is store/postgres_schema.cpp).
+#include <sqlite3.h>
+
+#include <string>
+
+#include "models/parse_error.hpp"
+
+namespace palprig {
+
+namespace {
+
+constexpr const char* kSchema = R"sql(
+CREATE TABLE participants (
+  id          INTEGER PRIMARY KEY,
+  code        TEXT NOT NULL UNIQUE,
+  number      INTEGER NOT NULL UNIQUE,         -- 1-based enrolment order (counterbalancing)
+  simulated   INTEGER NOT NULL CHECK (simulated IN (0, 1)),
+  created_utc TEXT NOT NULL
+);
+CREATE TABLE sessions (
+  id                INTEGER PRIMARY KEY,
+  participant_id    INTEGER NOT NULL REFERENCES participants(id),
+  protocol_name     TEXT NOT NULL,
+  task              TEXT NOT NULL,
+  bids_task         TEXT NOT NULL,
+  protocol_json     TEXT NOT NULL,             -- the protocol file as read
+  protocol_dir      TEXT NOT NULL,
+  seed              INTEGER NOT NULL,
+  condition_order   TEXT NOT NULL,             -- JSON array of condition indices
+  rig_id            TEXT NOT NULL,
+  rig_backend       TEXT NOT NULL,
+  calibration       TEXT NOT NULL,
+  participant_model TEXT,                      -- simulated participant parameters (JSON)
+  status            TEXT NOT NULL CHECK (status IN ('running', 'completed')),
+  started_utc       TEXT NOT NULL,
+  finished_utc      TEXT
+);
+CREATE TABLE planned_trials (                  -- the generated order, stored before trial 1
+  session_id      INTEGER NOT NULL REFERENCES sessions(id),
+  position        INTEGER NOT NULL,
+  block           INTEGER NOT NULL,
+  condition_index INTEGER NOT NULL,
+  condition       TEXT NOT NULL,
+  practice        INTEGER NOT NULL,
+  combination     INTEGER NOT NULL,            -- -1 for localisation
+  break_after     INTEGER NOT NULL,
+  PRIMARY KEY (session_id, position)
+) WITHOUT ROWID;
+CREATE TABLE trials (
+  id                INTEGER PRIMARY KEY,
+  session_id        INTEGER NOT NULL REFERENCES sessions(id),
+  position          INTEGER NOT NULL,
+  block             INTEGER NOT NULL,
+  condition         TEXT NOT NULL,
+  mode              TEXT NOT NULL,
+  practice          INTEGER NOT NULL,
+  combination       INTEGER NOT NULL,
+  combination_label TEXT,
+  stimulus1_kPa     REAL, stimulus2_kPa REAL, stimulus3_kPa REAL,
+  truth             TEXT,                      -- per finger 1/0, e.g. "010"
+  answered          INTEGER NOT NULL,          -- 0: the response timed out
+  answer            TEXT,                      -- per finger 1/0; NULL when not answered
+  response_time_s   REAL,
+  onset_s           REAL NOT NULL,
+  felt1_kPa         REAL, felt2_kPa REAL, felt3_kPa REAL,
+  outcome1          TEXT CHECK (outcome1 IN ('TP', 'FN', 'TN', 'FP')),
+  outcome2          TEXT CHECK (outcome2 IN ('TP', 'FN', 'TN', 'FP')),
+  outcome3          TEXT CHECK (outcome3 IN ('TP', 'FN', 'TN', 'FP')),
+  false_marks       INTEGER,
+  completed_utc     TEXT NOT NULL,
+  confidence        INTEGER CHECK (confidence BETWEEN 1 AND 9),  -- NULL: not asked or not answered
+  stimulus_end_s    REAL,                      -- when the stimulus ended (onset_s's clock)
+  UNIQUE (session_id, position)
+);
+CREATE TABLE tumor_scores (
+  trial_id        INTEGER NOT NULL REFERENCES trials(id),
+  tumor           TEXT NOT NULL,
+  outcome         TEXT NOT NULL CHECK (outcome IN ('TP', 'FN')),
+  nearest_mark_mm REAL,
+  PRIMARY KEY (trial_id, tumor)
+) WITHOUT ROWID;
+CREATE TABLE marks (
+  trial_id INTEGER NOT NULL REFERENCES trials(id),
+  mark     INTEGER NOT NULL,
+  x_mm     REAL NOT NULL,
+  y_mm     REAL NOT NULL,
+  tumor    TEXT,                               -- the tumor it hit; NULL for a false mark
+  PRIMARY KEY (trial_id, mark)
+) WITHOUT ROWID;
+)sql";
+
+// Schema 1 -> 2: the confidence rating and the stimulus end (appended, as in kSchema).
+constexpr const char* kMigrationTo2 = R"sql(
+ALTER TABLE trials ADD COLUMN confidence INTEGER CHECK (confidence BETWEEN 1 AND 9);
+ALTER TABLE trials ADD COLUMN stimulus_end_s REAL;
+PRAGMA user_version = 2;
+)sql";
+
+}  // namespace
+
+bool SqliteTrialStore::is_blank() {
+  if (db_.pragma_integer("application_id") != 0 || db_.pragma_integer("user_version") != 0) return false;
+  auto tables = db_.prepare("SELECT count(*) FROM sqlite_master");
+  tables.step();
+  return tables.integer(0) == 0;
+}
+
+void SqliteTrialStore::create_schema_if_blank() {
+  if (!is_blank()) return;
+  // Two processes starting on one new file: the write lock of BEGIN IMMEDIATE lets one create
+  // the schema; the other waits (busy timeout), then finds the file no longer blank.
+  Transaction tx(db_);
+  if (!is_blank()) return;
+  db_.exec(kSchema);
+  db_.exec("PRAGMA application_id = " + std::to_string(kTrialStoreApplicationId));
+  db_.exec("PRAGMA user_version = " + std::to_string(kTrialStoreSchemaVersion));
+  tx.commit();
+}
+
+void SqliteTrialStore::migrate_if_older() {
+  if (db_.pragma_integer("user_version") >= kTrialStoreSchemaVersion) return;
+  // One transaction under the write lock: another process may have migrated it meanwhile, and a
+  // failure half-way leaves the file (and every trial) as it was.
+  Transaction tx(db_);
+  if (db_.pragma_integer("user_version") >= kTrialStoreSchemaVersion) return;
+  try {
+    db_.exec(kMigrationTo2);
+  } catch (const SqliteError& e) {
+    // Busy: another writer; try again later (not the file's fault). Anything else: the file's
+    // tables are not what schema 1 says (hand-edited, or a foreign tool): refused, unchanged.
+    const int primary = e.code() & 0xff;
+    if (primary == SQLITE_BUSY || primary == SQLITE_LOCKED) throw;
+    throw InputError(db_.file(), "trials (schema 1 -> 2 migration)",
+                     std::string("a schema-1 trial database palprig can migrate (SQLite: ") + e.what() +
+                         "); the file was not changed");
+  }
+  tx.commit();
+}
+
+void SqliteTrialStore::check_identity() {
+  if (db_.pragma_integer("application_id") != kTrialStoreApplicationId) {
+    throw InputError(db_.file(), "PRAGMA application_id",
+                     "a palprig trial database (this SQLite file belongs to another program or is empty)");
+  }
+  const std::int64_t version = db_.pragma_integer("user_version");
+  if (version > kTrialStoreSchemaVersion) {
+    throw InputError(db_.file(), "PRAGMA user_version",
+                     "schema version " + std::to_string(kTrialStoreSchemaVersion) +
+                         " or older (written by a newer palprig: schema " + std::to_string(version) + ")");
+  }
+  if (version < 1) throw InputError(db_.file(), "PRAGMA user_version", "a palprig schema version (found none)");
+}
+
+}  // namespace palprig

@@ -1,0 +1,44 @@
+#pragma once
+// TrialRecord: everything one completed trial leaves behind. The runner fills it, the store
+// commits it in one transaction, stats and export read it back.
+#include <array>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "study/protocol.hpp"
+#include "study/scoring.hpp"
+#include "study/session_plan.hpp"
+
+namespace palprig {
+
+struct TrialRecord {
+  PlannedTrial planned;
+  std::string condition;
+  PresentationMode mode = PresentationMode::simultaneous;
+  std::string combination_label;                  // discrimination: e.g. "0/30/0"
+  std::array<double, kFingerCount> stimulus_kPa{};  // discrimination: the commanded levels
+  FingerFlags truth{};                              // discrimination: tumor under each finger
+  bool answered = false;                            // false: the response timed out
+  FingerFlags answer{};                             // discrimination: fingers answered
+  std::vector<Mark> marks;                          // localisation
+  double onset_s = 0;                 // stimulus onset on the runner's monotonic clock
+  double response_time_s = 0;         // from onset to the answer (paper 002's measure); NaN when not answered
+  // When the stimulus ended on the same clock: the runner left `present` (the sequence or
+  // max_present_s ran out, or an answer during the presentation ended it at the answer's time).
+  double stimulus_end_s = std::numeric_limits<double>::quiet_NaN();  // NaN: unknown (stored NULL)
+  std::optional<int> confidence;      // 1..levels when the protocol asks and it was answered
+  std::array<double, kFingerCount> felt_kPa{};  // mean actuator pressure while the stimulus was on
+  std::array<Outcome, kFingerCount> finger_outcomes{};  // discrimination, when answered
+  LocalisationScore localisation;                        // localisation, when answered
+};
+
+// The response time measured from the end of the stimulus (what the experimenter's console
+// shows): answer time - stimulus_end_s; 0 when answered during the stimulus; NaN when not
+// answered. response_time_s stays paper 002's onset measure (its t-test).
+double response_time_after_stimulus_s(const TrialRecord& trial) noexcept;
+// The same from the stored columns (onset, onset RT, stimulus end); NaN when any is missing.
+double response_time_after_stimulus_s(double onset_s, double response_time_s, double stimulus_end_s) noexcept;
+
+}  // namespace palprig

@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""The layout rule of README "Layout", checked on the sources: every #include "folder/..." of a
+code folder names a folder it may depend on (arrows point down), and no header is included from
+a folder that is not a code folder. Prints one line per offending include and exits 1.
+
+Run: python3 tests/layout/check_layout.py [SOURCE_DIR]   (ctest: layout.IncludesPointDown)
+"""
+import pathlib
+import re
+import sys
+
+# What each folder may include besides itself (README "Layout"; keep the two in step).
+DATA = {"models", "formats", "statistics", "study"}
+RIG_BASE = {"models", "runtime", "formats"}
+ALLOWED = {
+    "models": set(),
+    "runtime": set(),
+    "formats": {"models"},
+    "statistics": {"models"},
+    "study": {"models", "formats", "statistics"},
+    "store": DATA,
+    "charts": DATA | {"store"},
+    "rigs": RIG_BASE,
+    "inputs": RIG_BASE,
+    "controller": RIG_BASE | {"rigs", "inputs"},
+    "calibration": RIG_BASE | {"rigs", "inputs", "controller", "statistics"},
+    "experiments": RIG_BASE | {"rigs", "inputs", "controller", "statistics", "study"},
+    "sessions": RIG_BASE | DATA | {"rigs", "inputs", "controller", "calibration", "experiments", "store"},
+    "gui": RIG_BASE | DATA | {"rigs", "inputs", "controller", "calibration", "experiments", "store", "sessions", "charts"},
+    "cli": None,    # the top: anything but bench
+    "bench": None,
+}
+# Files whose job puts them above their folder's floor, with the reason.
+EXCEPTIONS = {
+    # Calibration charts draw sweeps and fits: built only in a rig build (charts/CMakeLists.txt).
+    "charts/calibration_charts.hpp": {"calibration"},
+    "charts/calibration_charts.cpp": {"calibration"},
+}
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/[^"]+"', re.M)
+
+
+def main() -> int:
+    root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve()
+    bad = []
+    checked = 0
+    for folder, allowed in ALLOWED.items():
+        for path in sorted((root / folder).glob("*.[ch]pp")):
+            rel = path.relative_to(root).as_posix()
+            checked += 1
+            for target in INCLUDE.findall(path.read_text(errors="replace")):
+                if target == folder:
+                    continue
+                if target not in ALLOWED:
+                    bad.append(f"{rel}: includes {target}/, which is not a code folder")
+                elif allowed is None:
+                    if target == "bench":
+                        bad.append(f"{rel}: includes bench/")
+                elif target not in allowed and target not in EXCEPTIONS.get(rel, set()):
+                    bad.append(f"{rel}: includes {target}/, but {folder}/ may depend only on "
+                               f"{', '.join(sorted(allowed)) or 'nothing of palprig'}")
+    for line in bad:
+        print(line)
+    print(f"layout: {checked} files checked, {len(bad)} includes against the layout")
+    return 1 if bad or checked == 0 else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
