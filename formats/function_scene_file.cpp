@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "models/decimal_number.hpp"
+#include "models/regular_file.hpp"
 #include "models/tissue_scene.hpp"
 
 namespace palprig {
@@ -231,29 +232,18 @@ ArterySpec parse_artery(const JsonObject& a, const std::filesystem::path& scene_
 
 std::string waveform_file_refusal(const std::filesystem::path& path) {
   std::error_code error;
-  const auto status = std::filesystem::status(path, error);
-  const std::string expected = "a regular file of at most " + std::to_string(kMaxWaveformFileBytes / 1024) +
-                               " KiB holding a waveform table, got " + path.string();
-  if (error || !std::filesystem::exists(status)) return "";  // opening it says "cannot open"
-  if (!std::filesystem::is_regular_file(status)) {
-    const char* kind = std::filesystem::is_directory(status)  ? "a directory"
-                       : std::filesystem::is_fifo(status)     ? "a FIFO"
-                       : std::filesystem::is_character_file(status) || std::filesystem::is_block_file(status) ? "a device"
-                       : std::filesystem::is_socket(status)   ? "a socket"
-                                                              : "not a regular file";
-    return expected + " (" + kind + ")";
-  }
-  const auto bytes = std::filesystem::file_size(path, error);
-  if (!error && bytes > kMaxWaveformFileBytes) return expected + " (" + std::to_string(bytes) + " bytes)";
-  return "";
+  if (!std::filesystem::exists(path, error)) return "";  // opening it says "no such file"
+  const std::string problem = regular_file_problem(path, kMaxWaveformFileBytes);
+  if (problem.empty()) return "";
+  return "a regular file of at most " + std::to_string(kMaxWaveformFileBytes / 1024) +
+         " KiB holding a waveform table, got " + path.string() + " (" + problem + ")";
 }
 
 PulseWaveform load_waveform_csv(const std::filesystem::path& path) {
   const std::string file = path.string();
   const std::string refusal = waveform_file_refusal(path);
   if (!refusal.empty()) throw InputError(file, "file", refusal);
-  std::ifstream in(path);
-  if (!in) throw InputError(file, "file", "a readable waveform table (cannot open it)");
+  std::istringstream in(read_regular_file(path, kMaxWaveformFileBytes, "a waveform table"));
   std::vector<double> t, v;
   std::string line;
   int line_no = 0;

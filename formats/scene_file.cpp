@@ -1,17 +1,18 @@
 #include "formats/scene_file.hpp"
 
-#include <fstream>
+#include <sstream>
 
 #include "formats/function_scene_file.hpp"
 #include "formats/json_file.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
 StiffnessMap load_stiffness_map_file(const std::filesystem::path& path, double width_mm, double height_mm,
                                      double value_scale) {
   const std::string ext = path.extension().string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "file", "a readable stiffness map (cannot open it)");
+  if (ext != ".csv" && ext != ".pgm") throw InputError(path.string(), "file name", "a .csv or .pgm stiffness map");
+  std::istringstream in(read_regular_file(path, kMaxMapFileBytes, "a stiffness map"));
   if (ext == ".csv") return parse_stiffness_csv(in, path.string(), width_mm, height_mm, value_scale);
   if (ext == ".pgm") return parse_stiffness_pgm(in, path.string(), width_mm, height_mm);
   throw InputError(path.string(), "file name", "a .csv or .pgm stiffness map");

@@ -20,6 +20,7 @@
 #include <memory>
 
 #include "models/parse_error.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
@@ -138,7 +139,7 @@ PenRecordingLimits PenRecordingLimits::unbounded() {
 
 namespace {
 
-constexpr std::size_t kMaxRecordingBytes = std::size_t(512) << 20;  // ~10 hours of a busy pen
+constexpr std::size_t kMaxRecordingBytes = kMaxRecordingFileBytes;  // ~10 hours of a busy pen; also if it grows
 
 std::string seconds_text(double s) {
   std::ostringstream o;
@@ -251,8 +252,7 @@ bool parse_event_line(std::string line, input_event& ev) {
 
 PenRecording read_pen_recording(const std::filesystem::path& path, const PenRecordingLimits& limits) {
   const std::string file = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(file, "file", std::string("a readable evemu recording (") + std::strerror(errno) + ")");
+  std::ifstream in = open_regular_file(path, kMaxRecordingFileBytes, "an evemu recording");
   // The description goes to libevemu; the event lines are read here, line by line, so a bad one
   // is refused with its line number (libevemu's own reader stops at it silently and prints its
   // own FATAL/WARNING line beside ours).
