@@ -321,6 +321,7 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
     r.refuse_unknown();
   }
 
+  std::vector<std::pair<std::string, std::size_t>> tumor_names;  // name, index in "inclusions"
   if (root.has("inclusions")) {
     const auto incs = root.objects("inclusions");
     if (incs.size() > kMaxInclusions) root.fail("inclusions", "at most " + std::to_string(kMaxInclusions) + " inclusions");
@@ -328,6 +329,7 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
       Inclusion inc;
       inc.name = o.string("name");
       inc.kind = parse_kind(o);
+      if (inc.kind == InclusionKind::tumor) tumor_names.emplace_back(inc.name, tissue.inclusions.size());
       inc.stiffness_kPa = positive(o, "stiffness_kPa", "Young's modulus in kPa", kMaxModulus_kPa);
       try {
         parse_shape(o.object("shape"), inc.shape, 0);
@@ -361,8 +363,22 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
   } catch (const std::invalid_argument& e) {
     throw InputError(file, "scene", e.what());
   }
-  for (const InclusionOutline& o : scene->outlines(InclusionKind::tumor))
+  // A tumor is ground truth for scoring marks on the body: its centre lies on the body's
+  // footprint (centre_mm +- half_size_mm), not metres away where no finger can reach it.
+  const double x0 = centre[0] - half[0], x1 = centre[0] + half[0], y0 = centre[1] - half[1], y1 = centre[1] + half[1];
+  for (const InclusionOutline& o : scene->outlines(InclusionKind::tumor)) {
+    if (!(o.x_mm >= x0 && o.x_mm <= x1 && o.y_mm >= y0 && o.y_mm <= y1)) {
+      std::size_t index = 0;
+      while (index < tumor_names.size() && tumor_names[index].first != o.name) ++index;
+      const std::string where =
+          "inclusions[" + std::to_string(index < tumor_names.size() ? tumor_names[index].second : 0) + "].shape";
+      throw InputError(file, where,
+                       "a tumor centred on the body (x in " + number_text(x0) + ".." + number_text(x1) + " mm, y in " +
+                           number_text(y0) + ".." + number_text(y1) + " mm), got '" + o.name + "' at (" +
+                           number_text(o.x_mm) + ", " + number_text(o.y_mm) + ") mm");
+    }
     out.tumors.push_back({o.name, o.x_mm, o.y_mm, o.radius_mm});
+  }
   out.scene = std::move(scene);
 }
 

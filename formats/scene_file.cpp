@@ -65,8 +65,9 @@ SceneFile load_scene_file(const std::filesystem::path& path) {
     for (const JsonObject& t : root.objects("tumors")) {
       TumorTruth tt;
       tt.name = t.string("name");
-      tt.x_mm = t.number("x_mm", -1e5, 1e5);
-      tt.y_mm = t.number("y_mm", -1e5, 1e5);
+      // A tumor is ground truth for scoring marks on the map: its centre lies on the map.
+      tt.x_mm = t.number("x_mm", 0, width_mm);
+      tt.y_mm = t.number("y_mm", 0, height_mm);
       tt.radius_mm = t.number("radius_mm", 1e-3, 1e4);
       if (t.has("depth_mm")) (void)t.number("depth_mm", 0, 1e4);            // documentation of the phantom
       if (t.has("stiffness_kPa")) (void)t.number("stiffness_kPa", 0, 1e7);
