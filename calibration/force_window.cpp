@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "models/parse_error.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
@@ -34,8 +35,7 @@ double number(const std::string& c, const std::string& file, const std::string& 
 
 ForceWindowFit force_window_from_presses(const std::filesystem::path& path, double diastolic_mmHg, double systolic_mmHg) {
   const std::string file = path.string();
-  std::ifstream in(path);
-  if (!in) throw InputError(file, "file", "a readable CSV file (cannot open it)");
+  std::ifstream in = open_regular_file(path, kMaxTableFileBytes, "a presses CSV", std::ios::in);
   std::string line;
   std::size_t line_no = 0;
   bool header = false;

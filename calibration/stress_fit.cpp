@@ -7,6 +7,7 @@
 
 #include "models/finger_layout.hpp"
 #include "models/parse_error.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
@@ -36,8 +37,7 @@ double parse_number(const std::string& c, const std::string& file, const std::st
 
 std::vector<StressPair> read_stress_pairs_csv(const std::filesystem::path& path) {
   const std::string file = path.string();
-  std::ifstream in(path);
-  if (!in) throw InputError(file, "file", "a readable CSV file (cannot open it)");
+  std::ifstream in = open_regular_file(path, kMaxTableFileBytes, "a stress pairs CSV", std::ios::in);
   std::string line;
   std::size_t line_no = 0;
   int col_p = -1, col_s = -1, col_c = -1;

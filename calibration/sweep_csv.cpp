@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "models/parse_error.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
@@ -86,8 +87,7 @@ SweepData read_sweep_csv(const std::filesystem::path& path) {
   SweepData data;
   data.file = path.string();
   const std::string& file = data.file;
-  std::ifstream in(path);
-  if (!in) throw InputError(file, "file", "a readable CSV file (cannot open it)");
+  std::ifstream in = open_regular_file(path, kMaxTableFileBytes, "a sweep CSV", std::ios::in);
 
   std::string text;
   std::size_t line_no = 0;

@@ -1,6 +1,11 @@
 #include "controller/telemetry_writer.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <boost/lockfree/spsc_queue.hpp>
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <fstream>
@@ -8,6 +13,7 @@
 #include <string>
 
 #include "models/parse_error.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
@@ -25,9 +31,24 @@ TelemetryWriter::TelemetryWriter(std::filesystem::path path, TelemetryFormat for
                                  TelemetryLimits limits)
     : path_(std::move(path)), format_(format), limits_(limits),
       queue_(std::make_unique<boost::lockfree::spsc_queue<TelemetryRecord>>(capacity)) {
-  {  // Fail now, before anything moves, if the file cannot be created.
-    std::ofstream probe(path_, std::ios::binary | std::ios::trunc);
-    if (!probe) throw InputError(path_.string(), "telemetry", "a writable file path (cannot create it)");
+  {  // Fail now, before anything moves, if the file cannot be created. Only a regular file (or
+     // a new one) is taken: opening a FIFO for writing waits for a reader, for ever, before
+     // the signal handlers that vent on SIGTERM are even installed; a device is no log.
+    const std::string expected = "a regular file (or a new path) to write telemetry to";
+    std::error_code ec;
+    const auto status = std::filesystem::status(path_, ec);
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+      throw InputError(path_.string(), "telemetry", expected + ", got " + regular_file_problem(path_, ~std::uintmax_t(0)));
+    }
+    const int fd = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_NONBLOCK | O_NOCTTY | O_CLOEXEC, 0644);
+    if (fd < 0) throw InputError(path_.string(), "telemetry", expected + " (cannot create it: " + std::strerror(errno) + ")");
+    struct stat st {};
+    const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
+    const bool truncated = regular && ::ftruncate(fd, 0) == 0;
+    const int error = errno;
+    ::close(fd);
+    if (!regular) throw InputError(path_.string(), "telemetry", expected + ", got not a regular file");
+    if (!truncated) throw InputError(path_.string(), "telemetry", expected + " (cannot truncate it: " + std::strerror(error) + ")");
   }
   thread_ = std::thread([this] { run(); });
 }
@@ -172,8 +193,7 @@ void write_telemetry_csv_row(std::ostream& out, const TelemetryRecord& r) {
 }
 
 std::uint64_t convert_telemetry_to_csv(const std::filesystem::path& binary, const std::filesystem::path& csv) {
-  std::ifstream in(binary, std::ios::binary);
-  if (!in) throw InputError(binary.string(), "file", "a readable telemetry file");
+  std::ifstream in = open_regular_file(binary, kMaxTelemetryFileBytes, "palprig binary telemetry");
   char magic[8];
   std::uint32_t header[2];
   in.read(magic, sizeof magic);

@@ -1,8 +1,49 @@
 #include "formats/calibration_file.hpp"
 
+#include <sstream>
+
 #include "formats/json_file.hpp"
 
 namespace palprig {
+
+namespace {
+
+std::string plain(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+// The fit tables calibration writes ("fits"): every straight-line fit (an object with "slope"
+// and "intercept") rises (a falling regulator or stress line is a damaged table), and its
+// quality numbers are what they can be. Walked with its field path for the refusal.
+void check_fit_tables(const nlohmann::json& v, const std::string& file, const std::string& where, int depth = 0) {
+  if (depth > 16) return;  // the JSON reader bounds nesting; the tables are 4 levels deep
+  if (v.is_array()) {
+    for (std::size_t i = 0; i < v.size(); ++i) check_fit_tables(v[i], file, where + "[" + std::to_string(i) + "]", depth + 1);
+    return;
+  }
+  if (!v.is_object()) return;
+  if (v.contains("slope") || v.contains("intercept")) {
+    auto number = [&](const char* key, double lo, double hi, const std::string& expected) {
+      if (!v.contains(key)) return;
+      const auto& x = v.at(key);
+      if (x.is_null()) return;  // a figure that does not exist (JSON has no NaN)
+      if (!x.is_number() || !(x.get<double>() >= lo && x.get<double>() <= hi))
+        throw InputError(file, where + "." + key, expected + ", got " + json_excerpt(x));
+    };
+    if (!v.contains("slope")) throw InputError(file, where + ".slope", "a fit line's slope beside its intercept");
+    number("slope", 1e-9, kMaxActuatorSlope,
+           "a rising fit line: a slope in 1e-09.." + plain(kMaxActuatorSlope) + " (a flat or falling fit is degenerate)");
+    number("intercept", -1e6, 1e6, "an intercept in -1e+06..1e+06 kPa");
+    number("r_squared", -1e9, 1, "an R^2 of at most 1");
+    number("residual_sd", 0, 1e6, "a residual sd in 0..1e+06");
+    number("n", 0, 1e9, "a count of points in 0..1e9");
+  }
+  for (auto it = v.begin(); it != v.end(); ++it) check_fit_tables(it.value(), file, where + "." + it.key(), depth + 1);
+}
+
+}  // namespace
 
 CalibrationModels load_calibration_file(const std::filesystem::path& path) {
   const std::string file = path.string();
@@ -33,6 +74,17 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
     cal.actuators[i].intercept_kPa = a.number("intercept_kPa", -1e6, 1e6);
     if (!(cal.actuators[i].slope > 1e-9))
       a.fail("slope", "a positive stress-per-pressure slope (a flat or falling fit is degenerate)");
+    if (cal.actuators[i].slope > kMaxActuatorSlope)
+      a.fail("slope", "a stress-per-pressure slope of at most " + plain(kMaxActuatorSlope) + " kPa per kPa, got " +
+                          plain(cal.actuators[i].slope));
+    // stress = slope * p + intercept: with the intercept at or above the stress model's hard
+    // stress, every target pressure is 0 kPa (the rig renders nothing); far below it, soft
+    // tissue alone asks for more than any regulator gives.
+    const double hard = cal.stress.hard_stress_kPa;
+    if (!(cal.actuators[i].intercept_kPa >= kMinActuatorIntercept_kPa && cal.actuators[i].intercept_kPa < hard))
+      a.fail("intercept_kPa", "the stress of the uninflated actuator in " + plain(kMinActuatorIntercept_kPa) + ".." +
+                                  plain(hard) + " kPa (below the stress model's hard_stress_kPa, or every target is 0 kPa), got " +
+                                  plain(cal.actuators[i].intercept_kPa));
     if (a.has("r_squared")) (void)a.number("r_squared", -1e9, 1);
     a.refuse_unknown();
     if (ch.has("hysteresis")) {
@@ -61,8 +113,10 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
     ch.refuse_unknown();
   }
   // Sections written by calibration for people and later tools (fit tables, force window)
-  // are kept in the file; the tick does not need them.
-  for (const char* k : {"fits", "notes"}) (void)root.has(k);
+  // are kept in the file; the tick does not need them, but a fit table that is physically
+  // impossible says the file is damaged or edited by hand.
+  if (root.has("fits")) check_fit_tables(root.raw("fits"), file, root.path("fits"));
+  (void)root.has("notes");
   if (root.has("force_window")) {
     const JsonObject f = root.object("force_window");
     MeasuredForceWindow w;

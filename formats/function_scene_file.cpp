@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "models/decimal_number.hpp"
+#include "models/regular_file.hpp"
 #include "models/tissue_scene.hpp"
 
 namespace palprig {
@@ -231,29 +232,18 @@ ArterySpec parse_artery(const JsonObject& a, const std::filesystem::path& scene_
 
 std::string waveform_file_refusal(const std::filesystem::path& path) {
   std::error_code error;
-  const auto status = std::filesystem::status(path, error);
-  const std::string expected = "a regular file of at most " + std::to_string(kMaxWaveformFileBytes / 1024) +
-                               " KiB holding a waveform table, got " + path.string();
-  if (error || !std::filesystem::exists(status)) return "";  // opening it says "cannot open"
-  if (!std::filesystem::is_regular_file(status)) {
-    const char* kind = std::filesystem::is_directory(status)  ? "a directory"
-                       : std::filesystem::is_fifo(status)     ? "a FIFO"
-                       : std::filesystem::is_character_file(status) || std::filesystem::is_block_file(status) ? "a device"
-                       : std::filesystem::is_socket(status)   ? "a socket"
-                                                              : "not a regular file";
-    return expected + " (" + kind + ")";
-  }
-  const auto bytes = std::filesystem::file_size(path, error);
-  if (!error && bytes > kMaxWaveformFileBytes) return expected + " (" + std::to_string(bytes) + " bytes)";
-  return "";
+  if (!std::filesystem::exists(path, error)) return "";  // opening it says "no such file"
+  const std::string problem = regular_file_problem(path, kMaxWaveformFileBytes);
+  if (problem.empty()) return "";
+  return "a regular file of at most " + std::to_string(kMaxWaveformFileBytes / 1024) +
+         " KiB holding a waveform table, got " + path.string() + " (" + problem + ")";
 }
 
 PulseWaveform load_waveform_csv(const std::filesystem::path& path) {
   const std::string file = path.string();
   const std::string refusal = waveform_file_refusal(path);
   if (!refusal.empty()) throw InputError(file, "file", refusal);
-  std::ifstream in(path);
-  if (!in) throw InputError(file, "file", "a readable waveform table (cannot open it)");
+  std::istringstream in(read_regular_file(path, kMaxWaveformFileBytes, "a waveform table"));
   std::vector<double> t, v;
   std::string line;
   int line_no = 0;
@@ -331,6 +321,7 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
     r.refuse_unknown();
   }
 
+  std::vector<std::pair<std::string, std::size_t>> tumor_names;  // name, index in "inclusions"
   if (root.has("inclusions")) {
     const auto incs = root.objects("inclusions");
     if (incs.size() > kMaxInclusions) root.fail("inclusions", "at most " + std::to_string(kMaxInclusions) + " inclusions");
@@ -338,6 +329,7 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
       Inclusion inc;
       inc.name = o.string("name");
       inc.kind = parse_kind(o);
+      if (inc.kind == InclusionKind::tumor) tumor_names.emplace_back(inc.name, tissue.inclusions.size());
       inc.stiffness_kPa = positive(o, "stiffness_kPa", "Young's modulus in kPa", kMaxModulus_kPa);
       try {
         parse_shape(o.object("shape"), inc.shape, 0);
@@ -371,8 +363,22 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
   } catch (const std::invalid_argument& e) {
     throw InputError(file, "scene", e.what());
   }
-  for (const InclusionOutline& o : scene->outlines(InclusionKind::tumor))
+  // A tumor is ground truth for scoring marks on the body: its centre lies on the body's
+  // footprint (centre_mm +- half_size_mm), not metres away where no finger can reach it.
+  const double x0 = centre[0] - half[0], x1 = centre[0] + half[0], y0 = centre[1] - half[1], y1 = centre[1] + half[1];
+  for (const InclusionOutline& o : scene->outlines(InclusionKind::tumor)) {
+    if (!(o.x_mm >= x0 && o.x_mm <= x1 && o.y_mm >= y0 && o.y_mm <= y1)) {
+      std::size_t index = 0;
+      while (index < tumor_names.size() && tumor_names[index].first != o.name) ++index;
+      const std::string where =
+          "inclusions[" + std::to_string(index < tumor_names.size() ? tumor_names[index].second : 0) + "].shape";
+      throw InputError(file, where,
+                       "a tumor centred on the body (x in " + number_text(x0) + ".." + number_text(x1) + " mm, y in " +
+                           number_text(y0) + ".." + number_text(y1) + " mm), got '" + o.name + "' at (" +
+                           number_text(o.x_mm) + ", " + number_text(o.y_mm) + ") mm");
+    }
     out.tumors.push_back({o.name, o.x_mm, o.y_mm, o.radius_mm});
+  }
   out.scene = std::move(scene);
 }
 

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <vector>
 
+#include "models/regular_file.hpp"
+
 namespace palprig {
 
 namespace {
@@ -84,11 +86,10 @@ class CheckedSax {
 }  // namespace
 
 nlohmann::json read_json_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "file", "a readable JSON file (cannot open it)");
+  const std::string text = read_regular_file(path, kMaxJsonFileBytes, "a JSON document");
   nlohmann::json doc;
   CheckedSax sax(doc, path.string());
-  nlohmann::json::sax_parse(in, &sax);
+  nlohmann::json::sax_parse(text, &sax);
   return doc;
 }
 

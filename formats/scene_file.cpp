@@ -1,17 +1,18 @@
 #include "formats/scene_file.hpp"
 
-#include <fstream>
+#include <sstream>
 
 #include "formats/function_scene_file.hpp"
 #include "formats/json_file.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
 StiffnessMap load_stiffness_map_file(const std::filesystem::path& path, double width_mm, double height_mm,
                                      double value_scale) {
   const std::string ext = path.extension().string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "file", "a readable stiffness map (cannot open it)");
+  if (ext != ".csv" && ext != ".pgm") throw InputError(path.string(), "file name", "a .csv or .pgm stiffness map");
+  std::istringstream in(read_regular_file(path, kMaxMapFileBytes, "a stiffness map"));
   if (ext == ".csv") return parse_stiffness_csv(in, path.string(), width_mm, height_mm, value_scale);
   if (ext == ".pgm") return parse_stiffness_pgm(in, path.string(), width_mm, height_mm);
   throw InputError(path.string(), "file name", "a .csv or .pgm stiffness map");
@@ -64,8 +65,9 @@ SceneFile load_scene_file(const std::filesystem::path& path) {
     for (const JsonObject& t : root.objects("tumors")) {
       TumorTruth tt;
       tt.name = t.string("name");
-      tt.x_mm = t.number("x_mm", -1e5, 1e5);
-      tt.y_mm = t.number("y_mm", -1e5, 1e5);
+      // A tumor is ground truth for scoring marks on the map: its centre lies on the map.
+      tt.x_mm = t.number("x_mm", 0, width_mm);
+      tt.y_mm = t.number("y_mm", 0, height_mm);
       tt.radius_mm = t.number("radius_mm", 1e-3, 1e4);
       if (t.has("depth_mm")) (void)t.number("depth_mm", 0, 1e4);            // documentation of the phantom
       if (t.has("stiffness_kPa")) (void)t.number("stiffness_kPa", 0, 1e7);

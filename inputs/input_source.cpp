@@ -8,6 +8,7 @@
 
 #include "models/decimal_number.hpp"
 #include "models/parse_error.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
@@ -56,8 +57,7 @@ std::string seconds_text(double s) {
 std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, double contact_force_N,
                                         const TraceLimits& limits) {
   const std::string file = path.string();
-  std::ifstream in(path);
-  if (!in) throw InputError(file, "file", "a readable trace CSV (cannot open it)");
+  std::ifstream in = open_regular_file(path, kMaxTraceFileBytes, "a pen trace CSV", std::ios::in);
   std::string line;
   std::size_t line_no = 0;
   std::vector<TouchSample> out;

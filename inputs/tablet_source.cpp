@@ -18,8 +18,10 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <set>
 
 #include "models/parse_error.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
@@ -138,7 +140,7 @@ PenRecordingLimits PenRecordingLimits::unbounded() {
 
 namespace {
 
-constexpr std::size_t kMaxRecordingBytes = std::size_t(512) << 20;  // ~10 hours of a busy pen
+constexpr std::size_t kMaxRecordingBytes = kMaxRecordingFileBytes;  // ~10 hours of a busy pen; also if it grows
 
 std::string seconds_text(double s) {
   std::ostringstream o;
@@ -251,8 +253,7 @@ bool parse_event_line(std::string line, input_event& ev) {
 
 PenRecording read_pen_recording(const std::filesystem::path& path, const PenRecordingLimits& limits) {
   const std::string file = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(file, "file", std::string("a readable evemu recording (") + std::strerror(errno) + ")");
+  std::ifstream in = open_regular_file(path, kMaxRecordingFileBytes, "an evemu recording");
   // The description goes to libevemu; the event lines are read here, line by line, so a bad one
   // is refused with its line number (libevemu's own reader stops at it silently and prints its
   // own FATAL/WARNING line beside ours).
@@ -261,6 +262,7 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
   std::size_t line_no = 0, bytes = 0;
   int format_minor = 0;  // "# EVEMU 1.3" on the first line; libevemu takes a missing one as 1.0
   char last_tag = 0;
+  std::set<unsigned long> ranged_axes;  // axes with an 'A:' line (libevemu gives the others 0..1)
   while (std::getline(in, line)) {
     ++line_no;
     bytes += line.size() + 1;
@@ -279,6 +281,7 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
       if (!line.empty() && line[0] != '#') {
         if (const std::string problem = description_problem(line, format_minor, last_tag); !problem.empty())
           throw InputError(file, "line " + std::to_string(line_no), problem + ", got '" + line + "'");
+        if (line[0] == 'A') ranged_axes.insert(std::stoul(line.substr(2), nullptr, 16));  // checked hex above
       }
       description += line + "\n";
       continue;
@@ -300,11 +303,33 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
     throw InputError(file, "device description", "an evemu recording (N:, I:, P:, B:, A: lines as evemu-record writes)");
   if (!evemu_has_event(dev.get(), EV_ABS, ABS_X) || !evemu_has_event(dev.get(), EV_ABS, ABS_Y))
     throw InputError(file, "device description", "a pen tablet (ABS_X and ABS_Y axes)");
-  // Without a pressure axis every touch would read as full force: refused, not guessed.
+  // Without a pressure axis every touch would read as full force: refused, not guessed. An
+  // axis whose bit is set but that has no 'A:' line gets the range 0..1 from libevemu, so any
+  // pressure reads as the top of the curve: its range line is required, as X's and Y's are.
+  for (const auto& [axis, name] : {std::pair{ABS_X, "ABS_X"}, std::pair{ABS_Y, "ABS_Y"}, std::pair{ABS_PRESSURE, "ABS_PRESSURE"}}) {
+    if (evemu_has_event(dev.get(), EV_ABS, axis) && !ranged_axes.count(static_cast<unsigned long>(axis))) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "%02x", axis);
+      throw InputError(file, "device description",
+                       std::string("a range line for every pen axis ('A: ") + hex + " <min> <max> <fuzz> <flat> <resolution>'), got none for " +
+                           name);
+    }
+  }
   if (!evemu_has_event(dev.get(), EV_ABS, ABS_PRESSURE) ||
       evemu_get_abs_maximum(dev.get(), ABS_PRESSURE) <= evemu_get_abs_minimum(dev.get(), ABS_PRESSURE))
     throw InputError(file, "device description",
                      "a pen tablet with a pressure axis (ABS_PRESSURE with a range, an 'A: 18 min max ...' line)");
+  // A pen's tool key (in proximity) and BTN_TOUCH (down) are what tell hovering from pressing:
+  // a recording without them cannot say when the pen touches.
+  const bool tool_key = evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_PEN) || evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_RUBBER) ||
+                        evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_BRUSH) || evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_PENCIL) ||
+                        evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_AIRBRUSH);
+  const bool touch_key = evemu_has_event(dev.get(), EV_KEY, BTN_TOUCH);
+  if (!tool_key || !touch_key)
+    throw InputError(file, "device description",
+                     "a pen tablet with a pen tool key (BTN_TOOL_PEN, RUBBER, BRUSH, PENCIL or AIRBRUSH) and BTN_TOUCH in its "
+                     "'B: 01' lines, got " +
+                         std::string(!tool_key && !touch_key ? "neither" : !tool_key ? "no tool key" : "no BTN_TOUCH"));
   PenRecording r;
   r.device_name = evemu_get_name(dev.get()) ? evemu_get_name(dev.get()) : "";
   r.axes.x_min = evemu_get_abs_minimum(dev.get(), ABS_X);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "models/parse_error.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
@@ -28,12 +29,9 @@ bool parse_finite_number(std::string_view text, double& out) noexcept {
 }
 
 CsvTable CsvTable::read(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string(), "file", "a readable CSV file (cannot open it)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
+  const std::string text = read_regular_file(file, kMaxTableFileBytes, "a CSV table");
   const char delimiter = file.extension() == ".tsv" ? '\t' : ',';
-  return parse(buffer.str(), file.string(), delimiter);
+  return parse(text, file.string(), delimiter);
 }
 
 CsvTable CsvTable::parse(std::string_view text, std::string source_name, char delimiter) {

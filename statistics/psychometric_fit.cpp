@@ -5,11 +5,13 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <sstream>
 
 #include <boost/math/distributions/normal.hpp>
 #include <ceres/autodiff_first_order_function.h>
 #include <ceres/gradient_problem.h>
 #include <ceres/gradient_problem_solver.h>
+#include <glog/logging.h>
 
 #include "statistics/statistics_error.hpp"
 
@@ -48,6 +50,10 @@ std::vector<LevelCounts> counts_per_level(const std::vector<double>& levels, con
 namespace {
 
 constexpr double kSqrt2 = 1.41421356237309504880;
+// How far the optimiser may go in its unbounded parameters (see Parameterisation): a location
+// 10^6 standard deviations from the levels, or a log scale or logit beyond 700 (e^700 is near
+// the largest double), is no fit but a step whose derivatives overflow.
+constexpr double kLocationBound = 1e6, kLogBound = 700;
 
 // F and 1 - F computed separately, so neither tail loses its digits to a subtraction.
 template <class T>
@@ -83,7 +89,9 @@ void sigmoid_pair(Sigmoid s, const T& x, const T& alpha, const T& beta, T& f, T&
 //   p1: log beta (in the same units)     p2, p3: logits of guess / guess_max and lapse / lapse_max
 struct Parameterisation {
   Sigmoid sigmoid;
-  double centre = 0, scale = 1;  // x_standard = (x - centre) / scale (Weibull: centre 0)
+  // x_standard = (x / unit - centre) / scale (Weibull: centre 0). unit is the largest |level|,
+  // so no sum, square or difference of levels can overflow, whatever their magnitude.
+  double unit = 1, centre = 0, scale = 1;
   std::optional<double> guess, lapse;
   double guess_max = 0.5, lapse_max = 0.1;
 
@@ -99,13 +107,24 @@ struct Parameterisation {
   void natural(const double* p, double& alpha, double& beta, double& g, double& l) const {
     decode(p, alpha, beta, g, l);
     if (sigmoid == Sigmoid::weibull) {
-      alpha *= scale;
+      alpha *= scale * unit;
     } else {
-      alpha = centre + scale * alpha;
-      beta *= scale;
+      alpha = (centre + scale * alpha) * unit;
+      beta *= scale * unit;
     }
   }
+  double standard(double level) const {
+    return sigmoid == Sigmoid::weibull ? level / unit / scale : (level / unit - centre) / scale;
+  }
 };
+
+// The value and, for Ceres' Jets, every derivative (ceres::isfinite looks at the value only; a
+// NaN gradient beside a finite value is what tripped Ceres' line-search CHECK).
+inline bool all_finite(double x) { return std::isfinite(x); }
+template <class T, int N>
+bool all_finite(const ceres::Jet<T, N>& x) {
+  return std::isfinite(x.a) && x.v.allFinite();
+}
 
 struct NegativeLogLikelihood {
   const std::vector<LevelCounts>* data;
@@ -114,11 +133,18 @@ struct NegativeLogLikelihood {
   template <class T>
   bool operator()(const T* p, T* cost) const {
     using std::log;
+    // Far out in the unbounded parameters the sigmoid is a step and its derivatives overflow;
+    // such a point is reported as outside the problem (false), so the line search steps back
+    // instead of handing Ceres a non-finite value (which its checks turn into an abort).
+    for (int i = 0; i < 4; ++i) {
+      const double bound = i == 0 && param->sigmoid != Sigmoid::weibull ? kLocationBound : kLogBound;
+      if (!(ceres::abs(p[i]) < T(bound))) return false;
+    }
     T alpha, beta, g, l;
     param->decode(p, alpha, beta, g, l);
     T sum(0);
     for (const LevelCounts& c : *data) {
-      const T x((c.level - param->centre) / param->scale);
+      const T x(param->standard(c.level));
       T f, fc;
       sigmoid_pair(param->sigmoid, x, alpha, beta, f, fc);
       T psi = g + (T(1) - g - l) * f;
@@ -130,7 +156,7 @@ struct NegativeLogLikelihood {
       if (c.n - c.k > 0) sum -= T(c.n - c.k) * log(q);
     }
     cost[0] = sum;
-    return true;
+    return all_finite(sum);
   }
 };
 
@@ -143,6 +169,13 @@ struct Fitted {
 };
 
 Fitted minimise(const std::vector<LevelCounts>& data, const Parameterisation& param, const double start[4]) {
+  // Ceres reports through glog, which without InitGoogleLogging writes its warnings to stderr
+  // beside palprig's own line. Only errors (there are none to expect) get through.
+  static const bool quiet = [] {
+    if (FLAGS_minloglevel < google::GLOG_ERROR) FLAGS_minloglevel = google::GLOG_ERROR;
+    return true;
+  }();
+  (void)quiet;
   auto* function = new ceres::AutoDiffFirstOrderFunction<NegativeLogLikelihood, 4>(new NegativeLogLikelihood{&data, &param});
   ceres::GradientProblem problem(function);
   ceres::GradientProblemSolver::Options options;
@@ -254,6 +287,13 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
   }
   if (o.bootstrap < 0) throw StatisticsError("bootstrap count >= 0");
   if (!(o.confidence > 0 && o.confidence < 1)) throw StatisticsError("confidence in (0, 1)");
+  // Levels are summed and squared in a power-of-two unit near the largest of them: exact (the
+  // same bits as in the levels' own unit), and no sum or square overflows, even at 1e308.
+  double largest = 0;
+  for (const LevelCounts& c : data) {
+    if (c.n > 0 && std::isfinite(c.level)) largest = std::max(largest, std::fabs(c.level));
+  }
+  const double unit = largest > 0 ? std::ldexp(1.0, std::ilogb(largest)) : 1.0;
   int trials = 0;
   double sum = 0, sum_sq = 0, sum_log = 0;
   for (const LevelCounts& c : data) {
@@ -263,9 +303,11 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
     if (o.sigmoid == Sigmoid::weibull && c.level <= 0 && c.n > 0) {
       throw StatisticsError("levels > 0 for a Weibull (got " + std::to_string(c.level) + ")");
     }
+    if (c.n > std::numeric_limits<int>::max() - trials) throw StatisticsError("at most 2^31 - 1 trials in all");
     trials += c.n;
-    sum += c.level * c.n;
-    sum_sq += c.level * c.level * c.n;
+    const double x = c.level / unit;
+    sum += x * c.n;
+    sum_sq += x * x * c.n;
     if (c.level > 0) sum_log += std::log(c.level) * c.n;
   }
   std::vector<LevelCounts> used;
@@ -280,11 +322,12 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
   param.lapse = o.lapse;
   param.guess_max = o.guess_max;
   param.lapse_max = o.lapse_max;
+  param.unit = unit;
   const double mean = sum / trials;
   const double sd = std::sqrt(std::max(sum_sq / trials - mean * mean, 0.0));
   if (o.sigmoid == Sigmoid::weibull) {
     param.centre = 0;
-    param.scale = std::exp(sum_log / trials);
+    param.scale = std::exp(sum_log / trials) / unit;
   } else {
     param.centre = mean;
     param.scale = sd > 0 ? sd : 1.0;
@@ -312,6 +355,15 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
   fit.levels = used;
   fit.deviance_df = static_cast<int>(used.size()) - free_params;
   describe(param, best.p, used, o, fit);
+  // A fit in range of the optimiser can still land beyond the largest double in the levels'
+  // unit (levels near 1e308): refused rather than printed as "threshold inf".
+  if (!std::isfinite(fit.alpha) || !std::isfinite(fit.beta) || std::isinf(fit.threshold) || std::isinf(fit.slope) ||
+      std::isinf(fit.jnd)) {
+    std::ostringstream got;
+    got << "threshold " << fit.threshold << ", scale " << fit.beta << " with levels up to " << largest;
+    throw StatisticsError("a fit whose threshold, slope and scale are finite numbers (got " + got.str() +
+                          "; give the levels in a smaller unit)");
+  }
   fit.fit_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   const double nan = std::numeric_limits<double>::quiet_NaN();

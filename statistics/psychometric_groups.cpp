@@ -7,6 +7,10 @@
 
 namespace palprig::stats {
 
+namespace {
+constexpr int kMaxTrialsPerLevel = 1000000000;
+}  // namespace
+
 std::vector<PsychometricGroup> psychometric_groups(const CsvTable& table, const PsychometricColumns& a) {
   if (a.level.empty() || a.response.empty()) {
     throw InputError("command line", "level", "both the `level` and the `response` column for a CSV file");
@@ -29,6 +33,11 @@ std::vector<PsychometricGroup> psychometric_groups(const CsvTable& table, const 
         throw InputError(table.source(), where + ", columns '" + a.response + "', '" + a.n + "'",
                          "whole counts with 0 <= " + a.response + " <= " + a.n);
       }
+      // Counts are ints; a level's trials (summed over its rows) stay below 10^9.
+      if (trials > kMaxTrialsPerLevel - c.n) {
+        throw InputError(table.source(), where + ", column '" + a.n + "'",
+                         "at most 1000000000 trials at one level (summed over its rows)");
+      }
       c.n += static_cast<int>(trials);
       c.k += static_cast<int>(k);
     } else {
@@ -36,6 +45,9 @@ std::vector<PsychometricGroup> psychometric_groups(const CsvTable& table, const 
         throw InputError(table.source(), where + ", column '" + a.response + "'",
                          "a response of 0 or 1 per trial (or give the `n` column for counts per level), got " +
                              table.text(row, response));
+      }
+      if (c.n >= kMaxTrialsPerLevel) {
+        throw InputError(table.source(), where, "at most 1000000000 trials at one level");
       }
       ++c.n;
       c.k += static_cast<int>(k);

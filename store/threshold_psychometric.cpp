@@ -1,8 +1,10 @@
 #include "store/threshold_psychometric.hpp"
 
 #include <fstream>
+#include <limits>
 
 #include "models/parse_error.hpp"
+#include "models/regular_file.hpp"
 
 namespace palprig {
 
@@ -29,6 +31,8 @@ std::string column_label(const ThresholdTrialRow& r, const std::string& column, 
 }  // namespace
 
 bool is_sqlite_file(const std::filesystem::path& file) {
+  // Only a regular file is sniffed: a FIFO would block here, a directory is no database.
+  if (!regular_file_problem(file, std::numeric_limits<std::uintmax_t>::max()).empty()) return false;
   std::ifstream in(file, std::ios::binary);
   char magic[16] = {};
   in.read(magic, sizeof magic);

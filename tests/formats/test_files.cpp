@@ -82,7 +82,7 @@ TEST(Files, BadRigFilesAreRefusedWithFieldAndReason) {
             f + ": plant.max_kPa: a value above min_kPa");
   EXPECT_EQ(rig("{\"version\": 1,\n \"id\": }"), f + ": at line 2, column 8: valid JSON (syntax error while parsing value - unexpected '}'; expected '[', '{', or a literal)");
   EXPECT_EQ(refusal([&] { load_rig_file(dir.path() / "missing.json"); }),
-            (dir.path() / "missing.json").string() + ": file: a readable JSON file (cannot open it)");
+            (dir.path() / "missing.json").string() + ": file: a regular file of at most 16 MiB holding a JSON document, got no such file");
 }
 
 TEST(Files, BadScenesAreRefused) {
@@ -101,7 +101,7 @@ TEST(Files, BadScenesAreRefused) {
   EXPECT_EQ(scene(R"({"version": 1, "map": {"file": "m.csv", "width_mm": 10, "height_mm": 10, "outside": {"background": 2}}})"),
             f + ": map.outside.background: a number in 0..1, got 2");
   EXPECT_EQ(scene(R"({"version": 1, "map": {"file": "nope.csv", "width_mm": 10, "height_mm": 10}})"),
-            (dir.path() / "nope.csv").string() + ": file: a readable stiffness map (cannot open it)");
+            (dir.path() / "nope.csv").string() + ": file: a regular file of at most 256 MiB holding a stiffness map, got no such file");
   EXPECT_EQ(scene(R"({"version": 1, "map": {"file": "m.csv", "width_mm": 10, "height_mm": 10}, "tumors": [{"name": "A", "x_mm": 1, "y_mm": 1, "radius_mm": -2}]})"),
             f + ": tumors[0].radius_mm: a number in 0.001..10000, got -2");
   dir.write("bad.csv", "0,0.5\n1\n");
