@@ -7,7 +7,7 @@
 #include "charts/chart_png.hpp"
 #include "tests/support/temp_dir.hpp"
 
-using namespace palprig::gui;
+using namespace palprig::charts;
 using palprig::test_support::TempDir;
 
 namespace {

@@ -20,7 +20,7 @@
 #include "calibration/stress_fit.hpp"
 #include "calibration/sweep_csv.hpp"
 #include "controller/telemetry_writer.hpp"
-#include "experiments/protocol.hpp"
+#include "study/protocol.hpp"
 #include "formats/calibration_file.hpp"
 #include "formats/function_scene_file.hpp"
 #include "formats/rig_file.hpp"

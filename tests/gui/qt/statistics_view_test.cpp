@@ -206,7 +206,7 @@ void StatisticsViewTest::measureWithNoCasesShowsNa() {
   QCOMPARE(measures->item(r, acc_column)->text(), QStringLiteral("n/a"));
   QCOMPARE(measures->item(r, tn_column)->text(), QStringLiteral("n/a"));
   QVERIFY(measures->item(r, se_column)->text().contains("n="));
-  const Chart& chart = view.findChild<ChartView*>("conditionChart")->chart();
+  const charts::Chart& chart = view.findChild<ChartView*>("conditionChart")->chart();
   QCOMPARE(chart.series[0].bar_labels[1], std::string("n/a"));
   QVERIFY(std::isnan(chart.series[0].y[1]));
 
@@ -217,7 +217,7 @@ void StatisticsViewTest::measureWithNoCasesShowsNa() {
   for (const auto& t : tumors) detected += t.counts.tp;
   QCOMPARE(detected, std::int64_t(cli["rows"][0]["TP"].get<long long>()));
   QVERIFY(row_of(measures, "tumor " + QString::fromStdString(tumors[0].key[0])) >= 0);
-  const Chart& detail = view.findChild<ChartView*>("detailChart")->chart();
+  const charts::Chart& detail = view.findChild<ChartView*>("detailChart")->chart();
   QCOMPARE(detail.x_categories.size(), tumors.size());
   // No finger values, and comparisons need two conditions: the tables say so rather than 0.
   QVERIFY(view.statistics()->by_finger.rows.empty());
