@@ -11,8 +11,8 @@
 
 #include "store/sqlite_trial_store.hpp"
 #include "study/protocol.hpp"
-#include "study/scoring.hpp"
 #include "study/session_plan.hpp"
+#include "tests/support/discrimination_trials.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -22,8 +22,8 @@ using palprig::test_support::run_process;
 
 namespace {
 
-// A discrimination session of paper 002's protocol, answered correctly on every trial but the
-// first, committed the way a session commits (one transaction per trial).
+// A discrimination session of paper 002's protocol, answered exactly on every trial but the
+// first (all fingers), committed the way a session commits (one transaction per trial).
 std::filesystem::path write_store(const std::filesystem::path& dir) {
   const Protocol p = load_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data/protocols/discrimination_002.json");
   const auto db = dir / "analyst.db";
@@ -32,20 +32,7 @@ std::filesystem::path write_store(const std::filesystem::path& dir) {
   const SessionPlan plan = make_session_plan(p, who.number, 7);
   const std::int64_t id = store.create_session(who, p, plan, SessionSetup{});
   for (const PlannedTrial& planned : plan.trials) {
-    TrialRecord r;
-    r.planned = planned;
-    r.condition = p.conditions[static_cast<std::size_t>(planned.condition)].name;
-    r.mode = p.conditions[static_cast<std::size_t>(planned.condition)].mode;
-    const auto& c = p.combinations[static_cast<std::size_t>(planned.combination)];
-    r.combination_label = c.label;
-    r.stimulus_kPa = c.pressure_kPa;
-    r.truth = c.tumor;
-    r.answered = true;
-    r.answer = planned.position == 0 ? FingerFlags{true, true, true} : c.tumor;
-    r.finger_outcomes = score_discrimination(r.truth, r.answer);
-    r.onset_s = 10.0 * planned.position;
-    r.response_time_s = 2.5;
-    store.commit_trial(id, r);
+    store.commit_trial(id, palprig::testing::discrimination_trial(p, planned, planned.position == 0));
   }
   store.complete_session(id);
   return db;
@@ -64,7 +51,7 @@ TEST(AnalystCommands, StatsTrialsReadsAStoreWrittenWithoutARig) {
   const auto r = run_process(palprig_bin() + " stats trials " + db.string() + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\"ACC\""), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("simultaneous"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("three-finger"), std::string::npos) << r.out;  // a condition of paper 002
 }
 
 TEST(AnalystCommands, ExportWritesEveryTrialAsLongCsvAndBids) {

@@ -43,7 +43,7 @@ nlohmann::json run_oracle(const std::vector<LevelCounts>& data, const ScratchDir
   out << "level,n,k\n";
   for (const auto& c : data) out << c.level << "," << c.n << "," << c.k << "\n";
   out.close();
-  const auto r = test_support::run_process("/usr/bin/python3 " + (testing::source_dir() / "tests" / "experiments" /
+  const auto r = test_support::run_process("/usr/bin/python3 " + (testing::source_dir() / "tests" / "statistics" /
                                                               "psychometric_oracle.py").string() + " " + csv.string());
   EXPECT_EQ(r.exit_code, 0) << r.err << " (needs Debian's python3-statsmodels, tools/debian-packages.txt)";
   return nlohmann::json::parse(r.out);

@@ -7,6 +7,7 @@
 #include "sessions/session_setup.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "models/parse_error.hpp"
+#include "tests/support/discrimination_trials.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace palprig {
@@ -14,23 +15,7 @@ namespace {
 
 using testing::ScratchDir;
 
-TrialRecord discrimination_trial(const Protocol& p, const PlannedTrial& planned, bool answer_all) {
-  TrialRecord r;
-  r.planned = planned;
-  r.condition = p.conditions[static_cast<std::size_t>(planned.condition)].name;
-  r.mode = p.conditions[static_cast<std::size_t>(planned.condition)].mode;
-  const auto& c = p.combinations[static_cast<std::size_t>(planned.combination)];
-  r.combination_label = c.label;
-  r.stimulus_kPa = c.pressure_kPa;
-  r.truth = c.tumor;
-  r.answered = true;
-  r.answer = answer_all ? FingerFlags{true, true, true} : c.tumor;
-  r.finger_outcomes = score_discrimination(r.truth, r.answer);
-  r.onset_s = 10.0 * planned.position;
-  r.response_time_s = 4.5;
-  r.felt_kPa = c.pressure_kPa;
-  return r;
-}
+using testing::discrimination_trial;
 
 void raw_sql(const std::filesystem::path& file, const std::string& sql) {
   sqlite3* db = nullptr;
