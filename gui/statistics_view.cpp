@@ -140,7 +140,7 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   top->addWidget(refresh_button);
   const std::pair<ExportKind, const char*> buttons[] = {
       {ExportKind::long_csv, "Long CSV"}, {ExportKind::bids, "BIDS"}, {ExportKind::statistics_json, "Statistics JSON"},
-      {ExportKind::chart_png, "charts::Chart PNG"}, {ExportKind::chart_svg, "charts::Chart SVG"}};
+      {ExportKind::chart_png, "Chart PNG"}, {ExportKind::chart_svg, "Chart SVG"}};
   const char* names[] = {"exportLongCsv", "exportBids", "exportStatisticsJson", "exportChartPng", "exportChartSvg"};
   for (std::size_t i = 0; i < std::size(buttons); ++i) {
     auto* b = new QPushButton(tr(buttons[i].second), this);
