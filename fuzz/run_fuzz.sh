@@ -28,6 +28,8 @@ seeds_for() {
     fuzz_telemetry_bin) echo "" ;;
     fuzz_stats_csv) echo "data/calibration/*.csv data/traces/*.csv" ;;
     fuzz_waveform_csv) echo "data/waveforms/*.csv" ;;
+    fuzz_psychometric_csv) echo "" ;;
+    fuzz_calibration_csv) echo "data/calibration/*.csv" ;;
   esac
 }
 

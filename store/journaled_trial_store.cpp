@@ -5,6 +5,7 @@
 
 #include "models/parse_error.hpp"
 #include "store/lab_sync.hpp"
+#include "store/postgres_schema.hpp"
 #include "store/postgres_session_rows.hpp"
 #include "store/sqlite_session_rows.hpp"
 
@@ -35,6 +36,21 @@ JournaledTrialStore::JournaledTrialStore(const PgTarget& target, const std::file
       journal_file_(journal_parent_created(journal_file)),
       journal_(journal_file_, Access::read_write) {
   ensure_lab_sessions_table(journal_.database());
+  try {
+    server_identity_ = pg_store_identity(server_.connection());
+  } catch (const PgError& e) {
+    throw InputError(target.describe(), "connection", "a reachable PostgreSQL server (libpq: " + e.reason() + ")");
+  }
+  {
+    // Journals written before the store had an identity name the server by host, port and
+    // database. Their sessions not yet on a server go to this one (pushes are idempotent on the
+    // session's uid), with no server id: an id of that old server says nothing here. Pushed
+    // ones keep the old name, which matches no store, so a fresh server at the same address
+    // never finds them (it was taken for the old one, and its session 1 refused as running).
+    auto adopt = journal_.database().prepare(
+        "UPDATE lab_store_sessions SET server = ?1, server_session_id = NULL WHERE server = ?2 AND synced = 0");
+    adopt.bind(1, server_identity_).bind(2, target.describe()).run();
+  }
   // What an earlier run could not push (killed, or the server was down) goes first, so that
   // --resume continues after the last trial the bench ran.
   PushOptions options;
@@ -100,7 +116,7 @@ void JournaledTrialStore::release_session(std::int64_t session_id) {
 std::int64_t JournaledTrialStore::journal_session(std::int64_t server_session_id) {
   if (const auto it = journal_id_of_.find(server_session_id); it != journal_id_of_.end()) return it->second;
   Database& db = journal_.database();
-  const std::string server_key = server_.target().describe();
+  const std::string& server_key = server_identity_;
   std::int64_t local = 0;
   auto known = db.prepare("SELECT session_id FROM lab_store_sessions WHERE server = ?1 AND server_session_id = ?2");
   known.bind(1, server_key).bind(2, server_session_id);

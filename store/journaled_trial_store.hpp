@@ -79,6 +79,7 @@ class JournaledTrialStore final : public TrialStore {
   std::filesystem::path journal_file_;
   SqliteTrialStore journal_;
   std::map<std::int64_t, std::int64_t> journal_id_of_;  // server session id -> journal session id
+  std::string server_identity_;                          // pg_store_identity: the store, not its address
   int pushed_at_open_ = 0;
   std::unique_ptr<JournalPusher> pusher_;
 };

@@ -6,6 +6,7 @@
 
 #include "models/parse_error.hpp"
 #include "store/pg_target.hpp"
+#include "store/postgres_schema.hpp"
 #include "store/postgres_session_rows.hpp"
 #include "store/postgres_trial_store.hpp"
 #include "store/sqlite_session_rows.hpp"
@@ -36,7 +37,7 @@ constexpr std::size_t kPushBatch = 500;
 
 PushReport push_file_to_server(Database& file, PgConnection& server, const PushOptions& options) {
   PushReport report;
-  const std::string server_key = server.target().describe();
+  const std::string server_key = pg_store_identity(server);  // the store, not its address
   const auto links = journal_links(file);
   const auto is_journal_session = [&](std::int64_t id) {
     const auto link = links.find(id);

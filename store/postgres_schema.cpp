@@ -115,6 +115,17 @@ CREATE TABLE session_locks (
 ALTER TABLE trials ADD COLUMN confidence integer CHECK (confidence BETWEEN 1 AND 9);
 ALTER TABLE trials ADD COLUMN stimulus_end_s double precision;
 )sql",
+      // 4: the store's own id, made once with the store. With the cluster's system identifier it
+      // tells a bench journal which store a session was pushed to (not host, port and name: a
+      // new server at the same address is another store).
+      R"sql(
+CREATE TABLE palprig_store (
+  store_id    text PRIMARY KEY,
+  created_utc timestamptz NOT NULL DEFAULT now()
+);
+INSERT INTO palprig_store (store_id)
+  VALUES (md5(random()::text || clock_timestamp()::text || pg_backend_pid()::text || txid_current()::text));
+)sql",
   };
   return steps;
 }
@@ -168,6 +179,20 @@ void ensure_pg_schema(PgConnection& db, int target_version) {
             {std::to_string(v), std::string("palprig " PALPRIG_VERSION_TEXT)});
   }
   tx.commit();
+}
+
+std::string pg_store_identity(PgConnection& db) {
+  std::string system = "?", store = "?";
+  try {
+    system = db.exec("SELECT system_identifier::text FROM pg_control_system()").text(0, 0);
+  } catch (const PgError& e) {
+    if (e.connection_lost()) throw;  // a role without the right: the store id alone
+  }
+  if (table_exists(db, "palprig_store")) {
+    const PgResult r = db.exec("SELECT store_id FROM palprig_store ORDER BY created_utc, store_id LIMIT 1");
+    if (r.rows() == 1) store = r.text(0, 0);
+  }
+  return "postgresql system " + system + " store " + store;
 }
 
 void check_pg_schema(PgConnection& db) {

@@ -13,8 +13,8 @@
 
 namespace palprig {
 
-// 1: the trial store's tables; 2: session_locks.
-inline constexpr int kPgSchemaVersion = 3;  // 3: trials.confidence, trials.stimulus_end_s
+// 1: the trial store's tables; 2: session_locks; 3: trials.confidence, trials.stimulus_end_s.
+inline constexpr int kPgSchemaVersion = 4;  // 4: palprig_store (the store's own id)
 // The first version whose trials have the rating columns; older servers read them as NULL.
 inline constexpr int kPgSchemaRatingColumnsFrom = 3;
 // Readers (stats, export, copy from) need only the tables of version 1: an older lab server is
@@ -30,6 +30,12 @@ int pg_schema_version(PgConnection& db);
 // server with a smaller one), all steps in one transaction. Throws InputError (location = the
 // target's description) for a newer schema or a database whose tables palprig did not create.
 void ensure_pg_schema(PgConnection& db, int target_version = kPgSchemaVersion);
+
+// Which store this connection reaches, as the bench journal remembers it: PostgreSQL's system
+// identifier of the cluster (pg_control_system(); "?" where the role may not read it) and the
+// id palprig_store keeps in the database (schema 4; "?" on an older one). Host, port and
+// database name are no identity: a fresh server at the same address is another store.
+std::string pg_store_identity(PgConnection& db);
 
 // Read-only: refuses a database without palprig's schema, or with a newer one; reads one as old
 // as kPgSchemaReadableFrom as it is.

@@ -4,7 +4,9 @@
 
 #include <sqlite3.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <thread>
 
 #include "models/parse_error.hpp"
@@ -16,12 +18,46 @@ namespace {
 // A damaged file is bad input, not a fault of palprig: one line naming the file, exit 2.
 // SQLITE_CORRUPT can surface at any statement (a damaged page is only read when a query reaches
 // it), so every error passes through here. `what` is the statement, `detail` SQLite's reason.
-[[noreturn]] void throw_sqlite(const std::string& file, const std::string& what, const std::string& detail, int code) {
+[[noreturn]] void throw_sqlite(const std::string& file, const std::string& what, const std::string& detail, int code,
+                               int system_errno = 0) {
   if ((code & 0xff) == SQLITE_CORRUPT) throw InputError(file, "database pages", damaged_database_expectation(detail));
+  if (const std::string cause = sqlite_environment_cause(file, code, system_errno); !cause.empty())
+    throw SqliteError(file + ": the trial database cannot be used: " + cause + " (SQLite: " + detail.substr(0, 120) + ")", code,
+                      true, system_errno);
   throw SqliteError(file + ": " + (what.empty() ? detail : what + ": " + detail), code);
 }
 
+bool writable(const std::filesystem::path& p) { return ::access(p.c_str(), W_OK) == 0; }
+
 }  // namespace
+
+std::string sqlite_environment_cause(const std::string& file, int code, int system_errno) {
+  const std::filesystem::path path(file);
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  const std::string os = system_errno != 0 ? std::string(": ") + std::strerror(system_errno) : "";
+  switch (code & 0xff) {
+    case SQLITE_READONLY:
+      if (std::filesystem::exists(path) && !writable(path)) return "the file is read-only";
+      if (!writable(folder)) return "its folder " + folder.string() + " is read-only (SQLite writes -wal and -shm files beside it)";
+      return "the file or its folder is read-only" + os;
+    case SQLITE_CANTOPEN:
+      if (!std::filesystem::is_directory(folder)) return "its folder " + folder.string() + " does not exist";
+      if (!std::filesystem::exists(path) && !writable(folder)) return "its folder " + folder.string() + " is read-only";
+      return "it cannot be opened" + os;
+    case SQLITE_PERM:
+      return "permission denied" + os;
+    case SQLITE_FULL:
+      return "the disk is full (or the file may grow no further)";
+    case SQLITE_IOERR:
+      if (system_errno == ENOSPC || system_errno == EFBIG || system_errno == EDQUOT)
+        return "the disk is full (or the file may grow no further)" + os;
+      // SQLite's errno is often lost by the time it reports (it rolls back first): say what
+      // a failed write usually is.
+      return "a read or write failed (the disk may be full, the file may grow no further, or the device failed)" + os;
+    default:
+      return "";
+  }
+}
 
 Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.string()) {
   // NOMUTEX: a connection is used by one thread at a time, so SQLite's per-call mutex (a tenth
@@ -38,10 +74,19 @@ Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.st
     const int rc = open(flags);
     if (rc != SQLITE_OK) {
       const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+      const int system_errno = db_ ? sqlite3_system_errno(db_) : 0;
       sqlite3_close(db_);
       db_ = nullptr;
-      throw SqliteError(file_ + ": " + message, rc);
+      throw_sqlite(file_, "", message, rc, system_errno);
     }
+  }
+  // SQLite opens a file it may not write read-only without a word, and the first trial would
+  // then fail: a writer learns it here, before anything is written.
+  if (mode == Mode::read_write_create && sqlite3_db_readonly(db_, "main") == 1) {
+    const std::string message = "attempt to write a readonly database";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw_sqlite(file_, "", message, SQLITE_READONLY);
   }
   // A writer holds the lock only for one short transaction per trial: readers (stats, export,
   // the GUI) wait for it rather than failing.
@@ -81,7 +126,7 @@ void Database::refuse_if_damaged() {
 }
 
 void Database::fail(const std::string& what, int code) const {
-  throw_sqlite(file_, what, sqlite3_errmsg(db_), code);
+  throw_sqlite(file_, what, sqlite3_errmsg(db_), code, sqlite3_system_errno(db_));
 }
 
 void Database::exec(std::string_view sql) {
@@ -91,7 +136,7 @@ void Database::exec(std::string_view sql) {
   if (rc != SQLITE_OK) {
     const std::string message = error ? error : sqlite3_errstr(rc);
     sqlite3_free(error);
-    throw_sqlite(file_, text.substr(0, 60), message, rc);
+    throw_sqlite(file_, text.substr(0, 60), message, rc, sqlite3_system_errno(db_));
   }
 }
 

@@ -18,12 +18,25 @@ namespace palprig {
 
 class SqliteError : public std::runtime_error {
  public:
-  SqliteError(const std::string& what, int code) : std::runtime_error(what), code_(code) {}
+  SqliteError(const std::string& what, int code, bool environment = false, int system_errno = 0)
+      : std::runtime_error(what), code_(code), environment_(environment), system_errno_(system_errno) {}
   int code() const noexcept { return code_; }
+  int system_errno() const noexcept { return system_errno_; }
+  // The machine, not the data: a read-only file or folder, a full disk, a failed write. The
+  // message is then palprig's own ("FILE: the trial database cannot be used: the disk is full
+  // (SQLite: ...)").
+  bool environment() const noexcept { return environment_; }
 
  private:
   int code_;
+  bool environment_;
+  int system_errno_;
 };
+
+// What keeps SQLite from writing `file`, in words, for an error `code` (SQLITE_READONLY,
+// SQLITE_CANTOPEN, SQLITE_FULL, SQLITE_IOERR, SQLITE_PERM) with the system's errno beside it;
+// "" for an error that is not the environment's.
+std::string sqlite_environment_cause(const std::string& file, int code, int system_errno);
 
 class Statement;
 

@@ -48,8 +48,13 @@ SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access acc
   if (e.code() == SQLITE_NOTADB) {
     throw InputError(file.string(), "file", "a palprig trial database (this is not an SQLite database)");
   }
-  if (e.code() == SQLITE_CANTOPEN) {
-    throw InputError(file.string(), "file", "a database file that can be opened or created (check the path)");
+  // Opening, creating or migrating a store writes none of its trials: a read-only file or
+  // folder, a full disk, is one line naming the file and the cause, exit 2.
+  if (e.environment() || e.code() == SQLITE_CANTOPEN) {
+    std::string cause = sqlite_environment_cause(file.string(), e.code(), e.system_errno());
+    throw InputError(file.string(), "file",
+                     "a trial database palprig can open and write (" + (cause.empty() ? std::string(e.what()) : cause) +
+                         "; nothing was written)");
   }
   throw;
 }
