@@ -21,6 +21,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;  // CLOCK_MONOTONIC on Linux
 
+// CPU time of the calling thread: a replay's tick cost, blind to the time the thread waited
+// for a CPU on a loaded machine.
+std::int64_t thread_cpu_ns() noexcept {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return std::int64_t(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+// The part of the lost time each period run forgives: a loop may lose 1 period in 100 for
+// ever, but not a burst of max_lost_time_s.
+constexpr double kLostTimeDrain = 0.01;
+
 }  // namespace
 
 RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& input, RigBackend& backend,
@@ -52,6 +64,19 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
   }
   char worker_detail[256] = {0};
   int consecutive_overruns = 0;
+  // Lost time (SafetyLimits::max_lost_time_s): periods not run in time, as seconds.
+  double lost_s = 0;
+  const double max_lost_s = config.safety.max_lost_time_s;
+  char lost_detail[160] = {0};
+  auto add_lost = [&](std::uint64_t periods) noexcept {
+    lost_s = std::max(0.0, lost_s - kLostTimeDrain * period_s) + double(periods) * period_s;
+    if (lost_s > max_lost_s && !rig.faulted()) {
+      std::snprintf(lost_detail, sizeof lost_detail,
+                    "lost %.3f s of %.0f Hz periods (safety.max_lost_time_s = %.3f s): the loop cannot hold its rate",
+                    lost_s, opt.rate_hz, max_lost_s);
+      rig.enter_fault(FaultCode::lost_time_limit, lost_detail);
+    }
+  };
   bool vent_was_held = false;
   // Armed for the run, disarmed (vented) at its end. A backend that refuses (closed) ends the
   // run before the first tick with the reason.
@@ -85,7 +110,15 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       vent_was_held = vent_held;
     }
 
+    const std::int64_t cpu_start = realtime ? 0 : thread_cpu_ns();
     const StepResult& step = rig.step(scene, input.latest(t_s), t_s);
+    if (!realtime) {
+      // A replay has no deadlines, but a tick that costs more than its period could not run
+      // in real time: its excess counts as lost periods, so a replay of a scene too slow for
+      // the rate faults within max_lost_time_s instead of running for hours.
+      const std::int64_t cpu = thread_cpu_ns() - cpu_start;
+      add_lost(cpu > period_ns ? static_cast<std::uint64_t>((cpu - 1) / period_ns) : 0);
+    }
     io_hist.record(step.io_us);
     tick_hist.record(step.tick_us);
 
@@ -112,9 +145,11 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
         const auto resume =
             std::min(total_ticks, static_cast<std::uint64_t>((now - start_ns) / period_ns) + 1);
         sum.missed_periods += resume - k;
+        add_lost(resume - k);  // skipped periods are time the rig went uncontrolled
         k = resume;
       } else {
         consecutive_overruns = 0;
+        add_lost(0);
       }
     }
     if (opt.observer) opt.observer->on_tick(rec);
