@@ -73,6 +73,11 @@ struct ModbusRegisterRef {
   RegisterScale scale;
 };
 
+// Why a Modbus TCP host (name or address) is refused, "" when it is acceptable: DNS syntax
+// (RFC 1123 labels; '_' tolerated) or an IPv4/IPv6 literal. Names are resolved (getaddrinfo)
+// when the link is made, not here.
+std::string modbus_host_refusal(const std::string& host);
+
 struct ModbusChannelMap {
   ModbusRegisterRef output;        // always a holding register
   ModbusRegisterRef monitor;
