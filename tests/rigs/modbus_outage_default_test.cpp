@@ -42,7 +42,9 @@ void expect_ended_by_the_outage(const FinishedRun& r, const TempDir& dir, double
   EXPECT_NE(r.summary["fault"]["detail"].get<std::string>().find("max_outage_s = 2.000 s"), std::string::npos)
       << r.summary.dump();
   EXPECT_NE(r.err.find("lost"), std::string::npos) << r.err;
-  // Ended about 2 s after the link was lost, well before the end of the run.
+  // Ended about 2 s after the link was lost, well before the end of the run. The bus thread
+  // dates the loss from the start of the cycle whose request then timed out (50 ms), so the
+  // loop's first alarm comes up to a response timeout, a bus period and a late tick after it.
   const auto tel = read_csv((dir.path() / "telemetry.csv").string());
   ASSERT_FALSE(tel.rows.empty());
   const std::size_t t = tel.col("t_s"), fault = tel.col("fault"), flags = tel.col("flags");
@@ -51,7 +53,7 @@ void expect_ended_by_the_outage(const FinishedRun& r, const TempDir& dir, double
     if (row[fault] == 3 && first_alarm < 0) first_alarm = row[t];
   ASSERT_GE(first_alarm, 0.0);
   const double fault_t = r.summary["fault"]["t_s"].get<double>();
-  EXPECT_GE(fault_t - first_alarm, 2.0 - 0.05);
+  EXPECT_GE(fault_t - first_alarm, 2.0 - 0.1);
   EXPECT_LE(fault_t - first_alarm, 2.0 + 0.5);
   EXPECT_LT(fault_t, seconds - 1.0);
   // Vented: every command from the alarm on is 0 kPa, the last record says vented.
