@@ -142,9 +142,10 @@ TEST(LostTime, ReplayOfTheSameSceneFaultsTooAndTheLimitIsTheRigFilesSetting) {
   const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
   EXPECT_EQ(s.fault, FaultCode::lost_time_limit);
   // A 3 ms tick loses the 3 periods a real-time loop would skip: 0.2 s after about 67 slow
-  // ticks, one tick in two.
+  // ticks, one tick in two (2 periods, 100 slow ticks, should a preemption between two ticks
+  // make the CPU estimate fall short of 3 ms).
   EXPECT_GE(s.ticks, 120u);
-  EXPECT_LE(s.ticks, 150u);
+  EXPECT_LE(s.ticks, 210u);
 }
 
 TEST(LostTime, AFastReplayLosesNothing) {
