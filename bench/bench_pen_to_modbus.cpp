@@ -151,7 +151,8 @@ int main(int argc, char** argv) {
 
   const RigConfig rig = load_rig_file(rig_path);
   const SceneFile scene = load_scene_file(kSource + "/data/scenes/phantom_abc.json");
-  const TickConfig config = make_tick_config(rig, CalibrationModels{});
+  TickConfig config = make_tick_config(rig, CalibrationModels{});
+  config.safety.max_lost_time_s = 1e9;  // a latency measurement: a stalled VM must not end it
   auto source = std::make_unique<EvemuPenSource>(recording);
   EvemuPenSource* replay = source.get();
   TabletInput pen(std::move(source), rig.tablet);

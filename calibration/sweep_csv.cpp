@@ -36,9 +36,14 @@ void SweepCsvWriter::on_hold(std::size_t index, const SweepHold& hold, std::span
       if (!channels_[c]) continue;
       char sensor[40] = "";
       if (has_sensor_ && std::isfinite(s.sensor[c])) std::snprintf(sensor, sizeof sensor, "%.6g", s.sensor[c]);
-      std::snprintf(line, sizeof line, "%.4f,%zu,%zu,%s,%d,%s,%.4f,%.4f,%s,%d\n", s.t_s, c + 1, index,
-                    to_string(hold.segment), hold.repeat, to_string(hold.branch), s.command_kPa, s.monitor_kPa[c],
-                    sensor, s.settled ? 1 : 0);
+      // A monitor without a reading is an empty cell, never "nan", which no reader takes; such a
+      // sample is never marked settled (the runner redoes a hold an outage spoils).
+      char monitor[40] = "";
+      const bool has_monitor = std::isfinite(s.monitor_kPa[c]);
+      if (has_monitor) std::snprintf(monitor, sizeof monitor, "%.4f", s.monitor_kPa[c]);
+      std::snprintf(line, sizeof line, "%.4f,%zu,%zu,%s,%d,%s,%.4f,%s,%s,%d\n", s.t_s, c + 1, index,
+                    to_string(hold.segment), hold.repeat, to_string(hold.branch), s.command_kPa, monitor, sensor,
+                    s.settled && has_monitor ? 1 : 0);
       out_ << line;
       ++rows_;
     }
@@ -49,6 +54,7 @@ void SweepCsvWriter::on_hold(std::size_t index, const SweepHold& hold, std::span
 
 void SweepCsvWriter::finish(const SweepOutcome& o) {
   out_ << "# holds: " << o.holds_done << " of " << o.holds_planned << " (" << o.holds_unsettled << " not settled)\n";
+  if (o.holds_redone) out_ << "# redone: " << o.holds_redone << " hold(s) started again after a link outage\n";
   if (o.stopped) out_ << "# stopped: signal " << o.stop_signal << "; channels vented; the rows above were kept\n";
   if (o.faulted) out_ << "# fault: " << o.fault << "; channels vented\n";
   out_.flush();

@@ -27,6 +27,9 @@ bool monitors_settled(const std::vector<SweepSample>& s, std::size_t window, con
   return true;
 }
 
+// Tries at one hold before a failing link ends the sweep.
+constexpr int kMaxHoldAttempts = 3;
+
 }  // namespace
 
 SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& schedule, const SweepRunOptions& o,
@@ -66,50 +69,130 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
     out.fault = rig.fault_detail();
     return out;
   }
+  // A step is usable only when its setpoints reached the regulators and every selected monitor
+  // has a reading: during a link outage (Modbus reconnecting) the rig step vents and monitors
+  // read NaN, so such samples are not the response to the hold's level.
+  auto usable = [&](const StepResult& step) {
+    if (!step.linked || !step.armed) return false;
+    for (std::size_t c = 0; c < kFingerCount; ++c)
+      if (o.channels[c] && !std::isfinite(step.monitor_kPa[c])) return false;
+    return true;
+  };
+  enum class HoldEnd { settled, unsettled, interrupted, ended };  // ended: stop or fault
+  // One hold at `level` from the rig's present state: the settle test, then the averaging window
+  // (recorded holds) or nothing more (approach holds). Samples go to hold_samples.
+  auto run_hold = [&](double level, bool record, HoldOutcome& result) {
+    ChannelPressures target{};
+    for (std::size_t c = 0; c < kFingerCount; ++c) target[c] = o.channels[c] ? level : 0.0;
+    hold_samples.clear();
+    result = HoldOutcome{};
+    std::size_t averaging_from = 0;  // index of the first averaged sample, once settled
+    bool averaging = false;
+    const double hold_start_s = pacer.period_s() * double(k);
+    for (;;) {
+      t_s = pacer.wait_for_tick(k++);
+      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+        out.stopped = true;
+        out.stop_signal = o.stop_signal->load();
+        return HoldEnd::ended;
+      }
+      const StepResult& step = rig.step_direct(target, t_s);
+      if (rig.faulted()) {
+        out.faulted = true;
+        out.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
+                                                            : std::string("safety stage: ") + to_string(rig.fault());
+        return HoldEnd::ended;
+      }
+      if (!usable(step)) return HoldEnd::interrupted;
+      SweepSample s;
+      s.t_s = t_s;
+      s.command_kPa = level;
+      s.monitor_kPa = step.monitor_kPa;
+      s.sensor = step.sensor;  // NaN when the rig has no sensor
+      hold_samples.push_back(s);
+      result.hold_s = t_s - hold_start_s;
+      if (!averaging && result.hold_s >= o.min_hold_s &&
+          monitors_settled(hold_samples, window, o.channels, o.settle_band_kPa)) {
+        if (!record) {
+          result.settled = true;
+          return HoldEnd::settled;
+        }
+        averaging = true;
+        averaging_from = hold_samples.size();
+      } else if (averaging && hold_samples.size() - averaging_from >= average) {
+        result.settled = true;
+        for (std::size_t j = averaging_from; j < hold_samples.size(); ++j) hold_samples[j].settled = true;
+        return HoldEnd::settled;
+      }
+      if (result.hold_s >= o.max_hold_s) return HoldEnd::unsettled;  // recorded, but marked unsettled
+    }
+  };
+  // After an outage the rig was vented: wait (vented) until steps are usable again, at most
+  // max_hold_s. Returns false when the sweep ends (stop, fault, or the link stays down).
+  auto wait_for_link = [&] {
+    const double since = t_s;
+    const ChannelPressures vented{};
+    for (;;) {
+      t_s = pacer.wait_for_tick(k++);
+      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+        out.stopped = true;
+        out.stop_signal = o.stop_signal->load();
+        return false;
+      }
+      const StepResult& step = rig.step_direct(vented, t_s);
+      if (rig.faulted()) {
+        out.faulted = true;
+        out.fault = std::string(rig.fault_detail());
+        return false;
+      }
+      if (usable(step)) return true;
+      if (t_s - since > o.max_hold_s) {
+        out.faulted = true;
+        out.fault = "the rig's link stayed down for more than the longest hold (" + std::to_string(o.max_hold_s) + " s)";
+        return false;
+      }
+    }
+  };
   // A sink or progress callback that throws (a full disk) must not leave pressure on.
   try {
     for (std::size_t h = 0; h < schedule.holds.size() && !out.stopped && !out.faulted; ++h) {
       const SweepHold& hold = schedule.holds[h];
-      ChannelPressures target{};
-      for (std::size_t c = 0; c < kFingerCount; ++c) target[c] = o.channels[c] ? hold.level_kPa : 0.0;
-      hold_samples.clear();
       HoldOutcome result;
-      std::size_t averaging_from = 0;  // index of the first averaged sample, once settled
-      bool averaging = false;
-      const double hold_start_s = pacer.period_s() * double(k);
-      for (;;) {
-        t_s = pacer.wait_for_tick(k++);
-        if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
-          out.stopped = true;
-          out.stop_signal = o.stop_signal->load();
-          break;
+      bool history_lost = false;  // the plant was vented by an outage since the last vent hold
+      HoldEnd end = HoldEnd::interrupted;
+      for (int attempt = 0; attempt < kMaxHoldAttempts && end == HoldEnd::interrupted; ++attempt) {
+        if (attempt > 0) ++out.holds_redone;
+        if (history_lost && !wait_for_link()) break;
+        if (history_lost && hold.level_kPa > 0) {
+          // Hysteresis remembers the path: bring the plant back to this hold's branch by
+          // replaying, unrecorded, the levels commanded since the last vent (the outage vented
+          // it too), then hold the level again from there.
+          std::size_t from = h;
+          while (from > 0 && schedule.holds[from - 1].level_kPa > 0) --from;
+          HoldOutcome approach;
+          HoldEnd a = HoldEnd::settled;
+          for (std::size_t j = from; j < h && a != HoldEnd::interrupted && a != HoldEnd::ended; ++j)
+            a = run_hold(schedule.holds[j].level_kPa, false, approach);
+          if (a == HoldEnd::ended) break;
+          if (a == HoldEnd::interrupted) continue;  // lost again on the way: another attempt
         }
-        const StepResult& step = rig.step_direct(target, t_s);
-        if (rig.faulted()) {
-          out.faulted = true;
-          out.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
-                                                              : std::string("safety stage: ") + to_string(rig.fault());
-          break;
+        end = run_hold(hold.level_kPa, true, result);
+        if (end == HoldEnd::interrupted) {
+          history_lost = true;
+          hold_samples.clear();
         }
-        SweepSample s;
-        s.t_s = t_s;
-        s.command_kPa = hold.level_kPa;
-        s.monitor_kPa = step.monitor_kPa;
-        s.sensor = step.sensor;  // NaN when the rig has no sensor
-        hold_samples.push_back(s);
-        result.hold_s = t_s - hold_start_s;
-        if (!averaging && result.hold_s >= o.min_hold_s &&
-            monitors_settled(hold_samples, window, o.channels, o.settle_band_kPa)) {
-          averaging = true;
-          averaging_from = hold_samples.size();
-        } else if (averaging && hold_samples.size() - averaging_from >= average) {
-          result.settled = true;
-          for (std::size_t j = averaging_from; j < hold_samples.size(); ++j) hold_samples[j].settled = true;
-          break;
-        }
-        if (result.hold_s >= o.max_hold_s) break;  // recorded, but marked unsettled
       }
-      if (!hold_samples.empty()) {
+      if (end == HoldEnd::interrupted && !out.stopped && !out.faulted) {
+        // The link failed on every attempt: nothing of this hold is recorded, and the sweep
+        // ends (a file of whole holds, fittable) rather than guessing at the plant's state.
+        out.faulted = true;
+        out.fault = "the rig's link failed during " + std::to_string(kMaxHoldAttempts) + " attempts at hold " +
+                    std::to_string(h) + "; the sweep stops with the holds recorded so far";
+        break;
+      }
+      // A stop or a fault mid-hold keeps its settled-so-far samples (unsettled); an outage's
+      // samples never reach the file.
+      if (!hold_samples.empty() && end != HoldEnd::interrupted) {
         sink.on_hold(h, hold, hold_samples, result);
         ++out.holds_done;
         if (!result.settled) ++out.holds_unsettled;

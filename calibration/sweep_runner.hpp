@@ -5,6 +5,10 @@
 // holding for an averaging window whose samples are the hold's reading. Averaging only after
 // the settle test keeps the tail of the regulator's lag out of the reading (it would look
 // like extra hysteresis). A hold that does not settle within a time limit is kept, unmarked.
+// A hold that a link outage interrupts (the rig step vented, monitors NaN) is redone: nothing
+// of it is recorded, and once the link is back the levels since the last vent are replayed
+// unrecorded, so the plant is on the hold's hysteresis branch again; after 3 failed attempts,
+// or a link down longer than max_hold_s, the sweep ends faulted with whole holds recorded.
 // Every sample goes to a sink hold by hold, so a stop keeps what was recorded. Ctrl-C (the
 // stop flag), a backend error, an exception from the sink or the end all vent every channel.
 // Setpoints go through the controller's rig step and safety stage like every other path.
@@ -57,6 +61,7 @@ struct SweepRunOptions {
 
 struct SweepOutcome {
   std::size_t holds_planned = 0, holds_done = 0, holds_unsettled = 0;
+  std::size_t holds_redone = 0;  // holds started again after a link outage spoiled them
   bool stopped = false;   // by the stop flag (the signal number is in stop_signal)
   int stop_signal = 0;
   bool faulted = false;   // a backend error; `fault` says which

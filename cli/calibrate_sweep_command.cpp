@@ -90,8 +90,9 @@ void run_sweep(const SweepArgs& a) {
   std::cout << "palprig calibrate sweep: rig " << rig.id << " (" << info.backend << "), channels "
             << channels_text(run.channels) << ", " << (run.realtime ? "real time" : "simulated time") << "\n"
             << "  " << outcome.holds_done << " of " << outcome.holds_planned << " holds (" << outcome.holds_unsettled
-            << " not settled) in " << outcome.duration_s << " s of rig time; " << writer.rows() << " rows -> " << a.out
-            << "\n";
+            << " not settled"
+            << (outcome.holds_redone ? ", " + std::to_string(outcome.holds_redone) + " redone after a link outage" : "")
+            << ") in " << outcome.duration_s << " s of rig time; " << writer.rows() << " rows -> " << a.out << "\n";
   if (outcome.stopped || outcome.faulted) {
     std::cerr << "palprig: sweep " << (outcome.stopped ? "stopped by signal " + std::to_string(outcome.stop_signal)
                                                         : "faulted: " + outcome.fault)

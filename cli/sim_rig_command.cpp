@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "cli/commands.hpp"
+#include "rigs/modbus_link.hpp"
 #include "rigs/modbus_sim_server.hpp"
 #include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
@@ -44,7 +45,13 @@ void register_sim_rig_command(CLI::App& app) {
           throw InputError("--listen", "link \"" + map.links[i].name + "\"",
                            "a HOST:PORT to serve this RTU link on over TCP, or pty for RTU on a pseudo-terminal "
                            "(the rig file has no TCP address for it)");
-        addresses.push_back({map.links[i].host, map.links[i].port});
+        // The rig file may name the module's host: serve on the address it resolves to.
+        const NumericHost numeric = resolve_modbus_host(map.links[i].host);
+        const std::string where = "modbus.links[" + std::to_string(i) + "].tcp.host";
+        if (!numeric.error.empty()) throw InputError(rig.source, where, numeric.error);
+        if (numeric.ipv6)
+          throw InputError(rig.source, where, "an IPv4 address to serve on (sim-rig listens on IPv4), got " + numeric.address);
+        addresses.push_back({numeric.address, map.links[i].port});
       }
     } else {
       if (listen->size() != map.links.size())

@@ -16,6 +16,7 @@ enum class FaultCode : std::uint8_t {
   operator_stop,     // stopped on purpose (end of run, GUI stop button)
   bad_position,      // non-finite pen position (added after the others: stored codes keep their values)
   bad_time,          // non-finite pen sample time or loop time
+  lost_time_limit,   // the loop lost more than safety.max_lost_time_s of periods: it cannot hold its rate
 };
 
 constexpr const char* to_string(FaultCode f) noexcept {
@@ -31,6 +32,7 @@ constexpr const char* to_string(FaultCode f) noexcept {
     case FaultCode::signal: return "stopped by signal";
     case FaultCode::thread_exception: return "exception on a worker thread";
     case FaultCode::operator_stop: return "operator stop";
+    case FaultCode::lost_time_limit: return "loop cannot hold its rate (lost time beyond safety.max_lost_time_s)";
   }
   return "unknown";
 }

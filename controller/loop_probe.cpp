@@ -35,6 +35,7 @@ LoopMeasurement measure_loop(double rate_hz, double seconds, const RealtimeOptio
   TickConfig config;
   // The probe measures scheduling, so it must not stop at the first burst of overruns.
   config.safety.max_consecutive_overruns = 1 << 30;
+  config.safety.max_lost_time_s = 1e9;
   const RunSummary s = run_loop(config, scene, pen, backend, opt);
   backend.close();
   LoopMeasurement m;

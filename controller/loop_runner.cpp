@@ -21,6 +21,20 @@ namespace {
 
 using Clock = std::chrono::steady_clock;  // CLOCK_MONOTONIC on Linux
 
+// CPU time of the calling thread: a replay's tick cost, blind to the time the thread waited
+// for a CPU on a loaded machine. A system call (about 2 us in a gVisor sandbox), so a replay
+// reads it only every kCpuMarkTicks ticks and after a tick whose wall time exceeded the period.
+std::int64_t thread_cpu_ns() noexcept {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return std::int64_t(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+// The part of the lost time each period run forgives: a loop may lose 1 period in 100 for
+// ever, but not a burst of max_lost_time_s.
+constexpr double kLostTimeDrain = 0.01;
+constexpr std::uint32_t kCpuMarkTicks = 64;
+
 }  // namespace
 
 RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& input, RigBackend& backend,
@@ -52,6 +66,22 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
   }
   char worker_detail[256] = {0};
   int consecutive_overruns = 0;
+  // Lost time (SafetyLimits::max_lost_time_s): periods not run in time, as seconds.
+  double lost_s = 0;
+  const double max_lost_s = config.safety.max_lost_time_s;
+  char lost_detail[160] = {0};
+  auto add_lost = [&](std::uint64_t periods) noexcept {
+    lost_s = std::max(0.0, lost_s - kLostTimeDrain * period_s) + double(periods) * period_s;
+    if (lost_s > max_lost_s && !rig.faulted()) {
+      std::snprintf(lost_detail, sizeof lost_detail,
+                    "lost %.3f s of %.0f Hz periods (safety.max_lost_time_s = %.3f s): the loop cannot hold its rate",
+                    lost_s, opt.rate_hz, max_lost_s);
+      rig.enter_fault(FaultCode::lost_time_limit, lost_detail);
+    }
+  };
+  // Replay: a CPU-time mark and the wall time it was taken at (see thread_cpu_ns).
+  std::int64_t cpu_mark = 0, wall_mark = 0;
+  std::uint32_t ticks_since_mark = kCpuMarkTicks;
   bool vent_was_held = false;
   // Armed for the run, disarmed (vented) at its end. A backend that refuses (closed) ends the
   // run before the first tick with the reason.
@@ -85,7 +115,33 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       vent_was_held = vent_held;
     }
 
+    if (!realtime && ticks_since_mark >= kCpuMarkTicks) {
+      cpu_mark = thread_cpu_ns();
+      wall_mark = mono_ns();
+      ticks_since_mark = 0;
+    }
+    const std::int64_t wall_start = realtime ? 0 : mono_ns();
     const StepResult& step = rig.step(scene, input.latest(t_s), t_s);
+    if (!realtime) {
+      // A replay has no deadlines, but a tick that costs more than its period could not run
+      // in real time: its excess counts as lost periods, so a replay of a scene too slow for
+      // the rate faults within max_lost_time_s instead of running for hours. A tick within
+      // its period of wall time used less CPU than that; a longer one is judged by CPU time
+      // (a preempted replay loses nothing): the CPU since the mark less the wall time from the
+      // mark to this tick, which the ticks in between cannot have exceeded.
+      ++ticks_since_mark;
+      const std::int64_t wall_end = mono_ns();
+      std::uint64_t lost = 0;
+      if (wall_end - wall_start > period_ns) {
+        const std::int64_t cpu_now = thread_cpu_ns();
+        const std::int64_t cpu = (cpu_now - cpu_mark) - (wall_start - wall_mark);
+        if (cpu > period_ns) lost = static_cast<std::uint64_t>((cpu - 1) / period_ns);
+        cpu_mark = cpu_now;
+        wall_mark = mono_ns();
+        ticks_since_mark = 0;
+      }
+      add_lost(lost);
+    }
     io_hist.record(step.io_us);
     tick_hist.record(step.tick_us);
 
@@ -112,9 +168,11 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
         const auto resume =
             std::min(total_ticks, static_cast<std::uint64_t>((now - start_ns) / period_ns) + 1);
         sum.missed_periods += resume - k;
+        add_lost(resume - k);  // skipped periods are time the rig went uncontrolled
         k = resume;
       } else {
         consecutive_overruns = 0;
+        add_lost(0);
       }
     }
     if (opt.observer) opt.observer->on_tick(rec);

@@ -5,8 +5,11 @@
 //   realtime: absolute deadlines on CLOCK_MONOTONIC (no drift), overruns counted and the
 //             schedule resynchronised to the next free period; SCHED_FIFO/mlockall if allowed.
 //   replay:   simulated time, as fast as the machine goes, same tick and same backend calls.
-// Stop requests, worker-thread exceptions, telemetry failures and deadline overruns beyond the
-// limit latch a fault in the rig step; any fault vents every channel and ends the run with the
+// Lost time: periods skipped after overruns (realtime), or a tick's CPU time beyond its period
+// (replay), add up and drain by 1 % of the time run; beyond safety.max_lost_time_s the loop
+// cannot hold its rate and faults (lost_time_limit), in real time and in a replay alike.
+// Stop requests, worker-thread exceptions, telemetry failures, deadline overruns beyond the
+// limit and lost time beyond its limit latch a fault in the rig step; any fault vents every channel and ends the run with the
 // reason.
 #include <array>
 #include <atomic>

@@ -21,6 +21,13 @@ constexpr std::size_t kMaxShapeNodes = 4096;
 constexpr std::size_t kMaxBlobTerms = 256;
 constexpr double kMaxSize_mm = 1e4;
 constexpr double kMaxModulus_kPa = 1e8;  // 100 GPa: stiffer than any bone
+// The most work one tick may spend sampling the scene under its three fingers, in the FRep's
+// sphere-equivalent evaluations (StiffnessField::worst_case_sample_cost). At the 6-7 ns of CPU
+// each measured on a loaded 2-core EPYC (README "Hardening notes") this is about 0.2 ms, a fifth
+// of the 1 ms period at 1 kHz, so the tick, the backend and a loaded machine still fit. Checked when the file is loaded: a
+// scene that cannot be sampled in time is refused before anything moves, instead of
+// overrunning the loop (or running a replay for hours).
+constexpr double kMaxTickShapeCost = 30000;
 
 std::string number_text(double v) {
   std::ostringstream s;
@@ -363,6 +370,14 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
   } catch (const std::invalid_argument& e) {
     throw InputError(file, "scene", e.what());
   }
+  const double tick_cost = double(kFingerCount) * scene->field().worst_case_sample_cost();
+  if (tick_cost > kMaxTickShapeCost)
+    throw InputError(file, "inclusions",
+                     "shapes three fingers can sample within a fifth of a 1 kHz tick: at most " +
+                         std::to_string(std::llround(kMaxTickShapeCost)) + " shape evaluations per tick, got " +
+                         std::to_string(std::llround(tick_cost)) +
+                         " where the most inclusion boxes overlap (use fewer parts or blobs where they overlap, unions "
+                         "rather than intersections of many parts)");
   // A tumor is ground truth for scoring marks on the body: its centre lies on the body's
   // footprint (centre_mm +- half_size_mm), not metres away where no finger can reach it.
   const double x0 = centre[0] - half[0], x1 = centre[0] + half[0], y0 = centre[1] - half[1], y1 = centre[1] + half[1];

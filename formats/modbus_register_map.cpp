@@ -1,5 +1,7 @@
 #include "formats/modbus_register_map.hpp"
 
+#include <arpa/inet.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -7,6 +9,7 @@
 #include <sstream>
 
 #include "formats/json_file.hpp"
+#include "models/parse_error.hpp"
 #include "formats/rig_file.hpp"
 
 namespace palprig {
@@ -25,10 +28,34 @@ double RegisterScale::volts_from_word(std::uint16_t word) const noexcept {
 }
 
 std::string ModbusLinkConfig::endpoint() const {
+  // Host and device come from a file: escaped, so no message carries a control character.
   std::ostringstream s;
-  if (rtu) s << "rtu " << device << " " << baud << " " << data_bits << parity << stop_bits;
-  else s << "tcp " << host << ":" << port;
+  if (rtu) s << "rtu " << printable_excerpt(device, 120) << " " << baud << " " << data_bits << parity << stop_bits;
+  else s << "tcp " << printable_excerpt(host, 120) << ":" << port;
   return s.str();
+}
+
+std::string modbus_host_refusal(const std::string& host) {
+  const std::string expected =
+      "a host name (letters, digits, '-' and '.', labels of at most 63 and at most 253 characters) or an IPv4 or "
+      "IPv6 address, got \"" + host + "\"";
+  if (host.empty() || host.size() > 253) return expected;
+  in_addr v4{};
+  in6_addr v6{};
+  if (inet_pton(AF_INET, host.c_str(), &v4) == 1 || inet_pton(AF_INET6, host.c_str(), &v6) == 1) return "";
+  std::size_t label = 0;
+  for (std::size_t i = 0; i < host.size(); ++i) {
+    const char c = host[i];
+    if (c == '.') {
+      if (label == 0) return expected;  // empty label (".." or a leading dot)
+      label = 0;
+      continue;
+    }
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
+    if (!ok || ++label > 63) return expected;
+    if (c == '-' && (label == 1 || i + 1 == host.size() || host[i + 1] == '.')) return expected;
+  }
+  return "";
 }
 
 bool ModbusRigConfig::monitor_is_readback(std::size_t c) const noexcept {
@@ -48,7 +75,7 @@ ModbusLinkConfig parse_link(const JsonObject& o) {
   if (tcp) {
     const JsonObject t = o.object("tcp");
     l.host = t.string("host");
-    if (l.host.empty()) t.fail("host", "a host name or IPv4 address");
+    if (const std::string why = modbus_host_refusal(l.host); !why.empty()) t.fail("host", why);
     l.port = static_cast<int>(t.integer("port", 1, 65535));
     t.refuse_unknown();
   } else {

@@ -9,7 +9,7 @@
 //     "module": "WAGO 750-352 + 750-559 + 750-459",       (free text, shown in describe())
 //     "links": [{"name": "node", "tcp": {"host": "192.168.1.20", "port": 502}, "unit_id": 1}],
 //     "io_rate_hz": 500, "response_timeout_ms": 50, "reconnect_backoff_ms": [100, 2000],
-//     "setpoint_timeout_ms": 100, "max_outage_s": 0, "io_thread_fifo_priority": 70
+//     "setpoint_timeout_ms": 100, "max_outage_s": 2, "io_thread_fifo_priority": 70
 //   },
 //   "channels": [{"output":  {"register": 0, "raw_full_scale": 32767, "signed": false,
 //                             "volts_span": [0, 10], "kPa_per_volt": 10},
@@ -73,6 +73,11 @@ struct ModbusRegisterRef {
   RegisterScale scale;
 };
 
+// Why a Modbus TCP host (name or address) is refused, "" when it is acceptable: DNS syntax
+// (RFC 1123 labels; '_' tolerated) or an IPv4/IPv6 literal. Names are resolved (getaddrinfo)
+// when the link is made, not here.
+std::string modbus_host_refusal(const std::string& host);
+
 struct ModbusChannelMap {
   ModbusRegisterRef output;        // always a holding register
   ModbusRegisterRef monitor;
@@ -88,7 +93,7 @@ struct ModbusRigConfig {
   double response_timeout_s = 0.05;
   double reconnect_initial_s = 0.1, reconnect_max_s = 2.0;
   double setpoint_timeout_s = 0.1;  // loop silent this long: the bus thread vents on its own
-  double max_outage_s = 0.0;        // > 0: a link down this long ends the run (backend error)
+  double max_outage_s = 2.0;        // a link down this long ends the run (backend error); 0: never
   int io_thread_fifo_priority = 70; // 0: normal scheduling
   double p_max_kPa = 60.0;          // from the rig's safety section
   double slew_kPa_per_s = 2000.0;   // re-engagement ramp after a vent or a reconnect

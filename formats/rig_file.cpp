@@ -36,6 +36,7 @@ static RigConfig parse_rig(const nlohmann::json& doc, const std::string& file) {
     rig.safety.max_input_age_s = s.number_or("max_input_age_s", rig.safety.max_input_age_s, 1e-3, 60);
     rig.safety.max_consecutive_overruns =
         static_cast<int>(s.integer_or("max_consecutive_overruns", rig.safety.max_consecutive_overruns, 1, 1000000));
+    rig.safety.max_lost_time_s = s.number_or("max_lost_time_s", rig.safety.max_lost_time_s, 1e-3, 10);
     s.refuse_unknown();
   }
   if (root.has("fingers")) {

@@ -44,6 +44,7 @@ Box3_mm overlap(const Box3_mm& a, const Box3_mm& b) {
 
 FrepShape::Node FrepShape::add(const NodeData& n) {
   nodes_.push_back(n);
+  nodes_.back().cost = cost_of(n);  // its children are already in nodes_
   root_ = static_cast<Node>(nodes_.size() - 1);
   return root_;
 }
@@ -256,6 +257,43 @@ void FrepShape::set_root(Node n) {
 double FrepShape::value(const Point3_mm& p) const noexcept { return root_ < 0 ? kOutside : eval(root_, p); }
 
 Box3_mm FrepShape::bounds() const noexcept { return root_ < 0 ? empty_box() : nodes_[root_].box; }
+
+double FrepShape::cost_of(const NodeData& n) const noexcept {
+  constexpr double kVisit = 1.0, kPowCalls = 4.0, kExpCall = 3.0;
+  auto cost = [&](Node c) { return nodes_[static_cast<std::size_t>(c)].cost; };
+  auto child = [&](std::int32_t i) { return children_[static_cast<std::size_t>(n.first + i)]; };
+  switch (n.kind) {
+    case Kind::sphere:
+    case Kind::ellipsoid:
+    case Kind::tube:
+      return kVisit;
+    case Kind::superellipsoid:
+      return kPowCalls;
+    case Kind::blobs:
+      return kVisit + kExpCall * n.count;
+    case Kind::unite:
+      if (n.grid >= 0) {  // value() visits the parts of one cell: the fullest one bounds it
+        const PartGrid& g = grids_[static_cast<std::size_t>(n.grid)];
+        double worst = 0;
+        for (std::size_t k = 0; k + 1 < g.cell_start.size(); ++k) {
+          double sum = 0;
+          for (std::int32_t i = g.cell_start[k]; i < g.cell_start[k + 1]; ++i)
+            sum += cost(g.parts[static_cast<std::size_t>(i)]);
+          worst = std::max(worst, sum);
+        }
+        return kVisit + worst;
+      }
+      [[fallthrough]];
+    case Kind::intersect:
+    case Kind::subtract:
+    case Kind::scaled: {
+      double sum = kVisit;
+      for (std::int32_t i = 0; i < n.count; ++i) sum += cost(child(i));
+      return sum;
+    }
+  }
+  return kVisit;
+}
 
 double FrepShape::eval(Node index, const Point3_mm& p) const noexcept {
   const NodeData& n = nodes_[static_cast<std::size_t>(index)];

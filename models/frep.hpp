@@ -76,6 +76,11 @@ class FrepShape {
   // A box holding every point where value() >= 0 (conservative).
   Box3_mm bounds() const noexcept;
   std::size_t node_count() const noexcept { return nodes_.size(); }
+  // The most work one value() can do, in sphere-equivalent evaluations (a node visit is 1, a
+  // super-ellipsoid 4 for its pow calls, a blob term 3 for its exp): every part whose box can
+  // hold the point counted, a union's grid by its fullest cell. What the scene loader weighs
+  // against the tick's period (formats/function_scene_file.cpp).
+  double worst_case_cost() const noexcept { return root_ < 0 ? 0.0 : nodes_[static_cast<std::size_t>(root_)].cost; }
 
  private:
   enum class Kind : std::uint8_t { sphere, ellipsoid, superellipsoid, tube, blobs, unite, intersect, subtract, scaled };
@@ -87,6 +92,7 @@ class FrepShape {
     double p0 = 0, p1 = 0, p2 = 0;  // meaning per kind (radius, cos yaw, sin yaw, exponent, threshold)
     std::int32_t first = 0, count = 0;  // children (into children_) or blob terms (into terms_)
     std::int32_t grid = -1;             // unions of many parts: their grid in grids_
+    double cost = 0;                    // worst_case_cost() of this node, set when it is added
   };
 
   // A union of many parts (hundreds of spheres) finds the parts whose box can hold a point
@@ -102,6 +108,7 @@ class FrepShape {
 
   Node add(const NodeData& n);
   double eval(Node n, const Point3_mm& p) const noexcept;
+  double cost_of(const NodeData& n) const noexcept;  // from the children's costs
 
   std::vector<NodeData> nodes_;
   std::vector<Node> children_;

@@ -223,6 +223,43 @@ TissueSample StiffnessField::sample(const Point2_mm& at, double force_N, double 
   return {std::clamp(std::max(felt, pressed_on), 0.0, 1.0), layer_at(sunk)};
 }
 
+double StiffnessField::worst_case_sample_cost() const noexcept {
+  const std::size_t n = def_.inclusions.size();
+  std::array<Box3_mm, kMaxInclusions> box{};
+  std::array<double, kMaxInclusions> cost{};
+  bool any_rigid = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point3_mm& e = def_.inclusions[i].breathing_excursion_mm;
+    const double ex = any_breathing_ ? std::abs(e.x_mm) : 0.0, ey = any_breathing_ ? std::abs(e.y_mm) : 0.0;
+    box[i] = inclusion_box_[i];
+    box[i].lo.x_mm -= ex;
+    box[i].hi.x_mm += ex;
+    box[i].lo.y_mm -= ey;
+    box[i].hi.y_mm += ey;
+    cost[i] = def_.inclusions[i].shape.worst_case_cost();
+    any_rigid = any_rigid || inclusion_rigid_[i];
+  }
+  // The largest sum of costs over the boxes that hold one column is reached at a corner
+  // (largest lo.x, largest lo.y) of some overlap, i.e. at (lo.x of one box, lo.y of another).
+  double worst_point = 0;
+  for (std::size_t a = 0; a < n; ++a) {
+    if (box[a].empty()) continue;
+    for (std::size_t b = 0; b < n; ++b) {
+      if (box[b].empty()) continue;
+      const double x = box[a].lo.x_mm, y = box[b].lo.y_mm;
+      double sum = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (!box[i].empty() && x >= box[i].lo.x_mm && x <= box[i].hi.x_mm && y >= box[i].lo.y_mm && y <= box[i].hi.y_mm)
+          sum += cost[i];
+      worst_point = std::max(worst_point, sum);
+    }
+  }
+  // Per lateral point: the depth samples, and with bone or ligament the probe above it and
+  // the bisection (at most 8 steps).
+  const double points_per_column = double(kDepthSamples) + (any_rigid ? 9.0 : 0.0);
+  return double(kLateral.size()) * points_per_column * worst_point;
+}
+
 SceneBounds StiffnessField::bounds() const noexcept {
   const BodyOutline& b = def_.body;
   return {b.centre.x_mm - b.half_width_mm, b.centre.y_mm - b.half_height_mm, b.centre.x_mm + b.half_width_mm,

@@ -117,6 +117,11 @@ class StiffnessField {
   }
   // Index of the layer at a depth (the last layer for depths beyond the stack).
   int layer_at(double depth_mm) const noexcept;
+  // The most shape evaluations one sample() can make (FrepShape::worst_case_cost units): the
+  // depth and bisection points of its five lateral points, each over the inclusions whose boxes
+  // (widened by their breathing excursion) can overlap there. The scene loader refuses a scene
+  // whose three fingers cost more than a tick can afford.
+  double worst_case_sample_cost() const noexcept;
   double normalised(double modulus_kPa) const noexcept;
   SceneBounds bounds() const noexcept;
   const TissueDefinition& definition() const noexcept { return def_; }

@@ -1,12 +1,19 @@
 #include "rigs/modbus_link.hpp"
 
+#include <arpa/inet.h>
 #include <modbus.h>
+#include <netdb.h>
+#include <sys/socket.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
+#include <string>
+
+#include "models/parse_error.hpp"
 
 namespace palprig {
 
@@ -21,9 +28,55 @@ std::vector<RegisterRun> contiguous_runs(std::vector<std::pair<int, int>> pairs)
   return runs;
 }
 
+NumericHost resolve_modbus_host(const std::string& host) {
+  NumericHost out;
+  if (const std::string why = modbus_host_refusal(host); !why.empty()) {
+    out.error = why;
+    return out;
+  }
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  const int rc = getaddrinfo(host.c_str(), nullptr, &hints, &found);
+  if (rc != 0 || !found) {
+    out.error = std::string("a host name that resolves to an address (getaddrinfo: ") +
+                (rc == EAI_SYSTEM ? std::strerror(errno) : gai_strerror(rc)) + "), got \"" + host + "\"";
+    return out;
+  }
+  // IPv4 first: modbus_new_tcp takes a dotted quad; an IPv6-only name goes through
+  // modbus_new_tcp_pi with the numeric address.
+  const addrinfo* pick = nullptr;
+  for (const addrinfo* a = found; a && !pick; a = a->ai_next)
+    if (a->ai_family == AF_INET) pick = a;
+  for (const addrinfo* a = found; a && !pick; a = a->ai_next)
+    if (a->ai_family == AF_INET6) pick = a;
+  char text[INET6_ADDRSTRLEN] = {0};
+  if (pick && pick->ai_family == AF_INET)
+    inet_ntop(AF_INET, &reinterpret_cast<const sockaddr_in*>(pick->ai_addr)->sin_addr, text, sizeof text);
+  else if (pick)
+    inet_ntop(AF_INET6, &reinterpret_cast<const sockaddr_in6*>(pick->ai_addr)->sin6_addr, text, sizeof text);
+  if (pick) out.ipv6 = pick->ai_family == AF_INET6;
+  freeaddrinfo(found);
+  if (text[0] == '\0') out.error = "a host name with an IPv4 or IPv6 address, got \"" + host + "\"";
+  else out.address = text;
+  return out;
+}
+
 ModbusLink::ModbusLink(const ModbusRigConfig& rig, std::size_t index) : link_(rig.links.at(index)) {
-  ctx_ = link_.rtu ? modbus_new_rtu(link_.device.c_str(), link_.baud, link_.parity, link_.data_bits, link_.stop_bits)
-                   : modbus_new_tcp(link_.host.c_str(), link_.port);
+  if (link_.rtu) {
+    ctx_ = modbus_new_rtu(link_.device.c_str(), link_.baud, link_.parity, link_.data_bits, link_.stop_bits);
+  } else {
+    // libmodbus's modbus_new_tcp takes only a numeric IPv4 address of at most 15 characters (it
+    // truncates a longer string and prints to stderr); names are resolved here, once, before
+    // anything is opened, and a name that does not resolve is refused like a bad file field.
+    const NumericHost numeric = resolve_modbus_host(link_.host);
+    if (!numeric.error.empty())
+      throw InputError(rig.source, "modbus.links[" + std::to_string(index) + "].tcp.host", numeric.error);
+    resolved_host_ = numeric.address;
+    ctx_ = numeric.ipv6 ? modbus_new_tcp_pi(numeric.address.c_str(), std::to_string(link_.port).c_str())
+                        : modbus_new_tcp(numeric.address.c_str(), link_.port);
+  }
   if (!ctx_) throw std::runtime_error("modbus link '" + link_.name + "' (" + link_.endpoint() + "): " + modbus_strerror(errno));
   modbus_set_slave(ctx_, link_.unit_id);
   // The I/O thread decides about reconnecting itself (with backoff); libmodbus must not retry

@@ -6,6 +6,7 @@
 // the benchmark; never by the loop thread.
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "formats/modbus_register_map.hpp"
@@ -17,6 +18,16 @@ namespace palprig {
 using ChannelWords = std::array<std::uint16_t, kFingerCount>;
 
 enum class LinkError { none, link, device };  // link: timeout/reset/refused; device: exception reply
+
+// A TCP host resolved (getaddrinfo) to the numeric address libmodbus is given: IPv4 when the
+// name has one, else IPv6. error: what was expected (the host escaped by the caller's message),
+// "" on success. Validated first (modbus_host_refusal).
+struct NumericHost {
+  std::string address;
+  bool ipv6 = false;
+  std::string error;
+};
+NumericHost resolve_modbus_host(const std::string& host);
 
 class ModbusLink {
  public:
@@ -40,6 +51,8 @@ class ModbusLink {
   const char* last_error() const noexcept { return error_; }
   LinkError last_error_kind() const noexcept { return error_kind_; }
   const ModbusLinkConfig& config() const noexcept { return link_; }
+  // The numeric address a TCP link connects to ("" for RTU).
+  const std::string& resolved_host() const noexcept { return resolved_host_; }
   bool has_outputs() const noexcept { return !writes_.empty(); }
   bool has_monitors() const noexcept { return !reads_.empty(); }
   std::size_t transactions_per_cycle() const noexcept { return writes_.size() + reads_.size(); }
@@ -53,6 +66,7 @@ class ModbusLink {
   bool fail(const char* what, int address) noexcept;
 
   ModbusLinkConfig link_;
+  std::string resolved_host_;
   modbus_t* ctx_ = nullptr;
   bool connected_ = false;
   std::vector<Block> writes_, reads_;

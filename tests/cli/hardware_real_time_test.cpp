@@ -28,6 +28,7 @@ TEST(experiments_hardware_clock, simulated_participant_on_a_modbus_rig_runs_in_r
   auto rig = ts::rig_on_port(ts::read_json(wago), port);
   rig["modbus"]["io_thread_fifo_priority"] = 0;
   rig["safety"]["max_consecutive_overruns"] = 1000000;  // a busy test machine must not end the run
+  rig["safety"]["max_lost_time_s"] = 10;
   const auto rig_file = dir.write("rig.json", rig.dump(2)).string();
   const std::string db = (dir.path() / "hw.db").string();
   const std::string protocol = std::string(PALPRIG_SOURCE_DIR) + "/data/protocols/discrimination_002.json";

@@ -30,6 +30,7 @@ nlohmann::json mixed_map_rig(int port) {
   // These tests are about the link, not about deadlines: a test machine busy with other work
   // must not end the run with the overrun limit.
   rig["safety"]["max_consecutive_overruns"] = 1000000;
+  rig["safety"]["max_lost_time_s"] = 10;
   return rig;
 }
 

@@ -78,6 +78,7 @@ TEST(LoopRunner, RealtimeModeRunsOnTheClock) {
   const auto scene = hard_right_scene();
   TickConfig cfg;
   cfg.safety.max_consecutive_overruns = 1000000;  // a loaded CI machine must not fault this
+  cfg.safety.max_lost_time_s = 10;
   SimulatedRig rig(quiet_plants(), 60);
   rig.open();
   RestingPen pen(50, 20);

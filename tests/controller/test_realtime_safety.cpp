@@ -135,6 +135,7 @@ TEST(RealtimeSafety, AnExceptionOnTheReaderThreadVentsAndStopsTheLoop) {
   opt.duration_s = 2.0;
   TickConfig config;
   config.safety.max_consecutive_overruns = 1000000;  // a busy test machine must not end it first
+  config.safety.max_lost_time_s = 10;
   const RunSummary s = run_loop(config, uniform_scene(0.5f), input, backend, opt);
   EXPECT_EQ(s.fault, FaultCode::thread_exception);
   EXPECT_NE(s.fault_detail.find("USB bus reset"), std::string::npos) << s.fault_detail;
@@ -155,6 +156,7 @@ TEST(RealtimeSafety, ALiveTabletThatDisappearsIsAWorkerFaultWithTheReason) {
   opt.duration_s = 2.0;
   TickConfig config;
   config.safety.max_consecutive_overruns = 1000000;  // a busy test machine must not end it first
+  config.safety.max_lost_time_s = 10;
   const RunSummary s = run_loop(config, uniform_scene(0.5f), input, backend, opt);
   EXPECT_EQ(s.fault, FaultCode::thread_exception);
   EXPECT_NE(s.fault_detail.find("unplugged"), std::string::npos) << s.fault_detail;

@@ -74,6 +74,7 @@ TEST(TabletInput, AnInputThatStopsIsStaleAndTheLoopVents) {
   TickConfig config;
   config.safety.max_input_age_s = 0.1;
   config.safety.max_consecutive_overruns = 1000000;  // a busy test machine must not end it first
+  config.safety.max_lost_time_s = 10;
   const MapScene scene = uniform_scene(1.0f);
   RunOptions opt;
   opt.mode = LoopMode::realtime;
@@ -94,7 +95,7 @@ TEST(TabletInput, RunReplaysARecordingThroughTheLiveReader) {
   std::string rig = palprig::test_support::read_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/simulated.json");
   const std::string limit = "\"max_consecutive_overruns\": 20";
   ASSERT_NE(rig.find(limit), std::string::npos);
-  rig.replace(rig.find(limit), limit.size(), "\"max_consecutive_overruns\": 1000000");
+  rig.replace(rig.find(limit), limit.size(), "\"max_consecutive_overruns\": 1000000, \"max_lost_time_s\": 10");
   const auto rig_path = dir.write("rig.json", rig);
   const auto r = run_process(palprig::test_support::palprig_bin() + " run --no-fifo --rig " + rig_path.string() +
                              " --scene " + PALPRIG_SOURCE_DIR + "/data/scenes/phantom_abc.json --input tablet:" +

@@ -42,7 +42,7 @@ std::string patient_rig(const TempDir& dir) {
   const std::string from = "\"max_input_age_s\": 0.1", to = "\"max_input_age_s\": 1.0";
   rig.replace(rig.find(from), from.size(), to);
   // Overruns are not the subject here either.
-  const std::string o_from = "\"max_consecutive_overruns\": 20", o_to = "\"max_consecutive_overruns\": 1000";
+  const std::string o_from = "\"max_consecutive_overruns\": 20", o_to = "\"max_consecutive_overruns\": 1000, \"max_lost_time_s\": 10";
   rig.replace(rig.find(o_from), o_from.size(), o_to);
   return dir.write("rig.json", rig).string();
 }
