@@ -20,7 +20,9 @@ seeds_for() {
     fuzz_rig_file) echo "data/rigs/*.json" ;;
     fuzz_scene_file) echo "data/scenes/*.json" ;;
     fuzz_calibration_file) echo "data/calibration/*.json" ;;
-    fuzz_protocol) echo "data/protocols/*.json" ;;
+    fuzz_protocol) echo "data/protocols/discrimination_*.json data/protocols/localisation_*.json" ;;
+    fuzz_threshold_protocol) echo "data/protocols/threshold_*.json" ;;
+    fuzz_pulse_protocol) echo "data/protocols/pulse_*.json" ;;
     fuzz_trace_csv) echo "data/traces/*.csv" ;;
     fuzz_map_csv) echo "" ;;
     fuzz_pgm) echo "data/scenes/*.pgm" ;;
