@@ -19,7 +19,7 @@ CMAKE_ARGS ?=
 PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages.txt | tr '\n' ' ')
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build demo test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean
+.PHONY: all deps configure build demo test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator
 
 all: build
 
@@ -44,9 +44,20 @@ build: configure
 demo: build
 	$(BUILD)/bin/palprig demo
 
-test: build
+test: build bids-validator
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS) --timeout 600
 	$(MAKE) --no-print-directory fuzz-smoke
+
+# The official BIDS validator (npm package, pinned), for the export test that checks a BIDS
+# tree; into the build folder, never system-wide. Without npm the test says why it skips.
+BIDS_VALIDATOR_VERSION := 1.15.0
+bids-validator: configure
+	@[ -x $(BUILD)/tools/node_modules/.bin/bids-validator ] || { \
+	  if command -v npm >/dev/null 2>&1; then \
+	    echo "palprig: installing bids-validator $(BIDS_VALIDATOR_VERSION) with npm into $(BUILD)/tools"; \
+	    npm install --silent --no-audit --no-fund --prefix $(BUILD)/tools bids-validator@$(BIDS_VALIDATOR_VERSION) \
+	      || echo "palprig: npm could not install bids-validator; the BIDS validation test will skip"; \
+	  else echo "palprig: npm not found; the BIDS validation test will skip"; fi; }
 
 # The fuzz targets of fuzz/ (libFuzzer, clang): only the reader libraries, in their own build dir.
 fuzz-build: deps

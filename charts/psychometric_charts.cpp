@@ -54,8 +54,8 @@ Chart psychometric_chart(const std::string& group, const stats::PsychometricFit&
   return chart;
 }
 
-std::vector<std::string> write_track_charts(const std::vector<ThresholdTrialRow>& rows, const std::filesystem::path& dir) {
-  std::vector<std::string> written;
+std::vector<SessionTrackChart> track_charts(const std::vector<ThresholdTrialRow>& rows) {
+  std::vector<SessionTrackChart> out;
   std::map<std::int64_t, std::map<std::string, std::vector<const ThresholdTrialRow*>>> sessions;
   for (const auto& r : rows) sessions[r.session_id][r.trial.track_name].push_back(&r);
   for (const auto& [session, tracks] : sessions) {
@@ -80,8 +80,16 @@ std::vector<std::string> write_track_charts(const std::vector<ThresholdTrialRow>
       chart.series.push_back(line);
       if (!reversals.x.empty()) chart.series.push_back(reversals);
     }
-    const auto path = dir / ("track_session" + std::to_string(session) + ".png");
-    write_chart_png(chart, path);
+    out.push_back({session, std::move(chart)});
+  }
+  return out;
+}
+
+std::vector<std::string> write_track_charts(const std::vector<ThresholdTrialRow>& rows, const std::filesystem::path& dir) {
+  std::vector<std::string> written;
+  for (const SessionTrackChart& c : track_charts(rows)) {
+    const auto path = dir / ("track_session" + std::to_string(c.session) + ".png");
+    write_chart_png(c.chart, path);
     written.push_back(path.string());
   }
   return written;

@@ -98,7 +98,6 @@ ThresholdSessionResult run_threshold_session(const ThresholdProtocol& protocol, 
       } else {
         r.response_time_s = std::numeric_limits<double>::quiet_NaN();
       }
-      r.state = tracks_state(tracks);
       if (options.on_trial) options.on_trial(r);
       ++result.trials;
       const double pause_start = pacer.now_s();

@@ -27,12 +27,11 @@ OpenedThresholdSession open_threshold_session(SqliteTrialStore& store, const Thr
   if (head.resumed) {
     opened.protocol = parse_threshold_protocol(stored->protocol_snapshot, protocol.source);
     for (const TrackSpec& spec : opened.protocol.tracks) opened.tracks.emplace_back(spec);
-    if (!stored->last_state.is_null()) {
-      try {
-        restore_tracks(opened.tracks, stored->last_state);
-      } catch (const std::invalid_argument& e) {
-        throw InputError(store.location(), "threshold_trials.state of session " + std::to_string(stored->id), e.what());
-      }
+    try {
+      replay_tracks(opened.tracks, stored->trials);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(store.location(), "threshold_trials of session " + std::to_string(stored->id),
+                       std::string("trials the stored protocol's tracks can replay (") + e.what() + ")");
     }
   } else {
     opened.protocol = protocol;

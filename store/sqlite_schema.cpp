@@ -99,6 +99,15 @@ ALTER TABLE trials ADD COLUMN stimulus_end_s REAL;
 PRAGMA user_version = 2;
 )sql";
 
+// Schema 3: threshold trials no longer carry every track's state (it grew with each trial; the
+// tracks are replayed from the trial rows, study/threshold_record.hpp). Every trial is kept.
+void migrate_to_3(Database& db) {
+  auto column = db.prepare("SELECT count(*) FROM pragma_table_info('threshold_trials') WHERE name = 'state'");
+  column.step();
+  if (column.integer(0) > 0) db.exec("ALTER TABLE threshold_trials DROP COLUMN state");
+  db.exec("PRAGMA user_version = 3");
+}
+
 }  // namespace
 
 bool SqliteTrialStore::is_blank() {
@@ -125,17 +134,20 @@ void SqliteTrialStore::migrate_if_older() {
   // One transaction under the write lock: another process may have migrated it meanwhile, and a
   // failure half-way leaves the file (and every trial) as it was.
   Transaction tx(db_);
-  if (db_.pragma_integer("user_version") >= kTrialStoreSchemaVersion) return;
+  const std::int64_t version = db_.pragma_integer("user_version");
+  if (version >= kTrialStoreSchemaVersion) return;
+  const std::string step = version < 2 ? "trials (schema 1 -> 2 migration)" : "threshold_trials (schema 2 -> 3 migration)";
   try {
-    db_.exec(kMigrationTo2);
+    if (version < 2) db_.exec(kMigrationTo2);
+    migrate_to_3(db_);
   } catch (const SqliteError& e) {
     // Busy: another writer; try again later (not the file's fault). Anything else: the file's
-    // tables are not what schema 1 says (hand-edited, or a foreign tool): refused, unchanged.
+    // tables are not what the older schema says (hand-edited, or a foreign tool): refused, unchanged.
     const int primary = e.code() & 0xff;
     if (primary == SQLITE_BUSY || primary == SQLITE_LOCKED) throw;
-    throw InputError(db_.file(), "trials (schema 1 -> 2 migration)",
-                     std::string("a schema-1 trial database palprig can migrate (SQLite: ") + e.what() +
-                         "); the file was not changed");
+    throw InputError(db_.file(), step,
+                     std::string("a schema-") + std::to_string(version) + " trial database palprig can migrate (SQLite: " +
+                         e.what() + "); the file was not changed");
   }
   tx.commit();
 }

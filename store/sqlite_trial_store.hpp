@@ -42,7 +42,9 @@ inline constexpr std::int64_t kTrialStoreApplicationId = 0x50616C50;  // "PalP"
 // 2: trials.confidence and trials.stimulus_end_s. A version-1 file opened for writing is
 // migrated in one transaction (every trial kept, the new columns NULL); opened for reading it
 // is read as it is (the new columns read as NULL).
-inline constexpr std::int64_t kTrialStoreSchemaVersion = 2;
+// 3: threshold_trials without the per-trial copy of every track's state (the tracks are
+// replayed from the trial rows, so a row has constant size); migrated the same way.
+inline constexpr std::int64_t kTrialStoreSchemaVersion = 3;
 
 class SqliteTrialStore final : public TrialStore {
  public:

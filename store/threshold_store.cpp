@@ -27,7 +27,6 @@ CREATE TABLE IF NOT EXISTS threshold_trials (
   response_time_s   REAL,
   onset_s           REAL NOT NULL,
   felt1_kPa         REAL, felt2_kPa REAL,         -- mean pressure on the active fingers per interval
-  state             TEXT NOT NULL,                -- every track's state after this trial (JSON)
   completed_utc     TEXT NOT NULL,
   PRIMARY KEY (session_id, position)
 ) WITHOUT ROWID;
@@ -54,10 +53,7 @@ StoredThresholdSession ThresholdStore::load_session(std::int64_t session_id) {
   StoredThresholdSession s;
   static_cast<StoredTaskSession&>(s) = store_.load_task_session(session_id, "threshold", "threshold_trials");
   if (s.completed_trials > 0) {
-    auto last = store_.database().prepare("SELECT state FROM threshold_trials WHERE session_id = ?1 AND position = ?2");
-    last.bind(1, session_id).bind(2, s.completed_trials - 1);
-    last.step();
-    s.last_state = nlohmann::json::parse(last.text(0));
+    for (ThresholdTrialRow& row : trials(session_id)) s.trials.push_back(std::move(row.trial));
   }
   return s;
 }
@@ -67,8 +63,8 @@ void ThresholdStore::commit_trial(std::int64_t session_id, const ThresholdTrialR
   Transaction tx(db);
   auto ins = db.prepare(
       "INSERT INTO threshold_trials (session_id, position, track, track_name, fingers, level_kPa, reference_kPa, "
-      "signal_interval, answered, response, correct, reversal, response_time_s, onset_s, felt1_kPa, felt2_kPa, state, "
-      "completed_utc) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18)");
+      "signal_interval, answered, response, correct, reversal, response_time_s, onset_s, felt1_kPa, felt2_kPa, "
+      "completed_utc) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17)");
   ins.bind(1, session_id)
       .bind(2, r.position)
       .bind(3, r.track)
@@ -80,8 +76,7 @@ void ThresholdStore::commit_trial(std::int64_t session_id, const ThresholdTrialR
       .bind(9, r.answered ? 1 : 0)
       .bind(12, r.reversal ? 1 : 0)
       .bind(14, r.onset_s)
-      .bind(17, r.state.dump())
-      .bind(18, utc_now_text());
+      .bind(17, utc_now_text());
   if (r.answered) {
     ins.bind(10, r.response).bind(11, r.correct ? 1 : 0).bind(13, r.response_time_s);
   }

@@ -1,10 +1,11 @@
 #pragma once
 // Threshold sessions in the trial database. A threshold session is a row of `sessions`
 // (task "threshold", the protocol snapshot, the seed) and one row of `threshold_trials` per
-// trial, committed in its own transaction with every track's state after that trial (JSON), so
-// a killed session resumes with exactly the staircases it had. The table is created on first
-// use (CREATE TABLE IF NOT EXISTS): databases of schema version 1 gain it without a migration,
-// and older readers ignore it.
+// trial, committed in its own transaction. A row has constant size: the tracks' state is not
+// stored but replayed from the rows (study/threshold_record.hpp: replay_tracks), so a killed
+// session resumes with exactly the staircases it had (schema 3; a schema-2 store's per-row
+// state column is dropped when it is opened for writing). The table is created on first use
+// (CREATE TABLE IF NOT EXISTS), and older readers ignore it.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -19,7 +20,7 @@
 namespace palprig {
 
 struct StoredThresholdSession : StoredTaskSession {
-  nlohmann::json last_state;  // every track's state after the last committed trial; null before the first
+  std::vector<ThresholdTrialRecord> trials;  // committed, in position order (replayed to resume)
 };
 
 // One stored trial, for statistics and plots.

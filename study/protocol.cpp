@@ -9,6 +9,7 @@
 #include "formats/json_file.hpp"
 #include "study/trial_order.hpp"
 #include "models/parse_error.hpp"
+#include "study/session_bounds.hpp"
 
 namespace palprig {
 
@@ -294,7 +295,7 @@ Protocol parse_protocol(const nlohmann::json& document, const std::string& sourc
   }
 
   read_conditions(root, p);
-  p.repetitions = static_cast<int>(root.integer_or("repetitions", 1, 1, 10000));
+  p.repetitions = static_cast<int>(root.integer_or("repetitions", 1, 1, kMaxSessionTrials));
   p.blocks_per_condition = static_cast<int>(root.integer_or("blocks_per_condition", 1, 1, 1000));
   const std::size_t per_condition =
       static_cast<std::size_t>(p.repetitions) * (p.task == TaskKind::discrimination ? p.combinations.size() : 1);
@@ -302,6 +303,9 @@ Protocol parse_protocol(const nlohmann::json& document, const std::string& sourc
     root.fail("blocks_per_condition", "a divisor of the " + std::to_string(per_condition) + " trials of each condition");
   }
   p.practice_trials = static_cast<int>(root.integer_or("practice_trials", 0, 0, 1000));
+  const long long session_trials =
+      static_cast<long long>(per_condition) * static_cast<long long>(p.conditions.size()) + p.practice_trials;
+  if (session_trials > kMaxSessionTrials) root.fail("repetitions", "a protocol of " + session_bound_text(session_trials));
   p.break_every_trials = static_cast<int>(root.integer_or("break_every_trials", 0, 0, 100000));
   const std::string cb = root.choice_or("counterbalancing", "none", {"none", "alternate", "latin-square", "random"});
   p.counterbalancing = cb == "alternate"      ? Counterbalancing::alternate

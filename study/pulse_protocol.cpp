@@ -6,6 +6,7 @@
 #include "formats/scene_file.hpp"
 #include "models/artery.hpp"
 #include "models/parse_error.hpp"
+#include "study/session_bounds.hpp"
 #include "study/random_source.hpp"
 
 namespace palprig {
@@ -32,7 +33,7 @@ PulseProtocol parse_pulse_protocol(const nlohmann::json& document, const std::st
   p.response_timeout_s = task.number_or("response_timeout_s", 10.0, 0.1, 3600.0);
   p.inter_trial_s = task.number_or("inter_trial_s", 2.0, 0.0, 600.0);
   task.refuse_unknown();
-  p.repetitions = static_cast<int>(root.integer_or("repetitions", 1, 1, 10000));
+  p.repetitions = static_cast<int>(root.integer_or("repetitions", 1, 1, kMaxSessionTrials));
   const auto conditions = root.objects("conditions");
   if (conditions.empty()) root.fail("conditions", "at least one condition with a scene");
   for (const JsonObject& c : conditions) {
@@ -65,6 +66,8 @@ PulseProtocol parse_pulse_protocol(const nlohmann::json& document, const std::st
     }
     p.conditions.push_back(pc);
   }
+  const long long session_trials = static_cast<long long>(p.repetitions) * static_cast<long long>(p.conditions.size());
+  if (session_trials > kMaxSessionTrials) root.fail("repetitions", "a protocol of " + session_bound_text(session_trials));
   root.refuse_unknown();
   return p;
 }

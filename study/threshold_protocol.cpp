@@ -6,6 +6,7 @@
 #include "formats/json_file.hpp"
 #include "models/finger_layout.hpp"
 #include "models/parse_error.hpp"
+#include "study/session_bounds.hpp"
 
 namespace palprig {
 
@@ -38,7 +39,7 @@ StaircaseSettings read_staircase(const JsonObject& o) {
     }
   }
   s.stop_reversals = static_cast<int>(o.integer_or("stop_reversals", 12, 1, 1000));
-  s.max_trials = static_cast<int>(o.integer_or("max_trials", 120, 1, 100000));
+  s.max_trials = static_cast<int>(o.integer_or("max_trials", 120, 1, kMaxSessionTrials));
   s.threshold_reversals = static_cast<int>(o.integer_or("threshold_reversals", 8, 1, 1000));
   if (s.threshold_reversals > s.stop_reversals) {
     o.fail("threshold_reversals", "at most stop_reversals (" + std::to_string(s.stop_reversals) + ")");
@@ -65,7 +66,7 @@ QuestSettings read_quest(const JsonObject& o, ThresholdMethod method) {
   }
   q.placement = o.choice_or("placement", "mean", {"mean", "mode"}) == "mode" ? QuestSettings::Placement::mode
                                                                              : QuestSettings::Placement::mean;
-  q.max_trials = static_cast<int>(o.integer_or("max_trials", 60, 1, 100000));
+  q.max_trials = static_cast<int>(o.integer_or("max_trials", 60, 1, kMaxSessionTrials));
   q.stop_sd_log10 = o.number_or("stop_sd_log10", 0.0, 0.0, 5.0);
   o.refuse_unknown();
   return q;
@@ -126,6 +127,11 @@ ThresholdProtocol parse_threshold_protocol(const nlohmann::json& document, const
     o.refuse_unknown();
     p.tracks.push_back(spec);
   }
+  long long most_trials = 0;  // every track run to its max_trials (unanswered trials are repeated on top)
+  for (const TrackSpec& t : p.tracks) {
+    most_trials += t.procedure == AdaptiveProcedure::staircase ? t.staircase.max_trials : t.quest.max_trials;
+  }
+  if (most_trials > kMaxSessionTrials) root.fail("tracks", "max_trials summing to " + session_bound_text(most_trials));
   root.refuse_unknown();
   if (p.max_pressure_kPa() > kMaxKPa) {
     root.fail("threshold.reference_kPa", "reference + the largest track level at most 100 kPa, got " +

@@ -1,8 +1,12 @@
 #pragma once
 // What one threshold trial leaves behind (the store commits it, stats and export read it back),
-// and every adaptive track's state as JSON: stored with each trial so a resumed session
-// continues the same tracks. Pure data: no rig, no clock.
+// and how the adaptive tracks are rebuilt from those trials. A track's state is a function of
+// its answered trials in order (a staircase counts answers, QUEST keeps the history), so the
+// trial rows are the tracks' history: a resumed session and an export replay them instead of
+// reading a stored copy of every track's state (which grew with each trial: a QUEST track's
+// 4,000th row held 91 KB). Pure data: no rig, no clock.
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,11 +29,21 @@ struct ThresholdTrialRecord {
   bool reversal = false;
   double onset_s = 0, response_time_s = 0;  // response time from the end of the second interval
   std::array<double, 2> felt_kPa{};          // mean pressure on the active fingers per interval
-  nlohmann::json state;      // every track's state after this trial (resume from here)
 };
 
 // Every track's state as one JSON array, and back (throws std::invalid_argument).
 nlohmann::json tracks_state(const std::vector<AdaptiveTrack>& tracks);
 void restore_tracks(std::vector<AdaptiveTrack>& tracks, const nlohmann::json& state);
+
+// Rebuilds the tracks (fresh, from the protocol) from a session's committed trials in position
+// order: each answered trial is one record() of its track at its level; an unanswered one
+// leaves the tracks as they were (the trial is repeated). `after_each` sees every trial with
+// the tracks as they stood after it (the export's estimate after each trial). Throws
+// std::invalid_argument naming the position when a trial names no track of the protocol, or its
+// level or reversal is not what the replayed track gives (a damaged or edited store, or one
+// written under another protocol).
+void replay_tracks(std::vector<AdaptiveTrack>& tracks, const std::vector<ThresholdTrialRecord>& trials,
+                   const std::function<void(const ThresholdTrialRecord&, const std::vector<AdaptiveTrack>&)>&
+                       after_each = {});
 
 }  // namespace palprig

@@ -36,4 +36,13 @@ std::optional<std::string> order_infeasibility(const std::vector<int>& counts, c
 // True when the order meets the constraints (used by tests and when a stored order is loaded).
 bool order_satisfies(const std::vector<int>& order, const OrderConstraints& constraints);
 
+namespace detail {
+// For tests: whether `order` followed by `remaining` (counts per item, `items` items) can be
+// completed, by simulating "most remaining first" and by the test the search uses.
+bool greedy_completes_after(const std::vector<int>& order, std::size_t items, const std::vector<int>& remaining,
+                            const OrderConstraints& constraints);
+bool completes_after(const std::vector<int>& order, std::size_t items, const std::vector<int>& remaining,
+                     const OrderConstraints& constraints);
+}  // namespace detail
+
 }  // namespace palprig
