@@ -1,4 +1,5 @@
 #include "gui/experiment_page.hpp"
+#include "gui/participant_keys.hpp"
 
 #include <QDoubleSpinBox>
 #include <QFileDialog>
@@ -119,6 +120,7 @@ void ExperimentPage::connect_session() {
     emit sessionRefused(line, code);
   });
   connect(&run_, &SessionRun::finished, this, [this] {
+    participant_keys_->remove();  // the keyboard is the experimenter's again
     if (rig_taken_ && host_.give_back_rig) host_.give_back_rig();
     rig_taken_ = false;
     // A session that stopped or faulted is resumable: offer it at once (the list keeps its

@@ -51,6 +51,8 @@ struct ExperimentFields {
   std::string telemetry;  // the session's rig ticks to this new file (.bin or .csv); empty: none
 };
 
+class ParticipantKeys;
+
 class ExperimentPage final : public QWidget {
   Q_OBJECT
  public:
@@ -65,6 +67,9 @@ class ExperimentPage final : public QWidget {
   void pause();
   void resume();
   void abort();
+  // The Abort button: asks first (a window-modal "End the session?" box, objectName
+  // "abort_confirmation"); Yes aborts.
+  void ask_abort();
   // Abort and wait for the session thread; every committed trial is kept. `give_back_rig`:
   // restart the live loop (not when the window is closing).
   void abort_and_wait(bool give_back_rig = true);
@@ -143,6 +148,7 @@ class ExperimentPage final : public QWidget {
   QPushButton* pause_ = nullptr;
   QPushButton* continue_ = nullptr;
   QPushButton* abort_ = nullptr;
+  ParticipantKeys* participant_keys_ = nullptr;  // installed while a person's session runs
   QPushButton* full_screen_ = nullptr;
   QLabel* status_ = nullptr;
   QLabel* files_ = nullptr;

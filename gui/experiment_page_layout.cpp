@@ -16,6 +16,7 @@
 #include <QVBoxLayout>
 
 #include "gui/experiment_page.hpp"
+#include "gui/participant_keys.hpp"
 #include "gui/participant_screen.hpp"
 #include "gui/statistics_view.hpp"
 
@@ -105,6 +106,10 @@ void ExperimentPage::build_session_controls(QVBoxLayout* left_layout) {
   pause_ = button("pause_session", "Pause");
   continue_ = button("continue_session", "Continue");
   abort_ = button("abort_session", "Abort");
+  // Not in the Tab chain: after Pause disables its own button the focus would land here, and
+  // an Enter or Space meant for the participant would end the session (keys are routed to the
+  // participant anyway; gui/participant_keys.hpp). A click still asks first (ask_abort).
+  abort_->setFocusPolicy(Qt::ClickFocus);
   pause_->setToolTip("Vents every channel and holds the trial in progress (it is presented again after Continue, once the participant says Ready)");
   abort_->setToolTip("Vents and ends the session; every committed trial is kept and the session can be resumed");
   for (QPushButton* b : {begin_, resume_session_, pause_, continue_, abort_}) buttons->addWidget(b);
@@ -112,7 +117,7 @@ void ExperimentPage::build_session_controls(QVBoxLayout* left_layout) {
   connect(resume_session_, &QPushButton::clicked, this, [this] { begin(true); });
   connect(pause_, &QPushButton::clicked, this, &ExperimentPage::pause);
   connect(continue_, &QPushButton::clicked, this, &ExperimentPage::resume);
-  connect(abort_, &QPushButton::clicked, this, &ExperimentPage::abort);
+  connect(abort_, &QPushButton::clicked, this, &ExperimentPage::ask_abort);
   left_layout->addLayout(buttons);
   status_ = new QLabel("No session.");
   status_->setObjectName("session_status");
@@ -150,6 +155,7 @@ QWidget* ExperimentPage::build_participant_side() {
   auto* screen_layout = new QVBoxLayout(screen_box);
   screen_ = new ParticipantScreen;
   screen_layout->addWidget(screen_, 1);
+  participant_keys_ = new ParticipantKeys(*screen_, this);
   full_screen_ = button("participant_full_screen", "Participant screen on the second display");
   full_screen_->setCheckable(true);
   connect(full_screen_, &QPushButton::toggled, this, [this](bool on) {

@@ -3,6 +3,7 @@
 
 #include "gui/experiment_page.hpp"
 
+#include <QAbstractButton>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFormLayout>
@@ -12,6 +13,7 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMessageBox>
 #include <QPushButton>
 #include <QSignalBlocker>
 #include <QScreen>
@@ -22,6 +24,7 @@
 #include <cmath>
 
 #include "experiments/simulated_participant.hpp"
+#include "gui/participant_keys.hpp"
 #include "gui/participant_screen.hpp"
 #include "sessions/session_preview.hpp"
 #include "sessions/session_telemetry.hpp"
@@ -88,6 +91,7 @@ bool ExperimentPage::begin(bool resume) {
   rig_taken_ = true;
   if (pulse_protocol_) start_pulse_run(request);
   else run_.start(request, person);
+  if (!simulated_) participant_keys_->install();
   set_buttons();
   return true;
 }
@@ -175,8 +179,23 @@ void ExperimentPage::abort() {
   status_->setText("Aborting: venting; committed trials are kept.");
 }
 
+void ExperimentPage::ask_abort() {
+  if (!run_.running()) return;
+  auto* box = new QMessageBox(QMessageBox::Question, "palprig", "End the session now?",
+                              QMessageBox::Yes | QMessageBox::No, this);
+  box->setObjectName("abort_confirmation");
+  box->setInformativeText("Every channel vents; the committed trials are kept and the session can be resumed.");
+  box->setDefaultButton(QMessageBox::No);  // Enter keeps the session going
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  connect(box, &QMessageBox::buttonClicked, this, [this, box](QAbstractButton* clicked) {
+    if (box->standardButton(clicked) == QMessageBox::Yes) abort();
+  });
+  box->open();  // window-modal, not exec(): the session and the poll timer go on meanwhile
+}
+
 void ExperimentPage::abort_and_wait(bool give_back_rig) {
   run_.abort_and_wait();
+  participant_keys_->remove();
   if (give_back_rig && rig_taken_ && host_.give_back_rig) host_.give_back_rig();
   rig_taken_ = false;
   set_buttons();

@@ -85,10 +85,17 @@ void LiveRun::start_loop() {
   opt.mode = LoopMode::realtime;
   opt.want_fifo = options_.want_fifo;
   if (!options_.telemetry_path.empty()) {
-    // A restart after a fault must not overwrite what the first run recorded: run 2 writes
-    // NAME-2.EXT, and so on.
+    // A recording is never overwritten: a restart after a fault, a scene or rig opened from the
+    // File menu (a new LiveRun) or a window started again with the same --telemetry each write
+    // the first free NAME-N.EXT beside the earlier ones; the status bar says which.
     std::filesystem::path p = options_.telemetry_path;
-    if (runs_ > 0) p.replace_filename(p.stem().string() + "-" + std::to_string(runs_ + 1) + p.extension().string());
+    std::error_code ec;
+    for (int n = 2; std::filesystem::exists(std::filesystem::symlink_status(p, ec)); ++n) {
+      p = options_.telemetry_path;
+      p.replace_filename(options_.telemetry_path.stem().string() + "-" + std::to_string(n) +
+                         options_.telemetry_path.extension().string());
+    }
+    telemetry_file_ = p;
     opt.telemetry_path = p;
   }
   opt.stop_signal = options_.stop_signal;

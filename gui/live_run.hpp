@@ -102,6 +102,8 @@ class LiveRun {
   bool linked() const noexcept { return backend_->linked(); }
   std::string input_text() const { return input_->describe(); }
   std::string realtime_note() const { return last_summary_.realtime_note; }
+  // Where the loop records every tick now (empty without --telemetry): never an earlier file.
+  const std::filesystem::path& telemetry_file() const noexcept { return telemetry_file_; }
 
  private:
   void start_loop();
@@ -117,6 +119,7 @@ class LiveRun {
   std::atomic<bool> loop_done_{false};
   std::thread loop_;
   bool loop_running_ = false;
+  std::filesystem::path telemetry_file_;
   bool fault_pending_ = false;
   bool vented_by_operator_ = false;
   double vent_pressed_after_t_s_ = 0;

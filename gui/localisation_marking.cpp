@@ -38,6 +38,11 @@ LocalisationMarking::LocalisationMarking(QWidget* parent) : QWidget(parent) {
 
 LocalisationMarking::~LocalisationMarking() = default;
 
+void LocalisationMarking::detach_pen() {
+  heartbeat_->stop();
+  if (view_) view_->set_pen_target(nullptr, PressureCurve{});
+}
+
 void LocalisationMarking::start_session(const Protocol& protocol, WindowPenInput* pen) {
   single_mark_ = false;
   show_scene(load_scene_file(protocol.localisation.scene_file), pen);
@@ -90,14 +95,16 @@ void LocalisationMarking::show_marks() {
 void LocalisationMarking::keyPressEvent(QKeyEvent* e) {
   if (e->key() == Qt::Key_Backspace) return undo();
   if (e->key() == Qt::Key_Return || e->key() == Qt::Key_Enter) return finish();
-  if (e->key() == Qt::Key_M && view_) {
-    const QPoint at = view_->mapFromGlobal(QCursor::pos());
-    QMouseEvent right(QEvent::MouseButtonPress, QPointF(at), view_->mapToGlobal(QPointF(at)), Qt::RightButton,
-                      Qt::RightButton, Qt::NoModifier);
-    QCoreApplication::sendEvent(view_, &right);
-    return;
-  }
+  if (e->key() == Qt::Key_M && view_) return mark_at_cursor();
   QWidget::keyPressEvent(e);
+}
+
+void LocalisationMarking::mark_at_cursor() {
+  if (!view_) return;
+  const QPoint at = view_->mapFromGlobal(QCursor::pos());
+  QMouseEvent right(QEvent::MouseButtonPress, QPointF(at), view_->mapToGlobal(QPointF(at)), Qt::RightButton,
+                    Qt::RightButton, Qt::NoModifier);
+  QCoreApplication::sendEvent(view_, &right);
 }
 
 }  // namespace palprig::gui

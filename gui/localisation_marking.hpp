@@ -44,6 +44,12 @@ class LocalisationMarking final : public QWidget {
 
   void add_mark(double x_mm, double y_mm);
   void undo();
+  void mark_at_cursor();
+  // The session that lent its pen is over: the heartbeat stops and the view lets go of the pen.
+  // Must come before that session's ParticipantChannel (which owns the pen) may be released:
+  // the 16 ms heartbeat wrote into a freed pen when a discrimination session followed a
+  // localisation session in the same window (heap corruption, issue 22).
+  void detach_pen();  // M: a mark where the pointer is (as a right-click there)
   void clear_marks();
   void finish();  // Done
 

@@ -140,13 +140,16 @@ void MainWindow::poll() {
     emit polled();
     return;
   }
-  status_->setText(QString("loop %1 Hz   overruns %2   wake-up p50 %3 us  p99 %4 us   ticks %5%6")
+  status_->setText(QString("loop %1 Hz   overruns %2   wake-up p50 %3 us  p99 %4 us   ticks %5%6%7")
                        .arg(st.loop_rate_hz, 0, 'f', 0)
                        .arg(st.overruns)
                        .arg(st.wake_p50_us, 0, 'f', 1)
                        .arg(st.wake_p99_us, 0, 'f', 1)
                        .arg(st.ticks)
-                       .arg(st.dropped ? QString("   display dropped %1").arg(st.dropped) : QString()));
+                       .arg(st.dropped ? QString("   display dropped %1").arg(st.dropped) : QString())
+                       .arg(run_->telemetry_file().empty()
+                                ? QString()
+                                : "   recording to " + QString::fromStdString(run_->telemetry_file().string())));
   emit polled();
 }
 

@@ -88,6 +88,7 @@ ParticipantScreen::ParticipantScreen(QWidget* parent) : QWidget(parent) {
 }
 
 void ParticipantScreen::start_session(const Protocol& protocol, std::shared_ptr<ParticipantChannel> channel) {
+  marking_->detach_pen();  // before the last session's channel (and its pen) may go
   channel_ = std::move(channel);
   finger_names_ = protocol.finger_names;
   localisation_ = protocol.task == TaskKind::localisation;
@@ -240,28 +241,42 @@ void ParticipantScreen::hand_over(const Response& r) {
 }
 
 void ParticipantScreen::keyPressEvent(QKeyEvent* e) {
+  if (!participant_key(e->key())) QWidget::keyPressEvent(e);
+}
+
+bool ParticipantScreen::participant_key(int key) {
   if (pending_) {  // the rating step: digits 1..levels rate, nothing else answers
-    const int digit = e->key() - Qt::Key_0;
-    if (digit >= 1 && digit <= confidence_->levels()) rate(digit);
-    else QWidget::keyPressEvent(e);
-    return;
+    const int digit = key - Qt::Key_0;
+    if (digit >= 1 && digit <= confidence_->levels()) {
+      rate(digit);
+      return true;
+    }
+    return false;
   }
-  switch (e->key()) {
-    case Qt::Key_1: toggle_finger(0); return;
-    case Qt::Key_2: toggle_finger(1); return;
-    case Qt::Key_3: toggle_finger(2); return;
+  switch (key) {
+    case Qt::Key_1: toggle_finger(0); return true;
+    case Qt::Key_2: toggle_finger(1); return true;
+    case Qt::Key_3: toggle_finger(2); return true;
     case Qt::Key_0:
       if (!marks_answer()) give({});
-      return;
+      return true;
     case Qt::Key_Return:
     case Qt::Key_Enter:
       if (marks_answer()) marking_->finish();
       else answer_->click();
-      return;
+      return true;
     case Qt::Key_Space:
       if (ready_->isVisible() && ready_->isEnabled()) ready_->click();
-      return;
-    default: QWidget::keyPressEvent(e);
+      return true;
+    case Qt::Key_Backspace:
+      if (!marks_answer()) return false;
+      marking_->undo();
+      return true;
+    case Qt::Key_M:
+      if (!marks_answer()) return false;
+      marking_->mark_at_cursor();
+      return true;
+    default: return false;
   }
 }
 

@@ -55,6 +55,9 @@ class ParticipantScreen final : public QWidget {
   int answering_position() const noexcept { return answering_; }  // -1: no answer is taken now
   bool rating() const noexcept { return pending_.has_value(); }    // in the confidence step
   LocalisationMarking* marking() const noexcept { return marking_; }
+  // A participant key (digits, Enter, Space) whatever widget had the focus (gui/participant_keys.hpp
+  // routes them here during a person's session); false when the key means nothing now.
+  bool participant_key(int key);
 
   // Leaves the console and fills `screen` (a second display); back_to_console() returns.
   void show_full_screen_on(QScreen* screen);

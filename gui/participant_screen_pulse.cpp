@@ -12,6 +12,7 @@
 namespace palprig::gui {
 
 void ParticipantScreen::start_pulse_session(const PulseProtocol&, std::shared_ptr<ParticipantChannel> channel) {
+  marking_->detach_pen();  // before the last session's channel (and its pen) may go
   channel_ = std::move(channel);
   localisation_ = false;
   pulse_ = true;

@@ -3,7 +3,10 @@
 // pulse_console_test.cpp): the main window on the default simulated rig with the Experiment tab
 // shown, waiting on the window's poll signal (never a fixed sleep), the page's session end, the
 // trial list's committed rows and the README's pictures.
+#include <QMessageBox>
 #include <QObject>
+#include <QPushButton>
+#include <QTest>
 #include <QSignalSpy>
 #include <QString>
 #include <QTableWidget>
@@ -66,6 +69,19 @@ inline void keep_screenshot(QWidget& what, const char* name) {
   const char* dir = std::getenv("PALPRIG_SCREENSHOT_DIR");
   if (dir == nullptr) return;
   what.grab().save(QString("%1/%2").arg(dir, name), "PNG");
+}
+
+// The abort confirmation on show (an answered one lingers, hidden, until its deferred delete).
+inline QMessageBox* abort_question(ExperimentPage& page) {
+  for (auto* box : page.findChildren<QMessageBox*>("abort_confirmation"))
+    if (box->isVisible()) return box;
+  return nullptr;
+}
+
+// The experimenter's Abort: the button, then "Yes" in the confirmation it asks.
+inline void abort_confirmed(ExperimentPage& page) {
+  QTest::mouseClick(page.findChild<QPushButton*>("abort_session"), Qt::LeftButton);
+  if (auto* box = abort_question(page)) box->button(QMessageBox::Yes)->click();
 }
 
 // Rows of the trial list ticked as committed (the last column).

@@ -11,6 +11,9 @@
 #include <QSignalSpy>
 #include <QTableWidget>
 #include <QTimer>
+#include <QLineEdit>
+#include <QTabBar>
+#include <QTabWidget>
 #include <QtTest>
 #include <chrono>
 #include <functional>
@@ -240,7 +243,7 @@ class ExperimentConsoleTest : public QObject {
     QTest::keyClick(&screen, Qt::Key_0);
     QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == 1; }));
     EndSeen ended(page);
-    QTest::mouseClick(page.findChild<QPushButton*>("abort_session"), Qt::LeftButton);
+    abort_confirmed(page);
     QVERIFY(wait_until(*w.window, [&] { return ended.count == 1; }));
     QVERIFY(ended.end.stopped);
     QCOMPARE(ended.end.committed_trials, 1);
@@ -274,7 +277,7 @@ class ExperimentConsoleTest : public QObject {
     QTest::mouseClick(ready, Qt::LeftButton);
     QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 0; }));
     EndSeen ended(page);
-    QTest::mouseClick(page.findChild<QPushButton*>("abort_session"), Qt::LeftButton);
+    abort_confirmed(page);
     QVERIFY(wait_until(*w.window, [&] { return ended.count == 1; }));
     QCOMPARE(ended.end.committed_trials, 0);
   }
@@ -693,6 +696,109 @@ class ExperimentConsoleTest : public QObject {
     QCOMPARE(QString::fromStdString(outcome["A"]), QString("FN"));
     QCOMPARE(QString::fromStdString(outcome["B"]), QString("TP"));
     QCOMPARE(QString::fromStdString(outcome["C"]), QString("FN"));
+  }
+
+  // The flow of the crash report (issue 22): a person's localisation session to its end, then a
+  // discrimination session with a new participant and database in the same window; the
+  // participant's keys reach the participant whatever has the focus (the Live rig tab shown and
+  // back, a key sent to the Abort button); Space after Pause does not abort; Abort asks first;
+  // "Resume session" continues; every answer is stored once. Runs under ASan in make test-asan.
+  void personFlowLocalisationThenDiscriminationWithPauseTabSwitchAndResume() {
+    TempDir dir;
+    Window w = open_window();
+    ExperimentPage& page = w.page();
+    ParticipantScreen& screen = *page.participant_screen();
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    EndSeen ended(page);  // every session's end, counted
+    {  // 1. localisation, one trial, one mark
+      page.set_fields({short_localisation(dir), "L01", (dir.path() / "loc.db").string(), 0});
+      QVERIFY2(page.begin(false), qPrintable(page.refusal_text()));
+      QVERIFY2(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }), "step 1");
+      QTest::keyClick(&screen, Qt::Key_Space);
+      QVERIFY2(wait_until(*w.window, [&] { return screen.answering_position() == 0; }), "step 2");
+      SceneView& view = *screen.marking()->scene_view();
+      QTest::mouseClick(&view, Qt::RightButton, {}, view.rect().center());
+      QTest::mouseClick(screen.marking()->findChild<QPushButton*>("marks_done"), Qt::LeftButton);
+      QVERIFY2(wait_until(*w.window, [&] { return ended.count == 1; }), "step 3");
+      QVERIFY(ended.end.completed);
+      QVERIFY2(wait_until(*w.window, [&] { return !page.session_running(); }), "step 4");
+    }
+    // 2. discrimination, a new participant and database
+    const std::string db = (dir.path() / "disc.db").string();
+    page.set_fields({short_discrimination(dir), "D01", db, 0});
+    QVERIFY2(page.begin(false), qPrintable(page.refusal_text()));
+    auto* abort_button = page.findChild<QPushButton*>("abort_session");
+    QVERIFY2(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }), "step 5");
+    QTest::keyClick(abort_button, Qt::Key_Space);  // Ready, though the key went to Abort
+    QVERIFY2(wait_until(*w.window, [&] { return screen.answering_position() == 0; }), "step 6");
+    QVERIFY(page.session_running());
+    // The experimenter looks at the Live rig tab and comes back: keys still answer.
+    w.window->pages()->setCurrentIndex(0);
+    w.window->pages()->setCurrentWidget(w.window->experiment_page());
+    QTest::keyClick(w.window->pages()->tabBar(), Qt::Key_1);
+    QTest::keyClick(w.window->pages()->tabBar(), Qt::Key_Return);
+    QVERIFY2(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == 1; }), "step 7");
+    // Pause; Space (wherever the focus went) neither aborts nor presents anything.
+    QVERIFY2(wait_until(*w.window, [&] { return screen.answering_position() == 1; }), "step 8");
+    QTest::mouseClick(page.findChild<QPushButton*>("pause_session"), Qt::LeftButton);
+    auto* go_on = page.findChild<QPushButton*>("continue_session");
+    QVERIFY2(wait_until(*w.window, [&] { return go_on->isEnabled(); }), "step 9");
+    QWidget* focus = QApplication::focusWidget() ? QApplication::focusWidget() : abort_button;
+    QTest::keyClick(focus, Qt::Key_Space);
+    QTest::keyClick(abort_button, Qt::Key_Space);
+    QVERIFY(page.session_running());
+    QVERIFY(abort_question(page) == nullptr);
+    QTest::mouseClick(go_on, Qt::LeftButton);
+    QVERIFY2(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }), "step 10");
+    QTest::keyClick(go_on, Qt::Key_Space);
+    QVERIFY2(wait_until(*w.window, [&] { return screen.answering_position() == 1; }), "step 11");
+    QTest::keyClick(page.trial_table(), Qt::Key_0);
+    QVERIFY2(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == 2; }), "step 12");
+    // Abort asks; "No" keeps the session, "Yes" ends it.
+    QTest::mouseClick(abort_button, Qt::LeftButton);
+    QMessageBox* ask = abort_question(page);
+    QVERIFY(ask);
+    ask->button(QMessageBox::No)->click();
+    QVERIFY(page.session_running());
+    QVERIFY(abort_question(page) == nullptr);
+    QTest::mouseClick(abort_button, Qt::LeftButton);
+    ask = abort_question(page);
+    QVERIFY(ask);
+    ask->button(QMessageBox::Yes)->click();
+    QVERIFY2(wait_until(*w.window, [&] { return ended.count == 2 && !page.session_running(); }), "step 14");
+    QCOMPARE(ended.end.committed_trials, 2);
+    // 3. "Resume session" continues at trial 3 of the same session.
+    auto* resume = page.findChild<QPushButton*>("resume_session");
+    QVERIFY2(wait_until(*w.window, [&] { return resume->isVisible() && resume->isEnabled(); }), "step 15");
+    QTest::mouseClick(resume, Qt::LeftButton);
+    QVERIFY2(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }), "step 16");
+    QTest::keyClick(resume, Qt::Key_Space);
+    for (int k = 2; k < 6; ++k) {  // the rest of the 6 trials, keys sent to whatever widget
+      // A new block asks for Ready again: Space, wherever the focus is.
+      QVERIFY2(wait_until(*w.window, [&] {
+        if (ready->isVisible() && ready->isEnabled()) QTest::keyClick(abort_button, Qt::Key_Space);
+        return screen.answering_position() == k;
+      }), "step 17");
+      QTest::keyClick(k % 2 ? static_cast<QWidget*>(page.trial_table()) : static_cast<QWidget*>(&screen), Qt::Key_0);
+    }
+    QVERIFY2(wait_until(*w.window, [&] { return ended.count == 3; }),
+             qPrintable(QString("step 18: %1 ends; status '%2'").arg(ended.count)
+                            .arg(page.findChild<QLabel*>("session_status")->text())));
+    QVERIFY(ended.end.completed);
+    const auto store = open_trial_store(db, TrialStore::Access::read_only);
+    const auto trials = store->read_trials(true);
+    QCOMPARE(trials.size(), std::size_t(6));
+    for (int i = 0; i < 6; ++i) QCOMPARE(trials[static_cast<std::size_t>(i)].position, i);  // each once, in order
+    QCOMPARE(QString::fromStdString(trials[0].answer), QString("100"));  // key 1 via the tab bar, then Enter
+    // The keyboard is the experimenter's again: a digit reaches an ordinary widget.
+    QVERIFY2(wait_until(*w.window, [&] { return !page.session_running(); }), "step 19");
+    auto* participant = page.findChild<QLineEdit*>("participant_code");
+    if (participant) {
+      participant->setFocus();
+      participant->clear();
+      QTest::keyClick(participant, Qt::Key_7);
+      QCOMPARE(participant->text(), QString("7"));
+    }
   }
 };
 

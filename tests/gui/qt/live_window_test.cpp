@@ -276,6 +276,34 @@ class LiveWindowTest : public QObject {
     QCOMPARE(last_line(gui.err), cli_line);
   }
 
+  // A recording is never overwritten: opening a scene from the File menu starts a new LiveRun
+  // whose telemetry goes to T-2.csv beside T.csv (which keeps every byte), and the status bar
+  // says where.
+  void reopeningASceneRecordsToANewTelemetryFile() {
+    TempDir dir;
+    LiveRunFiles files;
+    files.data_dir = data_dir();
+    files.rig_path = patient_rig(dir);
+    LiveRunOptions opt;
+    opt.want_fifo = false;
+    opt.telemetry_path = dir.path() / "T.csv";
+    MainWindow win(std::make_unique<LiveRun>(load_live_run(files), opt), files, opt);
+    win.show();
+    QVERIFY(wait_until(win, [&] { return win.run().feed().last_t_s() > 0.2; }));
+    QCOMPARE(win.run().telemetry_file(), dir.path() / "T.csv");
+    auto* status = win.findChild<QLabel*>("loop_status");
+    QVERIFY(wait_until(win, [&] { return status->text().contains("recording to " + QString::fromStdString((dir.path() / "T.csv").string())); }));
+    LiveRunFiles other = files;
+    other.scene_path = data_dir() + "/scenes/phantom_abc.json";
+    QVERIFY(win.open_files(other));
+    const auto first_size = std::filesystem::file_size(dir.path() / "T.csv");
+    QVERIFY(first_size > 1000);  // the first recording, closed when its loop stopped
+    QCOMPARE(win.run().telemetry_file(), dir.path() / "T-2.csv");
+    QVERIFY(wait_until(win, [&] { return status->text().contains("T-2.csv"); }));
+    QVERIFY(wait_until(win, [&] { return win.run().feed().last_t_s() > 0.2; }));
+    QCOMPARE(std::filesystem::file_size(dir.path() / "T.csv"), first_size);
+  }
+
   void screenshotOptionWritesANonBlankPng() {
     TempDir dir;
     const auto png = dir.path() / "gui.png";

@@ -256,7 +256,7 @@ class PulseConsoleTest : public QObject {
     QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == 1; }));
     EndSeen ended(page);
     QVERIFY(wait_until(*w.window, [&] { return screen.answering_position() == 1; }));
-    QTest::mouseClick(page.findChild<QPushButton*>("abort_session"), Qt::LeftButton);
+    abort_confirmed(page);
     QVERIFY(wait_until(*w.window, [&] { return ended.count == 1 && !page.session_running(); }));
     QVERIFY(ended.end.stopped);
     QCOMPARE(ended.end.committed_trials, 1);
