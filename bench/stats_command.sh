@@ -9,7 +9,7 @@
 #                integrity cache, store/integrity_check_cache.hpp, is pointed at an empty
 #                folder before each run)
 #   later reads  the same state read again: the check remembered in the user's cache is skipped
-# Wall time from date +%s%N around each run; the file's pages are in the page cache (the warm-up
+# Wall and CPU (user + system) time of the process from GNU time; the file's pages are in the page cache (the warm-up
 # read them), as after the session that wrote them.
 set -euo pipefail
 
@@ -26,17 +26,27 @@ fi
 cache=$(mktemp -d)
 trap 'rm -rf "$cache"' EXIT
 
-# Milliseconds of one run of "$@" (its output thrown away; a failure stops the script).
+# "wall_ms cpu_ms" of one run of "$@" (its output thrown away; a failure stops the script): GNU
+# time's elapsed and user + system seconds of the process.
 time_ms() {
-  local start end
-  start=$(date +%s%N)
-  "$@" >/dev/null
-  end=$(date +%s%N)
-  echo $(( (end - start) / 1000000 ))
+  local out
+  out=$(mktemp)
+  /usr/bin/time -f '%e %U %S' -o "$out" "$@" >/dev/null
+  awk '{ printf "%d %d\n", $1 * 1000, ($2 + $3) * 1000 }' "$out"
+  rm -f "$out"
 }
 
-# "median min max" of the numbers on stdin.
-summary() { sort -n | awk '{ v[NR] = $1 } END { printf "%d ms (min %d, max %d)", v[int((NR + 1) / 2)], v[1], v[NR] }'; }
+# "median (min, max)" of the numbers in column $1 of stdin.
+summary() {
+  awk -v c="$1" '{ print $c }' | sort -n |
+    awk '{ v[NR] = $1 } END { printf "%d ms (min %d, max %d)", v[int((NR + 1) / 2)], v[1], v[NR] }'
+}
+
+report() {
+  local runs_out
+  runs_out=$(for _ in $(seq "$runs"); do "$1"; done)
+  echo "wall $(echo "$runs_out" | summary 1), CPU $(echo "$runs_out" | summary 2)"
+}
 
 first_read() {
   rm -rf "$cache/first" && mkdir "$cache/first"
@@ -48,6 +58,6 @@ echo "palprig stats trials $db ($(du -h "$db" | cut -f1)), $runs runs each, load
 echo "machine: $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1), $(nproc) cores"
 first_read >/dev/null   # warm-up: the pages into the page cache
 later_read >/dev/null   # and the state into the later reads' cache
-echo "first read of a file state (quick_check): $(for _ in $(seq "$runs"); do first_read; done | summary)"
-echo "later reads of the same state:            $(for _ in $(seq "$runs"); do later_read; done | summary)"
+echo "first read of a file state (quick_check): $(report first_read)"
+echo "later reads of the same state:            $(report later_read)"
 echo "goal: < 1000 ms"
