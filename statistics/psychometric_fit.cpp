@@ -1,13 +1,7 @@
 #include "statistics/psychometric_fit.hpp"
 
 #include <algorithm>
-#include <array>
-#include <atomic>
 #include <chrono>
-#include <exception>
-#include <functional>
-#include <system_error>
-#include <thread>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -244,36 +238,6 @@ Fitted minimise(const std::vector<LevelCounts>& data, const Parameterisation& pa
   return f;
 }
 
-// job(0) .. job(n - 1) on this thread and up to min(cores, n) - 1 more; each index once. The
-// first exception (in index order) is passed on after every job has finished.
-void for_each_index_in_parallel(std::size_t n, const std::function<void(std::size_t)>& job) {
-  std::atomic<std::size_t> next{0};
-  std::vector<std::exception_ptr> errors(n);
-  auto work = [&] {
-    for (std::size_t i = next++; i < n; i = next++) {
-      try {
-        job(i);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
-  };
-  const std::size_t cores = std::thread::hardware_concurrency();
-  std::vector<std::thread> helpers;
-  for (std::size_t t = 1; t < std::min(cores, n); ++t) {
-    try {
-      helpers.emplace_back(work);
-    } catch (const std::system_error&) {
-      break;  // no thread to be had: the others (and this one) do the rest
-    }
-  }
-  work();
-  for (std::thread& t : helpers) t.join();
-  for (const std::exception_ptr& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
-}
-
 double inverse_f(Sigmoid s, double alpha, double beta, double f) {
   if (!(f > 0 && f < 1)) return std::numeric_limits<double>::quiet_NaN();
   switch (s) {
@@ -417,21 +381,14 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
   const int free_params = 2 + (o.guess ? 0 : 1) + (o.lapse ? 0 : 1);
   const double g_start = o.guess ? 0.0 : std::log(0.25 / 0.75);  // guess = guess_max / 4
   const double l_start = o.lapse ? 0.0 : std::log(0.02 / (o.lapse_max - 0.02 > 0 ? o.lapse_max - 0.02 : o.lapse_max));
-  std::vector<std::array<double, 4>> starts;
+  Fitted best;
   for (double a : {-0.7, 0.0, 0.7}) {
     for (double b : {std::log(0.3), std::log(1.0)}) {
-      starts.push_back({o.sigmoid == Sigmoid::weibull ? a * 0.5 : a, o.sigmoid == Sigmoid::weibull ? b + 1.0 : b,
-                        g_start, l_start});
+      const double start[4] = {o.sigmoid == Sigmoid::weibull ? a * 0.5 : a, o.sigmoid == Sigmoid::weibull ? b + 1.0 : b,
+                               g_start, l_start};
+      const Fitted f = minimise(used, param, start);
+      if (f.ok && f.nll < best.nll) best = f;
     }
-  }
-  // The starts are independent minimisations: they run side by side where there are cores for
-  // them, each into its own slot, and the best is taken in the order of the starts, as when they
-  // ran one after the other, so the fit is the same to the last bit.
-  std::vector<Fitted> fitted(starts.size());
-  for_each_index_in_parallel(starts.size(), [&](std::size_t i) { fitted[i] = minimise(used, param, starts[i].data()); });
-  Fitted best;
-  for (const Fitted& f : fitted) {
-    if (f.ok && f.nll < best.nll) best = f;
   }
   if (!best.ok) throw StatisticsError("the maximum-likelihood fit did not converge");
 
