@@ -85,8 +85,11 @@ void sigmoid_parts(Sigmoid s, const T& x, const T& alpha, const T& beta, bool wa
   switch (s) {
     case Sigmoid::cumulative_gaussian: {
       const T z = (x - alpha) / beta;
-      if (want_f) f = T(0.5) * erfc(-z / T(kSqrt2));
-      if (want_fc) fc = T(0.5) * erfc(z / T(kSqrt2));
+      // Scalars as scalars: a Jet made of a constant carries a zero derivative that Ceres would
+      // multiply and add in; the values are the same (1/sqrt(2) is applied as Ceres' Jet
+      // division applies it, by its inverse; a double is divided as before).
+      if (want_f) f = erfc(-z / kSqrt2) * 0.5;
+      if (want_fc) fc = erfc(z / kSqrt2) * 0.5;
       return;
     }
     case Sigmoid::logistic: {
@@ -191,12 +194,12 @@ struct NegativeLogLikelihood {
       if (c.yes > 0) {
         T psi = g + span * f;
         if (psi < T(1e-300)) psi = T(1e-300);
-        sum -= T(c.yes) * log(psi);
+        sum -= log(psi) * static_cast<double>(c.yes);
       }
       if (c.no > 0) {
         T q = l + span * fc;
         if (q < T(1e-300)) q = T(1e-300);
-        sum -= T(c.no) * log(q);
+        sum -= log(q) * static_cast<double>(c.no);
       }
     }
     cost[0] = sum;
