@@ -72,19 +72,38 @@ constexpr double kSqrt2 = 1.41421356237309504880;
 // the largest double), is no fit but a step whose derivatives overflow.
 constexpr double kLocationBound = 1e6, kLogBound = 700;
 
+// (x - alpha) / beta for a plain level x. Doubles are divided as written. For Ceres' Jets the
+// division is Ceres' own (the value times 1 / beta.a, the derivative likewise), with that
+// inverse, the same for every level, computed once per evaluation by the caller.
+inline double standardised(double x, double alpha, double beta, double /*beta_inverse*/) { return (x - alpha) / beta; }
+template <class T, int N>
+ceres::Jet<T, N> standardised(double x, const ceres::Jet<T, N>& alpha, const ceres::Jet<T, N>& beta, T beta_inverse) {
+  const ceres::Jet<T, N> d = x - alpha;
+  const T a = d.a * beta_inverse;
+  return ceres::Jet<T, N>(a, (d.v - a * beta.v) * beta_inverse);
+}
+
+inline double scalar_part(double x) { return x; }
+template <class T, int N>
+T scalar_part(const ceres::Jet<T, N>& x) {
+  return x.a;
+}
+
 // F and 1 - F computed separately, so neither tail loses its digits to a subtraction. Only the
 // ones asked for are computed: the likelihood needs F where some answers were "yes" and 1 - F
 // where some were "no", and with one trial per level (10,000 distinct levels) that is one of
 // the two (the same operations on the same numbers as computing both: the fit does not change).
+// beta_inverse: 1 / beta's value (see standardised).
 template <class T>
-void sigmoid_parts(Sigmoid s, const T& x, const T& alpha, const T& beta, bool want_f, bool want_fc, T& f, T& fc) {
+void sigmoid_parts(Sigmoid s, double x, const T& alpha, const T& beta, double beta_inverse, bool want_f, bool want_fc,
+                   T& f, T& fc) {
   using std::erfc;
   using std::exp;
   using std::expm1;
   using std::pow;
   switch (s) {
     case Sigmoid::cumulative_gaussian: {
-      const T z = (x - alpha) / beta;
+      const T z = standardised(x, alpha, beta, beta_inverse);
       // Scalars as scalars: a Jet made of a constant carries a zero derivative that Ceres would
       // multiply and add in; the values are the same (1/sqrt(2) is applied as Ceres' Jet
       // division applies it, by its inverse; a double is divided as before).
@@ -93,13 +112,13 @@ void sigmoid_parts(Sigmoid s, const T& x, const T& alpha, const T& beta, bool wa
       return;
     }
     case Sigmoid::logistic: {
-      const T u = (x - alpha) / beta;
+      const T u = standardised(x, alpha, beta, beta_inverse);
       if (want_f) f = T(1) / (T(1) + exp(-u));
       if (want_fc) fc = T(1) / (T(1) + exp(u));
       return;
     }
     case Sigmoid::weibull: {
-      const T w = pow(x / alpha, beta);
+      const T w = pow(T(x) / alpha, beta);
       if (want_f) f = -expm1(-w);
       if (want_fc) fc = exp(-w);
       return;
@@ -107,9 +126,8 @@ void sigmoid_parts(Sigmoid s, const T& x, const T& alpha, const T& beta, bool wa
   }
 }
 
-template <class T>
-void sigmoid_pair(Sigmoid s, const T& x, const T& alpha, const T& beta, T& f, T& fc) {
-  sigmoid_parts(s, x, alpha, beta, true, true, f, fc);
+void sigmoid_pair(Sigmoid s, double x, double alpha, double beta, double& f, double& fc) {
+  sigmoid_parts(s, x, alpha, beta, 1.0 / beta, true, true, f, fc);
 }
 
 // The optimiser works on unbounded parameters on standardised levels:
@@ -185,11 +203,11 @@ struct NegativeLogLikelihood {
     T alpha, beta, g, l;
     param->decode(p, alpha, beta, g, l);
     const T span = T(1) - g - l;
+    const double beta_inverse = 1.0 / scalar_part(beta);
     T sum(0);
     for (const StandardLevel& c : *data) {
-      const T x(c.x);
       T f, fc;
-      sigmoid_parts(param->sigmoid, x, alpha, beta, c.yes > 0, c.no > 0, f, fc);
+      sigmoid_parts(param->sigmoid, c.x, alpha, beta, beta_inverse, c.yes > 0, c.no > 0, f, fc);
       // A probability of exactly 0 against an observed answer would be an infinite cost.
       if (c.yes > 0) {
         T psi = g + span * f;
