@@ -1,8 +1,8 @@
 // Every writer checks every write and its close (models/checked_output.hpp): on /dev/full, on a
 // full file system (a filled 64 KiB tmpfs) and in a folder it may not write, `telemetry to-csv`,
-// `scene render`, `scene generate`, `stats psychometric --plot` and `store copy` fail with one
-// line naming the file and the system's reason, exit 1 (store copy: its store's convention, see
-// there), and leave no file that looks complete. Before, they said "wrote N records" and exited 0
+// `scene render`, `scene generate`, `stats psychometric --plot`, `calibrate sweep` and `store
+// copy` fail with one line naming the file and the system's reason, exit 1 (store copy: its
+// store's convention, see there), and leave no file that looks complete. Before, they said "wrote N records" and exited 0
 // over an empty or short file.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -194,6 +194,27 @@ TEST(WritersCheckWrites, StoreCopy) {
   EXPECT_EQ(line_count(r.err), 1) << r.err;
   EXPECT_NE(r.err.find(target.string()), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("the disk"), std::string::npos) << r.err;
+  EXPECT_TRUE(full.left_behind().empty()) << *full.left_behind().begin();
+}
+
+// The sweep file is streamed hold by hold (a stopped sweep keeps its holds), each flush and the
+// close checked; a file that failed before any hold is removed (one that failed later is
+// renamed NAME.partial, which the line names).
+TEST(WritersCheckWrites, CalibrateSweep) {
+  TempDir dir;
+  const std::string sweep = palprig_bin() + " calibrate sweep --channels 1 --from-kPa 10 --to-kPa 20 --step-kPa 10 "
+                            "--repeats 1 --out ";
+  expect_failed_write(run_process(sweep + "/dev/full"), "/dev/full", "No space left on device");
+
+  const auto ro = read_only_folder(dir);
+  expect_failed_write(run_process(as_unprivileged() + sweep + (ro / "sweep.csv").string()), (ro / "sweep.csv").string(),
+                      "Permission denied");
+  EXPECT_TRUE(std::filesystem::is_empty(ro));
+
+  FullFilesystem full(dir.path() / "full");
+  SKIP_UNLESS_MOUNTED(full);
+  expect_failed_write(run_process(sweep + (full.folder() / "sweep.csv").string()),
+                      (full.folder() / "sweep.csv").string(), "No space left on device");
   EXPECT_TRUE(full.left_behind().empty()) << *full.left_behind().begin();
 }
 
