@@ -21,12 +21,15 @@ namespace {
 // each flush and the close are checked, and a failure is models/checked_output's one line. A
 // file that failed cannot be left looking like a whole sweep: without holds it is removed; with
 // some it is renamed NAME.partial (a rename needs no room on the disk), which the line names.
+// Only a regular file is removed or renamed: never a device (/dev/full) or a FIFO given as --out.
 [[noreturn]] void fail_writing(std::ofstream& out, const std::filesystem::path& path, bool has_holds) {
   const int error = errno;
   out.close();
   std::string reason = error != 0 ? std::strerror(error) : "the write failed";
   std::error_code ec;
-  if (!has_holds) {
+  if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(path, ec))) {
+    // Nothing to tidy.
+  } else if (!has_holds) {
     std::filesystem::remove(path, ec);
   } else {
     std::filesystem::path partial = path;

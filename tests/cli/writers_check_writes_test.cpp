@@ -33,8 +33,10 @@ std::string as_unprivileged() { return ::geteuid() == 0 ? "setpriv --reuid=65534
 
 int line_count(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
 
-// One line, exit 1, naming the file and the reason.
+// One line, exit 1, naming the file and the reason; and a device stays the device (a writer
+// that tidied up after itself by removing its path once took /dev/full away from the machine).
 void expect_failed_write(const ProcessResult& r, const std::string& file, const std::string& reason) {
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/full")) << "/dev/full was replaced or removed";
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_EQ(line_count(r.err), 1) << r.err;
   EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
@@ -177,6 +179,7 @@ TEST(WritersCheckWrites, StoreCopy) {
   EXPECT_EQ(dev.exit_code, 2) << dev.err;
   EXPECT_EQ(line_count(dev.err), 1) << dev.err;
   EXPECT_NE(dev.err.find("/dev/full: file: a trial database: a regular file or a new path"), std::string::npos) << dev.err;
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
 
   const auto ro = read_only_folder(dir);
   const auto denied = run_process(as_unprivileged() + copy + (ro / "copy.db").string());

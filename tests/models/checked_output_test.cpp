@@ -63,6 +63,7 @@ TEST(CheckedOutput, AFullDeviceIsTheFileAndTheSystemsReason) {
   } catch (const OutputError& e) {
     EXPECT_EQ(std::string(e.what()), "/dev/full: cannot write: No space left on device");
   }
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/full")) << "the device was renamed over";
 }
 
 TEST(CheckedOutput, AMissingFolderOrAFolderAsTheFileIsRefusedAtOnce) {
