@@ -59,6 +59,16 @@ for program in "${programs[@]}"; do
   echo "($name took $(( $(date +%s) - start )) s)"
 done
 
+# The command end to end, as the user waits for it (bench_stats above made its store).
+if [ -x "$build/bin/palprig" ]; then
+  echo
+  echo "## stats_command.sh (load $(load))"
+  if ! "$(dirname "$0")/stats_command.sh" "$build" 5; then
+    echo "stats_command.sh: failed" >&2
+    failed=$((failed + 1))
+  fi
+fi
+
 echo
 echo "load average at end: $(load)"
 if [ $failed -ne 0 ]; then

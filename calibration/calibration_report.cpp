@@ -8,6 +8,8 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "models/checked_output.hpp"
+
 namespace palprig {
 
 namespace {
@@ -163,19 +165,18 @@ void print_evaluation_report(std::ostream& out, const EvaluationResult& r, const
 }
 
 void write_evaluation_trace_csv(const std::filesystem::path& path, const EvaluationResult& r) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot create " + path.string());
-  out << "t_s,compensation,target_kPa,setpoint_1_kPa,setpoint_2_kPa,setpoint_3_kPa,monitor_1_kPa,monitor_2_kPa,"
-         "monitor_3_kPa\n";
+  CheckedOutputFile out(path);
+  out.stream() << "t_s,compensation,target_kPa,setpoint_1_kPa,setpoint_2_kPa,setpoint_3_kPa,monitor_1_kPa,monitor_2_kPa,"
+                  "monitor_3_kPa\n";
   char line[256];
   for (int with = 0; with < 2; ++with)
     for (const auto& row : (with ? r.compensated : r.uncompensated).trace) {
       std::snprintf(line, sizeof line, "%.3f,%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", row.t_s, with ? "on" : "off",
                     row.target_kPa, row.setpoint_kPa[0], row.setpoint_kPa[1], row.setpoint_kPa[2], row.monitor_kPa[0],
                     row.monitor_kPa[1], row.monitor_kPa[2]);
-      out << line;
+      out.stream() << line;
     }
-  if (!out.flush()) throw std::runtime_error("cannot write " + path.string());
+  out.commit();
 }
 
 std::string utc_timestamp_now() {

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "models/checked_output.hpp"
+
 namespace palprig {
 
 namespace {
@@ -104,23 +106,15 @@ json calibration_json(const CalibrationResult& r) {
 }
 
 CalibrationModels write_calibration_file(const std::filesystem::path& path, const json& document) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw std::runtime_error("cannot create " + tmp.string());
-    out << document.dump(2) << "\n";
-    if (!out.flush()) throw std::runtime_error("cannot write " + tmp.string());
-  }
+  // Read back through the controller's own loader before it replaces anything: a file the
+  // controller would refuse is never put in place.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw OutputError(path, "a calibration file must be a regular file (this is a device, FIFO or folder)");
   CalibrationModels loaded;
-  try {
-    loaded = load_calibration_file(tmp);
-  } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw;
-  }
-  std::filesystem::rename(tmp, path);
+  CheckedOutputFile out(path);
+  out.write(document.dump(2) + "\n");
+  out.commit([&](const std::filesystem::path& written) { loaded = load_calibration_file(written); });
   loaded.source = path.string();
   return loaded;
 }

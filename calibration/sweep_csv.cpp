@@ -1,21 +1,54 @@
 #include "calibration/sweep_csv.hpp"
 
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <cmath>
 #include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
+#include "models/checked_output.hpp"
 #include "models/parse_error.hpp"
 #include "models/regular_file.hpp"
 
 namespace palprig {
 
+namespace {
+
+// The sweep file is streamed, hold by hold, so that a stopped sweep keeps every finished hold;
+// each flush and the close are checked, and a failure is models/checked_output's one line. A
+// file that failed cannot be left looking like a whole sweep: without holds it is removed; with
+// some it is renamed NAME.partial (a rename needs no room on the disk), which the line names.
+// Only a regular file is removed or renamed: never a device (/dev/full) or a FIFO given as --out.
+[[noreturn]] void fail_writing(std::ofstream& out, const std::filesystem::path& path, bool has_holds) {
+  const int error = errno;
+  out.close();
+  std::string reason = error != 0 ? std::strerror(error) : "the write failed";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(path, ec))) {
+    // Nothing to tidy.
+  } else if (!has_holds) {
+    std::filesystem::remove(path, ec);
+  } else {
+    std::filesystem::path partial = path;
+    partial += ".partial";
+    std::filesystem::rename(path, partial, ec);
+    if (!ec) reason += " (the holds recorded before it are in " + partial.string() + ")";
+  }
+  throw OutputError(path, reason);
+}
+
+}  // namespace
+
 SweepCsvWriter::SweepCsvWriter(const std::filesystem::path& path, const SweepFileInfo& info,
                                const std::array<bool, kFingerCount>& channels)
     : path_(path), out_(path), channels_(channels), has_sensor_(!info.sensor_name.empty()) {
-  if (!out_) throw std::runtime_error("cannot create " + path.string());
+  if (!out_) {
+    const int error = errno;
+    throw OutputError(path, error != 0 ? std::strerror(error) : "the file cannot be created");
+  }
   out_ << "# palprig calibration sweep\n";
   out_ << "# rig_id: " << info.rig_id << "\n";
   out_ << "# backend: " << info.backend << "\n";
@@ -25,7 +58,7 @@ SweepCsvWriter::SweepCsvWriter(const std::filesystem::path& path, const SweepFil
   out_ << "# sensor: " << (has_sensor_ ? info.sensor_name : "none") << "\n";
   for (const auto& n : info.notes) out_ << "# note: " << n << "\n";
   out_ << "t_s,channel,hold,segment,repeat,branch,command_kPa,monitor_kPa,sensor,settled\n";
-  out_.flush();
+  if (!out_.flush()) fail_writing(out_, path_, false);
 }
 
 void SweepCsvWriter::on_hold(std::size_t index, const SweepHold& hold, std::span<const SweepSample> samples,
@@ -48,8 +81,8 @@ void SweepCsvWriter::on_hold(std::size_t index, const SweepHold& hold, std::span
       ++rows_;
     }
   }
-  out_.flush();  // a crash or Ctrl-C keeps every finished hold
-  if (!out_) throw std::runtime_error("cannot write " + path_.string());
+  // A crash or Ctrl-C keeps every finished hold.
+  if (!out_.flush()) fail_writing(out_, path_, index > 0);
 }
 
 void SweepCsvWriter::finish(const SweepOutcome& o) {
@@ -57,7 +90,9 @@ void SweepCsvWriter::finish(const SweepOutcome& o) {
   if (o.holds_redone) out_ << "# redone: " << o.holds_redone << " hold(s) started again after a link outage\n";
   if (o.stopped) out_ << "# stopped: signal " << o.stop_signal << "; channels vented; the rows above were kept\n";
   if (o.faulted) out_ << "# fault: " << o.fault << "; channels vented\n";
-  out_.flush();
+  if (!out_.flush()) fail_writing(out_, path_, rows_ > 0);
+  out_.close();
+  if (!out_) fail_writing(out_, path_, rows_ > 0);
 }
 
 std::vector<HoldPoint> SweepData::channel_points(int channel) const {

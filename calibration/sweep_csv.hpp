@@ -37,7 +37,8 @@ struct SweepFileInfo {
 
 class SweepCsvWriter final : public SweepSink {
  public:
-  // Throws std::runtime_error when the file cannot be created.
+  // Throws OutputError (models/checked_output.hpp: the file and the system's reason) when the file
+  // cannot be created; on_hold and finish likewise when a flush or the close fails.
   SweepCsvWriter(const std::filesystem::path& path, const SweepFileInfo& info,
                  const std::array<bool, kFingerCount>& channels);
   void on_hold(std::size_t index, const SweepHold& hold, std::span<const SweepSample> samples,

@@ -1,5 +1,7 @@
 #include "charts/chart_png.hpp"
 
+#include <QtCore/QBuffer>
+#include <QtCore/QByteArray>
 #include <QtGui/QFont>
 #include <QtGui/QFontMetrics>
 #include <QtGui/QGuiApplication>
@@ -12,6 +14,8 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+
+#include "models/checked_output.hpp"
 
 namespace palprig::charts {
 
@@ -334,8 +338,13 @@ QImage render_chart(const Chart& chart) {
 
 void write_chart_png(const Chart& chart, const std::filesystem::path& path) {
   const QImage image = render_chart(chart);
-  if (!image.save(QString::fromStdString(path.string()), "PNG"))
-    throw std::runtime_error("cannot write " + path.string());
+  // Encoded in memory, then written through the checked writer: QImage::save's file is closed
+  // (and its last buffer written) after it has already returned true.
+  QByteArray png;
+  QBuffer buffer(&png);
+  buffer.open(QIODevice::WriteOnly);
+  if (!image.save(&buffer, "PNG")) throw OutputError(path, "the PNG could not be encoded");
+  write_file_checked(path, std::string_view(png.constData(), static_cast<std::size_t>(png.size())));
 }
 
 }  // namespace palprig::charts

@@ -36,7 +36,8 @@ struct Chart {
 };
 
 // Throws std::invalid_argument for a chart with nothing to draw or series of mismatched sizes,
-// std::runtime_error when the file cannot be written.
+// OutputError (models/checked_output.hpp: the file and the system's reason; no file is left)
+// when the file cannot be written whole.
 void write_chart_png(const Chart& chart, const std::filesystem::path& path);
 
 // The same drawing on any paint device (a widget, an SVG generator) of chart.width_px x

@@ -7,8 +7,8 @@
 
 namespace palprig::charts {
 
-// Throws std::invalid_argument as write_chart_png, std::runtime_error when the file cannot be
-// written.
+// Throws std::invalid_argument as write_chart_png, OutputError as write_chart_png when the file
+// cannot be written whole.
 void write_chart_svg(const Chart& chart, const std::filesystem::path& path);
 
 }  // namespace palprig::charts

@@ -3,7 +3,6 @@
 //   generate  make a random rehearsal case from a seed and a difficulty (ground truth inside)
 //   info      list a scene's layers, inclusions, tumors and arteries
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -15,6 +14,7 @@
 #include "formats/scene_file.hpp"
 #include "models/artery.hpp"
 #include "models/case_generator.hpp"
+#include "models/checked_output.hpp"
 #include "models/parse_error.hpp"
 #include "models/stiffness_map.hpp"
 #include "models/tissue_scene.hpp"
@@ -50,11 +50,10 @@ void render(const RenderArgs& a) {
   const double width_mm = double(cols - 1) * a.res_mm, height_mm = double(rows - 1) * a.res_mm;
   const StiffnessMap map(cols, rows, width_mm, height_mm, std::move(values));
   {
-    std::ofstream f(out, std::ios::binary);
-    if (!f) throw std::runtime_error("cannot write " + out.string());
-    if (ext == ".pgm") write_stiffness_pgm16(f, map);
-    else write_stiffness_csv(f, map);
-    if (!f) throw std::runtime_error("cannot write " + out.string());
+    CheckedOutputFile f(out);
+    if (ext == ".pgm") write_stiffness_pgm16(f.stream(), map);
+    else write_stiffness_csv(f.stream(), map);
+    f.commit();
   }
   std::cout << "palprig scene render: " << a.scene << " -> " << out.string() << " (" << cols << " x " << rows
             << " vertices, " << a.res_mm << " mm apart, " << width_mm << " x " << height_mm << " mm, pressing "

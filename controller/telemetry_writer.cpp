@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "models/checked_output.hpp"
 #include "models/parse_error.hpp"
 #include "models/regular_file.hpp"
 
@@ -205,17 +206,19 @@ std::uint64_t convert_telemetry_to_csv(const std::filesystem::path& binary, cons
                      "telemetry version " + std::to_string(kTelemetryVersion) + " with " +
                          std::to_string(sizeof(TelemetryRecord)) + "-byte records, got version " +
                          std::to_string(header[0]) + " with " + std::to_string(header[1]));
-  std::ofstream out(csv);
-  if (!out) throw InputError(csv.string(), "file", "a writable CSV path");
-  write_telemetry_csv_header(out);
+  // Written whole or not at all: a truncated input or a full disk leaves no CSV that looks done.
+  CheckedOutputFile out(csv);
+  write_telemetry_csv_header(out.stream());
   TelemetryRecord r;
   std::uint64_t n = 0;
   while (in.read(reinterpret_cast<char*>(&r), sizeof r)) {
-    write_telemetry_csv_row(out, r);
+    write_telemetry_csv_row(out.stream(), r);
     ++n;
+    if ((n & 0xffff) == 0 && !out.stream()) break;  // the disk is full: stop converting, commit() says so
   }
-  if (in.gcount() != 0)
+  if (out.stream() && in.gcount() != 0)
     throw InputError(binary.string(), "record " + std::to_string(n), "a whole record (file is truncated)");
+  out.commit();
   return n;
 }
 

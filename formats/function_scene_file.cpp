@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "models/checked_output.hpp"
 #include "models/decimal_number.hpp"
 #include "models/regular_file.hpp"
 #include "models/tissue_scene.hpp"
@@ -448,10 +449,7 @@ nlohmann::json generated_case_json(const GeneratedCase& c) {
 }
 
 void write_scene_json(const std::filesystem::path& path, const nlohmann::json& scene) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-  out << scene.dump(2) << "\n";
-  if (!out) throw std::runtime_error("cannot write " + path.string());
+  write_file_checked(path, scene.dump(2) + "\n");
 }
 
 }  // namespace palprig

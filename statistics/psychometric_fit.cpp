@@ -35,15 +35,32 @@ std::optional<Sigmoid> sigmoid_from_string(const std::string& text) noexcept {
 
 std::vector<LevelCounts> counts_per_level(const std::vector<double>& levels, const std::vector<int>& responses) {
   if (levels.size() != responses.size()) throw StatisticsError("levels and responses differ in length");
-  std::map<double, LevelCounts> by_level;
-  for (std::size_t i = 0; i < levels.size(); ++i) {
-    auto& c = by_level[levels[i]];
+  // The trials in level order (stable: among equal levels, such as 0 and -0, in the order given,
+  // so each group's level is its last trial's, as a map keyed on the level gave), then one count
+  // per run of equal levels. A NaN orders with nothing: those go through the map, as before.
+  if (std::any_of(levels.begin(), levels.end(), [](double x) { return std::isnan(x); })) {
+    std::map<double, LevelCounts> by_level;
+    for (std::size_t i = 0; i < levels.size(); ++i) {
+      auto& c = by_level[levels[i]];
+      c.level = levels[i];
+      ++c.n;
+      c.k += responses[i] != 0 ? 1 : 0;
+    }
+    std::vector<LevelCounts> out;
+    for (auto& [level, c] : by_level) out.push_back(c);
+    return out;
+  }
+  std::vector<std::size_t> order(levels.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return levels[a] < levels[b]; });
+  std::vector<LevelCounts> out;
+  for (const std::size_t i : order) {
+    if (out.empty() || out.back().level < levels[i]) out.push_back(LevelCounts{});
+    LevelCounts& c = out.back();
     c.level = levels[i];
     ++c.n;
     c.k += responses[i] != 0 ? 1 : 0;
   }
-  std::vector<LevelCounts> out;
-  for (auto& [level, c] : by_level) out.push_back(c);
   return out;
 }
 
@@ -55,33 +72,62 @@ constexpr double kSqrt2 = 1.41421356237309504880;
 // the largest double), is no fit but a step whose derivatives overflow.
 constexpr double kLocationBound = 1e6, kLogBound = 700;
 
-// F and 1 - F computed separately, so neither tail loses its digits to a subtraction.
+// (x - alpha) / beta for a plain level x. Doubles are divided as written. For Ceres' Jets the
+// division is Ceres' own (the value times 1 / beta.a, the derivative likewise), with that
+// inverse, the same for every level, computed once per evaluation by the caller.
+inline double standardised(double x, double alpha, double beta, double /*beta_inverse*/) { return (x - alpha) / beta; }
+template <class T, int N>
+ceres::Jet<T, N> standardised(double x, const ceres::Jet<T, N>& alpha, const ceres::Jet<T, N>& beta, T beta_inverse) {
+  const ceres::Jet<T, N> d = x - alpha;
+  const T a = d.a * beta_inverse;
+  return ceres::Jet<T, N>(a, (d.v - a * beta.v) * beta_inverse);
+}
+
+inline double scalar_part(double x) { return x; }
+template <class T, int N>
+T scalar_part(const ceres::Jet<T, N>& x) {
+  return x.a;
+}
+
+// F and 1 - F computed separately, so neither tail loses its digits to a subtraction. Only the
+// ones asked for are computed: the likelihood needs F where some answers were "yes" and 1 - F
+// where some were "no", and with one trial per level (10,000 distinct levels) that is one of
+// the two (the same operations on the same numbers as computing both: the fit does not change).
+// beta_inverse: 1 / beta's value (see standardised).
 template <class T>
-void sigmoid_pair(Sigmoid s, const T& x, const T& alpha, const T& beta, T& f, T& fc) {
+void sigmoid_parts(Sigmoid s, double x, const T& alpha, const T& beta, double beta_inverse, bool want_f, bool want_fc,
+                   T& f, T& fc) {
   using std::erfc;
   using std::exp;
   using std::expm1;
   using std::pow;
   switch (s) {
     case Sigmoid::cumulative_gaussian: {
-      const T z = (x - alpha) / beta;
-      f = T(0.5) * erfc(-z / T(kSqrt2));
-      fc = T(0.5) * erfc(z / T(kSqrt2));
+      const T z = standardised(x, alpha, beta, beta_inverse);
+      // Scalars as scalars: a Jet made of a constant carries a zero derivative that Ceres would
+      // multiply and add in; the values are the same (1/sqrt(2) is applied as Ceres' Jet
+      // division applies it, by its inverse; a double is divided as before).
+      if (want_f) f = erfc(-z / kSqrt2) * 0.5;
+      if (want_fc) fc = erfc(z / kSqrt2) * 0.5;
       return;
     }
     case Sigmoid::logistic: {
-      const T u = (x - alpha) / beta;
-      f = T(1) / (T(1) + exp(-u));
-      fc = T(1) / (T(1) + exp(u));
+      const T u = standardised(x, alpha, beta, beta_inverse);
+      if (want_f) f = T(1) / (T(1) + exp(-u));
+      if (want_fc) fc = T(1) / (T(1) + exp(u));
       return;
     }
     case Sigmoid::weibull: {
-      const T w = pow(x / alpha, beta);
-      f = -expm1(-w);
-      fc = exp(-w);
+      const T w = pow(T(x) / alpha, beta);
+      if (want_f) f = -expm1(-w);
+      if (want_fc) fc = exp(-w);
       return;
     }
   }
+}
+
+void sigmoid_pair(Sigmoid s, double x, double alpha, double beta, double& f, double& fc) {
+  sigmoid_parts(s, x, alpha, beta, 1.0 / beta, true, true, f, fc);
 }
 
 // The optimiser works on unbounded parameters on standardised levels:
@@ -126,8 +172,22 @@ bool all_finite(const ceres::Jet<T, N>& x) {
   return std::isfinite(x.a) && x.v.allFinite();
 }
 
+// One level as the likelihood reads it: the standardised level (Parameterisation::standard,
+// computed once per fit rather than at every evaluation) and its counts.
+struct StandardLevel {
+  double x = 0;
+  int yes = 0, no = 0;
+};
+
+std::vector<StandardLevel> standard_levels(const std::vector<LevelCounts>& data, const Parameterisation& param) {
+  std::vector<StandardLevel> out;
+  out.reserve(data.size());
+  for (const LevelCounts& c : data) out.push_back({param.standard(c.level), c.k, c.n - c.k});
+  return out;
+}
+
 struct NegativeLogLikelihood {
-  const std::vector<LevelCounts>* data;
+  const std::vector<StandardLevel>* data;
   const Parameterisation* param;
 
   template <class T>
@@ -142,18 +202,23 @@ struct NegativeLogLikelihood {
     }
     T alpha, beta, g, l;
     param->decode(p, alpha, beta, g, l);
+    const T span = T(1) - g - l;
+    const double beta_inverse = 1.0 / scalar_part(beta);
     T sum(0);
-    for (const LevelCounts& c : *data) {
-      const T x(param->standard(c.level));
+    for (const StandardLevel& c : *data) {
       T f, fc;
-      sigmoid_pair(param->sigmoid, x, alpha, beta, f, fc);
-      T psi = g + (T(1) - g - l) * f;
-      T q = l + (T(1) - g - l) * fc;
+      sigmoid_parts(param->sigmoid, c.x, alpha, beta, beta_inverse, c.yes > 0, c.no > 0, f, fc);
       // A probability of exactly 0 against an observed answer would be an infinite cost.
-      if (psi < T(1e-300)) psi = T(1e-300);
-      if (q < T(1e-300)) q = T(1e-300);
-      if (c.k > 0) sum -= T(c.k) * log(psi);
-      if (c.n - c.k > 0) sum -= T(c.n - c.k) * log(q);
+      if (c.yes > 0) {
+        T psi = g + span * f;
+        if (psi < T(1e-300)) psi = T(1e-300);
+        sum -= log(psi) * static_cast<double>(c.yes);
+      }
+      if (c.no > 0) {
+        T q = l + span * fc;
+        if (q < T(1e-300)) q = T(1e-300);
+        sum -= log(q) * static_cast<double>(c.no);
+      }
     }
     cost[0] = sum;
     return all_finite(sum);
@@ -176,7 +241,8 @@ Fitted minimise(const std::vector<LevelCounts>& data, const Parameterisation& pa
     return true;
   }();
   (void)quiet;
-  auto* function = new ceres::AutoDiffFirstOrderFunction<NegativeLogLikelihood, 4>(new NegativeLogLikelihood{&data, &param});
+  const std::vector<StandardLevel> levels = standard_levels(data, param);
+  auto* function = new ceres::AutoDiffFirstOrderFunction<NegativeLogLikelihood, 4>(new NegativeLogLikelihood{&levels, &param});
   ceres::GradientProblem problem(function);
   ceres::GradientProblemSolver::Options options;
   options.logging_type = ceres::SILENT;

@@ -127,15 +127,28 @@ CopyReport copy_study(const std::string& from, const std::string& to, const std:
       rows.trials.clear();
     }
   } else {
-    SqliteTrialStore target(to, TrialStore::Access::read_write);
-    for (auto& [id, rows] : sessions) {
-      rows.trials = from_server ? pg_read_trials(server_source->connection(), id, 0)
-                                : read_sqlite_trials(sqlite_source->database(), id, 0);
-      const SqliteWriteResult written = write_sqlite_session(target.database(), rows);
-      ++report.sessions;
-      report.sessions_added += written.session_added ? 1 : 0;
-      report.trials_added += written.trials_added;
-      rows.trials.clear();
+    // Each session goes in one transaction, so a copy stopped by a full disk leaves the target a
+    // sound store of whole sessions (and the command fails, naming the file and the cause; run
+    // again, it goes on where it stopped). A target this copy created is removed instead: a new
+    // file holding some of the sessions would look like the whole study.
+    std::error_code ec;
+    const bool created = !std::filesystem::exists(to, ec);
+    try {
+      SqliteTrialStore target(to, TrialStore::Access::read_write);
+      for (auto& [id, rows] : sessions) {
+        rows.trials = from_server ? pg_read_trials(server_source->connection(), id, 0)
+                                  : read_sqlite_trials(sqlite_source->database(), id, 0);
+        const SqliteWriteResult written = write_sqlite_session(target.database(), rows);
+        ++report.sessions;
+        report.sessions_added += written.session_added ? 1 : 0;
+        report.trials_added += written.trials_added;
+        rows.trials.clear();
+      }
+    } catch (...) {
+      if (created) {
+        for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::filesystem::remove(to + suffix, ec);
+      }
+      throw;
     }
   }
   return report;

@@ -1,5 +1,6 @@
 #include "store/sqlite_db.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <sqlite3.h>
@@ -10,6 +11,8 @@
 #include <thread>
 
 #include "models/parse_error.hpp"
+#include "store/integrity_check_cache.hpp"
+#include "store/sqlite_read_access.hpp"
 
 namespace palprig {
 
@@ -28,6 +31,15 @@ namespace {
 }
 
 bool writable(const std::filesystem::path& p) { return ::access(p.c_str(), W_OK) == 0; }
+
+// Device, inode, size, modification and status-change times: any write changes one of them.
+std::string file_identity(const std::string& file) {
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0) return "gone";
+  return std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino) + " " + std::to_string(st.st_size) + " " +
+         std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec) + " " +
+         std::to_string(st.st_ctim.tv_sec) + "." + std::to_string(st.st_ctim.tv_nsec);
+}
 
 }  // namespace
 
@@ -59,44 +71,62 @@ std::string sqlite_environment_cause(const std::string& file, int code, int syst
   }
 }
 
-Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.string()) {
+Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.string()), mode_(mode) {
   // NOMUTEX: a connection is used by one thread at a time, so SQLite's per-call mutex (a tenth
   // of the time of a million-row scan) buys nothing.
-  // Read-only where we may write the file is query_only on a read-write connection: an
-  // SQLITE_OPEN_READONLY connection can neither checkpoint nor delete the -wal and -shm files
-  // when it is the last to close, so every `stats`/`export` run and the GUI's statistics view
-  // left them beside a database that had been closed cleanly. query_only refuses every change.
-  const bool query_only = mode == Mode::read_only && ::access(file_.c_str(), W_OK) == 0 &&
-                          open(SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX) == SQLITE_OK;
-  if (!query_only) {
-    const int flags = (mode == Mode::read_only ? SQLITE_OPEN_READONLY : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE)) |
-                      SQLITE_OPEN_NOMUTEX;
-    const int rc = open(flags);
-    if (rc != SQLITE_OK) {
-      const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
-      const int system_errno = db_ ? sqlite3_system_errno(db_) : 0;
-      sqlite3_close(db_);
-      db_ = nullptr;
-      throw_sqlite(file_, "", message, rc, system_errno);
-    }
-  }
-  // SQLite opens a file it may not write read-only without a word, and the first trial would
-  // then fail: a writer learns it here, before anything is written.
-  if (mode == Mode::read_write_create && sqlite3_db_readonly(db_, "main") == 1) {
-    const std::string message = "attempt to write a readonly database";
-    sqlite3_close(db_);
-    db_ = nullptr;
-    throw_sqlite(file_, "", message, SQLITE_READONLY);
+  if (mode == Mode::read_only) {
+    open_for_reading();
+  } else {
+    open_for_writing();
   }
   // A writer holds the lock only for one short transaction per trial: readers (stats, export,
   // the GUI) wait for it rather than failing.
   sqlite3_busy_timeout(db_, kBusyTimeoutMs);
-  if (query_only && sqlite3_exec(db_, "PRAGMA query_only = ON", nullptr, nullptr, nullptr) != SQLITE_OK) {
-    const std::string message = sqlite3_errmsg(db_);
+}
+
+void Database::open_for_writing() {
+  const int rc = open(SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX);
+  if (rc != SQLITE_OK) {
+    const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+    const int system_errno = db_ ? sqlite3_system_errno(db_) : 0;
     sqlite3_close(db_);
     db_ = nullptr;
-    throw SqliteError(file_ + ": PRAGMA query_only: " + message, SQLITE_ERROR);
+    throw_sqlite(file_, "", message, rc, system_errno);
   }
+  // SQLite opens a file it may not write read-only without a word, and the first trial would
+  // then fail: a writer learns it here, before anything is written.
+  if (sqlite3_db_readonly(db_, "main") == 1) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw_sqlite(file_, "", "attempt to write a readonly database", SQLITE_READONLY);
+  }
+}
+
+void Database::open_for_reading() {
+  // Readers never write: SQLITE_OPEN_READONLY can neither change a page nor checkpoint, so a
+  // -wal a crashed writer left is read as it is and stays byte for byte. How the -wal and -shm
+  // files are handled (immutable, tidying up) is store/sqlite_read_access.hpp.
+  const ReadAccess access = plan_read_access(file_);
+  immutable_ = access.immutable;
+  if (immutable_) identity_at_open_ = file_identity(file_);
+  const int rc = sqlite3_open_v2(access.uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX,
+                                 nullptr);
+  if (rc != SQLITE_OK) {
+    const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+    const int system_errno = db_ ? sqlite3_system_errno(db_) : 0;
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw_sqlite(file_, "", message, rc, system_errno);
+  }
+  tidy_sidecars_ = access.tidy_sidecars;
+}
+
+void Database::refuse_if_changed_during_read() const {
+  if (!immutable_ || file_identity(file_) == identity_at_open_) return;
+  throw SqliteError(file_ +
+                        ": the database file was written by another process while it was read (it was read without "
+                        "SQLite's locks, as this user may not create its -wal and -shm files); run the command again",
+                    SQLITE_BUSY, true);
 }
 
 int Database::open(int flags) {
@@ -105,7 +135,10 @@ int Database::open(int flags) {
   return sqlite3_open_v2(file_.c_str(), &db_, flags, nullptr);
 }
 
-Database::~Database() { sqlite3_close(db_); }
+Database::~Database() {
+  sqlite3_close(db_);
+  if (tidy_sidecars_) tidy_reader_sidecars(file_);
+}
 
 std::string damaged_database_expectation(const std::string& sqlite_says) {
   std::string reason = sqlite_says.substr(0, 160);
@@ -116,13 +149,26 @@ std::string damaged_database_expectation(const std::string& sqlite_says) {
          "); nothing was read from it or written to it: restore it from a backup";
 }
 
-void Database::refuse_if_damaged() {
+Database::Check Database::refuse_if_damaged() {
+  // A reader meets the same unchanged file again and again (stats by one key, then another;
+  // export; the window's statistics): the file state an earlier reader found sound is not
+  // checked again. A writer always checks.
+  std::optional<StoreFileState> before;
+  if (mode_ == Mode::read_only) {
+    before = store_file_state(file_);
+    if (before && known_sound(*before)) return Check::known_sound;
+  }
   // quick_check(1): stop at the first problem; O(file size), without the index cross-checks
   // of integrity_check. A damaged schema page fails the pragma itself (InputError from
   // throw_sqlite); damage further in is the pragma's first result row.
-  Statement s(*this, "PRAGMA quick_check(1)");
-  const std::string first = s.step() ? s.text(0) : std::string("PRAGMA quick_check returned nothing");
-  if (first != "ok") throw InputError(file_, "database pages", damaged_database_expectation(first));
+  {
+    Statement s(*this, "PRAGMA quick_check(1)");
+    const std::string first = s.step() ? s.text(0) : std::string("PRAGMA quick_check returned nothing");
+    if (first != "ok") throw InputError(file_, "database pages", damaged_database_expectation(first));
+  }
+  // Remembered only if nothing changed while it was checked (a writer appending to the -wal).
+  if (before && store_file_state(file_) == before) remember_sound(*before);
+  return Check::checked;
 }
 
 void Database::fail(const std::string& what, int code) const {
@@ -185,7 +231,11 @@ Statement& Statement::bind_null(int index) {
 bool Statement::step() {
   const int rc = sqlite3_step(stmt_);
   if (rc == SQLITE_ROW) return true;
-  if (rc == SQLITE_DONE) return false;
+  if (rc == SQLITE_DONE) {
+    // A scan read without locks is only as good as the file's staying still until its end.
+    db_->refuse_if_changed_during_read();
+    return false;
+  }
   db_->fail("executing \"" + std::string(sqlite3_sql(stmt_)).substr(0, 60) + "\"", rc);
 }
 

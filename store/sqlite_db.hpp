@@ -58,8 +58,17 @@ class Database {
   Statement prepare(std::string_view sql);
   std::int64_t pragma_integer(std::string_view name);  // e.g. "user_version"
   std::int64_t last_insert_rowid() const noexcept;
-  // Throws InputError naming the file unless PRAGMA quick_check finds it sound.
-  void refuse_if_damaged();
+  // Throws InputError naming the file unless PRAGMA quick_check finds it sound. A writer checks
+  // at every open; a reader skips a file state an earlier reader found sound
+  // (store/integrity_check_cache.hpp). Says which it did.
+  enum class Check { checked, known_sound };
+  Check refuse_if_damaged();
+  // A reader opened `immutable` (store/sqlite_read_access.hpp) reads without SQLite's locks:
+  // throws SqliteError naming the file when the database file changed since it was opened.
+  // Called when a statement finishes; nothing for other connections.
+  void refuse_if_changed_during_read() const;
+  Mode mode() const noexcept { return mode_; }
+  bool immutable() const noexcept { return immutable_; }
   const std::string& file() const noexcept { return file_; }
   sqlite3* handle() noexcept { return db_; }
 
@@ -67,9 +76,15 @@ class Database {
 
  private:
   int open(int flags);  // sqlite3_open_v2 into db_ (closing any earlier handle); its result code
+  void open_for_reading();
+  void open_for_writing();
 
   sqlite3* db_ = nullptr;
   std::string file_;
+  Mode mode_;
+  bool immutable_ = false;
+  bool tidy_sidecars_ = false;  // remove the -wal/-shm this reader's connection made (on close)
+  std::string identity_at_open_;  // immutable readers: the file's identity when opened
 };
 
 class Statement {

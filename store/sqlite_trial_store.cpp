@@ -24,19 +24,35 @@ std::optional<double> finite_or_null(double x) {
 
 }  // namespace
 
+namespace {
+
+// A store is a file SQLite can lock, grow and put a -wal beside: a device (/dev/full) or a FIFO
+// given as one is refused before SQLite touches it.
+const std::filesystem::path& regular_or_new(const std::filesystem::path& file) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError(file.string(), "file", "a trial database: a regular file or a new path (this is a device, FIFO or folder)");
+  return file;
+}
+
+}  // namespace
+
 SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access access) try
-    : db_(file, access == Access::read_only ? Database::Mode::read_only : Database::Mode::read_write_create) {
+    : db_(regular_or_new(file), access == Access::read_only ? Database::Mode::read_only : Database::Mode::read_write_create) {
   if (access == Access::read_write) create_schema_if_blank();
   check_identity();
+  // Scans of large stores (stats, export, and quick_check below) read through a memory map
+  // instead of copying pages.
+  db_.exec("PRAGMA mmap_size = 1073741824");
   // Never write into a damaged file (a new session in it could be lost with the rest, and
   // SQLite may make the damage worse), and never compute statistics or exports from one (the
-  // trials on bad pages would silently be missing).
+  // trials on bad pages would silently be missing). Readers skip a file state already found
+  // sound (store/integrity_check_cache.hpp).
   db_.refuse_if_damaged();
   if (access == Access::read_write) migrate_if_older();
   rating_columns_ = sqlite_trials_have_rating_columns(db_);
   if (access == Access::read_write) create_lock_table();
-  // Scans of large stores (stats, export) read through a memory map instead of copying pages.
-  db_.exec("PRAGMA mmap_size = 1073741824");
   if (access == Access::read_write) {
     // WAL: readers never block the writer; synchronous FULL: a committed trial survives a
     // crash of the process and of the machine.
@@ -50,11 +66,17 @@ SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access acc
   }
   // Opening, creating or migrating a store writes none of its trials: a read-only file or
   // folder, a full disk, is one line naming the file and the cause, exit 2.
-  if (e.environment() || e.code() == SQLITE_CANTOPEN) {
+  if (access == Access::read_write && (e.environment() || e.code() == SQLITE_CANTOPEN)) {
     std::string cause = sqlite_environment_cause(file.string(), e.code(), e.system_errno());
     throw InputError(file.string(), "file",
                      "a trial database palprig can open and write (" + (cause.empty() ? std::string(e.what()) : cause) +
                          "; nothing was written)");
+  }
+  // A reader writes nothing, ever: what kept it from reading is the file's or the machine's.
+  if (access == Access::read_only && e.code() == SQLITE_CANTOPEN) {
+    std::string cause = sqlite_environment_cause(file.string(), e.code(), e.system_errno());
+    throw InputError(file.string(), "file",
+                     "a trial database palprig can open and read (" + (cause.empty() ? std::string(e.what()) : cause) + ")");
   }
   throw;
 }

@@ -1,7 +1,8 @@
 // A read-only trial store (stats, export, the GUI's statistics view) reads without changing the
 // database and, when it is the last connection to close, leaves no -wal/-shm files behind: an
-// SQLITE_OPEN_READONLY connection could not delete them, so each `palprig stats trials` after a
-// session left two stray files beside the database (store/sqlite_db.cpp).
+// SQLITE_OPEN_READONLY connection cannot delete them itself, so each `palprig stats trials` after
+// a session once left two stray files beside the database; the reader now removes the empty
+// ones its connection made, under SQLite's EXCLUSIVE lock (store/sqlite_read_access.cpp).
 #include <gtest/gtest.h>
 
 #include <filesystem>
