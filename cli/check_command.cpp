@@ -6,7 +6,7 @@
 //
 // The kind is read from the file (JSON: "kind" -> scene, "task" -> protocol, "stress_model" or
 // "rig_id" -> calibration, otherwise rig; CSV: the header t_s,x_mm,y_mm,force_N -> pen trace,
-// t_s,value -> waveform, otherwise a stiffness map; .pgm -> map; .evemu -> pen recording) or
+// t_s and one more column -> waveform, otherwise a stiffness map; .pgm -> map; .evemu -> pen recording) or
 // given with --kind.
 #include <algorithm>
 #include <fstream>
@@ -36,6 +36,10 @@ namespace {
 
 const std::vector<std::string> kKinds = {"rig", "scene", "calibration", "protocol", "trace", "map", "waveform", "evemu"};
 
+std::string count(std::size_t n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
 std::string first_line(const std::filesystem::path& path) {
   std::ifstream f(path);
   std::string line;
@@ -55,7 +59,8 @@ std::string detect_kind(const std::filesystem::path& path) {
     std::string header = first_line(path);
     header.erase(std::remove(header.begin(), header.end(), ' '), header.end());
     if (header == "t_s,x_mm,y_mm,force_N") return "trace";
-    if (header == "t_s,value") return "waveform";
+    // A beat: t_s and one value column (its name is free, e.g. pressure_mmHg).
+    if (header.rfind("t_s,", 0) == 0 && std::count(header.begin(), header.end(), ',') == 1) return "waveform";
     return "map";
   }
   const nlohmann::json doc = read_json_file(path);
@@ -70,15 +75,15 @@ std::string check_protocol(const std::filesystem::path& path) {
   const nlohmann::json doc = read_json_file(path);
   if (is_threshold_protocol(doc)) {
     const ThresholdProtocol p = load_threshold_protocol(path);
-    return "threshold protocol '" + p.name + "', " + std::to_string(p.tracks.size()) + " tracks";
+    return "threshold protocol '" + p.name + "', " + count(p.tracks.size(), "track");
   }
   if (is_pulse_protocol(doc)) {
     const PulseProtocol p = load_pulse_protocol(path);
-    return "pulse protocol '" + p.name + "', " + std::to_string(p.conditions.size()) + " conditions";
+    return "pulse protocol '" + p.name + "', " + count(p.conditions.size(), "condition");
   }
   const Protocol p = load_protocol(path);
   return std::string(p.task == TaskKind::localisation ? "localisation" : "discrimination") + " protocol '" + p.name +
-         "', " + std::to_string(p.conditions.size()) + " conditions";
+         "', " + count(p.conditions.size(), "condition");
 }
 
 std::string check_one(const std::filesystem::path& path, const std::string& kind) {
@@ -89,8 +94,8 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
   if (kind == "scene") {
     const SceneFile sf = load_scene_file(path);
     const bool map = dynamic_cast<const MapScene*>(sf.scene.get()) != nullptr;
-    return std::string(map ? "map" : "function") + " scene '" + sf.name + "', " + std::to_string(sf.tumors.size()) +
-           " tumors" + (sf.scene->pulse() != nullptr ? ", arteries" : "");
+    return std::string(map ? "map" : "function") + " scene '" + sf.name + "', " + count(sf.tumors.size(), "tumor") +
+           (sf.scene->pulse() != nullptr ? ", arteries" : "");
   }
   if (kind == "calibration") {
     const CalibrationModels cal = load_calibration_file(path);
@@ -99,7 +104,7 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
   if (kind == "protocol") return check_protocol(path);
   if (kind == "trace") {
     const auto samples = load_trace_csv(path);
-    return "pen trace, " + std::to_string(samples.size()) + " rows";
+    return "pen trace, " + count(samples.size(), "row");
   }
   if (kind == "map") {
     // The size in mm belongs to the scene that lays the map out; the values are what is checked.
@@ -111,7 +116,7 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
     return "waveform table";
   }
   const PenRecording rec = read_pen_recording(path);
-  return "evemu pen recording '" + rec.device_name + "', " + std::to_string(rec.events.size()) + " events";
+  return "evemu pen recording '" + rec.device_name + "', " + count(rec.events.size(), "event");
 }
 
 }  // namespace

@@ -24,7 +24,9 @@ docs/developing.md, "Executable docs"; in short:
   (reported with the reason); `<!-- docs-test: file: NAME -->` writes a ```json / ```csv / ```text
   block to NAME in the page's folder; `kind: KIND` names its kind for `palprig check --kind`;
   `refused` says the example is one palprig must refuse; `needs: gui` skips the block in a build
-  without the window; `timeout: S` (default 120 s). Separate several with ";".
+  without the window; `timeout: S` (default 120 s); `starts: S` runs each command of a block that
+  waits for a person (a window, a terminal session) and requires it to be still running after S
+  seconds (then it is stopped with SIGTERM). Separate several with ";".
 * Every ```json block (and every ```csv block with a file name) is loaded with `palprig check`
   (each JSON example is a complete file, never a fragment).
 * Relative links ([text](path)) must name files that exist.
@@ -237,7 +239,9 @@ class PageRunner:
                 if d.get("needs") == "gui" and not self.gui:
                     results.append(Result(block, "skipped", "needs the window (a build without Qt)"))
                     continue
-                if block.lang in ("sh", "bash", "shell"):
+                if block.lang in ("sh", "bash", "shell") and "starts" in d:
+                    results.append(self.run_starts(block, folder, env))
+                elif block.lang in ("sh", "bash", "shell"):
                     results.append(self.run_sh(block, folder, env))
                 elif block.lang == "json" or "file" in d:
                     if block.lang == "json" and "file" not in d:
@@ -272,6 +276,36 @@ class PageRunner:
         if r.returncode != 0:
             return Result(block, "failed", f"{d['file']}: `palprig check` refused the example: {said}")
         return Result(block, "passed", said)
+
+    def run_starts(self, block: Block, folder: pathlib.Path, env: dict) -> Result:
+        """A command that waits for a person (a window, a terminal session): it must accept its
+        arguments and files and still be running after `starts: S` seconds; it is then sent
+        SIGTERM (palprig vents and exits) and, if need be, killed."""
+        try:
+            commands = split_commands(block)
+        except ValueError as e:
+            return Result(block, "failed", str(e))
+        wait = float(block.directives["starts"])
+        for c in commands:
+            log = folder / ".docs-test-starts.log"
+            with open(log, "w") as out:
+                proc = subprocess.Popen(["bash", "--noprofile", "--norc", "-c", "exec " + c.text], cwd=folder, env=env,
+                                        stdin=subprocess.PIPE, stdout=out, stderr=subprocess.STDOUT,
+                                        start_new_session=True)
+                try:
+                    status = proc.wait(timeout=wait)
+                except subprocess.TimeoutExpired:
+                    proc.terminate()
+                    try:
+                        proc.wait(timeout=15)
+                    except subprocess.TimeoutExpired:
+                        proc.kill()
+                        proc.wait()
+                    continue
+            said = log.read_text(errors="replace").strip()
+            return Result(block, "failed", f"line {c.line}: `{first_line(c.text)}` should wait for a person, but it "
+                                           f"exited {status} within {wait:.0f} s; it printed:\n{indent(said)}")
+        return Result(block, "passed", f"{len(commands)} commands started and waited {wait:.0f} s")
 
     def run_sh(self, block: Block, folder: pathlib.Path, env: dict) -> Result:
         try:
