@@ -136,7 +136,8 @@ void register_check_command(CLI::App& app) {
   sub->callback([a] {
     for (const std::string& file : a->files) {
       const std::string kind = a->kind.empty() ? detect_kind(file) : a->kind;
-      std::cout << file << ": " << check_one(file, kind) << "\n";
+      const std::string what = check_one(file, kind);  // a refusal throws before anything is printed
+      std::cout << file << ": " << what << "\n";
     }
   });
 }
