@@ -29,7 +29,7 @@ docs/developing.md, "Executable docs"; in short:
   seconds (then it is stopped with SIGTERM). Separate several with ";".
 * Every ```json block (and every ```csv block with a file name) is loaded with `palprig check`
   (each JSON example is a complete file, never a fragment).
-* Relative links ([text](path)) must name files that exist.
+* Relative links ([text](path#anchor)) must name files that exist, and headings that exist.
 """
 from __future__ import annotations
 
@@ -369,7 +369,21 @@ def sh_quote(s: str) -> str:
     return "'" + s.replace("'", "'\\''") + "'"
 
 
+def anchors_of(page: pathlib.Path) -> set:
+    """GitHub's heading anchors: lower case, punctuation dropped, spaces to hyphens."""
+    out = set()
+    in_fence = False
+    for line in page.read_text(encoding="utf-8").split("\n"):
+        if FENCE.match(line):
+            in_fence = not in_fence
+        elif not in_fence and re.match(r"^#{1,6} ", line):
+            text = line.lstrip("#").strip().lower()
+            out.add(re.sub(r"[^\w\- ]", "", text).replace(" ", "-"))
+    return out
+
+
 def check_links(page: pathlib.Path) -> list:
+    """Relative links name files that exist, and #anchors headings of the page they point at."""
     bad = []
     in_fence = False
     for n, line in enumerate(page.read_text(encoding="utf-8").split("\n"), 1):
@@ -378,12 +392,15 @@ def check_links(page: pathlib.Path) -> list:
             continue
         if in_fence:
             continue
-        for target in LINK.findall(line):
-            if re.match(r"^[a-z]+:", target) or target.startswith("#"):
+        for target in LINK.findall(re.sub(r"`[^`]*`", "", line)):  # not inside inline code
+            if re.match(r"^[a-z]+:", target):
                 continue
-            path = target.split("#")[0]
-            if path and not (page.parent / path).exists():
+            path, _, anchor = target.partition("#")
+            where = (page.parent / path) if path else page
+            if not where.exists():
                 bad.append(f"{page.name}:{n}: link to {target}, which does not exist")
+            elif anchor and where.suffix == ".md" and anchor not in anchors_of(where):
+                bad.append(f"{page.name}:{n}: link to {target}, but {where.name} has no heading #{anchor}")
     return bad
 
 
