@@ -409,7 +409,7 @@ def pages_of(repo: pathlib.Path) -> list:
 
 
 def run(repo: pathlib.Path, bin_dir: pathlib.Path, pages: list, keep: bool = False, path_prefix: list = (),
-        quiet: bool = False, fail_fast: bool = False) -> int:
+        quiet: bool = False, fail_fast: bool = False, failures_out: list = None) -> int:
     runner = PageRunner(repo, bin_dir, list(path_prefix), has_gui(bin_dir), keep)
     started = time.monotonic()
     counts = {"passed": 0, "failed": 0, "skipped": 0}
@@ -440,6 +440,8 @@ def run(repo: pathlib.Path, bin_dir: pathlib.Path, pages: list, keep: bool = Fal
             print(f"FAILED {f}")
         print(f"docs: {counts['passed']} passed, {counts['failed']} failed, {counts['skipped']} skipped "
               f"in {time.monotonic() - started:.1f} s")
+    if failures_out is not None:
+        failures_out.extend(failures)
     return 1 if counts["failed"] else 0
 
 
@@ -461,10 +463,14 @@ def self_test(repo: pathlib.Path, bin_dir: pathlib.Path) -> int:
             return root
 
         def expect(name: str, root: pathlib.Path, page: str, should_fail: bool, path_prefix=()):
-            code = run(root, bin_dir, [root / page], path_prefix=path_prefix, quiet=True, fail_fast=True)
+            failures: list = []
+            code = run(root, bin_dir, [root / page], path_prefix=path_prefix, quiet=True, fail_fast=True,
+                       failures_out=failures)
             ok = (code != 0) == should_fail
             print(f"self-test: {name}: {'failed' if code else 'passed'} "
                   f"({'as it must' if ok else 'WRONG: it must ' + ('fail' if should_fail else 'pass')})", flush=True)
+            for f in failures[:1]:
+                print(indent(f.split("\n")[0], "    "), flush=True)
             if not ok:
                 problems.append(name)
 

@@ -5,7 +5,7 @@
 #   tools/docs_figures.sh [BUILD]   (default build; about two minutes on 2 cores)
 # Sections: machine; paper 002 discrimination over sim:1..60; localisation over sim:1..90;
 # pulse localisation (sim:1, sim:2); threshold (sim:1); calibration with and without the
-# identification excitations; the demo's per-region table. docs/developing.md, "Figures in the
+# identification excitations; the pulse stage's correlations; the demo's per-region table. docs/developing.md, "Figures in the
 # docs", says where each figure is quoted.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -74,6 +74,14 @@ echo "== calibration, the plain staircase (no --excitation)"
 "$palprig" calibrate sweep --rig data/rigs/simulated.json --channels 1,2,3 --out plain.csv 2>/dev/null | sed -n 2p
 "$palprig" calibrate fit plain.csv --out plain_cal.json | grep -E 'channel [123]: from'
 "$palprig" calibrate evaluate --rig data/rigs/simulated.json --cal plain_cal.json | tail -1
+
+echo
+echo "== pulse on the regulators (bench_pulse_correlation)"
+if [ -x "$build/bin/bench_pulse_correlation" ]; then
+  "$build/bin/bench_pulse_correlation" | grep -E '^\| (rectangular|saw-tooth|table)' || true
+else
+  echo "(not built: bench/ is built with the default options)"
+fi
 
 echo
 echo "== demo"
