@@ -41,6 +41,8 @@ void register_scene_command(CLI::App& app);
 void register_gui_command(CLI::App& app);
 void register_rt_check_command(CLI::App& app);
 void register_store_command(CLI::App& app);
+// palprig check: load files through their readers (check_command.cpp; needs inputs/, so a rig command).
+void register_check_command(CLI::App& app);
 // Every command that needs the rig stack: rig_commands.cpp, or rig_commands_absent.cpp in the
 // analyst-only build (-DPALPRIG_RIG=OFF).
 void register_rig_commands(CLI::App& app);

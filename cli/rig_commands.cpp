@@ -10,4 +10,5 @@ void register_rig_commands(CLI::App& app) {
   register_sim_rig_command(app);
   register_calibrate_command(app);
   register_rt_check_command(app);
+  register_check_command(app);
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The layout rule of README "Layout", checked on the sources: every #include "folder/..." of a
+"""The layout rule of docs/developing.md, "Layout", checked on the sources: every #include "folder/..." of a
 code folder names a folder it may depend on (arrows point down), and no header is included from
 a folder that is not a code folder. Prints one line per offending include and exits 1.
 
@@ -9,7 +9,7 @@ import pathlib
 import re
 import sys
 
-# What each folder may include besides itself (README "Layout"; keep the two in step).
+# What each folder may include besides itself (docs/developing.md, "Layout"; keep the two in step).
 DATA = {"models", "formats", "statistics", "study"}
 RIG_BASE = {"models", "runtime", "formats"}
 ALLOWED = {
