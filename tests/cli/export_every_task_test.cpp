@@ -244,17 +244,17 @@ TEST(ExportRefusals, AFullDiskIsExitOneAndLeavesNoFileThatLooksComplete) {
   ScratchDir dir;
   const fs::path db = dir / "trials.db";
   ASSERT_EQ(one_session(db), "");
-  // /dev/full: the file being written is a link to it (every write fails with ENOSPC).
+  // /dev/full: the file is a link to it (a device is written directly; every write fails with ENOSPC).
   const fs::path out = dir / "devfull";
   fs::create_directories(out);
-  fs::create_symlink("/dev/full", out / "trials_long.csv.partial");
+  fs::create_symlink("/dev/full", out / "trials_long.csv");
   auto r = run_palprig({"export", db.string(), "--out", out.string()});
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE(r.err.find((out / "trials_long.csv").string()), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
   EXPECT_EQ(r.out.find("trials from"), std::string::npos) << "no success line: " << r.out;
-  EXPECT_FALSE(fs::exists(out / "trials_long.csv"));
-  EXPECT_FALSE(fs::exists(fs::symlink_status(out / "trials_long.csv.partial")));
+  EXPECT_FALSE(fs::exists(out / "marks.csv")) << "the export stopped at the failed file";
+  ASSERT_TRUE(fs::is_character_file("/dev/full")) << "the device itself is untouched";
 
   // A filesystem that fills up half-way (root only: CI's tests run as root).
   const fs::path small = dir / "small";
@@ -267,7 +267,7 @@ TEST(ExportRefusals, AFullDiskIsExitOneAndLeavesNoFileThatLooksComplete) {
     EXPECT_EQ(r.exit_code, 1) << format << ": " << r.out << r.err;
     EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
     for (const auto& e : fs::recursive_directory_iterator(small / format)) {
-      EXPECT_NE(e.path().extension(), ".partial") << e.path();
+      EXPECT_NE(e.path().extension(), ".partial") << e.path() << ": no temporary is left";
     }
   }
   EXPECT_FALSE(fs::exists(small / "csv" / "trials_long.csv")) << "the long file does not fit in 8 KiB";
