@@ -7,7 +7,7 @@
 //                         schema 2 at the last trial; commit time per trial
 //   PlanLongSession       planning 8 combinations x 2,500 repetitions (20,000 trials, at most
 //                         1 in a row), and 1,000 repetitions (8,000 trials, 7 s before)
-// Run: build/bin/bench_linear_study (figures in README "Exporting and the store's size").
+// Run: build/bin/bench_linear_study (figures in docs/analysing.md, "A store grows linearly").
 #include <benchmark/benchmark.h>
 
 #include <unistd.h>

@@ -24,7 +24,7 @@ constexpr double kMaxSize_mm = 1e4;
 constexpr double kMaxModulus_kPa = 1e8;  // 100 GPa: stiffer than any bone
 // The most work one tick may spend sampling the scene under its three fingers, in the FRep's
 // sphere-equivalent evaluations (StiffnessField::worst_case_sample_cost). At the 6-7 ns of CPU
-// each measured on a loaded 2-core EPYC (README "Hardening notes") this is about 0.2 ms, a fifth
+// each measured on a loaded 2-core EPYC (docs/developing.md "Hardening notes") this is about 0.2 ms, a fifth
 // of the 1 ms period at 1 kHz, so the tick, the backend and a loaded machine still fit. Checked when the file is loaded: a
 // scene that cannot be sampled in time is refused before anything moves, instead of
 // overrunning the loop (or running a replay for hours).

@@ -14,7 +14,7 @@ namespace palprig {
 
 inline constexpr std::uintmax_t kMiB = std::uintmax_t(1) << 20;
 
-// The bounds of the readers (README, "Hardening notes").
+// The bounds of the readers (docs/developing.md, "Hardening notes").
 inline constexpr std::uintmax_t kMaxJsonFileBytes = 16 * kMiB;       // rig, scene, calibration, protocol files
 inline constexpr std::uintmax_t kMaxMapFileBytes = 256 * kMiB;       // stiffness map CSV and PGM
 inline constexpr std::uintmax_t kMaxTraceFileBytes = 256 * kMiB;     // pen trace CSV (1 h at 1 kHz is ~150 MiB)

@@ -7,7 +7,7 @@
 //
 // Why: waking a CPU from a deep C-state costs hundreds of microseconds on a lab PC and
 // milliseconds on a virtual machine; with the request held the loop's p99 wake-up latency
-// fell from 1.3-2.9 ms to 52-58 us on the development machine (issue 14, README "Real-time").
+// fell from 1.3-2.9 ms to 52-58 us on the development machine (docs/rig.md, real-time loop).
 #include <string>
 
 namespace palprig {
