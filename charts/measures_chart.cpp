@@ -4,17 +4,13 @@
 
 namespace palprig::charts {
 
-namespace {
-
-void add_bar(ChartSeries& bars, const Measure& m) {
+void add_measure_bar(ChartSeries& bars, const Measure& m) {
   bars.x.push_back(double(bars.x.size()));
   bars.y.push_back(m.defined ? m.value : std::nan(""));
   bars.y_low.push_back(m.defined ? m.lower : std::nan(""));
   bars.y_high.push_back(m.defined ? m.upper : std::nan(""));
   bars.bar_labels.push_back(m.defined ? "n=" + std::to_string(m.n) : "n/a");
 }
-
-}  // namespace
 
 Chart measures_chart(const TrialSummary& summary) {
   return measures_chart(summary, "Se, Sp, PPV and ACC per condition (Wilson 95 % intervals)", "");
@@ -31,7 +27,7 @@ Chart measures_chart(const TrialSummary& summary, const std::string& title, cons
     ChartSeries bars;
     bars.label = row.key.empty() ? "all" : series_prefix + row.key[0];
     bars.style = ChartSeries::Style::bars;
-    for (const Measure* m : {&row.measures.se, &row.measures.sp, &row.measures.ppv, &row.measures.acc}) add_bar(bars, *m);
+    for (const Measure* m : {&row.measures.se, &row.measures.sp, &row.measures.ppv, &row.measures.acc}) add_measure_bar(bars, *m);
     chart.series.push_back(std::move(bars));
   }
   return chart;
@@ -47,7 +43,7 @@ Chart tumor_sensitivity_chart(const TrialSummary& by_tumor) {
   bars.style = ChartSeries::Style::bars;
   for (const SummaryRow& row : by_tumor.rows) {
     chart.x_categories.push_back(row.key.empty() ? "all" : row.key[0]);
-    add_bar(bars, row.measures.se);
+    add_measure_bar(bars, row.measures.se);
   }
   chart.series.push_back(std::move(bars));
   return chart;

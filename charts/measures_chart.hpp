@@ -11,6 +11,8 @@
 namespace palprig::charts {
 
 Chart measures_chart(const TrialSummary& summary);
+// One proportion as a bar with its interval and "n=N" above it ("n/a" when undefined).
+void add_measure_bar(ChartSeries& bars, const Measure& m);
 // The same with another title, and `series_prefix` before each row's key in the legend
 // ("finger " -> "finger 1").
 Chart measures_chart(const TrialSummary& summary, const std::string& title, const std::string& series_prefix);

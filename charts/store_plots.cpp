@@ -47,12 +47,7 @@ Chart pulse_hits_chart(const std::vector<PulseConditionSummary>& rows) {
   bars.style = ChartSeries::Style::bars;
   for (const PulseConditionSummary& r : rows) {
     chart.x_categories.push_back(r.condition);
-    bars.x.push_back(double(bars.x.size()));
-    const bool any = r.trials > 0;
-    bars.y.push_back(any ? r.hit_rate : std::nan(""));
-    bars.y_low.push_back(any ? r.hit_low : std::nan(""));
-    bars.y_high.push_back(any ? r.hit_high : std::nan(""));
-    bars.bar_labels.push_back(std::to_string(r.hits) + "/" + std::to_string(r.trials));
+    add_measure_bar(bars, Measure{r.hits, r.trials, r.trials > 0, r.hit_rate, r.hit_low, r.hit_high});
   }
   chart.series.push_back(std::move(bars));
   return chart;

@@ -6,6 +6,13 @@
 
 namespace palprig {
 
+void write_export_json(const std::filesystem::path& path, const nlohmann::ordered_json& json,
+                       std::vector<std::filesystem::path>& written) {
+  ExportFile file(path);
+  file << json.dump(2) << "\n";
+  commit_into(file, written);
+}
+
 void make_export_dir(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

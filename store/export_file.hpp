@@ -7,6 +7,9 @@
 #include <filesystem>
 #include <ostream>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "models/checked_output.hpp"
 
@@ -32,6 +35,16 @@ class ExportFile {
  private:
   CheckedOutputFile file_;
 };
+
+// Commits `file` and adds it to `written` (the export's list of files, in order).
+inline void commit_into(ExportFile& file, std::vector<std::filesystem::path>& written) {
+  file.commit();
+  written.push_back(file.path());
+}
+
+// A JSON document (a BIDS sidecar, dataset_description.json) as `path`, checked, added to `written`.
+void write_export_json(const std::filesystem::path& path, const nlohmann::ordered_json& json,
+                       std::vector<std::filesystem::path>& written);
 
 // Creates `dir` (and its parents) when missing; InputError when it cannot be a folder.
 void make_export_dir(const std::filesystem::path& dir);

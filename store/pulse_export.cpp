@@ -9,10 +9,7 @@
 
 namespace palprig {
 
-using export_text::column;
-using export_text::csv_field;
-using export_text::number;
-using export_text::tsv_field;
+using namespace export_text;  // number, csv_field, tsv_field, column
 
 namespace {
 
@@ -88,8 +85,7 @@ void write_pulse_bids_run(const std::vector<const PulseExportRow*>& rows, const 
         << (t.answered ? number(t.distance_mm, 2) : "n/a") << "\t" << (t.answered ? (t.hit ? "1" : "0") : "n/a") << "\t"
         << (t.answered ? number(t.response_time_s) : "n/a") << "\t" << number(t.onset_s) << "\n";
   }
-  tsv.commit();
-  written.push_back(tsv.path());
+  commit_into(tsv, written);
 
   nlohmann::ordered_json side;
   side["TaskName"] = task;
@@ -108,10 +104,7 @@ void write_pulse_bids_run(const std::vector<const PulseExportRow*>& rows, const 
                        {{"0", "miss"}, {"1", "hit"}});
   side["response_time"] = column("Time from the scene's presentation to the mark (n/a: no mark)", "s");
   side["onset"] = column("Presentation onset on the session's monotonic clock", "s");
-  ExportFile js(dir / (stem + "_beh.json"));
-  js << side.dump(2) << "\n";
-  js.commit();
-  written.push_back(js.path());
+  write_export_json(dir / (stem + "_beh.json"), side, written);
 }
 
 }  // namespace palprig

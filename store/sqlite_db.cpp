@@ -84,15 +84,17 @@ Database::Database(const std::filesystem::path& file, Mode mode) : file_(file.st
   sqlite3_busy_timeout(db_, kBusyTimeoutMs);
 }
 
+void Database::fail_open(int rc) {
+  const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+  const int system_errno = db_ ? sqlite3_system_errno(db_) : 0;
+  sqlite3_close(db_);
+  db_ = nullptr;
+  throw_sqlite(file_, "", message, rc, system_errno);
+}
+
 void Database::open_for_writing() {
   const int rc = open(SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX);
-  if (rc != SQLITE_OK) {
-    const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
-    const int system_errno = db_ ? sqlite3_system_errno(db_) : 0;
-    sqlite3_close(db_);
-    db_ = nullptr;
-    throw_sqlite(file_, "", message, rc, system_errno);
-  }
+  if (rc != SQLITE_OK) fail_open(rc);
   // SQLite opens a file it may not write read-only without a word, and the first trial would
   // then fail: a writer learns it here, before anything is written.
   if (sqlite3_db_readonly(db_, "main") == 1) {
@@ -111,13 +113,7 @@ void Database::open_for_reading() {
   if (immutable_) identity_at_open_ = file_identity(file_);
   const int rc = sqlite3_open_v2(access.uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX,
                                  nullptr);
-  if (rc != SQLITE_OK) {
-    const std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
-    const int system_errno = db_ ? sqlite3_system_errno(db_) : 0;
-    sqlite3_close(db_);
-    db_ = nullptr;
-    throw_sqlite(file_, "", message, rc, system_errno);
-  }
+  if (rc != SQLITE_OK) fail_open(rc);
   tidy_sidecars_ = access.tidy_sidecars;
 }
 

@@ -78,6 +78,7 @@ class Database {
   int open(int flags);  // sqlite3_open_v2 into db_ (closing any earlier handle); its result code
   void open_for_reading();
   void open_for_writing();
+  [[noreturn]] void fail_open(int rc);  // closes the half-open handle, throws the line naming the file
 
   sqlite3* db_ = nullptr;
   std::string file_;

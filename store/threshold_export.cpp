@@ -11,10 +11,7 @@
 
 namespace palprig {
 
-using export_text::column;
-using export_text::csv_field;
-using export_text::number;
-using export_text::tsv_field;
+using namespace export_text;  // number, csv_field, tsv_field, column
 
 namespace {
 
@@ -104,8 +101,7 @@ void write_threshold_bids_run(const std::vector<const ThresholdExportRow*>& rows
         << number(t.answered ? t.response_time_s : NAN) << "\t" << number(t.onset_s) << "\t" << number(t.felt_kPa[0], 3)
         << "\t" << number(t.felt_kPa[1], 3) << "\n";
   }
-  tsv.commit();
-  written.push_back(tsv.path());
+  commit_into(tsv, written);
 
   nlohmann::ordered_json side;
   side["TaskName"] = task;
@@ -143,10 +139,7 @@ void write_threshold_bids_run(const std::vector<const ThresholdExportRow*>& rows
                                   "second half",
                                   "kPa");
   side["felt_interval2"] = column("Same for the second interval", "kPa");
-  ExportFile js(dir / (stem + "_beh.json"));
-  js << side.dump(2) << "\n";
-  js.commit();
-  written.push_back(js.path());
+  write_export_json(dir / (stem + "_beh.json"), side, written);
 }
 
 }  // namespace palprig

@@ -21,10 +21,7 @@
 
 namespace palprig {
 
-using export_text::column;
-using export_text::csv_field;
-using export_text::number;
-using export_text::tsv_field;
+using namespace export_text;  // number, csv_field, tsv_field, column
 
 namespace {
 
@@ -238,12 +235,8 @@ void write_trials_run(const std::vector<const ExportTrial*>& rows, const std::st
     if (!scale.is_null()) tsv << "\t" << rating_text(t->confidence, "n/a");
     tsv << "\n";
   }
-  tsv.commit();
-  written.push_back(tsv.path());
-  ExportFile js(dir / (stem + "_beh.json"));
-  js << side.dump(2) << "\n";
-  js.commit();
-  written.push_back(js.path());
+  commit_into(tsv, written);
+  write_export_json(dir / (stem + "_beh.json"), side, written);
 }
 
 }  // namespace
@@ -287,8 +280,7 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
         }
       }
     }
-    out.commit();
-    result.files.push_back(long_path);
+    commit_into(out, result.files);
 
     const auto marks_path = out_dir / "marks.csv";
     ExportFile marks(marks_path);
@@ -299,8 +291,7 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
               << number(m.x_mm, 2) << "," << number(m.y_mm, 2) << "," << (m.tumor ? csv_field(*m.tumor) : "n/a") << "\n";
       }
     }
-    marks.commit();
-    result.files.push_back(marks_path);
+    commit_into(marks, result.files);
   }
   if (!c.threshold.empty()) {
     write_threshold_csv(c.threshold, out_dir / "threshold_trials.csv");
@@ -356,12 +347,7 @@ ExportResult export_bids(TrialStore& store, const std::filesystem::path& out_dir
   description["Authors"] = options.authors.empty() ? std::vector<std::string>{"Unknown (palprig export --author NAME)"}
                                                    : options.authors;
   description["GeneratedBy"] = {{{"Name", "palprig"}, {"Description", "palprig export --format bids"}}};
-  {
-    ExportFile out(out_dir / "dataset_description.json");
-    out << description.dump(2) << "\n";
-    out.commit();
-    result.files.push_back(out.path());
-  }
+  write_export_json(out_dir / "dataset_description.json", description, result.files);
   {
     // BIDS asks for a README at the top: what the data are and where their columns are described.
     std::set<std::string> tasks;
@@ -375,8 +361,7 @@ ExportResult export_bids(TrialStore& store, const std::filesystem::path& out_dir
     out << ".\n\nEach sub-<label>/beh/*_beh.tsv holds one session (a run), one row per trial; the JSON sidecar "
            "beside it describes every column, its levels and units. participants.tsv maps BIDS labels to the codes "
            "entered in palprig (sim:SEED is palprig's simulated participant).\n";
-    out.commit();
-    result.files.push_back(out.path());
+    commit_into(out, result.files);
   }
   {
     ExportFile out(out_dir / "participants.tsv");
@@ -384,17 +369,13 @@ ExportResult export_bids(TrialStore& store, const std::filesystem::path& out_dir
     for (const auto& [code, simulated] : participants) {
       out << "sub-" << label_of[code] << "\t" << tsv_field(code) << "\t" << (simulated ? 1 : 0) << "\n";
     }
-    out.commit();
-    result.files.push_back(out.path());
+    commit_into(out, result.files);
     nlohmann::ordered_json pj;
     pj["participant_id"] = column("BIDS label: the palprig participant code reduced to letters and digits");
     pj["code"] = column("Participant code as entered in palprig (sim:SEED for a simulated participant)");
     pj["simulated"] = column("Whether the participant was palprig's simulated model observer", "",
                              {{"0", "a person"}, {"1", "simulated participant (model observer)"}});
-    ExportFile js(out_dir / "participants.json");
-    js << pj.dump(2) << "\n";
-    js.commit();
-    result.files.push_back(js.path());
+    write_export_json(out_dir / "participants.json", pj, result.files);
   }
 
   for (const auto& [key, sessions] : sessions_of) {
