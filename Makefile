@@ -83,10 +83,10 @@ test-tsan: deps
 	cd $(BUILD_TSAN) && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
 	  ctest --output-on-failure -j$(JOBS) --timeout 900 -R '$(TSAN_TESTS)'
 
-# One run of the core suites under AddressSanitizer + UndefinedBehaviorSanitizer (CI runs it).
+# One run of every suite, the window's included, under AddressSanitizer + UndefinedBehaviorSanitizer (CI runs it).
+# The window's code too: the Qt suites (offscreen, and the Xvfb cases) run under the sanitizers.
 test-asan: deps
-	@[ -f $(BUILD_ASAN)/CMakeCache.txt ] || cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug \
-	  -DPALPRIG_SANITIZE=ON -DPALPRIG_BENCH=OFF -DPALPRIG_GUI=OFF
+	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug -DPALPRIG_SANITIZE=ON -DPALPRIG_BENCH=OFF -DPALPRIG_GUI=ON
 	cmake --build $(BUILD_ASAN) -j$(JOBS)
 	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j$(JOBS) --timeout 900
 

@@ -758,6 +758,8 @@ class ExperimentConsoleTest : public QObject {
     QTest::mouseClick(abort_button, Qt::LeftButton);
     QMessageBox* ask = abort_question(page);
     QVERIFY(ask);
+    keep_screenshot(*ask, "abort_confirmation.png");
+    keep_screenshot(*w.window, "console_abort_asked.png");
     ask->button(QMessageBox::No)->click();
     QVERIFY(page.session_running());
     QVERIFY(abort_question(page) == nullptr);

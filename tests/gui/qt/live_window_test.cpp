@@ -7,6 +7,7 @@
 #include <QFrame>
 #include <QImage>
 #include <QLabel>
+#include <cstdlib>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QSignalSpy>
@@ -300,6 +301,7 @@ class LiveWindowTest : public QObject {
     QVERIFY(first_size > 1000);  // the first recording, closed when its loop stopped
     QCOMPARE(win.run().telemetry_file(), dir.path() / "T-2.csv");
     QVERIFY(wait_until(win, [&] { return status->text().contains("T-2.csv"); }));
+    if (const char* shots = std::getenv("PALPRIG_SCREENSHOT_DIR")) win.grab().save(QString("%1/live_recording_to.png").arg(shots));
     QVERIFY(wait_until(win, [&] { return win.run().feed().last_t_s() > 0.2; }));
     QCOMPARE(std::filesystem::file_size(dir.path() / "T.csv"), first_size);
   }
