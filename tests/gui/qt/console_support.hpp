@@ -53,15 +53,20 @@ inline bool wait_until(MainWindow& w, const std::function<bool()>& cond, double 
 }
 
 // What the page reported at its end (a lambda, not QSignalSpy: SessionEnd is no QVariant type).
+// Disconnects when it goes out of scope, so a later session's end never writes into it.
 struct EndSeen {
   int count = 0;
   SessionEnd end;
+  QMetaObject::Connection connection;
   explicit EndSeen(ExperimentPage& page) {
-    QObject::connect(&page, &ExperimentPage::sessionEnded, &page, [this](const SessionEnd& e) {
+    connection = QObject::connect(&page, &ExperimentPage::sessionEnded, &page, [this](const SessionEnd& e) {
       ++count;
       end = e;
     });
   }
+  ~EndSeen() { QObject::disconnect(connection); }
+  EndSeen(const EndSeen&) = delete;
+  EndSeen& operator=(const EndSeen&) = delete;
 };
 
 // With PALPRIG_SCREENSHOT_DIR set, saves `what` there (the README's pictures come from here).
