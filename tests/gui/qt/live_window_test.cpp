@@ -310,7 +310,7 @@ class LiveWindowTest : public QObject {
     TempDir dir;
     const auto png = dir.path() / "gui.png";
     const auto r = test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() +
-                                             " gui --input sweep --screenshot " + png.string() + " --after-s 1.5");
+                                             " gui --rig " + patient_rig(dir) + " --input sweep --screenshot " + png.string() + " --after-s 1.5");
     QVERIFY2(r.exit_code == 0, r.err.c_str());
     QImage img(QString::fromStdString(png.string()));
     QVERIFY(!img.isNull());
@@ -331,7 +331,7 @@ class LiveWindowTest : public QObject {
     // Start the window, wait (polling the file, up to 30 s) until the loop has recorded a
     // while, then SIGTERM it as a session manager or an operator's kill would.
     const std::string script =
-        "QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --input sweep --telemetry " + csv.string() +
+        "QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --rig " + patient_rig(dir) + " --input sweep --telemetry " + csv.string() +
         " & pid=$!; i=0; while [ \"$(stat -c %s " + csv.string() + " 2>/dev/null || echo 0)\" -lt 60000 ] && [ $i -lt 300 ];"
         " do sleep 0.1; i=$((i+1)); done; kill -TERM $pid; wait $pid; echo exit=$?";
     const auto r = test_support::run_process("sh -c '" + QString::fromStdString(script).replace("'", "'\\''").toStdString() + "'");
@@ -359,7 +359,7 @@ class LiveWindowTest : public QObject {
     TempDir dir;
     const auto png = dir.path() / "xcb.png";
     const auto r = test_support::run_process("xvfb-run -a -s '-screen 0 1400x1000x24' env QT_QPA_PLATFORM=xcb " +
-                                             test_support::palprig_bin() + " gui --input sweep --json --screenshot " +
+                                             test_support::palprig_bin() + " gui --rig " + patient_rig(dir) + " --input sweep --json --screenshot " +
                                              png.string() + " --after-s 1.5");
     if (r.exit_code != 0 && (r.err.find("xvfb-run: error") != std::string::npos ||
                              r.err.find("could not connect to display") != std::string::npos))
