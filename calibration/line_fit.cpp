@@ -7,10 +7,6 @@
 
 namespace palprig {
 
-namespace {
-constexpr std::size_t kMinLinePoints = 3;  // two points always fit: no R^2 and no spread
-}
-
 LineFit fit_line(std::span<const double> x, std::span<const double> y, const std::string& file,
                  const std::string& what) {
   if (x.size() != y.size()) throw InputError(file, what, "as many x as y values");

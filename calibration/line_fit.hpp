@@ -22,6 +22,9 @@ struct LineFit {
 };
 
 // `file` and `what` name the data in errors, e.g. ("DATA.csv", "channel 2 inflation").
+// Two points always fit: no R^2 and no spread. A fit needs this many (and two distinct x).
+inline constexpr std::size_t kMinLinePoints = 3;
+
 LineFit fit_line(std::span<const double> x, std::span<const double> y, const std::string& file,
                  const std::string& what);
 

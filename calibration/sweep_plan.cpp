@@ -6,6 +6,7 @@
 #include <random>
 #include <sstream>
 
+#include "calibration/line_fit.hpp"
 #include "models/parse_error.hpp"
 
 namespace palprig {
@@ -116,6 +117,35 @@ SweepSchedule plan_calibration_sweep(const SweepPlanOptions& o, double p_max_kPa
   }
   add(SweepSegment::vent, 0, SweepBranch::none, 0.0);
   return plan;
+}
+
+std::string sweep_fit_shortfall(const SweepSchedule& schedule) {
+  struct Branch {
+    std::size_t holds = 0;
+    double lo = 0, hi = 0;
+  };
+  Branch up, down;
+  bool staircase = false;
+  for (const SweepHold& h : schedule.holds) {
+    if (h.segment != SweepSegment::staircase || h.branch == SweepBranch::none) continue;
+    staircase = true;
+    Branch& b = h.branch == SweepBranch::inflation ? up : down;
+    b.lo = b.holds ? std::min(b.lo, h.level_kPa) : h.level_kPa;
+    b.hi = b.holds ? std::max(b.hi, h.level_kPa) : h.level_kPa;
+    ++b.holds;
+  }
+  if (!staircase) return {};
+  for (const auto& [name, b] : {std::pair<const char*, const Branch&>{"inflation", up}, {"deflation", down}}) {
+    std::ostringstream why;
+    if (b.holds < kMinLinePoints)
+      why << "too short to fit: the " << name << " staircase has " << b.holds << " hold" << (b.holds == 1 ? "" : "s")
+          << " over all repeats and a line needs " << kMinLinePoints << " (lower Step, widen From/To or add repeats)";
+    else if (!(b.hi > b.lo))
+      why << "too short to fit: the " << name << " staircase holds one level only (" << b.lo
+          << " kPa) and a line needs two (lower Step or widen From/To)";
+    if (!why.str().empty()) return why.str();
+  }
+  return {};
 }
 
 }  // namespace palprig

@@ -50,4 +50,10 @@ struct SweepSchedule {
 // Throws InputError("from_kPa", ...) and the like (fields of the options) for arguments that make no sweep.
 SweepSchedule plan_calibration_sweep(const SweepPlanOptions& options, double p_max_kPa);
 
+// Why the recording of this schedule could not be fitted (`calibrate fit` would refuse it), said
+// before the sweep runs: a staircase branch (inflation or deflation, all repeats together) with
+// fewer holds than a line needs (calibration/line_fit.hpp) or with a single level. Empty: long
+// enough. A schedule without staircase is not judged here (its fit has no branch lines).
+std::string sweep_fit_shortfall(const SweepSchedule& schedule);
+
 }  // namespace palprig

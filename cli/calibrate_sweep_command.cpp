@@ -53,6 +53,9 @@ void run_sweep(const SweepArgs& a) {
                      "settle window, band and averaging window > 0, and a max hold above the min hold and both "
                      "windows, at most 3600 s");
   for (const auto& n : plan.notes) std::cerr << "palprig: note: " << n << "\n";
+  // Said before anything moves; the sweep still runs (a short check of the link is a use).
+  if (const std::string shortfall = sweep_fit_shortfall(plan); !shortfall.empty())
+    std::cerr << "palprig: warning: this sweep is " << shortfall << "\n";
 
   auto backend = make_backend(rig);
   SweepFileInfo info;

@@ -1,5 +1,7 @@
 #include "experiments/rig_stimulus.hpp"
 
+#include "controller/loop_runner.hpp"
+
 #include <string>
 
 namespace palprig {
@@ -54,6 +56,7 @@ ChannelPressures RigStimulus::service(double t_s) {
     if (keep_every_record_) telemetry_->push_wait(last_);
     else telemetry_->try_push(last_);
   }
+  if (observer_) observer_->on_tick(last_);
   return result.monitor_kPa;
 }
 

@@ -11,6 +11,10 @@
 #include "experiments/stimulus_output.hpp"
 
 namespace palprig {
+class TickObserver;  // controller/loop_runner.hpp
+}
+
+namespace palprig {
 
 class RigStimulus final : public StimulusOutput {
  public:
@@ -37,6 +41,9 @@ class RigStimulus final : public StimulusOutput {
     telemetry_ = writer;
     keep_every_record_ = keep_every_record;
   }
+  // Every serviced tick from now on is also handed to `observer` (null: none), which must be
+  // wait-free (the GUI's live view: gui/telemetry_feed.hpp drops rather than wait).
+  void observe_with(TickObserver* observer) noexcept { observer_ = observer; }
 
  private:
   enum class Mode { vented, hold, scene };
@@ -50,6 +57,7 @@ class RigStimulus final : public StimulusOutput {
   TelemetryRecord last_{};
   TelemetryWriter* telemetry_ = nullptr;
   bool keep_every_record_ = false;
+  TickObserver* observer_ = nullptr;
 };
 
 }  // namespace palprig

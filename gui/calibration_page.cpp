@@ -24,6 +24,8 @@
 #include "calibration/calibration_writer.hpp"
 #include "formats/calibration_file.hpp"
 #include "charts/calibration_charts.hpp"
+#include "calibration/sweep_plan.hpp"
+#include "gui/free_file_name.hpp"
 
 namespace palprig::gui {
 
@@ -65,6 +67,31 @@ CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidge
   repeats_->setRange(1, 100);
   repeats_->setValue(defaults.repeats);
   form->addRow("Repeats", repeats_);
+  {
+    sweep_path_ = new QLineEdit;
+    sweep_path_->setObjectName("cal_sweep_path");
+    sweep_path_->setPlaceholderText("beside the rig file");
+    sweep_path_->setToolTip("The sweep's CSV (as `palprig calibrate sweep --out`); empty: beside the rig file");
+    auto* browse = new QPushButton("...");
+    browse->setMaximumWidth(32);
+    connect(browse, &QPushButton::clicked, this, [this] {
+      const QString p = QFileDialog::getSaveFileName(this, "Sweep data", sweep_path_->text(), "Sweep data (*.csv)");
+      if (!p.isEmpty()) sweep_path_->setText(p);
+    });
+    auto* row = new QHBoxLayout;
+    row->addWidget(sweep_path_, 1);
+    row->addWidget(browse);
+    form->addRow("Data file", row);
+  }
+  shortfall_ = new QLabel;
+  shortfall_->setObjectName("cal_shortfall");
+  shortfall_->setWordWrap(true);
+  shortfall_->setStyleSheet("color: #9a5b00; font-weight: bold");
+  shortfall_->hide();
+  form->addRow(shortfall_);
+  for (QDoubleSpinBox* box : {from_, to_, step_})
+    connect(box, &QDoubleSpinBox::valueChanged, this, &CalibrationPage::show_shortfall);
+  connect(repeats_, &QSpinBox::valueChanged, this, &CalibrationPage::show_shortfall);
   start_ = new QPushButton("Start sweep");
   start_->setObjectName("cal_start");
   stop_ = new QPushButton("Stop (vent, keep data)");
@@ -78,7 +105,7 @@ CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidge
   progress_->setObjectName("cal_progress");
   progress_->setRange(0, 1);
   progress_->setValue(0);
-  progress_->setFormat("%v of %m holds");
+  progress_->setFormat("no sweep yet");
   form->addRow("Progress", progress_);
 
   auto* fit_box = new QGroupBox("Fit and save (as `palprig calibrate fit`)");
@@ -89,7 +116,8 @@ CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidge
   fit_form->addRow(fit_);
   save_path_ = new QLineEdit;
   save_path_->setObjectName("cal_save_path");
-  save_path_->setPlaceholderText("calibration file (JSON)");
+  save_path_->setPlaceholderText("beside the rig file");
+  save_path_->setToolTip("The fitted calibration (JSON); empty: beside the rig file");
   auto* browse = new QPushButton("...");
   connect(browse, &QPushButton::clicked, this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, "Save calibration", QString(), "Calibration files (*.json)");
@@ -147,9 +175,11 @@ CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidge
   auto* right = new QVBoxLayout;
   right->addWidget(new QLabel("Fit table (paper 002 fig. 8 layout)"));
   right->addWidget(table_, 2);
-  right->addWidget(new QLabel("Per channel: branch lines; recorded holds (the loop before compensation) and the fitted "
-                              "model's loops; after Evaluate, tracking error and output against target without and with "
-                              "compensation"));
+  auto* chart_note = new QLabel("Per channel: branch lines; recorded holds (the loop before compensation) and the "
+                                "fitted model's loops; after Evaluate, tracking error and output against target without "
+                                "and with compensation");
+  chart_note->setWordWrap(true);  // unwrapped, its one line set the window's minimum width (1531 px)
+  right->addWidget(chart_note);
   right->addWidget(scroll, 3);
 
   auto* layout = new QHBoxLayout(this);
@@ -180,7 +210,28 @@ void CalibrationPage::cancel_sweep() {
   job_.reset();  // stops (the runner vents every channel) and joins
 }
 
-QString CalibrationPage::data_path() const { return work_dir_.filePath("sweep.csv"); }
+QString CalibrationPage::data_path() const { return sweep_file_; }
+
+std::filesystem::path CalibrationPage::default_file(const std::string& suffix) const {
+  const std::filesystem::path folder = host_.output_folder ? host_.output_folder() : std::filesystem::current_path();
+  return first_free_file(folder / (host_.rig().id + suffix));
+}
+
+void CalibrationPage::show_shortfall() {
+  SweepPlanOptions plan_options;
+  plan_options.from_kPa = from_->value();
+  plan_options.to_kPa = to_->value();
+  plan_options.step_kPa = step_->value();
+  plan_options.repeats = repeats_->value();
+  std::string why;
+  try {
+    why = sweep_fit_shortfall(plan_calibration_sweep(plan_options, host_.rig().safety.p_max_kPa));
+  } catch (const std::exception&) {
+    why.clear();  // Start names what is wrong with the fields
+  }
+  shortfall_->setText(why.empty() ? QString() : "This sweep is " + QString::fromStdString(why) + ".");
+  shortfall_->setVisible(!why.empty());
+}
 
 void CalibrationPage::say(const QString& text, bool error) {
   status_->setText(text);
@@ -217,8 +268,16 @@ void CalibrationPage::start_sweep() {
   use_->setEnabled(false);
   evaluate_->setEnabled(false);
   table_->setRowCount(0);
+  // The data goes where the user said, else beside the rig file; an earlier sweep is never replaced.
+  const QString chosen = sweep_path_->text().trimmed();
+  if (!chosen.isEmpty() && std::filesystem::exists(chosen.toStdString())) {
+    say("palprig: " + chosen + ": exists; choose a new file for the sweep data (an earlier sweep is never overwritten)", true);
+    return;
+  }
+  sweep_file_ = chosen.isEmpty() ? QString::fromStdString(default_file("-sweep.csv").string()) : chosen;
   RigBackend& backend = host_.take_backend();
   job_ = std::make_unique<CalibrationJob>(backend, rig, std::move(schedule), run, data_path().toStdString());
+  progress_->setFormat("%v of %m holds");
   progress_->setRange(0, int(job_->holds_total()));
   progress_->setValue(0);
   start_->setEnabled(false);
@@ -331,10 +390,9 @@ void CalibrationPage::show_charts() {
 
 void CalibrationPage::save() {
   if (!result_) return;
-  QString path = save_path_->text();
-  if (path.isEmpty()) {
-    path = QFileDialog::getSaveFileName(this, "Save calibration", QString(), "Calibration files (*.json)");
-    if (path.isEmpty()) return;
+  QString path = save_path_->text().trimmed();
+  if (path.isEmpty()) {  // beside the rig file, never over an earlier calibration
+    path = QString::fromStdString(default_file("-calibration.json").string());
     save_path_->setText(path);
   }
   try {

@@ -55,6 +55,9 @@ struct CalibrationHost {
   std::function<RigBackend&()> take_backend;    // stop and vent the live loop, hand its backend over
   std::function<void()> give_back_backend;      // the sweep ended: the live loop starts again as on opening
   std::function<bool(const std::string&)> use_calibration;  // reload the window with this file
+  // Where the sweep data and the fitted file go unless the user chooses: beside the rig file
+  // the user opened (the shipped rigs' folder is not the user's: the current directory then).
+  std::function<std::filesystem::path()> output_folder;
 };
 
 class CalibrationPage final : public QWidget {
@@ -71,7 +74,9 @@ class CalibrationPage final : public QWidget {
   void cancel_sweep();
   const std::optional<CalibrationResult>& result() const noexcept { return result_; }
   const std::optional<EvaluationResult>& evaluation() const noexcept { return evaluation_; }
-  QString data_path() const;
+  QString data_path() const;  // the last sweep's data file
+  // Where a file of the page goes by default: output_folder()/RIGID-SUFFIX, first free name.
+  std::filesystem::path default_file(const std::string& suffix) const;
 
  signals:
   void sweep_finished();  // tests wait on these
@@ -92,9 +97,10 @@ class CalibrationPage final : public QWidget {
   void show_table();
   void show_charts();
   void say(const QString& text, bool error = false);
+  void show_shortfall();  // the staircase's fields make a sweep too short to fit: said now
 
   CalibrationHost host_;
-  QTemporaryDir work_dir_;  // sweep data and chart PNGs of this window's calibrations
+  QTemporaryDir work_dir_;  // the chart PNGs shown on the page (the data and the fit go where the user says)
   std::unique_ptr<CalibrationJob> job_;
   std::optional<CalibrationResult> result_;
   std::optional<SweepData> data_;
@@ -112,6 +118,9 @@ class CalibrationPage final : public QWidget {
   QGridLayout* charts_ = nullptr;
   QScrollArea* chart_scroll_ = nullptr;
   QLineEdit* save_path_ = nullptr;
+  QLineEdit* sweep_path_ = nullptr;
+  QLabel* shortfall_ = nullptr;
+  QString sweep_file_;  // the data file of the last sweep started
   QTimer* timer_ = nullptr;
   QString saved_path_;
 };

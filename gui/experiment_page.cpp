@@ -81,6 +81,9 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
   results_->setObjectName("results_tabs");
   results_->addTab(trials_page, "Trials");
   results_->addTab(statistics_area_, "Statistics");
+  // Below the session form the trial list and the charts take what height is left: their own
+  // minimum (the statistics charts, 500 px) would push a 1280 x 800 screen's window off it.
+  results_->setMinimumHeight(200);
   rows->addWidget(results_);
   rows->setStretchFactor(0, 2);
   rows->setStretchFactor(1, 3);
@@ -117,10 +120,13 @@ void ExperimentPage::connect_session() {
   connect_pulse();
   connect(&run_, &SessionRun::refused, this, [this](const QString& line, int code) {
     refuse(line);
+    screen_->show_wait("No session");  // not "Please wait": nothing is coming
     emit sessionRefused(line, code);
   });
   connect(&run_, &SessionRun::finished, this, [this] {
     participant_keys_->remove();  // the keyboard is the experimenter's again
+    person_session_ = false;
+    apply_answer_key();
     if (rig_taken_ && host_.give_back_rig) host_.give_back_rig();
     rig_taken_ = false;
     // A session that stopped or faulted is resumable: offer it at once (the list keeps its
@@ -169,6 +175,9 @@ void ExperimentPage::update_plan() {
   offered_session_.reset();
   resume_note_->clear();
   plan_note_->clear();
+  // A refusal is cleared with its cause: the fields are read again below and refused anew if
+  // still wrong.
+  if (!refusal_text().isEmpty()) status_->setText("No session.");
   status_->setStyleSheet("");
   status_->setProperty("refusal", QString());
   speed_->setEnabled(is_simulated_code(f.participant));
@@ -224,6 +233,9 @@ void ExperimentPage::update_plan() {
                               .arg(participant_edit_->text()).arg(*id).arg(preview.completed_trials)
                               .arg(preview.plan.trials.size()).arg(preview.completed_trials + 1));
     plan_note_->setText(QString("Stored order of session %1 (seed %2).").arg(*id).arg(preview.seed));
+  } else if (f.store.empty()) {
+    plan_note_->setText(QString("Choose the trial database: the order depends on the participant's number in it "
+                                "(shown: a first participant's, seed %1).").arg(preview.seed));
   } else {
     plan_note_->setText(QString("Planned order for participant number %1 (seed %2), as `palprig experiment plan` "
                                 "prints it.").arg(preview.participant_number).arg(preview.seed));

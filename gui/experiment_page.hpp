@@ -43,6 +43,8 @@ struct ExperimentHost {
   std::function<std::filesystem::path()> calibration_file;  // empty: paper 002's models
   std::function<void()> take_rig;
   std::function<void()> give_back_rig;
+  // Where the session's rig ticks go for the live view (the live page's feed); null: nowhere.
+  std::function<TickObserver*()> tick_observer;
 };
 
 struct ExperimentFields {
@@ -81,6 +83,11 @@ class ExperimentPage final : public QWidget {
   QStringList files_written() const { return files_written_; }
   ParticipantScreen* participant_screen() const noexcept { return screen_; }
   QTableWidget* trial_table() const noexcept { return table_; }
+  // While a person's session runs with the participant screen in this window (one display),
+  // the trial list hides the answer key (stimulus, tumor, score; a pulse trial's distance and
+  // hit) unless the experimenter shows it with this button (objectName "show_answer_key").
+  bool answer_key_hidden() const noexcept { return answer_key_hidden_; }
+  QPushButton* show_answer_key_button() const noexcept { return show_key_; }
   // The live statistics of the session's store (gui/statistics_view), refreshed on every commit.
   StatisticsView* statistics() const noexcept { return statistics_; }
   void show_statistics();  // brings the Statistics tab to the front
@@ -121,6 +128,8 @@ class ExperimentPage final : public QWidget {
   void tick_pulse_row(const PulseTrialRecord& trial);
   void start_pulse_run(const StudySessionRequest& request);
   void connect_pulse();
+  std::vector<int> answer_key_columns() const;  // of the table's current task (experiment_page_pulse.cpp)
+  void apply_answer_key();  // hides or shows those columns for the state above
 
   ExperimentHost host_;
   SessionRun run_;
@@ -132,6 +141,8 @@ class ExperimentPage final : public QWidget {
   bool rig_taken_ = false;
   bool simulated_ = false;
   bool pause_held_ = false;
+  bool person_session_ = false;     // a person (not sim:SEED) answers in the session running
+  bool answer_key_hidden_ = false;
   bool last_completed_ = false;  // the last session ended completed  // the session loop reported the pause (vented, holding)
   QStringList files_written_;  // the database first, then exports
   QString store_note_;
@@ -150,6 +161,7 @@ class ExperimentPage final : public QWidget {
   QPushButton* abort_ = nullptr;
   ParticipantKeys* participant_keys_ = nullptr;  // installed while a person's session runs
   QPushButton* full_screen_ = nullptr;
+  QPushButton* show_key_ = nullptr;
   QLabel* status_ = nullptr;
   QLabel* files_ = nullptr;
   QTableWidget* table_ = nullptr;

@@ -140,8 +140,17 @@ QWidget* ExperimentPage::build_trial_list() {
   files_->setObjectName("files_written");
   files_->setWordWrap(true);
   files_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  show_key_ = button("show_answer_key", "Show the answer key (stimulus, tumor, score)");
+  show_key_->setCheckable(true);
+  show_key_->setFocusPolicy(Qt::ClickFocus);  // Space and Enter are the participant's
+  show_key_->setToolTip("The participant screen shares this window: the columns that give the answers away are hidden "
+                        "while a person's session runs. With two displays the participant screen goes to the second one "
+                        "and the columns stay.");
+  show_key_->hide();
+  connect(show_key_, &QPushButton::toggled, this, &ExperimentPage::apply_answer_key);
   auto* trials_page = new QWidget;
   auto* trials_layout = new QVBoxLayout(trials_page);
+  trials_layout->addWidget(show_key_, 0, Qt::AlignLeft);
   trials_layout->addWidget(table_, 1);
   trials_layout->addWidget(files_);
   return trials_page;
@@ -162,10 +171,12 @@ QWidget* ExperimentPage::build_participant_side() {
     const auto screens = QGuiApplication::screens();
     if (on) screen_->show_full_screen_on(screens.size() > 1 ? screens.back() : nullptr);
     else screen_->back_to_console();
+    apply_answer_key();
   });
   connect(screen_, &ParticipantScreen::backInConsole, this, [this] {
     const QSignalBlocker quiet(full_screen_);
     full_screen_->setChecked(false);
+    apply_answer_key();
   });
   screen_layout->addWidget(full_screen_);
   right_layout->addWidget(screen_box, 1);

@@ -19,6 +19,8 @@
 #include "sessions/session_setup.hpp"
 #include "store/pulse_store.hpp"
 
+#include <QPushButton>
+
 namespace palprig::gui {
 
 namespace {
@@ -40,6 +42,21 @@ void ExperimentPage::set_table_columns(bool pulse) {
     table_->setColumnCount(static_cast<int>(headers.size()));
     table_->setHorizontalHeaderLabels(headers);
   }
+  if (show_key_) apply_answer_key();
+}
+
+std::vector<int> ExperimentPage::answer_key_columns() const {
+  if (table_->columnCount() == kPulseColumns) return {kDistance, kHit};
+  return {kStimulus, kTumor, kScore};
+}
+
+void ExperimentPage::apply_answer_key() {
+  const bool one_display = screen_->in_console();
+  show_key_->setVisible(person_session_ && one_display);
+  answer_key_hidden_ = person_session_ && one_display && !show_key_->isChecked();
+  for (int c = 0; c < table_->columnCount(); ++c) table_->setColumnHidden(c, false);
+  if (answer_key_hidden_)
+    for (int c : answer_key_columns()) table_->setColumnHidden(c, true);
 }
 
 bool ExperimentPage::update_pulse_plan(const ExperimentFields& f) {

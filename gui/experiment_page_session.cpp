@@ -24,6 +24,8 @@
 #include <cmath>
 
 #include "experiments/simulated_participant.hpp"
+#include "gui/counted_text.hpp"
+#include "gui/localisation_marking.hpp"
 #include "gui/participant_keys.hpp"
 #include "gui/participant_screen.hpp"
 #include "sessions/session_preview.hpp"
@@ -64,6 +66,7 @@ bool ExperimentPage::begin(bool resume) {
   request.calibration_file = host_.calibration_file ? host_.calibration_file() : std::filesystem::path{};
   request.resume = resume;
   request.telemetry_file = f.telemetry;
+  request.tick_observer = host_.tick_observer ? host_.tick_observer() : nullptr;
   simulated_ = is_simulated_code(f.participant);
   request.speed = simulated_ ? f.speed : 0;
   request.person_palpates = true;  // the window gives a person a pen
@@ -92,6 +95,15 @@ bool ExperimentPage::begin(bool resume) {
   if (pulse_protocol_) start_pulse_run(request);
   else run_.start(request, person);
   if (!simulated_) participant_keys_->install();
+  // The participant never sees the answer key: on its own display when there is a second one
+  // (as PsychoPy opens its window there), else the key columns are hidden in this window.
+  person_session_ = !simulated_;
+  if (person_session_ && QGuiApplication::screens().size() > 1 && !full_screen_->isChecked()) full_screen_->setChecked(true);
+  {
+    const QSignalBlocker quiet(show_key_);
+    show_key_->setChecked(false);
+  }
+  apply_answer_key();
   set_buttons();
   return true;
 }
@@ -115,7 +127,7 @@ void ExperimentPage::on_started(const SessionStart& s) {
                           .arg(s.simulated ? ", simulated participant (stored as simulated)" : "")
                           .arg(s.real_time_hardware ? ", hardware rig: real time" : ""));
   status_->setText(s.resumed ? QString("Resumed at trial %1 of %2.").arg(s.start_position + 1).arg(s.total_trials)
-                             : QString("Session %1 started: %2 trials.").arg(s.session_id).arg(s.total_trials));
+                             : QString("Session %1 started: %2.").arg(s.session_id).arg(counted(s.total_trials, "trial", "trials")));
   // The runner starts in `ready` (no event says so): the participant's go-ahead is awaited.
   if (s.start_position < s.total_trials) screen_->show_ready();
   // The store exists now (created by the session): the statistics follow it.
@@ -128,15 +140,18 @@ void ExperimentPage::on_started(const SessionStart& s) {
 void ExperimentPage::on_ended(const SessionEnd& e) {
   last_completed_ = e.completed;
   QString text;
-  if (e.completed) text = QString("Session completed: %1 trials committed.").arg(e.committed_trials);
-  else if (!e.fault.empty()) text = QString("Rig fault: %1. Every channel vented; %2 of %3 trials kept; resume to go on.")
-                                        .arg(QString::fromStdString(e.fault)).arg(e.committed_trials).arg(e.total_trials);
-  else text = QString("Session stopped (vented): %1 of %2 trials kept; it can be resumed.").arg(e.committed_trials).arg(e.total_trials);
+  if (e.completed) text = QString("Session completed: %1 committed.").arg(counted(e.committed_trials, "trial", "trials"));
+  else if (!e.fault.empty()) text = QString("Rig fault: %1. Every channel vented; %2 of %3 kept; resume to go on.")
+                                        .arg(QString::fromStdString(e.fault)).arg(e.committed_trials)
+                                        .arg(counted(e.total_trials, "trial", "trials"));
+  else text = QString("Session stopped (vented): %1 of %2 kept; it can be resumed.").arg(e.committed_trials)
+                .arg(counted(e.total_trials, "trial", "trials"));
   status_->setStyleSheet(e.fault.empty() ? "" : "color: #b00020");
   status_->setText(text);
   screen_->show_wait(e.completed ? "Thank you, the session is complete." : "The session has stopped.");
+  screen_->marking()->clear_marks();  // the next participant starts on a clean scene
   files_written_ = {QString::fromStdString(fields().store)};
-  store_note_ = QString(" (%1 of %2 trials committed)").arg(e.committed_trials).arg(e.total_trials);
+  store_note_ = QString(" (%1 of %2 committed)").arg(e.committed_trials).arg(counted(e.total_trials, "trial", "trials"));
   if (const std::string telemetry = telemetry_summary(e); !telemetry.empty()) files_written_ << QString::fromStdString(telemetry);
   show_files();
   statistics_->refresh();
@@ -153,7 +168,7 @@ void ExperimentPage::show_files() {
 }
 
 void ExperimentPage::pause() {
-  if (!run_.running()) return;
+  if (!run_.running() || run_.paused()) return;  // Esc and VENT both pause: once
   run_.pause();
   if (channel_) channel_->withdraw_ready();
   pause_held_ = false;

@@ -105,6 +105,13 @@ LivePage::LivePage(LiveRun& run, QWidget* parent)
 
 void LivePage::toggle_pause() { pause_->toggle(); }
 
+void LivePage::set_session_owns_rig(bool on) {
+  scene_view_->setEnabled(!on);
+  if (force_) force_->setEnabled(!on);
+  rig_panel_->set_session_mode(on);
+  if (on) clear_traces();  // the session's clock starts at 0
+}
+
 void LivePage::clear_traces() {
   history_.clear();
   chart_->update();

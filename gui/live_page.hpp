@@ -32,6 +32,9 @@ class LivePage final : public QWidget {
   const TraceHistory& history() const noexcept { return history_; }
   void toggle_pause();
   void clear_traces();
+  // A study session owns the rig: the page shows the session's ticks (the feed receives them,
+  // sessions' tick_observer) and takes no pen input; the rig panel says so.
+  void set_session_owns_rig(bool on);
 
  private:
   LiveRun& run_;

@@ -1,4 +1,5 @@
 #include "gui/live_run.hpp"
+#include "gui/free_file_name.hpp"
 
 #include <stdexcept>
 
@@ -88,13 +89,7 @@ void LiveRun::start_loop() {
     // A recording is never overwritten: a restart after a fault, a scene or rig opened from the
     // File menu (a new LiveRun) or a window started again with the same --telemetry each write
     // the first free NAME-N.EXT beside the earlier ones; the status bar says which.
-    std::filesystem::path p = options_.telemetry_path;
-    std::error_code ec;
-    for (int n = 2; std::filesystem::exists(std::filesystem::symlink_status(p, ec)); ++n) {
-      p = options_.telemetry_path;
-      p.replace_filename(options_.telemetry_path.stem().string() + "-" + std::to_string(n) +
-                         options_.telemetry_path.extension().string());
-    }
+    const std::filesystem::path p = first_free_file(options_.telemetry_path);
     telemetry_file_ = p;
     opt.telemetry_path = p;
   }

@@ -33,6 +33,8 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
 
   status_ = new QLabel;
   status_->setObjectName("loop_status");
+  // A long line (a recording's path) is cut at the window's edge rather than widening the window.
+  status_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
   statusBar()->addPermanentWidget(status_, 1);
 
   QMenu* file = menuBar()->addMenu("&File");
@@ -85,6 +87,16 @@ void MainWindow::build_calibration_page() {
     open_files(files_);  // the live loop starts again on the same files
     tabs_->setCurrentWidget(current);
   };
+  host.output_folder = [this] {
+    // Beside the rig file the user opened; the shipped rigs (the default simulated one) are
+    // not the user's folder: the current directory then, as the command line writes there.
+    std::error_code ec;
+    const std::filesystem::path rig = files_.rig_path.empty() ? std::filesystem::path{} : std::filesystem::path(files_.rig_path);
+    const auto shipped = std::filesystem::weakly_canonical(files_.data_dir / "rigs", ec);
+    if (rig.empty() || std::filesystem::weakly_canonical(rig, ec).parent_path() == shipped)
+      return std::filesystem::current_path(ec);
+    return std::filesystem::absolute(rig, ec).parent_path();
+  };
   host.use_calibration = [this](const std::string& path) {
     LiveRunFiles f = files_;
     f.cal_path = path;
@@ -104,9 +116,12 @@ void MainWindow::build_experiment_page() {
   };
   host.calibration_file = [this] { return std::filesystem::path(files_.cal_path); };
   host.take_rig = [this] {
-    live_page_->setEnabled(false);  // no Arm while a session owns the rig
-    run_->stop();                   // the live loop vents and ends: one user of the rig at a time
+    run_->stop();  // the live loop vents and ends: one user of the rig at a time
+    live_page_->set_session_owns_rig(true);  // no Arm; the gauges and traces follow the session
   };
+  // The live loop is stopped while a session runs, so its feed has one producer at a time; the
+  // LiveRun is not replaced during a session (choose_file refuses), so the pointer stays valid.
+  host.tick_observer = [this]() -> TickObserver* { return &run_->feed(); };
   host.give_back_rig = [this] {
     QWidget* current = tabs_->currentWidget();
     open_files(files_);  // the live loop starts again on the same files
@@ -123,6 +138,11 @@ void MainWindow::build_live_page() {
     delete live_page_;
   }
   live_page_ = new LivePage(*run_);
+  // VENT during a session vents the session's rig: the session pauses (it vents and holds the
+  // trial, as Esc does).
+  connect(live_page_->rig_panel(), &RigPanel::vented, this, [this] {
+    if (experiment_page_ && experiment_page_->session_running()) experiment_page_->pause();
+  });
   tabs_->insertTab(std::max(index, 0), live_page_, "Live rig");
   tabs_->setCurrentWidget(live_page_);
 }
@@ -136,7 +156,7 @@ void MainWindow::poll() {
   run_->poll_finished();
   const FeedStatus st = live_page_->poll();
   if (experiment_page_->session_running()) {
-    status_->setText("study session running: it owns the rig (the live loop is stopped and vented until it ends)");
+    status_->setText("study session running: it owns the rig (the live loop is stopped until it ends; the Live rig tab shows the session's pressures)");
     emit polled();
     return;
   }
@@ -188,6 +208,12 @@ bool MainWindow::open_files(const LiveRunFiles& files) {
 }
 
 void MainWindow::choose_file(const QString& what, std::string LiveRunFiles::*field, const QString& filter) {
+  if (experiment_page_->session_running()) {
+    // Opening files restarts the live loop on a new backend: not while a session owns the rig.
+    QMessageBox::information(this, "palprig", "A study session owns the rig: open the " + what +
+                                                  " after it ends (Abort keeps every committed trial).");
+    return;
+  }
   const QString path = QFileDialog::getOpenFileName(this, "Open " + what, QString(), filter);
   if (path.isEmpty()) return;
   LiveRunFiles f = files_;

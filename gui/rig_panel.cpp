@@ -85,7 +85,20 @@ void RigPanel::vent_now() {
   emit vented();
 }
 
+void RigPanel::set_session_mode(bool on) {
+  session_ = on;
+  update_controls();
+}
+
 void RigPanel::update_controls() {
+  if (session_) {
+    state_->setText("study session: its pressures, live");
+    state_->setStyleSheet("color: #0a4f9a; font-weight: bold;");
+    arm_->setEnabled(false);
+    disarm_->setEnabled(false);
+    vent_->setEnabled(true);
+    return;
+  }
   const RigLifecycle s = run_.state();
   state_->setText(to_string(s));
   state_->setStyleSheet(s == RigLifecycle::armed ? "color: #0a7a1e; font-weight: bold;"
@@ -97,8 +110,8 @@ void RigPanel::update_controls() {
 
 void RigPanel::refresh(const FeedStatus& st) {
   backend_->setText(QString::fromStdString(run_.setup().rig.id + ": " + run_.backend_text()));
-  link_->setText(run_.linked() ? "up" : "DOWN (vented, reconnecting)");
-  input_->setText(QString::fromStdString(run_.input_text()));
+  link_->setText(session_ ? "the session's" : run_.linked() ? "up" : "DOWN (vented, reconnecting)");
+  input_->setText(session_ ? "the session's pen or stimuli" : QString::fromStdString(run_.input_text()));
   update_controls();
   if (run_.fault_pending()) {
     banner_text_->setText("FAULT: " + QString::fromStdString(run_.fault_text()));

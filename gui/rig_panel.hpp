@@ -24,6 +24,9 @@ class RigPanel final : public QWidget {
   QFrame* fault_banner() const noexcept { return banner_; }
   QLabel* fault_label() const noexcept { return banner_text_; }
   FingerGauge* gauge(int finger) const noexcept { return gauges_[std::size_t(finger)]; }
+  // A study session owns the rig (the live loop is stopped): the gauges show the session's
+  // ticks, Arm and Disarm are off, VENT stays (the window pauses the session with it).
+  void set_session_mode(bool on);
 
  public slots:
   void vent_now();
@@ -40,6 +43,7 @@ class RigPanel final : public QWidget {
   QFrame* banner_ = nullptr;
   QLabel* banner_text_ = nullptr;
   std::array<FingerGauge*, kFingerCount> gauges_{};
+  bool session_ = false;
 };
 
 }  // namespace palprig::gui

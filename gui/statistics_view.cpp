@@ -1,4 +1,5 @@
 #include "gui/statistics_view.hpp"
+#include "gui/counted_text.hpp"
 
 #include <QDateTime>
 #include <QFileDialog>
@@ -248,14 +249,15 @@ void StatisticsView::display(const TrialStatistics& s) {
   for (const SummaryRow& row : s.by_condition.rows) trials += row.trials;
   int pulse_trials = 0;
   for (const PulseConditionSummary& row : s.pulse) pulse_trials += row.trials;
-  const QString pulse_text = tr("%1 pulse-localisation trials, %2 conditions").arg(pulse_trials).arg(s.pulse.size());
+  const QString pulse_text = counted(pulse_trials, "pulse-localisation trial", "pulse-localisation trials") + ", " +
+                             counted(static_cast<long long>(s.pulse.size()), "condition", "conditions");
   if (pulse_only(s)) {
     status_->setText(tr("%1: %2 · %3").arg(location_, pulse_text, QDateTime::currentDateTime().toString("HH:mm:ss")));
   } else {
-    status_->setText(tr("%1: %2 scored trials, %3 conditions (practice left out)%4 · %5")
+    status_->setText(tr("%1: %2, %3 (practice left out)%4 · %5")
                          .arg(location_)
-                         .arg(trials)
-                         .arg(s.by_condition.rows.size())
+                         .arg(counted(trials, "scored trial", "scored trials"))
+                         .arg(counted(static_cast<long long>(s.by_condition.rows.size()), "condition", "conditions"))
                          .arg(s.pulse.empty() ? QString() : "; " + pulse_text)
                          .arg(QDateTime::currentDateTime().toString("HH:mm:ss")));
   }

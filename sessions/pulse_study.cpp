@@ -56,6 +56,7 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
                                         session.start_position, total, session.seed, simulated, rig.hardware()});
 
   RigStimulus output(rig.config, *rig.backend);
+  output.observe_with(r.tick_observer);
   const std::unique_ptr<SessionClock> clock = session_clock(rig, simulated, r.speed);
   SessionTelemetry telemetry(r.telemetry_file, output, *clock);
   PulseSessionOptions options;

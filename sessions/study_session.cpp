@@ -151,6 +151,7 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
                                         journaled ? journaled->pushed_at_open() : 0});
 
   RigStimulus output(config, *backend);
+  output.observe_with(request.tick_observer);
   ListenerBridge bridge(*store, session.session_id, session.plan, protocol, listener);
   TrialRunner runner(protocol, session.plan, session.start_position, output, bridge,
                      scene ? scene->scene.get() : nullptr, participant->pen());

@@ -26,6 +26,8 @@
 
 namespace palprig {
 
+class TickObserver;  // controller/loop_runner.hpp
+
 struct StudySessionRequest {
   std::filesystem::path protocol_file;
   std::string participant_code;       // a person's code, or sim:SEED for the simulated observer
@@ -44,6 +46,9 @@ struct StudySessionRequest {
   // the stored onset_s of each trial uses. Empty: none. An existing non-empty file is refused
   // (a resumed session's earlier recording is never overwritten).
   std::filesystem::path telemetry_file;
+  // Every rig tick of the session is also handed to this observer (wait-free, on the session
+  // thread; it must outlive the session): the window's live gauges and traces. Null: none.
+  TickObserver* tick_observer = nullptr;
 };
 
 // Known once the session is opened in the store.

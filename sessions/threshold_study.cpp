@@ -67,6 +67,7 @@ ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const Thr
       session.protocol.method, static_cast<int>(session.tracks.size())});
 
   RigStimulus output(rig.config, *rig.backend);
+  output.observe_with(r.tick_observer);
   const std::unique_ptr<SessionClock> clock = session_clock(rig, simulated, r.speed);
   SessionTelemetry telemetry(r.telemetry_file, output, *clock);
   ThresholdSessionOptions options;

@@ -78,6 +78,28 @@ TEST(CalibrateCli, SweepFitEvaluateOnTheDefaultSimulatedRig) {
   EXPECT_EQ(run.exit_code, 0) << run.err;
 }
 
+// A staircase too short for a fit is said before the sweep runs (the sweep still runs: a short
+// check of the link is a use), and what it says is true: the fit refuses that recording.
+TEST(CalibrateCli, ASweepTooShortToFitIsSaidBeforeItRunsAndTheFitAgrees) {
+  TempDir dir;
+  const std::string data = (dir.path() / "short.csv").string();
+  const ProcessResult sweep =
+      run_process(palprig_cmd() + " calibrate sweep --from-kPa 10 --to-kPa 20 --repeats 1 --out " + data);
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  EXPECT_NE(sweep.err.find("palprig: warning: this sweep is too short to fit: the inflation staircase has 2 holds over "
+                           "all repeats and a line needs 3"),
+            std::string::npos)
+      << sweep.err;
+  EXPECT_LT(sweep.err.find("warning: this sweep"), sweep.err.find("sweep: staircase repeat 1/1")) << sweep.err;
+  const ProcessResult fit = run_process(palprig_cmd() + " calibrate fit " + data + " --out " + (dir.path() / "c.json").string());
+  EXPECT_EQ(fit.exit_code, 2) << fit.err;
+  EXPECT_NE(fit.err.find("at least 3 points for a line, got 2"), std::string::npos) << fit.err;
+  // Paper 002's staircase is long enough: nothing said.
+  const ProcessResult full = run_process(palprig_cmd() + " calibrate sweep --repeats 1 --out " + (dir.path() / "full.csv").string());
+  ASSERT_EQ(full.exit_code, 0) << full.err;
+  EXPECT_EQ(full.err.find("too short"), std::string::npos) << full.err;
+}
+
 TEST(CalibrateCli, CtrlCDuringARealTimeSweepVentsAndKeepsTheRows) {
   TempDir dir;
   const std::string data = (dir.path() / "data.csv").string();

@@ -204,6 +204,21 @@ TEST(SweepPlan, RefusesArgumentsThatMakeNoSweep) {
             "excitation: value: at least one of staircase, random, sine");
 }
 
+TEST(SweepPlan, AStaircaseTooShortToFitIsNamedBeforeItRuns) {
+  SweepPlanOptions o;
+  EXPECT_EQ(sweep_fit_shortfall(plan_calibration_sweep(o, 60)), "");  // paper 002's
+  o.to_kPa = 20;
+  o.repeats = 1;
+  EXPECT_EQ(sweep_fit_shortfall(plan_calibration_sweep(o, 60)),
+            "too short to fit: the inflation staircase has 2 holds over all repeats and a line needs 3 (lower Step, "
+            "widen From/To or add repeats)");
+  o.repeats = 2;  // two levels, twice: a line through 4 points
+  EXPECT_EQ(sweep_fit_shortfall(plan_calibration_sweep(o, 60)), "");
+  o.staircase = false;
+  o.random = true;  // no staircase: no branch lines to judge
+  EXPECT_EQ(sweep_fit_shortfall(plan_calibration_sweep(o, 60)), "");
+}
+
 TEST(SweepRunner, HoldsSettleOnTheSimulatedRigAndShowItsHysteresis) {
   CaliperRig rig(60.0);
   rig.open();

@@ -5,6 +5,8 @@
 // `make test` could install it (npm), and says why it skipped otherwise.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/mount.h>
 #include <unistd.h>
 
@@ -66,28 +68,71 @@ std::int64_t scalar(const fs::path& db, const std::string& sql) {
   return q.step() ? q.integer(0) : -1;
 }
 
-// One store, every shipped protocol, two simulated participants (made once for the suite).
+// One store, every shipped protocol, two simulated participants. ctest runs each case in its own
+// process, and the 14 sessions took minutes per case under the sanitizers: the store is made
+// once per palprig binary (the first case to come makes it under a lock, the others wait and
+// copy it), beside the binary in test-cache/.
 class ExportEveryTask : public ::testing::Test {
  protected:
+  // A failure here fails every case (SetUp), never skips it: gtest skips the cases of a suite
+  // whose SetUpTestSuite failed fatally, and ctest would count that as skipped, not failed.
   static void SetUpTestSuite() {
+    try {
+      make_store();
+    } catch (const std::exception& e) {
+      setup_error_ = e.what();
+    }
+  }
+  void SetUp() override {
+    if (!setup_error_.empty()) FAIL() << "the store of every task kind: " << setup_error_;
+  }
+  static void make_store() {
     dir_ = fs::temp_directory_path() / ("palprig-export-every-task-" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     db_ = dir_ / "every_task.db";
-    for (const std::string& participant : kParticipants) {
-      for (const std::string& protocol : kProtocols) {
-        const auto r = run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / protocol).string(),
-                                    "--participant", participant, "--db", db_.string()});
-        ASSERT_EQ(r.exit_code, 0) << protocol << " " << participant << ": " << r.err;
-        runs_[protocol + " " + participant] = r.out;
+    const fs::path bin = PALPRIG_BIN;
+    const fs::path cache = bin.parent_path() / "test-cache";
+    fs::create_directories(cache);
+    const std::string stamp = std::to_string(fs::last_write_time(bin).time_since_epoch().count()) + "-" +
+                              std::to_string(fs::file_size(bin));
+    const fs::path cached_db = cache / ("every_task-" + stamp + ".db");
+    const fs::path cached_runs = cache / ("every_task-" + stamp + ".json");
+    const int lock = ::open((cache / "every_task.lock").c_str(), O_CREAT | O_RDWR, 0644);
+    if (lock < 0 || ::flock(lock, LOCK_EX) != 0) throw std::runtime_error("cannot lock " + (cache / "every_task.lock").string());
+    struct Unlock {
+      int fd;
+      ~Unlock() { ::close(fd); }  // closing releases the lock
+    } unlock{lock};
+    if (!fs::exists(cached_runs)) {
+      const fs::path making = cache / ("every_task-" + stamp + ".making.db");
+      fs::remove(making);
+      nlohmann::json printed = nlohmann::json::object();
+      for (const std::string& participant : kParticipants) {
+        for (const std::string& protocol : kProtocols) {
+          const auto r = run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / protocol).string(),
+                                      "--participant", participant, "--db", making.string()});
+          if (r.exit_code != 0)
+            throw std::runtime_error(protocol + " " + participant + ": exit " + std::to_string(r.exit_code) + ": " + r.err);
+          printed[protocol + " " + participant] = r.out;
+        }
       }
+      fs::rename(making, cached_db);
+      std::ofstream out(cached_runs);
+      out << printed.dump();  // written last: its presence says the store is whole
+      if (!out.flush()) throw std::runtime_error("cannot write " + cached_runs.string());
     }
+    fs::copy_file(cached_db, db_);
+    const nlohmann::json printed = nlohmann::json::parse(read_text(cached_runs));
+    for (auto it = printed.begin(); it != printed.end(); ++it) runs_[it.key()] = it.value().get<std::string>();
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
 
   static fs::path dir_, db_;
   static std::map<std::string, std::string> runs_;
+  static std::string setup_error_;
 };
+std::string ExportEveryTask::setup_error_;
 fs::path ExportEveryTask::dir_, ExportEveryTask::db_;
 std::map<std::string, std::string> ExportEveryTask::runs_;
 

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <thread>
 
 #include "tests/support/modbus_process_support.hpp"
 #include "tests/support/modbus_support.hpp"
@@ -181,6 +182,9 @@ TEST(ModbusEndToEnd, KilledServerVentsReportsAndReconnectsWithoutSpike) {
   sim->signal(SIGKILL);
   sim->wait();
   ASSERT_TRUE(poll_until([&] { return file_has(dir.path() / "run.err", "lost"); }, 30.0)) << read_file(dir.path() / "run.err");
+  // The scenario: the module stays away for half a second (a deliberate outage, not a wait for
+  // an event), so the run spends hundreds of ticks unlinked and retries with its backoff.
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
   std::unique_ptr<ChildProcess> back;
   start_sim_rig(back, palprig_bin(), rig_file, port, writes2.string(), (dir.path() / "sim2.err").string());
   ASSERT_TRUE(poll_until([&] { return max_kPa_written(writes2) >= 23.5 - 0.01; }, 60.0))

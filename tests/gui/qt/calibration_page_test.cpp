@@ -18,6 +18,7 @@
 #include <QTableWidget>
 #include <QtTest>
 #include <cstdlib>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -38,6 +39,9 @@ namespace {
 std::string data_dir() { return std::string(PALPRIG_SOURCE_DIR) + "/data"; }
 
 struct Window {
+  // The rig file is a copy in this folder: the page writes its sweeps and fits beside the rig
+  // file by default, and they go away with the test.
+  std::unique_ptr<TempDir> rig_dir = std::make_unique<TempDir>();
   LiveRunFiles files;
   std::unique_ptr<MainWindow> window;
   CalibrationPage* page = nullptr;
@@ -46,6 +50,7 @@ struct Window {
 Window open_window() {
   Window w;
   w.files.data_dir = data_dir();
+  w.files.rig_path = w.rig_dir->write("bench_rig.json", test_support::read_file(data_dir() + "/rigs/simulated.json")).string();
   LiveRunOptions opt;
   w.window = std::make_unique<MainWindow>(std::make_unique<LiveRun>(load_live_run(w.files), opt), w.files, opt);
   w.window->show();
@@ -208,6 +213,41 @@ class CalibrationPageTest : public QObject {
 
 
  private slots:
+  // The sweep's data and the fitted file go beside the rig file unless the user chooses, never
+  // over an earlier file; a chosen file that exists is refused before the rig moves; a staircase
+  // too short for a fit is said while it is being set, before Start.
+  void filesGoBesideTheRigAndAShortSweepIsSaidBeforeItRuns() {
+    Window w = open_window();
+    CalibrationPage* p = w.page;
+    const std::filesystem::path folder = w.rig_dir->path();
+    auto* shortfall = child<QLabel>(p, "cal_shortfall");
+    QVERIFY(!shortfall->isVisibleTo(p));  // the defaults (paper 002's staircase) fit
+    QCOMPARE(child<QProgressBar>(p, "cal_progress")->text(), QString("no sweep yet"));
+    set_staircase(p, 10, 20, 10, 1);
+    QVERIFY(shortfall->isVisibleTo(p));
+    QVERIFY2(shortfall->text().contains("too short to fit") && shortfall->text().contains("inflation staircase has 2 holds"),
+             qPrintable(shortfall->text()));
+    set_staircase(p, 10, 30, 10, 1);
+    QVERIFY(!shortfall->isVisibleTo(p));
+
+    QSignalSpy finished(p, &CalibrationPage::sweep_finished);
+    for (const char* name : {"sim-default-sweep.csv", "sim-default-sweep-2.csv"}) {
+      QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
+      QVERIFY(finished.wait(120000));
+      QCOMPARE(p->data_path(), QString::fromStdString((folder / name).string()));
+      QVERIFY(std::filesystem::file_size(folder / name) > 100);
+      QVERIFY2(child<QLabel>(p, "cal_status")->text().contains(p->data_path()), qPrintable(child<QLabel>(p, "cal_status")->text()));
+    }
+    const auto first_size = std::filesystem::file_size(folder / "sim-default-sweep.csv");
+    // A chosen file that exists: refused, nothing moves, nothing is replaced.
+    child<QLineEdit>(p, "cal_sweep_path")->setText(QString::fromStdString((folder / "sim-default-sweep.csv").string()));
+    QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
+    QVERIFY(!p->sweeping());
+    const QString refused = child<QLabel>(p, "cal_status")->text();
+    QVERIFY2(refused.startsWith("palprig: ") && refused.contains("never overwritten"), qPrintable(refused));
+    QCOMPARE(std::filesystem::file_size(folder / "sim-default-sweep.csv"), first_size);
+  }
+
   // Too few holds for the hysteresis fit: the library's refusal line on the page, nothing to save.
   void fitRefusedWithTheLibraryLine() {
     Window w = open_window();

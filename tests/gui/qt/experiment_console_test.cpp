@@ -22,7 +22,10 @@
 #include <nlohmann/json.hpp>
 
 #include "gui/experiment_page.hpp"
+#include "gui/calibration_page.hpp"
+#include "gui/live_page.hpp"
 #include "gui/localisation_marking.hpp"
+#include "gui/rig_panel.hpp"
 #include "gui/main_window.hpp"
 #include "gui/participant_screen.hpp"
 #include "gui/scene_view.hpp"
@@ -703,6 +706,74 @@ class ExperimentConsoleTest : public QObject {
   // participant's keys reach the participant whatever has the focus (the Live rig tab shown and
   // back, a key sent to the Abort button); Space after Pause does not abort; Abort asks first;
   // "Resume session" continues; every answer is stored once. Runs under ASan in make test-asan.
+  // A lab's 1280 x 800 screen holds the window in every state: each tab, a localisation
+  // session's marking screen, a discrimination session, the statistics. The window is never
+  // made larger than that by its own layout (a minimum size above it would grow it off the
+  // screen). PALPRIG_SCREENSHOT_DIR keeps each state as docs/ shows it.
+  void windowFitsA1280x800ScreenInEveryState() {
+    TempDir dir;
+    Window w = open_window();
+    MainWindow& win = *w.window;
+    win.resize(1280, 800);
+    ExperimentPage& page = w.page();
+    ParticipantScreen& screen = *page.participant_screen();
+    auto* ready = screen.findChild<QPushButton*>("ready_button");
+    auto fits = [&](const char* state, const char* picture) {
+      QCoreApplication::sendPostedEvents();
+      QCoreApplication::processEvents();
+      const QSize hint = win.minimumSizeHint(), size = win.size();
+      keep_screenshot(win, picture);
+      return QString("%1: window %2x%3, its minimum %4x%5").arg(state).arg(size.width()).arg(size.height())
+                 .arg(hint.width()).arg(hint.height());
+    };
+    // What holds the window up, when it does not fit: each widget whose minimum is large.
+    std::function<void(QWidget*, int)> dump = [&](QWidget* wdg, int depth) {
+      const QSize h = wdg->minimumSizeHint(), m = wdg->minimumSize();
+      if (h.width() > 500 || h.height() > 300 || m.width() > 500 || m.height() > 300)
+        qInfo("%*s%s %s: minimum hint %dx%d, minimum %dx%d", depth * 2, "", wdg->metaObject()->className(),
+              qPrintable(wdg->objectName()), h.width(), h.height(), m.width(), m.height());
+      for (QObject* c : wdg->children())
+        if (auto* cw = qobject_cast<QWidget*>(c); cw && cw->isVisibleTo(&win)) dump(cw, depth + 1);
+    };
+    auto check = [&](const char* state, const char* picture) {
+      const QString what = fits(state, picture);
+      if (win.height() > 800 || win.width() > 1280) dump(&win, 0);
+      QVERIFY2(win.width() <= 1280 && win.height() <= 800, qPrintable(what));
+      QVERIFY2(win.minimumSizeHint().width() <= 1280 && win.minimumSizeHint().height() <= 800, qPrintable(what));
+    };
+    win.pages()->setCurrentIndex(0);
+    check("live rig", "window_live_rig.png");
+    win.pages()->setCurrentWidget(win.calibration_page());
+    check("calibration", "window_calibration.png");
+    win.pages()->setCurrentWidget(&page);
+    page.set_fields({short_localisation(dir), "L01", (dir.path() / "loc.db").string(), 0});
+    check("experiment, planned", "window_experiment_planned.png");
+    QVERIFY2(page.begin(false), qPrintable(page.refusal_text()));
+    QVERIFY(wait_until(win, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::keyClick(&screen, Qt::Key_Space);
+    QVERIFY(wait_until(win, [&] { return screen.answering_position() == 0; }));
+    check("localisation session", "window_localisation_session.png");
+    abort_confirmed(page);
+    QVERIFY(wait_until(win, [&] { return !page.session_running(); }));
+    page.set_fields({short_discrimination(dir), "D01", (dir.path() / "disc.db").string(), 0});
+    QVERIFY2(page.begin(false), qPrintable(page.refusal_text()));
+    QVERIFY(wait_until(win, [&] { return ready->isVisible() && ready->isEnabled(); }));
+    QTest::keyClick(&screen, Qt::Key_Space);
+    QVERIFY(wait_until(win, [&] { return screen.answering_position() == 0; }));
+    QTest::keyClick(&screen, Qt::Key_2);
+    QTest::keyClick(&screen, Qt::Key_Return);
+    QVERIFY(wait_until(win, [&] { return committed_rows(*page.trial_table()) == 1; }));
+    check("discrimination session", "window_discrimination_session.png");
+    win.pages()->setCurrentIndex(0);
+    check("live rig during a session", "window_live_rig_during_session.png");
+    win.pages()->setCurrentWidget(&page);
+    page.show_statistics();
+    check("statistics", "window_statistics.png");
+    abort_confirmed(page);
+    QVERIFY(wait_until(win, [&] { return !page.session_running(); }));
+    keep_screenshot(screen, "participant_screen.png");
+  }
+
   void personFlowLocalisationThenDiscriminationWithPauseTabSwitchAndResume() {
     TempDir dir;
     Window w = open_window();
@@ -732,6 +803,26 @@ class ExperimentConsoleTest : public QObject {
     QTest::keyClick(abort_button, Qt::Key_Space);  // Ready, though the key went to Abort
     QVERIFY2(wait_until(*w.window, [&] { return screen.answering_position() == 0; }), "step 6");
     QVERIFY(page.session_running());
+    {  // The participant screen shares this window (one display here): the answer key is hidden
+       // until the experimenter shows it.
+      QTableWidget& table = *page.trial_table();
+      auto key_hidden = [&] { return table.isColumnHidden(3) && table.isColumnHidden(4) && table.isColumnHidden(6); };
+      QVERIFY(page.answer_key_hidden() && key_hidden());
+      QVERIFY(!table.isColumnHidden(2) && !table.isColumnHidden(5));  // condition and answer stay
+      QPushButton* show_key = page.show_answer_key_button();
+      QVERIFY(show_key->isVisible());
+      QTest::mouseClick(show_key, Qt::LeftButton);
+      QVERIFY(!page.answer_key_hidden() && !table.isColumnHidden(3) && !table.isColumnHidden(4));
+      QTest::mouseClick(show_key, Qt::LeftButton);
+      QVERIFY(page.answer_key_hidden() && key_hidden());
+      // The experimenter sees the pressures the session delivers: the live page follows its ticks.
+      LivePage& live = *w.window->live_page();
+      const std::size_t seen = live.history().size();
+      QVERIFY2(wait_until(*w.window, [&] { return live.history().size() > seen + 20; }), "the live page got no session ticks");
+      QVERIFY(live.rig_panel()->findChild<QLabel*>("rig_state")->text().startsWith("study session"));
+      QVERIFY(!live.rig_panel()->arm_button()->isEnabled());
+      QVERIFY(live.rig_panel()->vent_button()->isEnabled());
+    }
     // The experimenter looks at the Live rig tab and comes back: keys still answer.
     w.window->pages()->setCurrentIndex(0);
     w.window->pages()->setCurrentWidget(w.window->experiment_page());
@@ -794,6 +885,8 @@ class ExperimentConsoleTest : public QObject {
     QCOMPARE(QString::fromStdString(trials[0].answer), QString("100"));  // key 1 via the tab bar, then Enter
     // The keyboard is the experimenter's again: a digit reaches an ordinary widget.
     QVERIFY2(wait_until(*w.window, [&] { return !page.session_running(); }), "step 19");
+    QVERIFY(!page.answer_key_hidden() && !page.trial_table()->isColumnHidden(3));  // the key is back after the session
+    QVERIFY(!page.show_answer_key_button()->isVisible());
     auto* participant = page.findChild<QLineEdit*>("participant_code");
     if (participant) {
       participant->setFocus();
