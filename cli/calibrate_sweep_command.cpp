@@ -53,9 +53,6 @@ void run_sweep(const SweepArgs& a) {
                      "settle window, band and averaging window > 0, and a max hold above the min hold and both "
                      "windows, at most 3600 s");
   for (const auto& n : plan.notes) std::cerr << "palprig: note: " << n << "\n";
-  // Said before anything moves; the sweep still runs (a short check of the link is a use).
-  if (const std::string shortfall = sweep_fit_shortfall(plan); !shortfall.empty())
-    std::cerr << "palprig: warning: this sweep is " << shortfall << "\n";
 
   auto backend = make_backend(rig);
   SweepFileInfo info;
@@ -67,6 +64,10 @@ void run_sweep(const SweepArgs& a) {
   info.sensor_name = backend->sensor_name();
   info.notes = plan.notes;
   SweepCsvWriter writer(a.out, info, run.channels);  // a path that cannot be written fails here, before open
+  // Said before anything moves (and after a refusal of the file, which is the one line then);
+  // the sweep still runs (a short check of the link is a use).
+  if (const std::string shortfall = sweep_fit_shortfall(plan); !shortfall.empty())
+    std::cerr << "palprig: warning: this sweep is " << shortfall << "\n";
   backend->open();
 
   cli::install_stop_signals();

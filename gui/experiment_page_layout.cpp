@@ -30,6 +30,18 @@ QPushButton* button(const char* name, const QString& text) {
   return b;
 }
 
+// The participant's display: one apart from the console's (not overlapping it: a window system
+// may also list the whole desktop as a screen), else any other, else none (one display).
+QScreen* participant_display(const QWidget& console) {
+  const QScreen* own = console.screen();
+  const auto screens = QGuiApplication::screens();
+  for (QScreen* s : screens)
+    if (s != own && (own == nullptr || !s->geometry().intersects(own->geometry()))) return s;
+  for (QScreen* s : screens)
+    if (s != own) return s;
+  return nullptr;
+}
+
 }  // namespace
 
 QWidget* ExperimentPage::build_session_form() {
@@ -168,8 +180,7 @@ QWidget* ExperimentPage::build_participant_side() {
   full_screen_ = button("participant_full_screen", "Participant screen on the second display");
   full_screen_->setCheckable(true);
   connect(full_screen_, &QPushButton::toggled, this, [this](bool on) {
-    const auto screens = QGuiApplication::screens();
-    if (on) screen_->show_full_screen_on(screens.size() > 1 ? screens.back() : nullptr);
+    if (on) screen_->show_full_screen_on(participant_display(*this));
     else screen_->back_to_console();
     apply_answer_key();
   });
