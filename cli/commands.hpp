@@ -21,6 +21,11 @@ void install_stop_signals();
 // End a subcommand with an exit code (CLI11 callbacks return void; main returns this code).
 [[noreturn]] inline void finish(int exit_code) { throw CLI::RuntimeError(exit_code); }
 
+// "1 trial", "32 trials": a count with its noun for the commands' lines.
+inline std::string counted(long long n, const std::string& one, const std::string& many) {
+  return std::to_string(n) + ' ' + (n == 1 ? one : many);
+}
+
 // Where the shipped data (scenes, rigs, traces) lives: $PALPRIG_DATA or the source tree's data/.
 std::filesystem::path data_dir();
 
