@@ -71,6 +71,9 @@ Reading read_cells(const std::string& rig_path, double seconds, double load_N) {
   return r;
 }
 
+// A mean that rounds to zero is shown as 0, never "-0.000".
+double tidy(double v, double resolution) { return std::abs(v) < resolution / 2 ? 0.0 : v; }
+
 std::string cell_name(const Reading& r, std::size_t i) {
   return r.rig.load_cells->per_finger ? "finger " + std::to_string(i + 1) : std::string("all fingers");
 }
@@ -104,7 +107,7 @@ void register_load_cell_command(CLI::App& app) {
       const CellStats& c = r.cells[i];
       const LoadCellCalibration& cal = r.rig.load_cells->channels[i].calibration;
       std::cout << "  " << std::left << std::setw(12) << cell_name(r, i) << std::right << std::setprecision(4) << std::setw(10)
-                << c.mean_v() << " / " << std::setw(6) << c.sd_v() << "   " << std::setprecision(3) << std::setw(8) << c.mean_f()
+                << c.mean_v() << " / " << std::setw(6) << c.sd_v() << "   " << std::setprecision(3) << std::setw(8) << tidy(c.mean_f(), 1e-3)
                 << " / " << std::setw(5) << c.sd_f() << "    (" << std::setprecision(4) << cal.tare_V << ", " << cal.N_per_V << ")\n";
       if (a->known_N >= 0) {
         const double above = c.mean_v() - cal.tare_V;

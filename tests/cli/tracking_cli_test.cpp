@@ -3,6 +3,8 @@
 // the tracking commands; the load-cell commands; and the refusals, each one line, exit 2.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+
 #include <chrono>
 #include <fstream>
 #include <regex>
@@ -70,8 +72,10 @@ TEST(TrackingCli, RunOverAReplayedTrackerPrintsThePerRegionTable) {
   EXPECT_GT(regions[1]["target_kPa_mean"].get<double>(), 10.0);
   EXPECT_EQ(regions[0]["finger_ticks"].get<int>(), 0);  // A and C come later in the pass
   EXPECT_LT(regions[3]["target_kPa_mean"].get<double>(), 1.0);
-  EXPECT_NEAR(j["tracked_fingers"][1]["force_N"]["max"].get<double>(), 2.0, 0.1);
-  server.finish();
+  // 4 mm deep on 0.5 N/mm; the recording's 0.1 mm of tracker noise and the finger's tilt add a little.
+  EXPECT_NEAR(j["tracked_fingers"][1]["force_N"]["max"].get<double>(), 2.0, 0.25);
+  ::kill(server.pid(), SIGTERM);
+  EXPECT_EQ(server.finish().exit_code, 0);
 }
 
 TEST(TrackingCli, RefusalsAreOneLineBeforeAnythingMoves) {
@@ -142,7 +146,8 @@ TEST(TrackingCli, RegisterFromTouchedPointsAndPivotOverAReplayedSession) {
   EXPECT_NEAR(p.tools[0].tip.offset_mm[2], -12, 0.5);
   EXPECT_EQ(p.tools[0].tip.method, "pivot");
   EXPECT_LT(p.tools[0].tip.rms_mm, 0.5);
-  server.finish();
+  ::kill(server.pid(), SIGTERM);
+  EXPECT_EQ(server.finish().exit_code, 0);
 }
 
 TEST(TrackingCli, LoadCellReadAndPressOnTheSimulatedRig) {
