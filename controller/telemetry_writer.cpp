@@ -20,8 +20,7 @@ namespace palprig {
 
 namespace {
 constexpr char kMagic[8] = {'P', 'A', 'L', 'P', 'R', 'I', 'G', 'T'};
-// 2: the per-finger position, force and vent reason (issue 26) after the flags.
-constexpr std::uint32_t kTelemetryVersion = 2;
+constexpr std::uint32_t kTelemetryVersion = kTelemetryFileVersion;
 }  // namespace
 
 TelemetryFormat telemetry_format_for(const std::filesystem::path& path) {
