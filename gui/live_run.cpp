@@ -107,6 +107,7 @@ void LiveRun::start_loop() {
   loop_done_.store(false);
   feed_.reset_statistics();
   if (window_pen_) window_pen_->restart_clock();
+  if (tracker_) tracker_->restart_clock();
   loop_running_ = true;
   loop_ = std::thread([this, opt] {
     try {

@@ -279,8 +279,8 @@ void SceneView::render_to(QPainter& p) {
   }
   const bool pressed = record_.flags & kInContact;
   const auto centres = finger_centres();
-  // A tracked finger whose tool is out of view (or not seen) is vented: drawn hollow and dashed
-  // where it was last, with why.
+  // A tracked finger whose tool is out of view is vented: drawn hollow and dashed where its tool
+  // was last seen, with why; one never seen is not drawn.
   auto vented = [this](int i) { return record_.finger_vent[i] != FingerVent::none; };
   if (pressed)
     for (int i = 0; i < kFingerCount; ++i)
@@ -291,6 +291,8 @@ void SceneView::render_to(QPainter& p) {
     const QPointF c = pixel_of(centres[i].x_mm, centres[i].y_mm);
     const double rad = kFingerRadius_mm * px_per_mm;
     if (vented(i)) {
+      // A tool never seen (or no tool at all) has no place to be drawn.
+      if (record_.finger_vent[i] == FingerVent::no_tool || record_.finger_vent[i] == FingerVent::tool_not_seen) continue;
       p.setBrush(Qt::NoBrush);
       p.setPen(QPen(QColor(230, 230, 230), 1.5, Qt::DashLine));
       p.drawEllipse(c, rad, rad);

@@ -121,7 +121,7 @@ void IgtlInput::reader_main() noexcept {
         }
         const IgtlStreamCounts& c = reader_socket_->counts();
         st.messages = c.messages;
-        st.skipped = c.other_types + c.other_versions + c.crc_failures;
+        st.skipped = c.other_types + c.other_versions + c.crc_failures + c.malformed;
       }
       st.heartbeat_ns = now;
       for_loop_.publish(st);
@@ -134,12 +134,18 @@ void IgtlInput::reader_main() noexcept {
   }
 }
 
+void IgtlInput::restart_clock() noexcept { epoch_ns_.store(0, std::memory_order_relaxed); }
+
 TouchSample IgtlInput::latest(double t_s) noexcept {
   const std::int64_t now = mono_ns();
-  if (epoch_ns_ == 0) epoch_ns_ = now - static_cast<std::int64_t>(std::llround(t_s * 1e9));
+  std::int64_t epoch = epoch_ns_.load(std::memory_order_relaxed);
+  if (epoch == 0) {
+    epoch = now - static_cast<std::int64_t>(std::llround(t_s * 1e9));
+    epoch_ns_.store(epoch, std::memory_order_relaxed);
+  }
   const TrackerStatus& st = for_loop_.latest();
   TouchSample s;
-  s.t_s = std::min(t_s, double(st.heartbeat_ns - epoch_ns_) * 1e-9);
+  s.t_s = std::min(t_s, double(st.heartbeat_ns - epoch) * 1e-9);
   s.force_from_load_cells = true;
   s.own_positions = tracking_.placement == TrackedPlacement::per_finger;
   auto vent_of = [&](std::size_t k) noexcept {
@@ -149,35 +155,37 @@ TouchSample IgtlInput::latest(double t_s) noexcept {
     if (now - ts.arrived_ns > max_pose_age_ns_) return FingerVent::tool_stale;
     return FingerVent::none;
   };
+  // A vented finger keeps the position its tool was last seen at (the window draws it there,
+  // hollow); the tick does not use it. A tool never seen has none: (0, 0).
   bool placed_any = false;
   if (!s.own_positions) {
     const FingerVent v = tracking_.tools.empty() ? FingerVent::no_tool : vent_of(0);
     const Vec3_mm& p = st.tools[0].tip_scene_mm;
-    if (v == FingerVent::none) {
-      s.x_mm = p[0];
-      s.y_mm = p[1];
-      placed_any = true;
-    }
+    s.x_mm = p[0];
+    s.y_mm = p[1];
+    placed_any = v == FingerVent::none;
     for (FingerTouch& f : s.fingers) {
       f.vent = v;
-      f.z_mm = v == FingerVent::none ? p[2] : 0.0;
+      f.z_mm = placed_any ? p[2] : 0.0;
     }
   } else {
+    bool pen_set = false;
     for (std::size_t i = 0; i < kFingerCount; ++i) {
       FingerTouch& f = s.fingers[i];
       f.vent = FingerVent::no_tool;
       for (std::size_t k = 0; k < tracking_.tools.size() && k < kFingerCount; ++k) {
         if (tracking_.tools[k].finger != static_cast<int>(i)) continue;
         f.vent = vent_of(k);
+        const Vec3_mm& p = st.tools[k].tip_scene_mm;
+        f.x_mm = p[0];
+        f.y_mm = p[1];
+        f.z_mm = f.vent == FingerVent::none ? p[2] : 0.0;
         if (f.vent == FingerVent::none) {
-          const Vec3_mm& p = st.tools[k].tip_scene_mm;
-          f.x_mm = p[0];
-          f.y_mm = p[1];
-          f.z_mm = p[2];
-          if (!placed_any) {
-            // The sample's own x, y (the "pen" of telemetry and the window): the first placed finger.
+          if (!pen_set) {
+            // The sample's own x, y (the "pen" of telemetry): the first placed finger.
             s.x_mm = p[0];
             s.y_mm = p[1];
+            pen_set = true;
           }
           placed_any = true;
         }

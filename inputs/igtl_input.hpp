@@ -47,10 +47,11 @@ struct TrackedToolState {
   std::int64_t arrived_ns = 0;      // CLOCK_MONOTONIC of its last usable pose; 0: none yet
   std::uint64_t poses = 0;          // usable poses received
   FingerVent refused = FingerVent::none;  // the last pose was unusable (tool_invalid, tool_no_rotation)
-  Vec3_mm tip_scene_mm{};         // its fingertip in scene space (mm)
+  Vec3_mm tip_scene_mm{};           // its fingertip in scene space (mm)
 };
 
-// The tracker as the window shows it (any thread may copy one through IgtlInput::status()).
+// The tracker as the window shows it (one thread besides the loop, the window's poll, copies it
+// through IgtlInput::status()).
 struct TrackerStatus {
   bool connected = false;
   std::int64_t heartbeat_ns = 0;    // the reader's last wake
@@ -75,6 +76,10 @@ class IgtlInput final : public InputSource {
   // The reader's newest status. One reader thread (the window's poll) besides the loop.
   TrackerStatus status() noexcept { return status_.latest(); }
   const TrackingConfig& tracking() const noexcept { return tracking_; }
+  // A new run starts its clock at 0 again (the window restarts its loop after a fault): the
+  // next latest() fixes loop time 0. The reader goes on; a tracker that has gone stays gone
+  // (its heartbeat has stopped), so the new run vents at once.
+  void restart_clock() noexcept;
   const IgtlEndpoint& endpoint() const noexcept { return endpoint_; }
 
  private:
@@ -86,7 +91,7 @@ class IgtlInput final : public InputSource {
   std::unique_ptr<IgtlPoseReader> reader_socket_;
   LatestValue<TrackerStatus> for_loop_, status_;
   std::atomic<bool> stop_{false};
-  std::int64_t epoch_ns_ = 0;  // loop time 0 on CLOCK_MONOTONIC, fixed at the first latest()
+  std::atomic<std::int64_t> epoch_ns_{0};  // loop time 0 on CLOCK_MONOTONIC, fixed at the first latest()
   std::thread reader_;
 };
 

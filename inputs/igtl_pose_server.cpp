@@ -54,7 +54,7 @@ void IgtlPoseServer::stop() noexcept {
 }
 
 std::vector<std::pair<std::size_t, std::int64_t>> IgtlPoseServer::sends() const {
-  std::lock_guard<std::mutex> lock(const_cast<std::mutex&>(mutex_));
+  std::lock_guard<std::mutex> lock(mutex_);
   return sends_;
 }
 

@@ -68,7 +68,7 @@ class IgtlPoseServer {
   std::atomic<int> clients_{0};
   std::atomic<std::uint64_t> sent_{0};
   std::thread acceptor_;
-  std::mutex mutex_;  // guards servers_ and sends_ (server threads only: never the loop)
+  mutable std::mutex mutex_;  // guards servers_ and sends_ (server threads only: never the loop)
   std::vector<std::thread> servers_;
   std::vector<std::pair<std::size_t, std::int64_t>> sends_;
 };

@@ -62,11 +62,17 @@ bool IgtlStreamDecoder::feed(const std::uint8_t* data, std::size_t n, std::vecto
         return false;
       }
       const bool version_1 = big_endian(h, 2) == IGTL_HEADER_VERSION;
-      const bool pose_type = std::memcmp(h + 2, "TRANSFORM\0", 10) == 0 || std::memcmp(h + 2, "POSITION\0", 9) == 0;
-      if (!version_1 || !pose_type) {
+      const bool transform = std::memcmp(h + 2, "TRANSFORM\0", 10) == 0;
+      const bool position = std::memcmp(h + 2, "POSITION\0", 9) == 0;
+      // libopenigtlink 1.11 unpacks a TRANSFORM as 48 bytes and a POSITION of any other size
+      // than 12, 24 or 28 bytes as 28, whatever the body holds: a body of another size would be
+      // read (and byte-swapped in place) past its end. Such a message is malformed: skipped.
+      const bool well_sized = (transform && body == 48) || (position && (body == 12 || body == 24 || body == 28));
+      if (!version_1 || !well_sized) {
         // Not kept: skip its body as it streams past.
         ++counts_.messages;
         if (!version_1) ++counts_.other_versions;
+        else if (transform || position) ++counts_.malformed;
         else ++counts_.other_types;
         skip_ = body;
         pending_.clear();
@@ -93,8 +99,8 @@ void IgtlStreamDecoder::decode(const std::uint8_t* header, const std::uint8_t* b
     igtl::TransformMessage::Pointer& m = msg_->transform;
     m->SetMessageHeader(mh);
     m->AllocatePack();
-    if (static_cast<std::size_t>(m->GetPackBodySize()) != body_size) {
-      ++counts_.other_types;
+    if (static_cast<std::size_t>(m->GetPackBodySize()) != body_size) {  // checked in feed(); kept as a guard
+      ++counts_.malformed;
       return;
     }
     std::memcpy(m->GetPackBodyPointer(), body, body_size);
@@ -112,8 +118,8 @@ void IgtlStreamDecoder::decode(const std::uint8_t* header, const std::uint8_t* b
     igtl::PositionMessage::Pointer& m = msg_->position;
     m->SetMessageHeader(mh);
     m->AllocatePack();
-    if (static_cast<std::size_t>(m->GetPackBodySize()) != body_size) {
-      ++counts_.other_types;
+    if (static_cast<std::size_t>(m->GetPackBodySize()) != body_size) {  // checked in feed(); kept as a guard
+      ++counts_.malformed;
       return;
     }
     std::memcpy(m->GetPackBodyPointer(), body, body_size);

@@ -5,7 +5,9 @@
 // CRC-checks each message (igtl::MessageHeader, igtl::TransformMessage, igtl::PositionMessage).
 //
 // TRANSFORM and POSITION give a pose (POSITION may carry no orientation); every other message
-// type (STATUS, IMAGE, STRING, ...) is skipped by its body size without being kept. Messages
+// type (STATUS, IMAGE, STRING, ...) is skipped by its body size without being kept, and so is
+// a TRANSFORM or POSITION whose body has not the size its type has (which the library would
+// read past its end). Messages
 // with a header version other than 1 (OpenIGTLink 3's extended header, which Debian's
 // libopenigtlink 1.11 does not read) and messages whose CRC fails are skipped and counted.
 // A body size beyond kMaxIgtlBodyBytes means the stream is not OpenIGTLink: error() says so.
@@ -32,6 +34,7 @@ struct IgtlStreamCounts {
   std::uint64_t other_types = 0;      // skipped: not a pose
   std::uint64_t other_versions = 0;   // skipped: header version other than 1
   std::uint64_t crc_failures = 0;     // skipped: the body's CRC did not match
+  std::uint64_t malformed = 0;        // skipped: a TRANSFORM or POSITION whose body has the wrong size
 };
 
 class IgtlStreamDecoder {

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "calibration/force_window.hpp"
 #include "formats/tracking_file.hpp"
 #include "tests/support/process_support.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -162,6 +163,10 @@ TEST(TrackingCli, LoadCellReadAndPressOnTheSimulatedRig) {
   ASSERT_EQ(run_palprig({"load-cell", "press", "--rig", rig, "--mmHg", "120", "--load-N", "2.4", "--presses", presses}).exit_code, 0);
   const std::string text = test_support::read_file(presses);
   EXPECT_TRUE(std::regex_match(text, std::regex("reference_mmHg,force_N\n60,1\\.(2|19)[0-9]*\n120,2\\.(4|39)[0-9]*\n"))) << text;
+  // The presses are what `calibrate fit --force-presses` reads: paper 003's force window.
+  const ForceWindowFit window = force_window_from_presses(presses);
+  EXPECT_NEAR(window.window.f_min_N, 1.2, 0.01);
+  EXPECT_NEAR(window.window.f_max_N, 2.4, 0.01);
   r = run_palprig({"load-cell", "read", "--rig", kData + "/rigs/simulated.json"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("simulated.json: load_cells: a \"load_cells\" section"), std::string::npos) << r.err;

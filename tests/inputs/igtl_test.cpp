@@ -146,9 +146,15 @@ TEST(IgtlStream, SkipsBadCrcAndOtherHeaderVersionsAndRefusesGarbage) {
     m->SetMatrix(mat);
     zeros = bytes_of(m.GetPointer());
   }
+  // A TRANSFORM whose body is 16 bytes, not 48: libopenigtlink would read 48 (found by
+  // fuzz_igtl_stream); skipped as malformed by its size.
+  std::vector<std::uint8_t> short_body = transform_bytes("Short", 1, 2, 3);
+  short_body.resize(58 + 16);
+  for (int i = 0; i < 8; ++i) short_body[42 + i] = static_cast<std::uint8_t>(i == 7 ? 16 : 0);
   std::vector<std::uint8_t> stream;
   append(stream, bad);
   append(stream, v3);
+  append(stream, short_body);
   append(stream, zeros);
   append(stream, transform_bytes("T", 7, 8, 9));
   IgtlStreamDecoder d;
@@ -160,6 +166,7 @@ TEST(IgtlStream, SkipsBadCrcAndOtherHeaderVersionsAndRefusesGarbage) {
   EXPECT_FLOAT_EQ(poses[1].pose.translation_mm[0], 7);
   EXPECT_EQ(d.counts().crc_failures, 1u);
   EXPECT_EQ(d.counts().other_versions, 1u);
+  EXPECT_EQ(d.counts().malformed, 1u);
 
   // An HTTP server is no tracker.
   IgtlStreamDecoder http;
