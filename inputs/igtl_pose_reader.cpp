@@ -64,6 +64,9 @@ IgtlPoseReader::Status IgtlPoseReader::poll(std::vector<DecodedPose>& poses, int
   if (timeout_ms != timeout_ms_) {
     // Reads are never "fully" (the library's readFully is ignored under a timeout, and a timeout
     // inside a message would lose the part read): the decoder gathers messages itself.
+    // (libopenigtlink 1.11's SetReceiveTimeout saves the old timeout with getsockopt and an
+    // uninitialised length, which valgrind reports; Linux writes at most a timeval there, the
+    // size of the field it names, and the saved value is never restored by palprig.)
     client_->socket->SetReceiveTimeout(timeout_ms);
     timeout_ms_ = timeout_ms;
   }

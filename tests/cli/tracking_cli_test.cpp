@@ -52,14 +52,23 @@ std::string head_of_pass(const TempDir& dir, double seconds) {
 
 }  // namespace
 
+// The shipped rig with load cells, patient with a shared machine: lost periods and overruns
+// are not what this test is about (a busy CI machine loses 50 ms now and then).
+std::string patient_rig(const TempDir& dir) {
+  std::string rig = test_support::read_file(kData + "/rigs/simulated_load_cells.json");
+  const std::string from = "\"max_consecutive_overruns\": 20", to = "\"max_consecutive_overruns\": 100000, \"max_lost_time_s\": 10";
+  rig.replace(rig.find(from), from.size(), to);
+  return dir.write("rig.json", rig).string();
+}
+
 TEST(TrackingCli, RunOverAReplayedTrackerPrintsThePerRegionTable) {
   TempDir dir;
   ChildProcess server({"igtl-replay", "--poses", head_of_pass(dir, 3.0), "--port", "0", "--duration-s", "60"});
   const int port = start_replay(server);
   ASSERT_GT(port, 0) << server.out() << server.err();
   const auto r = run_palprig({"run", "--input", "igtl:127.0.0.1:" + std::to_string(port), "--tracking",
-                              kData + "/tracking/tracking_three_fingers.json", "--rig", kData + "/rigs/simulated_load_cells.json",
-                              "--scene", kData + "/scenes/phantom_abc.json", "--duration-s", "3", "--regions", "--no-fifo", "--json"});
+                              kData + "/tracking/tracking_three_fingers.json", "--rig", patient_rig(dir),
+                              "--scene", kData + "/scenes/phantom_abc.json", "--duration-s", "3", "--regions", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["input"], "tracker igtl:127.0.0.1:" + std::to_string(port) + " (Finger1ToTracker, Finger2ToTracker, Finger3ToTracker)");
