@@ -60,6 +60,10 @@ LoadCellConfig parse_load_cell_config(const RigConfig& rig, const nlohmann::json
     if (rig.backend == "simulated") {
       if (c.has("input")) c.fail("input", "no input on the simulated rig (its cells are in \"simulated\")");
     } else {
+      if (!c.has("input"))
+        c.fail("input", rig.backend == "comedi"
+                            ? "the analog input the cell is read on: {\"channel\": N, \"volts_span\": [low, high]}"
+                            : "the register the cell is read on: {\"register\": N, \"volts_span\": [low, high], ...}");
       const JsonObject in = c.object("input");
       if (rig.backend == "comedi") {
         ch.comedi_channel = static_cast<int>(in.integer("channel", 0, 255));

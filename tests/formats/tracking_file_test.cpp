@@ -2,6 +2,9 @@
 // field refused with one line naming the file, the field and what was expected.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+
 #include "formats/rig_file.hpp"
 #include "formats/tracking_file.hpp"
 #include "models/parse_error.hpp"
@@ -118,6 +121,45 @@ TEST(TrackingFile, RefusesEachBadFieldInOneLine) {
             "got [[1, 0], [0, 1]]");
   EXPECT_EQ(refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "S", "colour": "red"}]})"),
             "t.json: tools[0].colour: no such field here (unknown field; check its spelling)");
+}
+
+TEST(RigLoadCells, HardwareInputsAreCheckedAgainstTheRegulatorsOwn) {
+  // The shipped comedi rig: its monitors use AI 0..2, so a load cell on AI 4 is accepted and one
+  // on AI 1 is refused; the WAGO module's monitors use input registers 0..2.
+  auto with_cells = [](const std::string& rig_file, const std::string& cells) {
+    TempDir dir;
+    std::ifstream in(kData / "rigs" / rig_file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.rfind('}'), 1, ",\"load_cells\": " + cells + "}");
+    try {
+      const RigConfig rig = load_rig_file(dir.write("r.json", text));
+      return std::string("accepted ") + std::to_string(rig.load_cells->channels.size());
+    } catch (const InputError& e) {
+      const std::string w = e.what();
+      return w.substr(w.find("r.json"));
+    }
+  };
+  const std::string comedi = R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"channel": %, "volts_span": [0, 5]}}]})";
+  auto on = [&](int ch) {
+    std::string c = comedi;
+    c.replace(c.find('%'), 1, std::to_string(ch));
+    return with_cells("ni_pcie_6259_comedi.json", c);
+  };
+  EXPECT_EQ(on(4), "accepted 1");
+  EXPECT_EQ(on(1), "r.json: load_cells.channels[0].input.channel: an analog input no regulator monitor uses, got 1");
+  EXPECT_EQ(with_cells("wago_750_559.json",
+                       R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"register": 3, "volts_span": [0, 10]}}]})"),
+            "accepted 1");
+  EXPECT_EQ(with_cells("wago_750_559.json",
+                       R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"register": 2, "volts_span": [0, 10]}}]})"),
+            "r.json: load_cells.channels[0].input.register: a register no regulator monitor reads, got 2");
+  EXPECT_EQ(with_cells("wago_750_559.json", R"({"fingers": "all", "channels": [{"N_per_V": 2}]})"),
+            "r.json: load_cells.channels[0].input: the register the cell is read on: {\"register\": N, \"volts_span\": [low, "
+            "high], ...}");
+  EXPECT_EQ(with_cells("wago_750_559.json",
+                       R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"register": 3, "volts_span": [0, 10]}}],
+                           "simulated": {"stiffness_N_per_mm": 1}})"),
+            "r.json: load_cells.simulated: nothing on a \"modbus\" rig (its cells are real)");
 }
 
 TEST(RigLoadCells, RefusesEachBadFieldInOneLine) {
