@@ -48,6 +48,10 @@ void register_rt_check_command(CLI::App& app);
 void register_store_command(CLI::App& app);
 // palprig check: load files through their readers (check_command.cpp; needs inputs/, so a rig command).
 void register_check_command(CLI::App& app);
+// Tracked fingers (issue 26): the OpenIGTLink replay server, the tracker's calibration, the load cells.
+void register_igtl_replay_command(CLI::App& app);
+void register_tracking_command(CLI::App& app);
+void register_load_cell_command(CLI::App& app);
 // Every command that needs the rig stack: rig_commands.cpp, or rig_commands_absent.cpp in the
 // analyst-only build (-DPALPRIG_RIG=OFF).
 void register_rig_commands(CLI::App& app);

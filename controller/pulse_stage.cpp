@@ -24,7 +24,7 @@ void apply_pulse_stage(PulseTickState& state, const PulseStageSetting& setting, 
       ahead.rise_advance_s = compensator.rise_anticipation_s();
       ahead.fall_advance_s = compensator.fall_anticipation_s();
     }
-    const FingerContact contact{fingers.centres[i], fingers.force_N, fingers.pressed};
+    const FingerContact contact{fingers.centres[i], fingers.finger_force_N[i], fingers.pressed && fingers.finger_pressed[i]};
     const PulseFelt felt = setting.arteries.felt(contact, state.clocks, state.activation[i], t_s, ahead,
                                                  rendering.has_measured_window ? &rendering.measured_window : nullptr);
     pulse_kPa[i] = felt.now_kPa;

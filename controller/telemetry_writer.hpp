@@ -17,6 +17,10 @@
 
 namespace palprig {
 
+// The binary telemetry file's version (its header). 2: the per-finger position, force and vent
+// reason (issue 26) after the flags.
+inline constexpr std::uint32_t kTelemetryFileVersion = 2;
+
 enum class TelemetryFormat { binary, csv };
 
 // Binary when the name ends in .bin or .ptl, CSV otherwise.

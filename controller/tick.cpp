@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "controller/pulse_stage.hpp"
+#include "models/finger_placement.hpp"
 
 namespace palprig {
 
@@ -83,25 +84,40 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   ChannelPressures target{};
   FingersOnSkin fingers;
   // Each bad reading is named for what is wrong with it (a NaN position is not a bad force).
-  if (!std::isfinite(sample.x_mm) || !std::isfinite(sample.y_mm)) {
+  if (!std::isfinite(sample.x_mm) || !std::isfinite(sample.y_mm) || !finger_positions_finite(sample)) {
     state.enter_fault(FaultCode::bad_position);
   } else if (!std::isfinite(sample.t_s)) {
     state.enter_fault(FaultCode::bad_time);
-  } else if (!std::isfinite(sample.force_N) || sample.force_N < 0) {
+  } else if (!std::isfinite(sample.force_N) || sample.force_N < 0 || !finger_forces_valid(sample)) {
     state.enter_fault(FaultCode::bad_sample);
   } else if (t_s - sample.t_s > config.safety.max_input_age_s) {
     state.enter_fault(FaultCode::input_stale);
-  } else if (sample.in_contact && sample.force_N >= config.contact_force_N) {
-    rec.flags |= kInContact;
-    fingers.pressed = true;
-    fingers.force_N = sample.force_N;
-    fingers.centres = config.layout.centres(sample.x_mm, sample.y_mm);
-    const double ratio = config.stress.force_ratio(sample.force_N);
+  } else {
+    // The triangle around the pen, or each finger at its own tracked position (issue 26); a
+    // finger whose tool is out of view is vented (target 0 kPa) and says why in the record.
+    const PlacedFingers placed = place_fingers(config.layout, sample, config.contact_force_N);
+    fingers.centres = placed.centres;
+    fingers.finger_force_N = placed.force_N;
+    fingers.finger_pressed = placed.pressed;
+    if (sample.own_positions) rec.flags |= kOwnPositions;
     for (std::size_t i = 0; i < kFingerCount; ++i) {
-      const TissueSample felt = scene.sample(fingers.centres[i], sample.force_N, t_s);
-      rec.stiffness[i] = static_cast<float>(felt.stiffness);
-      const double stress_kPa = config.stress.target_stress_kPa(felt.stiffness, sample.force_N);
-      target[i] = config.actuators[i].pressure_kPa(stress_kPa, ratio);
+      rec.finger_x_mm[i] = static_cast<float>(placed.centres[i].x_mm);
+      rec.finger_y_mm[i] = static_cast<float>(placed.centres[i].y_mm);
+      rec.finger_force_N[i] = static_cast<float>(placed.force_N[i]);
+      rec.finger_vent[i] = sample.fingers[i].vent;
+    }
+    if (sample.in_contact && sample.force_N >= config.contact_force_N) {
+      rec.flags |= kInContact;
+      fingers.pressed = true;
+      fingers.force_N = sample.force_N;
+      for (std::size_t i = 0; i < kFingerCount; ++i) {
+        if (!placed.pressed[i]) continue;
+        const double force_N = placed.force_N[i];
+        const TissueSample felt = scene.sample(fingers.centres[i], force_N, t_s);
+        rec.stiffness[i] = static_cast<float>(felt.stiffness);
+        const double stress_kPa = config.stress.target_stress_kPa(felt.stiffness, force_N);
+        target[i] = config.actuators[i].pressure_kPa(stress_kPa, config.stress.force_ratio(force_N));
+      }
     }
   }
   if (!fingers.pressed) fingers.force_N = sample.force_N;

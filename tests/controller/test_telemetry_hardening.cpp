@@ -46,6 +46,10 @@ TelemetryRecord extreme_record(float v) {
   r.wake_latency_us = r.io_us = -v;
   r.fault = static_cast<FaultCode>(255);
   r.flags = 255;
+  for (int i = 0; i < kFingerCount; ++i) {
+    r.finger_x_mm[i] = r.finger_y_mm[i] = r.finger_force_N[i] = v;
+    r.finger_vent[i] = static_cast<FingerVent>(255);
+  }
   return r;
 }
 
@@ -70,7 +74,10 @@ TEST(TelemetryHardening, RowsWithExtremeFloatsAreWholeRows) {
     EXPECT_EQ(v[0], "18446744073709551615");
     EXPECT_EQ(v[1].size(), 317u);  // -1.8e308 with 6 decimals: 309 digits, sign, point, 6
     EXPECT_EQ(v[5], c.text);       // stiffness_1
-    EXPECT_EQ(v[v.size() - 2], "255");
+    EXPECT_EQ(v[v.size() - 14], "255");  // the fault, then the flags, the fingers' positions, forces and vents
+    EXPECT_EQ(v[v.size() - 13], "255");
+    EXPECT_EQ(v[v.size() - 6], c.text);   // finger_force_N_1
+    EXPECT_EQ(v[v.size() - 1], "255");    // finger_vent_3
   }
 }
 
@@ -80,7 +87,7 @@ TEST(TelemetryHardening, MutatedBinaryFilesConvertOrAreRefused) {
   for (int file = 0; file < 50; ++file) {
     // A valid header, then records of random bytes: any float, any double, any fault code.
     std::string bytes = "PALPRIGT";
-    const std::uint32_t header[2] = {1, static_cast<std::uint32_t>(sizeof(TelemetryRecord))};
+    const std::uint32_t header[2] = {kTelemetryFileVersion, static_cast<std::uint32_t>(sizeof(TelemetryRecord))};
     bytes.append(reinterpret_cast<const char*>(header), sizeof header);
     const std::size_t records = 1 + rng() % 20;
     for (std::size_t i = 0; i < records * sizeof(TelemetryRecord); ++i) bytes.push_back(static_cast<char>(rng()));
@@ -108,7 +115,7 @@ TEST(TelemetryHardening, MutatedBinaryFilesConvertOrAreRefused) {
 TEST(TelemetryHardening, CommandLineConvertsAFileOfHugeFloats) {
   TempDir dir;
   std::string bytes = "PALPRIGT";
-  const std::uint32_t header[2] = {1, static_cast<std::uint32_t>(sizeof(TelemetryRecord))};
+  const std::uint32_t header[2] = {kTelemetryFileVersion, static_cast<std::uint32_t>(sizeof(TelemetryRecord))};
   bytes.append(reinterpret_cast<const char*>(header), sizeof header);
   for (int i = 0; i < 3; ++i) {
     const TelemetryRecord r = extreme_record(3e38f);
