@@ -167,6 +167,7 @@ void ParticipantScreen::show_feedback(int position, const QString& text) {
 
 void ParticipantScreen::show_wait(const QString& text) {
   set_answering(false);
+  for (QPushButton* b : fingers_) b->setChecked(false);  // no earlier choice left on show (a pause, the end)
   presented_ = -1;
   ready_->setVisible(false);
   prompt_->setText(text);
