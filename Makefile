@@ -85,14 +85,19 @@ test-tsan: deps
 
 # One run of every suite, the window's included, under AddressSanitizer + UndefinedBehaviorSanitizer (CI runs it).
 # The window's code too: the Qt suites (offscreen, and the Xvfb cases) run under the sanitizers.
-# -O1 -g1, as the sanitizers' own documentation advises: at -O0 Eigen's code ran the simulated
+# Leaks are checked (LeakSanitizer): a process that leaks fails its test; only system libraries'
+# allocations kept for the life of a process are suppressed (tools/lsan-suppressions.txt).
+# The libraries at -O1 -g1, as the sanitizers' own documentation advises (the suites' own sources at
+# -O0, tests/CMakeLists.txt): at -O0 Eigen's code ran the simulated
 # sessions over ten times slower than the release build (14 sessions took over 300 s), and line
 # tables are all a sanitizer report needs.
 test-asan: deps
 	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DPALPRIG_SANITIZE=ON \
 	  -DPALPRIG_BENCH=OFF -DPALPRIG_GUI=ON
 	cmake --build $(BUILD_ASAN) -j$(JOBS)
-	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j$(JOBS) --timeout 900
+	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan-suppressions.txt:print_suppressions=0 \
+	  ctest --output-on-failure -j$(JOBS) --timeout 900
 
 # The analyst-only build: the study-data floor and the palprig command without any rig library
 # (no libmodbus, comedilib or libevdev linked); its suites, the layout check and the refusal of
