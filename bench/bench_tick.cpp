@@ -43,9 +43,20 @@ const MapScene& big_scene(MapSampling sampling) {
 
 // A pen wandering over the whole map (a new place each tick: the worst case for the cache)
 // or moving like a hand (40 mm/s).
-void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering) {
+// With lag_compensated, the whole target is lag-compensated (the regulators of the simulated
+// rig as calibration identifies them: 4 ms dead time, 50 ms lag): the scene is also sampled
+// where the fingers will be (up to three more samples per finger), and every channel's
+// compensator runs; on the random map every tick is an edge, its worst case.
+void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering, bool lag_compensated = false) {
   const MapScene& scene = big_scene(sampling);
   TickConfig cfg;
+  if (lag_compensated) {
+    cfg.lag_compensation.whole_target = true;
+    for (std::size_t i = 0; i < kFingerCount; ++i) {
+      cfg.lag_compensation.identified[i] = true;
+      cfg.lag_compensation.regulator[i] = {0.004, 0.050, 2000.0};
+    }
+  }
   TickState st = make_tick_state(cfg);
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> pos(0, 400);
@@ -82,9 +93,13 @@ void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering) {
 void BM_TickNearestWandering(benchmark::State& s) { tick_cost(s, MapSampling::nearest, true); }
 void BM_TickBilinearWandering(benchmark::State& s) { tick_cost(s, MapSampling::bilinear, true); }
 void BM_TickNearestHandSpeed(benchmark::State& s) { tick_cost(s, MapSampling::nearest, false); }
+void BM_TickNearestWanderingLagCompensated(benchmark::State& s) { tick_cost(s, MapSampling::nearest, true, true); }
+void BM_TickNearestHandSpeedLagCompensated(benchmark::State& s) { tick_cost(s, MapSampling::nearest, false, true); }
 BENCHMARK(BM_TickNearestWandering);
 BENCHMARK(BM_TickBilinearWandering);
 BENCHMARK(BM_TickNearestHandSpeed);
+BENCHMARK(BM_TickNearestWanderingLagCompensated);
+BENCHMARK(BM_TickNearestHandSpeedLagCompensated);
 
 // Replay: the bundled phantom rastered for 60 s of loop time at 1 kHz on the simulated rig.
 void BM_Replay60s(benchmark::State& state) {

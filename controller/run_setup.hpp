@@ -3,6 +3,7 @@
 // checked (InputError before anything moves), the input made, the timing settled, then the
 // backend opened, the loop run and the backend closed.
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "controller/loop_runner.hpp"
@@ -23,6 +24,9 @@ struct RunFiles {
   // The user gave the run's length: a trace or pen recording longer than the bounds of
   // TraceLimits/PenRecordingLimits, or with gaps over the stale-input limit, is run anyway.
   bool explicit_duration = false;
+  // Lag compensation of the whole target for this run (`--compensate-lag` / `--no-compensate-lag`):
+  // overrides the calibration file's lag_compensation.enabled; unset: the file decides.
+  std::optional<bool> compensate_lag;
 };
 
 struct LoadedRun {
@@ -34,6 +38,9 @@ struct LoadedRun {
   std::string input_spec;
   std::unique_ptr<RigBackend> backend;  // made by execute_run
   bool live = false;  // hardware or a live pen: runs on the wall clock only
+  // What the run does about the regulators' lag (controller/tick_setup.hpp's
+  // describe_lag_compensation): lines for the front end to print before it runs.
+  std::vector<std::string> lag_compensation_notes;
 };
 
 // How the user asked the run to be timed.
@@ -50,6 +57,8 @@ std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& sc
                                         const TabletConfig& tablet = {}, const TraceLimits& trace_limits = {});
 
 LoadedRun load_run(const RunFiles& files);  // throws InputError before anything moves
+// Refused (InputError naming the calibration file and `lag_compensation`) when compensate_lag
+// asks for lag compensation and no channel of the calibration has identified dynamics.
 // The same without making the input (run.input stays empty): for a front end with an input of
 // its own (the GUI's window pen), which then calls make_input for every other input.
 LoadedRun load_run_files(const RunFiles& files);

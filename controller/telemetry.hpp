@@ -22,6 +22,10 @@ struct TelemetryRecord {
   float io_us = 0;                        // time spent in the backend this tick
   FaultCode fault = FaultCode::none;
   std::uint8_t flags = 0;                 // TelemetryFlag bits
+  // How far the tissue under each finger is carried by tissue dragging (paper 000's stick/slip;
+  // 0 where the scene does not drag): the finger feels the tissue at its centre minus this.
+  float drag_x_mm[kFingerCount] = {};
+  float drag_y_mm[kFingerCount] = {};
 };
 
 enum TelemetryFlag : std::uint8_t {
@@ -31,6 +35,7 @@ enum TelemetryFlag : std::uint8_t {
   kVented = 1 << 3,
   kOverrun = 1 << 4,   // this tick finished after the next deadline
   kDisarmed = 1 << 5,  // the backend was not armed: vented, monitors still read
+  kLagCompensated = 1 << 6,  // a channel's whole target was lag-compensated (calibration's identified regulators)
 };
 
 static_assert(std::is_trivially_copyable_v<TelemetryRecord>);

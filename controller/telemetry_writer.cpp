@@ -151,7 +151,10 @@ void write_telemetry_csv_header(std::ostream& out) {
   out << "tick,t_s,x_mm,y_mm,force_N";
   for (const char* col : {"stiffness", "target_kPa", "setpoint_kPa", "monitor_kPa"})
     for (int i = 1; i <= kFingerCount; ++i) out << ',' << col << '_' << i;
-  out << ",wake_latency_us,io_us,fault,flags\n";
+  out << ",wake_latency_us,io_us,fault,flags";
+  for (const char* col : {"drag_x_mm", "drag_y_mm"})
+    for (int i = 1; i <= kFingerCount; ++i) out << ',' << col << '_' << i;
+  out << '\n';
 }
 
 namespace {
@@ -189,7 +192,10 @@ void write_telemetry_csv_row(std::ostream& out, const TelemetryRecord& r) {
     for (int i = 0; i < kFingerCount; ++i) append_field(row, ",%.4f", double(c[i]));
   append_field(row, ",%.1f", double(r.wake_latency_us));
   append_field(row, ",%.1f", double(r.io_us));
-  append_field(row, ",%d,%d\n", int(r.fault), int(r.flags));
+  append_field(row, ",%d,%d", int(r.fault), int(r.flags));
+  for (const float* c : {r.drag_x_mm, r.drag_y_mm})
+    for (int i = 0; i < kFingerCount; ++i) append_field(row, ",%.3f", double(c[i]));
+  row.push_back('\n');
   out.write(row.data(), static_cast<std::streamsize>(row.size()));
 }
 

@@ -11,6 +11,10 @@ TickState make_tick_state(const TickConfig& config) noexcept {
   TickState s;
   s.hysteresis_inverse = config.hysteresis_inverse;
   for (auto& inverse : s.hysteresis_inverse) inverse.reset(0.0);
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const PrandtlIshlinskii& inverse = s.hysteresis_inverse[i];
+    s.hysteresis_forward[i] = inverse.is_identity() ? PrandtlIshlinskii{} : inverse.forward_of_inverse();
+  }
   return s;
 }
 
@@ -23,6 +27,30 @@ void check_targets(TickState& state, const ChannelPressures& target_kPa, double 
     if (!std::isfinite(target_kPa[i])) state.enter_fault(FaultCode::non_finite_target);
   }
   if (state.fault == FaultCode::none && !std::isfinite(t_s)) state.enter_fault(FaultCode::bad_time);
+}
+
+}  // namespace
+
+namespace {
+
+// The actuator's play follows the setpoints actually sent. Where the safety stage sent another
+// value than the inverse computed (a reversal's jump of twice the play, slew-limited over two
+// ticks; a p_max clamp; a command below 0 kPa) the inverse continues from the sent one: else a
+// boost that turns back before the setpoint caught up leaves the inverse a play's width off the
+// actuator. Near 0 kPa the regulator exhausts (the band above the command narrows to the
+// command), which the forward copy follows too: after a command near 0 the inverse starts from
+// an emptied actuator, not from one a play's width up.
+void hysteresis_follow_setpoints(TickState& state, const ChannelPressures& command_kPa, const TickResult& out) noexcept {
+  if (state.fault != FaultCode::none || (out.record.flags & kVented)) return;  // venting: states kept, as the inverse's
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    PrandtlIshlinskii& inverse = state.hysteresis_inverse[i];
+    if (inverse.is_identity()) continue;
+    PrandtlIshlinskii& forward = state.hysteresis_forward[i];
+    const double sent = out.setpoint_kPa[i];
+    forward.apply_exhausting(sent);
+    const bool near_bottom = forward.operator_count > 0 && sent < forward.thresholds_kPa[forward.operator_count - 1];
+    if (sent != command_kPa[i] || near_bottom) sync_inverse_to(forward, sent, inverse);
+  }
 }
 
 }  // namespace
@@ -72,6 +100,32 @@ void safety_stage(TickState& state, const TickConfig& config, const ChannelPress
   state.started = true;
 }
 
+namespace {
+
+// The target of one finger pressing `felt_at` (the tissue point under it) with force_N: the
+// scene's stiffness there, the stress model and the channel's actuator line.
+double finger_target_kPa(const TickConfig& config, const Scene& scene, std::size_t i, const Point2_mm& felt_at,
+                         double force_N, double t_s, TissueSample* felt_out = nullptr) noexcept {
+  const TissueSample felt = scene.sample(felt_at, force_N, t_s);
+  if (felt_out) *felt_out = felt;
+  const double stress_kPa = config.stress.target_stress_kPa(felt.stiffness, force_N);
+  return config.actuators[i].pressure_kPa(stress_kPa, config.stress.force_ratio(force_N));
+}
+
+// Where the fingers will be `lead_s` from now (the pen extrapolated from its past samples),
+// which tissue they will press then (the drag stepped along), and the target there.
+double predicted_target_kPa(const TickState& state, const TickConfig& config, const Scene& scene, std::size_t i,
+                            double t_s, double lead_s) noexcept {
+  const TouchSample pen = state.lag.pen.predict(t_s + lead_s, config.lag_compensation.prediction);
+  if (!pen.in_contact || !(pen.force_N >= config.contact_force_N)) return 0.0;  // a lift coming
+  const Point2_mm centre = config.layout.centres(pen.x_mm, pen.y_mm)[i];
+  FingerDrag drag = state.drag[i];
+  step_drag(drag, scene.drag(state.drag_layer[i]), centre, pen.force_N, true, lead_s);
+  return finger_target_kPa(config, scene, i, drag.felt_point(centre), pen.force_N, t_s + lead_s);
+}
+
+}  // namespace
+
 TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, const TouchSample& sample,
                 double t_s) noexcept {
   TickResult out;
@@ -79,6 +133,7 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   rec.x_mm = static_cast<float>(sample.x_mm);
   rec.y_mm = static_cast<float>(sample.y_mm);
   rec.force_N = static_cast<float>(sample.force_N);
+  const double dt_s = state.started ? t_s - state.last_t_s : 0.0;
 
   ChannelPressures target{};
   FingersOnSkin fingers;
@@ -96,23 +151,72 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
     fingers.pressed = true;
     fingers.force_N = sample.force_N;
     fingers.centres = config.layout.centres(sample.x_mm, sample.y_mm);
-    const double ratio = config.stress.force_ratio(sample.force_N);
-    for (std::size_t i = 0; i < kFingerCount; ++i) {
-      const TissueSample felt = scene.sample(fingers.centres[i], sample.force_N, t_s);
-      rec.stiffness[i] = static_cast<float>(felt.stiffness);
-      const double stress_kPa = config.stress.target_stress_kPa(felt.stiffness, sample.force_N);
-      target[i] = config.actuators[i].pressure_kPa(stress_kPa, ratio);
-    }
   }
   if (!fingers.pressed) fingers.force_N = sample.force_N;
-  // Scenes without arteries (maps) skip this entirely.
-  if (const PulseField* arteries = scene.pulse()) {
-    const PulseStageSetting setting{config.pulse, *arteries, config.safety.p_max_kPa, config.safety.slew_kPa_per_s};
-    const TickTime time{t_s, state.started ? t_s - state.last_t_s : 0.0};
-    apply_pulse_stage(state.pulse, setting, fingers, time, target, out.pulse_kPa);
+  // Tissue dragging (paper 000's stick/slip): each finger feels the tissue now under it, which
+  // a sticking finger has carried along; the arteries move with it too.
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    step_drag(state.drag[i], scene.drag(state.drag_layer[i]), fingers.centres[i], fingers.force_N, fingers.pressed,
+              std::max(dt_s, 0.0));
+    if (fingers.pressed) fingers.centres[i] = state.drag[i].felt_point(fingers.centres[i]);
+    rec.drag_x_mm[i] = static_cast<float>(state.drag[i].offset.x_mm);
+    rec.drag_y_mm[i] = static_cast<float>(state.drag[i].offset.y_mm);
+  }
+  if (fingers.pressed) {
+    for (std::size_t i = 0; i < kFingerCount; ++i) {
+      TissueSample felt;
+      target[i] = finger_target_kPa(config, scene, i, fingers.centres[i], sample.force_N, t_s, &felt);
+      rec.stiffness[i] = static_cast<float>(felt.stiffness);
+      state.drag_layer[i] = felt.layer;
+    }
+  } else {
+    state.drag_layer = {-1, -1, -1};
+  }
+
+  // What each channel compensates this tick, and the targets it compensates toward: the scene
+  // where the fingers will be (channels compensating the whole target), the pulse now and ahead.
+  const PulseField* arteries = scene.pulse();
+  const bool switch_on = !config.pulse.compensate_lag_switch ||
+                         config.pulse.compensate_lag_switch->load(std::memory_order_relaxed);
+  const double period_s = dt_s > 0 && std::isfinite(dt_s) ? dt_s : state.pulse.last_dt_s;
+  const LagPlan plan = plan_lag_compensation(state.lag, config.lag_compensation, config.pulse.lag,
+                                             config.pulse.compensate_lag, switch_on, arteries != nullptr, period_s);
+  LagTargets lag_targets;
+  lag_targets.base_now_kPa = target;
+  lag_targets.base_ahead_kPa = target;
+  if (state.fault == FaultCode::none) state.lag.pen.observe(sample);
+  if (plan.any_total() && state.fault == FaultCode::none) {
+    rec.flags |= kLagCompensated;
+    for (std::size_t i = 0; i < kFingerCount; ++i) {
+      if (plan.part[i] != CompensatedPart::total) continue;
+      const LagCompensationSetting& lag = config.lag_compensation;
+      auto sample = [&](double ahead_s) {
+        return ahead_s > 0 ? predicted_target_kPa(state, config, scene, i, t_s, ahead_s) : target[i];
+      };
+      lag_targets.base_ahead_kPa[i] =
+          anticipated_target_kPa(plan.model[i], plan.lead_s[i], state.lag.compensator[i].predicted_kPa(),
+                                 lag.max_lead_kPa, config.safety.p_max_kPa, lag.samples_ahead, lag.anticipate_edges, sample);
+    }
+  }
+  // Scenes without arteries (maps) skip the pulse stage entirely.
+  if (arteries) {
+    std::array<PulseLookahead, kFingerCount> ahead{};
+    for (std::size_t i = 0; i < kFingerCount; ++i)
+      ahead[i] = {plan.lead_s[i], plan.rise_advance_s[i], plan.fall_advance_s[i]};
+    PulseOutput pulse;
+    apply_pulse_stage(state.pulse, PulseStageSetting{config.pulse, *arteries}, fingers, TickTime{t_s, dt_s}, ahead,
+                      pulse);
+    out.pulse_kPa = pulse.now_kPa;
+    lag_targets.pulse_now_kPa = pulse.now_kPa;
+    lag_targets.pulse_ahead_kPa = pulse.ahead_kPa;
+    for (std::size_t i = 0; i < kFingerCount; ++i) target[i] += pulse.now_kPa[i];
   }
   check_targets(state, target, t_s, rec);
-  safety_stage(state, config, hysteresis_inverse_stage(state, target), t_s, out);
+  const LagLimits limits{config.safety.p_max_kPa, config.safety.slew_kPa_per_s, config.lag_compensation.max_lead_kPa};
+  out.compensated_kPa = lag_compensation_stage(state.lag, plan, lag_targets, limits, dt_s);
+  const ChannelPressures command = hysteresis_inverse_stage(state, out.compensated_kPa);
+  safety_stage(state, config, command, t_s, out);
+  hysteresis_follow_setpoints(state, command, out);
   return out;
 }
 
@@ -121,7 +225,10 @@ TickResult tick_direct(TickState& state, const TickConfig& config, const Channel
   TickResult out;
   out.record.flags |= kInContact;
   check_targets(state, target_kPa, t_s, out.record);
-  safety_stage(state, config, hysteresis_inverse_stage(state, target_kPa), t_s, out);
+  out.compensated_kPa = target_kPa;
+  const ChannelPressures command = hysteresis_inverse_stage(state, target_kPa);
+  safety_stage(state, config, command, t_s, out);
+  hysteresis_follow_setpoints(state, command, out);
   return out;
 }
 

@@ -3,8 +3,11 @@
 // function of (state, configuration, scene, sample, time): no threads, clocks, allocation or
 // exceptions, so tests and replays run it directly.
 //
-//   sample -> FingerLayout -> Scene::sample -> StressModel -> ActuatorModel
+//   sample -> FingerLayout [-> tissue drag (scenes whose layers drag; models/tissue_drag.hpp)]
+//          -> Scene::sample -> StressModel -> ActuatorModel
 //          [-> pulse stage (scenes with arteries only; controller/pulse_stage.hpp)]
+//          -> lag compensation stage (controller/lag_compensation_stage.hpp: the pulse part, or
+//             with identified regulators the whole target, sampled where the fingers will be)
 //          -> hysteresis inverse stage -> safety stage (clamp, slew, vent) -> setpoints + telemetry
 //
 // Experiments that present fixed per-finger pressures, and calibration, use tick_direct(),
@@ -13,6 +16,7 @@
 #include <array>
 
 #include "controller/fault.hpp"
+#include "controller/lag_compensation_stage.hpp"
 #include "controller/telemetry.hpp"
 #include "models/touch_sample.hpp"
 #include "models/channel_pressures.hpp"
@@ -22,6 +26,7 @@
 #include "models/safety_limits.hpp"
 #include "models/scene.hpp"
 #include "models/stress_model.hpp"
+#include "models/tissue_drag.hpp"
 
 namespace palprig {
 
@@ -39,6 +44,9 @@ struct TickConfig {
   double period_s = 0.001;
   // Pulse rendering (scenes with arteries): regulator-lag pre-compensation from the rig's plant.
   PulseRendering pulse;
+  // The regulators' identified dynamics and whether the whole target is lag-compensated
+  // (calibration's `lag_compensation`; off unless identified and switched on).
+  LagCompensationSetting lag_compensation;
 };
 
 struct TickState {
@@ -49,9 +57,17 @@ struct TickState {
   bool started = false;           // a tick has run: last_t_s is a time
   FaultCode fault = FaultCode::none;  // latched: once set, every later tick vents
   std::uint64_t ticks = 0;
-  // The running copies of TickConfig::hysteresis_inverse (they hold each channel's play state).
+  // The running copies of TickConfig::hysteresis_inverse (they hold each channel's play state),
+  // and the forward models they invert, driven by the setpoints actually sent: where the safety
+  // stage changed a command (slew limit, p_max), the inverse continues from what the actuator got.
   std::array<PrandtlIshlinskii, kFingerCount> hysteresis_inverse{};
-  PulseTickState pulse;  // pulse clocks, per-finger activation and lag compensators (fixed size)
+  std::array<PrandtlIshlinskii, kFingerCount> hysteresis_forward{};
+  PulseTickState pulse;  // pulse clocks and per-finger activation (fixed size)
+  LagCompensationState lag;  // per-channel lag compensators and the pen's recent samples
+  // Per finger: how the tissue under it is dragged, and the layer it pressed into last tick
+  // (whose stick/slip parameters apply).
+  std::array<FingerDrag, kFingerCount> drag{};
+  std::array<int, kFingerCount> drag_layer{-1, -1, -1};
 
   // Latch a fault (the first reason wins) so the next ticks vent.
   void enter_fault(FaultCode why) noexcept {
@@ -59,12 +75,18 @@ struct TickState {
   }
   // The channels were vented without a fault (a link outage, a disarm): the next tick rises
   // from 0 kPa under the slew limit again, as on the first tick. Time and the pulse clocks go on.
-  void restart_from_vented() noexcept { last_setpoint_kPa = {}; }
+  void restart_from_vented() noexcept {
+    last_setpoint_kPa = {};
+    lag.restart_from_vented();
+  }
 };
 
 struct TickResult {
   ChannelPressures setpoint_kPa{};
   ChannelPressures pulse_kPa{};  // the pulse each finger should feel now (before compensation); 0 without arteries
+  // What the lag compensation stage commanded (before the hysteresis inverse and the safety
+  // stage); equal to the target where nothing is compensated.
+  ChannelPressures compensated_kPa{};
   TelemetryRecord record;
 };
 

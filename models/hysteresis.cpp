@@ -19,6 +19,17 @@ double PrandtlIshlinskii::apply(double x_kPa) noexcept {
   return y;
 }
 
+double PrandtlIshlinskii::apply_exhausting(double x_kPa, double bottom_kPa) noexcept {
+  double y = linear_weight * x_kPa;
+  const double room = std::max(x_kPa - bottom_kPa, 0.0);
+  for (std::size_t i = 0; i < operator_count; ++i) {
+    const double r = thresholds_kPa[i];
+    state_kPa[i] = std::max(x_kPa - r, std::min(x_kPa + std::min(r, room), state_kPa[i]));
+    y += weights[i] * state_kPa[i];
+  }
+  return y;
+}
+
 bool PrandtlIshlinskii::valid() const noexcept {
   if (!(linear_weight > 0) || !std::isfinite(linear_weight) || operator_count > kMaxPlayOperators) return false;
   double prev = 0.0;
@@ -45,6 +56,39 @@ PrandtlIshlinskii PrandtlIshlinskii::inverse() const noexcept {
     sum_before = sum_through;
   }
   return inv;
+}
+
+PrandtlIshlinskii PrandtlIshlinskii::forward_of_inverse() const noexcept {
+  // Kuhnen's relations solved for the forward parameters, in operator order:
+  //   w0 = 1 / w0',  w_i = -w'_i S^2 / (1 + w'_i S),  r_i = (r'_i + sum_{j<i} w_j r_j) / S,
+  // with S = w0 + sum_{j<i} w_j.
+  PrandtlIshlinskii f;
+  f.operator_count = operator_count;
+  f.linear_weight = 1.0 / linear_weight;
+  double sum_before = f.linear_weight, moment = 0;  // S, sum_{j<i} w_j r_j
+  for (std::size_t i = 0; i < operator_count; ++i) {
+    const double w = -weights[i] * sum_before * sum_before / (1.0 + weights[i] * sum_before);
+    const double r = (thresholds_kPa[i] + moment) / sum_before;
+    f.weights[i] = w;
+    f.thresholds_kPa[i] = r;
+    moment += w * r;
+    sum_before += w;
+  }
+  return f;
+}
+
+double sync_inverse_to(const PrandtlIshlinskii& forward, double x_kPa, PrandtlIshlinskii& inverse) noexcept {
+  double y = forward.linear_weight * x_kPa;
+  for (std::size_t i = 0; i < forward.operator_count; ++i) y += forward.weights[i] * forward.state_kPa[i];
+  double sum_before = forward.linear_weight, weighted = 0;  // S, sum_{j<i} w_j d_j
+  for (std::size_t i = 0; i < forward.operator_count && i < inverse.operator_count; ++i) {
+    const double d = x_kPa - forward.state_kPa[i];
+    const double e = sum_before * d - weighted;
+    inverse.state_kPa[i] = y - e;
+    weighted += forward.weights[i] * d;
+    sum_before += forward.weights[i];
+  }
+  return y;
 }
 
 }  // namespace palprig

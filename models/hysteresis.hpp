@@ -23,11 +23,31 @@ struct PrandtlIshlinskii {
   // Sets every play state to x (a relaxed start at input x).
   void reset(double x_kPa) noexcept;
   double apply(double x_kPa) noexcept;
+  // As apply, for an actuator whose regulator exhausts at the bottom of its range: below
+  // bottom + r_i a play's band above the input narrows to the input's distance from the bottom
+  // (a regulator commanded 0 kPa opens its exhaust valve and empties the actuator; the simulated
+  // plant of models/pneumatic_plant.hpp does the same). A plain PI model cannot describe that;
+  // the tick's forward copy, driven by the setpoints sent, uses this so that its inverse
+  // continues from an emptied actuator after a command near 0.
+  double apply_exhausting(double x_kPa, double bottom_kPa = 0.0) noexcept;
   bool is_identity() const noexcept { return operator_count == 0 && linear_weight == 1.0; }
   // Valid when w0 > 0, weights >= 0, thresholds positive, finite and strictly increasing.
   bool valid() const noexcept;
   // The analytic inverse (requires valid()).
   PrandtlIshlinskii inverse() const noexcept;
+  // The forward model an analytic inverse came from (the inverse of inverse(); for a model made
+  // by inverse() only), play states reset to 0.
+  PrandtlIshlinskii forward_of_inverse() const noexcept;
 };
+
+// The inverse's state as it would be had the forward model's input history been the forward
+// model's own (forward's play states, after `x_kPa` was applied to it). Used when a command was
+// changed after the inverse computed it (the safety stage's slew limit or p_max clamp): the play
+// of the real actuator followed the applied command, so the inverse must continue from there,
+// not from the command it computed. The inverse's play distances e_i = y - z'_i and the forward
+// model's d_i = x - z_i are tied by e_i = (w0 + sum_{j<i} w_j) d_i - sum_{j<i} w_j d_j along any
+// history from a common relaxed start (the plays' memory is nested: a play saturates only after
+// every smaller one has). Returns the forward model's output y for x.
+double sync_inverse_to(const PrandtlIshlinskii& forward, double x_kPa, PrandtlIshlinskii& inverse) noexcept;
 
 }  // namespace palprig

@@ -1,4 +1,4 @@
-#include "models/pulse_renderer.hpp"
+#include "models/lag_compensator.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,84 @@
+#include "controller/lag_compensation_stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace palprig {
+
+LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompensationSetting& setting,
+                              const std::array<RegulatorLag, kFingerCount>& pulse_lag, bool pulse_compensation,
+                              bool on, bool has_pulse, double period_s) noexcept {
+  LagPlan plan;
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    // The identified model where calibration has one that fits, else the rig file's plant.
+    plan.model[i] = setting.identified[i] ? setting.regulator[i] : pulse_lag[i];
+    if (!on) plan.part[i] = CompensatedPart::none;
+    else if (setting.whole(i)) plan.part[i] = CompensatedPart::total;
+    else if (has_pulse && pulse_compensation) plan.part[i] = CompensatedPart::pulse;
+    else plan.part[i] = CompensatedPart::none;
+    if (plan.part[i] == CompensatedPart::none) continue;
+    // A command issued now reaches the regulator one tick later and acts a dead time after that.
+    plan.lead_s[i] = plan.model[i].dead_time_s + period_s;
+    // The measured half-way times of the channel's compensator, when it stands for the same part
+    // (what it measured on the pulse alone does not time the whole target's edges).
+    if (state.part[i] == plan.part[i] && (plan.part[i] == CompensatedPart::pulse || setting.anticipate_edges)) {
+      plan.rise_advance_s[i] = state.compensator[i].rise_anticipation_s();
+      plan.fall_advance_s[i] = state.compensator[i].fall_anticipation_s();
+    }
+  }
+  return plan;
+}
+
+ChannelPressures lag_compensation_stage(LagCompensationState& state, const LagPlan& plan, const LagTargets& in,
+                                        const LagLimits& limits, double dt_s) noexcept {
+  ChannelPressures command{};
+  const bool stepped = dt_s > 0 && std::isfinite(dt_s);
+  const double max_step = stepped ? limits.slew_kPa_per_s * dt_s : 0.0;
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const double base = in.base_now_kPa[i];
+    const double now = base + in.pulse_now_kPa[i];
+    LagCompensator& c = state.compensator[i];
+    const CompensatedPart part = plan.part[i];
+    if (part != state.part[i] && stepped) {
+      // The compensator now stands for another part of the command: carry its model over to
+      // the new part (the regulator's output does not jump because its command's meaning did).
+      double y = c.predicted_kPa(), u = c.last_command_kPa();
+      if (state.part[i] == CompensatedPart::pulse && part == CompensatedPart::total) y += base, u += base;
+      else if (state.part[i] == CompensatedPart::total && part == CompensatedPart::pulse) y -= base, u -= base;
+      else if (part == CompensatedPart::total) y = u = now;
+      else y = u = in.pulse_now_kPa[i];
+      c.reset(y, u);
+    }
+    state.part[i] = part;
+    if (!std::isfinite(base)) {
+      command[i] = base;  // left for the safety stage to fault on
+      continue;
+    }
+    switch (part) {
+      case CompensatedPart::none:
+        command[i] = now;
+        break;
+      case CompensatedPart::pulse: {
+        // The pulse part may dip below zero (to speed a fall) but never takes the total below
+        // 0 kPa or above p_max.
+        const double lo = -std::max(base, 0.0);
+        const double hi = std::max(limits.p_max_kPa - base, 0.0);
+        command[i] = base + c.command(plan.model[i], in.pulse_ahead_kPa[i], lo, hi, max_step, stepped ? dt_s : 0.0);
+        break;
+      }
+      case CompensatedPart::total: {
+        const double want = in.base_ahead_kPa[i] + in.pulse_ahead_kPa[i];
+        // The lead bound: no command more than max_lead_kPa above what the models ask for now or
+        // ahead, nor more than twice that (a light target near the regulator's exhaust gets a
+        // light push), whatever the regulator model says; and never above p_max.
+        const double ceiling = std::max(std::isfinite(want) ? std::max(now, want) : now, 0.0);
+        const double hi = std::clamp(ceiling + std::min(limits.max_lead_kPa, ceiling), 0.0, limits.p_max_kPa);
+        command[i] = c.command(plan.model[i], std::isfinite(want) ? want : now, 0.0, hi, max_step, stepped ? dt_s : 0.0);
+        break;
+      }
+    }
+  }
+  return command;
+}
+
+}  // namespace palprig
