@@ -29,6 +29,37 @@ LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompen
   return plan;
 }
 
+double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
+                              double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
+                              const void* context) noexcept {
+  if (samples_ahead < 1) return sample(context, 0.0);
+  const double at_lead = sample(context, lead_s);
+  const double tau = model.time_constant_s;
+  if (!anticipate || samples_ahead < 2 || !(tau > 0) || !std::isfinite(at_lead) || !std::isfinite(y_kPa))
+    return at_lead;
+  constexpr double kEdge_kPa = 0.25;  // smaller changes are followed as they come
+  const double window_s = tau * 0.6931471805599453;  // the half-life: a whole fall's half-way time
+  const double later = sample(context, lead_s + window_s);
+  if (!std::isfinite(later)) return at_lead;
+  const double y = std::max(y_kPa, 0.0);
+  if (later < at_lead - kEdge_kPa && later < y) {
+    const double b = std::max(later, 0.0);
+    const double half_way_s = y > 0 ? std::clamp(tau * std::log(2 * y / (y + b)), 0.0, window_s) : 0.0;
+    const double there = samples_ahead >= 3 ? sample(context, lead_s + half_way_s) : later;
+    return std::isfinite(there) ? std::min(at_lead, there) : at_lead;
+  }
+  if (later > at_lead + kEdge_kPa && later > y) {
+    const double b = later;
+    const double hi = std::min(p_max_kPa, b + std::min(max_lead_kPa, b));
+    const double mid = 0.5 * (y + b);
+    if (!(hi > mid)) return at_lead;
+    const double half_way_s = std::clamp(tau * std::log((hi - y) / (hi - mid)), 0.0, window_s);
+    const double there = samples_ahead >= 3 ? sample(context, lead_s + half_way_s) : at_lead;
+    return std::isfinite(there) ? std::max(at_lead, there) : at_lead;
+  }
+  return at_lead;
+}
+
 ChannelPressures lag_compensation_stage(LagCompensationState& state, const LagPlan& plan, const LagTargets& in,
                                         const LagLimits& limits, double dt_s) noexcept {
   ChannelPressures command{};

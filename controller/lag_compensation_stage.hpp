@@ -22,10 +22,8 @@
 // The regulator model of a channel is calibration's identified one when it is usable, else the
 // rig file's plant section (for the pulse). The stage runs on the loop thread: fixed-size state,
 // no allocation, no locks, no exceptions. It includes nothing of the tick.
-#include <algorithm>
 #include <array>
 #include <atomic>
-#include <cmath>
 #include <cstdint>
 
 #include "models/channel_pressures.hpp"
@@ -87,17 +85,20 @@ LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompen
                               bool on, bool has_pulse, double period_s) noexcept;
 
 // Edges the regulator takes time over, asked for earlier so that the regulator's output is
-// half-way at the edge (the least squared error for a step). `sample(s)` is the target s seconds
-// from now (the scene where the fingers will be); y the compensator's model output (where the
-// regulator is heading one dead time ahead); hi the highest command allowed. A fall can only
-// let the output decay (0 kPa commanded): its half-way time from y to B is tau ln(2y / (y + B)),
-// at most the half-life tau ln 2, which is the window searched; a rise is pushed with the
-// command at hi: tau ln((hi - y) / (hi - (y + B) / 2)). Within the window the target at the
-// half-way time ahead decides: past half-way there, the edge is asked for now. Uses at most
-// samples_ahead samples (the one at the lead included).
-template <typename Sample>
+// half-way at the edge (the least squared error for a step). `sample(context, s)` is the target
+// s seconds from now (the scene where the fingers will be); y the compensator's model output
+// (where the regulator is heading one dead time ahead). A fall can only let the output decay
+// (0 kPa commanded): its half-way time from y to the level B it falls to is tau ln(2y / (y + B)),
+// at most the half-life tau ln 2, the window looked into for B; a rise is pushed with the command
+// at its bound hi (at most max_lead_kPa above B, and at most twice B): tau ln((hi - y) / (hi -
+// (y + B) / 2)). With an edge in the window, what is asked for is the target that half-way time
+// ahead (a single step is then half-way at its edge, and along a staircase the time looked at
+// only moves forward, so the command does not turn back and forth). Uses at most samples_ahead
+// samples (the one at the lead included); 0: the target now.
+using TargetAhead = double (*)(const void* context, double ahead_s);
 double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
-                              double p_max_kPa, int samples_ahead, bool anticipate, Sample&& sample) noexcept;
+                              double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
+                              const void* context) noexcept;
 
 // The targets the stage works from: the stiffness part now and ahead (ahead only for channels
 // compensating the total; the stage ignores it elsewhere), and the pulse now and ahead.
@@ -116,35 +117,5 @@ struct LagLimits {
 // Non-finite targets pass through for the safety stage to fault on.
 ChannelPressures lag_compensation_stage(LagCompensationState& state, const LagPlan& plan, const LagTargets& targets,
                                         const LagLimits& limits, double dt_s) noexcept;
-
-template <typename Sample>
-double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
-                              double p_max_kPa, int samples_ahead, bool anticipate, Sample&& sample) noexcept {
-  if (samples_ahead < 1) return sample(0.0);
-  const double at_lead = sample(lead_s);
-  const double tau = model.time_constant_s;
-  if (!anticipate || samples_ahead < 2 || !(tau > 0) || !std::isfinite(at_lead) || !std::isfinite(y_kPa))
-    return at_lead;
-  constexpr double kEdge_kPa = 0.25;  // smaller changes are followed as they come
-  const double window_s = tau * 0.6931471805599453;
-  const double later = sample(lead_s + window_s);
-  if (!std::isfinite(later)) return at_lead;
-  const double y = std::max(y_kPa, 0.0);
-  if (later < at_lead - kEdge_kPa && later < y) {
-    const double b = std::max(later, 0.0);
-    const double half_way_s = y > 0 ? std::min(tau * std::log(2 * y / (y + b)), window_s) : 0.0;
-    const double there = samples_ahead >= 3 ? sample(lead_s + half_way_s) : later;
-    return there < 0.5 * (y + b) ? std::min(at_lead, there) : at_lead;
-  }
-  if (later > at_lead + kEdge_kPa && later > y) {
-    const double hi = std::min(p_max_kPa, later + std::min(max_lead_kPa, std::max(later, 0.0)));
-    const double mid = 0.5 * (y + later);
-    if (!(hi > mid)) return at_lead;
-    const double half_way_s = std::min(tau * std::log((hi - y) / (hi - mid)), window_s);
-    const double there = samples_ahead >= 3 ? sample(lead_s + half_way_s) : at_lead;
-    return there > mid ? std::max(at_lead, there) : at_lead;
-  }
-  return at_lead;
-}
 
 }  // namespace palprig

@@ -124,6 +124,19 @@ double predicted_target_kPa(const TickState& state, const TickConfig& config, co
   return finger_target_kPa(config, scene, i, drag.felt_point(centre), pen.force_N, t_s + lead_s);
 }
 
+// The target of finger i `ahead_s` from now, for the lag compensation's look ahead.
+struct Ahead {
+  const TickState& state;
+  const TickConfig& config;
+  const Scene& scene;
+  std::size_t i;
+  double t_s, now_kPa;
+  static double sample(const void* context, double ahead_s) noexcept {
+    const Ahead& a = *static_cast<const Ahead*>(context);
+    return ahead_s > 0 ? predicted_target_kPa(a.state, a.config, a.scene, a.i, a.t_s, ahead_s) : a.now_kPa;
+  }
+};
+
 }  // namespace
 
 TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, const TouchSample& sample,
@@ -190,12 +203,10 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
     for (std::size_t i = 0; i < kFingerCount; ++i) {
       if (plan.part[i] != CompensatedPart::total) continue;
       const LagCompensationSetting& lag = config.lag_compensation;
-      auto sample = [&](double ahead_s) {
-        return ahead_s > 0 ? predicted_target_kPa(state, config, scene, i, t_s, ahead_s) : target[i];
-      };
-      lag_targets.base_ahead_kPa[i] =
-          anticipated_target_kPa(plan.model[i], plan.lead_s[i], state.lag.compensator[i].predicted_kPa(),
-                                 lag.max_lead_kPa, config.safety.p_max_kPa, lag.samples_ahead, lag.anticipate_edges, sample);
+      const Ahead context{state, config, scene, i, t_s, target[i]};
+      lag_targets.base_ahead_kPa[i] = anticipated_target_kPa(
+          plan.model[i], plan.lead_s[i], state.lag.compensator[i].predicted_kPa(), lag.max_lead_kPa,
+          config.safety.p_max_kPa, lag.samples_ahead, lag.anticipate_edges, &Ahead::sample, &context);
     }
   }
   // Scenes without arteries (maps) skip the pulse stage entirely.
