@@ -31,7 +31,7 @@ LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompen
 
 double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
                               double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
-                              const void* context) noexcept {
+                              const void* context, const WindowCache& window) noexcept {
   if (samples_ahead < 1) return sample(context, 0.0);
   const double at_lead = sample(context, lead_s);
   const double tau = model.time_constant_s;
@@ -39,7 +39,13 @@ double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y
     return at_lead;
   constexpr double kEdge_kPa = 0.25;  // smaller changes are followed as they come
   const double window_s = tau * 0.6931471805599453;  // the half-life: a whole fall's half-way time
-  const double later = sample(context, lead_s + window_s);
+  double later;
+  if (window.target_kPa && window.sampled && *window.sampled && !window.fresh) {
+    later = *window.target_kPa;
+  } else {
+    later = sample(context, lead_s + window_s);
+    if (window.target_kPa && window.sampled) *window.target_kPa = later, *window.sampled = true;
+  }
   if (!std::isfinite(later)) return at_lead;
   const double y = std::max(y_kPa, 0.0);
   if (later < at_lead - kEdge_kPa && later < y) {

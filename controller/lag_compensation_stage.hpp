@@ -57,9 +57,16 @@ struct LagCompensationState {
   std::array<LagCompensator, kFingerCount> compensator{};
   std::array<CompensatedPart, kFingerCount> part{};
   PenPredictor pen;
+  // The target one half-life beyond the lead, per finger, as last sampled: it only says whether
+  // an edge lies within the window, so it is sampled every kWindowStride ticks (one finger a
+  // tick), not every tick.
+  std::array<double, kFingerCount> window_target_kPa{};
+  std::array<bool, kFingerCount> window_sampled{};
+  std::uint64_t ticks = 0;
   // The channels were vented: every model output and command is 0 kPa again.
   void restart_from_vented() noexcept {
     for (auto& c : compensator) c.reset(0.0, 0.0);
+    window_sampled = {};
   }
 };
 
@@ -95,10 +102,18 @@ LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompen
 // ahead (a single step is then half-way at its edge, and along a staircase the time looked at
 // only moves forward, so the command does not turn back and forth). Uses at most samples_ahead
 // samples (the one at the lead included); 0: the target now.
+// window_kPa, when given, caches the target one half-life beyond the lead between ticks:
+// resampled when fresh is true or it holds none (window_sampled false), reused otherwise.
 using TargetAhead = double (*)(const void* context, double ahead_s);
+inline constexpr std::uint64_t kWindowStride = 3;
+struct WindowCache {
+  double* target_kPa = nullptr;
+  bool* sampled = nullptr;
+  bool fresh = true;
+};
 double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
                               double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
-                              const void* context) noexcept;
+                              const void* context, const WindowCache& window = {}) noexcept;
 
 // The targets the stage works from: the stiffness part now and ahead (ahead only for channels
 // compensating the total; the stage ignores it elsewhere), and the pulse now and ahead.

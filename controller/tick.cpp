@@ -119,8 +119,12 @@ double predicted_target_kPa(const TickState& state, const TickConfig& config, co
   const TouchSample pen = state.lag.pen.predict(t_s + lead_s, config.lag_compensation.prediction);
   if (!pen.in_contact || !(pen.force_N >= config.contact_force_N)) return 0.0;  // a lift coming
   const Point2_mm centre = config.layout.centres(pen.x_mm, pen.y_mm)[i];
+  const DragSetting setting = scene.drag(state.drag_layer[i]);
+  if (!setting.drags() && state.drag[i].phase == DragPhase::free && state.drag[i].offset.x_mm == 0 &&
+      state.drag[i].offset.y_mm == 0)
+    return finger_target_kPa(config, scene, i, centre, pen.force_N, t_s + lead_s);  // nothing carried
   FingerDrag drag = state.drag[i];
-  step_drag(drag, scene.drag(state.drag_layer[i]), centre, pen.force_N, true, lead_s);
+  step_drag(drag, setting, centre, pen.force_N, true, lead_s);
   return finger_target_kPa(config, scene, i, drag.felt_point(centre), pen.force_N, t_s + lead_s);
 }
 
@@ -197,16 +201,21 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   LagTargets lag_targets;
   lag_targets.base_now_kPa = target;
   lag_targets.base_ahead_kPa = target;
-  if (state.fault == FaultCode::none) state.lag.pen.observe(sample);
+  if (state.fault == FaultCode::none) state.lag.pen.observe(sample, config.lag_compensation.prediction);
+  ++state.lag.ticks;
+  // A lifted pen, or a run that restarts: the window's cached targets are stale.
+  if (!fingers.pressed) state.lag.window_sampled = {};
   if (plan.any_total() && state.fault == FaultCode::none) {
     rec.flags |= kLagCompensated;
     for (std::size_t i = 0; i < kFingerCount; ++i) {
       if (plan.part[i] != CompensatedPart::total) continue;
       const LagCompensationSetting& lag = config.lag_compensation;
       const Ahead context{state, config, scene, i, t_s, target[i]};
+      const WindowCache window{&state.lag.window_target_kPa[i], &state.lag.window_sampled[i],
+                               state.lag.ticks % kWindowStride == i % kWindowStride};
       lag_targets.base_ahead_kPa[i] = anticipated_target_kPa(
           plan.model[i], plan.lead_s[i], state.lag.compensator[i].predicted_kPa(), lag.max_lead_kPa,
-          config.safety.p_max_kPa, lag.samples_ahead, lag.anticipate_edges, &Ahead::sample, &context);
+          config.safety.p_max_kPa, lag.samples_ahead, lag.anticipate_edges, &Ahead::sample, &context, window);
     }
   }
   // Scenes without arteries (maps) skip the pulse stage entirely.

@@ -29,9 +29,11 @@ class PenPredictor {
 
   void reset() noexcept { count_ = 0; }
   // Record the sample the tick got. Lifted samples clear the history (a new touch starts over).
-  void observe(const TouchSample& sample) noexcept;
+  // The slopes are fitted here, once per new sample, so predict() costs a few operations.
+  void observe(const TouchSample& sample, const PenPrediction& how = {}) noexcept;
   // The pen at t_s (its position, force and contact), from the newest sample; a lifted pen, or
-  // no sample yet, stays as it is. in_contact is kept; the force is clamped at 0.
+  // no sample yet, stays as it is. in_contact is kept; the force is clamped at 0. `how` should
+  // be the one given to observe() (the caps apply here; the window there).
   TouchSample predict(double t_s, const PenPrediction& how) const noexcept;
   std::size_t samples() const noexcept { return count_; }
 
@@ -39,8 +41,10 @@ class PenPredictor {
   const TouchSample& at(std::size_t age) const noexcept {  // 0: newest
     return ring_[(head_ + kCapacity - age) % kCapacity];
   }
+  void fit_slopes(const PenPrediction& how) noexcept;
   std::array<TouchSample, kCapacity> ring_{};
   std::size_t head_ = 0, count_ = 0;
+  double vx_ = 0, vy_ = 0, vf_ = 0;  // mm/s, mm/s, N/s as fitted at the newest sample, capped
 };
 
 }  // namespace palprig
