@@ -8,6 +8,7 @@
 # fingers 1 and 2, monitor/target over tumors, overshoot over soft tissue, largest setpoint).
 #
 #   bench/fidelity_modbus.sh [BUILD]        (BUILD: the build folder, default build)
+#   PALPRIG_KEEP=DIR bench/fidelity_modbus.sh   keeps the rig, sweep, calibration and telemetry in DIR
 #
 # About 3 minutes, most of it the real-time sweep. Prints the machine, the load, the identified
 # dynamics (which include the bus's transport) and one table row per run.
@@ -15,11 +16,12 @@ set -euo pipefail
 build=${1:-build}
 bin=$(cd "$build/bin" && pwd)
 src=$(cd "$(dirname "$0")/.." && pwd)
-work=$(mktemp -d)
+work=${PALPRIG_KEEP:-$(mktemp -d)}
+mkdir -p "$work"
 sim=
 cleanup() {
   [[ -n $sim ]] && kill "$sim" 2>/dev/null && wait "$sim" 2>/dev/null
-  rm -rf "$work"
+  [[ -n ${PALPRIG_KEEP:-} ]] || rm -rf "$work"
 }
 trap cleanup EXIT
 
@@ -43,8 +45,11 @@ json.dump(rig, open(sys.argv[2], "w"), indent=2)
 EOF
 
 "$bin/palprig" calibrate sweep --rig "$work/rig.json" --channels 1,2,3 \
-  --excitation staircase,random,sine,step,chirp --quiet --out "$work/sweep.csv" > "$work/sweep.txt" 2>&1
-"$bin/palprig" calibrate fit "$work/sweep.csv" --out "$work/cal.json" > "$work/fit.txt"
+  --excitation staircase,random,sine,step,chirp --quiet --out "$work/sweep.csv" > "$work/sweep.txt" 2>&1 ||
+  { echo "the sweep over the link failed:"; cat "$work/sweep.txt"; exit 1; }
+grep -E 'holds|redone' "$work/sweep.txt" || true
+"$bin/palprig" calibrate fit "$work/sweep.csv" --out "$work/cal.json" > "$work/fit.txt" 2>&1 ||
+  { echo "the fit failed:"; cat "$work/fit.txt"; exit 1; }
 sed -n '/^Regulator dynamics/,/^Actuator/p' "$work/fit.txt" | sed '$d'
 
 status=0

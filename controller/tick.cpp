@@ -9,11 +9,10 @@ namespace palprig {
 
 TickState make_tick_state(const TickConfig& config) noexcept {
   TickState s;
-  s.hysteresis_inverse = config.hysteresis_inverse;
-  for (auto& inverse : s.hysteresis_inverse) inverse.reset(0.0);
   for (std::size_t i = 0; i < kFingerCount; ++i) {
-    const PrandtlIshlinskii& inverse = s.hysteresis_inverse[i];
-    s.hysteresis_forward[i] = inverse.is_identity() ? PrandtlIshlinskii{} : inverse.forward_of_inverse();
+    const PrandtlIshlinskii& inverse = config.hysteresis_inverse[i];
+    s.hysteresis_model[i] = inverse.is_identity() ? PrandtlIshlinskii{} : inverse.forward_of_inverse();
+    s.hysteresis_model[i].reset(0.0);
   }
   return s;
 }
@@ -33,24 +32,14 @@ void check_targets(TickState& state, const ChannelPressures& target_kPa, double 
 
 namespace {
 
-// The actuator's play follows the setpoints actually sent. Where the safety stage sent another
-// value than the inverse computed (a reversal's jump of twice the play, slew-limited over two
-// ticks; a p_max clamp; a command below 0 kPa) the inverse continues from the sent one: else a
-// boost that turns back before the setpoint caught up leaves the inverse a play's width off the
-// actuator. Near 0 kPa the regulator exhausts (the band above the command narrows to the
-// command), which the forward copy follows too: after a command near 0 the inverse starts from
-// an emptied actuator, not from one a play's width up.
-void hysteresis_follow_setpoints(TickState& state, const ChannelPressures& command_kPa, const TickResult& out) noexcept {
-  if (state.fault != FaultCode::none || (out.record.flags & kVented)) return;  // venting: states kept, as the inverse's
-  for (std::size_t i = 0; i < kFingerCount; ++i) {
-    PrandtlIshlinskii& inverse = state.hysteresis_inverse[i];
-    if (inverse.is_identity()) continue;
-    PrandtlIshlinskii& forward = state.hysteresis_forward[i];
-    const double sent = out.setpoint_kPa[i];
-    forward.apply_exhausting(sent);
-    const bool near_bottom = forward.operator_count > 0 && sent < forward.thresholds_kPa[forward.operator_count - 1];
-    if (sent != command_kPa[i] || near_bottom) sync_inverse_to(forward, sent, inverse);
-  }
+// The actuator's play follows the setpoints actually sent (not what the inverse stage computed:
+// the safety stage may have cut a reversal's jump of twice the play to its slew step, or clamped
+// at p_max), with the regulator's exhaust near 0 kPa (the band above the command narrows to the
+// command), so the next inversion starts from where the actuator is. Venting: kept as they are.
+void hysteresis_follow_setpoints(TickState& state, const TickResult& out) noexcept {
+  if (state.fault != FaultCode::none || (out.record.flags & kVented)) return;
+  for (std::size_t i = 0; i < kFingerCount; ++i)
+    if (!state.hysteresis_model[i].is_identity()) state.hysteresis_model[i].apply_exhausting(out.setpoint_kPa[i]);
 }
 
 }  // namespace
@@ -59,8 +48,8 @@ ChannelPressures hysteresis_inverse_stage(TickState& state, const ChannelPressur
   ChannelPressures command = target_kPa;
   if (state.fault != FaultCode::none) return command;  // venting: the inverses keep their state
   for (std::size_t i = 0; i < kFingerCount; ++i)
-    if (std::isfinite(target_kPa[i]) && !state.hysteresis_inverse[i].is_identity())
-      command[i] = state.hysteresis_inverse[i].apply(target_kPa[i]);
+    if (std::isfinite(target_kPa[i]) && !state.hysteresis_model[i].is_identity())
+      command[i] = state.hysteresis_model[i].input_for(target_kPa[i]);
   return command;
 }
 
@@ -234,9 +223,8 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   check_targets(state, target, t_s, rec);
   const LagLimits limits{config.safety.p_max_kPa, config.safety.slew_kPa_per_s, config.lag_compensation.max_lead_kPa};
   out.compensated_kPa = lag_compensation_stage(state.lag, plan, lag_targets, limits, dt_s);
-  const ChannelPressures command = hysteresis_inverse_stage(state, out.compensated_kPa);
-  safety_stage(state, config, command, t_s, out);
-  hysteresis_follow_setpoints(state, command, out);
+  safety_stage(state, config, hysteresis_inverse_stage(state, out.compensated_kPa), t_s, out);
+  hysteresis_follow_setpoints(state, out);
   return out;
 }
 
@@ -246,9 +234,8 @@ TickResult tick_direct(TickState& state, const TickConfig& config, const Channel
   out.record.flags |= kInContact;
   check_targets(state, target_kPa, t_s, out.record);
   out.compensated_kPa = target_kPa;
-  const ChannelPressures command = hysteresis_inverse_stage(state, target_kPa);
-  safety_stage(state, config, command, t_s, out);
-  hysteresis_follow_setpoints(state, command, out);
+  safety_stage(state, config, hysteresis_inverse_stage(state, target_kPa), t_s, out);
+  hysteresis_follow_setpoints(state, out);
   return out;
 }
 

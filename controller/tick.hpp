@@ -35,7 +35,8 @@ struct TickConfig {
   StressModel stress;
   std::array<ActuatorModel, kFingerCount> actuators{};
   // Per channel, the inverse of the hysteresis model calibration fitted (identity: no
-  // compensation). The hysteresis inverse stage runs a copy of it (TickState::hysteresis_inverse).
+  // compensation). The hysteresis inverse stage inverts the model it came from
+  // (TickState::hysteresis_model) at each point of the actuator's history.
   std::array<PrandtlIshlinskii, kFingerCount> hysteresis_inverse{};
   SafetyLimits safety;
   double contact_force_N = 0.05;    // below this the pen is lifted: targets go to 0 kPa
@@ -57,11 +58,10 @@ struct TickState {
   bool started = false;           // a tick has run: last_t_s is a time
   FaultCode fault = FaultCode::none;  // latched: once set, every later tick vents
   std::uint64_t ticks = 0;
-  // The running copies of TickConfig::hysteresis_inverse (they hold each channel's play state),
-  // and the forward models they invert, driven by the setpoints actually sent: where the safety
-  // stage changed a command (slew limit, p_max), the inverse continues from what the actuator got.
-  std::array<PrandtlIshlinskii, kFingerCount> hysteresis_inverse{};
-  std::array<PrandtlIshlinskii, kFingerCount> hysteresis_forward{};
+  // Per channel, the hysteresis model TickConfig::hysteresis_inverse inverts (identity: none),
+  // its play states driven by the setpoints actually sent, with the regulator's exhaust near
+  // 0 kPa: the actuator's state as the inverse stage needs it.
+  std::array<PrandtlIshlinskii, kFingerCount> hysteresis_model{};
   PulseTickState pulse;  // pulse clocks and per-finger activation (fixed size)
   LagCompensationState lag;  // per-channel lag compensators and the pen's recent samples
   // Per finger: how the tissue under it is dragged, and the layer it pressed into last tick
@@ -90,7 +90,7 @@ struct TickResult {
   TelemetryRecord record;
 };
 
-// Prepare a state for a run: copies the hysteresis inverses from the configuration and resets them.
+// Prepare a state for a run: the hysteresis models of the configuration's inverses, relaxed at 0.
 TickState make_tick_state(const TickConfig& config) noexcept;
 
 TickResult tick(TickState& state, const TickConfig& config, const Scene& scene,
@@ -102,8 +102,11 @@ TickResult tick_direct(TickState& state, const TickConfig& config, const Channel
 
 // The last two stages, named as in the design diagram (tick and tick_direct call them in this
 // order). The hysteresis inverse stage turns targets into commands that land the actuator on the
-// target on both branches; it leaves non-finite targets for the safety stage and does nothing
-// once a fault is latched.
+// target on both branches (the model's input for the target at the actuator's present state,
+// PrandtlIshlinskii::input_for, which equals the analytic inverse above the regulator's exhaust
+// and handles it below); it leaves non-finite targets for the safety stage and does nothing
+// once a fault is latched. The states then follow what the safety stage sent
+// (hysteresis_follow_setpoints, called by tick and tick_direct after it).
 ChannelPressures hysteresis_inverse_stage(TickState& state, const ChannelPressures& target_kPa) noexcept;
 // The safety stage: vent on a latched fault or a non-finite command; otherwise clamp to
 // [0, p_max] and limit each change to the slew rate (from 0 kPa after a (re)start). Fills the

@@ -1,6 +1,8 @@
 #include "models/hysteresis.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cmath>
 
 namespace palprig {
@@ -77,18 +79,41 @@ PrandtlIshlinskii PrandtlIshlinskii::forward_of_inverse() const noexcept {
   return f;
 }
 
-double sync_inverse_to(const PrandtlIshlinskii& forward, double x_kPa, PrandtlIshlinskii& inverse) noexcept {
-  double y = forward.linear_weight * x_kPa;
-  for (std::size_t i = 0; i < forward.operator_count; ++i) y += forward.weights[i] * forward.state_kPa[i];
-  double sum_before = forward.linear_weight, weighted = 0;  // S, sum_{j<i} w_j d_j
-  for (std::size_t i = 0; i < forward.operator_count && i < inverse.operator_count; ++i) {
-    const double d = x_kPa - forward.state_kPa[i];
-    const double e = sum_before * d - weighted;
-    inverse.state_kPa[i] = y - e;
-    weighted += forward.weights[i] * d;
-    sum_before += forward.weights[i];
+double PrandtlIshlinskii::input_for(double y_kPa, double bottom_kPa) const noexcept {
+  if (!std::isfinite(y_kPa)) return y_kPa;
+  // The output for an input x from the present states, as apply_exhausting computes it.
+  auto output = [&](double x) {
+    double y = linear_weight * x;
+    const double room = std::max(x - bottom_kPa, 0.0);
+    for (std::size_t i = 0; i < operator_count; ++i)
+      y += weights[i] * std::max(x - thresholds_kPa[i], std::min(x + std::min(thresholds_kPa[i], room), state_kPa[i]));
+    return y;
+  };
+  // The kinks: where a play's lower edge (x - r) or upper edge (x + r, or 2x - bottom near the
+  // bottom) meets its state, and where the upper edge's slope changes (x = bottom + r).
+  std::array<double, 3 * kMaxPlayOperators + 1> kink{};
+  std::size_t n = 0;
+  kink[n++] = bottom_kPa;
+  for (std::size_t i = 0; i < operator_count; ++i) {
+    const double r = thresholds_kPa[i], z = state_kPa[i];
+    kink[n++] = z + r;
+    kink[n++] = bottom_kPa + r;
+    kink[n++] = z - r >= bottom_kPa + r ? z - r : 0.5 * (z + bottom_kPa);
   }
-  return y;
+  std::sort(kink.begin(), kink.begin() + std::ptrdiff_t(n));
+  double x0 = bottom_kPa, y0 = output(bottom_kPa);
+  if (!(y_kPa > y0)) return bottom_kPa;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!(kink[k] > x0)) continue;
+    const double y1 = output(kink[k]);
+    if (y1 >= y_kPa) return y1 > y0 ? x0 + (kink[k] - x0) * (y_kPa - y0) / (y1 - y0) : kink[k];
+    x0 = kink[k];
+    y0 = y1;
+  }
+  // Past every kink every play follows its lower edge: slope w0 + sum of the weights.
+  double slope = linear_weight;
+  for (std::size_t i = 0; i < operator_count; ++i) slope += weights[i];
+  return x0 + (y_kPa - y0) / slope;
 }
 
 }  // namespace palprig

@@ -30,6 +30,12 @@ struct PrandtlIshlinskii {
   // the tick's forward copy, driven by the setpoints sent, uses this so that its inverse
   // continues from an emptied actuator after a command near 0.
   double apply_exhausting(double x_kPa, double bottom_kPa = 0.0) noexcept;
+  // The input, at least bottom_kPa, that apply_exhausting would turn into y_kPa from the present
+  // play states (the states are not changed): the exact inverse of the exhausting model at this
+  // point of its history. The model is piecewise linear and strictly increasing in its input
+  // (linear_weight > 0), so it is solved exactly between its kinks. bottom_kPa when even that
+  // gives more than y_kPa. For a valid() model.
+  double input_for(double y_kPa, double bottom_kPa = 0.0) const noexcept;
   bool is_identity() const noexcept { return operator_count == 0 && linear_weight == 1.0; }
   // Valid when w0 > 0, weights >= 0, thresholds positive, finite and strictly increasing.
   bool valid() const noexcept;
@@ -39,15 +45,5 @@ struct PrandtlIshlinskii {
   // by inverse() only), play states reset to 0.
   PrandtlIshlinskii forward_of_inverse() const noexcept;
 };
-
-// The inverse's state as it would be had the forward model's input history been the forward
-// model's own (forward's play states, after `x_kPa` was applied to it). Used when a command was
-// changed after the inverse computed it (the safety stage's slew limit or p_max clamp): the play
-// of the real actuator followed the applied command, so the inverse must continue from there,
-// not from the command it computed. The inverse's play distances e_i = y - z'_i and the forward
-// model's d_i = x - z_i are tied by e_i = (w0 + sum_{j<i} w_j) d_i - sum_{j<i} w_j d_j along any
-// history from a common relaxed start (the plays' memory is nested: a play saturates only after
-// every smaller one has). Returns the forward model's output y for x.
-double sync_inverse_to(const PrandtlIshlinskii& forward, double x_kPa, PrandtlIshlinskii& inverse) noexcept;
 
 }  // namespace palprig
