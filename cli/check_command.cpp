@@ -5,9 +5,10 @@
 // an evemu recording without running anything.
 //
 // The kind is read from the file (JSON: "kind" -> scene, "task" -> protocol, "stress_model" or
-// "rig_id" -> calibration, otherwise rig; CSV: the header t_s,x_mm,y_mm,force_N -> pen trace,
-// t_s and one more column -> waveform, otherwise a stiffness map; .pgm -> map; .evemu -> pen recording) or
-// given with --kind.
+// "rig_id" -> calibration, "tools" -> tracking file, otherwise rig; CSV: the header
+// t_s,x_mm,y_mm,force_N -> pen trace, t_s,tool,... -> tracker pose recording, name,x_mm,... ->
+// fiducials, t_s and one more column -> waveform, otherwise a stiffness map; .pgm -> map;
+// .evemu -> pen recording) or given with --kind.
 #include <algorithm>
 #include <fstream>
 #include <iostream>
@@ -22,6 +23,9 @@
 #include "formats/json_file.hpp"
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"
+#include "formats/tracking_file.hpp"
+#include "calibration/tracker_calibration.hpp"
+#include "inputs/pose_recording.hpp"
 #include "inputs/input_source.hpp"
 #include "inputs/tablet_source.hpp"
 #include "models/parse_error.hpp"
@@ -34,7 +38,8 @@ using namespace palprig;
 
 namespace {
 
-const std::vector<std::string> kKinds = {"rig", "scene", "calibration", "protocol", "trace", "map", "waveform", "evemu"};
+const std::vector<std::string> kKinds = {"rig",      "scene", "calibration", "protocol", "trace",    "map",
+                                         "waveform", "evemu", "tracking",    "poses",    "fiducials"};
 
 std::string count(std::size_t n, const std::string& noun) {
   return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
@@ -59,6 +64,8 @@ std::string detect_kind(const std::filesystem::path& path) {
     std::string header = first_line(path);
     header.erase(std::remove(header.begin(), header.end(), ' '), header.end());
     if (header == "t_s,x_mm,y_mm,force_N") return "trace";
+    if (header == "t_s,tool,x_mm,y_mm,z_mm,qx,qy,qz,qw") return "poses";
+    if (header.rfind("name,x_mm,y_mm,z_mm", 0) == 0) return "fiducials";
     // A beat: t_s and one value column (its name is free, e.g. pressure_mmHg).
     if (header.rfind("t_s,", 0) == 0 && std::count(header.begin(), header.end(), ',') == 1) return "waveform";
     return "map";
@@ -68,6 +75,7 @@ std::string detect_kind(const std::filesystem::path& path) {
   if (doc.contains("kind")) return "scene";
   if (doc.contains("task")) return "protocol";
   if (doc.contains("stress_model") || doc.contains("rig_id")) return "calibration";
+  if (doc.contains("tools")) return "tracking";
   return "rig";
 }
 
@@ -111,6 +119,20 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
     const StiffnessMap map = load_stiffness_map_file(path, 100.0, 100.0);
     return "stiffness map, " + std::to_string(map.cols()) + " x " + std::to_string(map.rows()) + " vertices";
   }
+  if (kind == "tracking") {
+    const TrackingConfig t = load_tracking_file(path);
+    std::string names;
+    for (const auto& tool : t.tools)
+      names += (names.empty() ? "" : ", ") + tool.name +
+               (t.placement == TrackedPlacement::per_finger ? " -> finger " + std::to_string(tool.finger + 1) : "");
+    return std::string("tracking file, ") + (t.placement == TrackedPlacement::per_finger ? "one tool per finger (" : "one tool, the fingers around it (") +
+           names + ")" + (t.registration.fiducials > 0 ? ", registered on " + count(t.registration.fiducials, "fiducial") : "");
+  }
+  if (kind == "poses") {
+    const auto poses = load_pose_recording(path);
+    return "tracker pose recording, " + count(recorded_tools(poses).size(), "tool") + ", " + count(poses.size(), "pose");
+  }
+  if (kind == "fiducials") return "fiducials, " + count(load_fiducials(path).size(), "point");
   if (kind == "waveform") {
     (void)load_waveform_csv(path);
     return "waveform table";
@@ -129,7 +151,7 @@ void register_check_command(CLI::App& app) {
   auto a = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
       "check", "Load files through palprig's readers and say what each is (rig, scene, calibration, protocol, "
-               "trace, map, waveform, evemu); a refused file is one line, exit 2");
+               "trace, map, waveform, evemu, tracking, poses, fiducials); a refused file is one line, exit 2");
   sub->add_option("files", a->files, "files to check")->required();
   sub->add_option("--kind", a->kind, "the kind, instead of reading it from the file")
       ->check(CLI::IsMember(kKinds));

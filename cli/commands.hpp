@@ -21,6 +21,11 @@ void install_stop_signals();
 // End a subcommand with an exit code (CLI11 callbacks return void; main returns this code).
 [[noreturn]] inline void finish(int exit_code) { throw CLI::RuntimeError(exit_code); }
 
+// "1 trial", "32 trials": a count with its noun for the commands' lines.
+inline std::string counted(long long n, const std::string& one, const std::string& many) {
+  return std::to_string(n) + ' ' + (n == 1 ? one : many);
+}
+
 // Where the shipped data (scenes, rigs, traces) lives: $PALPRIG_DATA or the source tree's data/.
 std::filesystem::path data_dir();
 
@@ -43,6 +48,10 @@ void register_rt_check_command(CLI::App& app);
 void register_store_command(CLI::App& app);
 // palprig check: load files through their readers (check_command.cpp; needs inputs/, so a rig command).
 void register_check_command(CLI::App& app);
+// Tracked fingers (issue 26): the OpenIGTLink replay server, the tracker's calibration, the load cells.
+void register_igtl_replay_command(CLI::App& app);
+void register_tracking_command(CLI::App& app);
+void register_load_cell_command(CLI::App& app);
 // Every command that needs the rig stack: rig_commands.cpp, or rig_commands_absent.cpp in the
 // analyst-only build (-DPALPRIG_RIG=OFF).
 void register_rig_commands(CLI::App& app);

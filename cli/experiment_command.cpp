@@ -131,7 +131,7 @@ void run_experiment(const RunArgs& a) {
               << " --to " << request.store_location << "\n";
   }
   if (end.completed) {
-    std::cout << "session " << report.session_id() << " completed: " << end.committed_trials << " trials in "
+    std::cout << "session " << report.session_id() << " completed: " << cli::counted(end.committed_trials, "trial", "trials") << " in "
               << request.store_location << "\n";
     return;
   }

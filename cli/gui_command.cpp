@@ -19,8 +19,12 @@ void register_gui_command(CLI::App& app) {
   sub->add_option("--rig", o->gui.files.rig_path, "Rig file (JSON); default: the simulated rig");
   sub->add_option("--cal", o->gui.files.cal_path, "Calibration file (JSON); default: paper 002's models");
   sub->add_option("--input", o->gui.files.input_spec,
-                  "Pen input: window (mouse or tablet on the scene view), trace:FILE, sweep, tablet[:DEVICE or FILE.evemu]")
+                  "Pen input: window (mouse or tablet on the scene view), trace:FILE, sweep, tablet[:DEVICE or FILE.evemu], "
+                  "igtl:HOST:PORT (tracked fingers, with --tracking)")
       ->default_val("window");
+  sub->add_option("--tracking", o->gui.files.tracking_path,
+                  "With --input igtl:HOST:PORT: the tracking file (which tool is which finger, tips, registration)")
+      ->check(CLI::ExistingFile);
   sub->add_option("--rate-hz", o->gui.run.rate_hz, "Loop rate in Hz")->default_val(1000.0)->check(CLI::Range(1.0, 100000.0));
   sub->add_flag("--no-fifo", o->no_fifo, "Real time without SCHED_FIFO");
   sub->add_option("--telemetry", o->telemetry, "Write every tick to FILE (.csv, or .bin), as run does");

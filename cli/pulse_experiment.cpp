@@ -54,7 +54,7 @@ void run_pulse_experiment(const StudySessionRequest& request, bool quiet) {
   const SessionEnd end = run_pulse_study(request, nullptr, report, &stop_signal());
   if (const std::string telemetry = telemetry_summary(end); !telemetry.empty()) std::cout << telemetry << "\n";
   if (end.completed) {
-    std::cout << "session " << report.session_id() << " completed: " << end.committed_trials << " trials in "
+    std::cout << "session " << report.session_id() << " completed: " << cli::counted(end.committed_trials, "trial", "trials") << " in "
               << request.store_location << "\n";
     return;
   }

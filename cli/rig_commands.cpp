@@ -11,4 +11,7 @@ void register_rig_commands(CLI::App& app) {
   register_calibrate_command(app);
   register_rt_check_command(app);
   register_check_command(app);
+  register_igtl_replay_command(app);
+  register_tracking_command(app);
+  register_load_cell_command(app);
 }

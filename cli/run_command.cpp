@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "controller/region_table.hpp"
 #include "controller/run_report.hpp"
 #include "controller/run_setup.hpp"
 
@@ -18,6 +19,7 @@ void register_run_command(CLI::App& app) {
     RunTiming timing;
     RunOptions run;
     bool json = false;
+    bool regions = false;
     std::string telemetry;
     int compensate_lag = 0;  // +1 --compensate-lag, -1 --no-compensate-lag, 0 the calibration file decides
   };
@@ -25,8 +27,13 @@ void register_run_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "Run the loop: pen input -> scene -> pressures -> rig, and print a summary");
   sub->add_option("--scene", o->files.scene, "Scene file (JSON)")->required()->check(CLI::ExistingFile);
   sub->add_option("--input", o->files.input, "Pen input: trace:FILE (CSV t_s,x_mm,y_mm,force_N), sweep, tablet (the first pen tablet), "
-                 "tablet:/dev/input/eventN, or tablet:FILE.evemu (a recording replayed in real time)")
+                 "tablet:/dev/input/eventN, tablet:FILE.evemu (a recording replayed in real time), or igtl:HOST:PORT "
+                 "(tracked fingers from an OpenIGTLink server, with --tracking)")
       ->default_val("sweep");
+  sub->add_option("--tracking", o->files.tracking,
+                  "With --input igtl:HOST:PORT: the tracking file (which tool is which finger, fingertip offsets, "
+                  "tracker-to-scene registration)")
+      ->check(CLI::ExistingFile);
   sub->add_option("--rig", o->files.rig, "Rig file (JSON); default: the simulated rig in data/rigs/simulated.json");
   sub->add_option("--cal", o->files.calibration, "Calibration file (JSON); default: paper 002's models");
   sub->add_option("--rate-hz", o->run.rate_hz, "Loop rate in Hz")->default_val(1000.0)->check(CLI::Range(1.0, 100000.0));
@@ -47,6 +54,8 @@ void register_run_command(CLI::App& app) {
                 "whatever the calibration file's lag_compensation.enabled says");
   sub->add_option("--telemetry", o->telemetry, "Write every tick to FILE (.csv, or .bin for the compact binary)");
   sub->add_flag("--json", o->json, "Print the summary as one JSON object");
+  sub->add_flag("--regions", o->regions,
+                "Also print the pressure per region (each tumor, soft tissue) as the demo does");
   sub->callback([o]() {
     RunFiles files = o->files;
     files.explicit_duration = o->timing.duration_s > 0;
@@ -59,9 +68,17 @@ void register_run_command(CLI::App& app) {
     opt.telemetry_path = o->telemetry;
     cli::install_stop_signals();
     opt.stop_signal = &cli::stop_signal();
+    RegionTable table(run.scene.tumors, run.config.contact_force_N);
+    if (o->regions) opt.observer = &table;
     const RunSummary s = execute_run(run, opt);
-    if (o->json) std::cout << run_summary_json(s, run, opt).dump(2) << "\n";
-    else print_run_summary(std::cout, s, run, opt);
+    if (o->json) {
+      nlohmann::json j = run_summary_json(s, run, opt);
+      if (o->regions) j["regions"] = table.json();
+      std::cout << j.dump(2) << "\n";
+    } else {
+      print_run_summary(std::cout, s, run, opt);
+      if (o->regions) table.print(std::cout);
+    }
     if (s.fault != FaultCode::none) {
       std::cerr << "palprig: fault at t=" << s.fault_t_s << " s: " << to_string(s.fault)
                 << (s.fault_detail.empty() ? "" : " (" + s.fault_detail + ")") << "; all channels vented\n";

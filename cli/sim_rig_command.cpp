@@ -19,6 +19,7 @@ void register_sim_rig_command(CLI::App& app) {
   auto write_log = std::make_shared<std::string>();
   auto watchdog_ms = std::make_shared<double>(0.0);
   auto duration_s = std::make_shared<double>(0.0);
+  auto load_N = std::make_shared<double>(0.0);
   CLI::App* sub = app.add_subcommand(
       "sim-rig", "Serve the simulated pneumatic plant as a Modbus TCP server with a rig file's register map");
   sub->add_option("--rig", *rig_path, "Rig file (JSON) with backend \"modbus\": its register map and plants")
@@ -33,6 +34,9 @@ void register_sim_rig_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 600000.0));
   sub->add_option("--duration-s", *duration_s, "Stop after this long (default: until SIGINT/SIGTERM)")
       ->check(CLI::Range(0.0, 1e9));
+  sub->add_option("--load-N", *load_N,
+                  "The rig file's load cells: serve each as a cell with this load on it (its tare and gain from the file)")
+      ->check(CLI::Range(0.0, 1000.0));
   sub->callback([=]() {
     const RigConfig rig = load_rig_file(*rig_path);
     if (rig.backend != "modbus")
@@ -68,6 +72,8 @@ void register_sim_rig_command(CLI::App& app) {
     ModbusSimServer server(map, rig.plants);
     if (!write_log->empty()) server.set_write_log(*write_log);
     server.set_watchdog_s(*watchdog_ms / 1000.0);
+    if (rig.load_cells) server.set_load_cells(*rig.load_cells, *load_N);
+    else if (*load_N > 0) throw InputError(rig.source, "load_cells", "a \"load_cells\" section (--load-N loads the rig's load cells)");
     cli::install_stop_signals();
     try {
       server.start(addresses);

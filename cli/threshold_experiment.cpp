@@ -79,7 +79,7 @@ void run_threshold_experiment(const ThresholdStudyRequest& request, bool quiet) 
   if (const std::string telemetry = telemetry_summary(end.session); !telemetry.empty()) std::cout << telemetry << "\n";
   const int done = end.session.committed_trials;
   if (end.session.completed) {
-    std::cout << "session " << end.session_id << " completed: " << done << " trials in " << db << "\n";
+    std::cout << "session " << end.session_id << " completed: " << cli::counted(done, "trial", "trials") << " in " << db << "\n";
     print_estimates(end.tracks);
     return;
   }

@@ -151,6 +151,9 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       sum.target_kPa[i].add(rec.target_kPa[i]);
       sum.setpoint_kPa[i].add(step.tick.setpoint_kPa[i]);
       sum.monitor_kPa[i].add(step.monitor_kPa[i]);
+      sum.force_N[i].add(rec.finger_force_N[i]);
+      const auto why = static_cast<std::size_t>(rec.finger_vent[i]);
+      if (why > 0 && why < RunSummary::kVentReasons) ++sum.finger_vent_ticks[i][why];
     }
     ++sum.ticks;
     ++k;

@@ -84,6 +84,10 @@ struct RunSummary {
   std::array<RangeStats, kFingerCount> target_kPa{};   // what the models asked for
   std::array<RangeStats, kFingerCount> setpoint_kPa{}; // what went to the backend
   std::array<RangeStats, kFingerCount> monitor_kPa{};  // what the regulators reported
+  std::array<RangeStats, kFingerCount> force_N{};      // each finger's pressing force (pen or load cell)
+  // Ticks each finger spent vented for a reason of its own (tracked fingers: FingerVent), by reason.
+  static constexpr std::size_t kVentReasons = 6;
+  std::array<std::array<std::uint64_t, kVentReasons>, kFingerCount> finger_vent_ticks{};
   FaultCode fault = FaultCode::none;
   double fault_t_s = 0;
   std::string fault_detail;  // the backend's or worker's own message

@@ -1,5 +1,6 @@
 #include "controller/rig_step.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -66,10 +67,45 @@ void RigStep::apply_request() noexcept {
   else if (request == kDisarm) disarm();
 }
 
+TouchSample RigStep::with_load_cell_force(const TouchSample& sample, double t_s) noexcept {
+  TouchSample s = sample;
+  std::array<double, kFingerCount> depth_mm{};
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const FingerTouch& f = s.fingers[i];
+    // z < 0 is below the surface; a vented finger's position is not to be trusted.
+    depth_mm[i] = f.vent == FingerVent::none && std::isfinite(f.z_mm) && f.z_mm < 0 ? -f.z_mm : 0.0;
+  }
+  backend_.feel_press(depth_mm);
+  LoadCellReading& cells = result_.load_cells;
+  if (backend_.read_load_cells(cells, t_s) != BackendStatus::ok) {
+    enter_fault(FaultCode::backend_error, backend_.last_error());
+    s.force_N = std::numeric_limits<double>::quiet_NaN();  // and the tick vents on it too
+    return s;
+  }
+  auto newtons = [](double f) { return std::isfinite(f) ? std::max(f, 0.0) : f; };  // NaN stays: the tick faults
+  if (cells.count == kFingerCount) {
+    s.per_finger_force = true;
+    s.force_N = 0;
+    for (std::size_t i = 0; i < kFingerCount; ++i) {
+      s.fingers[i].force_N = newtons(cells.force_N[i]);
+      s.force_N = std::isfinite(s.fingers[i].force_N) ? std::max(s.force_N, s.fingers[i].force_N) : s.fingers[i].force_N;
+    }
+  } else {
+    s.force_N = newtons(cells.force_N[0]);
+  }
+  return s;
+}
+
 const StepResult& RigStep::step(const Scene& scene, const TouchSample& sample, double t_s) noexcept {
   apply_request();
   const bool linked = backend_.linked();
   const std::int64_t tick_start = mono_ns();
+  result_.load_cells.count = 0;
+  if (sample.force_from_load_cells) {
+    result_.tick = tick(state_, config_, scene, with_load_cell_force(sample, t_s), t_s);
+    finish(tick_start, linked, t_s);
+    return result_;
+  }
   result_.tick = tick(state_, config_, scene, sample, t_s);
   finish(tick_start, linked, t_s);
   return result_;

@@ -34,6 +34,7 @@ struct StepResult {
   TickResult tick;                 // setpoints, pulse and the telemetry record (monitors, I/O time filled in)
   ChannelPressures monitor_kPa{};  // NaN where the backend has no reading (link down)
   std::array<double, kFingerCount> sensor{};  // NaN unless sensors were read
+  LoadCellReading load_cells;      // count 0 unless the sample's force came from the load cells
   bool linked = true;              // the backend's link carried this step's setpoints
   bool armed = true;               // the backend was armed (setpoints flowed)
   double tick_us = 0, io_us = 0;   // time in the tick, time in the backend
@@ -61,7 +62,10 @@ class RigStep {
   // step vents. detail (copied) overrides the reason text when given.
   void enter_fault(FaultCode why, const char* detail = nullptr) noexcept;
 
-  // One step with the pen on a scene.
+  // One step with the pen on a scene. A sample whose force comes from the rig's load cells
+  // (tracked fingers, issue 26: TouchSample::force_from_load_cells) gets it here, read before
+  // the tick: the fingertips' press is handed to the backend (a simulated rig's cells feel it),
+  // the cells are read, and their forces (clipped at 0 N: below the tare is noise) go in.
   const StepResult& step(const Scene& scene, const TouchSample& sample, double t_s) noexcept;
   // One step with direct per-finger targets (hysteresis inverse and safety stage only).
   const StepResult& step_direct(const ChannelPressures& target_kPa, double t_s) noexcept;
@@ -85,6 +89,8 @@ class RigStep {
   // Everything after the tick: write (or vent), read, fault check, vent on fault, record.
   void finish(std::int64_t tick_start_ns, bool linked, double t_s) noexcept;
   void set_detail(const char* text) noexcept;
+  // The sample with its force from the load cells (see step()).
+  TouchSample with_load_cell_force(const TouchSample& sample, double t_s) noexcept;
 
   TickConfig config_;
   RigBackend& backend_;

@@ -43,6 +43,16 @@ nlohmann::json run_summary_json(const RunSummary& s, const LoadedRun& run, const
       {"telemetry", s.telemetry_path.empty() ? json(nullptr) : json(s.telemetry_path)},
       {"telemetry_dropped", s.telemetry_dropped},
   };
+  if (run.tracking) {
+    json fingers = json::array();
+    for (std::size_t i = 0; i < kFingerCount; ++i) {
+      json vents = json::object();
+      for (std::size_t why = 1; why < RunSummary::kVentReasons; ++why)
+        if (s.finger_vent_ticks[i][why]) vents[to_string(static_cast<FingerVent>(why))] = s.finger_vent_ticks[i][why];
+      fingers.push_back({{"force_N", {{"mean", s.force_N[i].mean()}, {"max", s.force_N[i].max}}}, {"vented_ticks", vents}});
+    }
+    j["tracked_fingers"] = fingers;
+  }
   if (opt.mode == LoopMode::realtime) {
     j["wake_latency"] = lat(s.wake_latency);
     j["realtime_note"] = s.realtime_note;
@@ -74,6 +84,20 @@ void print_run_summary(std::ostream& out, const RunSummary& s, const LoadedRun& 
   out << std::setprecision(1) << "  tick time p50/p99/max " << s.tick_time.p50_us << "/" << s.tick_time.p99_us << "/"
       << s.tick_time.max_us << " us, backend I/O p50/p99/p99.9/max " << s.io_time.p50_us << "/" << s.io_time.p99_us
       << "/" << s.io_time.p999_us << "/" << s.io_time.max_us << " us\n";
+  if (run.tracking) {
+    // Tracked fingers: what the load cells measured, and how long each finger was vented for a
+    // reason of its own (its tool out of view, not seen, invalid).
+    out << std::setprecision(2) << "  load cells: force N mean/max";
+    for (int i = 0; i < kFingerCount; ++i)
+      out << (i ? ", " : " ") << "finger " << i + 1 << " " << s.force_N[i].mean() << "/" << s.force_N[i].max;
+    out << "\n";
+    for (int i = 0; i < kFingerCount; ++i)
+      for (std::size_t why = 1; why < RunSummary::kVentReasons; ++why)
+        if (const std::uint64_t n = s.finger_vent_ticks[i][why])
+          out << "  finger " << i + 1 << " vented " << n << (n == 1 ? " tick: " : " ticks: ")
+              << to_string(static_cast<FingerVent>(why)) << "\n";
+    out << std::setprecision(1);
+  }
   if (s.link_outages)
     out << "  link outages: " << s.link_outages << " (" << s.unlinked_ticks << " ticks vented while reconnecting)\n";
   if (opt.mode == LoopMode::realtime) {

@@ -6,16 +6,26 @@
 #include "controller/backend_factory.hpp"
 #include "controller/tick_setup.hpp"
 #include "formats/function_scene_file.hpp"
+#include "inputs/igtl_input.hpp"
 #include "models/tissue_scene.hpp"
 #include "models/parse_error.hpp"
 #include "runtime/realtime.hpp"
 
 namespace palprig {
 
-bool is_live_input(const std::string& spec) { return spec == "tablet" || spec.rfind("tablet:", 0) == 0; }
+bool is_live_input(const std::string& spec) {
+  return spec == "tablet" || spec.rfind("tablet:", 0) == 0 || is_igtl_input(spec);
+}
 
 std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& scene, double contact_force_N,
-                                        const TabletConfig& tablet, const TraceLimits& trace_limits) {
+                                        const TabletConfig& tablet, const TraceLimits& trace_limits,
+                                        const TrackingConfig* tracking, double max_pose_age_s) {
+  if (is_igtl_input(spec)) {
+    const IgtlEndpoint endpoint = parse_igtl_spec(spec);
+    if (!tracking)
+      throw InputError("input", spec, "a tracking file with it (--tracking FILE: which tool is which finger, docs/tracking.md)");
+    return std::make_unique<IgtlInput>(endpoint, *tracking, max_pose_age_s);
+  }
   const bool unbounded = trace_limits.max_length_s == TraceLimits::unbounded().max_length_s;
   if (is_live_input(spec)) {
     try {
@@ -34,7 +44,7 @@ std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& sc
       throw InputError(e.file(), e.where(), e.expected() + "; give `duration_s` to run it anyway");
     }
   }
-  throw InputError("input", spec, "trace:FILE, sweep, tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
+  throw InputError("input", spec, "trace:FILE, sweep, tablet, tablet:/dev/input/eventN, tablet:FILE.evemu or igtl:HOST:PORT");
 }
 
 LoadedRun load_run_files(const RunFiles& files) {
@@ -72,6 +82,19 @@ LoadedRun load_run_files(const RunFiles& files) {
   }
   run.input_spec = files.input;
   run.live = run.rig.backend != "simulated" || is_live_input(files.input);
+  if (is_igtl_input(files.input)) {
+    (void)parse_igtl_spec(files.input);
+    if (files.tracking.empty())
+      throw InputError("tracking", "input " + files.input, "a tracking file (--tracking FILE) that maps the tracker's tools to fingers (docs/tracking.md)");
+    run.tracking = load_tracking_file(files.tracking);
+    // A tracker gives positions only: the pressing force is the load cells'.
+    if (!run.rig.load_cells)
+      throw InputError(run.rig.source, "load_cells",
+                       "load cells measuring the pressing force, for input " + files.input +
+                           " (a tracker gives positions only; docs/tracking.md)");
+  } else if (!files.tracking.empty()) {
+    throw InputError("tracking", files.tracking.string(), "--input igtl:HOST:PORT with it (a tracking file is for a tracker)");
+  }
   return run;
 }
 
@@ -80,7 +103,8 @@ LoadedRun load_run(const RunFiles& files) {
   TraceLimits limits;
   limits.max_gap_s = run.rig.safety.max_input_age_s;
   run.input = make_input(files.input, *run.scene.scene, run.rig.contact_force_N, run.rig.tablet,
-                         files.explicit_duration ? TraceLimits::unbounded() : limits);
+                         files.explicit_duration ? TraceLimits::unbounded() : limits,
+                         run.tracking ? &*run.tracking : nullptr, run.rig.safety.max_input_age_s);
   // Hardware and live pen input run on the wall clock: a replay would command real regulators
   // (or read a real pen) on simulated time.
   run.input_spec = files.input;
@@ -92,7 +116,7 @@ void settle_timing(const LoadedRun& run, const RunTiming& timing, RunOptions& op
   if (run.live && timing.replay) {
     throw InputError("replay",
                      run.rig.backend != "simulated" ? "backend " + run.rig.backend : "input " + run.input_spec,
-                     "`realtime`: hardware and live pen input run on the wall clock");
+                     "`realtime`: hardware, live pen and tracker input run on the wall clock");
   }
   options.mode = (timing.realtime || run.live) ? LoopMode::realtime : LoopMode::replay;
   options.duration_s = timing.duration_s > 0 ? timing.duration_s : run.input->duration_s();

@@ -10,6 +10,7 @@
 #include "formats/calibration_file.hpp"
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"
+#include "formats/tracking_file.hpp"
 #include "inputs/input_source.hpp"
 #include "inputs/tablet_input.hpp"
 
@@ -19,8 +20,10 @@ struct RunFiles {
   std::filesystem::path scene;
   std::filesystem::path rig;          // the caller's default when the user names none
   std::filesystem::path calibration;  // empty: paper 002's models
-  // trace:FILE, sweep, tablet, tablet:/dev/input/eventN or tablet:FILE.evemu
+  // trace:FILE, sweep, tablet, tablet:/dev/input/eventN, tablet:FILE.evemu or igtl:HOST:PORT
   std::string input = "sweep";
+  // igtl: the tracking file (tools -> fingers, fingertip offsets, registration); required there.
+  std::filesystem::path tracking;
   // The user gave the run's length: a trace or pen recording longer than the bounds of
   // TraceLimits/PenRecordingLimits, or with gaps over the stale-input limit, is run anyway.
   bool explicit_duration = false;
@@ -36,6 +39,7 @@ struct LoadedRun {
   TickConfig config;
   std::unique_ptr<InputSource> input;
   std::string input_spec;
+  std::optional<TrackingConfig> tracking;  // an igtl input's
   std::unique_ptr<RigBackend> backend;  // made by execute_run
   bool live = false;  // hardware or a live pen: runs on the wall clock only
   // What the run does about the regulators' lag (controller/tick_setup.hpp's
@@ -49,12 +53,15 @@ struct RunTiming {
   double duration_s = 0;                  // <= 0: the input's own length
 };
 
-// Live inputs (the pen tablet) make a run real time.
+// Live inputs (the pen tablet, a tracker) make a run real time.
 bool is_live_input(const std::string& spec);
 // Throws InputError naming the field "input" for a spec it does not know, and naming the file
-// for a trace or recording over its bounds (with "give `duration_s`" as the way out).
+// for a trace or recording over its bounds (with "give `duration_s`" as the way out). A
+// tracker (igtl:HOST:PORT) needs its tracking file, and connects here: a server that cannot
+// be reached is refused before anything moves.
 std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& scene, double contact_force_N,
-                                        const TabletConfig& tablet = {}, const TraceLimits& trace_limits = {});
+                                        const TabletConfig& tablet = {}, const TraceLimits& trace_limits = {},
+                                        const TrackingConfig* tracking = nullptr, double max_pose_age_s = 0.1);
 
 LoadedRun load_run(const RunFiles& files);  // throws InputError before anything moves
 // Refused (InputError naming the calibration file and `lag_compensation`) when compensate_lag

@@ -7,6 +7,7 @@
 
 #include "controller/fault.hpp"
 #include "models/finger_layout.hpp"
+#include "models/touch_sample.hpp"
 
 namespace palprig {
 
@@ -22,6 +23,12 @@ struct TelemetryRecord {
   float io_us = 0;                        // time spent in the backend this tick
   FaultCode fault = FaultCode::none;
   std::uint8_t flags = 0;                 // TelemetryFlag bits
+  // Where each finger was and how hard it pressed (the pen's triangle, or each tracked
+  // fingertip with its own load cell: issue 26), and why a tracked finger was vented.
+  float finger_x_mm[kFingerCount] = {};
+  float finger_y_mm[kFingerCount] = {};
+  float finger_force_N[kFingerCount] = {};
+  FingerVent finger_vent[kFingerCount] = {};
   // How far the tissue under each finger is carried by tissue dragging (paper 000's stick/slip;
   // 0 where the scene does not drag): the finger feels the tissue at its centre minus this.
   float drag_x_mm[kFingerCount] = {};
@@ -35,7 +42,8 @@ enum TelemetryFlag : std::uint8_t {
   kVented = 1 << 3,
   kOverrun = 1 << 4,   // this tick finished after the next deadline
   kDisarmed = 1 << 5,  // the backend was not armed: vented, monitors still read
-  kLagCompensated = 1 << 6,  // a channel's whole target was lag-compensated (calibration's identified regulators)
+  kOwnPositions = 1 << 6,  // each finger at its own tracked position (finger_x_mm, finger_y_mm), no triangle
+  kLagCompensated = 1 << 7,  // a channel's whole target was lag-compensated (calibration's identified regulators)
 };
 
 static_assert(std::is_trivially_copyable_v<TelemetryRecord>);

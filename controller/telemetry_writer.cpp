@@ -20,7 +20,7 @@ namespace palprig {
 
 namespace {
 constexpr char kMagic[8] = {'P', 'A', 'L', 'P', 'R', 'I', 'G', 'T'};
-constexpr std::uint32_t kTelemetryVersion = 1;
+constexpr std::uint32_t kTelemetryVersion = kTelemetryFileVersion;
 }  // namespace
 
 TelemetryFormat telemetry_format_for(const std::filesystem::path& path) {
@@ -152,7 +152,7 @@ void write_telemetry_csv_header(std::ostream& out) {
   for (const char* col : {"stiffness", "target_kPa", "setpoint_kPa", "monitor_kPa"})
     for (int i = 1; i <= kFingerCount; ++i) out << ',' << col << '_' << i;
   out << ",wake_latency_us,io_us,fault,flags";
-  for (const char* col : {"drag_x_mm", "drag_y_mm"})
+  for (const char* col : {"finger_x_mm", "finger_y_mm", "finger_force_N", "finger_vent", "drag_x_mm", "drag_y_mm"})
     for (int i = 1; i <= kFingerCount; ++i) out << ',' << col << '_' << i;
   out << '\n';
 }
@@ -193,9 +193,13 @@ void write_telemetry_csv_row(std::ostream& out, const TelemetryRecord& r) {
   append_field(row, ",%.1f", double(r.wake_latency_us));
   append_field(row, ",%.1f", double(r.io_us));
   append_field(row, ",%d,%d", int(r.fault), int(r.flags));
+  const float* fingers[3] = {r.finger_x_mm, r.finger_y_mm, r.finger_force_N};
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < kFingerCount; ++i) append_field(row, k < 2 ? ",%.3f" : ",%.4f", double(fingers[k][i]));
+  for (int i = 0; i < kFingerCount; ++i) append_field(row, ",%d", int(r.finger_vent[i]));
   for (const float* c : {r.drag_x_mm, r.drag_y_mm})
     for (int i = 0; i < kFingerCount; ++i) append_field(row, ",%.3f", double(c[i]));
-  row.push_back('\n');
+  row += '\n';
   out.write(row.data(), static_cast<std::streamsize>(row.size()));
 }
 

@@ -17,6 +17,11 @@
 
 namespace palprig {
 
+// The binary telemetry file's version (its header). 2: the per-finger position, force and vent
+// reason (issue 26) after the flags; 3: then how far tissue dragging carries the tissue under
+// each finger (drag_x_mm, drag_y_mm; issue 25).
+inline constexpr std::uint32_t kTelemetryFileVersion = 3;
+
 enum class TelemetryFormat { binary, csv };
 
 // Binary when the name ends in .bin or .ptl, CSV otherwise.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "controller/pulse_stage.hpp"
+#include "models/finger_placement.hpp"
 
 namespace palprig {
 
@@ -105,16 +106,21 @@ double finger_target_kPa(const TickConfig& config, const Scene& scene, std::size
 // which tissue they will press then (the drag stepped along), and the target there.
 double predicted_target_kPa(const TickState& state, const TickConfig& config, const Scene& scene, std::size_t i,
                             double t_s, double lead_s) noexcept {
-  const TouchSample pen = state.lag.pen.predict(t_s + lead_s, config.lag_compensation.prediction);
-  if (!pen.in_contact || !(pen.force_N >= config.contact_force_N)) return 0.0;  // a lift coming
-  const Point2_mm centre = config.layout.centres(pen.x_mm, pen.y_mm)[i];
+  const PredictedFinger pen = state.lag.pen.predict_finger(t_s + lead_s, config.lag_compensation.prediction, i);
+  if (!pen.in_contact || !(pen.pen_force_N >= config.contact_force_N)) return 0.0;  // a lift coming
+  // The pen's triangle, or (tracked fingers) this finger's own extrapolated position and force,
+  // as place_fingers places them now.
+  const double force_N = pen.own_force ? pen.force_N : pen.pen_force_N;
+  if (!(force_N >= config.contact_force_N) || pen.vent != FingerVent::none) return 0.0;  // vented, or lifting
+  const Point2_mm centre =
+      pen.own_position ? Point2_mm{pen.x_mm, pen.y_mm} : config.layout.centres(pen.pen_x_mm, pen.pen_y_mm)[i];
   const DragSetting setting = scene.drag(state.drag_layer[i]);
   if (!setting.drags() && state.drag[i].phase == DragPhase::free && state.drag[i].offset.x_mm == 0 &&
       state.drag[i].offset.y_mm == 0)
-    return finger_target_kPa(config, scene, i, centre, pen.force_N, t_s + lead_s);  // nothing carried
+    return finger_target_kPa(config, scene, i, centre, force_N, t_s + lead_s);  // nothing carried
   FingerDrag drag = state.drag[i];
-  step_drag(drag, setting, centre, pen.force_N, true, lead_s);
-  return finger_target_kPa(config, scene, i, drag.felt_point(centre), pen.force_N, t_s + lead_s);
+  step_drag(drag, setting, centre, force_N, true, lead_s);
+  return finger_target_kPa(config, scene, i, drag.felt_point(centre), force_N, t_s + lead_s);
 }
 
 // The target of finger i `ahead_s` from now, for the lag compensation's look ahead.
@@ -144,39 +150,55 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   ChannelPressures target{};
   FingersOnSkin fingers;
   // Each bad reading is named for what is wrong with it (a NaN position is not a bad force).
-  if (!std::isfinite(sample.x_mm) || !std::isfinite(sample.y_mm)) {
+  if (!std::isfinite(sample.x_mm) || !std::isfinite(sample.y_mm) || !finger_positions_finite(sample)) {
     state.enter_fault(FaultCode::bad_position);
   } else if (!std::isfinite(sample.t_s)) {
     state.enter_fault(FaultCode::bad_time);
-  } else if (!std::isfinite(sample.force_N) || sample.force_N < 0) {
+  } else if (!std::isfinite(sample.force_N) || sample.force_N < 0 || !finger_forces_valid(sample)) {
     state.enter_fault(FaultCode::bad_sample);
   } else if (t_s - sample.t_s > config.safety.max_input_age_s) {
     state.enter_fault(FaultCode::input_stale);
-  } else if (sample.in_contact && sample.force_N >= config.contact_force_N) {
-    rec.flags |= kInContact;
-    fingers.pressed = true;
-    fingers.force_N = sample.force_N;
-    fingers.centres = config.layout.centres(sample.x_mm, sample.y_mm);
+  } else {
+    // The triangle around the pen, or each finger at its own tracked position (issue 26); a
+    // finger whose tool is out of view is vented (target 0 kPa) and says why in the record.
+    const PlacedFingers placed = place_fingers(config.layout, sample, config.contact_force_N);
+    fingers.centres = placed.centres;
+    fingers.finger_force_N = placed.force_N;
+    fingers.finger_pressed = placed.pressed;
+    if (sample.own_positions) rec.flags |= kOwnPositions;
+    for (std::size_t i = 0; i < kFingerCount; ++i) {
+      rec.finger_x_mm[i] = static_cast<float>(placed.centres[i].x_mm);
+      rec.finger_y_mm[i] = static_cast<float>(placed.centres[i].y_mm);
+      rec.finger_force_N[i] = static_cast<float>(placed.force_N[i]);
+      rec.finger_vent[i] = sample.fingers[i].vent;
+    }
+    if (sample.in_contact && sample.force_N >= config.contact_force_N) {
+      rec.flags |= kInContact;
+      fingers.pressed = true;
+      fingers.force_N = sample.force_N;
+    }
   }
   if (!fingers.pressed) fingers.force_N = sample.force_N;
   // Tissue dragging (paper 000's stick/slip): each finger feels the tissue now under it, which
-  // a sticking finger has carried along; the arteries move with it too.
+  // a sticking finger has carried along; the arteries move with it too. Each finger drags with
+  // its own force (a load cell under each tracked finger); a vented finger carries nothing.
   for (std::size_t i = 0; i < kFingerCount; ++i) {
-    step_drag(state.drag[i], scene.drag(state.drag_layer[i]), fingers.centres[i], fingers.force_N, fingers.pressed,
+    const bool pressing = fingers.pressed && fingers.finger_pressed[i];
+    step_drag(state.drag[i], scene.drag(state.drag_layer[i]), fingers.centres[i], fingers.finger_force_N[i], pressing,
               std::max(dt_s, 0.0));
-    if (fingers.pressed) fingers.centres[i] = state.drag[i].felt_point(fingers.centres[i]);
+    if (pressing) fingers.centres[i] = state.drag[i].felt_point(fingers.centres[i]);
     rec.drag_x_mm[i] = static_cast<float>(state.drag[i].offset.x_mm);
     rec.drag_y_mm[i] = static_cast<float>(state.drag[i].offset.y_mm);
   }
-  if (fingers.pressed) {
-    for (std::size_t i = 0; i < kFingerCount; ++i) {
-      TissueSample felt;
-      target[i] = finger_target_kPa(config, scene, i, fingers.centres[i], sample.force_N, t_s, &felt);
-      rec.stiffness[i] = static_cast<float>(felt.stiffness);
-      state.drag_layer[i] = felt.layer;
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    if (!fingers.pressed || !fingers.finger_pressed[i]) {
+      state.drag_layer[i] = -1;
+      continue;
     }
-  } else {
-    state.drag_layer = {-1, -1, -1};
+    TissueSample felt;
+    target[i] = finger_target_kPa(config, scene, i, fingers.centres[i], fingers.finger_force_N[i], t_s, &felt);
+    rec.stiffness[i] = static_cast<float>(felt.stiffness);
+    state.drag_layer[i] = felt.layer;
   }
 
   // What each channel compensates this tick, and the targets it compensates toward: the scene

@@ -20,9 +20,15 @@ struct FeltSample {
   const TelemetryRecord* record = nullptr;  // the rig's last tick (pen position), when available
 };
 
+class SessionClock;  // experiments/session_clock.hpp
+
 class Participant {
  public:
   virtual ~Participant() = default;
+  // The clock the session runs on, before the first pass (it outlives the session loop): a
+  // participant that knows when an answer was given on steady_clock (an input event's own
+  // time) gives it as Response::given_at_s through SessionClock::at_steady.
+  virtual void session_clock(const SessionClock&) {}
   // In `ready` (session start, after a break): true when the participant wants to go on.
   virtual bool ready(double t_s) = 0;
   // A trial begins (stimulus onset at t_s).

@@ -1,5 +1,7 @@
 #include "experiments/pulse_session.hpp"
 
+#include <algorithm>
+
 #include "experiments/session_pacer.hpp"
 
 #include <cmath>
@@ -18,6 +20,7 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
   PulseSessionResult result;
   const std::vector<int> order = pulse_trial_order(protocol, options.seed);
   SessionPacer pacer(clock, options.period_s, options.stop);
+  participant.session_clock(clock);
   ChannelPressures felt{};
   auto pass = [&]() { return pacer.pass(output, felt); };
   auto pause_asked = [&] { return options.pause && options.pause->load(); };
@@ -81,7 +84,8 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
         sample.record = output.last_record();
         participant.feel(sample);
         mark = participant.answer(t);
-        if (mark) r.response_time_s = t - r.onset_s;
+        // Timed when given (never before this presentation's onset), not when taken.
+        if (mark) r.response_time_s = std::clamp(participant.answer_given_at_s().value_or(t), r.onset_s, t) - r.onset_s;
       }
       output.vent(clock.now_s());
       if (interrupted) continue;  // the loop's top holds the pause, then waits for the Ready

@@ -31,6 +31,11 @@ class PulseParticipant {
   virtual InputSource& trial_started(int position, const PulseCondition& condition, const Scene& scene, double t_s) = 0;
   virtual void feel(const FeltSample& sample) = 0;
   virtual std::optional<Mark> answer(double t_s) = 0;
+  // The clock the session runs on, before the first trial (as Participant::session_clock).
+  virtual void session_clock(const SessionClock&) {}
+  // When the mark answer() just returned was given (session time), if before the pass that took
+  // it (an input event's own time); none: at that pass.
+  virtual std::optional<double> answer_given_at_s() const { return std::nullopt; }
 };
 
 // A trial about to be presented: what a front end needs to show its scene (a generated

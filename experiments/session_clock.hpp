@@ -5,6 +5,7 @@
 //                   session runs as fast as the machine goes, with the same timing logic
 //   scaled          SteadyClock(speed): real sleeps, time running `speed` times faster
 #include <chrono>
+#include <optional>
 
 namespace palprig {
 
@@ -16,6 +17,13 @@ class SessionClock {
   // False when time only moves as the loop waits for it: nothing has a deadline, so a consumer
   // (the telemetry writer) may be waited for instead of dropping.
   virtual bool real_time() const { return true; }
+  // The session time of a moment on std::chrono::steady_clock (CLOCK_MONOTONIC), such as an
+  // input event's own timestamp: so a front end times an answer by when it was given, not by
+  // when the loop took it. None for a clock not tied to it (simulated time).
+  virtual std::optional<double> at_steady(std::chrono::steady_clock::time_point) const { return std::nullopt; }
+  // The steady_clock moment of session time 0 when session time is steady_clock time (real
+  // time at speed 1); none otherwise.
+  virtual std::optional<std::chrono::steady_clock::time_point> steady_origin() const { return std::nullopt; }
 };
 
 class SteadyClock final : public SessionClock {
@@ -23,6 +31,13 @@ class SteadyClock final : public SessionClock {
   explicit SteadyClock(double speed = 1.0);
   double now_s() override;
   void wait_until(double t_s) override;
+  std::optional<double> at_steady(std::chrono::steady_clock::time_point t) const override {
+    return std::chrono::duration<double>(t - start_).count() * speed_;
+  }
+  std::optional<std::chrono::steady_clock::time_point> steady_origin() const override {
+    if (speed_ != 1.0) return std::nullopt;
+    return start_;
+  }
 
  private:
   std::chrono::steady_clock::time_point start_;

@@ -13,6 +13,7 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
   bool paused = false;
   std::optional<Response> pending;  // an answer the runner does not take yet
   SessionPacer pacer(clock, options.period_s, options.stop);
+  participant.session_clock(clock);
   try {
     while (runner.state() != RunnerState::done) {
       const double t = pacer.now_s();

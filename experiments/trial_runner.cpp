@@ -21,7 +21,8 @@ const char* to_string(RunnerState s) noexcept {
 TrialRunner::TrialRunner(const Protocol& protocol, const SessionPlan& plan, int start_position, StimulusOutput& output,
                          RunnerListener& listener, const Scene* scene, InputSource* pen)
     : protocol_(protocol), plan_(plan), output_(output), listener_(listener), scene_(scene), pen_(pen),
-      position_(start_position) {
+      position_(start_position), reached_s_(std::numeric_limits<double>::quiet_NaN()),
+      felt_prev_t_s_(std::numeric_limits<double>::quiet_NaN()) {
   if (protocol.task == TaskKind::localisation && (scene == nullptr || pen == nullptr)) {
     throw std::invalid_argument("a localisation session needs a scene and a pen input");
   }
@@ -47,6 +48,9 @@ void TrialRunner::enter(RunnerState s, double t_s) {
 
 void TrialRunner::set_active(const FingerFlags& active, double t_s) {
   if (active == active_ && state_ == RunnerState::present) return;
+  for (std::size_t f = 0; f < kFingerCount; ++f) {
+    if (active[f] && !active_[f]) active_since_s_[f] = t_s;
+  }
   active_ = active;
   const PlannedTrial& t = *current_trial();
   if (protocol_.task == TaskKind::discrimination) {
@@ -82,6 +86,7 @@ void TrialRunner::start_trial(double t_s) {
   felt_sum_.fill(0.0);
   felt_count_.fill(0);
   onset_s_ = t_s;
+  reached_s_ = std::numeric_limits<double>::quiet_NaN();
   active_ = {};
   state_ = RunnerState::present;  // set before enter() so set_active sees the presenting state
   const PlannedTrial& t = *current_trial();
@@ -100,13 +105,39 @@ void TrialRunner::start_trial(double t_s) {
 void TrialRunner::sample_felt(double t_s) {
   const ChannelPressures felt = output_.service(t_s);
   felt_now_ = felt;
-  if (state_ != RunnerState::present) return;
-  for (std::size_t f = 0; f < kFingerCount; ++f) {
-    if (active_[f]) {
-      felt_sum_[f] += felt[f];
-      ++felt_count_[f];
+  if (state_ == RunnerState::present) {
+    for (std::size_t f = 0; f < kFingerCount; ++f) {
+      if (active_[f]) {
+        felt_sum_[f] += felt[f];
+        ++felt_count_[f];
+      }
     }
+    note_reached(felt, t_s);
   }
+  felt_prev_ = felt;
+  felt_prev_t_s_ = t_s;
+}
+
+void TrialRunner::note_reached(const ChannelPressures& felt, double t_s) {
+  // Discrimination only: a scene's level follows the pen, so "half the commanded level" has no
+  // single value to cross.
+  if (!std::isnan(reached_s_) || protocol_.task != TaskKind::discrimination) return;
+  const PlannedTrial& t = *current_trial();
+  const auto& level_kPa = protocol_.combinations.at(static_cast<std::size_t>(t.combination)).pressure_kPa;
+  double first_s = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < kFingerCount; ++f) {
+    if (!active_[f] || !(level_kPa[f] > 0)) continue;
+    const double half_kPa = 0.5 * level_kPa[f];
+    if (!(felt[f] >= half_kPa)) continue;
+    // Crossed since the last sample: placed on the line between the two samples (the monitor is
+    // read once per loop pass), never before the finger's stimulus was commanded on.
+    double crossed_s = t_s;
+    if (std::isfinite(felt_prev_t_s_) && felt_prev_t_s_ < t_s && felt_prev_[f] < half_kPa) {
+      crossed_s = felt_prev_t_s_ + (half_kPa - felt_prev_[f]) / (felt[f] - felt_prev_[f]) * (t_s - felt_prev_t_s_);
+    }
+    first_s = std::min(first_s, std::max(crossed_s, active_since_s_[f]));
+  }
+  if (std::isfinite(first_s)) reached_s_ = first_s;
 }
 
 void TrialRunner::update_presentation(double t_s) {
@@ -235,6 +266,8 @@ void TrialRunner::finish_trial(const Response* response, double t_s) {
   r.stimulus_end_s = state_ == RunnerState::present
                          ? std::min(answered_t_s, onset_s_ + presentation_length_s(condition.mode))
                          : stimulus_end_s_;
+  // Reached only if before the answer (an answer ahead of the stimulus did not respond to it).
+  r.stimulus_reached_s = reached_s_ <= answered_t_s ? reached_s_ : std::numeric_limits<double>::quiet_NaN();
   if (response && protocol_.confidence.asked()) r.confidence = response->confidence;
   for (std::size_t f = 0; f < kFingerCount; ++f) {
     r.felt_kPa[f] = felt_count_[f] ? felt_sum_[f] / felt_count_[f] : std::numeric_limits<double>::quiet_NaN();

@@ -114,6 +114,7 @@ class TrialRunner {
   void set_active(const FingerFlags& active, double t_s);
   void finish_trial(const Response* response, double t_s);
   void sample_felt(double t_s);
+  void note_reached(const ChannelPressures& felt, double t_s);
   void end_stimulus(double planned_end_s, double t_s);
   double sequence_length_s() const;
   double presentation_length_s(PresentationMode mode) const;
@@ -135,6 +136,13 @@ class TrialRunner {
   std::array<double, kFingerCount> felt_sum_{};
   std::array<int, kFingerCount> felt_count_{};
   ChannelPressures felt_now_{};
+  // When the stimulus reached the fingers (TrialRecord::stimulus_reached_s): each finger's last
+  // monitor sample (to interpolate the half-level crossing between samples) and when the
+  // finger's stimulus was commanded on (a crossing is never placed before it).
+  double reached_s_ = 0;  // NaN until reached in the current presentation
+  double felt_prev_t_s_ = 0;  // NaN before the first sample
+  ChannelPressures felt_prev_{};
+  std::array<double, kFingerCount> active_since_s_{};
 };
 
 }  // namespace palprig

@@ -69,6 +69,8 @@ static RigConfig parse_rig(const nlohmann::json& doc, const std::string& file) {
     if (rig.safety.p_max_kPa > p.max_kPa)
       root.fail("safety.p_max_kPa", "at most the regulators' max_kPa (" + std::to_string(p.max_kPa) + ")");
   nlohmann::json backend_section;
+  nlohmann::json load_cells;
+  if (root.has("load_cells")) load_cells = root.raw("load_cells");
   if (rig.backend != "simulated") {
     if (!root.has(rig.backend)) root.fail(rig.backend, "a \"" + rig.backend + "\" section for that backend");
     backend_section = root.raw(rig.backend);
@@ -79,6 +81,7 @@ static RigConfig parse_rig(const nlohmann::json& doc, const std::string& file) {
   // parsed config is what make_backend uses.
   if (rig.backend == "modbus") rig.modbus = parse_modbus_config(rig, backend_section);
   if (rig.backend == "comedi") rig.comedi = parse_comedi_config(rig, backend_section);
+  if (!load_cells.is_null()) rig.load_cells = parse_load_cell_config(rig, load_cells);
   return rig;
 }
 

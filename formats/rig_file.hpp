@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "formats/comedi_config.hpp"
+#include "formats/load_cell_config.hpp"
 #include "formats/modbus_register_map.hpp"
 #include "formats/tablet_config.hpp"
 #include "models/finger_layout.hpp"
@@ -35,6 +36,8 @@ struct RigConfig {
   std::optional<ModbusRigConfig> modbus;
   std::optional<ComediRigConfig> comedi;
   TabletConfig tablet;  // the pen tablet ("tablet" section; defaults when absent)
+  // Load cells measuring the pressing force (issue 26; "load_cells" section; absent: none).
+  std::optional<LoadCellConfig> load_cells;
 };
 
 RigConfig load_rig_file(const std::filesystem::path& path);

@@ -32,6 +32,9 @@ seeds_for() {
     fuzz_waveform_csv) echo "data/waveforms/*.csv" ;;
     fuzz_psychometric_csv) echo "" ;;
     fuzz_calibration_csv) echo "data/calibration/*.csv" ;;
+    fuzz_tracking_file) echo "data/tracking/*.json" ;;
+    fuzz_pose_recording) echo "data/tracking/*.csv" ;;
+    fuzz_igtl_stream) echo "" ;;
   esac
 }
 

@@ -6,11 +6,13 @@
 // given for one trial can never be taken for the next, and neither thread ever waits.
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <optional>
 
 #include "experiments/participant.hpp"
+#include "experiments/session_clock.hpp"
 #include "gui/window_pen_input.hpp"
 #include "runtime/latest_value.hpp"
 
@@ -25,6 +27,9 @@ struct GivenAnswer {
   int confidence = 0;      // the rating 1..levels given with the answer; 0: none asked
   int mark_count = 0;
   std::array<Mark, kMaxMarks> marks{};
+  // When the participant gave it: the input event's own time on steady_clock (ns since its
+  // epoch; gui/event_clock.hpp); 0: unknown (timed when the session takes it).
+  std::int64_t given_at_ns = 0;
 };
 
 class ParticipantChannel {
@@ -36,12 +41,16 @@ class ParticipantChannel {
   // The finger answer of trial `position` is given and its rating awaited (-1: none).
   void say_rating(int position) noexcept { rating_for_.store(position); }
   // Returns false when `marks` has more than kMaxMarks marks (nothing is handed over then).
-  bool give_answer(int position, const Response& response) noexcept;
+  // `given_at`: when the participant gave it (the key or mouse press's own time).
+  bool give_answer(int position, const Response& response,
+                   std::optional<std::chrono::steady_clock::time_point> given_at = std::nullopt) noexcept;
   WindowPenInput& pen() noexcept { return pen_; }  // the participant's pen (localisation)
 
   // Session thread.
   bool take_ready() noexcept { return ready_.exchange(false); }
-  std::optional<Response> take_answer(int position);
+  // The answer given for `position`, once; `given_at` (optional) receives when it was given.
+  std::optional<Response> take_answer(int position,
+                                      std::optional<std::chrono::steady_clock::time_point>* given_at = nullptr);
   int rating_for() const noexcept { return rating_for_.load(); }
 
  private:
@@ -57,6 +66,7 @@ class GuiParticipant final : public Participant {
  public:
   GuiParticipant(std::shared_ptr<ParticipantChannel> channel, bool palpates)
       : channel_(std::move(channel)), palpates_(palpates) {}
+  void session_clock(const SessionClock& clock) override { clock_ = &clock; }
   bool ready(double) override { return channel_->take_ready(); }
   void trial_started(const PlannedTrial& trial, const Condition&, double) override {
     position_ = trial.position;
@@ -64,12 +74,18 @@ class GuiParticipant final : public Participant {
     (void)channel_->take_answer(position_);  // one given before a pause does not answer it presented again
   }
   void feel(const FeltSample&) override {}
-  // The finger answer's time is noted on the first pass that sees it (the rating comes later).
+  // The finger answer's time is noted on the first pass that sees it (the rating comes later),
+  // for an answer whose input time is unknown.
   bool answering() override { return channel_->rating_for() == position_; }
   std::optional<Response> answer(double t_s) override {
     if (answering() && !finger_answer_at_s_) finger_answer_at_s_ = t_s;
-    auto r = channel_->take_answer(position_);
-    if (r && finger_answer_at_s_) r->given_at_s = finger_answer_at_s_;
+    std::optional<std::chrono::steady_clock::time_point> given_at;
+    auto r = channel_->take_answer(position_, &given_at);
+    if (!r) return r;
+    // The key or click's own time (the finger answer's, when a rating followed it), on the
+    // session's clock; else the pass that first saw it.
+    if (given_at && clock_) r->given_at_s = clock_->at_steady(*given_at);
+    if (!r->given_at_s && finger_answer_at_s_) r->given_at_s = finger_answer_at_s_;
     return r;
   }
   InputSource* pen() override { return palpates_ ? &channel_->pen() : nullptr; }
@@ -77,6 +93,7 @@ class GuiParticipant final : public Participant {
  private:
   std::shared_ptr<ParticipantChannel> channel_;
   bool palpates_;
+  const SessionClock* clock_ = nullptr;
   int position_ = -1;
   std::optional<double> finger_answer_at_s_;
 };

@@ -27,13 +27,20 @@ class GuiPulseParticipant final : public PulseParticipant {
   }
   void feel(const FeltSample&) override {}
   std::optional<Mark> answer(double) override {
-    const std::optional<Response> given = channel_->take_answer(position_);
+    std::optional<std::chrono::steady_clock::time_point> given_at;
+    const std::optional<Response> given = channel_->take_answer(position_, &given_at);
+    given_at_s_.reset();
     if (!given || given->marks.empty()) return std::nullopt;
+    if (given_at && clock_) given_at_s_ = clock_->at_steady(*given_at);  // the click or key's own time
     return given->marks.front();  // the screen hands over exactly one mark
   }
+  void session_clock(const SessionClock& clock) override { clock_ = &clock; }
+  std::optional<double> answer_given_at_s() const override { return given_at_s_; }
 
  private:
   std::shared_ptr<ParticipantChannel> channel_;
+  const SessionClock* clock_ = nullptr;
+  std::optional<double> given_at_s_;
   int position_ = -1;
 };
 

@@ -14,6 +14,7 @@
 #include "gui/rig_panel.hpp"
 #include "gui/scene_view.hpp"
 #include "gui/strip_chart.hpp"
+#include "gui/tracker_panel.hpp"
 
 namespace palprig::gui {
 
@@ -65,6 +66,10 @@ LivePage::LivePage(LiveRun& run, QWidget* parent)
   right_col->setContentsMargins(0, 0, 0, 0);
   rig_panel_ = new RigPanel(run);
   right_col->addWidget(rig_panel_, 1);
+  if (run.tracker_status()) {
+    tracker_ = new TrackerPanel(run);
+    right_col->addWidget(tracker_);
+  }
   right_col->addWidget(new PulsePanel(run));
   right->setMaximumWidth(420);
   top_row->addWidget(left, 3);
@@ -131,6 +136,7 @@ FeedStatus LivePage::poll() {
     scene_view_->advance_scene_time(st.latest.t_s);
   }
   rig_panel_->refresh(st);
+  if (tracker_) tracker_->refresh();
   if (!chart_->paused() && !incoming_.empty()) chart_->update();
   return st;
 }

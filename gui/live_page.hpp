@@ -18,6 +18,7 @@ namespace palprig::gui {
 class RigPanel;
 class SceneView;
 class StripChart;
+class TrackerPanel;
 
 class LivePage final : public QWidget {
   Q_OBJECT
@@ -28,6 +29,7 @@ class LivePage final : public QWidget {
   RigPanel* rig_panel() const noexcept { return rig_panel_; }
   SceneView* scene_view() const noexcept { return scene_view_; }
   StripChart* strip_chart() const noexcept { return chart_; }
+  TrackerPanel* tracker_panel() const noexcept { return tracker_; }  // null unless the input is a tracker
   QCheckBox* tumor_outlines() const noexcept { return tumors_; }
   const TraceHistory& history() const noexcept { return history_; }
   void toggle_pause();
@@ -43,6 +45,7 @@ class LivePage final : public QWidget {
   RigPanel* rig_panel_ = nullptr;
   SceneView* scene_view_ = nullptr;
   StripChart* chart_ = nullptr;
+  TrackerPanel* tracker_ = nullptr;
   QCheckBox* tumors_ = nullptr;
   QSlider* force_ = nullptr;
   QPushButton* pause_ = nullptr;

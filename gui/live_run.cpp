@@ -33,6 +33,7 @@ LiveRunSetup load_live_run(const LiveRunFiles& f) {
   files.calibration = f.cal_path;
   files.scene = f.scene_path.empty() ? f.data_dir / "scenes" / "phantom_abc.json" : std::filesystem::path(f.scene_path);
   files.input = f.input_spec.empty() ? "window" : f.input_spec;
+  files.tracking = f.tracking_path;
   LoadedRun run = load_run_files(files);
   LiveRunSetup s;
   s.rig = std::move(run.rig);
@@ -40,10 +41,12 @@ LiveRunSetup load_live_run(const LiveRunFiles& f) {
   s.scene = std::move(run.scene);
   s.config = run.config;
   s.input_spec = files.input;
+  s.tracking = std::move(run.tracking);
   const std::string& in = s.input_spec;
   if (!(in == "window" || in == "sweep" || in == "raster" || in == "tablet" || in.rfind("tablet:", 0) == 0 ||
-        in.rfind("trace:", 0) == 0))
-    throw InputError("input", in, "window, trace:FILE, sweep, tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
+        in.rfind("trace:", 0) == 0 || is_igtl_input(in)))
+    throw InputError("input", in,
+                     "window, trace:FILE, sweep, tablet, tablet:/dev/input/eventN, tablet:FILE.evemu or igtl:HOST:PORT");
   return s;
 }
 
@@ -54,7 +57,8 @@ std::unique_ptr<InputSource> make_live_input(const LiveRunSetup& s) {
   // Every other input is the library's, with the same bounds as `palprig run`.
   TraceLimits limits;
   limits.max_gap_s = s.rig.safety.max_input_age_s;
-  return make_input(s.input_spec, *s.scene.scene, s.rig.contact_force_N, s.rig.tablet, limits);
+  return make_input(s.input_spec, *s.scene.scene, s.rig.contact_force_N, s.rig.tablet, limits,
+                    s.tracking ? &*s.tracking : nullptr, s.rig.safety.max_input_age_s);
 }
 
 }  // namespace
@@ -65,6 +69,7 @@ LiveRun::LiveRun(LiveRunSetup setup, const LiveRunOptions& options)
   lag_compensation_.store(setup_.config.pulse.compensate_lag);
   input_ = make_live_input(setup_);
   window_pen_ = dynamic_cast<WindowPenInput*>(input_.get());
+  tracker_ = dynamic_cast<IgtlInput*>(input_.get());
   backend_ = make_backend(setup_.rig);
   backend_->open();
   // Hardware starts connected and vented; the operator arms it. The in-process simulation
@@ -102,6 +107,7 @@ void LiveRun::start_loop() {
   loop_done_.store(false);
   feed_.reset_statistics();
   if (window_pen_) window_pen_->restart_clock();
+  if (tracker_) tracker_->restart_clock();
   loop_running_ = true;
   loop_ = std::thread([this, opt] {
     try {
@@ -187,5 +193,10 @@ std::string LiveRun::fault_text() const {
 }
 
 std::string LiveRun::backend_text() const { return backend_->describe(); }
+
+std::optional<TrackerStatus> LiveRun::tracker_status() noexcept {
+  if (!tracker_) return std::nullopt;
+  return tracker_->status();
+}
 
 }  // namespace palprig::gui

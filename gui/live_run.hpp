@@ -19,14 +19,17 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
 #include "controller/loop_runner.hpp"
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"
+#include "formats/tracking_file.hpp"
 #include "gui/telemetry_feed.hpp"
 #include "gui/window_pen_input.hpp"
+#include "inputs/igtl_input.hpp"
 #include "models/calibration_models.hpp"
 
 namespace palprig::gui {
@@ -35,7 +38,8 @@ struct LiveRunFiles {
   std::string scene_path;        // empty: the bundled phantom
   std::string rig_path;          // empty: the default simulated rig
   std::string cal_path;          // empty: paper 002's models
-  std::string input_spec = "window";  // window, trace:FILE, sweep, tablet[:DEV or FILE.evemu]
+  std::string input_spec = "window";  // window, trace:FILE, sweep, tablet[:DEV or FILE.evemu], igtl:HOST:PORT
+  std::string tracking_path;          // with igtl: the tracking file (tools -> fingers)
   std::filesystem::path data_dir;     // where the bundled scene and rig live
 };
 
@@ -58,6 +62,7 @@ struct LiveRunSetup {
   SceneFile scene;
   TickConfig config;
   std::string input_spec;
+  std::optional<TrackingConfig> tracking;  // an igtl input's
 };
 // Throws InputError (one line: file, field, what was expected) before anything moves.
 LiveRunSetup load_live_run(const LiveRunFiles& files);
@@ -101,6 +106,10 @@ class LiveRun {
   std::string backend_text() const;  // "simulated (in-process)", "modbus tcp 10.0.0.5:502"
   bool linked() const noexcept { return backend_->linked(); }
   std::string input_text() const { return input_->describe(); }
+  // A tracker input's state (connected, tools seen, their poses' age); empty for other inputs.
+  // GUI thread only (one reader of the tracker's status hand-off).
+  std::optional<TrackerStatus> tracker_status() noexcept;
+  const TrackingConfig* tracking() const noexcept { return setup_.tracking ? &*setup_.tracking : nullptr; }
   std::string realtime_note() const { return last_summary_.realtime_note; }
   // Where the loop records every tick now (empty without --telemetry): never an earlier file.
   const std::filesystem::path& telemetry_file() const noexcept { return telemetry_file_; }
@@ -113,6 +122,7 @@ class LiveRun {
   LiveRunOptions options_;
   std::unique_ptr<InputSource> input_;
   WindowPenInput* window_pen_ = nullptr;
+  IgtlInput* tracker_ = nullptr;
   std::unique_ptr<RigBackend> backend_;
   TelemetryFeed feed_;
   std::atomic<bool> vent_request_{true}, stop_request_{false}, lag_compensation_{true};

@@ -2,6 +2,8 @@
 
 #include <QCoreApplication>
 #include <QKeyEvent>
+#include <QMouseEvent>
+#include <QWidget>
 
 #include "gui/participant_screen.hpp"
 
@@ -30,6 +32,15 @@ bool ParticipantKeys::is_participant_key(int key) noexcept {
 
 bool ParticipantKeys::eventFilter(QObject* watched, QEvent* event) {
   const QEvent::Type type = event->type();
+  if (type == QEvent::MouseButtonPress) {
+    // A press on the participant screen (a button, the marking scene): noted with its own time,
+    // so the click it becomes is timed by the press, whatever delayed the release or the click.
+    auto* widget = qobject_cast<QWidget*>(watched);
+    if (widget && (widget == &screen_ || screen_.isAncestorOf(widget))) {
+      screen_.note_press(widget, screen_.input_time(static_cast<QMouseEvent*>(event)->timestamp()));
+    }
+    return QObject::eventFilter(watched, event);
+  }
   if (type != QEvent::KeyPress && type != QEvent::KeyRelease && type != QEvent::ShortcutOverride) {
     return QObject::eventFilter(watched, event);
   }
@@ -43,7 +54,8 @@ bool ParticipantKeys::eventFilter(QObject* watched, QEvent* event) {
     event->accept();  // "this key is taken": no shortcut (the live page's Space) fires for it
     return true;
   }
-  if (type == QEvent::KeyPress && !key->isAutoRepeat()) screen_.participant_key(key->key());
+  // Timed by the event's own stamp (when the key went down), not by when this ran.
+  if (type == QEvent::KeyPress && !key->isAutoRepeat()) screen_.participant_key(key->key(), screen_.input_time(key->timestamp()));
   return true;  // consumed: no focused button clicks on Space, nothing else sees a digit
 }
 

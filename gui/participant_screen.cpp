@@ -60,7 +60,7 @@ ParticipantScreen::ParticipantScreen(QWidget* parent) : QWidget(parent) {
   none_->setFont(big);
   none_->setMinimumHeight(70);
   none_->setFocusPolicy(Qt::NoFocus);
-  connect(none_, &QPushButton::clicked, this, [this] { give({}); });
+  connect(none_, &QPushButton::clicked, this, [this] { give({}, none_); });
   fingers->addWidget(none_);
   answer_ = new QPushButton("Answer (Enter)");
   answer_->setObjectName("answer_button");
@@ -71,7 +71,7 @@ ParticipantScreen::ParticipantScreen(QWidget* parent) : QWidget(parent) {
     FingerFlags chosen{};
     bool any = false;
     for (std::size_t f = 0; f < kFingerCount; ++f) any |= chosen[f] = fingers_[f]->isChecked();
-    if (any) give(chosen);  // no finger chosen: "None" says so explicitly
+    if (any) give(chosen, answer_);  // no finger chosen: "None" says so explicitly
   });
   fingers->addWidget(answer_);
   pages_->addWidget(finger_page_);
@@ -89,6 +89,8 @@ ParticipantScreen::ParticipantScreen(QWidget* parent) : QWidget(parent) {
 
 void ParticipantScreen::start_session(const Protocol& protocol, std::shared_ptr<ParticipantChannel> channel) {
   marking_->detach_pen();  // before the last session's channel (and its pen) may go
+  event_clock_.reset();  // a foreign clock's offset is estimated afresh for each session
+  pressed_ = nullptr;
   channel_ = std::move(channel);
   finger_names_ = protocol.finger_names;
   localisation_ = protocol.task == TaskKind::localisation;
@@ -165,6 +167,7 @@ void ParticipantScreen::show_feedback(int position, const QString& text) {
 
 void ParticipantScreen::show_wait(const QString& text) {
   set_answering(false);
+  for (QPushButton* b : fingers_) b->setChecked(false);  // no earlier choice left on show (a pause, the end)
   presented_ = -1;
   ready_->setVisible(false);
   prompt_->setText(text);
@@ -192,13 +195,14 @@ void ParticipantScreen::toggle_finger(int finger) {
 
 void ParticipantScreen::give_marks() {
   if (!channel_ || answering_ < 0) return;
+  const auto given_at = answer_time(marking_);
   Response r;
   r.marks = marking_->marks();
   if (pulse_ && r.marks.size() != 1) {
     prompt_->setText("Mark the point where the pulse is strongest first (right-click or M).");
     return;
   }
-  if (!channel_->give_answer(answering_, r)) {
+  if (!channel_->give_answer(answering_, r, given_at)) {
     prompt_->setText(QString("At most %1 marks, please undo some.").arg(kMaxMarks));
     return;
   }
@@ -208,31 +212,54 @@ void ParticipantScreen::give_marks() {
   emit answerGiven(given);
 }
 
-void ParticipantScreen::give(const FingerFlags& fingers) {
+void ParticipantScreen::give(const FingerFlags& fingers, const QWidget* clicked) {
   if (!channel_ || answering_ < 0 || pending_) return;
+  const auto given_at = answer_time(clicked);
   Response r;
   r.tumor_under = fingers;
   if (confidence_->levels() > 0) {
-    // The rating step: the answer waits here and goes over with its rating; the session notes
-    // the finger answer's time now and holds the response timeout meanwhile.
+    // The rating step: the answer waits here and goes over with its rating, timed by the finger
+    // answer's input; the session holds the response timeout meanwhile.
     pending_ = r;
+    pending_at_ = given_at;
     channel_->say_rating(answering_);
     pages_->setCurrentWidget(confidence_);
     prompt_->setText(QString("How confident are you? %1 (keys 1-%2).").arg(confidence_->legend()).arg(confidence_->levels()));
     return;
   }
-  hand_over(r);
+  hand_over(r, given_at);
 }
 
 void ParticipantScreen::rate(int rating) {
   if (!pending_ || answering_ < 0 || rating < 1 || rating > confidence_->levels()) return;
   Response r = *pending_;
   r.confidence = rating;
-  hand_over(r);
+  hand_over(r, pending_at_);  // the response time ends with the finger answer, not the rating
 }
 
-void ParticipantScreen::hand_over(const Response& r) {
-  channel_->give_answer(answering_, r);
+std::chrono::steady_clock::time_point ParticipantScreen::input_time(std::uint64_t stamp_ms) {
+  const EventClock::Mapped m = event_clock_.map(stamp_ms, std::chrono::steady_clock::now());
+  last_source_ = m.source;
+  return m.at;
+}
+
+void ParticipantScreen::note_press(QObject* widget, std::chrono::steady_clock::time_point at) {
+  pressed_ = widget;
+  pressed_at_ = at;
+}
+
+std::chrono::steady_clock::time_point ParticipantScreen::answer_time(const QWidget* clicked) {
+  if (key_at_) return *key_at_;
+  const QObject* pressed = pressed_.data();
+  pressed_.clear();  // one press times one click
+  for (const QObject* o = pressed; o && clicked; o = o->parent()) {
+    if (o == clicked) return pressed_at_;
+  }
+  return std::chrono::steady_clock::now();
+}
+
+void ParticipantScreen::hand_over(const Response& r, std::chrono::steady_clock::time_point given_at) {
+  channel_->give_answer(answering_, r, given_at);
   channel_->say_rating(-1);
   const int given = answering_;
   set_answering(false);
@@ -241,10 +268,16 @@ void ParticipantScreen::hand_over(const Response& r) {
 }
 
 void ParticipantScreen::keyPressEvent(QKeyEvent* e) {
-  if (!participant_key(e->key())) QWidget::keyPressEvent(e);
+  if (!participant_key(e->key(), input_time(e->timestamp()))) QWidget::keyPressEvent(e);
 }
 
-bool ParticipantScreen::participant_key(int key) {
+bool ParticipantScreen::participant_key(int key, std::optional<std::chrono::steady_clock::time_point> at) {
+  // The key's time for whatever answer it hands over (Enter clicks Answer by program).
+  key_at_ = at ? at : std::chrono::steady_clock::now();
+  struct Clear {
+    std::optional<std::chrono::steady_clock::time_point>& at;
+    ~Clear() { at.reset(); }
+  } clear{key_at_};
   if (pending_) {  // the rating step: digits 1..levels rate, nothing else answers
     const int digit = key - Qt::Key_0;
     if (digit >= 1 && digit <= confidence_->levels()) {
@@ -258,7 +291,7 @@ bool ParticipantScreen::participant_key(int key) {
     case Qt::Key_2: toggle_finger(1); return true;
     case Qt::Key_3: toggle_finger(2); return true;
     case Qt::Key_0:
-      if (!marks_answer()) give({});
+      if (!marks_answer()) give({}, nullptr);
       return true;
     case Qt::Key_Return:
     case Qt::Key_Enter:

@@ -12,14 +12,18 @@
 // localisation shows it too, one trial's scene at a time with one mark (participant_screen_pulse.cpp).
 // Answers go to the session thread through the ParticipantChannel (gui/gui_participant.hpp).
 // The screen can leave the console and go full screen on another display (show_full_screen_on).
+#include <QPointer>
 #include <QWidget>
 #include <array>
+#include <chrono>
+#include <cstdint>
 #include <memory>
 #include <optional>
 
 #include "study/protocol.hpp"
 #include "experiments/pulse_session.hpp"
 #include "study/session_plan.hpp"
+#include "gui/event_clock.hpp"
 #include "gui/gui_participant.hpp"
 
 class QLabel;
@@ -56,8 +60,16 @@ class ParticipantScreen final : public QWidget {
   bool rating() const noexcept { return pending_.has_value(); }    // in the confidence step
   LocalisationMarking* marking() const noexcept { return marking_; }
   // A participant key (digits, Enter, Space) whatever widget had the focus (gui/participant_keys.hpp
-  // routes them here during a person's session); false when the key means nothing now.
-  bool participant_key(int key);
+  // routes them here during a person's session); false when the key means nothing now. `at`:
+  // when the key went down (input_time of its event); none: now.
+  bool participant_key(int key, std::optional<std::chrono::steady_clock::time_point> at = std::nullopt);
+  // When an input event stamped `stamp_ms` (QInputEvent::timestamp()) delivered now happened, on
+  // steady_clock (gui/event_clock.hpp; the clock is this session's).
+  std::chrono::steady_clock::time_point input_time(std::uint64_t stamp_ms);
+  EventClock::Source last_input_source() const noexcept { return last_source_; }
+  // A mouse button went down on `widget` at `at` (ParticipantKeys sees every press): a click on
+  // an answer button that follows is timed by its press, as a key by its going down.
+  void note_press(QObject* widget, std::chrono::steady_clock::time_point at);
 
   // Leaves the console and fills `screen` (a second display); back_to_console() returns.
   void show_full_screen_on(QScreen* screen);
@@ -76,12 +88,15 @@ class ParticipantScreen final : public QWidget {
 
  private:
   void toggle_finger(int finger);
-  void give(const FingerFlags& fingers);
-  void hand_over(const Response& response);
+  void give(const FingerFlags& fingers, const QWidget* clicked);
+  void hand_over(const Response& response, std::chrono::steady_clock::time_point given_at);
   void set_answering(bool on);
   bool marks_answer() const noexcept { return localisation_ || pulse_; }  // the marking screen answers
   void give_marks();
   void rate(int rating);
+  // When the answer being handed over was given: the key being handled, else the press of the
+  // button clicked (a press inside `clicked`), else now (a click made by program).
+  std::chrono::steady_clock::time_point answer_time(const QWidget* clicked);
 
   std::shared_ptr<ParticipantChannel> channel_;
   std::optional<Protocol> protocol_;  // the discrimination/localisation session's (answer timing)
@@ -91,6 +106,12 @@ class ParticipantScreen final : public QWidget {
   int answering_ = -1;
   int presented_ = -1;               // the trial on show (answers wait for its stimulus to end)
   std::optional<Response> pending_;  // the finger answer waiting for its rating
+  std::chrono::steady_clock::time_point pending_at_{};  // when that finger answer was given
+  EventClock event_clock_;
+  EventClock::Source last_source_ = EventClock::Source::delivery;
+  std::optional<std::chrono::steady_clock::time_point> key_at_;  // the key being handled
+  QPointer<QObject> pressed_;                                   // the last mouse press: where and when
+  std::chrono::steady_clock::time_point pressed_at_{};
   QLabel* prompt_ = nullptr;
   QPushButton* ready_ = nullptr;
   std::array<QPushButton*, kFingerCount> fingers_{};

@@ -13,6 +13,8 @@ namespace palprig::gui {
 
 void ParticipantScreen::start_pulse_session(const PulseProtocol&, std::shared_ptr<ParticipantChannel> channel) {
   marking_->detach_pen();  // before the last session's channel (and its pen) may go
+  event_clock_.reset();
+  pressed_.clear();
   channel_ = std::move(channel);
   localisation_ = false;
   pulse_ = true;

@@ -173,9 +173,18 @@ void SceneView::advance_scene_time(double t_s) {
   }
 }
 
+std::array<Point2_mm, kFingerCount> SceneView::finger_centres() const {
+  // Tracked fingers each stand where their tool is (the record says where); the pen's three
+  // stand in the layout's triangle around it.
+  if (!(record_.flags & kOwnPositions)) return layout_.centres(record_.x_mm, record_.y_mm);
+  std::array<Point2_mm, kFingerCount> c{};
+  for (int i = 0; i < kFingerCount; ++i) c[i] = {record_.finger_x_mm[i], record_.finger_y_mm[i]};
+  return c;
+}
+
 std::array<QPointF, kFingerCount> SceneView::finger_pixels() const {
   std::array<QPointF, kFingerCount> out{};
-  const auto c = layout_.centres(record_.x_mm, record_.y_mm);
+  const auto c = finger_centres();
   for (int i = 0; i < kFingerCount; ++i) out[i] = pixel_of(c[i].x_mm, c[i].y_mm);
   return out;
 }
@@ -274,15 +283,30 @@ void SceneView::render_to(QPainter& p) {
     return;
   }
   const bool pressed = record_.flags & kInContact;
-  const auto centres = layout_.centres(record_.x_mm, record_.y_mm);
+  const auto centres = finger_centres();
+  // A tracked finger whose tool is out of view is vented: drawn hollow and dashed where its tool
+  // was last seen, with why; one never seen is not drawn.
+  auto vented = [this](int i) { return record_.finger_vent[i] != FingerVent::none; };
   if (pressed)
     for (int i = 0; i < kFingerCount; ++i)
-      draw_indentation(p, centres[i], indentation_.depth_mm(record_.force_N, record_.stiffness[i]), record_.drag_x_mm[i],
-                       record_.drag_y_mm[i]);
+      if (!vented(i))
+        draw_indentation(p, centres[i], indentation_.depth_mm(record_.finger_force_N[i], record_.stiffness[i]),
+                         record_.drag_x_mm[i], record_.drag_y_mm[i]);
   p.restore();
   for (int i = 0; i < kFingerCount; ++i) {
     const QPointF c = pixel_of(centres[i].x_mm, centres[i].y_mm);
     const double rad = kFingerRadius_mm * px_per_mm;
+    if (vented(i)) {
+      // A tool never seen (or no tool at all) has no place to be drawn.
+      if (record_.finger_vent[i] == FingerVent::no_tool || record_.finger_vent[i] == FingerVent::tool_not_seen) continue;
+      p.setBrush(Qt::NoBrush);
+      p.setPen(QPen(QColor(230, 230, 230), 1.5, Qt::DashLine));
+      p.drawEllipse(c, rad, rad);
+      p.setPen(Qt::white);
+      p.drawText(QRectF(c.x() - 10, c.y() - 8, 20, 16), Qt::AlignCenter, QString::number(i + 1));
+      p.drawText(c + QPointF(rad + 2, 4), record_.finger_vent[i] == FingerVent::tool_stale ? "out of view" : "vented");
+      continue;
+    }
     QColor fill = pressure_colour(record_.setpoint_kPa[i], p_max_kPa_);
     fill.setAlpha(pressed ? 170 : 70);
     p.setBrush(fill);
@@ -291,6 +315,7 @@ void SceneView::render_to(QPainter& p) {
     p.setPen(Qt::black);
     p.drawText(QRectF(c.x() - 10, c.y() - 8, 20, 16), Qt::AlignCenter, QString::number(i + 1));
   }
+  if (record_.flags & kOwnPositions) return;  // no pen: each finger is its own
   // The pen: a cross-hair at finger 1's vertex, with the force.
   const QPointF pen = pixel_of(record_.x_mm, record_.y_mm);
   p.setPen(QPen(Qt::white, 1.5));

@@ -50,6 +50,9 @@ class SceneView final : public QWidget {
 
   // Where the fingers are drawn (widget pixels) and their fill colours, for tests.
   std::array<QPointF, kFingerCount> finger_pixels() const;
+  // Where the fingers are on the scene: the record's own positions (tracked fingers) or the
+  // layout's triangle around the pen.
+  std::array<Point2_mm, kFingerCount> finger_centres() const;
   std::array<QColor, kFingerCount> finger_colours() const;
   QPointF pixel_of(double x_mm, double y_mm) const;
   bool pen_down() const noexcept { return pen_.in_contact; }

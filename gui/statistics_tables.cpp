@@ -38,6 +38,10 @@ void add_rows(QTableWidget& table, const TrialSummary& summary, const QString& p
              std::isfinite(r.mean_rt_after_stimulus_s)
                  ? number(r.mean_rt_after_stimulus_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_after_stimulus_s, 2)
                  : QStringLiteral("n/a"));
+    set_cell(table, row, rt_reached_column,
+             std::isfinite(r.mean_rt_from_reached_s)
+                 ? number(r.mean_rt_from_reached_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_from_reached_s, 2)
+                 : QStringLiteral("n/a"));
     set_cell(table, row, confidence_column,
              r.rated > 0 ? number(r.mean_confidence, 2) + QStringLiteral(" (n=%1)").arg(r.rated) : QStringLiteral("n/a"));
   }
@@ -58,7 +62,8 @@ void fill_measures_table(QTableWidget& table, const TrialStatistics& s) {
   table.setHorizontalHeaderLabels({QObject::tr("group"), QObject::tr("trials"), "TP", "FN", "TN", "FP",
                                    QObject::tr("Se [%1 % Wilson]").arg(percent), "Sp", "PPV", "ACC",
                                    QObject::tr("RT from onset, mean ± sd (s)"),
-                                   QObject::tr("RT after stimulus, mean ± sd (s)"), QObject::tr("confidence mean")});
+                                   QObject::tr("RT after stimulus, mean ± sd (s)"),
+                                   QObject::tr("RT from reached, mean ± sd (s)"), QObject::tr("confidence mean")});
   // The rating column only when some trial has a rating (as `stats trials` shows it).
   const bool rated = s.by_condition.any_rated;
   add_rows(table, s.by_condition, QObject::tr("condition "));

@@ -14,7 +14,8 @@ namespace palprig::gui {
 QString measure_text(const Measure& m);
 
 enum MeasureColumn { group_column = 0, trials_column, tp_column, fn_column, tn_column, fp_column,
-                     se_column, sp_column, ppv_column, acc_column, rt_column, rt_after_column, confidence_column,
+                     se_column, sp_column, ppv_column, acc_column, rt_column, rt_after_column, rt_reached_column,
+                     confidence_column,
                      measure_column_count };
 
 void fill_measures_table(QTableWidget& table, const TrialStatistics& statistics);

@@ -9,6 +9,9 @@
 // a tablet reports at 100-200 Hz, the loop runs at 1 kHz) is not a new sample. The horizon is
 // capped (max_horizon_s) and so is the speed (max_speed_mm_per_s, well above a hand's), so a
 // pen that jumps (a lifted pen put down elsewhere, a glitch) is not flung across the pad.
+// Tracked fingers (TouchSample::own_positions, per_finger_force: issue 26) are extrapolated the
+// same way, each from its own positions and force, over the samples since its tool was last
+// vented (out of view), so a tool coming back into view is not read as a jump.
 #include <array>
 #include <cstddef>
 
@@ -23,11 +26,21 @@ struct PenPrediction {
   double max_force_rate_N_per_s = 50;  // a press rises over tens of ms at the fastest
 };
 
+// One finger's part of a prediction (what the tick's look ahead needs, without copying a whole
+// TouchSample per sample ahead): the pen, and the finger's own position and force when tracked.
+struct PredictedFinger {
+  double pen_x_mm = 0, pen_y_mm = 0, pen_force_N = 0;
+  bool in_contact = false;
+  bool own_position = false, own_force = false;  // TouchSample::own_positions, per_finger_force
+  double x_mm = 0, y_mm = 0, force_N = 0;        // the finger's own (when tracked)
+  FingerVent vent = FingerVent::none;
+};
+
 class PenPredictor {
  public:
   static constexpr std::size_t kCapacity = 64;
 
-  void reset() noexcept { count_ = 0; }
+  void reset() noexcept { clear(); }
   // Record the sample the tick got. Lifted samples clear the history (a new touch starts over).
   // The slopes are fitted here, once per new sample, so predict() costs a few operations.
   void observe(const TouchSample& sample, const PenPrediction& how = {}) noexcept;
@@ -35,6 +48,8 @@ class PenPredictor {
   // no sample yet, stays as it is. in_contact is kept; the force is clamped at 0. `how` should
   // be the one given to observe() (the caps apply here; the window there).
   TouchSample predict(double t_s, const PenPrediction& how) const noexcept;
+  // The same as predict(t_s, how) for finger i only.
+  PredictedFinger predict_finger(double t_s, const PenPrediction& how, std::size_t i) const noexcept;
   std::size_t samples() const noexcept { return count_; }
 
  private:
@@ -42,9 +57,12 @@ class PenPredictor {
     return ring_[(head_ + kCapacity - age) % kCapacity];
   }
   void fit_slopes(const PenPrediction& how) noexcept;
+  void clear() noexcept;
   std::array<TouchSample, kCapacity> ring_{};
   std::size_t head_ = 0, count_ = 0;
   double vx_ = 0, vy_ = 0, vf_ = 0;  // mm/s, mm/s, N/s as fitted at the newest sample, capped
+  // The same per tracked finger (zero for the pen's triangle, or a finger vented now).
+  std::array<double, kFingerCount> finger_vx_{}, finger_vy_{}, finger_vf_{};
 };
 
 }  // namespace palprig

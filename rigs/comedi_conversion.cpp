@@ -73,4 +73,6 @@ double kPa_from_counts(const ComediConversion& c, lsampl_t counts) noexcept {
   return c.regulator.pressure_kPa(comedi_to_physical(counts, &c.to_volts));
 }
 
+double volts_from_counts(const ComediConversion& c, lsampl_t counts) noexcept { return comedi_to_physical(counts, &c.to_volts); }
+
 }  // namespace palprig

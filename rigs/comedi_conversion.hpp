@@ -35,5 +35,7 @@ lsampl_t counts_from_kPa(const ComediConversion& conv, double pressure_kPa) noex
 lsampl_t counts_from_volts(const ComediConversion& conv, double volts) noexcept;
 // counts -> comedi_to_physical -> volts -> kPa.
 double kPa_from_counts(const ComediConversion& conv, lsampl_t counts) noexcept;
+// counts -> comedi_to_physical -> volts (a load cell's input).
+double volts_from_counts(const ComediConversion& conv, lsampl_t counts) noexcept;
 
 }  // namespace palprig

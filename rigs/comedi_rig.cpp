@@ -56,6 +56,7 @@ BackendCapabilities ComediRig::capabilities() const {
   BackendCapabilities c;
   c.link_kind = "comedi";
   c.endpoint = config_.device;
+  describe_load_cells(c);
   return c;
 }
 
@@ -156,6 +157,19 @@ void ComediRig::do_open() {
     prepare(ao_subdevice_, config_.outputs[c], where + ".output", true, out_conv_[c], write_insns_[c], &out_counts_[c]);
     prepare(ai_subdevice_, config_.monitors[c], where + ".monitor", false, mon_conv_[c], read_insns_[c], &mon_counts_[c]);
   }
+  if (load_cells()) {
+    const auto& cells = load_cells()->channels;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      ComediChannelSpec spec;
+      spec.channel = cells[i].comedi_channel;
+      spec.volts_lo = cells[i].volts_lo;
+      spec.volts_hi = cells[i].volts_hi;
+      prepare(ai_subdevice_, spec, "load_cells.channels[" + std::to_string(i) + "].input", false, cell_conv_[i], cell_insns_[i],
+              &cell_counts_[i]);
+    }
+    cell_list_.n_insns = unsigned(cells.size());
+    cell_list_.insns = cell_insns_.data();
+  }
   write_list_.n_insns = kFingerCount;
   write_list_.insns = write_insns_.data();
   read_list_.n_insns = kFingerCount;
@@ -205,6 +219,21 @@ BackendStatus ComediRig::do_read(ChannelPressures& monitor_kPa, double) noexcept
     return BackendStatus::error;
   }
   for (std::size_t c = 0; c < kFingerCount; ++c) monitor_kPa[c] = kPa_from_counts(mon_conv_[c], mon_counts_[c]);
+  return BackendStatus::ok;
+}
+
+BackendStatus ComediRig::do_read_load_cells(std::array<double, kFingerCount>& volts, double) noexcept {
+  if (!dev_ || cell_list_.n_insns == 0) {
+    set_error("comedi device not open");
+    return BackendStatus::error;
+  }
+  if (comedi_do_insnlist(dev_, &cell_list_) != int(cell_list_.n_insns)) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg, "comedi load cell read on %s: %s", config_.device.c_str(), comedi_strerror(comedi_errno()));
+    set_error(msg);
+    return BackendStatus::error;
+  }
+  for (std::size_t i = 0; i < cell_list_.n_insns; ++i) volts[i] = volts_from_counts(cell_conv_[i], cell_counts_[i]);
   return BackendStatus::ok;
 }
 

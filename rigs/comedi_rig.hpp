@@ -31,6 +31,8 @@ class ComediRig final : public RigBackend {
   BackendStatus do_write(const ChannelPressures& setpoint_kPa, double t_s) noexcept override;
   BackendStatus do_read(ChannelPressures& monitor_kPa, double t_s) noexcept override;
   BackendStatus do_vent() noexcept override;
+  // The load cells' analog inputs (issue 26), one instruction list prepared in open().
+  BackendStatus do_read_load_cells(std::array<double, kFingerCount>& volts, double t_s) noexcept override;
 
  private:
   [[noreturn]] void refuse(const std::string& field, const std::string& expected) const;
@@ -44,6 +46,10 @@ class ComediRig final : public RigBackend {
   std::array<lsampl_t, kFingerCount> out_counts_{}, mon_counts_{};
   std::array<comedi_insn, kFingerCount> write_insns_{}, read_insns_{};
   comedi_insnlist write_list_{}, read_list_{};
+  std::array<ComediConversion, kFingerCount> cell_conv_{};
+  std::array<lsampl_t, kFingerCount> cell_counts_{};
+  std::array<comedi_insn, kFingerCount> cell_insns_{};
+  comedi_insnlist cell_list_{};
 };
 
 }  // namespace palprig

@@ -110,6 +110,35 @@ ModbusLink::ModbusLink(const ModbusRigConfig& rig, std::size_t index) : link_(ri
   add(reads_, holding_regs, RegisterKind::holding);
 }
 
+void ModbusLink::plan_load_cells(const LoadCellConfig& cells, std::size_t index) {
+  cell_reads_.clear();
+  std::vector<std::pair<int, int>> input_regs, holding_regs;
+  for (std::size_t i = 0; i < cells.channels.size(); ++i) {
+    const auto& ref = cells.channels[i].modbus;
+    if (ref && ref->link == index) (ref->kind == RegisterKind::input ? input_regs : holding_regs).emplace_back(ref->address, int(i));
+  }
+  for (const auto& [pairs, kind] : {std::pair{input_regs, RegisterKind::input}, std::pair{holding_regs, RegisterKind::holding}})
+    for (const auto& run : contiguous_runs(pairs)) {
+      Block b;
+      b.start = run.start;
+      b.count = int(run.channels.size());
+      b.kind = kind;
+      for (int k = 0; k < b.count; ++k) b.channel_at[k] = run.channels[k];
+      cell_reads_.push_back(b);
+    }
+}
+
+bool ModbusLink::read_load_cells(ChannelWords& words) noexcept {
+  std::uint16_t buf[kFingerCount];
+  for (const Block& b : cell_reads_) {
+    const int rc = b.kind == RegisterKind::input ? modbus_read_input_registers(ctx_, b.start, b.count, buf)
+                                                 : modbus_read_registers(ctx_, b.start, b.count, buf);
+    if (rc == -1) return fail(b.kind == RegisterKind::input ? "read load cell input" : "read load cell holding", b.start);
+    for (int k = 0; k < b.count; ++k) words[b.channel_at[k]] = buf[k];
+  }
+  return true;
+}
+
 ModbusLink::~ModbusLink() {
   disconnect();
   if (ctx_) modbus_free(ctx_);

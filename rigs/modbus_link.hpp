@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/load_cell_config.hpp"
 #include "formats/modbus_register_map.hpp"
 
 typedef struct _modbus modbus_t;
@@ -45,6 +46,11 @@ class ModbusLink {
   bool write_outputs(const ChannelWords& words) noexcept;
   // Read this link's monitor words into `words` (entries of other channels untouched).
   bool read_monitors(ChannelWords& words) noexcept;
+  // The load cells (issue 26) read on this link: planned once before connecting, then read
+  // each bus cycle into `words` indexed by cell (entries of cells on other links untouched).
+  void plan_load_cells(const LoadCellConfig& cells, std::size_t link_index);
+  bool read_load_cells(ChannelWords& words) noexcept;
+  bool has_load_cells() const noexcept { return !cell_reads_.empty(); }
 
   // Why the last call failed: libmodbus's text, and whether the device answered with an
   // exception (a map the device refuses) rather than the link failing.
@@ -55,7 +61,7 @@ class ModbusLink {
   const std::string& resolved_host() const noexcept { return resolved_host_; }
   bool has_outputs() const noexcept { return !writes_.empty(); }
   bool has_monitors() const noexcept { return !reads_.empty(); }
-  std::size_t transactions_per_cycle() const noexcept { return writes_.size() + reads_.size(); }
+  std::size_t transactions_per_cycle() const noexcept { return writes_.size() + reads_.size() + cell_reads_.size(); }
 
  private:
   struct Block {
@@ -69,7 +75,7 @@ class ModbusLink {
   std::string resolved_host_;
   modbus_t* ctx_ = nullptr;
   bool connected_ = false;
-  std::vector<Block> writes_, reads_;
+  std::vector<Block> writes_, reads_, cell_reads_;
   char error_[200] = {0};
   LinkError error_kind_ = LinkError::none;
 };

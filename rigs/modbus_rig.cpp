@@ -39,6 +39,7 @@ ModbusRig::ModbusRig(ModbusRigConfig config)
   for (std::size_t c = 0; c < kFingerCount; ++c) zero_words_[c] = config_.channels[c].output.scale.word_from_kPa(0.0);
   Monitors nan_monitors;
   nan_monitors.kPa.fill(std::nan(""));
+  nan_monitors.cell_volts.fill(std::nan(""));
   monitors_.publish(nan_monitors);
 }
 
@@ -65,6 +66,7 @@ BackendCapabilities ModbusRig::capabilities() const {
     c.endpoint += (i ? " + " : "") + where;
   }
   c.link_kind = tcp && rtu ? "modbus-tcp+rtu" : rtu ? "modbus-rtu" : "modbus-tcp";
+  describe_load_cells(c);
   return c;
 }
 
@@ -73,13 +75,16 @@ void ModbusRig::log(const std::string& line) {
 }
 
 void ModbusRig::do_open() {
+  for (std::size_t i = 0; i < links_.size(); ++i)
+    if (load_cells()) links_[i].link->plan_load_cells(*load_cells(), i);
   for (std::size_t i = 0; i < links_.size(); ++i) {
     ModbusLink& link = *links_[i].link;
     const std::string where = "modbus.links[" + std::to_string(i) + "] \"" + link.config().name + "\" (" +
                               link.config().endpoint() + ")";
     if (!link.connect()) throw InputError(config_.source, where, std::string("a Modbus device that answers (") + link.last_error() + ")");
     ChannelWords monitors{};
-    if (!link.write_outputs(zero_words_) || !link.read_monitors(monitors)) {
+    ChannelWords cells{};
+    if (!link.write_outputs(zero_words_) || !link.read_monitors(monitors) || !link.read_load_cells(cells)) {
       const std::string why = link.last_error();
       const bool device = link.last_error_kind() == LinkError::device;
       link.disconnect();
@@ -152,6 +157,11 @@ BackendStatus ModbusRig::do_write(const ChannelPressures& setpoint_kPa, double) 
 
 BackendStatus ModbusRig::do_read(ChannelPressures& monitor_kPa, double) noexcept {
   monitor_kPa = monitors_.latest().kPa;
+  return fatal_.load(std::memory_order_acquire) ? BackendStatus::error : BackendStatus::ok;
+}
+
+BackendStatus ModbusRig::do_read_load_cells(std::array<double, kFingerCount>& volts, double) noexcept {
+  volts = monitors_.latest().cell_volts;
   return fatal_.load(std::memory_order_acquire) ? BackendStatus::error : BackendStatus::ok;
 }
 
@@ -231,13 +241,14 @@ void ModbusRig::io_cycle(std::int64_t now, double dt_s) {
 
   Monitors fresh;
   fresh.kPa.fill(std::nan(""));
+  fresh.cell_volts.fill(std::nan(""));
   for (auto& l : links_) {
     if (!l.up) {
       if (now >= l.next_attempt_ns) try_reconnect(l, now);
       continue;
     }
     // While some other link is down this one carries 0 kPa (out_words_ hold 0 kPa then).
-    if (l.link->write_outputs(out_words_) && l.link->read_monitors(mon_words_)) continue;
+    if (l.link->write_outputs(out_words_) && l.link->read_monitors(mon_words_) && l.link->read_load_cells(cell_words_)) continue;
     if (l.link->last_error_kind() == LinkError::device) {
       char text[256];
       std::snprintf(text, sizeof text, "modbus link '%s' (%s): device refused: %s", l.link->config().name.c_str(),
@@ -252,6 +263,9 @@ void ModbusRig::io_cycle(std::int64_t now, double dt_s) {
   if (now_all_up) {
     for (std::size_t c = 0; c < kFingerCount; ++c)
       fresh.kPa[c] = config_.channels[c].monitor.scale.kPa_from_word(mon_words_[c]);
+    if (load_cells())
+      for (std::size_t i = 0; i < load_cells()->channels.size(); ++i)
+        fresh.cell_volts[i] = load_cells()->channels[i].modbus->scale.volts_from_word(cell_words_[i]);
   }
   monitors_.publish(fresh);
   if (now_all_up != linked_.load(std::memory_order_relaxed)) {
@@ -287,7 +301,8 @@ void ModbusRig::try_reconnect(LinkState& l, std::int64_t now) {
   ++l.attempts;
   // Back only when the module takes 0 kPa and answers a monitor read: a half-open link must
   // not be trusted with pressure.
-  if (l.link->connect() && l.link->write_outputs(zero_words_) && l.link->read_monitors(mon_words_)) {
+  if (l.link->connect() && l.link->write_outputs(zero_words_) && l.link->read_monitors(mon_words_) &&
+      l.link->read_load_cells(cell_words_)) {
     l.up = true;
     ++stats_.reconnects;
     for (std::size_t c = 0; c < kFingerCount; ++c) {

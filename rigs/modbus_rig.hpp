@@ -64,6 +64,7 @@ class ModbusRig final : public RigBackend {
   BackendStatus do_write(const ChannelPressures& setpoint_kPa, double t_s) noexcept override;
   BackendStatus do_read(ChannelPressures& monitor_kPa, double t_s) noexcept override;
   BackendStatus do_vent() noexcept override;
+  BackendStatus do_read_load_cells(std::array<double, kFingerCount>& volts, double t_s) noexcept override;
 
  private:
   struct Command {
@@ -72,6 +73,7 @@ class ModbusRig final : public RigBackend {
   };
   struct Monitors {
     ChannelPressures kPa{};
+    std::array<double, kFingerCount> cell_volts{};  // the load cells (NaN while a link is down)
   };
   struct LinkState {
     std::unique_ptr<ModbusLink> link;
@@ -106,7 +108,7 @@ class ModbusRig final : public RigBackend {
   // I/O thread state.
   ChannelPressures ramp_kPa_{};     // what the re-engagement ramp allows now
   std::array<bool, kFingerCount> engaging_{};
-  ChannelWords out_words_{}, mon_words_{};
+  ChannelWords out_words_{}, mon_words_{}, cell_words_{};
   ChannelWords zero_words_{};       // every output at 0 kPa (not always word 0: signed or offset maps)
   LatencyHistogram cycle_hist_;
   ModbusBusStats stats_;

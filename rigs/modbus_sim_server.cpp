@@ -74,6 +74,29 @@ std::uint16_t* ModbusSimServer::output_register(std::size_t c) const noexcept {
   return &m->tab_registers[ref.address - static_cast<int>(m->start_registers)];
 }
 
+std::uint16_t* ModbusSimServer::register_of(const ModbusRegisterRef& ref) const noexcept {
+  modbus_mapping_t* m = links_[ref.link]->mapping;
+  if (ref.kind == RegisterKind::input) return &m->tab_input_registers[ref.address - static_cast<int>(m->start_input_registers)];
+  return &m->tab_registers[ref.address - static_cast<int>(m->start_registers)];
+}
+
+void ModbusSimServer::set_load_cells(const LoadCellConfig& cells, double load_N) {
+  cell_registers_.clear();
+  cells_.clear();
+  cell_load_N_ = load_N;
+  for (std::size_t i = 0; i < cells.channels.size(); ++i) {
+    const LoadCellChannel& ch = cells.channels[i];
+    if (!ch.modbus) continue;
+    cell_registers_.push_back(*ch.modbus);
+    SimulatedLoadCellParams p;
+    p.tare_V = ch.calibration.tare_V;  // the rig file's calibration is this simulated cell's truth
+    p.N_per_V = ch.calibration.N_per_V;
+    p.max_V = ch.modbus->scale.volts_hi;
+    p.seed = 21 + i;
+    cells_.emplace_back(p);
+  }
+}
+
 std::uint16_t* ModbusSimServer::monitor_register(std::size_t c) const noexcept {
   const auto& ref = map_.channels[c].monitor;
   modbus_mapping_t* m = links_[ref.link]->mapping;
@@ -102,6 +125,11 @@ void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
         else
           i_lo = std::min(i_lo, ch.monitor.address), i_hi = std::max(i_hi, ch.monitor.address);
       }
+    }
+    for (const ModbusRegisterRef& ref : cell_registers_) {
+      if (ref.link != i) continue;
+      if (ref.kind == RegisterKind::holding) h_lo = std::min(h_lo, ref.address), h_hi = std::max(h_hi, ref.address);
+      else i_lo = std::min(i_lo, ref.address), i_hi = std::max(i_hi, ref.address);
     }
     link->mapping = modbus_mapping_new_start_address(0, 0, 0, 0, h_hi < 0 ? 0 : unsigned(h_lo), h_hi < 0 ? 0 : unsigned(h_hi - h_lo + 1),
                                                      i_hi < 0 ? 0 : unsigned(i_lo), i_hi < 0 ? 0 : unsigned(i_hi - i_lo + 1));
@@ -204,6 +232,8 @@ void ModbusSimServer::step_plants() noexcept {
     plants_[c].step(command_kPa, dt);
     if (!map_.monitor_is_readback(c)) *monitor_register(c) = map_.channels[c].monitor.scale.word_from_kPa(plants_[c].monitor_kPa());
   }
+  for (std::size_t i = 0; i < cells_.size(); ++i)
+    *register_of(cell_registers_[i]) = cell_registers_[i].scale.word_from_volts(cells_[i].volts(0.0, cell_load_N_));
 }
 
 void ModbusSimServer::after_write(std::size_t link, const std::uint8_t* query, int offset) noexcept {

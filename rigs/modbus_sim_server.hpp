@@ -22,7 +22,9 @@
 #include <thread>
 #include <vector>
 
+#include "formats/load_cell_config.hpp"
 #include "formats/modbus_register_map.hpp"
+#include "models/load_cell.hpp"
 #include "models/pneumatic_plant.hpp"
 
 typedef struct _modbus modbus_t;
@@ -55,6 +57,10 @@ class ModbusSimServer {
   // so end-to-end latency can be measured across processes on one machine).
   void set_write_log(const std::filesystem::path& path);
   void set_watchdog_s(double seconds) { watchdog_s_ = seconds; }
+  // The rig's load cells on Modbus registers (issue 26): each is simulated from its channel's
+  // tare and gain, with `load_N` resting on it (a calibration weight; 0: nothing), and its
+  // register kept up to date by the plant thread. Before start().
+  void set_load_cells(const LoadCellConfig& cells, double load_N);
 
   // Listen on one address per link (in the map's link order) and start serving. Throws
   // std::runtime_error with the address and the system's reason when a socket cannot be bound.
@@ -89,11 +95,15 @@ class ModbusSimServer {
   void step_plants() noexcept;
   std::uint16_t* output_register(std::size_t channel) const noexcept;
   std::uint16_t* monitor_register(std::size_t channel) const noexcept;
+  std::uint16_t* register_of(const ModbusRegisterRef& ref) const noexcept;
   void after_write(std::size_t link, const std::uint8_t* query, int header_length) noexcept;
   void log(const std::string& line);
 
   ModbusRigConfig map_;
   std::array<PneumaticPlant, kFingerCount> plants_;
+  std::vector<ModbusRegisterRef> cell_registers_;
+  std::vector<SimulatedLoadCell> cells_;
+  double cell_load_N_ = 0;
   std::vector<std::unique_ptr<Link>> links_;
   std::thread plant_thread_;
   mutable std::mutex mutex_;  // registers and plants: held for one reply or one plant step

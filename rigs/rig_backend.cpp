@@ -105,6 +105,41 @@ BackendStatus RigBackend::do_read_sensors(std::array<double, kFingerCount>& valu
 
 BackendStatus RigBackend::vent() noexcept { return do_vent(); }
 
+void RigBackend::attach_load_cells(const LoadCellConfig& config) {
+  if (state() != BackendState::closed) throw std::logic_error("load cells are attached before open()");
+  load_cells_ = config;
+}
+
+void RigBackend::describe_load_cells(BackendCapabilities& c) const noexcept {
+  c.load_cells = load_cell_count();
+  c.load_cells_per_finger = load_cells_per_finger();
+}
+
+BackendStatus RigBackend::read_load_cells(LoadCellReading& reading, double t_s) noexcept {
+  reading = {};
+  reading.volts.fill(std::nan(""));
+  reading.force_N.fill(std::nan(""));
+  if (!load_cells_) {
+    set_error("this rig has no load cells (the rig file's \"load_cells\" section)");
+    return BackendStatus::error;
+  }
+  if (state() == BackendState::closed) {
+    set_error("cannot read the load cells: the rig backend is closed (open it first)");
+    return BackendStatus::error;
+  }
+  const BackendStatus status = do_read_load_cells(reading.volts, t_s);
+  reading.count = load_cells_->channels.size();
+  for (std::size_t i = 0; i < reading.count; ++i)
+    reading.force_N[i] = load_cells_->channels[i].calibration.force_N(reading.volts[i]);
+  return status;
+}
+
+BackendStatus RigBackend::do_read_load_cells(std::array<double, kFingerCount>& volts, double) noexcept {
+  volts.fill(std::nan(""));
+  set_error("this backend cannot read load cells");
+  return BackendStatus::error;
+}
+
 void RigBackend::set_error(const char* message) noexcept {
   std::strncpy(last_error_, message, sizeof last_error_ - 1);
   last_error_[sizeof last_error_ - 1] = '\0';

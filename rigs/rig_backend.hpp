@@ -24,8 +24,10 @@
 #include <array>
 #include <atomic>
 #include <cstddef>
+#include <optional>
 #include <string>
 
+#include "formats/load_cell_config.hpp"
 #include "models/channel_pressures.hpp"
 
 namespace palprig {
@@ -44,6 +46,15 @@ struct BackendCapabilities {
   std::string sensor_unit;       // e.g. "mm"
   std::string link_kind;         // "in-process", "modbus-tcp", "modbus-rtu", "comedi"
   std::string endpoint;          // e.g. "127.0.0.1:1502", "/dev/ttyUSB0 9600 8N1", "/dev/comedi0"
+  std::size_t load_cells = 0;    // load cells measuring the pressing force (issue 26): 0, 1 or 3
+  bool load_cells_per_finger = false;  // 3 cells, one under each finger; else 1 shared
+};
+
+// One reading of the load cells: each cell's voltage and its force (its calibration applied).
+struct LoadCellReading {
+  std::size_t count = 0;                         // cells read: 1 (shared) or kFingerCount
+  std::array<double, kFingerCount> volts{};
+  std::array<double, kFingerCount> force_N{};
 };
 
 class RigBackend {
@@ -79,6 +90,18 @@ class RigBackend {
   // All channels to 0 kPa, in any state. Safe to call repeatedly and after errors.
   BackendStatus vent() noexcept;
 
+  // The rig file's load cells (issue 26), given before open(); the backend reads them on its
+  // analog inputs. read_load_cells: any state but closed; error without load cells. The
+  // force is the cell's calibration applied to its voltage (negative below the tare: noise).
+  void attach_load_cells(const LoadCellConfig& config);
+  std::size_t load_cell_count() const noexcept { return load_cells_ ? load_cells_->channels.size() : 0; }
+  bool load_cells_per_finger() const noexcept { return load_cells_ && load_cells_->per_finger; }
+  BackendStatus read_load_cells(LoadCellReading& reading, double t_s) noexcept;
+  // How deep each fingertip presses into the phantom (mm below its surface; 0 above it), as the
+  // input tracks it: the simulated rig's load cells feel that press. Real cells feel the real
+  // finger, so a hardware backend ignores it.
+  virtual void feel_press(const std::array<double, kFingerCount>& depth_mm) noexcept { (void)depth_mm; }
+
   // Whether commands currently reach the regulators. A backend whose link can drop and come back
   // (Modbus) returns false while it is vented and reconnecting; the loop then raises an alarm in
   // telemetry instead of stopping. In-process and directly attached backends are always linked.
@@ -97,11 +120,17 @@ class RigBackend {
   virtual BackendStatus do_vent() noexcept = 0;
   // Backends with a sensor override this (and say so in capabilities()).
   virtual BackendStatus do_read_sensors(std::array<double, kFingerCount>& value, double t_s) noexcept;
+  // Backends that read load cells override this: the first load_cell_count() voltages.
+  virtual BackendStatus do_read_load_cells(std::array<double, kFingerCount>& volts, double t_s) noexcept;
+  const std::optional<LoadCellConfig>& load_cells() const noexcept { return load_cells_; }
+  // capabilities() of a backend with load cells: fills the load-cell fields.
+  void describe_load_cells(BackendCapabilities& c) const noexcept;
   // Record why the last call failed (copied into a fixed buffer: no allocation).
   void set_error(const char* message) noexcept;
 
  private:
   double p_max_kPa_;
+  std::optional<LoadCellConfig> load_cells_;
   std::atomic<BackendState> state_{BackendState::closed};
   char last_error_[256] = {0};
 };

@@ -1,5 +1,7 @@
 #include "rigs/simulated_rig.hpp"
 
+#include <cmath>
+
 namespace palprig {
 
 SimulatedRig::SimulatedRig(const std::array<PlantParams, kFingerCount>& plants, double p_max_kPa)
@@ -9,6 +11,7 @@ BackendCapabilities SimulatedRig::capabilities() const {
   BackendCapabilities c;
   c.link_kind = "in-process";
   c.endpoint = "simulated plant";
+  describe_load_cells(c);
   return c;
 }
 
@@ -16,6 +19,32 @@ void SimulatedRig::do_open() {
   for (auto& p : plants_) p.reset(0.0);
   command_kPa_ = {};
   started_ = false;
+  cells_.clear();
+  depth_mm_ = {};
+  if (load_cells()) {
+    for (std::size_t i = 0; i < load_cells()->channels.size(); ++i) {
+      SimulatedLoadCellParams p = load_cells()->simulated;
+      p.seed += i;
+      cells_.emplace_back(p);
+    }
+  }
+}
+
+BackendStatus SimulatedRig::do_read_load_cells(std::array<double, kFingerCount>& volts, double) noexcept {
+  if (cells_.empty()) {
+    set_error("the simulated rig's load cells are read after open()");
+    return BackendStatus::error;
+  }
+  if (cells_.size() == 1) {
+    // One cell under every finger: it feels the deepest press.
+    double depth = 0;
+    for (double d : depth_mm_)
+      if (std::isfinite(d) && d > depth) depth = d;
+    volts[0] = cells_[0].volts(depth, extra_load_N_[0]);
+    return BackendStatus::ok;
+  }
+  for (std::size_t i = 0; i < cells_.size(); ++i) volts[i] = cells_[i].volts(depth_mm_[i], extra_load_N_[i]);
+  return BackendStatus::ok;
 }
 
 void SimulatedRig::advance_to(double t_s) noexcept {

@@ -9,11 +9,14 @@
 //   loop              80   palprig run --priority, RealtimeOptions::fifo_priority
 //   Modbus bus thread 70   rig file modbus.io_thread_fifo_priority (0: normal scheduling)
 //   tablet reader     60   rig file tablet.reader_fifo_priority   (0: normal scheduling)
+//   tracker reader    60   tracking file reader_fifo_priority     (0: normal scheduling); like the
+//                          tablet's: a pose that waits a little is read by the next tick
 //   telemetry writer   0   normal scheduling
 namespace palprig {
 
 inline constexpr int kLoopFifoPriority = 80;
 inline constexpr int kBusThreadFifoPriority = 70;
 inline constexpr int kTabletReaderFifoPriority = 60;
+inline constexpr int kTrackerReaderFifoPriority = 60;
 
 }  // namespace palprig

@@ -52,12 +52,13 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
     participant = person(session.protocol);
   }
   const int total = static_cast<int>(session.protocol.conditions.size()) * session.protocol.repetitions;
+  const std::unique_ptr<SessionClock> clock = session_clock(rig, simulated, r.speed);
   listener.session_started(SessionStart{session.protocol.name, session.participant, session.session_id, session.resumed,
-                                        session.start_position, total, session.seed, simulated, rig.hardware()});
+                                        session.start_position, total, session.seed, simulated, rig.hardware(), 0,
+                                        clock->steady_origin()});
 
   RigStimulus output(rig.config, *rig.backend);
   output.observe_with(r.tick_observer);
-  const std::unique_ptr<SessionClock> clock = session_clock(rig, simulated, r.speed);
   SessionTelemetry telemetry(r.telemetry_file, output, *clock);
   PulseSessionOptions options;
   options.seed = session.seed;

@@ -146,19 +146,19 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   }
 
   const int total = static_cast<int>(session.plan.trials.size());
+  // The clock first, so the start can say where session time 0 is on steady_clock.
+  std::unique_ptr<SessionClock> clock;
+  if (simulated && !hardware && request.speed <= 0) clock = std::make_unique<SimulatedClock>();
+  else clock = std::make_unique<SteadyClock>(simulated && !hardware ? request.speed : 1.0);
   listener.session_started(SessionStart{protocol.name, session.participant, session.session_id, session.resumed,
                                         session.start_position, total, session.plan.seed, simulated, hardware,
-                                        journaled ? journaled->pushed_at_open() : 0});
+                                        journaled ? journaled->pushed_at_open() : 0, clock->steady_origin()});
 
   RigStimulus output(config, *backend);
   output.observe_with(request.tick_observer);
   ListenerBridge bridge(*store, session.session_id, session.plan, protocol, listener);
   TrialRunner runner(protocol, session.plan, session.start_position, output, bridge,
                      scene ? scene->scene.get() : nullptr, participant->pen());
-
-  std::unique_ptr<SessionClock> clock;
-  if (simulated && !hardware && request.speed <= 0) clock = std::make_unique<SimulatedClock>();
-  else clock = std::make_unique<SteadyClock>(simulated && !hardware ? request.speed : 1.0);
 
   SessionTelemetry telemetry(request.telemetry_file, output, *clock);
 

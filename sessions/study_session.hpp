@@ -10,6 +10,7 @@
 // the rig is opened before the session is stored, so an unreachable device leaves no empty
 // session behind.
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -63,6 +64,10 @@ struct SessionStart {
   bool simulated = false;
   bool real_time_hardware = false;  // a hardware rig: the session runs on the wall clock
   int pushed_from_journal = 0;  // lab store: trials an earlier run left in the journal, pushed at the start
+  // The steady_clock (CLOCK_MONOTONIC) moment of session time 0 when the session runs in real
+  // time at speed 1 (a person's session), so a front end or a benchmark can place the stored
+  // onsets on the clock its input events are stamped on; none on simulated or scaled time.
+  std::optional<std::chrono::steady_clock::time_point> clock_origin;
 };
 
 struct SessionEnd {

@@ -61,14 +61,14 @@ ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const Thr
   } else {
     participant = person(session.protocol.method);
   }
+  const std::unique_ptr<SessionClock> clock = session_clock(rig, simulated, r.speed);
   listener.session_started(ThresholdStart{
       SessionStart{session.protocol.name, session.participant, session.session_id, session.resumed,
-                   session.start_position, 0, session.seed, simulated, rig.hardware()},
+                   session.start_position, 0, session.seed, simulated, rig.hardware(), 0, clock->steady_origin()},
       session.protocol.method, static_cast<int>(session.tracks.size())});
 
   RigStimulus output(rig.config, *rig.backend);
   output.observe_with(r.tick_observer);
-  const std::unique_ptr<SessionClock> clock = session_clock(rig, simulated, r.speed);
   SessionTelemetry telemetry(r.telemetry_file, output, *clock);
   ThresholdSessionOptions options;
   options.seed = session.seed;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "models/parse_error.hpp"
+#include "store/session_rows.hpp"
 
 namespace palprig {
 
@@ -126,6 +127,11 @@ CREATE TABLE palprig_store (
 INSERT INTO palprig_store (store_id)
   VALUES (md5(random()::text || clock_timestamp()::text || pg_backend_pid()::text || txid_current()::text));
 )sql",
+      // 5: when the stimulus reached the fingers (half the commanded level on the monitor), as
+      // the SQLite store's schema 4; existing trials keep NULL.
+      R"sql(
+ALTER TABLE trials ADD COLUMN stimulus_reached_s double precision;
+)sql",
   };
   return steps;
 }
@@ -141,6 +147,12 @@ void refuse_newer(PgConnection& db, int found) {
 }
 
 }  // namespace
+
+std::size_t pg_trial_column_count(int schema_version) noexcept {
+  if (schema_version >= kPgSchemaReachedColumnFrom) return kTrialColumns.size();
+  if (schema_version >= kPgSchemaRatingColumnsFrom) return kTrialColumnsBeforeReached;
+  return kTrialColumnsBeforeRating;
+}
 
 int pg_schema_version(PgConnection& db) {
   if (!table_exists(db, "palprig_schema")) return 0;

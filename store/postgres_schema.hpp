@@ -7,16 +7,22 @@
 //
 // Created on first use and migrated forward, under an advisory lock so rigs starting at the same
 // moment do not race. A schema newer than this program is refused with one line.
+#include <cstddef>
 #include <cstdint>
 
 #include "store/pg_connection.hpp"
 
 namespace palprig {
 
-// 1: the trial store's tables; 2: session_locks; 3: trials.confidence, trials.stimulus_end_s.
-inline constexpr int kPgSchemaVersion = 4;  // 4: palprig_store (the store's own id)
+// 1: the trial store's tables; 2: session_locks; 3: trials.confidence, trials.stimulus_end_s;
+// 4: palprig_store (the store's own id); 5: trials.stimulus_reached_s.
+inline constexpr int kPgSchemaVersion = 5;
 // The first version whose trials have the rating columns; older servers read them as NULL.
 inline constexpr int kPgSchemaRatingColumnsFrom = 3;
+// The first version whose trials have stimulus_reached_s; older servers read it as NULL.
+inline constexpr int kPgSchemaReachedColumnFrom = 5;
+// How many of kTrialColumns (store/session_rows.hpp) a server of this schema version has.
+std::size_t pg_trial_column_count(int schema_version) noexcept;
 // Readers (stats, export, copy from) need only the tables of version 1: an older lab server is
 // read as it is, without writing to it.
 inline constexpr int kPgSchemaReadableFrom = 1;

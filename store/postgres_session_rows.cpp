@@ -137,17 +137,18 @@ std::int64_t pg_push_session(PgConnection& db, const SessionRows& in, bool* adde
 int pg_push_trials(PgConnection& db, std::int64_t session_id, std::span<const TrialRows> trials) {
   // Trials first; those the server already has are skipped (ON CONFLICT: pushing twice stores
   // once) and only the added ones come back, with their ids, for their scores and marks.
-  // A server older than the rating columns (writers migrate it first; a push straight onto one,
-  // as an older palprig's server, is only ever made by tests) takes the columns it has.
-  const bool rating_columns = pg_schema_version(db) >= kPgSchemaRatingColumnsFrom;
-  const std::size_t column_count = rating_columns ? kTrialColumns.size() : kTrialConfidence;
+  // A server older than the later columns (writers migrate it first; a push straight onto one,
+  // as an older palprig's server, is only ever made by tests) takes the columns it has: the
+  // times it has no column for are left out (they read as unknown), a confidence rating is
+  // refused (an answer would be lost).
+  const std::size_t column_count = pg_trial_column_count(pg_schema_version(db));
   std::string columns;
   for (std::size_t i = 0; i < column_count; ++i) columns += (i ? ", " : "") + std::string(kTrialColumns[i].name);
   std::vector<PgParam> rows;
   rows.reserve(trials.size() * column_count);
   std::map<std::int64_t, const TrialRows*> by_position;
   for (const TrialRows& t : trials) {
-    if (!rating_columns && (!std::holds_alternative<std::monostate>(t.trial.at(kTrialConfidence)))) {
+    if (column_count <= kTrialConfidence && !std::holds_alternative<std::monostate>(t.trial.at(kTrialConfidence))) {
       throw InputError(db.target().describe(), "palprig_schema.version",
                        "schema version " + std::to_string(kPgSchemaRatingColumnsFrom) +
                            " or newer for trials with a confidence rating (open it for writing to migrate)");
@@ -223,8 +224,7 @@ std::optional<ServerSession> pg_read_session(PgConnection& db, std::int64_t sess
 }
 
 std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id, std::int64_t from_position) {
-  const bool rating_columns = pg_schema_version(db) >= kPgSchemaRatingColumnsFrom;
-  const PgResult r = db.exec("SELECT id, " + trial_select_list(rating_columns) +
+  const PgResult r = db.exec("SELECT id, " + trial_select_list(pg_trial_column_count(pg_schema_version(db))) +
                                  " FROM trials WHERE session_id = $1 AND position >= $2 ORDER BY position",
                              {pg_text(session_id), pg_text(from_position)});
   std::vector<TrialRows> trials;

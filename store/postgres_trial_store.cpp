@@ -77,6 +77,7 @@ TrialRows trial_rows_of(const TrialRecord& r) {
   t[14] = r.onset_s;
   t[22] = utc_now_text();
   t[kTrialStimulusEnd] = finite_or_null(r.stimulus_end_s);
+  t[kTrialStimulusReached] = finite_or_null(r.stimulus_reached_s);
   if (r.answered && r.confidence) t[kTrialConfidence] = std::int64_t{*r.confidence};
   if (discrimination) {
     t[6] = r.combination_label;
@@ -116,7 +117,7 @@ PostgresTrialStore::PostgresTrialStore(const PgTarget& target, Access access, in
     : db_(target, connect_timeout_s), location_(target.conninfo) {
   if (access == Access::read_write) ensure_pg_schema(db_);
   else check_pg_schema(db_);
-  rating_columns_ = pg_schema_version(db_) >= kPgSchemaRatingColumnsFrom;
+  trial_columns_ = pg_trial_column_count(pg_schema_version(db_));
 } catch (const PgError& e) {
   // Nothing moves on the rig before the store is known to be writable: a server that cannot
   // be reached or refuses the login is a refused input (exit 2), named with libpq's reason.
@@ -292,9 +293,9 @@ nlohmann::json PostgresTrialStore::protocol_snapshot(std::int64_t session_id) {
   return nlohmann::json::parse(q.text_view(0, 0), nullptr, false);
 }
 
-std::string PostgresTrialStore::rating_columns() const {
-  if (!rating_columns_) return "NULL::integer, NULL::double precision";  // an older server read as it is
-  return "t.confidence, t.stimulus_end_s";
+std::string PostgresTrialStore::later_columns() const {
+  // An older server read as it is: the columns it lacks read as NULL.
+  return trial_select_list(trial_columns_, "t.", kTrialColumnsBeforeRating, true);
 }
 
 void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_practice,
@@ -305,7 +306,7 @@ void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_pra
     // ORDER BY id: commit order, as the SQLite store's rowid scan (response-time means then add
     // up in the same order, to the last bit).
     stream_rows(db_,
-                std::string("SELECT ") + kScoredDiscriminationColumns + rating_columns() +
+                std::string("SELECT ") + kScoredDiscriminationColumns + later_columns() +
                     " FROM trials t WHERE t.mode != 'scene'" + practice_filter(include_practice, "AND") + " ORDER BY t.id",
                 [&](const PgResult& q, int i) {
                   decode_scored_discrimination(PgRow{q, i}, t);
@@ -317,7 +318,7 @@ void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_pra
   // Localisation: one row per (trial, tumor score), gathered per trial.
   LocalisationGatherer gather(visit);
   stream_rows(db_,
-              std::string("SELECT ") + kScoredLocalisationColumns + rating_columns() +
+              std::string("SELECT ") + kScoredLocalisationColumns + later_columns() +
                   " FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
                   practice_filter(include_practice, "AND") + " ORDER BY t.id, ts.tumor COLLATE \"C\"",
               [&](const PgResult& q, int i) { gather.add(PgRow{q, i}); }, true);
@@ -342,7 +343,7 @@ std::vector<StoredTrial> PostgresTrialStore::read_trials_where(const std::string
   std::vector<StoredTrial> trials;
   std::map<std::int64_t, std::size_t> scene_trials;  // trial id -> index, for scores and marks
   stream_rows(db_,
-              std::string("SELECT ") + kStoredTrialColumns + rating_columns() +
+              std::string("SELECT ") + kStoredTrialColumns + later_columns() +
                   " FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
                   where + " ORDER BY p.number, s.id, t.position",
               [&](const PgResult& q, int i) {

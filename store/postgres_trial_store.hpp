@@ -72,12 +72,13 @@ class PostgresTrialStore final : public TrialStore {
   void refuse_if_held_elsewhere(std::int64_t session_id, const std::string& who);
   void take_lock(std::int64_t session_id, const std::string& who);  // inside a transaction
   void drop_lock(std::int64_t session_id);
-  std::string rating_columns() const;  // "t.confidence, t.stimulus_end_s", or NULLs on an older server
+  // "t.confidence, t.stimulus_end_s, t.stimulus_reached_s", NULL for those an older server lacks.
+  std::string later_columns() const;
 
   PgConnection db_;
   std::string location_;
   std::vector<std::int64_t> held_;  // sessions whose advisory lock this connection holds
-  bool rating_columns_ = true;       // false: a server older than schema 3 opened for reading
+  std::size_t trial_columns_ = 0;    // of kTrialColumns the server has (fewer: an older one opened for reading)
 };
 
 // A new session's global identity: host, UTC time and 64 random bits.

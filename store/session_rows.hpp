@@ -32,16 +32,20 @@ inline constexpr std::array<SqlColumn, 7> kPlannedColumns{{{"position", 'i'}, {"
                                                            {"condition", 't'}, {"practice", 'i'}, {"combination", 'i'},
                                                            {"break_after", 'i'}}};
 
-// trials without id and session_id; position first. confidence and stimulus_end_s came with
-// schema 2 (SQLite) / 3 (PostgreSQL): a store older than that reads them as NULL
-// (trial_select_list).
-inline constexpr std::array<SqlColumn, 25> kTrialColumns{{
+// trials without id and session_id; position first. Later schemas appended columns at the end:
+// confidence and stimulus_end_s with schema 2 (SQLite) / 3 (PostgreSQL), stimulus_reached_s
+// with schema 4 / 5. A store older than a column has the ones before it only (trial_column_count)
+// and reads the rest as NULL (trial_select_list).
+inline constexpr std::array<SqlColumn, 26> kTrialColumns{{
     {"position", 'i'}, {"block", 'i'}, {"condition", 't'}, {"mode", 't'}, {"practice", 'i'}, {"combination", 'i'},
     {"combination_label", 't'}, {"stimulus1_kPa", 'r'}, {"stimulus2_kPa", 'r'}, {"stimulus3_kPa", 'r'},
     {"truth", 't'}, {"answered", 'i'}, {"answer", 't'}, {"response_time_s", 'r'}, {"onset_s", 'r'},
     {"felt1_kPa", 'r'}, {"felt2_kPa", 'r'}, {"felt3_kPa", 'r'}, {"outcome1", 't'}, {"outcome2", 't'},
-    {"outcome3", 't'}, {"false_marks", 'i'}, {"completed_utc", 't'}, {"confidence", 'i'}, {"stimulus_end_s", 'r'}}};
-inline constexpr std::size_t kTrialConfidence = 23, kTrialStimulusEnd = 24;
+    {"outcome3", 't'}, {"false_marks", 'i'}, {"completed_utc", 't'}, {"confidence", 'i'}, {"stimulus_end_s", 'r'},
+    {"stimulus_reached_s", 'r'}}};
+inline constexpr std::size_t kTrialConfidence = 23, kTrialStimulusEnd = 24, kTrialStimulusReached = 25;
+// How many of kTrialColumns a store of each generation has.
+inline constexpr std::size_t kTrialColumnsBeforeRating = kTrialConfidence, kTrialColumnsBeforeReached = kTrialStimulusReached;
 
 inline constexpr std::array<SqlColumn, 3> kTumorScoreColumns{{{"tumor", 't'}, {"outcome", 't'}, {"nearest_mark_mm", 'r'}}};
 inline constexpr std::array<SqlColumn, 4> kMarkColumns{{{"mark", 'i'}, {"x_mm", 'r'}, {"y_mm", 'r'}, {"tumor", 't'}}};
@@ -77,14 +81,19 @@ std::string column_list(const std::array<SqlColumn, N>& columns, const char* pre
   return s;
 }
 
-// kTrialColumns for a SELECT; a store without the rating columns gives NULL in their place.
-inline std::string trial_select_list(bool has_rating_columns, const char* prefix = "") {
+// kTrialColumns[from..] for a SELECT; a store that has only the first `present` of them gives
+// NULL in place of the rest (typed for PostgreSQL with `typed_nulls`, as a scan's columns need).
+inline std::string trial_select_list(std::size_t present, const char* prefix = "", std::size_t from = 0,
+                                     bool typed_nulls = false) {
   std::string s;
-  for (std::size_t i = 0; i < kTrialColumns.size(); ++i) {
+  for (std::size_t i = from; i < kTrialColumns.size(); ++i) {
     if (!s.empty()) s += ", ";
-    const bool rating = i == kTrialConfidence || i == kTrialStimulusEnd;
-    if (rating && !has_rating_columns) {
+    if (i >= present) {
       s += "NULL";
+      if (typed_nulls) {
+        const char type = kTrialColumns[i].type;
+        s += type == 'i' ? "::integer" : type == 'r' ? "::double precision" : "::text";
+      }
     } else {
       s += prefix;
       s += kTrialColumns[i].name;

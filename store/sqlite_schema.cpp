@@ -73,6 +73,7 @@ CREATE TABLE trials (
   completed_utc     TEXT NOT NULL,
   confidence        INTEGER CHECK (confidence BETWEEN 1 AND 9),  -- NULL: not asked or not answered
   stimulus_end_s    REAL,                      -- when the stimulus ended (onset_s's clock)
+  stimulus_reached_s REAL,                     -- when it reached the fingers (half the level; onset_s's clock)
   UNIQUE (session_id, position)
 );
 CREATE TABLE tumor_scores (
@@ -108,6 +109,15 @@ void migrate_to_3(Database& db) {
   db.exec("PRAGMA user_version = 3");
 }
 
+// Schema 4: when the stimulus reached the fingers (appended, as in kSchema); every trial kept,
+// NULL for those stored before (their monitor crossings were not recorded).
+void migrate_to_4(Database& db) {
+  auto column = db.prepare("SELECT count(*) FROM pragma_table_info('trials') WHERE name = 'stimulus_reached_s'");
+  column.step();
+  if (column.integer(0) == 0) db.exec("ALTER TABLE trials ADD COLUMN stimulus_reached_s REAL");
+  db.exec("PRAGMA user_version = 4");
+}
+
 }  // namespace
 
 bool SqliteTrialStore::is_blank() {
@@ -136,10 +146,18 @@ void SqliteTrialStore::migrate_if_older() {
   Transaction tx(db_);
   const std::int64_t version = db_.pragma_integer("user_version");
   if (version >= kTrialStoreSchemaVersion) return;
-  const std::string step = version < 2 ? "trials (schema 1 -> 2 migration)" : "threshold_trials (schema 2 -> 3 migration)";
+  std::string step = "trials (schema 3 -> 4 migration)";
   try {
-    if (version < 2) db_.exec(kMigrationTo2);
-    migrate_to_3(db_);
+    if (version < 2) {
+      step = "trials (schema 1 -> 2 migration)";
+      db_.exec(kMigrationTo2);
+    }
+    if (version < 3) {
+      step = "threshold_trials (schema 2 -> 3 migration)";
+      migrate_to_3(db_);
+    }
+    step = "trials (schema 3 -> 4 migration)";
+    migrate_to_4(db_);
   } catch (const SqliteError& e) {
     // Busy: another writer; try again later (not the file's fault). Anything else: the file's
     // tables are not what the older schema says (hand-edited, or a foreign tool): refused, unchanged.

@@ -58,10 +58,18 @@ void ensure_lab_sessions_table(Database& db) {
       ")");
 }
 
-bool sqlite_trials_have_rating_columns(Database& db) {
-  auto s = db.prepare("SELECT count(*) FROM pragma_table_info('trials') WHERE name IN ('confidence', 'stimulus_end_s')");
-  s.step();
-  return s.integer(0) == 2;
+std::size_t sqlite_trial_column_count(Database& db) {
+  // The later columns were appended in kTrialColumns' order: the file has those up to the first
+  // one missing.
+  auto s = db.prepare("SELECT count(*) FROM pragma_table_info('trials') WHERE name = ?1");
+  for (std::size_t i = kTrialColumnsBeforeRating; i < kTrialColumns.size(); ++i) {
+    s.bind(1, std::string(kTrialColumns[i].name));
+    s.step();
+    const bool present = s.integer(0) > 0;
+    s.reset();
+    if (!present) return i;
+  }
+  return kTrialColumns.size();
 }
 
 bool has_lab_sessions_table(Database& db) {
@@ -111,7 +119,7 @@ std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional
 std::vector<TrialRows> read_sqlite_trials(Database& db, std::int64_t session_id, std::int64_t from_position) {
   std::vector<TrialRows> trials;
   std::vector<std::int64_t> ids;
-  auto q = db.prepare("SELECT id, " + trial_select_list(sqlite_trials_have_rating_columns(db)) +
+  auto q = db.prepare("SELECT id, " + trial_select_list(sqlite_trial_column_count(db)) +
                       " FROM trials WHERE session_id = ?1 AND position >= ?2 ORDER BY position");
   q.bind(1, session_id).bind(2, from_position);
   while (q.step()) {

@@ -19,9 +19,9 @@ namespace palprig {
 
 void ensure_lab_sessions_table(Database& db);
 bool has_lab_sessions_table(Database& db);
-// Whether `trials` has the schema-2 columns (confidence, stimulus_end_s); an older file opened
-// for reading has not.
-bool sqlite_trials_have_rating_columns(Database& db);
+// How many of kTrialColumns (store/session_rows.hpp) the file's `trials` has: all of them once
+// migrated; fewer in an older file opened for reading (the later columns read as NULL).
+std::size_t sqlite_trial_column_count(Database& db);
 
 struct LocalSession {
   std::int64_t id = 0;  // in the file

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "models/parse_error.hpp"
+#include "store/session_rows.hpp"
 #include "store/trial_rows.hpp"
 
 namespace palprig {
@@ -31,9 +32,9 @@ nlohmann::json SqliteTrialStore::protocol_snapshot(std::int64_t session_id) {
   return nlohmann::json::parse(q.text_view(0), nullptr, false);
 }
 
-std::string SqliteTrialStore::rating_columns(const char* prefix) const {
-  if (!rating_columns_) return "NULL, NULL";  // a schema-1 file read as it is
-  return std::string(prefix) + "confidence, " + prefix + "stimulus_end_s";
+std::string SqliteTrialStore::later_columns(const char* prefix) const {
+  // An older file read as it is: the columns it lacks read as NULL.
+  return trial_select_list(trial_columns_, prefix, kTrialColumnsBeforeRating);
 }
 
 namespace {
@@ -53,7 +54,7 @@ void SqliteTrialStore::scan_scored_trials(TrialFamily family, bool include_pract
                                           const std::function<void(const ScoredTrial&)>& visit) {
   using namespace trial_rows;
   if (family == TrialFamily::discrimination) {
-    auto q = db_.prepare(std::string("SELECT ") + kScoredDiscriminationColumns + rating_columns("t.") +
+    auto q = db_.prepare(std::string("SELECT ") + kScoredDiscriminationColumns + later_columns("t.") +
                          " FROM trials t WHERE t.mode != 'scene'" + practice_filter(include_practice, "AND"));
     ScoredTrial t;
     while (q.step()) {
@@ -62,7 +63,7 @@ void SqliteTrialStore::scan_scored_trials(TrialFamily family, bool include_pract
     }
     return;
   }
-  auto q = db_.prepare(std::string("SELECT ") + kScoredLocalisationColumns + rating_columns("t.") +
+  auto q = db_.prepare(std::string("SELECT ") + kScoredLocalisationColumns + later_columns("t.") +
                        " FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
                        practice_filter(include_practice, "AND") + " ORDER BY t.id");
   LocalisationGatherer gather(visit);
@@ -87,7 +88,7 @@ int SqliteTrialStore::next_participant_number() {
 std::vector<StoredTrial> SqliteTrialStore::read_trials_where(const std::string& where) {
   using namespace trial_rows;
   std::vector<StoredTrial> trials;
-  auto q = db_.prepare(std::string("SELECT ") + kStoredTrialColumns + rating_columns("t.") +
+  auto q = db_.prepare(std::string("SELECT ") + kStoredTrialColumns + later_columns("t.") +
                        " FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
                        where + " ORDER BY p.number, s.id, t.position");
   while (q.step()) trials.push_back(decode_stored_trial(SqliteRow{q}));

@@ -51,7 +51,7 @@ SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access acc
   // sound (store/integrity_check_cache.hpp).
   db_.refuse_if_damaged();
   if (access == Access::read_write) migrate_if_older();
-  rating_columns_ = sqlite_trials_have_rating_columns(db_);
+  trial_columns_ = sqlite_trial_column_count(db_);
   if (access == Access::read_write) create_lock_table();
   if (access == Access::read_write) {
     // WAL: readers never block the writer; synchronous FULL: a committed trial survives a
@@ -279,9 +279,10 @@ void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& 
     insert_trial_ = std::make_unique<Statement>(db_,
       "INSERT INTO trials (session_id, position, block, condition, mode, practice, combination, combination_label, "
       "stimulus1_kPa, stimulus2_kPa, stimulus3_kPa, truth, answered, answer, response_time_s, onset_s, felt1_kPa, "
-      "felt2_kPa, felt3_kPa, outcome1, outcome2, outcome3, false_marks, completed_utc, confidence, stimulus_end_s) "
+      "felt2_kPa, felt3_kPa, outcome1, outcome2, outcome3, false_marks, completed_utc, confidence, stimulus_end_s, "
+      "stimulus_reached_s) "
       "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, "
-      "?23, ?24, ?25, ?26)");
+      "?23, ?24, ?25, ?26, ?27)");
   }
   Statement& ins = *insert_trial_;
   ins.bind(1, session_id)
@@ -295,6 +296,7 @@ void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& 
       .bind(16, r.onset_s)
       .bind(24, utc_now_text());
   if (auto end = finite_or_null(r.stimulus_end_s)) ins.bind(26, *end);
+  if (auto reached = finite_or_null(r.stimulus_reached_s)) ins.bind(27, *reached);
   if (r.answered && r.confidence) ins.bind(25, static_cast<std::int64_t>(*r.confidence));
   if (discrimination) {
     ins.bind(8, r.combination_label);

@@ -44,7 +44,9 @@ inline constexpr std::int64_t kTrialStoreApplicationId = 0x50616C50;  // "PalP"
 // is read as it is (the new columns read as NULL).
 // 3: threshold_trials without the per-trial copy of every track's state (the tracks are
 // replayed from the trial rows, so a row has constant size); migrated the same way.
-inline constexpr std::int64_t kTrialStoreSchemaVersion = 3;
+// 4: trials.stimulus_reached_s (when the stimulus reached the fingers); migrated the same way,
+// NULL for the trials stored before.
+inline constexpr std::int64_t kTrialStoreSchemaVersion = 4;
 
 class SqliteTrialStore final : public TrialStore {
  public:
@@ -102,13 +104,15 @@ class SqliteTrialStore final : public TrialStore {
   std::int64_t insert_session_row(const ParticipantRecord& who, const TaskSessionRow& row, const SessionSetup& setup);
   void check_identity();
   void migrate_if_older();
-  std::string rating_columns(const char* prefix) const;  // "confidence, stimulus_end_s" or NULLs  // read_write: schema 1 -> 2 in one transaction
+  // The trial columns later schemas appended, for the scans: "confidence, stimulus_end_s,
+  // stimulus_reached_s" with NULL for those an older file opened for reading lacks.
+  std::string later_columns(const char* prefix) const;
   void insert_trial(std::int64_t session_id, const TrialRecord& trial);
 
   Database db_;
   std::unique_ptr<Statement> insert_trial_;  // prepared once: trials are inserted one by one
   std::vector<std::int64_t> held_;            // sessions whose lock row this process wrote
-  bool rating_columns_ = true;                // false: a schema-1 file opened for reading
+  std::size_t trial_columns_ = 0;             // of kTrialColumns this file has (fewer: an older file read as it is)
 };
 
 // Open an existing SQLite trial database for reading; refuses a missing, foreign or newer file.

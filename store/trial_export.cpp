@@ -187,12 +187,17 @@ void write_trials_run(const std::vector<const ExportTrial*>& rows, const std::st
     tsv << "\tfalse_marks";
     side["false_marks"] = column("Marks near no tumor");
   }
-  tsv << "\tresponse_time\tonset\trt_after_stimulus";
+  tsv << "\tresponse_time\tonset\trt_after_stimulus\tstimulus_reached\trt_from_reached";
   side["response_time"] = column("Time from stimulus onset to the answer (n/a when the response timed out); "
                                  "paper 002's measure, which includes a sequential presentation", "s");
   side["onset"] = column("Stimulus onset on the session's monotonic clock", "s");
   side["rt_after_stimulus"] = column("Time from the end of the stimulus to the answer (0 when answered during the "
                                      "stimulus; n/a when the response timed out or was not recorded)", "s");
+  side["stimulus_reached"] = column("When the stimulus reached the fingers on the session's monotonic clock: the first "
+                                    "regulator monitor crossing of half a commanded level (n/a when no finger carried "
+                                    "a level above 0 kPa, for a scene, or when the answer came first)", "s");
+  side["rt_from_reached"] = column("Time from when the stimulus reached the fingers to the answer (n/a when either is "
+                                   "unknown)", "s");
   const nlohmann::json& scale = rows.empty() ? nlohmann::json() : rows.front()->confidence_scale;
   if (!scale.is_null()) {
     tsv << "\tconfidence";
@@ -231,7 +236,8 @@ void write_trials_run(const std::vector<const ExportTrial*>& rows, const std::st
       }
       tsv << "\t" << (t->false_marks ? std::to_string(*t->false_marks) : "n/a");
     }
-    tsv << "\t" << number(t->response_time_s) << "\t" << number(t->onset_s) << "\t" << number(t->rt_after_stimulus_s);
+    tsv << "\t" << number(t->response_time_s) << "\t" << number(t->onset_s) << "\t" << number(t->rt_after_stimulus_s)
+        << "\t" << number(t->stimulus_reached_s) << "\t" << number(t->rt_from_reached_s);
     if (!scale.is_null()) tsv << "\t" << rating_text(t->confidence, "n/a");
     tsv << "\n";
   }
@@ -251,7 +257,7 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
     ExportFile out(long_path);
     out << "participant,simulated,session,protocol,task,trial,block,condition,mode,practice,combination,unit,finger,"
            "finger_name,tumor,stimulus_kPa,felt_kPa,tumor_present,answered,answered_tumor,outcome,response_time_s,"
-           "onset_s,completed_utc,rt_after_stimulus_s,confidence\n";
+           "onset_s,completed_utc,rt_after_stimulus_s,confidence,stimulus_reached_s,rt_from_reached_s\n";
     for (const ExportTrial& t : c.trials) {
       const std::string head = csv_field(t.participant) + "," + (t.simulated ? "1" : "0") + "," + std::to_string(t.session) +
                                "," + csv_field(t.protocol) + "," + t.task + "," + std::to_string(t.position + 1) + "," +
@@ -259,9 +265,12 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
                                (t.practice ? "1" : "0") + "," + (t.combination_label.empty() ? "n/a" : t.combination_label);
       const std::string tail = std::string(t.answered ? "1" : "0");
       // rt_after_stimulus_s: from the stimulus end (n/a when unanswered or stored before the
-      // column existed); confidence: empty when the protocol did not ask or no answer was given.
+      // column existed); confidence: empty when the protocol did not ask or no answer was given;
+      // stimulus_reached_s and rt_from_reached_s: n/a when unknown (appended last, so the earlier
+      // columns keep their places).
       const std::string times = number(t.response_time_s) + "," + number(t.onset_s) + "," + t.completed_utc + "," +
-                                number(t.rt_after_stimulus_s) + "," + rating_text(t.confidence, "");
+                                number(t.rt_after_stimulus_s) + "," + rating_text(t.confidence, "") + "," +
+                                number(t.stimulus_reached_s) + "," + number(t.rt_from_reached_s);
       if (t.mode != "scene") {
         for (int f = 0; f < kFingerCount; ++f) {
           const auto fi = static_cast<std::size_t>(f);

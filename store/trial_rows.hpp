@@ -22,15 +22,16 @@
 
 namespace palprig::trial_rows {
 
-// The discrimination scan: these columns, then the rating pair (confidence, stimulus_end_s).
+// The discrimination scan: these columns, then the later ones (confidence, stimulus_end_s,
+// stimulus_reached_s).
 inline constexpr const char* kScoredDiscriminationColumns =
     "t.id, t.session_id, t.condition, t.answered, t.response_time_s, t.outcome1, t.outcome2, t.outcome3, "
     "t.combination_label, t.onset_s, ";
-// The localisation scan (one row per trial and tumor score), then the rating pair.
+// The localisation scan (one row per trial and tumor score), then the later ones.
 inline constexpr const char* kScoredLocalisationColumns =
     "t.id, t.session_id, t.condition, t.answered, t.response_time_s, ts.tumor, ts.outcome, t.false_marks, "
     "t.onset_s, ";
-// Every trial with its session and participant (export), then the rating pair.
+// Every trial with its session and participant (export), then the later ones.
 inline constexpr const char* kStoredTrialColumns =
     "p.code, p.simulated, p.number, s.id, s.protocol_name, s.task, s.bids_task, t.id, t.position, t.block, "
     "t.condition, t.mode, t.practice, t.combination, t.combination_label, t.stimulus1_kPa, t.stimulus2_kPa, "
@@ -74,6 +75,7 @@ void decode_scored_discrimination(const Row& q, ScoredTrial& t) {
   }
   t.combination_label = q.is_null(8) ? std::nullopt : std::optional<std::string_view>(q.text_view(8));
   t.rt_after_stimulus_s = response_time_after_stimulus_s(q.real(9), t.response_time_s, real_or_nan(q, 11));
+  t.rt_from_reached_s = response_time_from_reached_s(q.real(9), t.response_time_s, real_or_nan(q, 12));
   t.confidence = q.is_null(10) ? std::nullopt : std::optional<int>(static_cast<int>(q.integer(10)));
 }
 
@@ -100,6 +102,7 @@ class LocalisationGatherer {
       t_.response_time_s = real_or_nan(q, 4);
       t_.false_marks = q.is_null(7) ? 0 : q.integer(7);
       t_.rt_after_stimulus_s = response_time_after_stimulus_s(q.real(8), t_.response_time_s, real_or_nan(q, 10));
+      t_.rt_from_reached_s = response_time_from_reached_s(q.real(8), t_.response_time_s, real_or_nan(q, 11));
     }
     if (q.is_null(5)) return;
     const auto outcome = outcome_from_string(q.text_view(6));
@@ -167,6 +170,10 @@ StoredTrial decode_stored_trial(const Row& q) {
   t.stimulus_end_s = real_or_null(q, 32);
   if (t.answered && t.response_time_s && t.stimulus_end_s) {
     t.rt_after_stimulus_s = response_time_after_stimulus_s(t.onset_s, *t.response_time_s, *t.stimulus_end_s);
+  }
+  t.stimulus_reached_s = real_or_null(q, 33);
+  if (t.answered && t.response_time_s && t.stimulus_reached_s) {
+    t.rt_from_reached_s = response_time_from_reached_s(t.onset_s, *t.response_time_s, *t.stimulus_reached_s);
   }
   return t;
 }

@@ -78,6 +78,7 @@ struct ScoredTrial {
   bool answered = false;
   double response_time_s = 0;  // NaN when none was stored
   double rt_after_stimulus_s = 0;  // from the stimulus end to the answer; NaN when unknown
+  double rt_from_reached_s = 0;    // from when the stimulus reached the fingers to the answer; NaN when unknown
   std::optional<int> confidence;   // the rating, when asked and given
   std::array<std::optional<Outcome>, kFingerCount> finger_outcomes{};  // discrimination, when answered
   std::span<const ScoredTumor> tumors;  // localisation, when answered
@@ -111,6 +112,8 @@ struct StoredTrial {
   double onset_s = 0;
   std::optional<double> stimulus_end_s;       // NULL in stores older than the column
   std::optional<double> rt_after_stimulus_s;  // response_time_after_stimulus_s; none when not answered or unknown
+  std::optional<double> stimulus_reached_s;   // NULL: never reached, a scene, or a store older than the column
+  std::optional<double> rt_from_reached_s;    // response_time_from_reached_s; none when not answered or unknown
   std::optional<int> confidence;
   std::array<std::string, kFingerCount> outcome{};  // "TP", "FN", "TN", "FP" or ""
   std::optional<std::int64_t> false_marks;

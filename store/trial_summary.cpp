@@ -65,6 +65,7 @@ struct Accumulator {
   ConfusionCounts counts;
   std::int64_t trials = 0, unanswered = 0;
   RunningMoments rt, rt_after;     // from onset (paper 002) and from the stimulus end
+  RunningMoments rt_reached;       // from when the stimulus reached the fingers
   std::int64_t rated = 0;
   double confidence_sum = 0;
   std::int64_t last_trial = -1;   // a trial adds its response time once per group
@@ -80,6 +81,7 @@ struct Accumulator {
     }
     rt.add(t.response_time_s);
     rt_after.add(t.rt_after_stimulus_s);
+    rt_reached.add(t.rt_from_reached_s);
     if (t.confidence) {
       ++rated;
       confidence_sum += *t.confidence;
@@ -277,6 +279,8 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     row.sd_rt_s = a.rt.sd_or_nan();
     row.mean_rt_after_stimulus_s = a.rt_after.mean_or_nan();
     row.sd_rt_after_stimulus_s = a.rt_after.sd_or_nan();
+    row.mean_rt_from_reached_s = a.rt_reached.mean_or_nan();
+    row.sd_rt_from_reached_s = a.rt_reached.sd_or_nan();
     row.rated = a.rated;
     row.mean_confidence = a.rated > 0 ? a.confidence_sum / static_cast<double>(a.rated) : std::numeric_limits<double>::quiet_NaN();
     if (a.rated > 0) summary.any_rated = true;

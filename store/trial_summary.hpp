@@ -39,6 +39,9 @@ struct SummaryRow {
   // From the end of the stimulus (0 for an answer during it); NaN likewise, and for trials
   // stored before the stimulus end was.
   double mean_rt_after_stimulus_s = 0, sd_rt_after_stimulus_s = 0;
+  // From when the stimulus reached the fingers (half the commanded level on the monitor); NaN
+  // likewise, and for trials without that time (0/0/0, scenes, stored before the column).
+  double mean_rt_from_reached_s = 0, sd_rt_from_reached_s = 0;
   std::int64_t rated = 0;       // answered trials with a confidence rating
   double mean_confidence = 0;   // NaN when none was rated
   // False for localisation: true negatives are not counted (every tumor-free spot would be

@@ -96,6 +96,7 @@ std::string summary_csv(const TrialSummary& s) {
   for (const char* m : {"Se", "Sp", "PPV", "ACC"}) out << "," << m << "," << m << "_lower," << m << "_upper";
   out << ",rt_mean_s,rt_sd_s,rt_after_stimulus_mean_s,rt_after_stimulus_sd_s";
   if (s.any_rated) out << ",rated,confidence_mean";
+  out << ",rt_from_reached_mean_s,rt_from_reached_sd_s";  // last: the earlier columns keep their places
   out << "\n";
   for (const SummaryRow& r : s.rows) {
     for (const auto& k : r.key) out << csv_field(k) << ",";
@@ -108,6 +109,7 @@ std::string summary_csv(const TrialSummary& s) {
     out << "," << fixed(r.mean_rt_s, 4) << "," << fixed(r.sd_rt_s, 4) << "," << fixed(r.mean_rt_after_stimulus_s, 4) << ","
         << fixed(r.sd_rt_after_stimulus_s, 4);
     if (s.any_rated) out << "," << r.rated << "," << fixed(r.mean_confidence, 4);
+    out << "," << fixed(r.mean_rt_from_reached_s, 4) << "," << fixed(r.sd_rt_from_reached_s, 4);
     out << "\n";
   }
   return out.str();
@@ -143,6 +145,9 @@ nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence) {
     // From the end of the stimulus; rt_mean_s above is from onset (paper 002's t-test).
     row["rt_after_stimulus_mean_s"] = number_or_null(r.mean_rt_after_stimulus_s);
     row["rt_after_stimulus_sd_s"] = number_or_null(r.sd_rt_after_stimulus_s);
+    // From when the stimulus reached the fingers (the monitor at half the commanded level).
+    row["rt_from_reached_mean_s"] = number_or_null(r.mean_rt_from_reached_s);
+    row["rt_from_reached_sd_s"] = number_or_null(r.sd_rt_from_reached_s);
     if (s.any_rated) {
       row["rated"] = r.rated;
       row["confidence_mean"] = number_or_null(r.mean_confidence);

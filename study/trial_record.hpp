@@ -28,6 +28,13 @@ struct TrialRecord {
   // When the stimulus ended on the same clock: the runner left `present` (the sequence or
   // max_present_s ran out, or an answer during the presentation ended it at the answer's time).
   double stimulus_end_s = std::numeric_limits<double>::quiet_NaN();  // NaN: unknown (stored NULL)
+  // When the stimulus reached the fingers on the same clock: the first moment the monitor of a
+  // finger carrying a non-zero commanded level crossed half of that level (interpolated between
+  // the session loop's samples), the onset as the finger met it rather than as it was
+  // commanded (onset_s). NaN (stored NULL) when no finger carried a level above 0 kPa (a 0/0/0
+  // combination), for a scene (localisation: the level follows the pen), and when it had not
+  // happened by the answer or the stimulus end.
+  double stimulus_reached_s = std::numeric_limits<double>::quiet_NaN();
   std::optional<int> confidence;      // 1..levels when the protocol asks and it was answered
   std::array<double, kFingerCount> felt_kPa{};  // mean actuator pressure while the stimulus was on
   std::array<Outcome, kFingerCount> finger_outcomes{};  // discrimination, when answered
@@ -40,5 +47,12 @@ struct TrialRecord {
 double response_time_after_stimulus_s(const TrialRecord& trial) noexcept;
 // The same from the stored columns (onset, onset RT, stimulus end); NaN when any is missing.
 double response_time_after_stimulus_s(double onset_s, double response_time_s, double stimulus_end_s) noexcept;
+
+// The response time measured from when the stimulus reached the fingers (stimulus_reached_s)
+// rather than from its command (onset_s): answer time - stimulus_reached_s; NaN when not
+// answered or the stimulus never reached a finger.
+double response_time_from_reached_s(const TrialRecord& trial) noexcept;
+// The same from the stored columns (onset, onset RT, reached); NaN when any is missing.
+double response_time_from_reached_s(double onset_s, double response_time_s, double stimulus_reached_s) noexcept;
 
 }  // namespace palprig

@@ -75,7 +75,7 @@ TEST(RunCommand, BadFilesStopBeforeAnythingMovesWithExitTwo) {
 
   r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") + " --input joystick");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "palprig: --input: joystick: trace:FILE, sweep, tablet, tablet:/dev/input/eventN or tablet:FILE.evemu\n");
+  EXPECT_EQ(r.err, "palprig: --input: joystick: trace:FILE, sweep, tablet, tablet:/dev/input/eventN, tablet:FILE.evemu or igtl:HOST:PORT\n");
 }
 
 TEST(DemoCommand, TumorsFeelHarderThanSoftTissue) {

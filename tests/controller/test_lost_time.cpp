@@ -5,7 +5,6 @@
 
 #include <time.h>
 
-#include <chrono>
 #include <memory>
 
 #include "controller/loop_runner.hpp"
@@ -84,15 +83,15 @@ TEST(LostTime, ASlowFunctionSceneFaultsAndVentsInRealTime) {
   RecordingRig rig;
   rig.open();
   RestingPen pen(100, 60);
-  const auto start = std::chrono::steady_clock::now();
   const RunSummary s = run_loop(cfg, *scene, pen, rig, realtime_options(3.0));
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // Before: every tick overran by 100+ periods, the run reached its end before 20 of them in a
-  // row and reported no fault. Now the first tick's lost periods exceed 50 ms.
+  // row and reported no fault. Now the first tick's lost periods exceed 50 ms, so the run ends
+  // there: at most two ticks. (No bound on the wall time: one tick of this scene is 0.3 s of
+  // CPU, several times that under a sanitizer on a loaded machine; the tick count is what says
+  // the run did not go on.)
   EXPECT_EQ(s.fault, FaultCode::lost_time_limit) << to_string(s.fault);
   EXPECT_NE(s.fault_detail.find("max_lost_time_s"), std::string::npos) << s.fault_detail;
-  EXPECT_LE(s.ticks, 2u);
-  EXPECT_LT(wall, 2.5) << "the run went on after the limit";
+  EXPECT_LE(s.ticks, 2u) << "the run went on after the limit";
   EXPECT_EQ(rig.last, (ChannelPressures{0, 0, 0}));  // vented
   EXPECT_GE(rig.vents, 1);
 }
@@ -105,12 +104,11 @@ TEST(LostTime, ASlowFunctionSceneFaultsInReplayInsteadOfRunningForHours) {
   RestingPen pen(100, 60);
   RunOptions opt;  // replay, simulated time
   opt.duration_s = 10.0;  // 10,000 ticks of 0.1 s or more each: hours without the bound
-  const auto start = std::chrono::steady_clock::now();
   const RunSummary s = run_loop(cfg, *scene, pen, rig, opt);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Two ticks at most, so the run ended within seconds instead of hours (the tick count says it;
+  // a wall-clock bound would not hold under a sanitizer on a busy machine).
   EXPECT_EQ(s.fault, FaultCode::lost_time_limit) << to_string(s.fault);
   EXPECT_LE(s.ticks, 2u);
-  EXPECT_LT(wall, 10.0);
   EXPECT_EQ(rig.last, (ChannelPressures{0, 0, 0}));
 }
 

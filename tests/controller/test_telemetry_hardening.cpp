@@ -49,6 +49,10 @@ TelemetryRecord extreme_record(float v) {
   r.wake_latency_us = r.io_us = -v;
   r.fault = static_cast<FaultCode>(255);
   r.flags = 255;
+  for (int i = 0; i < kFingerCount; ++i) {
+    r.finger_x_mm[i] = r.finger_y_mm[i] = r.finger_force_N[i] = v;
+    r.finger_vent[i] = static_cast<FingerVent>(255);
+  }
   return r;
 }
 
@@ -73,11 +77,14 @@ TEST(TelemetryHardening, RowsWithExtremeFloatsAreWholeRows) {
     EXPECT_EQ(v[0], "18446744073709551615");
     EXPECT_EQ(v[1].size(), 317u);  // -1.8e308 with 6 decimals: 309 digits, sign, point, 6
     EXPECT_EQ(v[5], c.text);       // stiffness_1
-    EXPECT_EQ(v[20], "255");  // flags, before the drag columns
+    EXPECT_EQ(v[19], "255");  // the fault
+    EXPECT_EQ(v[20], "255");  // the flags, then the fingers' positions, forces and vents, the drag
+    EXPECT_EQ(v[27], c.text);  // finger_force_N_1
+    EXPECT_EQ(v[32], "255");   // finger_vent_3
     char drag[512];
     std::snprintf(drag, sizeof drag, "%.3f", double(c.value));
-    EXPECT_EQ(v[21], drag);  // drag_x_mm_1, printed whole
-    EXPECT_EQ(v.back(), drag);
+    EXPECT_EQ(v[33], drag);  // drag_x_mm_1, printed whole
+    EXPECT_EQ(v.back(), drag);  // drag_y_mm_3
   }
 }
 
@@ -87,7 +94,7 @@ TEST(TelemetryHardening, MutatedBinaryFilesConvertOrAreRefused) {
   for (int file = 0; file < 50; ++file) {
     // A valid header, then records of random bytes: any float, any double, any fault code.
     std::string bytes = "PALPRIGT";
-    const std::uint32_t header[2] = {1, static_cast<std::uint32_t>(sizeof(TelemetryRecord))};
+    const std::uint32_t header[2] = {kTelemetryFileVersion, static_cast<std::uint32_t>(sizeof(TelemetryRecord))};
     bytes.append(reinterpret_cast<const char*>(header), sizeof header);
     const std::size_t records = 1 + rng() % 20;
     for (std::size_t i = 0; i < records * sizeof(TelemetryRecord); ++i) bytes.push_back(static_cast<char>(rng()));
@@ -115,7 +122,7 @@ TEST(TelemetryHardening, MutatedBinaryFilesConvertOrAreRefused) {
 TEST(TelemetryHardening, CommandLineConvertsAFileOfHugeFloats) {
   TempDir dir;
   std::string bytes = "PALPRIGT";
-  const std::uint32_t header[2] = {1, static_cast<std::uint32_t>(sizeof(TelemetryRecord))};
+  const std::uint32_t header[2] = {kTelemetryFileVersion, static_cast<std::uint32_t>(sizeof(TelemetryRecord))};
   bytes.append(reinterpret_cast<const char*>(header), sizeof header);
   for (int i = 0; i < 3; ++i) {
     const TelemetryRecord r = extreme_record(3e38f);

@@ -3,7 +3,6 @@
 // shipped scenes, generated cases and large but indexed unions load as before.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <string>
 
@@ -57,9 +56,10 @@ TEST(SceneCostBound, ASceneTooSlowForTheTickIsRefusedAtLoadNamingTheFile) {
   // 64 x 500 spheres over one spot: within the shape limits (500 < 4096 per inclusion), but a
   // tick there would visit 32,000 spheres at each of its 360 points.
   const auto f = dir.write("slow.json", overlapping_intersections(64, 500).dump());
-  const auto start = std::chrono::steady_clock::now();
+  // The bound is counted from the scene's shapes, not measured by sampling it (no wall-clock
+  // bound here: under a sanitizer on a busy machine reading the 32,000 spheres alone takes
+  // seconds).
   const std::string why = refusal(f);
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
   EXPECT_EQ(why.rfind(f.string() + ": inclusions: ", 0), 0u) << why;
   EXPECT_NE(why.find("at most 30000 shape evaluations per tick, got "), std::string::npos) << why;
   EXPECT_EQ(why.find('\n'), std::string::npos);

@@ -136,3 +136,41 @@ TEST(PenPredictor, ExtrapolatesPositionAndForceFromPastSamplesOnly) {
   EXPECT_EQ(p.samples(), 0u);
   EXPECT_FALSE(p.predict(0.07, how).in_contact);
 }
+
+TEST(PenPredictor, ExtrapolatesEachTrackedFingerFromItsOwnPosesSinceItWasLastSeen) {
+  PenPredictor p;
+  const PenPrediction how;
+  // Three tracked fingertips at 100 Hz: finger 1 moves at 40 mm/s along x with its load cell
+  // rising 2 N/s, finger 2 holds still, finger 3's tool is out of view until 0.03 s and comes
+  // back 30 mm away (not a jump to extrapolate), then moves at -20 mm/s along y.
+  for (int k = 0; k <= 6; ++k) {
+    const double t = k * 0.01;
+    TouchSample s{t, 0, 0, 2, true};
+    s.own_positions = s.per_finger_force = true;
+    s.fingers[0] = {10 + 40 * t, 5, -1, 1 + 2 * t, FingerVent::none};
+    s.fingers[1] = {50, 50, -1, 1.5, FingerVent::none};
+    s.fingers[2] = k < 3 ? FingerTouch{0, 0, 0, 0, FingerVent::tool_stale}
+                         : FingerTouch{30, 30 - 20 * (t - 0.03), -1, 1.0, FingerVent::none};
+    p.observe(s, how);
+  }
+  const TouchSample ahead = p.predict(0.07, how);
+  EXPECT_NEAR(ahead.fingers[0].x_mm, 10 + 40 * 0.07, 1e-9);
+  EXPECT_NEAR(ahead.fingers[0].y_mm, 5, 1e-9);
+  EXPECT_NEAR(ahead.fingers[0].force_N, 1 + 2 * 0.07, 1e-9);
+  EXPECT_NEAR(ahead.fingers[1].x_mm, 50, 1e-9);
+  EXPECT_NEAR(ahead.fingers[1].force_N, 1.5, 1e-9);
+  EXPECT_NEAR(ahead.fingers[2].x_mm, 30, 1e-9);
+  EXPECT_NEAR(ahead.fingers[2].y_mm, 30 - 20 * 0.04, 1e-9);
+  EXPECT_EQ(ahead.fingers[2].vent, FingerVent::none);
+  EXPECT_TRUE(ahead.own_positions);
+  // What the tick's look ahead reads, one finger at a time, is the same prediction.
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const PredictedFinger f = p.predict_finger(0.07, how, i);
+    EXPECT_EQ(f.x_mm, ahead.fingers[i].x_mm);
+    EXPECT_EQ(f.y_mm, ahead.fingers[i].y_mm);
+    EXPECT_EQ(f.force_N, ahead.fingers[i].force_N);
+    EXPECT_EQ(f.pen_x_mm, ahead.x_mm);
+    EXPECT_EQ(f.pen_force_N, ahead.force_N);
+    EXPECT_TRUE(f.own_position && f.own_force && f.in_contact);
+  }
+}

@@ -51,6 +51,15 @@ TEST(ComediConversion, NominalLineMatchesHandComputedCounts) {
   EXPECT_NEAR(kPa_from_counts(c, 40959), 25.0, 10.0 * 20.0 / 65535);
 }
 
+TEST(ComediConversion, ALoadCellInputReadsVolts) {
+  // A load cell's amplifier on an AI channel (issue 26): counts -> volts, comedilib's nominal line.
+  const ComediConversion c = bipolar_16bit_output();
+  comedi_range range{-10.0, 10.0, UNIT_volt};
+  // (comedi_to_phys says NaN at 0 and maxdata, its out-of-range marks: interior counts only.)
+  for (lsampl_t counts : {1u, 32768u, 36044u, 65534u})
+    EXPECT_NEAR(volts_from_counts(c, counts), comedi_to_phys(counts, &range, 65535), 1e-3) << counts;
+}
+
 TEST(ComediConversion, AgreesWithComediFromPhysForTheNominalRange) {
   // comedi_from_phys is comedilib's own (clamping) nominal conversion: an independent oracle.
   comedi_range range{-10.0, 10.0, UNIT_volt};

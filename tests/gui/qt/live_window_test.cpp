@@ -24,6 +24,8 @@
 #include "gui/main_window.hpp"
 #include "gui/rig_panel.hpp"
 #include "gui/scene_view.hpp"
+#include "gui/tracker_panel.hpp"
+#include "inputs/igtl_pose_server.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -176,6 +178,56 @@ class LiveWindowTest : public QObject {
     QVERIFY(view->finger_colours()[0] != view->finger_colours()[2] || setpoint(win, 2) > 11.0);
     QTest::mouseRelease(view, Qt::LeftButton, {}, tumor);
     QVERIFY(wait_until(win, [&] { return setpoint(win, 0) == 0.0; }));
+  }
+
+  void trackedFingersStandWhereTheTrackerSeesThemWithItsPanel() {
+    // A real OpenIGTLink server on loopback: finger 1 presses tumor A (40, 40), finger 2 tumor B
+    // (110, 50), 4 mm deep; finger 3's tool never comes. The tracker frame is the scene's.
+    std::vector<RecordedPose> rec;
+    for (int k = 0; k < 400; ++k) {
+      RecordedPose a, b;
+      a.t_s = b.t_s = k * 0.025;
+      a.tool = "Finger1ToTracker";
+      a.pose.translation_mm = {40, 40, -4};
+      b.tool = "Finger2ToTracker";
+      b.pose.translation_mm = {110, 50, -4};
+      rec.push_back(a);
+      rec.push_back(b);
+    }
+    PoseServerOptions options;
+    options.port = 0;
+    options.loop = true;
+    IgtlPoseServer server(rec, options);
+    server.start();
+    TempDir dir;
+    std::string rig = test_support::read_file(data_dir() + "/rigs/simulated_load_cells.json");
+    rig.replace(rig.find("\"max_input_age_s\": 0.1"), 22, "\"max_input_age_s\": 1.0");
+    Window w;
+    w.files.data_dir = data_dir();
+    w.files.rig_path = dir.write("rig.json", rig).string();
+    w.files.input_spec = "igtl:127.0.0.1:" + std::to_string(server.port());
+    w.files.tracking_path = dir.write("tracking.json", R"({"version": 1, "placement": "per_finger", "reader_fifo_priority": 0,
+      "tools": [{"name": "Finger1ToTracker", "finger": 1}, {"name": "Finger2ToTracker", "finger": 2},
+                {"name": "Finger3ToTracker", "finger": 3}]})").string();
+    LiveRunOptions opt;
+    opt.want_fifo = false;
+    w.window = std::make_unique<MainWindow>(std::make_unique<LiveRun>(load_live_run(w.files), opt), w.files, opt);
+    w.window->show();
+    MainWindow& win = *w.window;
+    SceneView* view = win.live_page()->scene_view();
+    TrackerPanel* panel = win.live_page()->tracker_panel();
+    QVERIFY(panel != nullptr);
+    QVERIFY2(wait_until(win, [&] { return setpoint(win, 1) > 8.0; }), "finger 2 on tumor B never got its pressure");
+    QVERIFY(setpoint(win, 0) > 8.0);  // finger 1 on tumor A
+    QCOMPARE(setpoint(win, 2), 0.0);  // finger 3's tool never came: vented
+    const auto c = view->finger_centres();
+    QVERIFY(std::abs(c[0].x_mm - 40) < 0.01 && std::abs(c[0].y_mm - 40) < 0.01);
+    QVERIFY(std::abs(c[1].x_mm - 110) < 0.01 && std::abs(c[1].y_mm - 50) < 0.01);  // not the pen's triangle
+    QVERIFY(wait_until(win, [&] { return panel->tool_label(0)->text().contains("poses, last"); }));
+    QVERIFY2(panel->tool_label(2)->text().contains("not seen"), qPrintable(panel->tool_label(2)->text()));
+    QVERIFY2(panel->connection_label()->text().contains("connected"), qPrintable(panel->connection_label()->text()));
+    w.window.reset();
+    server.stop();
   }
 
   void tabletPressOverTumorRaisesGauges() {
@@ -342,7 +394,7 @@ class LiveWindowTest : public QObject {
     QVERIFY(rows.size() > 100);
     const QStringList header = rows.front().split(',');
     const QStringList last = rows.back().split(',');
-    QCOMPARE(last.size(), 21);
+    QCOMPARE(last.size(), 39);  // 21 columns, the fingers' positions, forces and vents (telemetry v2), the drag (v3)
     QCOMPARE(last.size(), header.size());
     const auto field = [&](const char* name) {
       const auto i = header.indexOf(QString::fromLatin1(name));

@@ -322,10 +322,13 @@ class PulseConsoleTest : public QObject {
     const std::string resumed_db = (dir.path() / "resumed.db").string();
     page.set_fields({protocol_file, "sim:6", resumed_db, 50});
     EndSeen stopped(page);
+    // Aborted from the first commit's own signal, not from a poll of the trial list: a slow
+    // (sanitizer) build on a busy machine saw the whole pilot end before its poll noticed.
+    const QMetaObject::Connection abort_at_first =
+        connect(&page, &ExperimentPage::trialCommitted, &page, [&page](int) { page.abort(); });
     QVERIFY(page.begin(false));
-    QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) >= 1; }, 120));
-    page.abort();
-    QVERIFY(wait_until(*w.window, [&] { return stopped.count == 1 && !page.session_running(); }));
+    QVERIFY(wait_until(*w.window, [&] { return stopped.count == 1 && !page.session_running(); }, 120));
+    disconnect(abort_at_first);
     const auto kept = stored_pulse_trials(resumed_db);
     QVERIFY(!kept.empty() && kept.size() < 10);
     QVERIFY(page.resume_offered());

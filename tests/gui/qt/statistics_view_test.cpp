@@ -176,6 +176,10 @@ void StatisticsViewTest::ratingAndRtAfterStimulusEqualStatsTrialsJson() {
     QCOMPARE(measures->item(r, rt_after_column)->text(),
              QString::number(row["rt_after_stimulus_mean_s"].get<double>(), 'f', 2) + QStringLiteral(" ± ") +
                  QString::number(row["rt_after_stimulus_sd_s"].get<double>(), 'f', 2));
+    // From when the stimulus reached the fingers (the simulated rig's monitors at half the level).
+    QCOMPARE(measures->item(r, rt_reached_column)->text(),
+             QString::number(row["rt_from_reached_mean_s"].get<double>(), 'f', 2) + QStringLiteral(" ± ") +
+                 QString::number(row["rt_from_reached_sd_s"].get<double>(), 'f', 2));
     QVERIFY(row["rated"].get<int>() > 0);
     QCOMPARE(measures->item(r, confidence_column)->text(),
              QString::number(row["confidence_mean"].get<double>(), 'f', 2) + QStringLiteral(" (n=%1)").arg(row["rated"].get<int>()));

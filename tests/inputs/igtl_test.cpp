@@ -1,0 +1,322 @@
+// Tracked fingers over OpenIGTLink (issue 26), against a real server on loopback: the stream
+// decoder on messages packed by libopenigtlink itself, the pose recording file, the replay
+// server, and the loop's input following the tools, venting a finger whose tool stops and
+// reporting a server that goes away.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <thread>
+
+#include <igtlPositionMessage.h>
+#include <igtlStringMessage.h>
+#include <igtlTransformMessage.h>
+#include <igtl_util.h>
+
+#include "inputs/igtl_input.hpp"
+#include "inputs/igtl_pose_server.hpp"
+#include "inputs/igtl_stream.hpp"
+#include "inputs/pose_recording.hpp"
+#include "models/parse_error.hpp"
+#include "runtime/worker_fault.hpp"
+#include "tests/support/temp_dir.hpp"
+
+using namespace palprig;
+using namespace std::chrono_literals;
+using palprig::test_support::TempDir;
+
+namespace {
+
+std::vector<std::uint8_t> bytes_of(igtl::MessageBase* m) {
+  m->Pack();
+  const auto* p = static_cast<const std::uint8_t*>(m->GetPackPointer());
+  return {p, p + m->GetPackSize()};
+}
+
+std::vector<std::uint8_t> transform_bytes(const char* name, float x, float y, float z) {
+  igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
+  m->SetDeviceName(name);
+  igtl::Matrix4x4 mat;
+  igtl::IdentityMatrix(mat);
+  // 90 degrees about z.
+  mat[0][0] = 0, mat[0][1] = -1, mat[1][0] = 1, mat[1][1] = 0;
+  mat[0][3] = x, mat[1][3] = y, mat[2][3] = z;
+  m->SetMatrix(mat);
+  return bytes_of(m.GetPointer());
+}
+
+void append(std::vector<std::uint8_t>& to, const std::vector<std::uint8_t>& more) { to.insert(to.end(), more.begin(), more.end()); }
+
+// Waits for a condition with a deadline (no fixed sleeps).
+template <class F>
+bool eventually(F&& condition, std::chrono::milliseconds deadline = 5000ms) {
+  const auto end = std::chrono::steady_clock::now() + deadline;
+  while (std::chrono::steady_clock::now() < end) {
+    if (condition()) return true;
+    std::this_thread::sleep_for(2ms);
+  }
+  return condition();
+}
+
+RecordedPose at(double t, const std::string& tool, Vec3_mm p) {
+  RecordedPose r;
+  r.t_s = t;
+  r.tool = tool;
+  r.pose.translation_mm = p;
+  return r;
+}
+
+TrackingConfig two_finger_tracking() {
+  TrackingConfig t;
+  t.placement = TrackedPlacement::per_finger;
+  t.tools = {TrackedTool{"Finger1ToTracker", 0, {{0, 0, -10}, "", std::nan("")}},
+             TrackedTool{"Finger2ToTracker", 1, {{0, 0, -10}, "", std::nan("")}},
+             TrackedTool{"Finger3ToTracker", 2, {}}};
+  // Tracker -> scene: a shift.
+  t.registration.tracker_to_scene.translation_mm = {100, 50, 0};
+  t.reader_fifo_priority = 0;
+  return t;
+}
+
+}  // namespace
+
+TEST(IgtlStream, DecodesTransformAndPositionEvenOneByteAtATime) {
+  std::vector<std::uint8_t> stream;
+  append(stream, transform_bytes("StylusToTracker", 10, 20, 30));
+  igtl::StringMessage::Pointer text = igtl::StringMessage::New();
+  text->SetDeviceName("Note");
+  text->SetString("not a pose");
+  append(stream, bytes_of(text.GetPointer()));
+  igtl::PositionMessage::Pointer pos = igtl::PositionMessage::New();
+  pos->SetDeviceName("Finger1");
+  pos->SetPackType(igtl::PositionMessage::ALL);
+  pos->SetPosition(1.f, 2.f, 3.f);
+  pos->SetQuaternion(0.f, 0.f, 0.7071068f, 0.7071068f);
+  append(stream, bytes_of(pos.GetPointer()));
+  // POSITION without a quaternion: libopenigtlink 1.11 cannot pack one (its PackBody converts
+  // all seven floats of a 12-byte body, past its end), so it is cut from a whole one here: the
+  // position's 12 bytes, the header's body size and CRC set to match.
+  igtl::PositionMessage::Pointer full = igtl::PositionMessage::New();
+  full->SetDeviceName("Finger2");
+  full->SetPackType(igtl::PositionMessage::ALL);
+  full->SetPosition(4.f, 5.f, 6.f);
+  std::vector<std::uint8_t> only = bytes_of(full.GetPointer());
+  only.resize(58 + 12);
+  const std::uint64_t crc = crc64(only.data() + 58, 12, 0);
+  for (int i = 0; i < 8; ++i) {
+    only[42 + i] = static_cast<std::uint8_t>(i == 7 ? 12 : 0);  // body size, big-endian
+    only[50 + i] = static_cast<std::uint8_t>(crc >> (8 * (7 - i)));
+  }
+  append(stream, only);
+
+  IgtlStreamDecoder decoder;
+  std::vector<DecodedPose> poses;
+  for (std::uint8_t b : stream) ASSERT_TRUE(decoder.feed(&b, 1, poses));
+  ASSERT_EQ(poses.size(), 3u);
+  EXPECT_STREQ(poses[0].device, "StylusToTracker");
+  EXPECT_FLOAT_EQ(poses[0].pose.translation_mm[1], 20);
+  EXPECT_NEAR(poses[0].pose.rotation[1][0], 1, 1e-6);
+  EXPECT_TRUE(poses[0].is_rotation);
+  EXPECT_STREQ(poses[1].device, "Finger1");
+  EXPECT_NEAR(poses[1].pose.rotation[0][1], -1, 1e-6);  // the quaternion: 90 degrees about z
+  EXPECT_TRUE(poses[1].has_rotation);
+  EXPECT_FALSE(poses[2].has_rotation);
+  EXPECT_FLOAT_EQ(poses[2].pose.translation_mm[2], 6);
+  EXPECT_EQ(decoder.counts().messages, 4u);
+  EXPECT_EQ(decoder.counts().other_types, 1u);
+  // All at once gives the same.
+  IgtlStreamDecoder whole;
+  std::vector<DecodedPose> again;
+  ASSERT_TRUE(whole.feed(stream.data(), stream.size(), again));
+  EXPECT_EQ(again.size(), 3u);
+}
+
+TEST(IgtlStream, SkipsBadCrcAndOtherHeaderVersionsAndRefusesGarbage) {
+  std::vector<std::uint8_t> bad = transform_bytes("T", 1, 2, 3);
+  bad.back() ^= 0x40;  // the body no longer matches its CRC
+  std::vector<std::uint8_t> v3 = transform_bytes("T", 1, 2, 3);
+  v3[1] = 2;  // header version 2: OpenIGTLink 3's extended header
+  std::vector<std::uint8_t> zeros = transform_bytes("Lost", 0, 0, 0);
+  {
+    // A lost tool's all-zero matrix: decoded, flagged as no rotation.
+    igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
+    m->SetDeviceName("Lost");
+    igtl::Matrix4x4 mat = {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 1}};
+    m->SetMatrix(mat);
+    zeros = bytes_of(m.GetPointer());
+  }
+  // A TRANSFORM whose body is 16 bytes, not 48: libopenigtlink would read 48 (found by
+  // fuzz_igtl_stream); skipped as malformed by its size.
+  std::vector<std::uint8_t> short_body = transform_bytes("Short", 1, 2, 3);
+  short_body.resize(58 + 16);
+  for (int i = 0; i < 8; ++i) short_body[42 + i] = static_cast<std::uint8_t>(i == 7 ? 16 : 0);
+  std::vector<std::uint8_t> stream;
+  append(stream, bad);
+  append(stream, v3);
+  append(stream, short_body);
+  append(stream, zeros);
+  append(stream, transform_bytes("T", 7, 8, 9));
+  IgtlStreamDecoder d;
+  std::vector<DecodedPose> poses;
+  ASSERT_TRUE(d.feed(stream.data(), stream.size(), poses));
+  ASSERT_EQ(poses.size(), 2u);
+  EXPECT_STREQ(poses[0].device, "Lost");
+  EXPECT_FALSE(poses[0].is_rotation);
+  EXPECT_FLOAT_EQ(poses[1].pose.translation_mm[0], 7);
+  EXPECT_EQ(d.counts().crc_failures, 1u);
+  EXPECT_EQ(d.counts().other_versions, 1u);
+  EXPECT_EQ(d.counts().malformed, 1u);
+
+  // An HTTP server is no tracker.
+  IgtlStreamDecoder http;
+  const std::string reply = "HTTP/1.1 200 OK\r\nContent-Type: text/html\r\nContent-Length: 1000\r\n\r\n<html><body>...";
+  std::vector<DecodedPose> none;
+  EXPECT_FALSE(http.feed(reinterpret_cast<const std::uint8_t*>(reply.data()), reply.size(), none));
+  EXPECT_NE(std::string(http.error()).find("not an OpenIGTLink stream"), std::string::npos) << http.error();
+}
+
+TEST(PoseRecording, LoadsTheShippedPathsAndRefusesBadRows) {
+  const auto dir = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "tracking";
+  const auto pass = load_pose_recording(dir / "phantom_three_fingers_pass.csv");
+  EXPECT_EQ(recorded_tools(pass), (std::vector<std::string>{"Finger1ToTracker", "Finger2ToTracker", "Finger3ToTracker"}));
+  EXPECT_NEAR(pass.back().t_s, 10.7, 0.05);
+  TempDir t;
+  auto refused = [&](const std::string& text) {
+    try {
+      (void)load_pose_recording(t.write("p.csv", text));
+    } catch (const InputError& e) {
+      const std::string w = e.what();
+      return w.substr(w.find("p.csv"));
+    }
+    return std::string("accepted");
+  };
+  const std::string h = "t_s,tool,x_mm,y_mm,z_mm,qx,qy,qz,qw\n";
+  EXPECT_EQ(refused(h + "0,A,1,2,3,0,0,0,1\n"), "accepted");
+  EXPECT_EQ(refused("t,tool\n"), "p.csv: line 1: the header 't_s,tool,x_mm,y_mm,z_mm,qx,qy,qz,qw', got 't,tool'");
+  EXPECT_EQ(refused(h + "0,A,1,2,3,0,0,0\n"), "p.csv: line 2: 9 values (t_s,tool,x_mm,y_mm,z_mm,qx,qy,qz,qw), got 8");
+  EXPECT_EQ(refused(h + "0,A,1,2,x,0,0,0,1\n"), "p.csv: line 2, z_mm: a finite number, got 'x'");
+  EXPECT_EQ(refused(h + "0,A,1,2,3,0,0,0,0\n"), "p.csv: line 2, qx..qw: a non-zero quaternion (x, y, z, w)");
+  EXPECT_EQ(refused(h + "1,A,1,2,3,0,0,0,1\n0.5,B,1,2,3,0,0,0,1\n"),
+            "p.csv: line 3, t_s: a time no earlier than the previous row's, got 0.5");
+  EXPECT_EQ(refused(h + "1,A,1,2,3,0,0,0,1\n1,A,1,2,3,0,0,0,1\n"), "p.csv: line 3, t_s: a time after tool A's previous row, got 1");
+  EXPECT_EQ(refused(h + "0,ToolNameMuchTooLongForIGTL,1,2,3,0,0,0,1\n"),
+            "p.csv: line 2, tool: an OpenIGTLink device name of 1 to 20 characters, got 'ToolNameMuchTooLongForIGTL'");
+  EXPECT_EQ(refused(h), "p.csv: line 1: at least one pose");
+}
+
+TEST(IgtlInput, FollowsEachToolOnLoopbackAndVentsAFingerWhoseToolStops) {
+  clear_worker_faults();
+  // Finger 1 for 2 s, finger 2 for 0.3 s only (then out of view), finger 3 never.
+  std::vector<RecordedPose> rec;
+  for (int k = 0; k <= 80; ++k) {
+    const double t = k * 0.025;
+    rec.push_back(at(t, "Finger1ToTracker", {10.0 + k, 20, 5}));
+    if (t <= 0.3) rec.push_back(at(t, "Finger2ToTracker", {-5, -5, 7}));
+  }
+  PoseServerOptions options;
+  options.port = 0;
+  IgtlPoseServer server(rec, options);
+  server.start();
+  IgtlInput input({"127.0.0.1", server.port()}, two_finger_tracking(), 0.1);
+  EXPECT_NE(input.describe().find("Finger2ToTracker"), std::string::npos);
+  const auto start = std::chrono::steady_clock::now();
+  auto now_s = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  TouchSample s;
+  ASSERT_TRUE(eventually([&] {
+    s = input.latest(now_s());
+    return s.fingers[1].vent == FingerVent::none && s.fingers[0].vent == FingerVent::none;
+  }));
+  EXPECT_TRUE(s.own_positions);
+  EXPECT_TRUE(s.force_from_load_cells);
+  EXPECT_TRUE(s.in_contact);
+  EXPECT_EQ(s.fingers[2].vent, FingerVent::tool_not_seen);
+  // Tip 10 mm along the tool's -z (identity rotation), then the registration's shift.
+  EXPECT_NEAR(s.fingers[1].x_mm, 95, 1e-3);
+  EXPECT_NEAR(s.fingers[1].y_mm, 45, 1e-3);
+  EXPECT_NEAR(s.fingers[1].z_mm, -3, 1e-3);
+  EXPECT_GE(s.fingers[0].x_mm, 110);
+  EXPECT_NEAR(s.fingers[0].y_mm, 70, 1e-3);
+  // Finger 1 moves on while finger 2's tool has gone: finger 2 vented, stale, the rest goes on.
+  ASSERT_TRUE(eventually([&] {
+    s = input.latest(now_s());
+    return s.fingers[1].vent == FingerVent::tool_stale;
+  }));
+  EXPECT_EQ(s.fingers[0].vent, FingerVent::none);
+  const double x_then = s.fingers[0].x_mm;
+  ASSERT_TRUE(eventually([&] { return input.latest(now_s()).fingers[0].x_mm > x_then + 5; }));
+  // The sample itself stays fresh: the reader's heartbeat goes on.
+  EXPECT_LT(now_s() - input.latest(now_s()).t_s, 0.05);
+  const TrackerStatus st = input.status();
+  EXPECT_TRUE(st.connected);
+  EXPECT_GT(st.tools[0].poses, 10u);
+  EXPECT_EQ(st.tools[2].poses, 0u);
+  EXPECT_FALSE(worker_fault_pending(nullptr, 0));
+}
+
+TEST(IgtlInput, OneToolCarriesTheTriangleAndUnmappedToolsAreListed) {
+  clear_worker_faults();
+  std::vector<RecordedPose> rec;
+  for (int k = 0; k < 200; ++k) {
+    rec.push_back(at(k * 0.01, "StylusToTracker", {30, 40, -2}));
+    rec.push_back(at(k * 0.01, "ReferenceToTracker", {0, 0, 0}));
+  }
+  PoseServerOptions options;
+  options.port = 0;
+  options.position_messages = true;
+  IgtlPoseServer server(rec, options);
+  server.start();
+  TrackingConfig t;
+  t.placement = TrackedPlacement::triangle;
+  t.tools = {TrackedTool{"StylusToTracker", 0, {}}};
+  t.reader_fifo_priority = 0;
+  IgtlInput input({"127.0.0.1", server.port()}, t, 0.1);
+  TouchSample s;
+  ASSERT_TRUE(eventually([&] {
+    s = input.latest(0);
+    return s.fingers[0].vent == FingerVent::none;
+  }));
+  EXPECT_FALSE(s.own_positions);
+  EXPECT_NEAR(s.x_mm, 30, 1e-4);
+  EXPECT_NEAR(s.y_mm, 40, 1e-4);
+  for (const auto& f : s.fingers) {
+    EXPECT_EQ(f.vent, FingerVent::none);
+    EXPECT_NEAR(f.z_mm, -2, 1e-4);  // the one tool's depth for every finger
+  }
+  ASSERT_TRUE(eventually([&] { return std::strcmp(input.status().other_names[0], "ReferenceToTracker") == 0; }));
+}
+
+TEST(IgtlInput, RefusesAServerThatIsNotThereAndReportsOneThatGoes) {
+  clear_worker_faults();
+  // A port nobody listens on: bind one, learn it, close it.
+  int port = 0;
+  {
+    IgtlPoseServer probe({at(0, "X", {0, 0, 0})}, PoseServerOptions{0, false, false});
+    probe.start();
+    port = probe.port();
+    probe.stop();
+  }
+  try {
+    IgtlInput input({"127.0.0.1", port}, two_finger_tracking(), 0.1);
+    FAIL() << "connected to a closed port";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot connect: Connection refused"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse_igtl_spec("igtl:localhost"), InputError);
+  EXPECT_THROW(parse_igtl_spec("igtl:localhost:99999"), InputError);
+  EXPECT_THROW(parse_igtl_spec("igtl:bad host:18944"), InputError);
+  EXPECT_EQ(parse_igtl_spec("igtl:127.0.0.1:18944").port, 18944);
+
+  std::vector<RecordedPose> rec;
+  for (int k = 0; k < 400; ++k) rec.push_back(at(k * 0.01, "Finger1ToTracker", {0, 0, 0}));
+  IgtlPoseServer server(rec, PoseServerOptions{0, false, false});
+  server.start();
+  IgtlInput input({"127.0.0.1", server.port()}, two_finger_tracking(), 0.1);
+  ASSERT_TRUE(eventually([&] { return input.latest(0).fingers[0].vent == FingerVent::none; }));
+  server.stop();  // the tracker goes away: its connection closes
+  char detail[256] = {0};
+  ASSERT_TRUE(eventually([&] { return worker_fault_pending(detail, sizeof detail); }));
+  EXPECT_NE(std::string(detail).find("the server closed the connection"), std::string::npos) << detail;
+  EXPECT_FALSE(input.status().connected);
+  clear_worker_faults();
+}
