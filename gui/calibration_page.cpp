@@ -1,4 +1,6 @@
 #include "gui/calibration_page.hpp"
+// About 400 lines: the page's widgets and their wiring (the runs themselves are in
+// calibration_page_runs.cpp, the sweep/fit jobs in calibration_job.cpp).
 
 #include <QCheckBox>
 #include <QDoubleSpinBox>

@@ -10,6 +10,7 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSplitter>
 #include <QTableWidget>
 #include <QTimer>
@@ -166,7 +167,16 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   pulse_table_ = make_table(vertical, "pulseTable");
   pulse_table_->setVisible(false);
   vertical->setSizes({520, 230, 170});  // the charts get most of the height (scaled with the view)
-  layout->addWidget(vertical, 1);
+  // During a session the experiment page leaves this view little height (at 1280 x 800 the charts
+  // were squeezed to their titles): the charts keep a readable height and the view scrolls
+  // instead, so the window never grows past the screen.
+  charts->setMinimumHeight(240);
+  auto* scroll = new QScrollArea(this);
+  scroll->setObjectName("statisticsScroll");
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setWidget(vertical);
+  layout->addWidget(scroll, 1);
 
   file_watcher_ = new QFileSystemWatcher(this);
   change_delay_ = new QTimer(this);

@@ -172,6 +172,11 @@ void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
     *output_register(c) = map_.channels[c].output.scale.word_from_kPa(0.0);
     if (!map_.monitor_is_readback(c)) *monitor_register(c) = map_.channels[c].monitor.scale.word_from_kPa(0.0);
   }
+  // A load cell's register holds a reading from the start, as a real module's does: a client
+  // served before the plant thread's first step would otherwise read a zero word (a force of
+  // minus the tare) as a measurement.
+  for (std::size_t i = 0; i < cells_.size(); ++i)
+    *register_of(cell_registers_[i]) = cell_registers_[i].scale.word_from_volts(cells_[i].volts(0.0, cell_load_N_));
   stop_.store(false);
   start_ns_ = mono_ns();
   last_step_ns_ = 0;

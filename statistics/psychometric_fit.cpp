@@ -1,4 +1,8 @@
 #include "statistics/psychometric_fit.hpp"
+// Over 400 lines on purpose: the likelihood (templated on Ceres' Jets), its unbounded
+// parameterisation, the minimiser and the bootstrap that refits through them are one numerical
+// unit: they share the standardisation and the overflow bounds, and splitting them would put
+// those templates in a header for no other reader.
 
 #include <algorithm>
 #include <chrono>

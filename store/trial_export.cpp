@@ -1,4 +1,7 @@
 #include "store/trial_export.hpp"
+// About 400 lines: the long CSV and the BIDS discrimination/localisation runs read the same
+// ExportTrial rows and write the same columns in two layouts; threshold and pulse rows have
+// their own files (threshold_export, pulse_export).
 
 #include <algorithm>
 #include <array>
