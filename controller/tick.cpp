@@ -215,7 +215,9 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   if (state.fault == FaultCode::none) state.lag.pen.observe(sample, config.lag_compensation.prediction);
   ++state.lag.ticks;
   // A lifted pen, or a run that restarts: the window's cached targets are stale.
-  if (!fingers.pressed) state.lag.window_sampled = {};
+  // A finger that is not pressing (a tracked one vented, or lifted by its own load cell) too.
+  for (std::size_t i = 0; i < kFingerCount; ++i)
+    if (!fingers.pressed || !fingers.finger_pressed[i]) state.lag.window_sampled[i] = false;
   if (plan.any_total() && state.fault == FaultCode::none) {
     rec.flags |= kLagCompensated;
     for (std::size_t i = 0; i < kFingerCount; ++i) {
