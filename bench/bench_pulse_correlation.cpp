@@ -68,11 +68,15 @@ std::unique_ptr<FunctionScene> scene_with(const FunctionScene& shipped, const Pu
 // How the plant's 2 kPa play is handled: left alone (the default calibration has no hysteresis
 // model), cancelled by the calibration fitted on this rig (data/calibration/sim-default.json,
 // issue 4's hysteresis inverse in the tick), or absent (the lag alone).
-enum class Play { uncompensated, calibrated, absent };
+// With the calibration, the lag compensator works on the pulse alone (the default) or, with lag
+// compensation switched on (whole_target: calibration identified the regulators' dynamics), on
+// the whole target, stiffness and pulse together: the same compensator either way.
+enum class Play { uncompensated, calibrated, calibrated_whole, absent };
 const char* to_string(Play p) {
   switch (p) {
     case Play::uncompensated: return "rig file, play not compensated";
     case Play::calibrated: return "rig file + sim-default.json calibration";
+    case Play::calibrated_whole: return "same, whole target lag-compensated";
     case Play::absent: return "lag only (no play)";
   }
   return "";
@@ -85,8 +89,10 @@ Result measure(const FunctionScene& scene, const RigConfig& rig, const Calibrati
     p.noise_sd_kPa = 0;  // the actuator's own pressure, not a noisy monitor
     if (play == Play::absent) p.hysteresis_kPa = 0;
   }
-  TickConfig cfg = make_tick_config(r, play == Play::calibrated ? fitted : CalibrationModels{});
+  const bool calibrated = play == Play::calibrated || play == Play::calibrated_whole;
+  TickConfig cfg = make_tick_config(r, calibrated ? fitted : CalibrationModels{});
   cfg.pulse.compensate_lag = compensate;
+  cfg.lag_compensation.whole_target = compensate && play == Play::calibrated_whole;
   SimulatedRig backend(r.plants, r.safety.p_max_kPa);
   backend.open();
   RigStep step_rig(cfg, backend);
@@ -152,7 +158,7 @@ int main(int argc, char** argv) {
   for (const Shape& s : shapes)
     for (double bpm : {60.0, 100.0, 160.0}) {
       const auto scene = scene_with(shipped, s.wave, bpm);
-      for (Play play : {Play::uncompensated, Play::calibrated, Play::absent}) {
+      for (Play play : {Play::uncompensated, Play::calibrated, Play::calibrated_whole, Play::absent}) {
         const Result raw = measure(*scene, rig, fitted, play, false), comp = measure(*scene, rig, fitted, play, true);
         const char* plant = to_string(play);
         if (json_out) {

@@ -17,6 +17,7 @@
 #include "formats/scene_file.hpp"
 #include "rigs/simulated_rig.hpp"
 #include "controller/tick.hpp"
+#include "inputs/input_source.hpp"
 
 using namespace palprig;
 
@@ -43,9 +44,20 @@ const MapScene& big_scene(MapSampling sampling) {
 
 // A pen wandering over the whole map (a new place each tick: the worst case for the cache)
 // or moving like a hand (40 mm/s).
-void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering) {
+// With lag_compensated, the whole target is lag-compensated (the regulators of the simulated
+// rig as calibration identifies them: 4 ms dead time, 50 ms lag): the scene is also sampled
+// where the fingers will be (up to three more samples per finger), and every channel's
+// compensator runs; on the random map every tick is an edge, its worst case.
+void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering, bool lag_compensated = false) {
   const MapScene& scene = big_scene(sampling);
   TickConfig cfg;
+  if (lag_compensated) {
+    cfg.lag_compensation.whole_target = true;
+    for (std::size_t i = 0; i < kFingerCount; ++i) {
+      cfg.lag_compensation.identified[i] = true;
+      cfg.lag_compensation.regulator[i] = {0.004, 0.050, 2000.0};
+    }
+  }
   TickState st = make_tick_state(cfg);
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> pos(0, 400);
@@ -82,9 +94,58 @@ void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering) {
 void BM_TickNearestWandering(benchmark::State& s) { tick_cost(s, MapSampling::nearest, true); }
 void BM_TickBilinearWandering(benchmark::State& s) { tick_cost(s, MapSampling::bilinear, true); }
 void BM_TickNearestHandSpeed(benchmark::State& s) { tick_cost(s, MapSampling::nearest, false); }
+void BM_TickNearestWanderingLagCompensated(benchmark::State& s) { tick_cost(s, MapSampling::nearest, true, true); }
+void BM_TickNearestHandSpeedLagCompensated(benchmark::State& s) { tick_cost(s, MapSampling::nearest, false, true); }
 BENCHMARK(BM_TickNearestWandering);
 BENCHMARK(BM_TickBilinearWandering);
 BENCHMARK(BM_TickNearestHandSpeed);
+BENCHMARK(BM_TickNearestWanderingLagCompensated);
+BENCHMARK(BM_TickNearestHandSpeedLagCompensated);
+
+// The bundled phantom (paper 002's tumors A, B, C: a 161 x 121 map) under the demo's recorded
+// pen pass at 1 kHz, with the shipped simulated rig's calibration (its identified regulator
+// dynamics): the tick as the demo runs it, without and with the whole target lag-compensated.
+void phantom_pass_cost(benchmark::State& state, bool lag_compensated) {
+  const std::filesystem::path data = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
+  static const SceneFile scene = load_scene_file(data / "scenes" / "phantom_abc.json");
+  CalibrationModels cal = load_calibration_file(data / "calibration" / "sim-default.json");
+  cal.lag_compensation.enabled = lag_compensated;
+  const TickConfig cfg = make_tick_config(load_rig_file(data / "rigs" / "simulated.json"), cal);
+  TraceInput trace(load_trace_csv(data / "traces" / "phantom_abc_pass.csv", cfg.contact_force_N), "pass",
+                   cfg.contact_force_N);
+  const auto ticks = static_cast<std::size_t>(trace.duration_s() * 1000);
+  std::vector<TouchSample> samples(ticks);
+  for (std::size_t i = 0; i < ticks; ++i) samples[i] = trace.latest(double(i) * 1e-3);
+  TickState st = make_tick_state(cfg);
+  std::vector<std::int64_t> ns;
+  ns.reserve(4'000'000);
+  std::size_t i = 0;
+  double t = 0;
+  for (auto _ : state) {
+    if (i == ticks) {  // the pass again from the start, as a new run
+      i = 0;
+      t = 0;
+      st = make_tick_state(cfg);
+    }
+    const TouchSample& s = samples[i++];
+    const std::int64_t a = now_ns();
+    TickResult r = tick(st, cfg, *scene.scene, s, t);
+    const std::int64_t b = now_ns();
+    benchmark::DoNotOptimize(r);
+    if (ns.size() < ns.capacity()) ns.push_back(b - a);
+    t += 1e-3;
+  }
+  std::sort(ns.begin(), ns.end());
+  auto pct = [&](double q) { return ns.empty() ? 0.0 : double(ns[std::min(ns.size() - 1, std::size_t(q * ns.size()))]); };
+  state.counters["p50_ns"] = pct(0.50);
+  state.counters["p99_ns"] = pct(0.99);
+  state.counters["p999_ns"] = pct(0.999);
+  state.counters["max_ns"] = ns.empty() ? 0.0 : double(ns.back());
+}
+void BM_TickPhantomPass(benchmark::State& s) { phantom_pass_cost(s, false); }
+void BM_TickPhantomPassLagCompensated(benchmark::State& s) { phantom_pass_cost(s, true); }
+BENCHMARK(BM_TickPhantomPass);
+BENCHMARK(BM_TickPhantomPassLagCompensated);
 
 // Replay: the bundled phantom rastered for 60 s of loop time at 1 kHz on the simulated rig.
 void BM_Replay60s(benchmark::State& state) {

@@ -35,6 +35,10 @@ std::string fixed(double v, int digits) {
 
 }  // namespace
 
+bool ChannelCalibration::dynamics_usable() const noexcept {
+  return dynamics && dynamics->r_squared >= min_r_squared;
+}
+
 CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOptions& o) {
   const std::string& file = data.file;
   CalibrationResult out;
@@ -46,7 +50,7 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
     throw InputError(file, "rig_id", "the rig the data came from (a \"# rig_id: ...\" line, or `rig_id`)");
   if (out.rig_id == "*")
     throw InputError(file, "rig_id", "a real rig id: a fitted calibration belongs to one rig, not \"*\"");
-  if (data.points.empty())
+  if (data.points.empty() && data.dynamics.empty())
     throw InputError(file, "rows", "settled readings (every hold of the file is unsettled or empty)");
   if (data.unsettled_holds)
     out.notes.push_back(std::to_string(data.unsettled_holds) + " holds never settled and were left out");
@@ -62,6 +66,8 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
   out.stress_file = o.stress_file;
   out.force_file = o.force_file;
   out.force_window = o.force_window;
+  out.lag_compensation = o.lag_compensation;
+  bool any_dynamics = false;
   std::vector<HoldPoint> pooled;
   for (int c = 1; c <= int(kFingerCount); ++c) {
     ChannelCalibration& ch = out.channels[std::size_t(c - 1)];
@@ -77,13 +83,34 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
       ch.stress_line = a.line;
     }
     const std::vector<HoldPoint> pts = data.channel_points(c);
+    const std::vector<DynamicsSample> dynamics = data.channel_dynamics(c);
     ch.points = pts.size();
-    ch.swept = !pts.empty();
+    ch.swept = !pts.empty() || !dynamics.empty();
+    ch.min_r_squared = o.lag_compensation.min_r_squared;
     if (!ch.swept) {
       out.notes.push_back("channel " + std::to_string(c) + " was not swept: no hysteresis model (identity)");
       continue;
     }
     const std::string name = "channel " + std::to_string(c);
+    // The regulator's dynamics, through the hysteresis model fitted on the monitor (so the lag
+    // is fitted on what the play leaves of the command), once that model exists.
+    auto fit_channel_dynamics = [&] {
+      if (dynamics.empty()) return;
+      any_dynamics = true;
+      const PrandtlIshlinskii* h =
+          ch.hysteresis && ch.hysteresis_source == HysteresisSource::monitor ? &ch.hysteresis->model : nullptr;
+      ch.dynamics = fit_dynamics(dynamics, h, o.dynamics, file, name + " dynamics");
+      if (!ch.dynamics->converged)
+        out.notes.push_back(name + ": the dynamics fit did not converge in Ceres (" + ch.dynamics->solver_report +
+                            "); the best grid point is kept");
+      if (!ch.dynamics_usable())
+        out.notes.push_back(name + ": its dynamics fit with R^2 " + fixed(ch.dynamics->r_squared, 4) + ", below " +
+                            fixed(o.lag_compensation.min_r_squared, 4) + ": lag compensation stays off on it");
+    };
+    if (pts.empty()) {  // step and chirp rows only: no quasi-static points, no hysteresis model
+      fit_channel_dynamics();
+      continue;
+    }
     const std::vector<HoldPoint> stairs = staircase_of(pts);
     if (data.has_monitor) check_response_moves(pts, MeasuredSignal::monitor, file, name + " monitor");
     if (data.has_sensor) check_response_moves(pts, MeasuredSignal::sensor, file, name + " sensor");
@@ -112,7 +139,10 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
     }
 
     ch.hysteresis_source = source;
-    if (source == HysteresisSource::none) continue;
+    if (source == HysteresisSource::none || pts.empty()) {
+      fit_channel_dynamics();
+      continue;
+    }
     std::vector<double> x, y;
     for (const auto& p : pts) {
       x.push_back(p.command_kPa);
@@ -161,7 +191,14 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
                            "). Record more holds (`excitation` staircase,random,sine), use fewer operators "
                            "(`operator_count`), or fix the thresholds (`fixed_thresholds`)");
     ch.hysteresis = fit;
+    fit_channel_dynamics();
   }
+  if (!any_dynamics)
+    out.notes.push_back("no step or chirp rows: the regulators' dynamics were not identified (lag compensation needs "
+                        "calibrate sweep --excitation ...,step,chirp)");
+  if (o.lag_compensation.enabled && !any_dynamics)
+    throw InputError(file, "lag_compensation", "step and chirp rows to identify the regulators' dynamics before lag "
+                                               "compensation is enabled (calibrate sweep --excitation ...,step,chirp)");
   if (pooled.empty() && data.has_monitor)
     out.notes.push_back("no staircase rows: the branch tables of paper 002 fig. 8 were not computed");
   if (!pooled.empty()) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "calibration/branch_fits.hpp"
+#include "calibration/dynamics_fit.hpp"
 #include "calibration/force_window.hpp"
 #include "calibration/hysteresis_fit.hpp"
 #include "calibration/stress_fit.hpp"
@@ -39,6 +40,11 @@ struct CalibrationFitOptions {
   std::string stress_file;
   std::optional<ForceWindowFit> force_window;
   std::string force_file;
+  // The regulator dynamics fit (from step and chirp rows) and what the file's lag_compensation
+  // section says: whether the tick compensates the whole target with them (off unless asked),
+  // the lead bound and the R^2 a channel's fit needs.
+  DynamicsFitOptions dynamics;
+  LagCompensationChoice lag_compensation;
 };
 
 struct ChannelCalibration {
@@ -52,6 +58,9 @@ struct ChannelCalibration {
   HysteresisSource hysteresis_source = HysteresisSource::none;
   ActuatorModel actuator;
   std::optional<LineFit> stress_line;           // when fitted from stress pairs
+  std::optional<DynamicsFit> dynamics;          // when the data has step or chirp rows
+  bool dynamics_usable() const noexcept;        // identified with R^2 at or above the bound
+  double min_r_squared = kDefaultMinDynamicsRSquared;
 };
 
 struct CalibrationResult {
@@ -61,6 +70,7 @@ struct CalibrationResult {
   StressModel stress;
   std::optional<ForceWindowFit> force_window;
   std::string stress_file, force_file;
+  LagCompensationChoice lag_compensation;
   std::vector<std::string> notes;
 };
 

@@ -82,6 +82,25 @@ void print_fit_report(std::ostream& out, const CalibrationResult& r, const std::
         << std::setprecision(3) << h.solve_seconds << " s, thresholds " << (h.thresholds_refined ? "refined" : "on the grid")
         << "\n";
   }
+  bool any_dynamics = false;
+  for (const auto& ch : r.channels) any_dynamics = any_dynamics || ch.dynamics.has_value();
+  if (any_dynamics) {
+    out << "Regulator dynamics (dead time + first-order lag from the step and chirp rows, Ceres; lag compensation "
+        << (r.lag_compensation.enabled ? "enabled" : "off until enabled") << ", needs R^2 >= " << std::setprecision(3)
+        << r.lag_compensation.min_r_squared << "):\n";
+    for (const auto& ch : r.channels) {
+      if (!ch.dynamics) continue;
+      const DynamicsFit& d = *ch.dynamics;
+      out << "  channel " << ch.channel << ": dead time " << std::setprecision(1) << d.dead_time_s * 1000 << " ms, lag "
+          << d.time_constant_s * 1000 << " ms; R^2 " << std::setprecision(5) << d.r_squared;
+      for (std::size_t k = 0; k < d.segments.size(); ++k)
+        out << (k == 0 ? " (" : ", ") << to_string(d.segments[k].segment) << " " << d.segments[k].r_squared
+            << (k + 1 == d.segments.size() ? ")" : "");
+      out << "; residual RMS " << std::setprecision(3) << d.rms_residual_kPa << " kPa, max " << d.max_residual_kPa
+          << " kPa; " << d.samples << " samples at " << std::setprecision(0) << d.rate_hz << " Hz; "
+          << (ch.dynamics_usable() ? "usable" : "POOR FIT: compensation stays off") << "\n";
+    }
+  }
   out << "Actuator stress lines (stress = slope * p + intercept):\n";
   for (const auto& ch : r.channels) {
     out << "  channel " << ch.channel << ": slope " << std::setprecision(5) << ch.actuator.slope << ", intercept "

@@ -77,6 +77,23 @@ json calibration_json(const CalibrationResult& r) {
                              {"solve_seconds", h.solve_seconds},
                              {"solver", h.solver_report}};
     }
+    if (ch.dynamics) {
+      const DynamicsFit& d = *ch.dynamics;
+      json segments = json::array();
+      for (const auto& g : d.segments)
+        segments.push_back({{"segment", to_string(g.segment)}, {"samples", g.samples}, {"r_squared", g.r_squared},
+                            {"rms_residual_kPa", g.rms_residual_kPa}, {"max_residual_kPa", g.max_residual_kPa}});
+      c["dynamics"] = {{"dead_time_s", d.dead_time_s},           {"time_constant_s", d.time_constant_s},
+                       {"r_squared", d.r_squared},               {"rms_residual_kPa", d.rms_residual_kPa},
+                       {"max_residual_kPa", d.max_residual_kPa}, {"samples", d.samples},
+                       {"rate_hz", d.rate_hz},                   {"segments", segments}};
+      f["dynamics_fit"] = {{"grid_rms_residual_kPa", d.grid_rms_residual_kPa},
+                           {"converged", d.converged},
+                           {"iterations", d.iterations},
+                           {"solve_seconds", d.solve_seconds},
+                           {"usable", ch.dynamics_usable()},
+                           {"solver", d.solver_report}};
+    }
     if (ch.regulator) f["regulator"] = branch_fits_json(*ch.regulator);
     if (ch.regulator_check)
       f["regulator_check"] = {{"worst_deviation_kPa", ch.regulator_check->worst_deviation_kPa},
@@ -89,6 +106,13 @@ json calibration_json(const CalibrationResult& r) {
     fits_channels.push_back(f);
   }
   doc["channels"] = channels;
+  bool any_dynamics = false;
+  for (const ChannelCalibration& ch : r.channels) any_dynamics = any_dynamics || ch.dynamics.has_value();
+  if (any_dynamics || r.lag_compensation.enabled)
+    doc["lag_compensation"] = {{"enabled", r.lag_compensation.enabled},
+                               {"max_lead_kPa", r.lag_compensation.max_lead_kPa},
+                               {"min_r_squared", r.lag_compensation.min_r_squared},
+                               {"anticipate_edges", r.lag_compensation.anticipate_edges}};
   json fits{{"data", r.data_file}, {"sensor", r.sensor_name.empty() ? json(nullptr) : json(r.sensor_name)},
             {"channels", fits_channels}};
   if (r.pooled_regulator) fits["all_channels"]["regulator"] = branch_fits_json(*r.pooled_regulator);

@@ -95,6 +95,13 @@ void SweepCsvWriter::finish(const SweepOutcome& o) {
   if (!out_) fail_writing(out_, path_, rows_ > 0);
 }
 
+std::vector<DynamicsSample> SweepData::channel_dynamics(int channel) const {
+  std::vector<DynamicsSample> out;
+  for (const auto& d : dynamics)
+    if (d.channel == channel) out.push_back(d);
+  return out;
+}
+
 std::vector<HoldPoint> SweepData::channel_points(int channel) const {
   std::vector<HoldPoint> out;
   for (const auto& p : points)
@@ -137,6 +144,8 @@ SweepData read_sweep_csv(const std::filesystem::path& path) {
   std::map<std::pair<int, long>, std::size_t> hold_index;  // (channel, hold) -> accumulator
   std::vector<Accumulator> holds;
   std::set<int> channels;
+  std::array<double, kFingerCount> last_dynamics_t;
+  last_dynamics_t.fill(-std::numeric_limits<double>::infinity());
 
   auto where = [&] { return "line " + std::to_string(line_no); };
   while (std::getline(in, text)) {
@@ -217,13 +226,30 @@ SweepData read_sweep_csv(const std::filesystem::path& path) {
     if (const std::string* b = cell("branch"); b && !b->empty() && !parse_branch(*b, p.branch))
       throw InputError(file, where(), "branch inflation, deflation or none, got \"" + *b + "\"");
     if (const std::string* s = cell("segment"); s && !s->empty() && !parse_segment(*s, p.segment))
-      throw InputError(file, where(), "segment vent, staircase, random or sine, got \"" + *s + "\"");
+      throw InputError(file, where(), "segment vent, staircase, random, sine, step or chirp, got \"" + *s + "\"");
     const long settled = integer("settled", 1, 0, 1);
     const double monitor = number("monitor_kPa", true), sensor = number("sensor", true);
     // Without a hold column every row is a point of its own.
     p.hold = col.count("hold") ? integer("hold", 0, 0, 1L << 40) : long(data.rows);
     if (col.count("hold") && cell("hold")->empty()) throw InputError(file, where(), "a value in column hold");
     channels.insert(p.channel);
+    if (is_dynamics_segment(p.segment)) {
+      // A step or chirp row: one sample of the dynamics fit, with its time.
+      DynamicsSample d;
+      d.channel = p.channel;
+      d.hold = p.hold;
+      d.segment = p.segment;
+      d.t_s = number("t_s", false);
+      d.command_kPa = p.command_kPa;
+      d.monitor_kPa = monitor;
+      d.line = line_no;
+      double& last_t = last_dynamics_t[std::size_t(d.channel - 1)];
+      if (d.t_s < last_t) throw InputError(file, where(), "times that do not go back within a channel's step and chirp rows");
+      last_t = d.t_s;
+      if (std::isfinite(monitor)) data.has_monitor = true;
+      data.dynamics.push_back(d);
+      continue;
+    }
 
     const auto key = std::make_pair(p.channel, p.hold);
     auto it = hold_index.find(key);

@@ -12,7 +12,9 @@
 //   t_s,channel,hold,segment,repeat,branch,command_kPa,monitor_kPa,sensor,settled
 //   0.010,1,0,vent,0,none,0,0.03,,0
 //
-// `calibrate fit` averages the settled rows of each hold into one quasi-static point. The
+// `calibrate fit` averages the settled rows of each hold into one quasi-static point; the rows
+// of step and chirp holds (segment step or chirp: a command that changes within the hold, at
+// the dynamics rate) are kept sample by sample for the dynamics fit. The
 // same reader takes a table typed in by hand (e.g. caliper readings, as in paper 002): only
 // channel, command_kPa and one of monitor_kPa / sensor are required; without a hold column
 // every row is its own point, without a settled column every row counts as settled.
@@ -69,6 +71,17 @@ struct HoldPoint {
   std::size_t line = 0;  // first line of the hold in the file, for messages
 };
 
+// One sample of a step or chirp hold (the dynamics fit's data), in file order.
+struct DynamicsSample {
+  int channel = 0;  // 1-based
+  long hold = 0;
+  SweepSegment segment = SweepSegment::step;
+  double t_s = 0;
+  double command_kPa = 0;  // the setpoint sent
+  double monitor_kPa = std::numeric_limits<double>::quiet_NaN();
+  std::size_t line = 0;
+};
+
 struct SweepData {
   std::string file;
   SweepFileInfo info;
@@ -78,7 +91,10 @@ struct SweepData {
   std::size_t rows = 0;
   std::size_t unsettled_holds = 0;  // holds with no settled row (left out of the points)
 
+  std::vector<DynamicsSample> dynamics;  // step and chirp rows, every channel, in file order
+
   std::vector<HoldPoint> channel_points(int channel) const;
+  std::vector<DynamicsSample> channel_dynamics(int channel) const;
 };
 
 // Throws InputError naming the file and line for anything malformed.

@@ -17,8 +17,22 @@ const char* to_string(SweepSegment s) noexcept {
     case SweepSegment::staircase: return "staircase";
     case SweepSegment::random: return "random";
     case SweepSegment::sine: return "sine";
+    case SweepSegment::step: return "step";
+    case SweepSegment::chirp: return "chirp";
   }
   return "?";
+}
+
+bool is_dynamics_segment(SweepSegment s) noexcept { return s == SweepSegment::step || s == SweepSegment::chirp; }
+
+double SweepHold::command_at(double t_s) const noexcept {
+  if (segment != SweepSegment::chirp || !(duration_s > 0) || !(chirp_from_hz > 0) || !(chirp_to_hz > chirp_from_hz))
+    return level_kPa;
+  // Logarithmic sweep: the phase of f(t) = f0 (f1 / f0)^(t / T), starting at the centre and rising.
+  const double t = std::clamp(t_s, 0.0, duration_s);
+  const double k = std::log(chirp_to_hz / chirp_from_hz) / duration_s;
+  const double phase = 2 * std::numbers::pi * chirp_from_hz * std::expm1(k * t) / k;
+  return level_kPa + chirp_amplitude_kPa * std::sin(phase);
 }
 
 const char* to_string(SweepBranch b) noexcept {
@@ -31,7 +45,8 @@ const char* to_string(SweepBranch b) noexcept {
 }
 
 bool parse_segment(const std::string& t, SweepSegment& out) noexcept {
-  for (auto s : {SweepSegment::vent, SweepSegment::staircase, SweepSegment::random, SweepSegment::sine})
+  for (auto s : {SweepSegment::vent, SweepSegment::staircase, SweepSegment::random, SweepSegment::sine,
+                 SweepSegment::step, SweepSegment::chirp})
     if (t == to_string(s)) { out = s; return true; }
   return false;
 }
@@ -61,7 +76,14 @@ SweepSchedule plan_calibration_sweep(const SweepPlanOptions& o, double p_max_kPa
   need(std::isfinite(o.step_kPa) && o.step_kPa > 0, "step_kPa", "a step > 0 kPa");
   need((o.to_kPa - o.from_kPa) / o.step_kPa <= 1000, "step_kPa", "at most 1000 levels between `from_kPa` and `to_kPa`");
   need(o.repeats >= 1 && o.repeats <= 100, "repeats", "1 to 100 repeats");
-  need(o.staircase || o.random || o.sine, "excitation", "at least one of staircase, random, sine");
+  need(o.staircase || o.random || o.sine || o.step || o.chirp, "excitation",
+       "at least one of staircase, random, sine, step, chirp");
+  need(std::isfinite(o.step_hold_s) && o.step_hold_s >= 0.05 && o.step_hold_s <= 60, "step_hold_s",
+       "a step hold of 0.05 to 60 s");
+  need(std::isfinite(o.chirp_s) && o.chirp_s >= 0.5 && o.chirp_s <= 600, "chirp_s", "a chirp of 0.5 to 600 s");
+  need(std::isfinite(o.chirp_from_hz) && o.chirp_from_hz > 0 && std::isfinite(o.chirp_to_hz) &&
+           o.chirp_to_hz > o.chirp_from_hz && o.chirp_to_hz <= 100,
+       "chirp_to_hz", "a chirp from a frequency > 0 to a higher one, at most 100 Hz");
   need(o.random_levels >= 2 && o.random_levels <= 100000, "random_levels", "2 to 100000 levels");
   need(o.sine_cycles >= 1 && o.sine_cycles <= 1000, "sine_cycles", "1 to 1000 cycles");
   need(o.sine_steps_per_cycle >= 4 && o.sine_steps_per_cycle <= 1000, "sine_steps_per_cycle", "4 to 1000 steps per cycle");
@@ -89,7 +111,12 @@ SweepSchedule plan_calibration_sweep(const SweepPlanOptions& o, double p_max_kPa
   if (levels.back() < top - 1e-9) levels.push_back(top);  // the step did not land on `to`
 
   auto add = [&](SweepSegment seg, int repeat, SweepBranch branch, double level) {
-    plan.holds.push_back({seg, repeat, branch, level});
+    SweepHold h;
+    h.segment = seg;
+    h.repeat = repeat;
+    h.branch = branch;
+    h.level_kPa = level;
+    plan.holds.push_back(h);
   };
   if (o.staircase) {
     for (int r = 1; r <= o.repeats; ++r) {
@@ -114,6 +141,27 @@ SweepSchedule plan_calibration_sweep(const SweepPlanOptions& o, double p_max_kPa
       const double amplitude = full * (1.0 - 0.75 * phase / o.sine_cycles);
       add(SweepSegment::sine, 0, SweepBranch::none, centre - amplitude * std::cos(2 * std::numbers::pi * phase));
     }
+  }
+  if (o.step) {
+    // Steps up and down of many sizes between from and the top (never to 0: at 0 kPa a
+    // regulator exhausts, which is not its lag), from vented.
+    add(SweepSegment::vent, 0, SweepBranch::none, 0.0);
+    for (double f : {0.2, 0.5, 0.35, 0.8, 0.1, 0.65, 0.25, 0.95, 0.5, 0.0, 0.4}) {
+      add(SweepSegment::step, 0, SweepBranch::none, o.from_kPa + f * (top - o.from_kPa));
+      plan.holds.back().duration_s = o.step_hold_s;
+    }
+  }
+  if (o.chirp) {
+    // Around the middle of the range, a quarter of it either way; it starts at the centre, so
+    // it follows the steps (or a vent) with one step.
+    const double centre = 0.5 * (o.from_kPa + top);
+    if (!o.step) add(SweepSegment::vent, 0, SweepBranch::none, 0.0);
+    add(SweepSegment::chirp, 0, SweepBranch::none, centre);
+    SweepHold& c = plan.holds.back();
+    c.duration_s = o.chirp_s;
+    c.chirp_amplitude_kPa = 0.25 * (top - o.from_kPa);
+    c.chirp_from_hz = o.chirp_from_hz;
+    c.chirp_to_hz = o.chirp_to_hz;
   }
   add(SweepSegment::vent, 0, SweepBranch::none, 0.0);
   return plan;

@@ -6,7 +6,12 @@
 //   random - levels drawn uniformly in [from, to];
 //   sine   - levels on a sine whose amplitude shrinks cycle by cycle (nested loops).
 // Both are stepped (every level is held until settled) so the fit sees the rate-independent
-// hysteresis and not the regulator's lag.
+// hysteresis and not the regulator's lag. For identifying that lag (the regulator's dynamics:
+// dead time and first-order lag, calibration/dynamics_fit.hpp), two more excitations are
+// recorded sample by sample at the loop's rate (dynamics_rate_hz), each level for a fixed time:
+//   step  - steps of many sizes up and down, each held step_hold_s (from vented);
+//   chirp - a sine around the middle of the range whose frequency sweeps from chirp_from_hz to
+//           chirp_to_hz (logarithmically) over chirp_s.
 // Levels above the rig's p_max are clamped to p_max (the backend refuses anything above it)
 // and the schedule's notes say so.
 #include <string>
@@ -14,7 +19,9 @@
 
 namespace palprig {
 
-enum class SweepSegment { vent, staircase, random, sine };
+enum class SweepSegment { vent, staircase, random, sine, step, chirp };
+// Segments recorded sample by sample for the dynamics fit (not averaged into hold points).
+bool is_dynamics_segment(SweepSegment s) noexcept;
 enum class SweepBranch { none, inflation, deflation };
 
 const char* to_string(SweepSegment s) noexcept;
@@ -26,7 +33,13 @@ struct SweepHold {
   SweepSegment segment = SweepSegment::vent;
   int repeat = 0;  // staircase repeat (1-based), 0 elsewhere
   SweepBranch branch = SweepBranch::none;
-  double level_kPa = 0;
+  double level_kPa = 0;     // the level held; a chirp's centre
+  // A timed hold (step and chirp segments): held for this long at the dynamics rate, every
+  // sample recorded, no settle test. 0: held until settled (every other segment).
+  double duration_s = 0;
+  double chirp_amplitude_kPa = 0, chirp_from_hz = 0, chirp_to_hz = 0;
+  // The command t_s into the hold (the level; for a chirp the swept sine around it).
+  double command_at(double t_s) const noexcept;
 };
 
 struct SweepPlanOptions {
@@ -39,6 +52,11 @@ struct SweepPlanOptions {
   unsigned seed = 1;
   int sine_cycles = 4;
   int sine_steps_per_cycle = 16;
+  bool step = false;
+  bool chirp = false;
+  double step_hold_s = 0.6;    // each step held this long (several regulator time constants)
+  double chirp_s = 8.0;
+  double chirp_from_hz = 0.5, chirp_to_hz = 12.0;
 };
 
 struct SweepSchedule {

@@ -36,10 +36,11 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
                                    SweepSink& sink, const SweepProgress& progress) {
   if (!(o.settle_window_s > 0) || !(o.settle_band_kPa > 0) || !(o.average_s > 0) || !(o.min_hold_s >= 0) ||
       !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s + o.average_s) || !(o.max_hold_s <= 3600) ||
-      !(o.rate_hz > 0) || !(o.rate_hz <= 10000) || !(o.slew_kPa_per_s > 0))
+      !(o.rate_hz > 0) || !(o.rate_hz <= 10000) || !(o.slew_kPa_per_s > 0) || !(o.dynamics_rate_hz > 0) ||
+      !(o.dynamics_rate_hz <= 10000))
     throw std::invalid_argument(
         "sweep: need settle window, band and averaging window > 0, a max hold above min hold and both windows (at "
-        "most an hour), a rate in (0, 10000] Hz and a slew rate > 0");
+        "most an hour), rates in (0, 10000] Hz and a slew rate > 0");
   bool any = false;
   for (bool on : o.channels) any = any || on;
   if (!any) throw std::invalid_argument("sweep: no channel selected");
@@ -81,6 +82,55 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
   enum class HoldEnd { settled, unsettled, interrupted, ended };  // ended: stop or fault
   // One hold at `level` from the rig's present state: the settle test, then the averaging window
   // (recorded holds) or nothing more (approach holds). Samples go to hold_samples.
+  // A timed hold (step, chirp): its own pacer at the dynamics rate, continuing the time base;
+  // the main pacer resumes after it.
+  auto run_timed_hold = [&](const SweepHold& hold, HoldOutcome& result) {
+    hold_samples.clear();
+    result = HoldOutcome{};
+    result.timed = true;
+    Pacer fast(o.dynamics_rate_hz, o.realtime);
+    const double t0 = t_s + fast.period_s();
+    const auto n = static_cast<std::uint64_t>(std::ceil(hold.duration_s * o.dynamics_rate_hz));
+    std::size_t first = kFingerCount;
+    for (std::size_t c = 0; c < kFingerCount; ++c)
+      if (o.channels[c] && first == kFingerCount) first = c;
+    HoldEnd end = HoldEnd::settled;
+    for (std::uint64_t j = 0; j < n; ++j) {
+      const double t = t0 + fast.wait_for_tick(j);
+      t_s = t;
+      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+        out.stopped = true;
+        out.stop_signal = o.stop_signal->load();
+        end = HoldEnd::ended;
+        break;
+      }
+      const double level = hold.command_at(t - t0);
+      ChannelPressures target{};
+      for (std::size_t c = 0; c < kFingerCount; ++c) target[c] = o.channels[c] ? level : 0.0;
+      const StepResult& step = rig.step_direct(target, t);
+      if (rig.faulted()) {
+        out.faulted = true;
+        out.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
+                                                            : std::string("safety stage: ") + to_string(rig.fault());
+        end = HoldEnd::ended;
+        break;
+      }
+      if (!usable(step)) {
+        end = HoldEnd::interrupted;
+        break;
+      }
+      SweepSample s;
+      s.t_s = t;
+      s.command_kPa = step.tick.setpoint_kPa[first];  // what the regulators were sent
+      s.monitor_kPa = step.monitor_kPa;
+      s.sensor = step.sensor;
+      hold_samples.push_back(s);
+      result.hold_s = t - t0;
+    }
+    // The main pacer goes on from the first of its ticks after this hold.
+    k = std::max<std::uint64_t>(k, static_cast<std::uint64_t>(std::ceil(t_s / pacer.period_s() + 1e-9)));
+    return end;
+  };
   auto run_hold = [&](double level, bool record, HoldOutcome& result) {
     ChannelPressures target{};
     for (std::size_t c = 0; c < kFingerCount; ++c) target[c] = o.channels[c] ? level : 0.0;
@@ -176,7 +226,7 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
           if (a == HoldEnd::ended) break;
           if (a == HoldEnd::interrupted) continue;  // lost again on the way: another attempt
         }
-        end = run_hold(hold.level_kPa, true, result);
+        end = hold.duration_s > 0 ? run_timed_hold(hold, result) : run_hold(hold.level_kPa, true, result);
         if (end == HoldEnd::interrupted) {
           history_lost = true;
           hold_samples.clear();
@@ -195,7 +245,7 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
       if (!hold_samples.empty() && end != HoldEnd::interrupted) {
         sink.on_hold(h, hold, hold_samples, result);
         ++out.holds_done;
-        if (!result.settled) ++out.holds_unsettled;
+        if (!result.settled && !result.timed) ++out.holds_unsettled;
       }
       if (progress && !out.stopped && !out.faulted) progress(h + 1, schedule.holds.size(), hold, result);
     }

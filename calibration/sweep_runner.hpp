@@ -9,6 +9,9 @@
 // of it is recorded, and once the link is back the levels since the last vent are replayed
 // unrecorded, so the plant is on the hold's hysteresis branch again; after 3 failed attempts,
 // or a link down longer than max_hold_s, the sweep ends faulted with whole holds recorded.
+// Step and chirp holds (timed: SweepHold::duration_s) are held for their duration at
+// dynamics_rate_hz, their command following SweepHold::command_at, every sample recorded with
+// the setpoint actually sent (after the safety stage's slew limit) as its command.
 // Every sample goes to a sink hold by hold, so a stop keeps what was recorded. Ctrl-C (the
 // stop flag), a backend error, an exception from the sink or the end all vent every channel.
 // Setpoints go through the controller's rig step and safety stage like every other path.
@@ -34,6 +37,7 @@ struct SweepSample {
 
 struct HoldOutcome {
   bool settled = false;
+  bool timed = false;  // a step or chirp hold: held for its duration, every sample recorded
   double hold_s = 0;
 };
 
@@ -57,6 +61,9 @@ struct SweepRunOptions {
   // The rig file's safety.slew_kPa_per_s: every setpoint passes the tick's safety stage, so a
   // step between holds rises at most this fast (p_max is the backend's).
   double slew_kPa_per_s = SafetyLimits{}.slew_kPa_per_s;
+  // Step and chirp holds (the dynamics fit's excitations) run and record at this rate: the
+  // loop's, so the identified dead time and lag are what the tick sees.
+  double dynamics_rate_hz = 1000.0;
 };
 
 struct SweepOutcome {

@@ -26,7 +26,8 @@ struct FitArgs {
   std::string data, out, rig_id, stress, presses, base, plot_dir, loss = "none", source;
   double regulator_tolerance_kPa = 3.0, diastolic_mmHg = 60, systolic_mmHg = 120;
   HysteresisFitOptions hysteresis;
-  bool no_refine = false, json = false;
+  bool no_refine = false, json = false, lag_compensation = false;
+  double max_lead_kPa = 10, min_r_squared = kDefaultMinDynamicsRSquared;
   bool operators_given = false;  // --operators named: refuse data that cannot support it
 };
 
@@ -41,6 +42,9 @@ void run_fit(const FitArgs& a) {
   else if (a.source == "sensor") o.hysteresis_from = HysteresisSource::sensor;
   else if (a.source == "none") o.hysteresis_from = HysteresisSource::none;
   o.regulator_tolerance_kPa = a.regulator_tolerance_kPa;
+  o.lag_compensation.enabled = a.lag_compensation;
+  o.lag_compensation.max_lead_kPa = a.max_lead_kPa;
+  o.lag_compensation.min_r_squared = a.min_r_squared;
   o.rig_id = a.rig_id;
   o.date = utc_timestamp_now();
   if (!a.base.empty()) o.base = load_calibration_file(a.base);
@@ -97,6 +101,15 @@ void register_calibrate_fit(CLI::App* cal) {
   fit->add_option("--regulator-tolerance-kPa", fa->regulator_tolerance_kPa,
                   "Refuse a regulator whose monitor line is off the command by more")
       ->default_val(3.0);
+  fit->add_flag("--lag-compensation", fa->lag_compensation,
+                "Write the file with lag compensation on (lag_compensation.enabled; needs step and chirp rows)");
+  fit->add_option("--max-lead-kPa", fa->max_lead_kPa, "Lag compensation: the command at most this far above the target")
+      ->default_val(10.0)
+      ->check(CLI::Range(0.0, 100.0));
+  fit->add_option("--min-r-squared", fa->min_r_squared,
+                  "Lag compensation: a channel whose dynamics fit with a lower R^2 keeps it off")
+      ->default_val(kDefaultMinDynamicsRSquared)
+      ->check(CLI::Range(kLowestMinDynamicsRSquared, 1.0));
   fit->add_option("--plot", fa->plot_dir, "Write PNG plots of the data and fitted lines to DIR");
   fit->add_flag("--json", fa->json, "Print the calibration file instead of the tables");
   fit->callback([fa, operators] {

@@ -33,13 +33,15 @@ void run_sweep(const SweepArgs& a) {
   // Everything is validated before the backend opens.
   const RigConfig rig = load_rig(a.rig_path);
   SweepPlanOptions plan_options = a.plan;
-  plan_options.staircase = plan_options.random = plan_options.sine = false;
+  plan_options.staircase = plan_options.random = plan_options.sine = plan_options.step = plan_options.chirp = false;
   std::istringstream ex(a.excitation);
   for (std::string item; std::getline(ex, item, ',');) {
     if (item == "staircase") plan_options.staircase = true;
     else if (item == "random") plan_options.random = true;
     else if (item == "sine") plan_options.sine = true;
-    else throw InputError("--excitation", a.excitation, "a list of staircase, random, sine");
+    else if (item == "step") plan_options.step = true;
+    else if (item == "chirp") plan_options.chirp = true;
+    else throw InputError("--excitation", a.excitation, "a list of staircase, random, sine, step, chirp");
   }
   const SweepSchedule plan = plan_calibration_sweep(plan_options, rig.safety.p_max_kPa);
   SweepRunOptions run = a.run;
@@ -76,7 +78,7 @@ void run_sweep(const SweepArgs& a) {
   int last_repeat = -1;
   const bool quiet = a.quiet;
   auto progress = [&](std::size_t done, std::size_t total, const SweepHold& hold, const HoldOutcome& result) {
-    if (!result.settled)
+    if (!result.settled && !result.timed)
       std::cerr << "palprig: warning: hold " << done << " (" << to_string(hold.segment) << " " << hold.level_kPa
                 << " kPa) did not settle within " << run.max_hold_s << " s; kept, marked unsettled\n";
     if (quiet || hold.segment == SweepSegment::vent) return;
@@ -118,12 +120,22 @@ void register_calibrate_sweep(CLI::App* cal) {
   sweep->add_option("--step-kPa", sa->plan.step_kPa, "Staircase step")->default_val(10.0);
   sweep->add_option("--repeats", sa->plan.repeats, "Staircase repeats, each from vented")->default_val(5);
   sweep->add_option("--excitation", sa->excitation,
-                    "staircase, random, sine (comma-separated); random and sine add reversals for the hysteresis fit")
+                    "staircase, random, sine, step, chirp (comma-separated); random and sine add reversals for the "
+                    "hysteresis fit, step and chirp identify the regulators' dynamics for lag compensation")
       ->default_val("staircase");
   sweep->add_option("--random-levels", sa->plan.random_levels, "Levels of the random excitation")->default_val(60);
   sweep->add_option("--sine-cycles", sa->plan.sine_cycles, "Cycles of the shrinking stepped sine")->default_val(4);
   sweep->add_option("--sine-steps", sa->plan.sine_steps_per_cycle, "Levels per sine cycle")->default_val(16);
   sweep->add_option("--seed", sa->plan.seed, "Seed of the random excitation")->default_val(1u);
+  sweep->add_option("--step-hold-s", sa->plan.step_hold_s, "How long each step of the step excitation is held")
+      ->default_val(0.6);
+  sweep->add_option("--chirp-s", sa->plan.chirp_s, "Length of the chirp excitation")->default_val(8.0);
+  sweep->add_option("--chirp-from-hz", sa->plan.chirp_from_hz, "The chirp's first frequency")->default_val(0.5);
+  sweep->add_option("--chirp-to-hz", sa->plan.chirp_to_hz, "The chirp's last frequency")->default_val(12.0);
+  sweep->add_option("--dynamics-rate-hz", sa->run.dynamics_rate_hz,
+                    "Command/record rate of the step and chirp excitations (the loop's rate)")
+      ->default_val(1000.0)
+      ->check(CLI::Range(1.0, 10000.0));
   sweep->add_option("--rate-hz", sa->run.rate_hz, "Command/record rate")->default_val(100.0)->check(CLI::Range(1.0, 10000.0));
   sweep->add_option("--settle-band-kPa", sa->run.settle_band_kPa, "Settled: window halves differ by at most this")
       ->default_val(0.2);

@@ -21,14 +21,24 @@ void register_demo_command(CLI::App& app) {
               "pressure each finger got over each tumor and over soft tissue");
   sub->add_option("--out", *out_dir, "Directory for the telemetry file")->default_val("/tmp/palprig-demo");
   sub->add_flag("--json", *json_out, "Print the run summary and the table as JSON");
+  auto cal_file = std::make_shared<std::string>();
+  auto compensate = std::make_shared<bool>(false);
+  sub->add_option("--cal", *cal_file, "Calibration file (JSON); default: paper 002's models (with --compensate-lag: "
+                                      "the simulated rig's calibration, data/calibration/sim-default.json)");
+  sub->add_flag("--compensate-lag", *compensate,
+                "Lag-compensate the whole target with the calibration's identified regulator dynamics");
   sub->callback([=]() {
     const auto data = cli::data_dir();
     RunFiles files;
     files.scene = data / "scenes" / "phantom_abc.json";
     files.input = "trace:" + (data / "traces" / "phantom_abc_pass.csv").string();
     files.rig = data / "rigs" / "simulated.json";
-    files.calibration = data / "calibration" / "paper002.json";
+    files.calibration = !cal_file->empty()  ? std::filesystem::path(*cal_file)
+                        : *compensate         ? data / "calibration" / "sim-default.json"
+                                              : data / "calibration" / "paper002.json";
+    if (*compensate) files.compensate_lag = true;
     LoadedRun run = load_run(files);
+    for (const auto& note : run.lag_compensation_notes) std::cerr << "palprig: " << note << "\n";
     std::filesystem::create_directories(*out_dir);
     RegionTable table(run.scene.tumors, run.config.contact_force_N, 8.0);
     RunOptions opt;

@@ -21,6 +21,7 @@ void register_run_command(CLI::App& app) {
     bool json = false;
     bool regions = false;
     std::string telemetry;
+    int compensate_lag = 0;  // +1 --compensate-lag, -1 --no-compensate-lag, 0 the calibration file decides
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("run", "Run the loop: pen input -> scene -> pressures -> rig, and print a summary");
@@ -48,6 +49,9 @@ void register_run_command(CLI::App& app) {
       ->check(CLI::Range(0, 1023));
   sub->add_flag("--no-pm-qos", [o](std::int64_t) { o->run.realtime.pm_qos = false; },
                 "Real time without holding /dev/cpu_dma_latency at 0 (lets the CPUs sleep deeply: a laptop on battery)");
+  sub->add_flag("--compensate-lag,!--no-compensate-lag", o->compensate_lag,
+                "Lag-compensate the whole target with the calibration's identified regulator dynamics (or not), "
+                "whatever the calibration file's lag_compensation.enabled says");
   sub->add_option("--telemetry", o->telemetry, "Write every tick to FILE (.csv, or .bin for the compact binary)");
   sub->add_flag("--json", o->json, "Print the summary as one JSON object");
   sub->add_flag("--regions", o->regions,
@@ -55,8 +59,10 @@ void register_run_command(CLI::App& app) {
   sub->callback([o]() {
     RunFiles files = o->files;
     files.explicit_duration = o->timing.duration_s > 0;
+    if (o->compensate_lag != 0) files.compensate_lag = o->compensate_lag > 0;
     if (files.rig.empty()) files.rig = cli::data_dir() / "rigs" / "simulated.json";
     LoadedRun run = load_run(files);
+    for (const auto& note : run.lag_compensation_notes) std::cerr << "palprig: " << note << "\n";
     RunOptions opt = o->run;
     settle_timing(run, o->timing, opt);
     opt.telemetry_path = o->telemetry;

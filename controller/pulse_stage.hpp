@@ -1,10 +1,11 @@
 #pragma once
 // The tick's pulse stage (DESIGN.md "One tick": "+ pulse" after the ActuatorModel). For each
-// finger: the arteries in range and their activation (PulseField), the pulse pressure it should
-// feel, and, with lag compensation on, the command that makes the regulator deliver it on time
-// (LagCompensator). The result is added to the finger's target before the hysteresis inverse
-// and the safety stage, which still clamp everything. Runs on the loop thread: no allocation,
-// no locks, no exceptions. Includes nothing of the tick (the tick includes this).
+// finger: the arteries in range and their activation (PulseField) and the pulse pressure it
+// should feel now and, for the lag compensation stage (controller/lag_compensation_stage.hpp,
+// which compensates the regulators' lag for the pulse and the stiffness target alike), the pulse
+// it should feel a lead ahead, its rectangular edges asked for earlier by the compensator's
+// measured half-way times. Runs on the loop thread: no allocation, no locks, no exceptions.
+// Includes nothing of the tick (the tick includes this).
 #include <array>
 
 #include "models/artery.hpp"
@@ -14,13 +15,10 @@
 
 namespace palprig {
 
-// What the stage renders with: the rig's regulator lags, the scene's arteries, and the two
-// safety limits the lag compensation must keep within.
+// What the stage renders with: the rig's calibrated force window and the scene's arteries.
 struct PulseStageSetting {
   const PulseRendering& rendering;
   const PulseField& arteries;
-  double p_max_kPa;
-  double slew_kPa_per_s;
 };
 
 // Where the fingers are this tick. centres are valid only while pressed.
@@ -40,8 +38,15 @@ struct TickTime {
   double dt_s = 0;
 };
 
-// Adds each finger's pulse command to target_kPa and reports the intended pulse in pulse_kPa.
+// The pulse each finger should feel now, and ahead (by each finger's PulseLookahead: lead_s 0
+// gives the pulse now).
+struct PulseOutput {
+  ChannelPressures now_kPa{};
+  ChannelPressures ahead_kPa{};
+};
+
 void apply_pulse_stage(PulseTickState& state, const PulseStageSetting& setting, const FingersOnSkin& fingers,
-                       const TickTime& time, ChannelPressures& target_kPa, ChannelPressures& pulse_kPa) noexcept;
+                       const TickTime& time, const std::array<PulseLookahead, kFingerCount>& ahead,
+                       PulseOutput& out) noexcept;
 
 }  // namespace palprig

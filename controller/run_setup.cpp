@@ -1,8 +1,13 @@
 #include "controller/run_setup.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "controller/backend_factory.hpp"
 #include "controller/tick_setup.hpp"
+#include "formats/function_scene_file.hpp"
 #include "inputs/igtl_input.hpp"
+#include "models/tissue_scene.hpp"
 #include "models/parse_error.hpp"
 #include "runtime/realtime.hpp"
 
@@ -47,8 +52,34 @@ LoadedRun load_run_files(const RunFiles& files) {
   run.rig = load_rig_file(files.rig);
   run.cal = files.calibration.empty() ? CalibrationModels{} : load_calibration_file(files.calibration);
   check_calibration_matches(run.cal, run.rig.id, run.rig.source);
+  if (files.compensate_lag) {
+    run.cal.lag_compensation.enabled = *files.compensate_lag;
+    bool any = false;
+    for (std::size_t i = 0; i < kFingerCount; ++i) any = any || run.cal.dynamics[i].has_value();
+    if (*files.compensate_lag && !any)
+      throw InputError(files.calibration.empty() ? std::string("(paper 002's models: no --cal)") : files.calibration.string(),
+                       "lag_compensation",
+                       "identified regulator dynamics (channels[].dynamics) for --compensate-lag: calibrate sweep "
+                       "--excitation staircase,random,sine,step,chirp, then calibrate fit");
+  }
   run.scene = load_scene_file(files.scene);
   run.config = make_tick_config(run.rig, run.cal);
+  run.lag_compensation_notes = describe_lag_compensation(run.cal);
+  // Compensating the whole target samples the scene ahead too (up to three more times per finger
+  // and tick): on a function scene only as often as the tick's sampling budget leaves room for.
+  if (const auto* fs = dynamic_cast<const FunctionScene*>(run.scene.scene.get()); fs && run.config.lag_compensation.whole_target) {
+    const double per_tick = double(kFingerCount) * fs->field().worst_case_sample_cost();
+    const int room = per_tick > 0 ? static_cast<int>(std::floor(kMaxTickShapeCost / per_tick)) - 1 : 3;
+    LagCompensationSetting& lag = run.config.lag_compensation;
+    lag.samples_ahead = std::clamp(room, 0, lag.samples_ahead);
+    if (lag.samples_ahead < 3)
+      run.lag_compensation_notes.push_back(
+          lag.samples_ahead == 0 ? "the scene is too costly to sample ahead within a tick: lag compensation "
+                                   "compensates toward the target now, without looking ahead"
+                                 : "the scene is costly to sample: lag compensation looks ahead " +
+                                       std::to_string(lag.samples_ahead) + " time(s) per finger and tick (edges " +
+                                       std::string(lag.samples_ahead < 2 ? "not anticipated" : "anticipated coarsely") + ")");
+  }
   run.input_spec = files.input;
   run.live = run.rig.backend != "simulated" || is_live_input(files.input);
   if (is_igtl_input(files.input)) {

@@ -27,6 +27,9 @@ struct RunFiles {
   // The user gave the run's length: a trace or pen recording longer than the bounds of
   // TraceLimits/PenRecordingLimits, or with gaps over the stale-input limit, is run anyway.
   bool explicit_duration = false;
+  // Lag compensation of the whole target for this run (`--compensate-lag` / `--no-compensate-lag`):
+  // overrides the calibration file's lag_compensation.enabled; unset: the file decides.
+  std::optional<bool> compensate_lag;
 };
 
 struct LoadedRun {
@@ -39,6 +42,9 @@ struct LoadedRun {
   std::optional<TrackingConfig> tracking;  // an igtl input's
   std::unique_ptr<RigBackend> backend;  // made by execute_run
   bool live = false;  // hardware or a live pen: runs on the wall clock only
+  // What the run does about the regulators' lag (controller/tick_setup.hpp's
+  // describe_lag_compensation): lines for the front end to print before it runs.
+  std::vector<std::string> lag_compensation_notes;
 };
 
 // How the user asked the run to be timed.
@@ -58,6 +64,8 @@ std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& sc
                                         const TrackingConfig* tracking = nullptr, double max_pose_age_s = 0.1);
 
 LoadedRun load_run(const RunFiles& files);  // throws InputError before anything moves
+// Refused (InputError naming the calibration file and `lag_compensation`) when compensate_lag
+// asks for lag compensation and no channel of the calibration has identified dynamics.
 // The same without making the input (run.input stays empty): for a front end with an input of
 // its own (the GUI's window pen), which then calls make_input for every other input.
 LoadedRun load_run_files(const RunFiles& files);

@@ -29,6 +29,10 @@ struct TelemetryRecord {
   float finger_y_mm[kFingerCount] = {};
   float finger_force_N[kFingerCount] = {};
   FingerVent finger_vent[kFingerCount] = {};
+  // How far the tissue under each finger is carried by tissue dragging (paper 000's stick/slip;
+  // 0 where the scene does not drag): the finger feels the tissue at its centre minus this.
+  float drag_x_mm[kFingerCount] = {};
+  float drag_y_mm[kFingerCount] = {};
 };
 
 enum TelemetryFlag : std::uint8_t {
@@ -39,6 +43,7 @@ enum TelemetryFlag : std::uint8_t {
   kOverrun = 1 << 4,   // this tick finished after the next deadline
   kDisarmed = 1 << 5,  // the backend was not armed: vented, monitors still read
   kOwnPositions = 1 << 6,  // each finger at its own tracked position (finger_x_mm, finger_y_mm), no triangle
+  kLagCompensated = 1 << 7,  // a channel's whole target was lag-compensated (calibration's identified regulators)
 };
 
 static_assert(std::is_trivially_copyable_v<TelemetryRecord>);

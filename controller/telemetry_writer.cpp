@@ -152,7 +152,7 @@ void write_telemetry_csv_header(std::ostream& out) {
   for (const char* col : {"stiffness", "target_kPa", "setpoint_kPa", "monitor_kPa"})
     for (int i = 1; i <= kFingerCount; ++i) out << ',' << col << '_' << i;
   out << ",wake_latency_us,io_us,fault,flags";
-  for (const char* col : {"finger_x_mm", "finger_y_mm", "finger_force_N", "finger_vent"})
+  for (const char* col : {"finger_x_mm", "finger_y_mm", "finger_force_N", "finger_vent", "drag_x_mm", "drag_y_mm"})
     for (int i = 1; i <= kFingerCount; ++i) out << ',' << col << '_' << i;
   out << '\n';
 }
@@ -197,6 +197,8 @@ void write_telemetry_csv_row(std::ostream& out, const TelemetryRecord& r) {
   for (int k = 0; k < 3; ++k)
     for (int i = 0; i < kFingerCount; ++i) append_field(row, k < 2 ? ",%.3f" : ",%.4f", double(fingers[k][i]));
   for (int i = 0; i < kFingerCount; ++i) append_field(row, ",%d", int(r.finger_vent[i]));
+  for (const float* c : {r.drag_x_mm, r.drag_y_mm})
+    for (int i = 0; i < kFingerCount; ++i) append_field(row, ",%.3f", double(c[i]));
   row += '\n';
   out.write(row.data(), static_cast<std::streamsize>(row.size()));
 }

@@ -10,8 +10,11 @@ namespace palprig {
 
 TickState make_tick_state(const TickConfig& config) noexcept {
   TickState s;
-  s.hysteresis_inverse = config.hysteresis_inverse;
-  for (auto& inverse : s.hysteresis_inverse) inverse.reset(0.0);
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const PrandtlIshlinskii& inverse = config.hysteresis_inverse[i];
+    s.hysteresis_model[i] = inverse.is_identity() ? PrandtlIshlinskii{} : inverse.forward_of_inverse();
+    s.hysteresis_model[i].reset(0.0);
+  }
   return s;
 }
 
@@ -28,12 +31,26 @@ void check_targets(TickState& state, const ChannelPressures& target_kPa, double 
 
 }  // namespace
 
+namespace {
+
+// The actuator's play follows the setpoints actually sent (not what the inverse stage computed:
+// the safety stage may have cut a reversal's jump of twice the play to its slew step, or clamped
+// at p_max), with the regulator's exhaust near 0 kPa (the band above the command narrows to the
+// command), so the next inversion starts from where the actuator is. Venting: kept as they are.
+void hysteresis_follow_setpoints(TickState& state, const TickResult& out) noexcept {
+  if (state.fault != FaultCode::none || (out.record.flags & kVented)) return;
+  for (std::size_t i = 0; i < kFingerCount; ++i)
+    if (!state.hysteresis_model[i].is_identity()) state.hysteresis_model[i].apply_exhausting(out.setpoint_kPa[i]);
+}
+
+}  // namespace
+
 ChannelPressures hysteresis_inverse_stage(TickState& state, const ChannelPressures& target_kPa) noexcept {
   ChannelPressures command = target_kPa;
   if (state.fault != FaultCode::none) return command;  // venting: the inverses keep their state
   for (std::size_t i = 0; i < kFingerCount; ++i)
-    if (std::isfinite(target_kPa[i]) && !state.hysteresis_inverse[i].is_identity())
-      command[i] = state.hysteresis_inverse[i].apply(target_kPa[i]);
+    if (std::isfinite(target_kPa[i]) && !state.hysteresis_model[i].is_identity())
+      command[i] = state.hysteresis_model[i].input_for(target_kPa[i]);
   return command;
 }
 
@@ -73,6 +90,54 @@ void safety_stage(TickState& state, const TickConfig& config, const ChannelPress
   state.started = true;
 }
 
+namespace {
+
+// The target of one finger pressing `felt_at` (the tissue point under it) with force_N: the
+// scene's stiffness there, the stress model and the channel's actuator line.
+double finger_target_kPa(const TickConfig& config, const Scene& scene, std::size_t i, const Point2_mm& felt_at,
+                         double force_N, double t_s, TissueSample* felt_out = nullptr) noexcept {
+  const TissueSample felt = scene.sample(felt_at, force_N, t_s);
+  if (felt_out) *felt_out = felt;
+  const double stress_kPa = config.stress.target_stress_kPa(felt.stiffness, force_N);
+  return config.actuators[i].pressure_kPa(stress_kPa, config.stress.force_ratio(force_N));
+}
+
+// Where the fingers will be `lead_s` from now (the pen extrapolated from its past samples),
+// which tissue they will press then (the drag stepped along), and the target there.
+double predicted_target_kPa(const TickState& state, const TickConfig& config, const Scene& scene, std::size_t i,
+                            double t_s, double lead_s) noexcept {
+  const PredictedFinger pen = state.lag.pen.predict_finger(t_s + lead_s, config.lag_compensation.prediction, i);
+  if (!pen.in_contact || !(pen.pen_force_N >= config.contact_force_N)) return 0.0;  // a lift coming
+  // The pen's triangle, or (tracked fingers) this finger's own extrapolated position and force,
+  // as place_fingers places them now.
+  const double force_N = pen.own_force ? pen.force_N : pen.pen_force_N;
+  if (!(force_N >= config.contact_force_N) || pen.vent != FingerVent::none) return 0.0;  // vented, or lifting
+  const Point2_mm centre =
+      pen.own_position ? Point2_mm{pen.x_mm, pen.y_mm} : config.layout.centres(pen.pen_x_mm, pen.pen_y_mm)[i];
+  const DragSetting setting = scene.drag(state.drag_layer[i]);
+  if (!setting.drags() && state.drag[i].phase == DragPhase::free && state.drag[i].offset.x_mm == 0 &&
+      state.drag[i].offset.y_mm == 0)
+    return finger_target_kPa(config, scene, i, centre, force_N, t_s + lead_s);  // nothing carried
+  FingerDrag drag = state.drag[i];
+  step_drag(drag, setting, centre, force_N, true, lead_s);
+  return finger_target_kPa(config, scene, i, drag.felt_point(centre), force_N, t_s + lead_s);
+}
+
+// The target of finger i `ahead_s` from now, for the lag compensation's look ahead.
+struct Ahead {
+  const TickState& state;
+  const TickConfig& config;
+  const Scene& scene;
+  std::size_t i;
+  double t_s, now_kPa;
+  static double sample(const void* context, double ahead_s) noexcept {
+    const Ahead& a = *static_cast<const Ahead*>(context);
+    return ahead_s > 0 ? predicted_target_kPa(a.state, a.config, a.scene, a.i, a.t_s, ahead_s) : a.now_kPa;
+  }
+};
+
+}  // namespace
+
 TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, const TouchSample& sample,
                 double t_s) noexcept {
   TickResult out;
@@ -80,6 +145,7 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   rec.x_mm = static_cast<float>(sample.x_mm);
   rec.y_mm = static_cast<float>(sample.y_mm);
   rec.force_N = static_cast<float>(sample.force_N);
+  const double dt_s = state.started ? t_s - state.last_t_s : 0.0;
 
   ChannelPressures target{};
   FingersOnSkin fingers;
@@ -110,25 +176,79 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
       rec.flags |= kInContact;
       fingers.pressed = true;
       fingers.force_N = sample.force_N;
-      for (std::size_t i = 0; i < kFingerCount; ++i) {
-        if (!placed.pressed[i]) continue;
-        const double force_N = placed.force_N[i];
-        const TissueSample felt = scene.sample(fingers.centres[i], force_N, t_s);
-        rec.stiffness[i] = static_cast<float>(felt.stiffness);
-        const double stress_kPa = config.stress.target_stress_kPa(felt.stiffness, force_N);
-        target[i] = config.actuators[i].pressure_kPa(stress_kPa, config.stress.force_ratio(force_N));
-      }
     }
   }
   if (!fingers.pressed) fingers.force_N = sample.force_N;
-  // Scenes without arteries (maps) skip this entirely.
-  if (const PulseField* arteries = scene.pulse()) {
-    const PulseStageSetting setting{config.pulse, *arteries, config.safety.p_max_kPa, config.safety.slew_kPa_per_s};
-    const TickTime time{t_s, state.started ? t_s - state.last_t_s : 0.0};
-    apply_pulse_stage(state.pulse, setting, fingers, time, target, out.pulse_kPa);
+  // Tissue dragging (paper 000's stick/slip): each finger feels the tissue now under it, which
+  // a sticking finger has carried along; the arteries move with it too. Each finger drags with
+  // its own force (a load cell under each tracked finger); a vented finger carries nothing.
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const bool pressing = fingers.pressed && fingers.finger_pressed[i];
+    step_drag(state.drag[i], scene.drag(state.drag_layer[i]), fingers.centres[i], fingers.finger_force_N[i], pressing,
+              std::max(dt_s, 0.0));
+    if (pressing) fingers.centres[i] = state.drag[i].felt_point(fingers.centres[i]);
+    rec.drag_x_mm[i] = static_cast<float>(state.drag[i].offset.x_mm);
+    rec.drag_y_mm[i] = static_cast<float>(state.drag[i].offset.y_mm);
+  }
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    if (!fingers.pressed || !fingers.finger_pressed[i]) {
+      state.drag_layer[i] = -1;
+      continue;
+    }
+    TissueSample felt;
+    target[i] = finger_target_kPa(config, scene, i, fingers.centres[i], fingers.finger_force_N[i], t_s, &felt);
+    rec.stiffness[i] = static_cast<float>(felt.stiffness);
+    state.drag_layer[i] = felt.layer;
+  }
+
+  // What each channel compensates this tick, and the targets it compensates toward: the scene
+  // where the fingers will be (channels compensating the whole target), the pulse now and ahead.
+  const PulseField* arteries = scene.pulse();
+  const bool switch_on = !config.pulse.compensate_lag_switch ||
+                         config.pulse.compensate_lag_switch->load(std::memory_order_relaxed);
+  const double period_s = dt_s > 0 && std::isfinite(dt_s) ? dt_s : state.pulse.last_dt_s;
+  const LagPlan plan = plan_lag_compensation(state.lag, config.lag_compensation, config.pulse.lag,
+                                             config.pulse.compensate_lag, switch_on, arteries != nullptr, period_s);
+  LagTargets lag_targets;
+  lag_targets.base_now_kPa = target;
+  lag_targets.base_ahead_kPa = target;
+  if (state.fault == FaultCode::none) state.lag.pen.observe(sample, config.lag_compensation.prediction);
+  ++state.lag.ticks;
+  // A lifted pen, or a run that restarts: the window's cached targets are stale.
+  // A finger that is not pressing (a tracked one vented, or lifted by its own load cell) too.
+  for (std::size_t i = 0; i < kFingerCount; ++i)
+    if (!fingers.pressed || !fingers.finger_pressed[i]) state.lag.window_sampled[i] = false;
+  if (plan.any_total() && state.fault == FaultCode::none) {
+    rec.flags |= kLagCompensated;
+    for (std::size_t i = 0; i < kFingerCount; ++i) {
+      if (plan.part[i] != CompensatedPart::total) continue;
+      const LagCompensationSetting& lag = config.lag_compensation;
+      const Ahead context{state, config, scene, i, t_s, target[i]};
+      const WindowCache window{&state.lag.window_target_kPa[i], &state.lag.window_sampled[i],
+                               state.lag.ticks % kWindowStride == i % kWindowStride};
+      lag_targets.base_ahead_kPa[i] = anticipated_target_kPa(
+          plan.model[i], plan.lead_s[i], state.lag.compensator[i].predicted_kPa(), lag.max_lead_kPa,
+          config.safety.p_max_kPa, lag.samples_ahead, lag.anticipate_edges, &Ahead::sample, &context, window);
+    }
+  }
+  // Scenes without arteries (maps) skip the pulse stage entirely.
+  if (arteries) {
+    std::array<PulseLookahead, kFingerCount> ahead{};
+    for (std::size_t i = 0; i < kFingerCount; ++i)
+      ahead[i] = {plan.lead_s[i], plan.rise_advance_s[i], plan.fall_advance_s[i]};
+    PulseOutput pulse;
+    apply_pulse_stage(state.pulse, PulseStageSetting{config.pulse, *arteries}, fingers, TickTime{t_s, dt_s}, ahead,
+                      pulse);
+    out.pulse_kPa = pulse.now_kPa;
+    lag_targets.pulse_now_kPa = pulse.now_kPa;
+    lag_targets.pulse_ahead_kPa = pulse.ahead_kPa;
+    for (std::size_t i = 0; i < kFingerCount; ++i) target[i] += pulse.now_kPa[i];
   }
   check_targets(state, target, t_s, rec);
-  safety_stage(state, config, hysteresis_inverse_stage(state, target), t_s, out);
+  const LagLimits limits{config.safety.p_max_kPa, config.safety.slew_kPa_per_s, config.lag_compensation.max_lead_kPa};
+  out.compensated_kPa = lag_compensation_stage(state.lag, plan, lag_targets, limits, dt_s);
+  safety_stage(state, config, hysteresis_inverse_stage(state, out.compensated_kPa), t_s, out);
+  hysteresis_follow_setpoints(state, out);
   return out;
 }
 
@@ -137,7 +257,9 @@ TickResult tick_direct(TickState& state, const TickConfig& config, const Channel
   TickResult out;
   out.record.flags |= kInContact;
   check_targets(state, target_kPa, t_s, out.record);
+  out.compensated_kPa = target_kPa;
   safety_stage(state, config, hysteresis_inverse_stage(state, target_kPa), t_s, out);
+  hysteresis_follow_setpoints(state, out);
   return out;
 }
 

@@ -1,6 +1,50 @@
 #include "controller/tick_setup.hpp"
 
+#include <cstdio>
+
 namespace palprig {
+
+namespace {
+
+std::string fixed(double v, int digits) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
+}
+
+}  // namespace
+
+std::string lag_compensation_refusal(const CalibrationModels& cal, std::size_t i) {
+  const auto& d = cal.dynamics[i];
+  if (!d) return "no identified dynamics (calibrate sweep --excitation ...,step,chirp, then calibrate fit)";
+  if (!(d->r_squared >= cal.lag_compensation.min_r_squared))
+    return "its identified dynamics fit with R^2 " + fixed(d->r_squared, 4) + ", below the bound " +
+           fixed(cal.lag_compensation.min_r_squared, 4) + " (lag_compensation.min_r_squared): a poor model could push "
+           "harder than the uncompensated rig";
+  return {};
+}
+
+std::vector<std::string> describe_lag_compensation(const CalibrationModels& cal) {
+  std::vector<std::string> out;
+  if (!cal.lag_compensation.enabled) return out;
+  std::string on;
+  int channels_on = 0;
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const std::string why = lag_compensation_refusal(cal, i);
+    if (why.empty()) {
+      const RegulatorDynamics& d = *cal.dynamics[i];
+      on += (on.empty() ? "" : ", ") + std::to_string(i + 1) + " (dead time " + fixed(d.dead_time_s * 1000, 1) +
+            " ms, lag " + fixed(d.time_constant_s * 1000, 1) + " ms)";
+      ++channels_on;
+    } else {
+      out.push_back("lag compensation stays off on channel " + std::to_string(i + 1) + ": " + why);
+    }
+  }
+  if (channels_on > 0)
+    out.insert(out.begin(), "lag compensation on for channel" + std::string(channels_on == 1 ? " " : "s ") + on +
+                                ", lead at most " + fixed(cal.lag_compensation.max_lead_kPa, 1) + " kPa");
+  return out;
+}
 
 TickConfig make_tick_config(const RigConfig& rig, const CalibrationModels& cal) {
   TickConfig cfg;
@@ -11,9 +55,21 @@ TickConfig make_tick_config(const RigConfig& rig, const CalibrationModels& cal) 
   cfg.actuators = cal.actuators;
   for (std::size_t i = 0; i < kFingerCount; ++i)
     cfg.hysteresis_inverse[i] = cal.hysteresis[i].is_identity() ? PrandtlIshlinskii{} : cal.hysteresis[i].inverse();
-  // The pulse stage pre-compensates each regulator's lag as the rig file's plant describes it.
+  // The pulse stage pre-compensates each regulator's lag as the rig file's plant describes it,
+  // or as calibration identified it where the fit is good.
   for (std::size_t i = 0; i < kFingerCount; ++i)
     cfg.pulse.lag[i] = {rig.plants[i].dead_time_s, rig.plants[i].time_constant_s, rig.plants[i].slew_kPa_per_s};
+  // The identified dynamics (only channels whose fit passes the bound), and whether the whole
+  // target is compensated with them.
+  LagCompensationSetting& lag = cfg.lag_compensation;
+  lag.whole_target = cal.lag_compensation.enabled;
+  lag.max_lead_kPa = cal.lag_compensation.max_lead_kPa;
+  lag.anticipate_edges = cal.lag_compensation.anticipate_edges;
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    if (!lag_compensation_refusal(cal, i).empty()) continue;
+    lag.identified[i] = true;
+    lag.regulator[i] = {cal.dynamics[i]->dead_time_s, cal.dynamics[i]->time_constant_s, rig.plants[i].slew_kPa_per_s};
+  }
   // Arteries whose scene gives no force window use the one measured on this rig (paper 003).
   if (cal.force_window) {
     cfg.pulse.has_measured_window = true;

@@ -110,6 +110,22 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
       for (const char* k : {"rms_error_kPa", "r_squared"}) if (h.has(k)) (void)h.number(k, -1e9, 1e9);
       h.refuse_unknown();
     }
+    if (ch.has("dynamics")) {
+      // The regulator's identified dynamics (calibrate fit from step and chirp rows): a dead time
+      // and a first-order lag a real regulator can have, and how well they fit.
+      const JsonObject d = ch.object("dynamics");
+      RegulatorDynamics dyn;
+      dyn.dead_time_s = d.number("dead_time_s", 0, 0.5);
+      dyn.time_constant_s = d.number("time_constant_s", 0.0005, 2);
+      dyn.r_squared = d.number("r_squared", -1e9, 1);
+      dyn.rms_residual_kPa = d.number_or("rms_residual_kPa", 0, 0, 1e6);
+      dyn.max_residual_kPa = d.number_or("max_residual_kPa", 0, 0, 1e6);
+      dyn.samples = static_cast<std::size_t>(d.integer_or("samples", 0, 0, 1000000000));
+      dyn.rate_hz = d.number_or("rate_hz", 0, 0, 100000);
+      if (d.has("segments")) (void)d.raw("segments");  // per-segment R^2 and residuals, for people
+      d.refuse_unknown();
+      cal.dynamics[i] = dyn;
+    }
     ch.refuse_unknown();
   }
   // Sections written by calibration for people and later tools (fit tables, force window)
@@ -131,6 +147,22 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
     for (const char* k : {"presses_min", "presses_max"}) (void)f.integer_or(k, 0, 0, 1000000);
     f.refuse_unknown();
     cal.force_window = w;
+  }
+  if (root.has("lag_compensation")) {
+    const JsonObject l = root.object("lag_compensation");
+    LagCompensationChoice& c = cal.lag_compensation;
+    c.enabled = l.boolean_or("enabled", c.enabled);
+    c.max_lead_kPa = l.number_or("max_lead_kPa", c.max_lead_kPa, 0, 100);
+    c.min_r_squared = l.number_or("min_r_squared", c.min_r_squared, kLowestMinDynamicsRSquared, 1);
+    c.anticipate_edges = l.boolean_or("anticipate_edges", c.anticipate_edges);
+    if (c.enabled) {
+      bool any = false;
+      for (const auto& d : cal.dynamics) any = any || d.has_value();
+      if (!any)
+        l.fail("enabled", "identified regulator dynamics (channels[].dynamics, from calibrate sweep --excitation "
+                          "...,step,chirp and calibrate fit) before lag compensation is enabled");
+    }
+    l.refuse_unknown();
   }
   root.refuse_unknown();
   return cal;

@@ -21,13 +21,11 @@ constexpr std::size_t kMaxShapeNodes = 4096;
 constexpr std::size_t kMaxBlobTerms = 256;
 constexpr double kMaxSize_mm = 1e4;
 constexpr double kMaxModulus_kPa = 1e8;  // 100 GPa: stiffer than any bone
-// The most work one tick may spend sampling the scene under its three fingers, in the FRep's
-// sphere-equivalent evaluations (StiffnessField::worst_case_sample_cost). At the 6-7 ns of CPU
-// each measured on a loaded 2-core EPYC (docs/developing.md "Hardening notes") this is about 0.2 ms, a fifth
-// of the 1 ms period at 1 kHz, so the tick, the backend and a loaded machine still fit. Checked when the file is loaded: a
-// scene that cannot be sampled in time is refused before anything moves, instead of
-// overrunning the loop (or running a replay for hours).
-constexpr double kMaxTickShapeCost = 30000;
+// kMaxTickShapeCost (the header): at the 6-7 ns of CPU per sphere-equivalent measured on a
+// loaded 2-core EPYC (docs/developing.md "Hardening notes") about 0.2 ms, a fifth of the 1 ms
+// period at 1 kHz, so the tick, the backend and a loaded machine still fit. Checked when the
+// file is loaded: a scene that cannot be sampled in time is refused before anything moves,
+// instead of overrunning the loop (or running a replay for hours).
 
 std::string number_text(double v) {
   std::ostringstream s;
@@ -301,6 +299,15 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
     layer.name = l.string("name");
     layer.thickness_mm = positive(l, "thickness_mm", "thickness in mm");
     layer.stiffness_kPa = positive(l, "stiffness_kPa", "Young's modulus in kPa", kMaxModulus_kPa);
+    if (l.has("drag")) {
+      // Paper 000's tissue dragging (section 3.2, eq. 3) for a finger pressed into this layer.
+      const JsonObject d = l.object("drag");
+      layer.drag.f_stick_N = d.number("f_stick_N", 0.01, 100);
+      layer.drag.d_lat_max_mm = d.number("d_lat_max_mm", 0, 100);
+      layer.drag.relax_s = d.number_or("relax_s", 0.05, 0, 10);
+      layer.drag_given = true;
+      d.refuse_unknown();
+    }
     l.refuse_unknown();
     tissue.layers.push_back(layer);
   }

@@ -29,6 +29,12 @@
 
 namespace palprig {
 
+// The most work one tick may spend sampling a function scene under its three fingers, in the
+// FRep's sphere-equivalent evaluations (StiffnessField::worst_case_sample_cost): about 0.2 ms,
+// a fifth of a 1 kHz period. The loader refuses a heavier scene; the lag compensation samples
+// the scene ahead only as often as this leaves room for (controller/run_setup.cpp).
+inline constexpr double kMaxTickShapeCost = 30000;
+
 // The rest of a scene file whose root load_scene_file has opened (version, name, kind and
 // description already read): builds the FunctionScene and the tumor ground truth into out.
 void load_function_scene(const JsonObject& root, const std::filesystem::path& path, SceneFile& out);

@@ -14,14 +14,18 @@ double IndentationModel::depth_mm(double force_N, double stiffness) const noexce
   return std::min(d, max_depth_mm);
 }
 
-std::vector<GridVertex> tiered_grid(double x_mm, double y_mm, double depth_mm, int n, double cell_mm) {
+std::vector<GridVertex> tiered_grid(double x_mm, double y_mm, double depth_mm, int n, double cell_mm, double drag_x_mm,
+                                    double drag_y_mm) {
+  if (!std::isfinite(drag_x_mm) || !std::isfinite(drag_y_mm)) drag_x_mm = drag_y_mm = 0;
   std::vector<GridVertex> v;
   if (n < 1) return v;
   v.reserve(std::size_t((2 * n + 1) * (2 * n + 1)));
   for (int r = -n; r <= n; ++r)
     for (int c = -n; c <= n; ++c) {
       const int tier = std::max(std::abs(r), std::abs(c));
-      v.push_back({x_mm + c * cell_mm, y_mm + r * cell_mm, depth_mm * double(n - tier) / double(n), tier});
+      const double carried = double(n - tier) / double(n);
+      v.push_back({x_mm - drag_x_mm + c * cell_mm, y_mm - drag_y_mm + r * cell_mm, drag_x_mm * carried,
+                   drag_y_mm * carried, depth_mm * carried, tier});
     }
   return v;
 }

@@ -195,19 +195,24 @@ std::array<QColor, kFingerCount> SceneView::finger_colours() const {
   return out;
 }
 
-void SceneView::draw_indentation(QPainter& p, const Point2_mm& c, double depth_mm) {
+void SceneView::draw_indentation(QPainter& p, const Point2_mm& c, double depth_mm, double drag_x_mm, double drag_y_mm) {
   const int n = 4;
-  const double cell = 2.0 * kFingerRadius_mm / n;  // the sub-grid spans two finger widths
-  const auto grid = tiered_grid(c.x_mm, c.y_mm, depth_mm, n, cell);
+  // The sub-grid spans two finger widths, and more when the tissue is dragged further (so the
+  // stretched skin reaches undeformed tissue at its border).
+  const double drag = std::isfinite(drag_x_mm) && std::isfinite(drag_y_mm) ? std::hypot(drag_x_mm, drag_y_mm) : 0.0;
+  const double cell = std::max(2.0 * kFingerRadius_mm, kFingerRadius_mm + 1.5 * drag) / n;
+  const auto grid = tiered_grid(c.x_mm, c.y_mm, depth_mm, n, cell, drag_x_mm, drag_y_mm);
   const int side = 2 * n + 1;
   // A sunk vertex is drawn pulled toward the contact (the surface stretches into the dimple),
   // a quarter of its depth, and the cells darken with depth.
   std::vector<QPointF> px(grid.size());
   for (std::size_t i = 0; i < grid.size(); ++i) {
-    const double dx = grid[i].x_mm - c.x_mm, dy = grid[i].y_mm - c.y_mm;
+    // Where the (dragged) vertex is, then pulled toward the contact by the dimple.
+    const double x = grid[i].x_mm + grid[i].dx_mm, y = grid[i].y_mm + grid[i].dy_mm;
+    const double dx = x - c.x_mm, dy = y - c.y_mm;
     const double r = std::hypot(dx, dy);
     const double pull = r > 0 ? std::min(0.25 * grid[i].depth_mm, r * 0.5) / r : 0.0;
-    px[i] = pixel_of(grid[i].x_mm - dx * pull, grid[i].y_mm - dy * pull);
+    px[i] = pixel_of(x - dx * pull, y - dy * pull);
   }
   for (int r = 0; r + 1 < side; ++r)
     for (int col = 0; col + 1 < side; ++col) {
@@ -285,7 +290,8 @@ void SceneView::render_to(QPainter& p) {
   if (pressed)
     for (int i = 0; i < kFingerCount; ++i)
       if (!vented(i))
-        draw_indentation(p, centres[i], indentation_.depth_mm(record_.finger_force_N[i], record_.stiffness[i]));
+        draw_indentation(p, centres[i], indentation_.depth_mm(record_.finger_force_N[i], record_.stiffness[i]),
+                         record_.drag_x_mm[i], record_.drag_y_mm[i]);
   p.restore();
   for (int i = 0; i < kFingerCount; ++i) {
     const QPointF c = pixel_of(centres[i].x_mm, centres[i].y_mm);

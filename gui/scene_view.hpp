@@ -76,7 +76,7 @@ class SceneView final : public QWidget {
   QRectF scene_rect() const;  // where the scene's bounds are drawn
   QPointF mm_of(const QPointF& pixel) const;
   void publish_pen(const QPointF& pixel, double force_N, bool in_contact);
-  void draw_indentation(QPainter& p, const Point2_mm& c, double depth_mm);
+  void draw_indentation(QPainter& p, const Point2_mm& c, double depth_mm, double drag_x_mm, double drag_y_mm);
 
   const Scene* scene_;
   SceneBounds bounds_;

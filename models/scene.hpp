@@ -6,6 +6,7 @@
 
 #include "models/finger_layout.hpp"
 #include "models/stiffness_map.hpp"
+#include "models/tissue_drag.hpp"
 
 namespace palprig {
 
@@ -30,6 +31,10 @@ class Scene {
   // The arteries whose pulse the tick adds to the fingers' pressures; nullptr for a scene
   // without any (a measured map), which the tick then runs exactly as before.
   virtual const PulseField* pulse() const noexcept { return nullptr; }
+  // How the tissue drags under a finger pressed into `layer` (TissueSample::layer; -1 before the
+  // first sample: the top layer): paper 000's stick/slip. Scenes without layers do not drag.
+  // Called per finger per tick: must not allocate, lock or throw.
+  virtual DragSetting drag(int /*layer*/) const noexcept { return {0, 0, 0}; }
 };
 
 class MapScene final : public Scene {

@@ -108,6 +108,9 @@ StiffnessField::StiffnessField(TissueDefinition d) : def_(std::move(d)) {
   for (std::size_t i = 0; i < def_.layers.size(); ++i) {
     const TissueLayer& l = def_.layers[i];
     need(positive(l.thickness_mm) && positive(l.stiffness_kPa), "layer '" + l.name + "' needs thickness and modulus > 0");
+    need(std::isfinite(l.drag.f_stick_N) && l.drag.f_stick_N >= 0 && std::isfinite(l.drag.d_lat_max_mm) &&
+             l.drag.d_lat_max_mm >= 0 && std::isfinite(l.drag.relax_s) && l.drag.relax_s >= 0,
+         "layer '" + l.name + "' needs a drag with f_stick_N, d_lat_max_mm and relax_s >= 0");
     depth += l.thickness_mm;
     layer_bottom_mm_[i] = depth;
     layer_level_[i] = normalised(l.stiffness_kPa);

@@ -44,6 +44,7 @@
 #include "models/frep.hpp"
 #include "models/respiration.hpp"
 #include "models/scene.hpp"
+#include "models/tissue_drag.hpp"
 
 namespace palprig {
 
@@ -54,6 +55,10 @@ struct TissueLayer {
   std::string name;
   double thickness_mm = 1.0;
   double stiffness_kPa = 14.7;
+  // Stick/slip of the tissue under a finger pressed into this layer (paper 000, section 3.2).
+  // A layer without one (drag_given false) takes the nearest layer's above it; none: no drag.
+  DragSetting drag{0, 0, 0};
+  bool drag_given = false;
 };
 
 // Super-ellipse |dx/a|^n + |dy/b|^n <= 1 on the skin plane.

@@ -9,6 +9,17 @@ namespace palprig {
 FunctionScene::FunctionScene(TissueDefinition tissue, std::vector<ArterySpec> arteries)
     : field_(std::move(tissue)), arteries_(std::move(arteries), field_.definition().press.finger_radius_mm) {}
 
+DragSetting FunctionScene::drag(int layer) const noexcept {
+  const auto& layers = field_.definition().layers;
+  if (layers.empty()) return {0, 0, 0};
+  // The layer the fingertip has sunk into, or the nearest above it that says how it drags: a
+  // firm press into the fat under the skin still carries the skin (and all under it) along.
+  const std::size_t pressed = layer < 0 ? 0 : std::min(std::size_t(layer), layers.size() - 1);
+  for (std::size_t i = pressed + 1; i-- > 0;)
+    if (layers[i].drag_given) return layers[i].drag;
+  return {0, 0, 0};
+}
+
 std::vector<InclusionOutline> FunctionScene::outlines(InclusionKind kind) const {
   // The bounding boxes of blobby shapes are loose, so the outline is measured: the shape is
   // sampled on a grid inside its box (0.5 mm across, 0.5 mm deep, at least 40 steps per axis)

@@ -30,6 +30,7 @@ class FunctionScene final : public Scene {
   }
   SceneBounds bounds() const noexcept override { return field_.bounds(); }
   const PulseField* pulse() const noexcept override { return arteries_.empty() ? nullptr : &arteries_; }
+  DragSetting drag(int layer) const noexcept override;
 
   const StiffnessField& field() const noexcept { return field_; }
   const PulseField& arteries() const noexcept { return arteries_; }

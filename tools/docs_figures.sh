@@ -5,7 +5,8 @@
 #   tools/docs_figures.sh [BUILD]   (default build; about two minutes on 2 cores)
 # Sections: machine; paper 002 discrimination over sim:1..60; localisation over sim:1..90;
 # pulse localisation (sim:1, sim:2); threshold (sim:1); calibration with and without the
-# identification excitations; the pulse stage's correlations; the demo's per-region table. docs/developing.md, "Figures in the
+# identification excitations; the pulse stage's correlations; the haptic fidelity with and
+# without lag compensation; the demo's per-region table. docs/developing.md, "Figures in the
 # docs", says where each figure is quoted.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -63,10 +64,10 @@ echo "== threshold (data/protocols/threshold_1up3down.json), sim:1"
 "$palprig" experiment run --protocol data/protocols/threshold_1up3down.json --participant sim:1 --db t.db --quiet | tail -2
 
 echo
-echo "== calibration of the default simulated rig, with --excitation staircase,random,sine"
-"$palprig" calibrate sweep --rig data/rigs/simulated.json --channels 1,2,3 --excitation staircase,random,sine \
+echo "== calibration of the default simulated rig, with --excitation staircase,random,sine,step,chirp"
+"$palprig" calibrate sweep --rig data/rigs/simulated.json --channels 1,2,3 --excitation staircase,random,sine,step,chirp \
   --out sweep.csv 2>/dev/null | sed -n 2p
-"$palprig" calibrate fit sweep.csv --out cal.json | grep -E '^ +all +|channel [123]: from|gap|^ +[123] +[0-9.]+ kPa /'
+"$palprig" calibrate fit sweep.csv --out cal.json | grep -E '^ +all +|channel [123]: (from|dead time)|gap|^ +[123] +[0-9.]+ kPa /'
 "$palprig" calibrate evaluate --rig data/rigs/simulated.json --cal cal.json | tail -8
 
 echo
@@ -79,6 +80,14 @@ echo
 echo "== pulse on the regulators (bench_pulse_correlation)"
 if [ -x "$build/bin/bench_pulse_correlation" ]; then
   "$build/bin/bench_pulse_correlation" | grep -E '^\| (rectangular|saw-tooth|table)' || true
+else
+  echo "(not built: bench/ is built with the default options)"
+fi
+
+echo
+echo "== haptic fidelity: the demo pass with and without lag compensation (bench_fidelity)"
+if [ -x "$build/bin/bench_fidelity" ]; then
+  "$build/bin/bench_fidelity" --figure fidelity.png
 else
   echo "(not built: bench/ is built with the default options)"
 fi

@@ -201,7 +201,17 @@ TEST(SweepPlan, RefusesArgumentsThatMakeNoSweep) {
   o = {};
   o.staircase = false;
   EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }),
-            "excitation: value: at least one of staircase, random, sine");
+            "excitation: value: at least one of staircase, random, sine, step, chirp");
+  o = {};
+  o.chirp = true;
+  o.chirp_from_hz = 5;
+  o.chirp_to_hz = 2;
+  EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }),
+            "chirp_to_hz: value: a chirp from a frequency > 0 to a higher one, at most 100 Hz");
+  o = {};
+  o.step = true;
+  o.step_hold_s = 0.01;
+  EXPECT_EQ(refusal([&] { plan_calibration_sweep(o, 60); }), "step_hold_s: value: a step hold of 0.05 to 60 s");
 }
 
 TEST(SweepPlan, AStaircaseTooShortToFitIsNamedBeforeItRuns) {

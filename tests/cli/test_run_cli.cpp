@@ -89,3 +89,45 @@ TEST(DemoCommand, TumorsFeelHarderThanSoftTissue) {
   for (int t = 0; t < 3; ++t) EXPECT_GT(j["regions"][t]["target_kPa_mean"].get<double>(), soft + 5.0);
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "telemetry.csv"));
 }
+
+TEST(RunCommand, CompensateLagNeedsIdentifiedDynamicsAndSaysWhatItDoes) {
+  const std::string base = palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") +
+                           " --input trace:" + data("traces/phantom_abc_pass.csv") + " --duration-s 3 --json";
+  // paper 002's models have no identified dynamics: refused before anything moves.
+  const ProcessResult none = run_process(base + " --cal " + data("calibration/paper002.json") + " --compensate-lag");
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_EQ(none.out, "");
+  EXPECT_NE(none.err.find("paper002.json: lag_compensation: identified regulator dynamics (channels[].dynamics) for "
+                          "--compensate-lag"),
+            std::string::npos)
+      << none.err;
+  // The simulated rig's calibration has them: on, said per channel, and the setpoints differ
+  // from the same run without (`--no-compensate-lag`, the file's own default).
+  const ProcessResult on = run_process(base + " --cal " + data("calibration/sim-default.json") + " --compensate-lag");
+  ASSERT_EQ(on.exit_code, 0) << on.err;
+  EXPECT_NE(on.err.find("palprig: lag compensation on for channels 1 (dead time"), std::string::npos) << on.err;
+  const ProcessResult off = run_process(base + " --cal " + data("calibration/sim-default.json") + " --no-compensate-lag");
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  EXPECT_EQ(off.err.find("lag compensation"), std::string::npos) << off.err;
+  const auto a = nlohmann::json::parse(on.out), b = nlohmann::json::parse(off.out);
+  EXPECT_EQ(a["target_kPa"], b["target_kPa"]);  // the models ask the same
+  EXPECT_NE(a["setpoint_kPa"], b["setpoint_kPa"]);
+  EXPECT_LE(a["setpoint_kPa"][0]["max"].get<double>(), 60.0);
+}
+
+TEST(DemoCommand, WithLagCompensationTheTumorsArriveNearerTheirTarget) {
+  TempDir dir;
+  const std::string base = palprig_bin() + " demo --json --out " + dir.path().string();
+  const ProcessResult plain = run_process(base + " --cal " + data("calibration/sim-default.json"));
+  const ProcessResult comp = run_process(base + " --compensate-lag");  // the simulated rig's calibration
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  ASSERT_EQ(comp.exit_code, 0) << comp.err;
+  EXPECT_NE(comp.err.find("lag compensation on"), std::string::npos) << comp.err;
+  const auto p = nlohmann::json::parse(plain.out), c = nlohmann::json::parse(comp.out);
+  for (int t = 0; t < 3; ++t) {
+    const double target = c["regions"][t]["target_kPa_mean"];
+    EXPECT_EQ(p["regions"][t]["target_kPa_mean"].get<double>(), target);
+    EXPECT_GT(c["regions"][t]["plant_kPa_mean"].get<double>(), p["regions"][t]["plant_kPa_mean"].get<double>()) << t;
+    EXPECT_NEAR(c["regions"][t]["plant_kPa_mean"].get<double>() / target, 1.0, 0.05) << t;
+  }
+}

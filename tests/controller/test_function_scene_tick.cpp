@@ -275,3 +275,58 @@ TEST(FunctionSceneTick, AnArteryWithoutItsOwnForceWindowUsesTheCalibratedOne) {
   EXPECT_GT(peak_at(calibrated, scene, 3.5), 0.0);
   EXPECT_GT(peak_at(calibrated, *shipped, 1.8), 0.0);  // an artery's own window wins
 }
+
+TEST(FunctionSceneTick, ATumorUnderASlidingFingerMovesWithItUntilTheSkinSlips) {
+  // Skin that drags (sticks from 1 N, slips past 10 mm, relaxes in 20 ms) over a hard tumor
+  // 4 mm deep at (40, 60): finger 1 presses on it and slides away along x at 40 mm/s.
+  TissueDefinition t;
+  t.body = {{80, 60}, 80, 60, 6};
+  TissueLayer skin{"skin", 1.5, 40};
+  skin.drag = DragSetting{1.0, 10.0, 0.02};
+  skin.drag_given = true;
+  t.layers = {skin, {"fat", 3.5, 4}, {"muscle", 50, 15}};
+  t.felt = {4, 300};
+  Inclusion tumor;
+  tumor.name = "T";
+  tumor.shape.sphere({40, 60, 6}, 5);
+  tumor.stiffness_kPa = 300;
+  t.inclusions.push_back(tumor);
+  const FunctionScene scene(t, {});
+  const TickConfig cfg = rig_config();
+  auto slide = [&](double force_N, double release_at_mm) {
+    TickState st = make_tick_state(cfg);
+    std::vector<TickResult> out;
+    for (int k = 0; k <= 500; ++k) {
+      const double t_s = k * 0.001, x = 40 + 40 * t_s;  // 0 to 20 mm in 0.5 s
+      const double f = x - 40 > release_at_mm ? 0.5 : force_N;
+      out.push_back(tick(st, cfg, scene, {t_s, x, 60, f, true}, t_s));
+    }
+    return out;
+  };
+  TickState first = make_tick_state(cfg);
+  const double on_tumor = tick(first, cfg, scene, {0, 40, 60, 2.0, true}, 0).record.stiffness[0];
+  ASSERT_GT(on_tumor, 0.3);
+  // Sticking (2 N): 8 mm on, the finger still feels the tumor it carries; the record says how far.
+  const auto dragged = slide(2.0, 1e9);
+  EXPECT_NEAR(dragged[200].record.stiffness[0], on_tumor, 1e-6);
+  EXPECT_NEAR(dragged[200].record.drag_x_mm[0], 8.0, 1e-3);
+  // Past 10 mm the skin slips: the tumor relaxes back and the finger, 12 mm on, feels soft tissue.
+  EXPECT_LT(dragged[300].record.stiffness[0], 0.5 * on_tumor);
+  EXPECT_LT(dragged[300].record.drag_x_mm[0], 10.0);
+  // Pressing below f_stick (0.5 N from the start): no drag; the finger leaves the tumor behind.
+  const auto light = slide(0.5, -1);
+  EXPECT_EQ(light[200].record.drag_x_mm[0], 0.0f);
+  // Released below f_stick after 4 mm: the carried tissue relaxes back (20 ms), nothing carried after.
+  const auto released = slide(2.0, 4.0);
+  EXPECT_NEAR(released[90].record.drag_x_mm[0], 3.6, 1e-3);
+  EXPECT_LT(released[300].record.drag_x_mm[0], 1e-3);
+  // Without a drag the tick is as before: finger 1 at 8 mm from the tumor's centre feels less.
+  TissueDefinition plain = t;
+  plain.layers[0].drag_given = false;
+  const FunctionScene still_skin(plain, {});
+  TickState st = make_tick_state(cfg);
+  TickResult r;
+  for (int k = 0; k <= 200; ++k) r = tick(st, cfg, still_skin, {k * 0.001, 40 + 0.04 * k, 60, 2.0, true}, k * 0.001);
+  EXPECT_LT(r.record.stiffness[0], dragged[200].record.stiffness[0]);
+  EXPECT_EQ(r.record.drag_x_mm[0], 0.0f);
+}

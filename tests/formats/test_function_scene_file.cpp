@@ -47,6 +47,21 @@ TEST(FunctionSceneFile, ShippedScenesLoad) {
   EXPECT_TRUE(brachial.scene->pulse()->artery(0).spec().own_force_window);
 }
 
+TEST(FunctionSceneFile, ALayersDragIsReadAndTheShippedLiverSkinDrags) {
+  const SceneFile liver = load_scene_file(kScenes + "liver_edge.json");
+  const DragSetting skin = liver.scene->drag(0);
+  EXPECT_EQ(skin.f_stick_N, 1.0);
+  EXPECT_EQ(skin.d_lat_max_mm, 20.0);
+  EXPECT_EQ(skin.relax_s, 0.1);
+  EXPECT_EQ(liver.scene->drag(2).d_lat_max_mm, 20.0);  // pressed into the muscle: the skin's, carried along
+  EXPECT_FALSE(load_scene_file(kScenes + "brachial_pulse.json").scene->drag(0).drags());
+  TempDir dir;
+  nlohmann::json j = brachial();
+  j["layers"][0]["drag"] = {{"f_stick_N", 0.8}, {"d_lat_max_mm", 30}};
+  const SceneFile sf = load_scene_file(dir.write("s.json", j.dump()));
+  EXPECT_EQ(sf.scene->drag(0).relax_s, 0.05);  // the default
+}
+
 TEST(FunctionSceneFile, AnArteryMayLeaveItsForceWindowToCalibration) {
   TempDir dir;
   nlohmann::json j = brachial();
@@ -148,6 +163,15 @@ TEST(FunctionSceneFile, BadScenesAreRefusedWithFileFieldAndReason) {
       {"force window upside down", [](auto& j) { j["arteries"][0]["force_window_N"] = {3, 1}; }, "arteries[0].force_window_N",
        "F_min < F_max"},
       {"soft not below hard", [](auto& j) { j["felt_range_kPa"]["hard"] = 2; }, "felt_range_kPa.hard", "above soft"},
+      {"drag without d_lat_max", [](auto& j) { j["layers"][0]["drag"] = {{"f_stick_N", 1}}; }, "layers[0].drag.d_lat_max_mm",
+       "field is missing"},
+      {"negative f_stick", [](auto& j) { j["layers"][0]["drag"] = {{"f_stick_N", -1}, {"d_lat_max_mm", 20}}; },
+       "layers[0].drag.f_stick_N", "0.01..100"},
+      {"stretch beyond 100 mm", [](auto& j) { j["layers"][1]["drag"] = {{"f_stick_N", 1}, {"d_lat_max_mm", 250}}; },
+       "layers[1].drag.d_lat_max_mm", "0..100"},
+      {"misspelt drag key",
+       [](auto& j) { j["layers"][0]["drag"] = {{"f_stick_N", 1}, {"d_lat_max_mm", 20}, {"relax", 0.1}}; },
+       "layers[0].drag.relax", "unknown field"},
       {"unknown shape type", [](auto& j) { j["inclusions"][0]["shape"]["type"] = "cube"; }, "inclusions[0].shape.type",
        "\"sphere\""},
       {"unknown inclusion kind", [](auto& j) { j["inclusions"][0]["kind"] = "gland"; }, "inclusions[0].kind", "\"tumor\""},

@@ -107,6 +107,29 @@ TEST(Indentation, TieredGridFallsTierByTierToZeroAtTheBorder) {
   }
 }
 
+TEST(Indentation, ADraggedContactCarriesTheGridTierByTier) {
+  // The tissue under the finger at (50, 20) was carried 3 mm along x and 1 mm along y (tissue
+  // dragging): the grid rests around where that tissue was, its centre vertex is drawn under the
+  // finger and its border, carried by nothing, stays where the skin was.
+  const int n = 4;
+  const auto g = tiered_grid(50, 20, 6.0, n, 2.0, 3.0, 1.0);
+  const auto& centre = g[std::size_t(n * (2 * n + 1) + n)];
+  EXPECT_EQ(centre.tier, 0);
+  EXPECT_DOUBLE_EQ(centre.x_mm + centre.dx_mm, 50.0);
+  EXPECT_DOUBLE_EQ(centre.y_mm + centre.dy_mm, 20.0);
+  EXPECT_DOUBLE_EQ(centre.x_mm, 47.0);
+  for (const GridVertex& v : g) {
+    EXPECT_NEAR(v.dx_mm, 3.0 * (n - v.tier) / n, 1e-12);
+    EXPECT_NEAR(v.dy_mm, 1.0 * (n - v.tier) / n, 1e-12);
+    if (v.tier == n) {
+      EXPECT_EQ(v.dx_mm, 0.0);
+      EXPECT_EQ(v.dy_mm, 0.0);
+    }
+  }
+  // Not dragged: as before (rest positions centred on the contact, nothing carried).
+  for (const GridVertex& v : tiered_grid(50, 20, 6.0, n, 2.0)) EXPECT_EQ(v.dx_mm, 0.0);
+}
+
 TEST(WindowPenInput, PressedPenAgesWhenTheGuiStopsPublishing) {
   WindowPenInput pen;
   pen.publish(10, 20, 2.0, true);

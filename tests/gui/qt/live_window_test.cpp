@@ -394,7 +394,7 @@ class LiveWindowTest : public QObject {
     QVERIFY(rows.size() > 100);
     const QStringList header = rows.front().split(',');
     const QStringList last = rows.back().split(',');
-    QCOMPARE(last.size(), 33);  // 21 columns and the fingers' positions, forces and vents (telemetry v2)
+    QCOMPARE(last.size(), 39);  // 21 columns, the fingers' positions, forces and vents (telemetry v2), the drag (v3)
     QCOMPARE(last.size(), header.size());
     const auto field = [&](const char* name) {
       const auto i = header.indexOf(QString::fromLatin1(name));

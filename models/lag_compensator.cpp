@@ -1,4 +1,4 @@
-#include "models/pulse_renderer.hpp"
+#include "models/lag_compensator.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +22,7 @@ constexpr int kBisections = 10;
 // Start with command u now, then move the command back to `want` as fast as its slew allows
 // and hold it there: how far does the modelled output pass beyond want (in direction `sign`)?
 // Once the command rests on want the first-order output only closes in, so the walk ends there.
-double overshoot(const LagStep& s, double y, double u, double want, double sign) noexcept {
+double overshoot_walked(const LagStep& s, double y, double u, double want, double sign) noexcept {
   double worst = 0;
   for (int k = 0; k < kBrakeHorizon; ++k) {
     y = s.advance(y, u);
@@ -32,6 +32,46 @@ double overshoot(const LagStep& s, double y, double u, double want, double sign)
     else u = want;
   }
   return worst;
+}
+
+// The same in closed form while the regulator's own output slew cannot bind (the walk's steps
+// are then the linear recurrence Y' = a Y + (1 - a) U with U ramping down by D a tick): in the
+// frame where want is 0 and the push is positive, Y_k = U_k + c + (Y_0 - U_0 - c) a^k with
+// c = D / (1 - a), rising while a^k > D / ((U_0 - Y_0)(1 - a) + D), so its peak is at the first
+// whole tick past that, or where the ramp ends. The tick runs this for every channel, often
+// several times: a walk of tens of steps each time would not fit its budget.
+double overshoot(const LagStep& s, double y, double u, double want, double sign) noexcept {
+  const double Y0 = sign * (y - want), U0 = sign * (u - want), D = s.max_du, a = 1.0 - s.alpha;
+  const bool linear = s.alpha * std::max(std::abs(U0 - Y0), std::abs(U0)) <= s.max_dy;
+  if (!linear || !(U0 > Y0) || !(U0 > 0) || !(a > 0) || !(a < 1)) return overshoot_walked(s, y, u, want, sign);
+  if (!(D > 0)) return std::max(0.0, a * Y0 + s.alpha * U0);  // the command is back on want next tick
+  const double K = std::ceil(U0 / D);  // ticks of the ramp down
+  const double c = D / s.alpha;
+  const double kappa = std::log(D / ((U0 - Y0) * s.alpha + D)) / std::log(a);
+  const double k = std::clamp(std::ceil(kappa), 1.0, K);
+  const double peak = (U0 - k * D) + c + (Y0 - U0 - c) * std::pow(a, k);
+  return std::max(0.0, peak);
+}
+
+// The push (U_0 - Y_0 in overshoot's frame) whose ramp back lands the output on want + tolerance
+// when the command slews continuously: v - c ln(1 + v / c) = tolerance - Y_0, convex in v, by
+// Newton from the right. A starting point for the discrete search, not its answer.
+double continuous_push(double Y0, double tolerance, double c) noexcept {
+  const double E = tolerance - Y0;
+  if (!(E > 0) || !(c > 0)) return 0.0;
+  double v = E + std::sqrt(2 * c * E) + c * std::log1p(E / c);  // g(v) >= 0 here
+  for (int i = 0; i < 6; ++i) {
+    const double g = v - c * std::log1p(v / c) - E;
+    const double dg = v / (v + c);
+    if (!(dg > 0)) break;
+    const double next = v - g / dg;
+    if (!(next > 0) || std::abs(next - v) < 1e-9 * (1 + v)) {
+      if (next > 0) v = next;
+      break;
+    }
+    v = next;
+  }
+  return v;
 }
 
 }  // namespace
@@ -78,7 +118,21 @@ double LagCompensator::command(const RegulatorLag& lag, double want_ahead_kPa, d
     } else if (overshoot(s, y, weak, want, sign) > tolerance) {
       u = sign > 0 ? u_min : u_max;  // already committed: brake as hard as the slew allows
     } else {
-      for (int i = 0; i < kBisections; ++i) {
+      // The continuous-slew answer narrows the search: it is within a slew step or so of the
+      // discrete one, so a few halvings of a bracket around it find the push.
+      if (s.max_du > 0 && s.alpha < 1) {
+        const double v = continuous_push(sign * (y - want), tolerance, s.max_du / s.alpha);
+        const double guess = y + sign * v;
+        const double margin = s.max_du + 0.02 * v;
+        const double lo_guess = guess - sign * margin, hi_guess = guess + sign * margin;
+        if (sign * (lo_guess - weak) > 0 && sign * (strong - lo_guess) > 0 &&
+            overshoot(s, y, lo_guess, want, sign) <= tolerance)
+          weak = lo_guess;
+        if (sign * (hi_guess - weak) > 0 && sign * (strong - hi_guess) > 0 &&
+            overshoot(s, y, hi_guess, want, sign) > tolerance)
+          strong = hi_guess;
+      }
+      for (int i = 0; i < kBisections && std::abs(strong - weak) > 1e-3 * (std::abs(want - y) + 1e-3); ++i) {
         const double mid = 0.5 * (weak + strong);
         if (overshoot(s, y, mid, want, sign) <= tolerance) weak = mid;
         else strong = mid;
