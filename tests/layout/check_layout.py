@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """The layout rule of docs/developing.md, "Layout", checked on the sources: every #include "folder/..." of a
 code folder names a folder it may depend on (arrows point down), and no header is included from
-a folder that is not a code folder. Prints one line per offending include and exits 1.
+a folder that is not a code folder; and each code folder's README.md names every source file and
+script of the folder (by its name without the extension), so a folder's README cannot fall
+behind its files. Prints one line per offence and exits 1.
 
 Run: python3 tests/layout/check_layout.py [SOURCE_DIR]   (ctest: layout.IncludesPointDown)
 """
@@ -58,9 +60,18 @@ def main() -> int:
                 elif target not in allowed and target not in EXCEPTIONS.get(rel, set()):
                     bad.append(f"{rel}: includes {target}/, but {folder}/ may depend only on "
                                f"{', '.join(sorted(allowed)) or 'nothing of palprig'}")
+    for folder in ALLOWED:
+        readme = root / folder / "README.md"
+        if not readme.is_file():
+            bad.append(f"{folder}/: has no README.md saying its role and its files")
+            continue
+        text = readme.read_text(errors="replace")
+        for path in sorted((root / folder).iterdir()):
+            if path.suffix in (".cpp", ".hpp", ".sh", ".py") and path.stem not in text:
+                bad.append(f"{folder}/README.md: does not name {path.name}")
     for line in bad:
         print(line)
-    print(f"layout: {checked} files checked, {len(bad)} includes against the layout")
+    print(f"layout: {checked} files checked, {len(bad)} offences (includes against the layout, files a README does not name)")
     return 1 if bad or checked == 0 else 0
 
 
