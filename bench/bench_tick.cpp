@@ -42,6 +42,16 @@ const MapScene& big_scene(MapSampling sampling) {
   return sampling == MapSampling::nearest ? nearest : bilinear;
 }
 
+// The tick times' p50, p99, p99.9 and maximum as the benchmark's counters.
+void report_percentiles(benchmark::State& state, std::vector<std::int64_t>& ns) {
+  std::sort(ns.begin(), ns.end());
+  auto pct = [&](double q) { return ns.empty() ? 0.0 : double(ns[std::min(ns.size() - 1, std::size_t(q * ns.size()))]); };
+  state.counters["p50_ns"] = pct(0.50);
+  state.counters["p99_ns"] = pct(0.99);
+  state.counters["p999_ns"] = pct(0.999);
+  state.counters["max_ns"] = ns.empty() ? 0.0 : double(ns.back());
+}
+
 // A pen wandering over the whole map (a new place each tick: the worst case for the cache)
 // or moving like a hand (40 mm/s).
 // With lag_compensated, the whole target is lag-compensated (the regulators of the simulated
@@ -83,12 +93,7 @@ void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering, bo
     if (ns.size() < ns.capacity()) ns.push_back(b - a);
     t += 1e-3;
   }
-  std::sort(ns.begin(), ns.end());
-  auto pct = [&](double q) { return ns.empty() ? 0.0 : double(ns[std::min(ns.size() - 1, std::size_t(q * ns.size()))]); };
-  state.counters["p50_ns"] = pct(0.50);
-  state.counters["p99_ns"] = pct(0.99);
-  state.counters["p999_ns"] = pct(0.999);
-  state.counters["max_ns"] = ns.empty() ? 0.0 : double(ns.back());
+  report_percentiles(state, ns);
 }
 
 void BM_TickNearestWandering(benchmark::State& s) { tick_cost(s, MapSampling::nearest, true); }
@@ -135,12 +140,7 @@ void phantom_pass_cost(benchmark::State& state, bool lag_compensated) {
     if (ns.size() < ns.capacity()) ns.push_back(b - a);
     t += 1e-3;
   }
-  std::sort(ns.begin(), ns.end());
-  auto pct = [&](double q) { return ns.empty() ? 0.0 : double(ns[std::min(ns.size() - 1, std::size_t(q * ns.size()))]); };
-  state.counters["p50_ns"] = pct(0.50);
-  state.counters["p99_ns"] = pct(0.99);
-  state.counters["p999_ns"] = pct(0.999);
-  state.counters["max_ns"] = ns.empty() ? 0.0 : double(ns.back());
+  report_percentiles(state, ns);
 }
 void BM_TickPhantomPass(benchmark::State& s) { phantom_pass_cost(s, false); }
 void BM_TickPhantomPassLagCompensated(benchmark::State& s) { phantom_pass_cost(s, true); }

@@ -12,21 +12,14 @@
 #include "calibration/calibration_writer.hpp"
 #include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
+#include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
+using palprig::test_support::refusal;
 using palprig::test_support::TempDir;
 
 namespace {
-
-std::string refusal(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
 
 // A regulator with gain, offset and a backlash of half-width h (monitor lands h below the
 // command on inflation, h above on deflation), optionally a sensor at 0.01 mm/kPa.

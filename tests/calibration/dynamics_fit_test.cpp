@@ -19,21 +19,14 @@
 #include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
 #include "rigs/simulated_rig.hpp"
+#include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
+using palprig::test_support::refusal;
 using palprig::test_support::TempDir;
 
 namespace {
-
-std::string refusal(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
 
 // A sweep of the documented recipe on a simulated rig with the given plant, written to a file
 // and read back as `calibrate fit` reads it.

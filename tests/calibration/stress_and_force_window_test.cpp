@@ -7,21 +7,12 @@
 #include "models/parse_error.hpp"
 #include <functional>
 
+#include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
+using palprig::test_support::refusal;
 using palprig::test_support::TempDir;
-
-namespace {
-std::string refusal(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
-}  // namespace
 
 TEST(StressLine, PaperLineGivesElevenPointSevenFiveKiloPascalForTheNodule) {
   // Pairs on paper 002's line: 4.990 kPa uninflated, 7.967 kPa at 11.75 kPa of air.

@@ -15,21 +15,14 @@
 #include "formats/rig_file.hpp"
 #include "rigs/simulated_rig.hpp"
 #include "models/parse_error.hpp"
+#include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
+using palprig::test_support::refusal;
 using palprig::test_support::TempDir;
 
 namespace {
-
-std::string refusal(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
 
 std::array<PlantParams, kFingerCount> default_plants() {
   RigConfig rig = load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/simulated.json");

@@ -35,6 +35,16 @@ PlantParams lag_only() {
 // feels a command at the end of the step one dead time after it, so 1 ms less dead time).
 constexpr RegulatorLag kIdentified{0.004, 0.050, 2000};
 
+// Every channel identified as `model`; the whole target compensated or not (the pulse, when
+// there is one, always is).
+void identify_every_channel(TickConfig& cfg, const RegulatorLag& model, bool whole_target) {
+  cfg.lag_compensation.whole_target = whole_target;
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    cfg.lag_compensation.identified[i] = true;
+    cfg.lag_compensation.regulator[i] = model;
+  }
+}
+
 struct Drive {
   std::vector<double> target, output, command;
 };
@@ -173,12 +183,8 @@ Crossing cross_tumor(bool compensate, const RegulatorLag& model, double max_lead
   for (auto& p : rig.plants) p = lag_only();
   CalibrationModels cal;
   TickConfig cfg = make_tick_config(rig, cal);
-  cfg.lag_compensation.whole_target = compensate;
+  identify_every_channel(cfg, model, compensate);
   cfg.lag_compensation.max_lead_kPa = max_lead_kPa;
-  for (std::size_t i = 0; i < kFingerCount; ++i) {
-    cfg.lag_compensation.identified[i] = true;
-    cfg.lag_compensation.regulator[i] = model;
-  }
   SimulatedRig backend(rig.plants, rig.safety.p_max_kPa);
   backend.open();
   RigStep step(cfg, backend);
@@ -321,11 +327,7 @@ TEST(LagCompensation, ThePulseRidesOnTheSameMechanism) {
     RigConfig r = rig;
     for (auto& p : r.plants) p = lag_only();
     TickConfig cfg = make_tick_config(r, CalibrationModels{});
-    cfg.lag_compensation.whole_target = whole;
-    for (std::size_t i = 0; i < kFingerCount; ++i) {
-      cfg.lag_compensation.identified[i] = true;
-      cfg.lag_compensation.regulator[i] = kIdentified;
-    }
+    identify_every_channel(cfg, kIdentified, whole);
     SimulatedRig backend(r.plants, r.safety.p_max_kPa);
     backend.open();
     RigStep step(cfg, backend);
@@ -357,11 +359,7 @@ TEST(LagCompensation, ThePulseRidesOnTheSameMechanism) {
 
 TEST(LagCompensation, ARestartFromVentedStartsTheCompensatorsFromZero) {
   TickConfig cfg;
-  cfg.lag_compensation.whole_target = true;
-  for (std::size_t i = 0; i < kFingerCount; ++i) {
-    cfg.lag_compensation.identified[i] = true;
-    cfg.lag_compensation.regulator[i] = kIdentified;
-  }
+  identify_every_channel(cfg, kIdentified, true);
   const MapScene scene = tumor_map();
   TickState st = make_tick_state(cfg);
   for (int k = 0; k < 300; ++k) tick(st, cfg, scene, {k * 0.001, 60, 60, 2.0, true}, k * 0.001);

@@ -9,6 +9,10 @@
 
 #include "store/pg_connection.hpp"
 #include "store/pg_target.hpp"
+#include "store/postgres_schema.hpp"
+#include "store/postgres_session_rows.hpp"
+#include "store/sqlite_db.hpp"
+#include "store/sqlite_session_rows.hpp"
 
 namespace palprig::testing {
 
@@ -47,6 +51,21 @@ inline int server_ctl(const std::string& action) {
 inline std::int64_t pg_scalar(const std::string& uri, const std::string& sql) {
   PgConnection c(parse_pg_target(uri));
   return c.exec(sql).integer(0, 0);
+}
+
+// A server an older palprig made: a fresh database at PostgreSQL schema `version`, holding every
+// session and trial of the SQLite file `bench_file` as that version's push leaves them (the
+// columns it has no place for left out). Returns its URI. The migration suites start here.
+inline std::string old_server_holding(const std::string& name, int version, const std::string& bench_file) {
+  const std::string uri = fresh_database(name);
+  PgConnection server(parse_pg_target(uri));
+  ensure_pg_schema(server, version);
+  Database bench(bench_file, Database::Mode::read_only);
+  PgTransaction tx(server);
+  for (const LocalSession& s : read_sqlite_sessions(bench, std::nullopt))
+    pg_push_trials(server, pg_push_session(server, s.rows), read_sqlite_trials(bench, s.id, 0));
+  tx.commit();
+  return uri;
 }
 
 }  // namespace palprig::testing

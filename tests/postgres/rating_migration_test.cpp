@@ -55,17 +55,7 @@ TEST(PostgresRatingMigration, Version2ServerIsReadAsItIsThenMigratedAndRatingsTr
     ASSERT_EQ(run.exit_code, 0) << run.err;
   }
   // A server an older palprig made (schema 2), holding those trials.
-  const std::string uri = testing::fresh_database("rating_2_3");
-  {
-    PgConnection server(parse_pg_target(uri));
-    ensure_pg_schema(server, 2);
-    Database bench(file, Database::Mode::read_only);
-    PgTransaction tx(server);
-    for (const LocalSession& s : read_sqlite_sessions(bench, std::nullopt)) {
-      pg_push_trials(server, pg_push_session(server, s.rows), read_sqlite_trials(bench, s.id, 0));
-    }
-    tx.commit();
-  }
+  const std::string uri = testing::old_server_holding("rating_2_3", 2, file);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 2);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM information_schema.columns WHERE table_name = 'trials' "
                                     "AND column_name IN ('confidence', 'stimulus_end_s')"),

@@ -60,17 +60,7 @@ TEST(PostgresReachedMigration, Version4ServerIsReadAsItIsThenMigratedAndReachedT
   }
   // A server the palprig before this column made (schema 4), holding those trials: the push
   // leaves out the times it has no column for.
-  const std::string uri = testing::fresh_database("reached_4_5");
-  {
-    PgConnection server(parse_pg_target(uri));
-    ensure_pg_schema(server, 4);
-    Database bench(file, Database::Mode::read_only);
-    PgTransaction tx(server);
-    for (const LocalSession& s : read_sqlite_sessions(bench, std::nullopt)) {
-      pg_push_trials(server, pg_push_session(server, s.rows), read_sqlite_trials(bench, s.id, 0));
-    }
-    tx.commit();
-  }
+  const std::string uri = testing::old_server_holding("reached_4_5", 4, file);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 4);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM information_schema.columns WHERE table_name = 'trials' "
                                     "AND column_name = 'stimulus_reached_s'"),

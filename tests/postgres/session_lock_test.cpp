@@ -175,18 +175,7 @@ TEST(PostgresSchemaMigration, Version1ServerHoldingTrialsMigratesToVersion2AndKe
     ASSERT_EQ(run.exit_code, 0) << run.err;
   }
   // ... pushed onto a server whose schema is still version 1 (what an older palprig created).
-  const std::string uri = testing::fresh_database("migrate_1_2");
-  {
-    PgConnection server(parse_pg_target(uri));
-    ensure_pg_schema(server, 1);
-    Database bench(file, Database::Mode::read_only);
-    PgTransaction tx(server);
-    for (const LocalSession& s : read_sqlite_sessions(bench, std::nullopt)) {
-      const std::int64_t id = pg_push_session(server, s.rows);
-      pg_push_trials(server, id, read_sqlite_trials(bench, s.id, 0));
-    }
-    tx.commit();
-  }
+  const std::string uri = testing::old_server_holding("migrate_1_2", 1, file);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 1);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), 2 * kTrialsPerSession);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM information_schema.tables WHERE table_name = 'session_locks'"),

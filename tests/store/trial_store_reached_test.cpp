@@ -15,6 +15,7 @@
 #include "store/trial_export.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
+#include "tests/support/discrimination_trials.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace palprig {
@@ -42,24 +43,15 @@ Protocol protocol() {
 // Onset 10 s x position, answered 1.5 s + position/10 later; reached 40 ms after the onset
 // where a finger carries a level (0/30/0), never for 0/0/0; position 2 times out.
 TrialRecord trial_of(const Protocol& p, const PlannedTrial& planned) {
-  TrialRecord r;
-  r.planned = planned;
-  r.condition = p.conditions[static_cast<std::size_t>(planned.condition)].name;
-  r.mode = p.conditions[static_cast<std::size_t>(planned.condition)].mode;
-  const auto& c = p.combinations[static_cast<std::size_t>(planned.combination)];
-  r.combination_label = c.label;
-  r.stimulus_kPa = c.pressure_kPa;
-  r.truth = c.tumor;
-  r.answered = planned.position != 2;
-  if (r.answered) {
-    r.answer = c.tumor;
-    r.finger_outcomes = score_discrimination(r.truth, r.answer);
+  TrialRecord r = testing::discrimination_trial(p, planned, false);  // answered with the truth
+  if (planned.position == 2) {  // timed out
+    r.answered = false;
+    r.answer = {};
+    r.finger_outcomes = {};
   }
-  r.onset_s = 10.0 * planned.position;
   r.stimulus_end_s = r.onset_s + 1.0;
-  if (c.pressure_kPa[1] > 0) r.stimulus_reached_s = r.onset_s + 0.040;
+  if (r.stimulus_kPa[1] > 0) r.stimulus_reached_s = r.onset_s + 0.040;
   r.response_time_s = r.answered ? 1.5 + 0.1 * planned.position : std::nan("");
-  r.felt_kPa = c.pressure_kPa;
   return r;
 }
 
