@@ -8,7 +8,9 @@
 namespace palprig::gui {
 
 FingerGauge::FingerGauge(int finger, QWidget* parent) : QWidget(parent), finger_(finger) {
-  setMinimumSize(90, 160);
+  // Tall enough for the bar and its three lines of figures (at 160 px the last line was clipped
+  // when the live page's column was squeezed).
+  setMinimumSize(90, 200);
   setObjectName(QString("finger_gauge_%1").arg(finger + 1));
 }
 

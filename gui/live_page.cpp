@@ -5,6 +5,7 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSlider>
 #include <QSplitter>
 #include <QVBoxLayout>
@@ -71,9 +72,17 @@ LivePage::LivePage(LiveRun& run, QWidget* parent)
     right_col->addWidget(tracker_);
   }
   right_col->addWidget(new PulsePanel(run));
-  right->setMaximumWidth(420);
+  // With the tracker's panel the column is taller than a 1280 x 800 screen leaves it: it scrolls
+  // instead of growing the window past the screen (its widgets keep their minimum heights).
+  auto* right_scroll = new QScrollArea;
+  right_scroll->setObjectName("liveRightColumn");
+  right_scroll->setWidgetResizable(true);
+  right_scroll->setFrameShape(QFrame::NoFrame);
+  right_scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  right_scroll->setWidget(right);
+  right_scroll->setMaximumWidth(440);
   top_row->addWidget(left, 3);
-  top_row->addWidget(right, 2);
+  top_row->addWidget(right_scroll, 2);
   split->addWidget(top);
 
   // Bottom: the traces.

@@ -19,6 +19,9 @@ RigPanel::RigPanel(LiveRun& run, QWidget* parent) : QWidget(parent), run_(run) {
   state_->setObjectName("rig_state");
   input_ = new QLabel;
   input_->setWordWrap(true);
+  // A tracker's input names its tools and wraps to four lines at the column's width; the grid
+  // does not ask a wrapped label for its height, so the label would be cut to one line.
+  input_->setMinimumHeight(4 * input_->fontMetrics().lineSpacing());
   info->addWidget(new QLabel("Rig"), 0, 0);
   info->addWidget(backend_, 0, 1);
   info->addWidget(new QLabel("Link"), 1, 0);

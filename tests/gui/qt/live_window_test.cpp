@@ -226,6 +226,11 @@ class LiveWindowTest : public QObject {
     QVERIFY(wait_until(win, [&] { return panel->tool_label(0)->text().contains("poses, last"); }));
     QVERIFY2(panel->tool_label(2)->text().contains("not seen"), qPrintable(panel->tool_label(2)->text()));
     QVERIFY2(panel->connection_label()->text().contains("connected"), qPrintable(panel->connection_label()->text()));
+    if (const char* shots = std::getenv("PALPRIG_SCREENSHOT_DIR")) {  // the tracker panel, as a lab monitor shows it
+      win.resize(1280, 800);
+      QVERIFY(wait_until(win, [&] { return win.width() <= 1280; }));
+      win.grab().save(QString("%1/live_tracked_fingers.png").arg(shots));
+    }
     w.window.reset();
     server.stop();
   }
