@@ -36,7 +36,10 @@ struct Synthetic {
     double goal = level(rng);
     while (x.size() < n) {
       const double cur = x.back();
-      if (std::abs(goal - cur) < 1e-9) { goal = level(rng); continue; }
+      if (std::abs(goal - cur) < 1e-9) {
+        goal = level(rng);
+        continue;
+      }
       x.push_back(cur + std::clamp(goal - cur, -2.0, 2.0));
     }
     PrandtlIshlinskii m;
@@ -89,7 +92,10 @@ void BM_InverseModelPerSample(benchmark::State& state) {
   o.min_linear_weight = 0.01;
   PrandtlIshlinskii inverse = fit_hysteresis(data.x, data.y, o, "bench", "inverse").model;
   inverse.operator_count = 8;  // the tick's worst case with the default operator count
-  for (std::size_t i = 0; i < 8; ++i) { inverse.thresholds_kPa[i] = 0.5 * double(i + 1); inverse.weights[i] = 0.1; }
+  for (std::size_t i = 0; i < 8; ++i) {
+    inverse.thresholds_kPa[i] = 0.5 * double(i + 1);
+    inverse.weights[i] = 0.1;
+  }
   inverse = inverse.inverse();
   inverse.reset(0);
   std::size_t k = 0;

@@ -200,8 +200,8 @@ fs::path heavy_rig(const fs::path& work, fs::path& cal) {
   run_command(bin + " calibrate sweep --rig " + path.string() +
               " --channels 1,2,3 --excitation staircase,random,sine,step,chirp --quiet --out " + sweep.string() +
               " > " + (work / "sweep.txt").string() + " 2>&1");
-  run_command(bin + " calibrate fit " + sweep.string() + " --out " + cal.string() + " > " + (work / "fit.txt").string() +
-              " 2>&1");
+  run_command(bin + " calibrate fit " + sweep.string() + " --out " + cal.string() + " > " +
+              (work / "fit.txt").string() + " 2>&1");
   return path;
 }
 
@@ -281,7 +281,10 @@ void write_figure(const fs::path& png, const Case& off, const Case& on, const st
     const auto c = layout.centres(t.x_mm, t.y_mm)[0];
     const bool inside = std::hypot(c.x_mm - b->x_mm, c.y_mm - b->y_mm) <= b->radius_mm;
     if (inside && enter < 0) enter = t.t_s;
-    if (!inside && enter >= 0) { leave = t.t_s; break; }
+    if (!inside && enter >= 0) {
+      leave = t.t_s;
+      break;
+    }
   }
   if (enter < 0 || leave < 0) throw std::runtime_error("finger 1 never crosses tumor " + b->name);
   const double from = enter - 0.15, to = leave + 0.3;
@@ -322,28 +325,40 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
         return argv[++i];
       };
-      if (a == "--json") json_out = true;
-      else if (a == "--figure") figure = next();
-      else if (a == "--telemetry") telemetry = next();
-      else if (a == "--label") label = next();
-      else if (a == "--scene") scene_arg = next();
-      else if (a == "--rig") rig_arg = next();
-      else if (a.rfind("--benchmark", 0) == 0) continue;  // bench/run_all.sh passes Google Benchmark's flags
-      else throw std::runtime_error("unknown argument " + a);
+      if (a == "--json")
+        json_out = true;
+      else if (a == "--figure")
+        figure = next();
+      else if (a == "--telemetry")
+        telemetry = next();
+      else if (a == "--label")
+        label = next();
+      else if (a == "--scene")
+        scene_arg = next();
+      else if (a == "--rig")
+        rig_arg = next();
+      else if (a.rfind("--benchmark", 0) == 0)
+        continue;  // bench/run_all.sh passes Google Benchmark's flags
+      else
+        throw std::runtime_error("unknown argument " + a);
     }
     const fs::path data = fs::path(PALPRIG_SOURCE_DIR) / "data";
     if (!telemetry.empty()) {
       const fs::path rig = rig_arg.empty() ? data / "rigs" / "simulated.json" : fs::path(rig_arg);
       const RigConfig rc = load_rig_file(rig);
-      const Metrics m = metrics_of_telemetry(telemetry, scene_arg.empty() ? data / "scenes" / "phantom_abc.json" : fs::path(scene_arg), rig);
-      if (json_out) std::cout << metrics_json(m, rc.safety.p_max_kPa).dump(2) << "\n";
-      else print_row(label, "", m, rc.safety.p_max_kPa);
+      const Metrics m = metrics_of_telemetry(
+          telemetry, scene_arg.empty() ? data / "scenes" / "phantom_abc.json" : fs::path(scene_arg), rig);
+      if (json_out)
+        std::cout << metrics_json(m, rc.safety.p_max_kPa).dump(2) << "\n";
+      else
+        print_row(label, "", m, rc.safety.p_max_kPa);
       return 0;
     }
     const fs::path work = fs::temp_directory_path() / ("palprig-bench-fidelity-" + std::to_string(::getpid()));
     fs::create_directories(work);
     std::vector<Case> cases;
-    const fs::path shipped_rig = data / "rigs" / "simulated.json", shipped_cal = data / "calibration" / "sim-default.json";
+    const fs::path shipped_rig = data / "rigs" / "simulated.json",
+                   shipped_cal = data / "calibration" / "sim-default.json";
     cases.push_back(run_pass("shipped simulated rig", shipped_rig, shipped_cal, false));
     cases.push_back(run_pass("shipped simulated rig", shipped_rig, shipped_cal, true));
     fs::path heavy_cal;
@@ -361,12 +376,14 @@ int main(int argc, char** argv) {
       }
       std::cout << all.dump(2) << "\n";
     } else {
-      std::printf("| plant | lag compensation | RMS(monitor - target) kPa, goal <= 0.5 | monitor/target over tumors, goal >= 0.97 | "
-                  "largest monitor - target over soft tissue kPa, goal <= 0.5 | largest setpoint / p_max kPa |\n");
+      std::printf(
+          "| plant | lag compensation | RMS(monitor - target) kPa, goal <= 0.5 | monitor/target over tumors, goal >= "
+          "0.97 | "
+          "largest monitor - target over soft tissue kPa, goal <= 0.5 | largest setpoint / p_max kPa |\n");
       std::printf("|---|---|---|---|---|---|\n");
       for (const Case& c : cases) print_row(c.rig_name, c.compensated ? "on" : "off", c.metrics, c.p_max_kPa);
-      std::printf("\nIdentified dynamics (dead time + lag): shipped: %s\n  heavier plant: %s\n", cases[0].identified.c_str(),
-                  cases[2].identified.c_str());
+      std::printf("\nIdentified dynamics (dead time + lag): shipped: %s\n  heavier plant: %s\n",
+                  cases[0].identified.c_str(), cases[2].identified.c_str());
     }
     if (!figure.empty()) {
       const SceneFile scene = load_scene_file(data / "scenes" / "phantom_abc.json");

@@ -123,7 +123,8 @@ steady::time_point stamp_time(std::uint64_t stamp, steady::time_point near) {
   const double near_ms = std::chrono::duration<double, std::milli>(near.time_since_epoch()).count();
   double ms_value = static_cast<double>(stamp);
   ms_value += 4294967296.0 * std::round((near_ms - ms_value) / 4294967296.0);
-  return steady::time_point(std::chrono::duration_cast<steady::duration>(std::chrono::duration<double, std::milli>(ms_value + 0.5)));
+  return steady::time_point(
+      std::chrono::duration_cast<steady::duration>(std::chrono::duration<double, std::milli>(ms_value + 0.5)));
 }
 
 // Rows of the trial list ticked as committed (its last column).
@@ -160,8 +161,7 @@ Pass run_pass(MainWindow& window, bench::XTestInput& x, const std::string& proto
     busy.setInterval(100);
     QObject::connect(&busy, &QTimer::timeout, [busy_ms] {
       const auto until = steady::now() + std::chrono::milliseconds(busy_ms);
-      while (steady::now() < until) {
-      }
+      while (steady::now() < until) {}
     });
     busy.start();
   }
@@ -218,7 +218,8 @@ Pass run_pass(MainWindow& window, bench::XTestInput& x, const std::string& proto
     const double delivery = ms(delivered.at(t.position) - injected.at(t.position));
     (clicked.at(t.position) ? pass.click_error_ms : pass.key_error_ms).push_back(error);
     (clicked.at(t.position) ? pass.click_delivery_ms : pass.key_delivery_ms).push_back(delivery);
-    (clicked.at(t.position) ? pass.click_stamp_ms : pass.key_stamp_ms).push_back(ms(stamped.at(t.position) - injected.at(t.position)));
+    (clicked.at(t.position) ? pass.click_stamp_ms : pass.key_stamp_ms)
+        .push_back(ms(stamped.at(t.position) - injected.at(t.position)));
     pass.window_ms.push_back(ms(stored - stamped.at(t.position)));
   }
   return pass;
@@ -244,8 +245,8 @@ void print_pass(const char* title, const Pass& p) {
 
 // Runs this program again under its own Xvfb on the xcb platform.
 void run_under_xvfb(int argc, char** argv) {
-  std::vector<std::string> args = {"xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", "env", "QT_QPA_PLATFORM=xcb",
-                                   "PALPRIG_BENCH_UNDER_XVFB=1"};
+  std::vector<std::string> args = {
+      "xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", "env", "QT_QPA_PLATFORM=xcb", "PALPRIG_BENCH_UNDER_XVFB=1"};
   for (int i = 0; i < argc; ++i) args.emplace_back(argv[i]);
   std::vector<char*> c;
   for (auto& a : args) c.push_back(a.data());
@@ -275,8 +276,8 @@ int main(int argc, char** argv) {
   auto doc = nlohmann::json::parse(std::ifstream(data + "/protocols/discrimination_002.json"));
   doc["practice_trials"] = 0;
   doc["repetitions"] = 1 + trials / 28;
-  doc["timing"] = {{"max_present_s", 30}, {"sequential_step_s", 0.05}, {"sequential_gap_s", 0.02},
-                   {"response_timeout_s", 60}, {"inter_trial_s", 0.2}, {"break_s", 0}};
+  doc["timing"] = {{"max_present_s", 30},      {"sequential_step_s", 0.05}, {"sequential_gap_s", 0.02},
+                   {"response_timeout_s", 60}, {"inter_trial_s", 0.2},      {"break_s", 0}};
   const std::string protocol = dir + "/protocol.json";
   std::ofstream(protocol) << doc.dump(2);
 
@@ -298,7 +299,8 @@ int main(int argc, char** argv) {
   x.sync();
 
   std::printf("bench_gui_response_time: %d answers per pass, half key presses, half clicks\n", trials);
-  std::printf("machine: %s, %u cores\n", first_line_of("/proc/cpuinfo", "model name").c_str(), std::thread::hardware_concurrency());
+  std::printf("machine: %s, %u cores\n", first_line_of("/proc/cpuinfo", "model name").c_str(),
+              std::thread::hardware_concurrency());
   std::printf("load average at start: %s\n", load_average().c_str());
   std::mt19937 rng(22);
   const Pass idle = run_pass(window, x, protocol, dir + "/idle.db", "B01", trials, 0, rng);
@@ -306,8 +308,9 @@ int main(int argc, char** argv) {
   print_pass("The window idle:", idle);
   print_pass("The window's GUI thread busy 30 ms of every 100 ms:", busy);
   std::printf("\nload average at end: %s\n", load_average().c_str());
-  std::printf("(error = stored answer time - the moment the XTEST request was sent; PsychoPy's Keyboard "
-              "class: sub-millisecond sd)\n");
+  std::printf(
+      "(error = stored answer time - the moment the XTEST request was sent; PsychoPy's Keyboard "
+      "class: sub-millisecond sd)\n");
   std::filesystem::remove_all(dir);
   return 0;
 }

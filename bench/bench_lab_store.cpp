@@ -70,7 +70,8 @@ void commit_latency(benchmark::State& state, TrialStore& store) {
   const Protocol p = protocol();
   const ParticipantRecord who = store.enrol("bench:" + std::to_string(std::rand()), true);
   const SessionPlan plan = make_session_plan(p, who.number, 7);
-  const std::int64_t session = store.create_session(who, p, plan, SessionSetup{"bench", "simulated", "paper002", nullptr, "."});
+  const std::int64_t session =
+      store.create_session(who, p, plan, SessionSetup{"bench", "simulated", "paper002", nullptr, "."});
   std::vector<double> us;
   int position = 0;
   for (auto _ : state) {
@@ -122,7 +123,8 @@ void summarise(benchmark::State& state, TrialStore& store) {
 }
 
 void BM_StatsTrials_1M_Sqlite(benchmark::State& state) {
-  if (!std::filesystem::exists(million_file())) return state.SkipWithError("run bench_stats first (it builds the file)");
+  if (!std::filesystem::exists(million_file()))
+    return state.SkipWithError("run bench_stats first (it builds the file)");
   SqliteTrialStore store(million_file(), TrialStore::Access::read_only);
   summarise(state, store);
 }
@@ -130,7 +132,8 @@ BENCHMARK(BM_StatsTrials_1M_Sqlite)->Unit(benchmark::kMillisecond)->MinTime(3.0)
 
 void BM_StatsTrials_1M_Postgres(benchmark::State& state) {
   if (!have_server()) return state.SkipWithError("no PostgreSQL server: run through bench/lab_store.sh");
-  if (!std::filesystem::exists(million_file())) return state.SkipWithError("run bench_stats first (it builds the file)");
+  if (!std::filesystem::exists(million_file()))
+    return state.SkipWithError("run bench_stats first (it builds the file)");
   static double copy_s = [] {
     create_database("bench_million");
     const auto t0 = std::chrono::steady_clock::now();

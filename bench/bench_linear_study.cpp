@@ -70,8 +70,9 @@ void ThresholdStoreGrowth(benchmark::State& state) {
       r.reference_kPa = protocol.reference_kPa;
       r.answered = true;
       r.response = 1;
-      const double p = tracks[0].spec().quest.gamma +
-                       (1 - tracks[0].spec().quest.gamma) * (1 - std::exp(-std::pow(r.level_kPa / true_threshold_kPa, 3.5)));
+      const double p =
+          tracks[0].spec().quest.gamma +
+          (1 - tracks[0].spec().quest.gamma) * (1 - std::exp(-std::pow(r.level_kPa / true_threshold_kPa, 3.5)));
       r.correct = static_cast<double>(random.below(1000000)) / 1e6 < p;
       r.reversal = tracks[0].record(r.level_kPa, r.correct);
       r.onset_s = position * 3.0;

@@ -100,7 +100,8 @@ Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
   posix_spawn_file_actions_addclose(&fa, fds[0]);
-  std::vector<std::string> args = {"chrt", "-f", "50", PALPRIG_BIN, "sim-rig", "--rig", rig, "--listen", "127.0.0.1:0", "--write-log", write_log};
+  std::vector<std::string> args = {"chrt", "-f",       "50",          PALPRIG_BIN,   "sim-rig", "--rig",
+                                   rig,    "--listen", "127.0.0.1:0", "--write-log", write_log};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -177,7 +178,8 @@ int main(int argc, char** argv) {
     double t, kPa;
     unsigned ch, word;
     long long ns;
-    if (std::sscanf(line.c_str(), "%lf,%u,%u,%lf,%lld", &t, &ch, &word, &kPa, &ns) == 5 && ch == 1) writes.push_back({ns, word});
+    if (std::sscanf(line.c_str(), "%lf,%u,%u,%lf,%lld", &t, &ch, &word, &kPa, &ns) == 5 && ch == 1)
+      writes.push_back({ns, word});
   }
   const std::int64_t start = replay->start_ns();
   std::vector<double> press_ms, lift_ms;
@@ -189,7 +191,8 @@ int main(int argc, char** argv) {
     // down from the value held at the lift.
     auto first = std::find_if(writes.begin(), writes.end(), [&](const auto& w) { return w.first >= due; });
     const unsigned held = first == writes.begin() ? 0u : std::prev(first)->second;
-    auto it = std::find_if(first, writes.end(), [&](const auto& w) { return e.press ? w.second > 0 : w.second < held; });
+    auto it =
+        std::find_if(first, writes.end(), [&](const auto& w) { return e.press ? w.second > 0 : w.second < held; });
     if (it == writes.end() || double(it->first - due) > 100e6) {
       ++unmatched;
       continue;
@@ -198,17 +201,18 @@ int main(int argc, char** argv) {
   }
   std::vector<double> all = press_ms;
   all.insert(all.end(), lift_ms.begin(), lift_ms.end());
-  std::printf("pen event -> Modbus register write at sim-rig on loopback, %.0f s, loop 1 kHz, bus %g Hz (%s)\n", seconds,
-              rig.modbus->io_rate_hz, s.realtime_practices.c_str());
-  std::printf("  presses %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", press_ms.size(), pct(press_ms, .5), pct(press_ms, .99),
-              pct(press_ms, 1.0));
-  std::printf("  lifts   %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", lift_ms.size(), pct(lift_ms, .5), pct(lift_ms, .99),
-              pct(lift_ms, 1.0));
-  std::printf("  all     %zu: p50 %.2f ms, p99 %.2f ms (regulator response: 50 ms time constant); %zu edges unmatched\n",
-              all.size(), pct(all, .5), pct(all, .99), unmatched);
+  std::printf("pen event -> Modbus register write at sim-rig on loopback, %.0f s, loop 1 kHz, bus %g Hz (%s)\n",
+              seconds, rig.modbus->io_rate_hz, s.realtime_practices.c_str());
+  std::printf("  presses %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", press_ms.size(), pct(press_ms, .5),
+              pct(press_ms, .99), pct(press_ms, 1.0));
+  std::printf("  lifts   %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", lift_ms.size(), pct(lift_ms, .5),
+              pct(lift_ms, .99), pct(lift_ms, 1.0));
+  std::printf(
+      "  all     %zu: p50 %.2f ms, p99 %.2f ms (regulator response: 50 ms time constant); %zu edges unmatched\n",
+      all.size(), pct(all, .5), pct(all, .99), unmatched);
   std::printf("  loop: %llu ticks, %llu overruns, wake-up p50/p99 %.0f/%.0f us; fault: %s\n",
-              static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns), s.wake_latency.p50_us,
-              s.wake_latency.p99_us, to_string(s.fault));
+              static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
+              s.wake_latency.p50_us, s.wake_latency.p99_us, to_string(s.fault));
   std::filesystem::remove_all(dir);
   return unmatched == 0 && s.fault == FaultCode::none ? 0 : 1;
 }

@@ -93,8 +93,8 @@ Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
   posix_spawn_file_actions_addclose(&fa, fds[0]);
-  std::vector<std::string> args = {"chrt", "-f", "50", PALPRIG_BIN, "sim-rig", "--rig", rig, "--listen", "127.0.0.1:0",
-                                   "--write-log", write_log, "--load-N", "2"};
+  std::vector<std::string> args = {"chrt",     "-f",          "50",          PALPRIG_BIN, "sim-rig",  "--rig", rig,
+                                   "--listen", "127.0.0.1:0", "--write-log", write_log,   "--load-N", "2"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -163,7 +163,8 @@ int main(int argc, char** argv) {
   TrackingConfig tracking;
   tracking.placement = TrackedPlacement::per_finger;
   tracking.tools = {TrackedTool{"Finger1ToTracker", 0, {}}};
-  auto input = std::make_unique<IgtlInput>(IgtlEndpoint{"127.0.0.1", server.port()}, tracking, rig.safety.max_input_age_s);
+  auto input =
+      std::make_unique<IgtlInput>(IgtlEndpoint{"127.0.0.1", server.port()}, tracking, rig.safety.max_input_age_s);
   auto backend = make_backend(rig);
   backend->open();
   RunOptions opt;
@@ -192,7 +193,8 @@ int main(int argc, char** argv) {
     double t, kPa;
     unsigned ch, word;
     long long ns;
-    if (std::sscanf(line.c_str(), "%lf,%u,%u,%lf,%lld", &t, &ch, &word, &kPa, &ns) == 5 && ch == 1) writes.push_back({ns, word});
+    if (std::sscanf(line.c_str(), "%lf,%u,%u,%lf,%lld", &t, &ch, &word, &kPa, &ns) == 5 && ch == 1)
+      writes.push_back({ns, word});
   }
   // The soft-tissue word: what finger 1 is held at before the first move onto B.
   std::vector<double> onto_ms, off_ms;
@@ -207,7 +209,8 @@ int main(int argc, char** argv) {
     const long long due = sent_ns[m.row];
     auto first = std::find_if(writes.begin(), writes.end(), [&](const auto& w) { return w.first >= due; });
     const unsigned held = first == writes.begin() ? 0u : std::prev(first)->second;
-    auto it = std::find_if(first, writes.end(), [&](const auto& w) { return m.onto_tumor ? w.second > held : w.second < held; });
+    auto it = std::find_if(first, writes.end(),
+                           [&](const auto& w) { return m.onto_tumor ? w.second > held : w.second < held; });
     if (it == writes.end() || double(it->first - due) > 100e6) {
       ++unmatched;
       continue;
@@ -216,18 +219,21 @@ int main(int argc, char** argv) {
   }
   std::vector<double> all = onto_ms;
   all.insert(all.end(), off_ms.begin(), off_ms.end());
-  std::printf("tracker pose sent -> Modbus register write at sim-rig on loopback, %.0f s, tracker 200 Hz, loop 1 kHz, bus %g Hz (%s)\n",
-              seconds, rig.modbus->io_rate_hz, s.realtime_practices.c_str());
-  std::printf("  onto tumor %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", onto_ms.size(), pct(onto_ms, .5), pct(onto_ms, .99),
-              pct(onto_ms, 1.0));
-  std::printf("  off tumor  %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", off_ms.size(), pct(off_ms, .5), pct(off_ms, .99),
-              pct(off_ms, 1.0));
-  std::printf("  all        %zu: p50 %.2f ms, p99 %.2f ms (regulator response: 50 ms time constant); %zu moves unmatched, "
-              "%zu outside the run\n",
-              all.size(), pct(all, .5), pct(all, .99), unmatched, outside);
+  std::printf(
+      "tracker pose sent -> Modbus register write at sim-rig on loopback, %.0f s, tracker 200 Hz, loop 1 kHz, bus %g "
+      "Hz (%s)\n",
+      seconds, rig.modbus->io_rate_hz, s.realtime_practices.c_str());
+  std::printf("  onto tumor %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", onto_ms.size(), pct(onto_ms, .5),
+              pct(onto_ms, .99), pct(onto_ms, 1.0));
+  std::printf("  off tumor  %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", off_ms.size(), pct(off_ms, .5),
+              pct(off_ms, .99), pct(off_ms, 1.0));
+  std::printf(
+      "  all        %zu: p50 %.2f ms, p99 %.2f ms (regulator response: 50 ms time constant); %zu moves unmatched, "
+      "%zu outside the run\n",
+      all.size(), pct(all, .5), pct(all, .99), unmatched, outside);
   std::printf("  loop: %llu ticks, %llu overruns, wake-up p50/p99 %.0f/%.0f us; fault: %s %s\n",
-              static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns), s.wake_latency.p50_us,
-              s.wake_latency.p99_us, to_string(s.fault), s.fault_detail.c_str());
+              static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
+              s.wake_latency.p50_us, s.wake_latency.p99_us, to_string(s.fault), s.fault_detail.c_str());
   std::filesystem::remove_all(dir);
   return unmatched == 0 && s.fault == FaultCode::none ? 0 : 1;
 }

@@ -28,7 +28,8 @@ std::pair<std::vector<double>, std::vector<int>> trials(int levels) {
   std::vector<double> x;
   std::vector<int> r;
   for (int i = 0; i < 10000; ++i) {
-    const double level = levels >= 10000 ? 4.0 * random.uniform() : 4.0 * static_cast<double>(random.below(levels)) / (levels - 1);
+    const double level =
+        levels >= 10000 ? 4.0 * random.uniform() : 4.0 * static_cast<double>(random.below(levels)) / (levels - 1);
     const double p = stats::psychometric_value(stats::Sigmoid::cumulative_gaussian, 2.0, 0.6, 0.0, 0.02, level);
     x.push_back(level);
     r.push_back(random.uniform() < p ? 1 : 0);
@@ -66,7 +67,8 @@ void BM_Bootstrap1000(benchmark::State& state) {
 BENCHMARK(BM_Bootstrap1000)->Arg(200)->Arg(10000)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void recovery(benchmark::State& state, const char* protocol_file, double target_p) {
-  const ThresholdProtocol p = load_threshold_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "protocols" / protocol_file);
+  const ThresholdProtocol p =
+      load_threshold_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "protocols" / protocol_file);
   const RigConfig rig = load_rig_file(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "rigs" / "simulated.json");
   const TickConfig config = make_tick_config(rig, CalibrationModels{});
   ThresholdObserverModel model;
@@ -107,7 +109,9 @@ void recovery(benchmark::State& state, const char* protocol_file, double target_
   }
 }
 
-void BM_StaircaseRecovery20(benchmark::State& state) { recovery(state, "threshold_1up3down.json", std::pow(0.5, 1.0 / 3.0)); }
+void BM_StaircaseRecovery20(benchmark::State& state) {
+  recovery(state, "threshold_1up3down.json", std::pow(0.5, 1.0 / 3.0));
+}
 void BM_QuestRecovery20(benchmark::State& state) { recovery(state, "threshold_quest.json", 0.82); }
 // The argument is the seed base: three independent panels of 20 participants each.
 BENCHMARK(BM_StaircaseRecovery20)->Arg(0)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond)->Iterations(1);

@@ -162,18 +162,26 @@ int main(int argc, char** argv) {
         const Result raw = measure(*scene, rig, fitted, play, false), comp = measure(*scene, rig, fitted, play, true);
         const char* plant = to_string(play);
         if (json_out) {
-          all.push_back({{"waveform", s.name}, {"bpm", bpm}, {"plant", plant}, {"r_without", raw.r}, {"r_with", comp.r},
-                         {"best_lag_r_without", raw.best_r}, {"best_lag_ms_without", raw.best_lag_ms},
-                         {"best_lag_r_with", comp.best_r}, {"best_lag_ms_with", comp.best_lag_ms},
-                         {"base_kPa", comp.base_kPa}, {"pulse_peak_kPa", comp.pulse_peak_kPa},
+          all.push_back({{"waveform", s.name},
+                         {"bpm", bpm},
+                         {"plant", plant},
+                         {"r_without", raw.r},
+                         {"r_with", comp.r},
+                         {"best_lag_r_without", raw.best_r},
+                         {"best_lag_ms_without", raw.best_lag_ms},
+                         {"best_lag_r_with", comp.best_r},
+                         {"best_lag_ms_with", comp.best_lag_ms},
+                         {"base_kPa", comp.base_kPa},
+                         {"pulse_peak_kPa", comp.pulse_peak_kPa},
                          {"max_setpoint_kPa_with", comp.max_setpoint_kPa}});
         } else {
           std::printf("| %s | %.0f | %s | %.3f | **%.3f** | %.3f (%d ms) | %.3f (%d ms) |\n", s.name, bpm, plant, raw.r,
                       comp.r, raw.best_r, raw.best_lag_ms, comp.best_r, comp.best_lag_ms);
         }
         if (s.wave.shape() == WaveShape::rectangular && bpm == 60 && play == Play::uncompensated && !json_out)
-          std::fprintf(stderr, "(stiffness pressure under the pulse %.2f kPa, pulse peak %.2f kPa, highest setpoint %.2f kPa)\n",
-                       raw.base_kPa, comp.pulse_peak_kPa, comp.max_setpoint_kPa);
+          std::fprintf(
+              stderr, "(stiffness pressure under the pulse %.2f kPa, pulse peak %.2f kPa, highest setpoint %.2f kPa)\n",
+              raw.base_kPa, comp.pulse_peak_kPa, comp.max_setpoint_kPa);
       }
     }
   if (json_out) std::printf("%s\n", nlohmann::json{{"machine", cpu_model()}, {"results", all}}.dump(2).c_str());

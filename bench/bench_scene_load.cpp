@@ -21,7 +21,8 @@ std::filesystem::path sphere_union_scene(int n) {
   nlohmann::json parts = nlohmann::json::array();
   const int side = static_cast<int>(std::ceil(std::sqrt(double(n))));
   for (int i = 0; i < n; ++i)
-    parts.push_back({{"type", "sphere"}, {"centre_mm", {10 + 2.5 * (i % side), 10 + 2.5 * (i / side), 5}}, {"radius_mm", 1.0}});
+    parts.push_back(
+        {{"type", "sphere"}, {"centre_mm", {10 + 2.5 * (i % side), 10 + 2.5 * (i / side), 5}}, {"radius_mm", 1.0}});
   const nlohmann::json doc = {
       {"version", 1},
       {"kind", "function"},

@@ -127,7 +127,8 @@ void BM_TrackerLatest(benchmark::State& state) {
   server.start();
   TrackingConfig tracking;
   tracking.placement = TrackedPlacement::per_finger;
-  for (int f = 0; f < 3; ++f) tracking.tools.push_back(TrackedTool{"Finger" + std::to_string(f + 1) + "ToTracker", f, {}});
+  for (int f = 0; f < 3; ++f)
+    tracking.tools.push_back(TrackedTool{"Finger" + std::to_string(f + 1) + "ToTracker", f, {}});
   tracking.reader_fifo_priority = 0;
   {
     IgtlInput input({"127.0.0.1", server.port()}, tracking, 0.1);

@@ -25,9 +25,7 @@ using namespace palprig;
 constexpr int kParticipants = 1000;
 constexpr int kTrialsPerParticipant = 1000;
 
-std::filesystem::path bench_db() {
-  return std::filesystem::temp_directory_path() / "palprig_bench_1M_trials.db";
-}
+std::filesystem::path bench_db() { return std::filesystem::temp_directory_path() / "palprig_bench_1M_trials.db"; }
 
 bool has_all_trials(const std::filesystem::path& file) {
   if (!std::filesystem::exists(file)) return false;
@@ -42,13 +40,15 @@ bool has_all_trials(const std::filesystem::path& file) {
 
 void build_db(const std::filesystem::path& file) {
   for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(file.string() + suffix);
-  const Protocol p = load_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "protocols" / "discrimination_002.json");
+  const Protocol p =
+      load_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "protocols" / "discrimination_002.json");
   SqliteTrialStore store(file, TrialStore::Access::read_write);
   RandomSource random(2024);
   for (int who = 0; who < kParticipants; ++who) {
     const ParticipantRecord participant = store.enrol("sim:" + std::to_string(who), true);
     const SessionPlan plan = make_session_plan(p, participant.number, static_cast<std::uint64_t>(who));
-    const std::int64_t session = store.create_session(participant, p, plan, SessionSetup{"bench", "simulated", "paper002", nullptr, "."});
+    const std::int64_t session =
+        store.create_session(participant, p, plan, SessionSetup{"bench", "simulated", "paper002", nullptr, "."});
     std::vector<TrialRecord> trials(kTrialsPerParticipant);
     for (int i = 0; i < kTrialsPerParticipant; ++i) {
       TrialRecord& r = trials[static_cast<std::size_t>(i)];

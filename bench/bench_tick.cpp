@@ -45,7 +45,9 @@ const MapScene& big_scene(MapSampling sampling) {
 // The tick times' p50, p99, p99.9 and maximum as the benchmark's counters.
 void report_percentiles(benchmark::State& state, std::vector<std::int64_t>& ns) {
   std::sort(ns.begin(), ns.end());
-  auto pct = [&](double q) { return ns.empty() ? 0.0 : double(ns[std::min(ns.size() - 1, std::size_t(q * ns.size()))]); };
+  auto pct = [&](double q) {
+    return ns.empty() ? 0.0 : double(ns[std::min(ns.size() - 1, std::size_t(q * ns.size()))]);
+  };
   state.counters["p50_ns"] = pct(0.50);
   state.counters["p99_ns"] = pct(0.99);
   state.counters["p999_ns"] = pct(0.999);

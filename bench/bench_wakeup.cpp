@@ -99,7 +99,7 @@ void BM_LoopWakeup1kHz(benchmark::State& state) {
                  s.realtime_practices + (s.realtime_note.empty() ? "" : " [" + s.realtime_note + "]"));
 }
 BENCHMARK(BM_LoopWakeup1kHz)
-    ->ArgsProduct({{0}, {0, 1}, {0, 2}})    // SCHED_OTHER: default slack, then slack 1 ns
+    ->ArgsProduct({{0}, {0, 1}, {0, 2}})               // SCHED_OTHER: default slack, then slack 1 ns
     ->ArgsProduct({{1}, {0, 1}, {0, 1, 2, 4, 7, 15}})  // FIFO: none, each practice, all, all + pinned
     ->ArgNames({"fifo", "loaded", "practices"})
     ->Iterations(1)

@@ -7,7 +7,8 @@
 // just before its request left for the server: the event's true time, to compare with what the
 // window made of it. Each press is sent right after a round trip (XSync), so the server is awake
 // and stamps it on arrival rather than when a busy machine schedules it: with a real keyboard the
-// kernel stamps the key at its interrupt, whatever the X server is doing. The X headers stay in xtest_input.cpp (their macros clash with Qt's names).
+// kernel stamps the key at its interrupt, whatever the X server is doing. The X headers stay in xtest_input.cpp (their
+// macros clash with Qt's names).
 #include <chrono>
 #include <string>
 

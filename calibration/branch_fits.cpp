@@ -28,7 +28,8 @@ std::string describe(const HoldPoint& p) {
   return s.str();
 }
 
-void require_values(std::span<const HoldPoint> pts, MeasuredSignal r, const std::string& file, const std::string& what) {
+void require_values(std::span<const HoldPoint> pts, MeasuredSignal r, const std::string& file,
+                    const std::string& what) {
   for (const auto& p : pts)
     if (!std::isfinite(response_of(p, r)))
       throw InputError(file, describe(p), "a " + std::string(to_string(r)) + " reading for " + what);
@@ -36,7 +37,8 @@ void require_values(std::span<const HoldPoint> pts, MeasuredSignal r, const std:
 
 }  // namespace
 
-BranchFits fit_branches(std::span<const HoldPoint> pts, MeasuredSignal r, const std::string& file, const std::string& what) {
+BranchFits fit_branches(std::span<const HoldPoint> pts, MeasuredSignal r, const std::string& file,
+                        const std::string& what) {
   require_values(pts, r, file, what);
   std::vector<double> xi, yi, xd, yd, xb, yb;
   // level -> (inflation values, deflation values)
@@ -45,9 +47,16 @@ BranchFits fit_branches(std::span<const HoldPoint> pts, MeasuredSignal r, const 
   for (const auto& p : pts) {
     const double v = response_of(p, r);
     auto& slot = by_level[level_key(p.command_kPa)];
-    if (p.branch == SweepBranch::inflation) { xi.push_back(p.command_kPa); yi.push_back(v); slot.first.push_back(v); }
-    else if (p.branch == SweepBranch::deflation) { xd.push_back(p.command_kPa); yd.push_back(v); slot.second.push_back(v); }
-    else continue;
+    if (p.branch == SweepBranch::inflation) {
+      xi.push_back(p.command_kPa);
+      yi.push_back(v);
+      slot.first.push_back(v);
+    } else if (p.branch == SweepBranch::deflation) {
+      xd.push_back(p.command_kPa);
+      yd.push_back(v);
+      slot.second.push_back(v);
+    } else
+      continue;
     xb.push_back(p.command_kPa);
     yb.push_back(v);
     repeats[p.repeat] = 1;
@@ -124,7 +133,8 @@ void check_staircase_monotone(std::span<const HoldPoint> pts, MeasuredSignal r, 
   }
 }
 
-void check_response_moves(std::span<const HoldPoint> pts, MeasuredSignal r, const std::string& file, const std::string& what) {
+void check_response_moves(std::span<const HoldPoint> pts, MeasuredSignal r, const std::string& file,
+                          const std::string& what) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   std::size_t n = 0;
   for (const auto& p : pts) {

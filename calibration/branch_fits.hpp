@@ -20,8 +20,8 @@ double response_of(const HoldPoint& p, MeasuredSignal r) noexcept;
 
 struct BranchFits {
   LineFit inflation, deflation, both;  // response against the commanded pressure
-  double gap = 0;                 // mean over levels of (deflation - inflation), response units
-  double repeat_sd_percent = 0;   // mean over levels of SD across repeats / |mean|, NaN with one repeat
+  double gap = 0;                      // mean over levels of (deflation - inflation), response units
+  double repeat_sd_percent = 0;        // mean over levels of SD across repeats / |mean|, NaN with one repeat
   std::size_t levels = 0, repeats = 0;
 };
 

@@ -35,9 +35,7 @@ std::string fixed(double v, int digits) {
 
 }  // namespace
 
-bool ChannelCalibration::dynamics_usable() const noexcept {
-  return dynamics && dynamics->r_squared >= min_r_squared;
-}
+bool ChannelCalibration::dynamics_usable() const noexcept { return dynamics && dynamics->r_squared >= min_r_squared; }
 
 CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOptions& o) {
   const std::string& file = data.file;
@@ -58,7 +56,8 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
   const HysteresisSource source =
       o.hysteresis_from.value_or(data.has_monitor ? HysteresisSource::monitor : HysteresisSource::none);
   if (source == HysteresisSource::monitor && !data.has_monitor)
-    throw InputError(file, "monitor_kPa", "monitor readings to fit the hysteresis on (or `hysteresis_from` sensor|none)");
+    throw InputError(file, "monitor_kPa",
+                     "monitor readings to fit the hysteresis on (or `hysteresis_from` sensor|none)");
   if (source == HysteresisSource::sensor && !data.has_sensor)
     throw InputError(file, "sensor", "sensor readings to fit the hysteresis on (or `hysteresis_from` monitor|none)");
 
@@ -122,9 +121,9 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
         if (!ch.regulator_check->passed()) {
           const LineFit& l = ch.regulator->both;
           throw InputError(file, name + " regulator",
-                           "a monitor within " + fixed(o.regulator_tolerance_kPa, 1) + " kPa of the command; its line " +
-                               "monitor = " + fixed(l.slope, 3) + " * command " + (l.intercept < 0 ? "- " : "+ ") +
-                               fixed(std::abs(l.intercept), 2) + " kPa is off by " +
+                           "a monitor within " + fixed(o.regulator_tolerance_kPa, 1) +
+                               " kPa of the command; its line " + "monitor = " + fixed(l.slope, 3) + " * command " +
+                               (l.intercept < 0 ? "- " : "+ ") + fixed(std::abs(l.intercept), 2) + " kPa is off by " +
                                fixed(ch.regulator_check->worst_deviation_kPa, 2) + " kPa at " +
                                fixed(ch.regulator_check->at_command_kPa, 1) +
                                " kPa (check the regulator's supply, range and scaling, or raise "
@@ -155,7 +154,10 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
       // would put an offset in the data that a PI model cannot hold.
       double zero = 0;
       for (const auto& p : pts)
-        if (p.segment == SweepSegment::vent && std::isfinite(p.sensor)) { zero = p.sensor; break; }
+        if (p.segment == SweepSegment::vent && std::isfinite(p.sensor)) {
+          zero = p.sensor;
+          break;
+        }
       double sxy = 0, sxx = 0;
       for (const auto& p : stairs) {
         sxy += (p.sensor - zero) * p.command_kPa;
@@ -194,22 +196,27 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
     fit_channel_dynamics();
   }
   if (!any_dynamics)
-    out.notes.push_back("no step or chirp rows: the regulators' dynamics were not identified (lag compensation needs "
-                        "calibrate sweep --excitation ...,step,chirp)");
+    out.notes.push_back(
+        "no step or chirp rows: the regulators' dynamics were not identified (lag compensation needs "
+        "calibrate sweep --excitation ...,step,chirp)");
   if (o.lag_compensation.enabled && !any_dynamics)
-    throw InputError(file, "lag_compensation", "step and chirp rows to identify the regulators' dynamics before lag "
-                                               "compensation is enabled (calibrate sweep --excitation ...,step,chirp)");
+    throw InputError(file, "lag_compensation",
+                     "step and chirp rows to identify the regulators' dynamics before lag "
+                     "compensation is enabled (calibrate sweep --excitation ...,step,chirp)");
   if (pooled.empty() && data.has_monitor)
     out.notes.push_back("no staircase rows: the branch tables of paper 002 fig. 8 were not computed");
   if (!pooled.empty()) {
     bool several = false;
     for (const auto& p : pooled) several = several || p.channel != pooled.front().channel;
     if (several) {
-      if (data.has_monitor) out.pooled_regulator = fit_branches(pooled, MeasuredSignal::monitor, file, "all channels regulator");
-      if (data.has_sensor) out.pooled_response = fit_branches(pooled, MeasuredSignal::sensor, file, "all channels sensor");
+      if (data.has_monitor)
+        out.pooled_regulator = fit_branches(pooled, MeasuredSignal::monitor, file, "all channels regulator");
+      if (data.has_sensor)
+        out.pooled_response = fit_branches(pooled, MeasuredSignal::sensor, file, "all channels sensor");
     }
   }
-  if (o.stress_pairs.empty()) out.notes.push_back("actuator stress lines from " + o.base.source + " (no --stress pairs)");
+  if (o.stress_pairs.empty())
+    out.notes.push_back("actuator stress lines from " + o.base.source + " (no --stress pairs)");
   return out;
 }
 

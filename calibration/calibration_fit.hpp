@@ -32,10 +32,10 @@ struct CalibrationFitOptions {
   bool operators_from_data = false;
   std::optional<HysteresisSource> hysteresis_from;  // default: monitor when the data has it, else none
   double regulator_tolerance_kPa = 3.0;
-  double monotone_tolerance = 0.02;   // fraction of a branch's span a reading may step back
-  std::string rig_id;                 // overrides the data file's "# rig_id"
-  std::string date;                   // when the fit was made (ISO 8601)
-  CalibrationModels base;             // stress model and the lines of channels without stress data
+  double monotone_tolerance = 0.02;  // fraction of a branch's span a reading may step back
+  std::string rig_id;                // overrides the data file's "# rig_id"
+  std::string date;                  // when the fit was made (ISO 8601)
+  CalibrationModels base;            // stress model and the lines of channels without stress data
   std::vector<StressPair> stress_pairs;
   std::string stress_file;
   std::optional<ForceWindowFit> force_window;
@@ -51,15 +51,15 @@ struct ChannelCalibration {
   int channel = 0;  // 1-based
   bool swept = false;
   std::size_t points = 0;
-  std::optional<BranchFits> regulator;          // monitor against command (staircase)
+  std::optional<BranchFits> regulator;  // monitor against command (staircase)
   std::optional<RegulatorCheck> regulator_check;
-  std::optional<BranchFits> response;           // sensor against command (staircase)
+  std::optional<BranchFits> response;  // sensor against command (staircase)
   std::optional<HysteresisFit> hysteresis;
   HysteresisSource hysteresis_source = HysteresisSource::none;
   ActuatorModel actuator;
-  std::optional<LineFit> stress_line;           // when fitted from stress pairs
-  std::optional<DynamicsFit> dynamics;          // when the data has step or chirp rows
-  bool dynamics_usable() const noexcept;        // identified with R^2 at or above the bound
+  std::optional<LineFit> stress_line;     // when fitted from stress pairs
+  std::optional<DynamicsFit> dynamics;    // when the data has step or chirp rows
+  bool dynamics_usable() const noexcept;  // identified with R^2 at or above the bound
   double min_r_squared = kDefaultMinDynamicsRSquared;
 };
 

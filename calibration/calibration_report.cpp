@@ -33,10 +33,12 @@ void branch_table(std::ostream& out, const std::string& title, const char* unit,
   }
   out << "  gap (deflation - inflation, mean over levels) / spread between repeats:\n";
   for (const auto& [who, f] : rows) {
-    out << "    " << std::left << std::setw(8) << who << std::right << std::fixed << std::setprecision(3) << f->gap << " "
-        << unit << " / ";
-    if (std::isfinite(f->repeat_sd_percent)) out << std::setprecision(2) << f->repeat_sd_percent << " % of reading";
-    else out << "n/a (one repeat)";
+    out << "    " << std::left << std::setw(8) << who << std::right << std::fixed << std::setprecision(3) << f->gap
+        << " " << unit << " / ";
+    if (std::isfinite(f->repeat_sd_percent))
+      out << std::setprecision(2) << f->repeat_sd_percent << " % of reading";
+    else
+      out << "n/a (one repeat)";
     out << "  (" << f->levels << " levels x " << f->repeats << " repeats)\n";
   }
 }
@@ -58,12 +60,14 @@ void print_fit_report(std::ostream& out, const CalibrationResult& r, const std::
   bool any_check = false;
   for (const auto& ch : r.channels)
     if (ch.regulator_check) {
-      if (!any_check) out << "Regulator check (monitor line against the command, tolerance " << std::setprecision(1)
-                          << ch.regulator_check->tolerance_kPa << " kPa):\n";
+      if (!any_check)
+        out << "Regulator check (monitor line against the command, tolerance " << std::setprecision(1)
+            << ch.regulator_check->tolerance_kPa << " kPa):\n";
       any_check = true;
       out << "  channel " << ch.channel << ": off by at most " << std::setprecision(2)
           << ch.regulator_check->worst_deviation_kPa << " kPa (at " << std::setprecision(1)
-          << ch.regulator_check->at_command_kPa << " kPa): " << (ch.regulator_check->passed() ? "ok" : "REFUSED") << "\n";
+          << ch.regulator_check->at_command_kPa << " kPa): " << (ch.regulator_check->passed() ? "ok" : "REFUSED")
+          << "\n";
     }
   out << "Hysteresis (Prandtl-Ishlinskii, Ceres; the tick applies the inverse):\n";
   for (const auto& ch : r.channels) {
@@ -76,11 +80,12 @@ void print_fit_report(std::ostream& out, const CalibrationResult& r, const std::
     out << "from " << to_string(ch.hysteresis_source) << ", " << h.samples << " holds; w0 " << std::setprecision(3)
         << h.model.linear_weight << ", plays";
     for (std::size_t i = 0; i < h.model.operator_count; ++i)
-      out << " " << std::setprecision(2) << h.model.thresholds_kPa[i] << ":" << std::setprecision(3) << h.model.weights[i];
+      out << " " << std::setprecision(2) << h.model.thresholds_kPa[i] << ":" << std::setprecision(3)
+          << h.model.weights[i];
     out << " (kPa:weight); RMS " << std::setprecision(3) << h.rms_error_kPa << " kPa, max " << h.max_abs_error_kPa
         << " kPa, R^2 " << std::setprecision(5) << h.r_squared << "; " << h.iterations << " iterations, "
-        << std::setprecision(3) << h.solve_seconds << " s, thresholds " << (h.thresholds_refined ? "refined" : "on the grid")
-        << "\n";
+        << std::setprecision(3) << h.solve_seconds << " s, thresholds "
+        << (h.thresholds_refined ? "refined" : "on the grid") << "\n";
   }
   bool any_dynamics = false;
   for (const auto& ch : r.channels) any_dynamics = any_dynamics || ch.dynamics.has_value();
@@ -106,9 +111,10 @@ void print_fit_report(std::ostream& out, const CalibrationResult& r, const std::
     out << "  channel " << ch.channel << ": slope " << std::setprecision(5) << ch.actuator.slope << ", intercept "
         << std::setprecision(3) << ch.actuator.intercept_kPa << " kPa";
     if (ch.stress_line)
-      out << ", R^2 " << std::setprecision(4) << ch.stress_line->r_squared << " (" << ch.stress_line->n << " pairs from "
-          << r.stress_file << ")";
-    else out << " (base calibration)";
+      out << ", R^2 " << std::setprecision(4) << ch.stress_line->r_squared << " (" << ch.stress_line->n
+          << " pairs from " << r.stress_file << ")";
+    else
+      out << " (base calibration)";
     out << "; 11.75 kPa of air -> " << std::setprecision(3) << ch.actuator.stress_kPa(11.75) << " kPa of stress\n";
   }
   if (r.force_window) {
@@ -158,7 +164,8 @@ nlohmann::json evaluation_json(const EvaluationResult& r, const std::array<bool,
               {"compensated_run", run_state(r.compensated)}};
 }
 
-void print_evaluation_report(std::ostream& out, const EvaluationResult& r, const std::array<bool, kFingerCount>& channels) {
+void print_evaluation_report(std::ostream& out, const EvaluationResult& r,
+                             const std::array<bool, kFingerCount>& channels) {
   out << std::fixed << std::setprecision(1) << "  trajectory: " << r.from_kPa << " .. " << r.to_kPa << " kPa at "
       << r.ramp_kPa_per_s << " kPa/s, " << std::setprecision(0) << r.duration_s << " s scored, " << r.reversals
       << " reversals\n";
@@ -185,8 +192,9 @@ void print_evaluation_report(std::ostream& out, const EvaluationResult& r, const
 
 void write_evaluation_trace_csv(const std::filesystem::path& path, const EvaluationResult& r) {
   CheckedOutputFile out(path);
-  out.stream() << "t_s,compensation,target_kPa,setpoint_1_kPa,setpoint_2_kPa,setpoint_3_kPa,monitor_1_kPa,monitor_2_kPa,"
-                  "monitor_3_kPa\n";
+  out.stream()
+      << "t_s,compensation,target_kPa,setpoint_1_kPa,setpoint_2_kPa,setpoint_3_kPa,monitor_1_kPa,monitor_2_kPa,"
+         "monitor_3_kPa\n";
   char line[256];
   for (int with = 0; with < 2; ++with)
     for (const auto& row : (with ? r.compensated : r.uncompensated).trace) {

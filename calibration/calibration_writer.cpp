@@ -16,13 +16,9 @@ using nlohmann::json;
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json line_json(const LineFit& f) {
-  return json{{"slope", f.slope},
-              {"intercept", f.intercept},
-              {"r_squared", f.r_squared},
-              {"residual_sd", f.residual_sd},
-              {"n", f.n},
-              {"x_min_kPa", f.x_min},
-              {"x_max_kPa", f.x_max}};
+  return json{
+      {"slope", f.slope}, {"intercept", f.intercept}, {"r_squared", f.r_squared}, {"residual_sd", f.residual_sd},
+      {"n", f.n},         {"x_min_kPa", f.x_min},     {"x_max_kPa", f.x_max}};
 }
 
 }  // namespace
@@ -81,12 +77,19 @@ json calibration_json(const CalibrationResult& r) {
       const DynamicsFit& d = *ch.dynamics;
       json segments = json::array();
       for (const auto& g : d.segments)
-        segments.push_back({{"segment", to_string(g.segment)}, {"samples", g.samples}, {"r_squared", g.r_squared},
-                            {"rms_residual_kPa", g.rms_residual_kPa}, {"max_residual_kPa", g.max_residual_kPa}});
-      c["dynamics"] = {{"dead_time_s", d.dead_time_s},           {"time_constant_s", d.time_constant_s},
-                       {"r_squared", d.r_squared},               {"rms_residual_kPa", d.rms_residual_kPa},
-                       {"max_residual_kPa", d.max_residual_kPa}, {"samples", d.samples},
-                       {"rate_hz", d.rate_hz},                   {"segments", segments}};
+        segments.push_back({{"segment", to_string(g.segment)},
+                            {"samples", g.samples},
+                            {"r_squared", g.r_squared},
+                            {"rms_residual_kPa", g.rms_residual_kPa},
+                            {"max_residual_kPa", g.max_residual_kPa}});
+      c["dynamics"] = {{"dead_time_s", d.dead_time_s},
+                       {"time_constant_s", d.time_constant_s},
+                       {"r_squared", d.r_squared},
+                       {"rms_residual_kPa", d.rms_residual_kPa},
+                       {"max_residual_kPa", d.max_residual_kPa},
+                       {"samples", d.samples},
+                       {"rate_hz", d.rate_hz},
+                       {"segments", segments}};
       f["dynamics_fit"] = {{"grid_rms_residual_kPa", d.grid_rms_residual_kPa},
                            {"converged", d.converged},
                            {"iterations", d.iterations},
@@ -113,7 +116,8 @@ json calibration_json(const CalibrationResult& r) {
                                {"max_lead_kPa", r.lag_compensation.max_lead_kPa},
                                {"min_r_squared", r.lag_compensation.min_r_squared},
                                {"anticipate_edges", r.lag_compensation.anticipate_edges}};
-  json fits{{"data", r.data_file}, {"sensor", r.sensor_name.empty() ? json(nullptr) : json(r.sensor_name)},
+  json fits{{"data", r.data_file},
+            {"sensor", r.sensor_name.empty() ? json(nullptr) : json(r.sensor_name)},
             {"channels", fits_channels}};
   if (r.pooled_regulator) fits["all_channels"]["regulator"] = branch_fits_json(*r.pooled_regulator);
   if (r.pooled_response) fits["all_channels"]["sensor"] = branch_fits_json(*r.pooled_response);
@@ -121,10 +125,14 @@ json calibration_json(const CalibrationResult& r) {
   doc["fits"] = fits;
   if (r.force_window) {
     const ForceWindowFit& w = *r.force_window;
-    doc["force_window"] = {{"diastolic_mmHg", w.window.diastolic_mmHg}, {"systolic_mmHg", w.window.systolic_mmHg},
-                           {"f_min_N", w.window.f_min_N},           {"f_max_N", w.window.f_max_N},
-                           {"f_min_sd_N", w.f_min_sd_N},             {"f_max_sd_N", w.f_max_sd_N},
-                           {"presses_min", w.presses_min},           {"presses_max", w.presses_max}};
+    doc["force_window"] = {{"diastolic_mmHg", w.window.diastolic_mmHg},
+                           {"systolic_mmHg", w.window.systolic_mmHg},
+                           {"f_min_N", w.window.f_min_N},
+                           {"f_max_N", w.window.f_max_N},
+                           {"f_min_sd_N", w.f_min_sd_N},
+                           {"f_max_sd_N", w.f_max_sd_N},
+                           {"presses_min", w.presses_min},
+                           {"presses_max", w.presses_max}};
   }
   return doc;
 }

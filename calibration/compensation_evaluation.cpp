@@ -22,9 +22,15 @@ struct Trajectory {
   std::size_t reversals = 0;
 
   double at(double t, double& slope) const noexcept {
-    if (t <= t_s.front()) { slope = 0; return p_kPa.front(); }
+    if (t <= t_s.front()) {
+      slope = 0;
+      return p_kPa.front();
+    }
     const auto it = std::upper_bound(t_s.begin(), t_s.end(), t);
-    if (it == t_s.end()) { slope = 0; return p_kPa.back(); }
+    if (it == t_s.end()) {
+      slope = 0;
+      return p_kPa.back();
+    }
     const auto i = std::size_t(it - t_s.begin());
     slope = (p_kPa[i] - p_kPa[i - 1]) / (t_s[i] - t_s[i - 1]);
     return p_kPa[i - 1] + slope * (t - t_s[i - 1]);
@@ -48,7 +54,10 @@ Trajectory make_trajectory(const EvaluationOptions& o, double lo, double hi) {
     const double cur = tr.p_kPa.back();
     // Alternate up and down so every knot is a reversal, of a random size.
     const double room = direction > 0 ? hi - cur : cur - lo;
-    if (room < min_swing) { direction = -direction; continue; }
+    if (room < min_swing) {
+      direction = -direction;
+      continue;
+    }
     const double swing = std::max(min_swing, std::abs(level(rng) - lo) / (hi - lo) * room);
     const double next = cur + direction * swing;
     tr.t_s.push_back(tr.t_s.back() + swing / o.ramp_kPa_per_s);
@@ -69,8 +78,13 @@ struct Accumulator {
     max_abs = std::max(max_abs, std::abs(e));
     sum_y += output;
     sum_yy += output * output;
-    if (slope > 0) { sum_up += e; ++n_up; }
-    else if (slope < 0) { sum_down += e; ++n_down; }
+    if (slope > 0) {
+      sum_up += e;
+      ++n_up;
+    } else if (slope < 0) {
+      sum_down += e;
+      ++n_down;
+    }
   }
   TrackingMetrics metrics() const noexcept {
     TrackingMetrics m;
@@ -106,7 +120,10 @@ EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Traject
   }
   for (std::uint64_t i = 0; i < ticks; ++i) {
     const double t = pacer.wait_for_tick(k++);
-    if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) { run.stopped = true; break; }
+    if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+      run.stopped = true;
+      break;
+    }
     double slope = 0;
     const double target = tr.at(t - t0, slope);
     ChannelPressures want{};
@@ -151,9 +168,9 @@ EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig
     if (!o.channels[c]) continue;
     any = true;
     if (cal.hysteresis[c].is_identity())
-      throw InputError(cal.source, "channels[" + std::to_string(c) + "].hysteresis",
-                       "a hysteresis model for channel " + std::to_string(c + 1) +
-                           " to evaluate (run palprig calibrate fit first)");
+      throw InputError(
+          cal.source, "channels[" + std::to_string(c) + "].hysteresis",
+          "a hysteresis model for channel " + std::to_string(c + 1) + " to evaluate (run palprig calibrate fit first)");
   }
   need(any, "channels", "at least one channel");
 

@@ -24,12 +24,12 @@ namespace palprig {
 
 struct EvaluationOptions {
   double from_kPa = 10.0;
-  double to_kPa = 0.0;            // 0: 80 % of the rig's p_max
+  double to_kPa = 0.0;  // 0: 80 % of the rig's p_max
   double ramp_kPa_per_s = 1.0;
-  double duration_s = 120.0;      // per run, after the rest and the first approach
-  double rest_s = 1.0;            // vented before each run
+  double duration_s = 120.0;  // per run, after the rest and the first approach
+  double rest_s = 1.0;        // vented before each run
   double rate_hz = 1000.0;
-  double record_hz = 50.0;        // trace kept for plots and --out
+  double record_hz = 50.0;  // trace kept for plots and --out
   unsigned seed = 7;
   bool realtime = true;
   std::array<bool, kFingerCount> channels{true, true, true};
@@ -40,8 +40,8 @@ struct TrackingMetrics {
   std::size_t samples = 0;
   double rms_error_kPa = 0, max_abs_error_kPa = 0;
   double mean_error_inflation_kPa = 0, mean_error_deflation_kPa = 0;
-  double gap_kPa = 0;     // deflation minus inflation mean error
-  double r_squared = 0;   // output against target
+  double gap_kPa = 0;    // deflation minus inflation mean error
+  double r_squared = 0;  // output against target
 };
 
 struct EvaluationTraceRow {
@@ -62,7 +62,7 @@ struct EvaluationResult {
   std::size_t reversals = 0;
   EvaluationRun uncompensated, compensated;
   std::array<double, kFingerCount> improvement{};  // uncompensated RMS / compensated RMS
-  double worst_improvement = 0;                     // over the evaluated channels
+  double worst_improvement = 0;                    // over the evaluated channels
   bool complete() const noexcept {
     return !uncompensated.stopped && !uncompensated.faulted && !compensated.stopped && !compensated.faulted;
   }

@@ -33,7 +33,8 @@ double number(const std::string& c, const std::string& file, const std::string& 
 
 }  // namespace
 
-ForceWindowFit force_window_from_presses(const std::filesystem::path& path, double diastolic_mmHg, double systolic_mmHg) {
+ForceWindowFit force_window_from_presses(const std::filesystem::path& path, double diastolic_mmHg,
+                                         double systolic_mmHg) {
   const std::string file = path.string();
   std::ifstream in = open_regular_file(path, kMaxTableFileBytes, "a presses CSV", std::ios::in);
   std::string line;

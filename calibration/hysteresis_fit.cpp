@@ -70,8 +70,13 @@ class PlaySequenceCache final : public ceres::EvaluationCallback {
       double y = w0 * xk;
       for (std::size_t i = 0; i < n_; ++i) {
         // play: z = clamp(z_prev, x - r, x + r); on a clamp the state follows x -/+ r.
-        if (z_[i] < xk - r_[i]) { z_[i] = xk - r_[i]; dz_dr_[i] = -1; }
-        else if (z_[i] > xk + r_[i]) { z_[i] = xk + r_[i]; dz_dr_[i] = 1; }
+        if (z_[i] < xk - r_[i]) {
+          z_[i] = xk - r_[i];
+          dz_dr_[i] = -1;
+        } else if (z_[i] > xk + r_[i]) {
+          z_[i] = xk + r_[i];
+          dz_dr_[i] = 1;
+        }
         y += w[i] * z_[i];
       }
       prediction_[k] = y;
@@ -158,31 +163,35 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
   if (!(o.min_threshold_step_kPa > 0) || !std::isfinite(o.min_threshold_step_kPa))
     throw InputError("hysteresis fit", "min_threshold_step_kPa", "a positive threshold step");
   if (!(o.max_threshold_kPa >= 0) || !std::isfinite(o.max_threshold_kPa))
-    throw InputError("max_threshold_kPa", std::to_string(o.max_threshold_kPa), "a threshold >= 0 kPa (0: from the data)");
+    throw InputError("max_threshold_kPa", std::to_string(o.max_threshold_kPa),
+                     "a threshold >= 0 kPa (0: from the data)");
   if (o.loss != RobustLoss::none && (!(o.loss_scale_kPa > 0) || !std::isfinite(o.loss_scale_kPa)))
     throw InputError("loss_scale_kPa", std::to_string(o.loss_scale_kPa), "a positive scale in kPa");
   if (o.max_iterations < 1) throw InputError("hysteresis fit", "max_iterations", "at least 1 iteration");
   if (x.size() != y.size()) throw InputError(file, what, "as many inputs as outputs");
   const std::size_t parameters = 1 + 2 * n;
   if (x.size() < 4 * parameters)
-    throw InputError(file, what, "at least " + std::to_string(4 * parameters) + " quasi-static samples for " +
-                                     std::to_string(n) + " play operators, got " + std::to_string(x.size()) +
-                                     " (record more holds or use fewer operators)");
+    throw InputError(file, what,
+                     "at least " + std::to_string(4 * parameters) + " quasi-static samples for " + std::to_string(n) +
+                         " play operators, got " + std::to_string(x.size()) +
+                         " (record more holds or use fewer operators)");
   for (std::size_t k = 0; k < x.size(); ++k)
     if (!std::isfinite(x[k]) || !std::isfinite(y[k]))
       throw InputError(file, what, "finite samples (sample " + std::to_string(k + 1) + " is NaN or infinite)");
   const auto [x_lo, x_hi] = std::minmax_element(x.begin(), x.end());
   const double x_range = *x_hi - *x_lo;
-  if (!(x_range > 1e-6)) throw InputError(file, what, "an input that moves (it stays at " + std::to_string(*x_lo) + " kPa)");
+  if (!(x_range > 1e-6))
+    throw InputError(file, what, "an input that moves (it stays at " + std::to_string(*x_lo) + " kPa)");
   if (count_reversals(x) == 0)
-    throw InputError(file, what, "an input that reverses at least once (inflation and deflation), so hysteresis can be seen");
+    throw InputError(file, what,
+                     "an input that reverses at least once (inflation and deflation), so hysteresis can be seen");
 
   // Starting point from a straight line: slope shared between the linear part and the plays;
   // the residual band around it says how wide the loops are.
   const LineFit line = fit_line(x, y, file, what);
   if (!(line.slope > 0))
-    throw InputError(file, what, "an output that rises with the input (the fitted slope is " +
-                                     std::to_string(line.slope) + ")");
+    throw InputError(file, what,
+                     "an output that rises with the input (the fitted slope is " + std::to_string(line.slope) + ")");
   double band_lo = 0, band_hi = 0;
   for (std::size_t k = 0; k < x.size(); ++k) {
     const double r = y[k] - line.at(x[k]);
@@ -190,8 +199,7 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
     band_hi = std::max(band_hi, r);
   }
   double r_max = o.max_threshold_kPa;
-  if (!(r_max > 0))
-    r_max = std::clamp(2.5 * 0.5 * (band_hi - band_lo) / line.slope, 0.02 * x_range, 0.5 * x_range);
+  if (!(r_max > 0)) r_max = std::clamp(2.5 * 0.5 * (band_hi - band_lo) / line.slope, 0.02 * x_range, 0.5 * x_range);
   r_max = std::max(r_max, o.min_threshold_step_kPa * double(n));
 
   HysteresisFit fit;
@@ -207,7 +215,10 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
   {
     PrandtlIshlinskii plays;
     plays.operator_count = n;
-    for (std::size_t i = 0; i < n; ++i) { plays.thresholds_kPa[i] = grid[i]; plays.weights[i] = 0; }
+    for (std::size_t i = 0; i < n; ++i) {
+      plays.thresholds_kPa[i] = grid[i];
+      plays.weights[i] = 0;
+    }
     plays.reset(x[0]);
     for (std::size_t k = 0; k < x.size(); ++k) {
       const auto row = Eigen::Index(k);
@@ -243,7 +254,10 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
   std::vector<double> kept_r;
   for (std::size_t i = 0; i < n; ++i) {
     const double wi = stage1.w[Eigen::Index(i + 1)];
-    if (wi > 1e-6 * total_slope) { cache.w.push_back(wi); kept_r.push_back(grid[i]); }
+    if (wi > 1e-6 * total_slope) {
+      cache.w.push_back(wi);
+      kept_r.push_back(grid[i]);
+    }
   }
   for (std::size_t i = 0; i < kept_r.size(); ++i) cache.d.push_back(kept_r[i] - (i ? kept_r[i - 1] : 0.0));
   cache.set_operators(kept_r.size());
@@ -262,8 +276,10 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
     // Stage 1's active set carries over: a linear weight stage 1 left on its bound stays there
     // (the exact solution says the data wants less), so the bound is not active in stage 2,
     // where Ceres' projected steps would crawl along it.
-    if (stage1.w[0] <= 0.0) problem.SetParameterBlockConstant(&cache.w0);
-    else problem.SetParameterLowerBound(&cache.w0, 0, o.min_linear_weight);
+    if (stage1.w[0] <= 0.0)
+      problem.SetParameterBlockConstant(&cache.w0);
+    else
+      problem.SetParameterLowerBound(&cache.w0, 0, o.min_linear_weight);
     for (std::size_t i = 0; i < p; ++i) {
       problem.SetParameterLowerBound(cache.w.data(), static_cast<int>(i), 0.0);
       problem.SetParameterLowerBound(cache.d.data(), static_cast<int>(i), o.min_threshold_step_kPa);

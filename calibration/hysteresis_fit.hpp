@@ -28,26 +28,26 @@ struct HysteresisFitOptions {
   // band around a straight line, between 2 % and 50 % of the input range).
   double max_threshold_kPa = 0;
   bool refine_thresholds = true;
-  double min_linear_weight = 0.01;      // keeps the inverse's gain at most 1/0.01
+  double min_linear_weight = 0.01;  // keeps the inverse's gain at most 1/0.01
   double min_threshold_step_kPa = 0.05;
   RobustLoss loss = RobustLoss::none;
-  double loss_scale_kPa = 1.0;          // residual size where the robust loss starts to bend
+  double loss_scale_kPa = 1.0;  // residual size where the robust loss starts to bend
   int max_iterations = 200;
   int threads = 1;
 };
 
 struct HysteresisFit {
-  PrandtlIshlinskii model;   // forward model, play states reset to 0
+  PrandtlIshlinskii model;  // forward model, play states reset to 0
   std::size_t samples = 0;
   double rms_error_kPa = 0;
   double max_abs_error_kPa = 0;
-  double r_squared = 0;      // of the model's output against the measured output
+  double r_squared = 0;             // of the model's output against the measured output
   double stage1_rms_error_kPa = 0;  // the grid fit, before Ceres moved the thresholds
-  bool converged = false;    // stage 1 finished and Ceres reported CONVERGENCE in stage 2
+  bool converged = false;           // stage 1 finished and Ceres reported CONVERGENCE in stage 2
   bool thresholds_refined = false;  // stage 2's result was kept (else the grid fit is returned)
-  int iterations = 0;        // over both stages
+  int iterations = 0;               // over both stages
   double solve_seconds = 0;
-  std::string solver_report; // Ceres' brief report of the last stage
+  std::string solver_report;  // Ceres' brief report of the last stage
 };
 
 // Forward simulation of a model over an input sequence, starting relaxed at input[0].

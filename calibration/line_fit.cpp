@@ -12,14 +12,17 @@ LineFit fit_line(std::span<const double> x, std::span<const double> y, const std
   if (x.size() != y.size()) throw InputError(file, what, "as many x as y values");
   const std::size_t n = x.size();
   if (n < kMinLinePoints)
-    throw InputError(file, what, "at least " + std::to_string(kMinLinePoints) + " points for a line, got " +
-                                     std::to_string(n));
+    throw InputError(file, what,
+                     "at least " + std::to_string(kMinLinePoints) + " points for a line, got " + std::to_string(n));
   for (std::size_t i = 0; i < n; ++i)
     if (!std::isfinite(x[i]) || !std::isfinite(y[i]))
       throw InputError(file, what, "finite values (point " + std::to_string(i + 1) + " is NaN or infinite)");
   // Two-pass sums around the means: stable for readings far from zero.
   double mx = 0, my = 0;
-  for (std::size_t i = 0; i < n; ++i) { mx += x[i]; my += y[i]; }
+  for (std::size_t i = 0; i < n; ++i) {
+    mx += x[i];
+    my += y[i];
+  }
   mx /= double(n);
   my /= double(n);
   double sxx = 0, syy = 0, sxy = 0;

@@ -11,8 +11,8 @@ namespace palprig {
 struct LineFit {
   double slope = 0;
   double intercept = 0;
-  double r_squared = 0;        // 1 - SS_res / SS_tot
-  double residual_sd = 0;      // sqrt(SS_res / (n - 2)), in y's unit
+  double r_squared = 0;    // 1 - SS_res / SS_tot
+  double residual_sd = 0;  // sqrt(SS_res / (n - 2)), in y's unit
   std::size_t n = 0;
   double x_min = 0, x_max = 0;
 

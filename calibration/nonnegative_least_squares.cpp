@@ -45,8 +45,14 @@ NnlsResult solve_nonnegative_least_squares(const Eigen::MatrixXd& A_in, const Ei
     Eigen::Index best = -1;
     double best_g = tol;
     for (Eigen::Index j = 0; j < m; ++j)
-      if (!passive[std::size_t(j)] && gradient[j] > best_g) { best_g = gradient[j]; best = j; }
-    if (best < 0) { out.converged = true; break; }
+      if (!passive[std::size_t(j)] && gradient[j] > best_g) {
+        best_g = gradient[j];
+        best = j;
+      }
+    if (best < 0) {
+      out.converged = true;
+      break;
+    }
     passive[std::size_t(best)] = true;
     Eigen::VectorXd s;
     for (int inner = 0; inner < 3 * m + 10; ++inner) {
@@ -61,7 +67,10 @@ NnlsResult solve_nonnegative_least_squares(const Eigen::MatrixXd& A_in, const Ei
         if (passive[std::size_t(j)] && s[j] <= 0) alpha = std::min(alpha, w[j] / (w[j] - s[j]));
       w += alpha * (s - w);
       for (Eigen::Index j = 0; j < m; ++j)
-        if (passive[std::size_t(j)] && w[j] <= 1e-15) { passive[std::size_t(j)] = false; w[j] = 0; }
+        if (passive[std::size_t(j)] && w[j] <= 1e-15) {
+          passive[std::size_t(j)] = false;
+          w[j] = 0;
+        }
     }
     for (Eigen::Index j = 0; j < m; ++j) w[j] = passive[std::size_t(j)] ? std::max(s[j], 0.0) : 0.0;
   }

@@ -51,16 +51,22 @@ std::vector<StressPair> read_stress_pairs_csv(const std::filesystem::path& path)
     if (columns == 0) {
       columns = cells.size();
       for (std::size_t i = 0; i < cells.size(); ++i) {
-        if (cells[i] == "pressure_kPa") col_p = int(i);
-        else if (cells[i] == "stress_kPa") col_s = int(i);
-        else if (cells[i] == "channel") col_c = int(i);
-        else throw InputError(file, where, "columns pressure_kPa, stress_kPa and optionally channel, got \"" + cells[i] + "\"");
+        if (cells[i] == "pressure_kPa")
+          col_p = int(i);
+        else if (cells[i] == "stress_kPa")
+          col_s = int(i);
+        else if (cells[i] == "channel")
+          col_c = int(i);
+        else
+          throw InputError(file, where,
+                           "columns pressure_kPa, stress_kPa and optionally channel, got \"" + cells[i] + "\"");
       }
       if (col_p < 0 || col_s < 0) throw InputError(file, where, "a header with pressure_kPa and stress_kPa");
       continue;
     }
     if (cells.size() != columns)
-      throw InputError(file, where, std::to_string(columns) + " cells like the header, got " + std::to_string(cells.size()));
+      throw InputError(file, where,
+                       std::to_string(columns) + " cells like the header, got " + std::to_string(cells.size()));
     StressPair p;
     p.pressure_kPa = parse_number(cells[std::size_t(col_p)], file, where, "pressure_kPa");
     p.stress_kPa = parse_number(cells[std::size_t(col_s)], file, where, "stress_kPa");

@@ -159,23 +159,32 @@ SweepData read_sweep_csv(const std::filesystem::path& path) {
       const std::string key = text.substr(key_b, colon - key_b);
       std::string value = text.substr(colon + 1);
       value.erase(0, value.find_first_not_of(' '));
-      if (key == "rig_id") data.info.rig_id = value;
-      else if (key == "backend") data.info.backend = value;
-      else if (key == "date") data.info.date = value;
-      else if (key == "sensor") data.info.sensor_name = value == "none" ? "" : value;
-      else if (key == "p_max_kPa") data.info.p_max_kPa = std::strtod(value.c_str(), nullptr);
-      else if (key == "rate_hz") data.info.rate_hz = std::strtod(value.c_str(), nullptr);
-      else if (key == "note") data.info.notes.push_back(value);
+      if (key == "rig_id")
+        data.info.rig_id = value;
+      else if (key == "backend")
+        data.info.backend = value;
+      else if (key == "date")
+        data.info.date = value;
+      else if (key == "sensor")
+        data.info.sensor_name = value == "none" ? "" : value;
+      else if (key == "p_max_kPa")
+        data.info.p_max_kPa = std::strtod(value.c_str(), nullptr);
+      else if (key == "rate_hz")
+        data.info.rate_hz = std::strtod(value.c_str(), nullptr);
+      else if (key == "note")
+        data.info.notes.push_back(value);
       continue;
     }
     if (header.empty()) {
       header = split_csv(text);
       for (std::size_t i = 0; i < header.size(); ++i) {
-        static const std::set<std::string> known{"t_s", "channel", "hold", "segment", "repeat",
-                                                 "branch", "command_kPa", "monitor_kPa", "sensor", "settled"};
+        static const std::set<std::string> known{"t_s",    "channel",     "hold",        "segment", "repeat",
+                                                 "branch", "command_kPa", "monitor_kPa", "sensor",  "settled"};
         if (!known.count(header[i]))
-          throw InputError(file, where(), "known columns (t_s, channel, hold, segment, repeat, branch, command_kPa, "
-                                          "monitor_kPa, sensor, settled), got \"" + header[i] + "\"");
+          throw InputError(file, where(),
+                           "known columns (t_s, channel, hold, segment, repeat, branch, command_kPa, "
+                           "monitor_kPa, sensor, settled), got \"" +
+                               header[i] + "\"");
         if (col.count(header[i])) throw InputError(file, where(), "each column once (\"" + header[i] + "\" repeats)");
         col[header[i]] = i;
       }
@@ -187,8 +196,8 @@ SweepData read_sweep_csv(const std::filesystem::path& path) {
     }
     const auto cells = split_csv(text);
     if (cells.size() != header.size())
-      throw InputError(file, where(), std::to_string(header.size()) + " cells like the header, got " +
-                                          std::to_string(cells.size()));
+      throw InputError(file, where(),
+                       std::to_string(header.size()) + " cells like the header, got " + std::to_string(cells.size()));
     ++data.rows;
     auto cell = [&](const char* name) -> const std::string* {
       const auto it = col.find(name);
@@ -212,8 +221,9 @@ SweepData read_sweep_csv(const std::filesystem::path& path) {
       long v = 0;
       const auto [end, ec] = std::from_chars(c->data(), c->data() + c->size(), v);
       if (ec != std::errc() || end != c->data() + c->size() || v < lo || v > hi)
-        throw InputError(file, where(), std::string("an integer ") + std::to_string(lo) + ".." + std::to_string(hi) +
-                                            " in column " + name + ", got \"" + *c + "\"");
+        throw InputError(file, where(),
+                         std::string("an integer ") + std::to_string(lo) + ".." + std::to_string(hi) + " in column " +
+                             name + ", got \"" + *c + "\"");
       return v;
     };
 
@@ -244,7 +254,8 @@ SweepData read_sweep_csv(const std::filesystem::path& path) {
       d.monitor_kPa = monitor;
       d.line = line_no;
       double& last_t = last_dynamics_t[std::size_t(d.channel - 1)];
-      if (d.t_s < last_t) throw InputError(file, where(), "times that do not go back within a channel's step and chirp rows");
+      if (d.t_s < last_t)
+        throw InputError(file, where(), "times that do not go back within a channel's step and chirp rows");
       last_t = d.t_s;
       if (std::isfinite(monitor)) data.has_monitor = true;
       data.dynamics.push_back(d);
@@ -259,17 +270,29 @@ SweepData read_sweep_csv(const std::filesystem::path& path) {
     }
     Accumulator& a = holds[it->second];
     if (a.point.command_kPa != p.command_kPa || a.point.branch != p.branch || a.point.segment != p.segment)
-      throw InputError(file, where(), "one command, segment and branch per hold (hold " + std::to_string(p.hold) +
-                                          " of channel " + std::to_string(p.channel) + " changes here)");
+      throw InputError(file, where(),
+                       "one command, segment and branch per hold (hold " + std::to_string(p.hold) + " of channel " +
+                           std::to_string(p.channel) + " changes here)");
     if (!settled) continue;
     ++a.settled;
-    if (std::isfinite(monitor)) { a.monitor_sum += monitor; ++a.monitor_n; data.has_monitor = true; }
-    if (std::isfinite(sensor)) { a.sensor_sum += sensor; ++a.sensor_n; data.has_sensor = true; }
+    if (std::isfinite(monitor)) {
+      a.monitor_sum += monitor;
+      ++a.monitor_n;
+      data.has_monitor = true;
+    }
+    if (std::isfinite(sensor)) {
+      a.sensor_sum += sensor;
+      ++a.sensor_n;
+      data.has_sensor = true;
+    }
   }
   if (header.empty()) throw InputError(file, "header", "a header line (t_s,channel,hold,...)");
   if (data.rows == 0) throw InputError(file, "rows", "at least one data row");
   for (Accumulator& a : holds) {
-    if (a.settled == 0) { ++data.unsettled_holds; continue; }
+    if (a.settled == 0) {
+      ++data.unsettled_holds;
+      continue;
+    }
     a.point.samples = a.settled;
     if (a.monitor_n) a.point.monitor_kPa = a.monitor_sum / double(a.monitor_n);
     if (a.sensor_n) a.point.sensor = a.sensor_sum / double(a.sensor_n);

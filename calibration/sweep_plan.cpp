@@ -47,13 +47,19 @@ const char* to_string(SweepBranch b) noexcept {
 bool parse_segment(const std::string& t, SweepSegment& out) noexcept {
   for (auto s : {SweepSegment::vent, SweepSegment::staircase, SweepSegment::random, SweepSegment::sine,
                  SweepSegment::step, SweepSegment::chirp})
-    if (t == to_string(s)) { out = s; return true; }
+    if (t == to_string(s)) {
+      out = s;
+      return true;
+    }
   return false;
 }
 
 bool parse_branch(const std::string& t, SweepBranch& out) noexcept {
   for (auto b : {SweepBranch::none, SweepBranch::inflation, SweepBranch::deflation})
-    if (t == to_string(b)) { out = b; return true; }
+    if (t == to_string(b)) {
+      out = b;
+      return true;
+    }
   return false;
 }
 
@@ -86,7 +92,8 @@ SweepSchedule plan_calibration_sweep(const SweepPlanOptions& o, double p_max_kPa
        "chirp_to_hz", "a chirp from a frequency > 0 to a higher one, at most 100 Hz");
   need(o.random_levels >= 2 && o.random_levels <= 100000, "random_levels", "2 to 100000 levels");
   need(o.sine_cycles >= 1 && o.sine_cycles <= 1000, "sine_cycles", "1 to 1000 cycles");
-  need(o.sine_steps_per_cycle >= 4 && o.sine_steps_per_cycle <= 1000, "sine_steps_per_cycle", "4 to 1000 steps per cycle");
+  need(o.sine_steps_per_cycle >= 4 && o.sine_steps_per_cycle <= 1000, "sine_steps_per_cycle",
+       "4 to 1000 steps per cycle");
   need(p_max_kPa > 0, "rig", "a positive p_max");
   need(o.from_kPa < p_max_kPa, "from_kPa",
        "a level below the rig's p_max (" + kPa_text(p_max_kPa) + "), got " + kPa_text(o.from_kPa));
@@ -122,7 +129,8 @@ SweepSchedule plan_calibration_sweep(const SweepPlanOptions& o, double p_max_kPa
     for (int r = 1; r <= o.repeats; ++r) {
       add(SweepSegment::vent, 0, SweepBranch::none, 0.0);  // every repeat starts vented (paper 002)
       for (double l : levels) add(SweepSegment::staircase, r, SweepBranch::inflation, l);
-      for (auto it = levels.rbegin(); it != levels.rend(); ++it) add(SweepSegment::staircase, r, SweepBranch::deflation, *it);
+      for (auto it = levels.rbegin(); it != levels.rend(); ++it)
+        add(SweepSegment::staircase, r, SweepBranch::deflation, *it);
     }
   }
   if (o.random) {

@@ -33,7 +33,7 @@ struct SweepHold {
   SweepSegment segment = SweepSegment::vent;
   int repeat = 0;  // staircase repeat (1-based), 0 elsewhere
   SweepBranch branch = SweepBranch::none;
-  double level_kPa = 0;     // the level held; a chirp's centre
+  double level_kPa = 0;  // the level held; a chirp's centre
   // A timed hold (step and chirp segments): held for this long at the dynamics rate, every
   // sample recorded, no settle test. 0: held until settled (every other segment).
   double duration_s = 0;
@@ -54,7 +54,7 @@ struct SweepPlanOptions {
   int sine_steps_per_cycle = 16;
   bool step = false;
   bool chirp = false;
-  double step_hold_s = 0.6;    // each step held this long (several regulator time constants)
+  double step_hold_s = 0.6;  // each step held this long (several regulator time constants)
   double chirp_s = 8.0;
   double chirp_from_hz = 0.5, chirp_to_hz = 12.0;
 };

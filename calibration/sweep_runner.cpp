@@ -198,7 +198,8 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
       if (usable(step)) return true;
       if (t_s - since > o.max_hold_s) {
         out.faulted = true;
-        out.fault = "the rig's link stayed down for more than the longest hold (" + std::to_string(o.max_hold_s) + " s)";
+        out.fault =
+            "the rig's link stayed down for more than the longest hold (" + std::to_string(o.max_hold_s) + " s)";
         return false;
       }
     }

@@ -32,7 +32,7 @@ struct SweepSample {
   double command_kPa = 0;
   ChannelPressures monitor_kPa{};
   std::array<double, kFingerCount> sensor{};  // NaN when the rig has no sensor
-  bool settled = false;                        // in the averaging window after settling
+  bool settled = false;                       // in the averaging window after settling
 };
 
 struct HoldOutcome {
@@ -50,10 +50,10 @@ class SweepSink {
 
 struct SweepRunOptions {
   double rate_hz = 100.0;
-  bool realtime = true;              // false: simulated time, as fast as possible
+  bool realtime = true;  // false: simulated time, as fast as possible
   double settle_window_s = 0.3;
   double settle_band_kPa = 0.2;
-  double average_s = 0.3;            // averaging window once settled
+  double average_s = 0.3;  // averaging window once settled
   double min_hold_s = 0.2;
   double max_hold_s = 10.0;
   std::array<bool, kFingerCount> channels{true, true, true};
@@ -69,9 +69,9 @@ struct SweepRunOptions {
 struct SweepOutcome {
   std::size_t holds_planned = 0, holds_done = 0, holds_unsettled = 0;
   std::size_t holds_redone = 0;  // holds started again after a link outage spoiled them
-  bool stopped = false;   // by the stop flag (the signal number is in stop_signal)
+  bool stopped = false;          // by the stop flag (the signal number is in stop_signal)
   int stop_signal = 0;
-  bool faulted = false;   // a backend error; `fault` says which
+  bool faulted = false;  // a backend error; `fault` says which
   std::string fault;
   double duration_s = 0;  // rig time
 };

@@ -91,11 +91,15 @@ std::vector<Fiducial> load_fiducials(const std::filesystem::path& path) {
     }
     if (columns == 0) {
       const std::string h = line;
-      if (cells == std::vector<std::string>{"name", "x_mm", "y_mm", "z_mm"}) columns = 4;
-      else if (cells == std::vector<std::string>{"name", "x_mm", "y_mm", "z_mm", "tracker_x_mm", "tracker_y_mm", "tracker_z_mm"})
+      if (cells == std::vector<std::string>{"name", "x_mm", "y_mm", "z_mm"})
+        columns = 4;
+      else if (cells ==
+               std::vector<std::string>{"name", "x_mm", "y_mm", "z_mm", "tracker_x_mm", "tracker_y_mm", "tracker_z_mm"})
         columns = 7;
       else
-        throw InputError(file, where, "the header name,x_mm,y_mm,z_mm (and optionally ,tracker_x_mm,tracker_y_mm,tracker_z_mm), got '" + h + "'");
+        throw InputError(
+            file, where,
+            "the header name,x_mm,y_mm,z_mm (and optionally ,tracker_x_mm,tracker_y_mm,tracker_z_mm), got '" + h + "'");
       continue;
     }
     if (static_cast<int>(cells.size()) != columns)
@@ -111,16 +115,19 @@ std::vector<Fiducial> load_fiducials(const std::filesystem::path& path) {
     f.scene_mm = {v[0], v[1], v[2]};
     if (columns == 7) f.touched_mm = Vec3_mm{v[3], v[4], v[5]};
     for (const auto& g : out)
-      if (g.name == f.name) throw InputError(file, where + ", name", "a name no other fiducial has, got '" + f.name + "' twice");
+      if (g.name == f.name)
+        throw InputError(file, where + ", name", "a name no other fiducial has, got '" + f.name + "' twice");
     out.push_back(f);
   }
   if (columns == 0) throw InputError(file, "line 1", "the header name,x_mm,y_mm,z_mm");
-  if (out.size() < 3) throw InputError(file, "line " + std::to_string(line_no), "at least 3 fiducials, got " + std::to_string(out.size()));
+  if (out.size() < 3)
+    throw InputError(file, "line " + std::to_string(line_no),
+                     "at least 3 fiducials, got " + std::to_string(out.size()));
   return out;
 }
 
 std::vector<Vec3_mm> touch_fiducials(IgtlPoseReader& tracker, const TrackedTool& tool,
-                                       const std::vector<Fiducial>& fiducials, const TouchRules& rules, const Say& say) {
+                                     const std::vector<Fiducial>& fiducials, const TouchRules& rules, const Say& say) {
   std::vector<Vec3_mm> touched;
   std::vector<DecodedPose> poses;
   poses.reserve(64);
@@ -206,8 +213,9 @@ PivotCalibration pivot_from_tracker(IgtlPoseReader& tracker, const std::string& 
   }
 }
 
-Vec3_mm digitize_from_tracker(IgtlPoseReader& tracker, const std::string& finger_tool, const std::string& digitizer_tool,
-                                const Vec3_mm& digitizer_tip_mm, const TouchRules& rules, const Say& say) {
+Vec3_mm digitize_from_tracker(IgtlPoseReader& tracker, const std::string& finger_tool,
+                              const std::string& digitizer_tool, const Vec3_mm& digitizer_tip_mm,
+                              const TouchRules& rules, const Say& say) {
   say("touch " + finger_tool + "'s fingertip with " + digitizer_tool + "'s tip and hold both still for " +
       seconds_text(rules.hold_s));
   std::vector<DecodedPose> poses;
@@ -229,8 +237,8 @@ Vec3_mm digitize_from_tracker(IgtlPoseReader& tracker, const std::string& finger
       // frame (the hand may move as long as the two move together).
       const Vec3_mm local = digitize_tip(*finger, digitizer->apply(digitizer_tip_mm));
       if (hold.add(seconds_since(t0), local)) {
-        say("  taken: " + mm3(hold.mean()) + " in " + finger_tool + "'s frame, mean of " + std::to_string(hold.samples()) +
-            " pose pairs");
+        say("  taken: " + mm3(hold.mean()) + " in " + finger_tool + "'s frame, mean of " +
+            std::to_string(hold.samples()) + " pose pairs");
         return hold.mean();
       }
     }

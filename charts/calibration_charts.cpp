@@ -12,7 +12,6 @@ namespace palprig::charts {
 
 namespace {
 
-
 constexpr unsigned kInflationRgb = 0x1f77b4, kDeflationRgb = 0xd62728, kBothRgb = 0x555555;
 
 ChartSeries line_series(const std::string& label, const LineFit& f, unsigned rgb) {
@@ -73,15 +72,16 @@ std::vector<std::filesystem::path> plot_fit(const std::filesystem::path& dir, co
                         MeasuredSignal::monitor, *ch.regulator),
            "channel_" + n + "_regulator.png");
     if (ch.response)
-      save(branch_chart("Channel " + n + ": " + r.sensor_name + " against command", r.sensor_name, pts, MeasuredSignal::sensor,
-                        *ch.response),
+      save(branch_chart("Channel " + n + ": " + r.sensor_name + " against command", r.sensor_name, pts,
+                        MeasuredSignal::sensor, *ch.response),
            "channel_" + n + "_sensor.png");
     if (ch.hysteresis) {
       // Every hold's reading, and the model driven through a major loop and nested minor loops.
       Chart c;
       c.title = "Channel " + n + ": hysteresis model (Prandtl-Ishlinskii)";
       c.x_label = "commanded pressure (kPa)";
-      c.y_label = ch.hysteresis_source == HysteresisSource::sensor ? "sensor as pressure (kPa)" : "monitored pressure (kPa)";
+      c.y_label =
+          ch.hysteresis_source == HysteresisSource::sensor ? "sensor as pressure (kPa)" : "monitored pressure (kPa)";
       ChartSeries measured, model;
       measured.style = ChartSeries::Style::points;
       measured.label = "holds";
@@ -91,7 +91,10 @@ std::vector<std::filesystem::path> plot_fit(const std::filesystem::path& dir, co
         const double y = ch.hysteresis_source == HysteresisSource::monitor ? p.monitor_kPa : std::nan("");
         measured.x.push_back(p.command_kPa);
         measured.y.push_back(y);
-        if (p.segment != SweepSegment::vent) { lo = std::min(lo, p.command_kPa); hi = std::max(hi, p.command_kPa); }
+        if (p.segment != SweepSegment::vent) {
+          lo = std::min(lo, p.command_kPa);
+          hi = std::max(hi, p.command_kPa);
+        }
       }
       PrandtlIshlinskii m = ch.hysteresis->model;
       m.reset(0);

@@ -29,8 +29,10 @@ QtMessageHandler previous_handler = nullptr;
 // chart has no use for it, so that one line is dropped and everything else passes through.
 void quiet_runtime_dir_warning(QtMsgType type, const QMessageLogContext& context, const QString& message) {
   if (type == QtWarningMsg && message.startsWith(QLatin1String("QStandardPaths: XDG_RUNTIME_DIR not set"))) return;
-  if (previous_handler) previous_handler(type, context, message);
-  else fprintf(stderr, "%s\n", qPrintable(message));
+  if (previous_handler)
+    previous_handler(type, context, message);
+  else
+    fprintf(stderr, "%s\n", qPrintable(message));
 }
 
 void ensure_application() {
@@ -79,7 +81,8 @@ void paint_chart(QPainter& p, const Chart& chart) {
   bool bars = false;
   std::size_t bar_series = 0;
   for (const auto& s : chart.series) {
-    if (s.x.size() != s.y.size()) throw std::invalid_argument("chart series \"" + s.label + "\": x and y differ in size");
+    if (s.x.size() != s.y.size())
+      throw std::invalid_argument("chart series \"" + s.label + "\": x and y differ in size");
     if ((!s.y_low.empty() && s.y_low.size() != s.y.size()) || (!s.y_high.empty() && s.y_high.size() != s.y.size()))
       throw std::invalid_argument("chart series \"" + s.label + "\": error bars and y differ in size");
     if (!s.bar_labels.empty() && s.bar_labels.size() != s.y.size())
@@ -118,7 +121,8 @@ void paint_chart(QPainter& p, const Chart& chart) {
   if (chart.x_max) xr.hi = *chart.x_max;
   if (chart.y_min) yr.lo = *chart.y_min;
   if (chart.y_max) yr.hi = *chart.y_max;
-  if (!(xr.hi > xr.lo) || !(yr.hi > yr.lo)) throw std::invalid_argument("chart \"" + chart.title + "\": empty axis range");
+  if (!(xr.hi > xr.lo) || !(yr.hi > yr.lo))
+    throw std::invalid_argument("chart \"" + chart.title + "\": empty axis range");
 
   p.fillRect(QRectF(0, 0, chart.width_px, chart.height_px), Qt::white);
   p.setRenderHint(QPainter::Antialiasing, true);
@@ -188,9 +192,14 @@ void paint_chart(QPainter& p, const Chart& chart) {
         QPainterPath path;
         bool open = false;
         for (std::size_t i = 0; i < s.x.size(); ++i) {
-          if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) { open = false; continue; }
-          if (open) path.lineTo(px(s.x[i]), py(s.y[i]));
-          else path.moveTo(px(s.x[i]), py(s.y[i]));
+          if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) {
+            open = false;
+            continue;
+          }
+          if (open)
+            path.lineTo(px(s.x[i]), py(s.y[i]));
+          else
+            path.moveTo(px(s.x[i]), py(s.y[i]));
           open = true;
         }
         p.setPen(QPen(c, s.width_px));
@@ -220,10 +229,9 @@ void paint_chart(QPainter& p, const Chart& chart) {
       }
     }
     if (!s.y_low.empty() || !s.y_high.empty()) {
-      const double offset =
-          s.style == ChartSeries::Style::bars
-              ? -0.4 + 0.8 / double(std::max<std::size_t>(bar_series, 1)) * (double(bar_index) + 0.5)
-              : 0.0;
+      const double offset = s.style == ChartSeries::Style::bars
+                                ? -0.4 + 0.8 / double(std::max<std::size_t>(bar_series, 1)) * (double(bar_index) + 0.5)
+                                : 0.0;
       p.setPen(QPen(s.style == ChartSeries::Style::bars ? QColor(Qt::black) : c, 1.5));
       for (std::size_t i = 0; i < s.y.size(); ++i) {
         const double lo = s.y_low.empty() ? s.y[i] : s.y_low[i], hi = s.y_high.empty() ? s.y[i] : s.y_high[i];

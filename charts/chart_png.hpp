@@ -2,8 +2,8 @@
 // Charts as PNG files, for the command line's --plot options and anything else that needs a
 // figure on disk: line, point and bar series on numeric axes (or named categories), optional
 // error bars with separate low and high ends (Wilson intervals are not symmetric), a title,
-// axis labels and a legend (right of the plot area, never over the data). Drawn with QPainter on a QImage; when no Qt application exists yet,
-// an offscreen QGuiApplication is created for the fonts (no display needed).
+// axis labels and a legend (right of the plot area, never over the data). Drawn with QPainter on a QImage; when no Qt
+// application exists yet, an offscreen QGuiApplication is created for the fonts (no display needed).
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -16,13 +16,13 @@ namespace palprig::charts {
 
 struct ChartSeries {
   enum class Style { line, points, bars };
-  std::string label;          // legend entry; empty: not in the legend
+  std::string label;  // legend entry; empty: not in the legend
   Style style = Style::line;
-  std::vector<double> x, y;   // non-finite points are skipped (a line breaks there)
-  std::vector<double> y_low, y_high;  // optional error bar ends (absolute values), same size as y
+  std::vector<double> x, y;             // non-finite points are skipped (a line breaks there)
+  std::vector<double> y_low, y_high;    // optional error bar ends (absolute values), same size as y
   std::vector<std::string> bar_labels;  // bars: optional text above each bar ("n=42", "n/a"), same size as y
-  unsigned color_rgb = 0;     // 0xRRGGBB; 0 picks the next palette colour
-  double width_px = 2.0;      // line width, point diameter / 3
+  unsigned color_rgb = 0;               // 0xRRGGBB; 0 picks the next palette colour
+  double width_px = 2.0;                // line width, point diameter / 3
 };
 
 struct Chart {

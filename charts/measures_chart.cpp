@@ -27,7 +27,8 @@ Chart measures_chart(const TrialSummary& summary, const std::string& title, cons
     ChartSeries bars;
     bars.label = row.key.empty() ? "all" : series_prefix + row.key[0];
     bars.style = ChartSeries::Style::bars;
-    for (const Measure* m : {&row.measures.se, &row.measures.sp, &row.measures.ppv, &row.measures.acc}) add_measure_bar(bars, *m);
+    for (const Measure* m : {&row.measures.se, &row.measures.sp, &row.measures.ppv, &row.measures.acc})
+      add_measure_bar(bars, *m);
     chart.series.push_back(std::move(bars));
   }
   return chart;

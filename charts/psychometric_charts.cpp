@@ -85,7 +85,8 @@ std::vector<SessionTrackChart> track_charts(const std::vector<ThresholdTrialRow>
   return out;
 }
 
-std::vector<std::string> write_track_charts(const std::vector<ThresholdTrialRow>& rows, const std::filesystem::path& dir) {
+std::vector<std::string> write_track_charts(const std::vector<ThresholdTrialRow>& rows,
+                                            const std::filesystem::path& dir) {
   std::vector<std::string> written;
   for (const SessionTrackChart& c : track_charts(rows)) {
     const auto path = dir / ("track_session" + std::to_string(c.session) + ".png");

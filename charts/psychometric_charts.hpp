@@ -23,6 +23,7 @@ struct SessionTrackChart {
 std::vector<SessionTrackChart> track_charts(const std::vector<ThresholdTrialRow>& rows);
 
 // Writes track_session<N>.png per session into `dir`; returns the paths written.
-std::vector<std::string> write_track_charts(const std::vector<ThresholdTrialRow>& rows, const std::filesystem::path& dir);
+std::vector<std::string> write_track_charts(const std::vector<ThresholdTrialRow>& rows,
+                                            const std::filesystem::path& dir);
 
 }  // namespace palprig::charts

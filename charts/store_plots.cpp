@@ -70,7 +70,8 @@ std::vector<std::filesystem::path> plot_store(TrialStore& store, const std::file
                                               const StorePlotOptions& options) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir)) throw InputError(dir.string(), "--plot", "a folder that can be created");
+  if (ec || !std::filesystem::is_directory(dir))
+    throw InputError(dir.string(), "--plot", "a folder that can be created");
   std::vector<std::filesystem::path> written;
 
   SummaryOptions by_condition;
@@ -99,7 +100,8 @@ std::vector<std::filesystem::path> plot_store(TrialStore& store, const std::file
         } catch (const stats::StatisticsError& e) {
           throw InputError(store.location(), "threshold trials of track '" + g.label + "'", e.what());
         }
-        write(psychometric_chart(g.label, fit, "level_kPa"), dir, "psychometric_" + file_label(g.label), options, written);
+        write(psychometric_chart(g.label, fit, "level_kPa"), dir, "psychometric_" + file_label(g.label), options,
+              written);
       }
     }
     PulseStore pulse(*sqlite, false);

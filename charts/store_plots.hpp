@@ -18,8 +18,8 @@
 namespace palprig::charts {
 
 struct StorePlotOptions {
-  bool svg = false;       // an SVG beside every PNG
-  int bootstrap = 200;    // resamples of each psychometric fit's interval
+  bool svg = false;     // an SVG beside every PNG
+  int bootstrap = 200;  // resamples of each psychometric fit's interval
   std::uint64_t seed = 1;
 };
 

@@ -14,7 +14,8 @@ std::array<bool, kFingerCount> parse_channels(const std::string& text) {
   bool any = false;
   while (std::getline(in, item, ',')) {
     if (item.size() != 1 || item[0] < '1' || item[0] > char('0' + kFingerCount))
-      throw InputError("--channels", text, "channel numbers 1.." + std::to_string(kFingerCount) + " separated by commas");
+      throw InputError("--channels", text,
+                       "channel numbers 1.." + std::to_string(kFingerCount) + " separated by commas");
     on[std::size_t(item[0] - '1')] = true;
     any = true;
   }

@@ -49,7 +49,8 @@ void run_evaluate(const EvaluateArgs& a) {
   }
   if (!a.out.empty()) write_evaluation_trace_csv(a.out, r);
   if (!a.plot_dir.empty())
-    for (const auto& p : charts::plot_evaluation(a.plot_dir, r, o.channels)) std::cout << "  plot: " << p.string() << "\n";
+    for (const auto& p : charts::plot_evaluation(a.plot_dir, r, o.channels))
+      std::cout << "  plot: " << p.string() << "\n";
   if (!r.complete()) {
     std::cerr << "palprig: evaluation did not complete (signal or fault); all channels vented\n";
     cli::finish(cli::kExitFault);

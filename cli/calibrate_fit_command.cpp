@@ -36,11 +36,16 @@ void run_fit(const FitArgs& a) {
   o.hysteresis = a.hysteresis;
   o.operators_from_data = !a.operators_given;
   o.hysteresis.refine_thresholds = !a.no_refine;
-  if (a.loss == "huber") o.hysteresis.loss = RobustLoss::huber;
-  else if (a.loss == "cauchy") o.hysteresis.loss = RobustLoss::cauchy;
-  if (a.source == "monitor") o.hysteresis_from = HysteresisSource::monitor;
-  else if (a.source == "sensor") o.hysteresis_from = HysteresisSource::sensor;
-  else if (a.source == "none") o.hysteresis_from = HysteresisSource::none;
+  if (a.loss == "huber")
+    o.hysteresis.loss = RobustLoss::huber;
+  else if (a.loss == "cauchy")
+    o.hysteresis.loss = RobustLoss::cauchy;
+  if (a.source == "monitor")
+    o.hysteresis_from = HysteresisSource::monitor;
+  else if (a.source == "sensor")
+    o.hysteresis_from = HysteresisSource::sensor;
+  else if (a.source == "none")
+    o.hysteresis_from = HysteresisSource::none;
   o.regulator_tolerance_kPa = a.regulator_tolerance_kPa;
   o.lag_compensation.enabled = a.lag_compensation;
   o.lag_compensation.max_lead_kPa = a.max_lead_kPa;
@@ -60,8 +65,10 @@ void run_fit(const FitArgs& a) {
   const CalibrationResult result = fit_calibration(data, o);
   const nlohmann::json doc = calibration_json(result);
   write_calibration_file(a.out, doc);
-  if (a.json) std::cout << doc.dump(2) << "\n";
-  else print_fit_report(std::cout, result, a.out);
+  if (a.json)
+    std::cout << doc.dump(2) << "\n";
+  else
+    print_fit_report(std::cout, result, a.out);
   if (!a.plot_dir.empty())
     for (const auto& p : charts::plot_fit(a.plot_dir, data, result)) std::cout << "  plot: " << p.string() << "\n";
 }
@@ -87,9 +94,10 @@ void register_calibrate_fit(CLI::App* cal) {
   auto* operators = fit->add_option("--operators", fa->hysteresis.operator_count,
                                     "Play operators of the hysteresis model (default: 8, or as many as the data "
                                     "supports, with a note)")
-      ->default_val(8)
-      ->check(CLI::Range(1, int(kMaxPlayOperators)));
-  fit->add_option("--max-threshold-kPa", fa->hysteresis.max_threshold_kPa, "Largest initial threshold (0: from the data)")
+                        ->default_val(8)
+                        ->check(CLI::Range(1, int(kMaxPlayOperators)));
+  fit->add_option("--max-threshold-kPa", fa->hysteresis.max_threshold_kPa,
+                  "Largest initial threshold (0: from the data)")
       ->default_val(0.0);
   fit->add_flag("--no-refine", fa->no_refine, "Keep the thresholds on the grid (weights only)");
   fit->add_option("--robust-loss", fa->loss, "none, huber or cauchy")

@@ -36,12 +36,18 @@ void run_sweep(const SweepArgs& a) {
   plan_options.staircase = plan_options.random = plan_options.sine = plan_options.step = plan_options.chirp = false;
   std::istringstream ex(a.excitation);
   for (std::string item; std::getline(ex, item, ',');) {
-    if (item == "staircase") plan_options.staircase = true;
-    else if (item == "random") plan_options.random = true;
-    else if (item == "sine") plan_options.sine = true;
-    else if (item == "step") plan_options.step = true;
-    else if (item == "chirp") plan_options.chirp = true;
-    else throw InputError("--excitation", a.excitation, "a list of staircase, random, sine, step, chirp");
+    if (item == "staircase")
+      plan_options.staircase = true;
+    else if (item == "random")
+      plan_options.random = true;
+    else if (item == "sine")
+      plan_options.sine = true;
+    else if (item == "step")
+      plan_options.step = true;
+    else if (item == "chirp")
+      plan_options.chirp = true;
+    else
+      throw InputError("--excitation", a.excitation, "a list of staircase, random, sine, step, chirp");
   }
   const SweepSchedule plan = plan_calibration_sweep(plan_options, rig.safety.p_max_kPa);
   SweepRunOptions run = a.run;
@@ -84,7 +90,8 @@ void run_sweep(const SweepArgs& a) {
     if (quiet || hold.segment == SweepSegment::vent) return;
     if (hold.segment != last_segment || hold.repeat != last_repeat) {
       std::cerr << "sweep: " << to_string(hold.segment);
-      if (hold.segment == SweepSegment::staircase) std::cerr << " repeat " << hold.repeat << "/" << plan_options.repeats;
+      if (hold.segment == SweepSegment::staircase)
+        std::cerr << " repeat " << hold.repeat << "/" << plan_options.repeats;
       std::cerr << " (" << (100 * done / total) << " %, hold " << done << "/" << total << ")\n";
       last_segment = hold.segment;
       last_repeat = hold.repeat;
@@ -100,8 +107,9 @@ void run_sweep(const SweepArgs& a) {
             << (outcome.holds_redone ? ", " + std::to_string(outcome.holds_redone) + " redone after a link outage" : "")
             << ") in " << outcome.duration_s << " s of rig time; " << writer.rows() << " rows -> " << a.out << "\n";
   if (outcome.stopped || outcome.faulted) {
-    std::cerr << "palprig: sweep " << (outcome.stopped ? "stopped by signal " + std::to_string(outcome.stop_signal)
-                                                        : "faulted: " + outcome.fault)
+    std::cerr << "palprig: sweep "
+              << (outcome.stopped ? "stopped by signal " + std::to_string(outcome.stop_signal)
+                                  : "faulted: " + outcome.fault)
               << " after " << outcome.holds_done << " of " << outcome.holds_planned
               << " holds; all channels vented; what was recorded is in " << a.out << "\n";
     cli::finish(cli::kExitFault);
@@ -112,16 +120,20 @@ void run_sweep(const SweepArgs& a) {
 
 void register_calibrate_sweep(CLI::App* cal) {
   auto sa = std::make_shared<SweepArgs>();
-  CLI::App* sweep = cal->add_subcommand("sweep", "Record inflation/deflation staircases (and identification excitations)");
+  CLI::App* sweep =
+      cal->add_subcommand("sweep", "Record inflation/deflation staircases (and identification excitations)");
   sweep->add_option("--rig", sa->rig_path, "Rig file (JSON); default: the simulated rig in data/rigs/simulated.json");
-  sweep->add_option("--channels", sa->channels, "Channels to drive, e.g. 1,2,3 (the others stay vented)")->default_val("1,2,3");
+  sweep->add_option("--channels", sa->channels, "Channels to drive, e.g. 1,2,3 (the others stay vented)")
+      ->default_val("1,2,3");
   sweep->add_option("--from-kPa", sa->plan.from_kPa, "Lowest staircase level")->default_val(10.0);
-  sweep->add_option("--to-kPa", sa->plan.to_kPa, "Highest staircase level (clamped to the rig's p_max)")->default_val(100.0);
+  sweep->add_option("--to-kPa", sa->plan.to_kPa, "Highest staircase level (clamped to the rig's p_max)")
+      ->default_val(100.0);
   sweep->add_option("--step-kPa", sa->plan.step_kPa, "Staircase step")->default_val(10.0);
   sweep->add_option("--repeats", sa->plan.repeats, "Staircase repeats, each from vented")->default_val(5);
-  sweep->add_option("--excitation", sa->excitation,
-                    "staircase, random, sine, step, chirp (comma-separated); random and sine add reversals for the "
-                    "hysteresis fit, step and chirp identify the regulators' dynamics for lag compensation")
+  sweep
+      ->add_option("--excitation", sa->excitation,
+                   "staircase, random, sine, step, chirp (comma-separated); random and sine add reversals for the "
+                   "hysteresis fit, step and chirp identify the regulators' dynamics for lag compensation")
       ->default_val("staircase");
   sweep->add_option("--random-levels", sa->plan.random_levels, "Levels of the random excitation")->default_val(60);
   sweep->add_option("--sine-cycles", sa->plan.sine_cycles, "Cycles of the shrinking stepped sine")->default_val(4);
@@ -132,11 +144,14 @@ void register_calibrate_sweep(CLI::App* cal) {
   sweep->add_option("--chirp-s", sa->plan.chirp_s, "Length of the chirp excitation")->default_val(8.0);
   sweep->add_option("--chirp-from-hz", sa->plan.chirp_from_hz, "The chirp's first frequency")->default_val(0.5);
   sweep->add_option("--chirp-to-hz", sa->plan.chirp_to_hz, "The chirp's last frequency")->default_val(12.0);
-  sweep->add_option("--dynamics-rate-hz", sa->run.dynamics_rate_hz,
-                    "Command/record rate of the step and chirp excitations (the loop's rate)")
+  sweep
+      ->add_option("--dynamics-rate-hz", sa->run.dynamics_rate_hz,
+                   "Command/record rate of the step and chirp excitations (the loop's rate)")
       ->default_val(1000.0)
       ->check(CLI::Range(1.0, 10000.0));
-  sweep->add_option("--rate-hz", sa->run.rate_hz, "Command/record rate")->default_val(100.0)->check(CLI::Range(1.0, 10000.0));
+  sweep->add_option("--rate-hz", sa->run.rate_hz, "Command/record rate")
+      ->default_val(100.0)
+      ->check(CLI::Range(1.0, 10000.0));
   sweep->add_option("--settle-band-kPa", sa->run.settle_band_kPa, "Settled: window halves differ by at most this")
       ->default_val(0.2);
   sweep->add_option("--settle-window-s", sa->run.settle_window_s, "Settle test window")->default_val(0.3);

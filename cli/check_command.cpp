@@ -125,12 +125,16 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
     for (const auto& tool : t.tools)
       names += (names.empty() ? "" : ", ") + tool.name +
                (t.placement == TrackedPlacement::per_finger ? " -> finger " + std::to_string(tool.finger + 1) : "");
-    return std::string("tracking file, ") + (t.placement == TrackedPlacement::per_finger ? "one tool per finger (" : "one tool, the fingers around it (") +
-           names + ")" + (t.registration.fiducials > 0 ? ", registered on " + count(t.registration.fiducials, "fiducial") : "");
+    return std::string("tracking file, ") +
+           (t.placement == TrackedPlacement::per_finger ? "one tool per finger ("
+                                                        : "one tool, the fingers around it (") +
+           names + ")" +
+           (t.registration.fiducials > 0 ? ", registered on " + count(t.registration.fiducials, "fiducial") : "");
   }
   if (kind == "poses") {
     const auto poses = load_pose_recording(path);
-    return "tracker pose recording, " + count(recorded_tools(poses).size(), "tool") + ", " + count(poses.size(), "pose");
+    return "tracker pose recording, " + count(recorded_tools(poses).size(), "tool") + ", " +
+           count(poses.size(), "pose");
   }
   if (kind == "fiducials") return "fiducials, " + count(load_fiducials(path).size(), "point");
   if (kind == "waveform") {
@@ -150,11 +154,11 @@ void register_check_command(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
-      "check", "Load files through palprig's readers and say what each is (rig, scene, calibration, protocol, "
-               "trace, map, waveform, evemu, tracking, poses, fiducials); a refused file is one line, exit 2");
+      "check",
+      "Load files through palprig's readers and say what each is (rig, scene, calibration, protocol, "
+      "trace, map, waveform, evemu, tracking, poses, fiducials); a refused file is one line, exit 2");
   sub->add_option("files", a->files, "files to check")->required();
-  sub->add_option("--kind", a->kind, "the kind, instead of reading it from the file")
-      ->check(CLI::IsMember(kKinds));
+  sub->add_option("--kind", a->kind, "the kind, instead of reading it from the file")->check(CLI::IsMember(kKinds));
   sub->callback([a] {
     for (const std::string& file : a->files) {
       const std::string kind = a->kind.empty() ? detect_kind(file) : a->kind;

@@ -11,8 +11,8 @@ namespace palprig::cli {
 
 // Exit codes shared by every subcommand.
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitFault = 1;      // the rig faulted while running (channels vented)
-inline constexpr int kExitBadInput = 2;   // a file or argument was refused before anything moved
+inline constexpr int kExitFault = 1;     // the rig faulted while running (channels vented)
+inline constexpr int kExitBadInput = 2;  // a file or argument was refused before anything moved
 
 // Set by SIGINT/SIGTERM; loops poll it and vent.
 std::atomic<int>& stop_signal();

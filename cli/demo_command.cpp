@@ -17,14 +17,16 @@ void register_demo_command(CLI::App& app) {
   auto out_dir = std::make_shared<std::string>("/tmp/palprig-demo");
   auto json_out = std::make_shared<bool>(false);
   CLI::App* sub = app.add_subcommand(
-      "demo", "Run the bundled phantom (tumors A, B, C) with a recorded pen pass on the simulated rig and show the "
-              "pressure each finger got over each tumor and over soft tissue");
+      "demo",
+      "Run the bundled phantom (tumors A, B, C) with a recorded pen pass on the simulated rig and show the "
+      "pressure each finger got over each tumor and over soft tissue");
   sub->add_option("--out", *out_dir, "Directory for the telemetry file")->default_val("/tmp/palprig-demo");
   sub->add_flag("--json", *json_out, "Print the run summary and the table as JSON");
   auto cal_file = std::make_shared<std::string>();
   auto compensate = std::make_shared<bool>(false);
-  sub->add_option("--cal", *cal_file, "Calibration file (JSON); default: paper 002's models (with --compensate-lag: "
-                                      "the simulated rig's calibration, data/calibration/sim-default.json)");
+  sub->add_option("--cal", *cal_file,
+                  "Calibration file (JSON); default: paper 002's models (with --compensate-lag: "
+                  "the simulated rig's calibration, data/calibration/sim-default.json)");
   sub->add_flag("--compensate-lag", *compensate,
                 "Lag-compensate the whole target with the calibration's identified regulator dynamics");
   sub->callback([=]() {
@@ -33,9 +35,9 @@ void register_demo_command(CLI::App& app) {
     files.scene = data / "scenes" / "phantom_abc.json";
     files.input = "trace:" + (data / "traces" / "phantom_abc_pass.csv").string();
     files.rig = data / "rigs" / "simulated.json";
-    files.calibration = !cal_file->empty()  ? std::filesystem::path(*cal_file)
-                        : *compensate         ? data / "calibration" / "sim-default.json"
-                                              : data / "calibration" / "paper002.json";
+    files.calibration = !cal_file->empty() ? std::filesystem::path(*cal_file)
+                        : *compensate      ? data / "calibration" / "sim-default.json"
+                                           : data / "calibration" / "paper002.json";
     if (*compensate) files.compensate_lag = true;
     LoadedRun run = load_run(files);
     for (const auto& note : run.lag_compensation_notes) std::cerr << "palprig: " << note << "\n";

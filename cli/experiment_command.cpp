@@ -38,8 +38,8 @@ struct RunArgs {
 };
 
 std::string trial_line(const TrialRecord& t, int total) {
-  std::string line = "trial " + std::to_string(t.planned.position + 1) + "/" + std::to_string(total) + " " + t.condition +
-                     (t.planned.practice ? " (practice)" : "");
+  std::string line = "trial " + std::to_string(t.planned.position + 1) + "/" + std::to_string(total) + " " +
+                     t.condition + (t.planned.practice ? " (practice)" : "");
   if (t.mode != PresentationMode::scene) {
     line += " " + t.combination_label + " kPa, tumor " + finger_numbers_text(t.truth);
     line += t.answered ? ", answer " + finger_numbers_text(t.answer) + " (" + to_string(t.finger_outcomes[0]) + " " +
@@ -87,8 +87,10 @@ class TerminalReport final : public SessionListener {
     }
   }
   void trial_committed(const TrialRecord& t, int total) override {
-    if (!simulated_) std::cout << "  Answer recorded (" << t.planned.position + 1 << " of " << total << ").\n" << std::flush;
-    else if (!quiet_) std::cout << trial_line(t, total) << "\n" << std::flush;
+    if (!simulated_)
+      std::cout << "  Answer recorded (" << t.planned.position + 1 << " of " << total << ").\n" << std::flush;
+    else if (!quiet_)
+      std::cout << trial_line(t, total) << "\n" << std::flush;
   }
   void participant_feedback(int, const std::string& text) override {
     if (!simulated_) std::cout << "  " << text << "\n" << std::flush;
@@ -131,7 +133,8 @@ void run_experiment(const RunArgs& a) {
               << " --to " << request.store_location << "\n";
   }
   if (end.completed) {
-    std::cout << "session " << report.session_id() << " completed: " << cli::counted(end.committed_trials, "trial", "trials") << " in "
+    std::cout << "session " << report.session_id()
+              << " completed: " << cli::counted(end.committed_trials, "trial", "trials") << " in "
               << request.store_location << "\n";
     return;
   }
@@ -148,14 +151,19 @@ void run_experiment(const RunArgs& a) {
 void register_run(CLI::App* experiment) {
   auto a = std::make_shared<RunArgs>();
   auto* sub = experiment->add_subcommand(
-      "run", "Run (or --resume) a session: trials from a protocol file, answers typed in the terminal or given by a "
-             "simulated participant (sim:SEED), each trial committed to the SQLite database as it completes");
-  sub->add_option("--protocol", a->request.protocol_file, "Protocol file (JSON), e.g. data/protocols/discrimination_002.json")->required();
+      "run",
+      "Run (or --resume) a session: trials from a protocol file, answers typed in the terminal or given by a "
+      "simulated participant (sim:SEED), each trial committed to the SQLite database as it completes");
+  sub->add_option("--protocol", a->request.protocol_file,
+                  "Protocol file (JSON), e.g. data/protocols/discrimination_002.json")
+      ->required();
   sub->add_option("--participant", a->request.participant_code,
-                  "Participant code, or sim:SEED for a simulated participant (model observer)")->required();
+                  "Participant code, or sim:SEED for a simulated participant (model observer)")
+      ->required();
   sub->add_option("--db", a->request.store_location,
                   "Trial store: an SQLite file (created when missing) or the lab's PostgreSQL server, "
-                  "postgresql://user@host:port/dbname (password from PGPASSWORD or ~/.pgpass)")->required();
+                  "postgresql://user@host:port/dbname (password from PGPASSWORD or ~/.pgpass)")
+      ->required();
   sub->add_option("--journal", a->request.journal_file,
                   "With a postgresql:// store: the bench's local journal (SQLite) every trial is written to first; "
                   "default $PALPRIG_JOURNAL, else ~/.local/state/palprig/journal.sqlite");
@@ -165,36 +173,49 @@ void register_run(CLI::App* experiment) {
                   "Record every rig tick of the session to FILE (.bin binary, else CSV; as run --telemetry), on the "
                   "session clock of the stored onsets; a new file (an existing one is never overwritten)");
   sub->add_flag("--resume", a->request.resume, "Continue this participant's unfinished session with this protocol");
-  sub->add_option("--seed", a->request.seed, "Seed of the generated order; default: derived from participant and protocol");
+  sub->add_option("--seed", a->request.seed,
+                  "Seed of the generated order; default: derived from participant and protocol");
   sub->add_option("--speed", a->request.speed,
                   "Simulated participant only: 0 = as fast as possible on simulated time (default), "
-                  "1 = real time, 10 = ten times faster than real time")->check(CLI::Range(0.0, 1e6));
+                  "1 = real time, 10 = ten times faster than real time")
+      ->check(CLI::Range(0.0, 1e6));
   sub->add_flag("--quiet", a->quiet, "Simulated participant: no line per trial");
   sub->add_option("--sim-noise-kPa", a->request.model.noise_kPa,
-                  "Simulated: sd of each finger's perceived pressure (three fingers at once)")->default_val(a->request.model.noise_kPa)
+                  "Simulated: sd of each finger's perceived pressure (three fingers at once)")
+      ->default_val(a->request.model.noise_kPa)
       ->check(CLI::Range(0.0, 100.0));
   sub->add_option("--sim-sequential-noise-factor", a->request.model.sequential_noise_factor,
                   "Simulated: noise multiplier when fingers come one after another")
-      ->default_val(a->request.model.sequential_noise_factor)->check(CLI::Range(0.0, 100.0));
+      ->default_val(a->request.model.sequential_noise_factor)
+      ->check(CLI::Range(0.0, 100.0));
   sub->add_option("--sim-criterion-kPa", a->request.model.criterion_kPa,
                   "Simulated: a finger perceived this much above the lowest one has a tumor")
-      ->default_val(a->request.model.criterion_kPa)->check(CLI::Range(0.0, 100.0));
+      ->default_val(a->request.model.criterion_kPa)
+      ->check(CLI::Range(0.0, 100.0));
   sub->add_option("--sim-rt-simultaneous", a->request.model.simultaneous.mean_s,
                   "Simulated: mean response time in s, three fingers at once (log-normal; sd --sim-rt-sd-simultaneous)")
-      ->default_val(a->request.model.simultaneous.mean_s)->check(CLI::Range(0.05, 600.0));
+      ->default_val(a->request.model.simultaneous.mean_s)
+      ->check(CLI::Range(0.05, 600.0));
   sub->add_option("--sim-rt-sd-simultaneous", a->request.model.simultaneous.sd_s, "Simulated: response time sd in s")
-      ->default_val(a->request.model.simultaneous.sd_s)->check(CLI::Range(0.0, 600.0));
-  sub->add_option("--sim-rt-sequential", a->request.model.sequential.mean_s, "Simulated: mean response time in s, one finger at a time")
-      ->default_val(a->request.model.sequential.mean_s)->check(CLI::Range(0.05, 600.0));
+      ->default_val(a->request.model.simultaneous.sd_s)
+      ->check(CLI::Range(0.0, 600.0));
+  sub->add_option("--sim-rt-sequential", a->request.model.sequential.mean_s,
+                  "Simulated: mean response time in s, one finger at a time")
+      ->default_val(a->request.model.sequential.mean_s)
+      ->check(CLI::Range(0.05, 600.0));
   sub->add_option("--sim-rt-sd-sequential", a->request.model.sequential.sd_s, "Simulated: response time sd in s")
-      ->default_val(a->request.model.sequential.sd_s)->check(CLI::Range(0.0, 600.0));
+      ->default_val(a->request.model.sequential.sd_s)
+      ->check(CLI::Range(0.0, 600.0));
   // issue 13: the simulated threshold observer (experiments/threshold_observer.hpp)
   sub->add_option("--sim-threshold-noise-kPa", a->sim_threshold_noise_kPa,
                   "Simulated, threshold protocols: sd of each finger's perceived pressure per interval")
-      ->default_val(a->sim_threshold_noise_kPa)->check(CLI::Range(0.0, 100.0));
-  sub->add_option("--sim-threshold-criterion-kPa", a->sim_threshold_criterion_kPa,
-                  "Simulated, yes-no threshold protocols: 'stronger' when the second interval is felt this much above the first")
-      ->default_val(a->sim_threshold_criterion_kPa)->check(CLI::Range(0.0, 100.0));
+      ->default_val(a->sim_threshold_noise_kPa)
+      ->check(CLI::Range(0.0, 100.0));
+  sub->add_option(
+         "--sim-threshold-criterion-kPa", a->sim_threshold_criterion_kPa,
+         "Simulated, yes-no threshold protocols: 'stronger' when the second interval is felt this much above the first")
+      ->default_val(a->sim_threshold_criterion_kPa)
+      ->check(CLI::Range(0.0, 100.0));
   sub->callback([a] { run_experiment(*a); });
 }
 
@@ -209,7 +230,8 @@ void register_plan(CLI::App* experiment) {
   sub->add_option("--protocol", a->protocol, "Protocol file (JSON)")->required();
   sub->add_option("--participant", a->participant, "Participant code (the default seed derives from it)")->required();
   sub->add_option("--number", a->number, "Participant number for counterbalancing (1 = first enrolled)")
-      ->default_val(1)->check(CLI::Range(1, 1000000));
+      ->default_val(1)
+      ->check(CLI::Range(1, 1000000));
   sub->add_option("--seed", a->seed, "Seed; default: derived from participant and protocol");
   sub->callback([a] {
     const Protocol p = load_protocol(a->protocol);
@@ -221,8 +243,9 @@ void register_plan(CLI::App* experiment) {
 }  // namespace
 
 void register_experiment_command(CLI::App& app) {
-  auto* experiment = app.add_subcommand("experiment", "Run study sessions (paper 002's discrimination and localisation "
-                                                      "studies, or your own protocol files)");
+  auto* experiment = app.add_subcommand("experiment",
+                                        "Run study sessions (paper 002's discrimination and localisation "
+                                        "studies, or your own protocol files)");
   experiment->require_subcommand(1);
   register_run(experiment);
   register_plan(experiment);

@@ -26,11 +26,14 @@ void register_export_command(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   auto* sub = app.add_subcommand(
-      "export", "Export a trial database, every task kind in it: --format csv writes trials_long.csv (one row per "
-                "finger value or tumor) and marks.csv, threshold_trials.csv and pulse_trials.csv (one row per trial), each "
-                "when the store holds such trials; --format bids writes sub-<id>/beh/sub-<id>_task-<task>_beh.tsv with "
-                "JSON sidecars. A store with no trial to export is refused (exit 2)");
-  sub->add_option("db", a->db, "Trial store written by palprig experiment run: an SQLite file or postgresql://user@host:port/dbname")->required();
+      "export",
+      "Export a trial database, every task kind in it: --format csv writes trials_long.csv (one row per "
+      "finger value or tumor) and marks.csv, threshold_trials.csv and pulse_trials.csv (one row per trial), each "
+      "when the store holds such trials; --format bids writes sub-<id>/beh/sub-<id>_task-<task>_beh.tsv with "
+      "JSON sidecars. A store with no trial to export is refused (exit 2)");
+  sub->add_option("db", a->db,
+                  "Trial store written by palprig experiment run: an SQLite file or postgresql://user@host:port/dbname")
+      ->required();
   sub->add_option("--format", a->format, "csv or bids")->check(CLI::IsMember({"csv", "bids"}))->default_val("csv");
   sub->add_option("--out", a->out, "Output folder (created when missing)")->required();
   sub->add_flag("--no-practice", a->no_practice, "Leave practice trials out (they are marked by a column otherwise)");
@@ -49,7 +52,8 @@ void register_export_command(CLI::App& app) {
     options.include_practice = !a->no_practice;
     options.authors = a->authors;
     options.dataset_name = a->name;
-    if (a->svg && a->plot_dir.empty()) throw InputError("command line", "--svg", "--plot DIR as well (SVG files go beside its PNGs)");
+    if (a->svg && a->plot_dir.empty())
+      throw InputError("command line", "--svg", "--plot DIR as well (SVG files go beside its PNGs)");
     const ExportResult r =
         a->format == "bids" ? export_bids(store, a->out, options) : export_long_csv(store, a->out, options);
     std::cout << "palprig export: " << r.trials << " trials";

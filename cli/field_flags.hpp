@@ -1,7 +1,7 @@
 #pragma once
 // Libraries name the field a refusal is about ("participant", "from_kPa"; in prose quoted as
-// `from_kPa`); the command line names the flag that sets it. This table is the one place that maps one to the other, so a
-// library never speaks in flags and the user still reads the flag they typed.
+// `from_kPa`); the command line names the flag that sets it. This table is the one place that maps one to the other, so
+// a library never speaks in flags and the user still reads the flag they typed.
 #include <string>
 #include <string_view>
 

@@ -14,23 +14,30 @@ void register_gui_command(CLI::App& app) {
     bool no_fifo = false;
   };
   auto o = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand("gui", "The live rig console: pen on the scene view, finger pressures, VENT, traces");
-  sub->add_option("--scene", o->gui.files.scene_path, "Scene file (JSON); default: the bundled phantom")->check(CLI::ExistingFile);
+  CLI::App* sub =
+      app.add_subcommand("gui", "The live rig console: pen on the scene view, finger pressures, VENT, traces");
+  sub->add_option("--scene", o->gui.files.scene_path, "Scene file (JSON); default: the bundled phantom")
+      ->check(CLI::ExistingFile);
   sub->add_option("--rig", o->gui.files.rig_path, "Rig file (JSON); default: the simulated rig");
   sub->add_option("--cal", o->gui.files.cal_path, "Calibration file (JSON); default: paper 002's models");
-  sub->add_option("--input", o->gui.files.input_spec,
-                  "Pen input: window (mouse or tablet on the scene view), trace:FILE, sweep, tablet[:DEVICE or FILE.evemu], "
-                  "igtl:HOST:PORT (tracked fingers, with --tracking)")
+  sub->add_option(
+         "--input", o->gui.files.input_spec,
+         "Pen input: window (mouse or tablet on the scene view), trace:FILE, sweep, tablet[:DEVICE or FILE.evemu], "
+         "igtl:HOST:PORT (tracked fingers, with --tracking)")
       ->default_val("window");
   sub->add_option("--tracking", o->gui.files.tracking_path,
                   "With --input igtl:HOST:PORT: the tracking file (which tool is which finger, tips, registration)")
       ->check(CLI::ExistingFile);
-  sub->add_option("--rate-hz", o->gui.run.rate_hz, "Loop rate in Hz")->default_val(1000.0)->check(CLI::Range(1.0, 100000.0));
+  sub->add_option("--rate-hz", o->gui.run.rate_hz, "Loop rate in Hz")
+      ->default_val(1000.0)
+      ->check(CLI::Range(1.0, 100000.0));
   sub->add_flag("--no-fifo", o->no_fifo, "Real time without SCHED_FIFO");
   sub->add_option("--telemetry", o->telemetry, "Write every tick to FILE (.csv, or .bin), as run does");
-  sub->add_option("--screenshot", o->gui.screenshot_path, "Save the whole window as PNG after --after-s seconds, then exit");
+  sub->add_option("--screenshot", o->gui.screenshot_path,
+                  "Save the whole window as PNG after --after-s seconds, then exit");
   sub->add_option("--after-s", o->gui.after_s, "Seconds of live operation before the screenshot")
-      ->default_val(2.0)->check(CLI::Range(0.1, 3600.0));
+      ->default_val(2.0)
+      ->check(CLI::Range(0.1, 3600.0));
   sub->add_option("--protocol", o->gui.session.protocol,
                   "Open the experiment console on this protocol (with --participant and --db)");
   sub->add_option("--participant", o->gui.session.participant,
@@ -57,7 +64,8 @@ void register_gui_command(CLI::App& app) {
                        "a value with --protocol (the session needs a participant code and a trial database)");
     }
     if (session.participant_display > 0 && session.protocol.empty()) {
-      throw InputError("command line", "participant-display", "--protocol as well (the participant screen belongs to a session)");
+      throw InputError("command line", "participant-display",
+                       "--protocol as well (the participant screen belongs to a session)");
     }
     g.files.data_dir = cli::data_dir();
     g.run.telemetry_path = o->telemetry;

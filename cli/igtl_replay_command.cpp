@@ -24,8 +24,9 @@ void register_igtl_replay_command(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
-      "igtl-replay", "Serve a recorded tracker path over OpenIGTLink (TRANSFORM messages per tool, in real time), as "
-                     "PlusServer streams an NDI Aurora");
+      "igtl-replay",
+      "Serve a recorded tracker path over OpenIGTLink (TRANSFORM messages per tool, in real time), as "
+      "PlusServer streams an NDI Aurora");
   sub->add_option("--poses", a->poses, "Recorded path (CSV t_s,tool,x_mm,y_mm,z_mm,qx,qy,qz,qw)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -60,14 +61,16 @@ void register_igtl_replay_command(CLI::App& app) {
       std::ostringstream names;
       for (std::size_t i = 0; i < tools.size(); ++i) names << (i ? ", " : "") << tools[i];
       std::lock_guard<std::mutex> lock(*out_mutex);
-      std::cout << "palprig igtl-replay: " << a->poses << ": " << tools.size() << (tools.size() == 1 ? " tool (" : " tools (")
-                << names.str() << "), " << std::fixed << std::setprecision(2) << server.duration_s() << " s; listening on port "
-                << server.port() << " (every interface), " << (a->position ? "POSITION" : "TRANSFORM")
+      std::cout << "palprig igtl-replay: " << a->poses << ": " << tools.size()
+                << (tools.size() == 1 ? " tool (" : " tools (") << names.str() << "), " << std::fixed
+                << std::setprecision(2) << server.duration_s() << " s; listening on port " << server.port()
+                << " (every interface), " << (a->position ? "POSITION" : "TRANSFORM")
                 << " messages; each client gets the recording from its start" << std::endl;
     }
     const auto start = std::chrono::steady_clock::now();
     while (cli::stop_signal().load() == 0) {
-      if (a->duration_s > 0 && std::chrono::steady_clock::now() - start >= std::chrono::duration<double>(a->duration_s)) break;
+      if (a->duration_s > 0 && std::chrono::steady_clock::now() - start >= std::chrono::duration<double>(a->duration_s))
+        break;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     server.stop();

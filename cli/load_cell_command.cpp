@@ -30,7 +30,9 @@ struct CellStats {
   }
   double mean_v() const { return n ? sum_v / double(n) : 0; }
   double mean_f() const { return n ? sum_f / double(n) : 0; }
-  static double sd(double s, double s2, std::size_t n) { return n > 1 ? std::sqrt(std::max(0.0, (s2 - s * s / double(n)) / double(n - 1))) : 0; }
+  static double sd(double s, double s2, std::size_t n) {
+    return n > 1 ? std::sqrt(std::max(0.0, (s2 - s * s / double(n)) / double(n - 1))) : 0;
+  }
   double sd_v() const { return sd(sum_v, sum_v2, n); }
   double sd_f() const { return sd(sum_f, sum_f2, n); }
 };
@@ -45,7 +47,8 @@ struct Reading {
 Reading read_cells(const std::string& rig_path, double seconds, double load_N) {
   Reading r;
   r.rig = load_rig_file(rig_path);
-  if (!r.rig.load_cells) throw InputError(r.rig.source, "load_cells", "a \"load_cells\" section (the rig's force sensors)");
+  if (!r.rig.load_cells)
+    throw InputError(r.rig.source, "load_cells", "a \"load_cells\" section (the rig's force sensors)");
   if (load_N > 0 && r.rig.backend != "simulated")
     throw InputError("--load-N", r.rig.source, "a simulated rig (a real cell feels the weight you put on it)");
   auto backend = make_backend(r.rig);
@@ -81,7 +84,8 @@ std::string cell_name(const Reading& r, std::size_t i) {
 }  // namespace
 
 void register_load_cell_command(CLI::App& app) {
-  CLI::App* group = app.add_subcommand("load-cell", "Read the rig's load cells: tare, gain, and paper 003's reference presses");
+  CLI::App* group =
+      app.add_subcommand("load-cell", "Read the rig's load cells: tare, gain, and paper 003's reference presses");
   group->require_subcommand(1);
 
   struct ReadArgs {
@@ -89,12 +93,19 @@ void register_load_cell_command(CLI::App& app) {
     double seconds = 2, load_N = 0, known_N = -1;
   };
   auto a = std::make_shared<ReadArgs>();
-  CLI::App* read = group->add_subcommand("read", "Read each load cell for a while: volts and force (mean, sd) with the rig file's calibration");
-  read->add_option("--rig", a->rig, "Rig file (JSON) with a \"load_cells\" section")->required()->check(CLI::ExistingFile);
-  read->add_option("--seconds", a->seconds, "How long to read (100 readings a second)")->default_val(2.0)->check(CLI::Range(0.01, 600.0));
-  read->add_option("--load-N", a->load_N, "Simulated rig: a weight of this many newtons on every cell")->check(CLI::Range(0.0, 1000.0));
-  read->add_option("--known-N", a->known_N,
-                   "The load on the cells is known (a weight): print the gain N_per_V that reads it, from the rig file's tare_V")
+  CLI::App* read = group->add_subcommand(
+      "read", "Read each load cell for a while: volts and force (mean, sd) with the rig file's calibration");
+  read->add_option("--rig", a->rig, "Rig file (JSON) with a \"load_cells\" section")
+      ->required()
+      ->check(CLI::ExistingFile);
+  read->add_option("--seconds", a->seconds, "How long to read (100 readings a second)")
+      ->default_val(2.0)
+      ->check(CLI::Range(0.01, 600.0));
+  read->add_option("--load-N", a->load_N, "Simulated rig: a weight of this many newtons on every cell")
+      ->check(CLI::Range(0.0, 1000.0));
+  read->add_option(
+          "--known-N", a->known_N,
+          "The load on the cells is known (a weight): print the gain N_per_V that reads it, from the rig file's tare_V")
       ->check(CLI::Range(0.0, 1000.0));
   read->callback([a] {
     cli::install_stop_signals();
@@ -106,15 +117,19 @@ void register_load_cell_command(CLI::App& app) {
     for (std::size_t i = 0; i < r.cells.size(); ++i) {
       const CellStats& c = r.cells[i];
       const LoadCellCalibration& cal = r.rig.load_cells->channels[i].calibration;
-      std::cout << "  " << std::left << std::setw(12) << cell_name(r, i) << std::right << std::setprecision(4) << std::setw(10)
-                << c.mean_v() << " / " << std::setw(6) << c.sd_v() << "   " << std::setprecision(3) << std::setw(8) << tidy(c.mean_f(), 1e-3)
-                << " / " << std::setw(5) << c.sd_f() << "    (" << std::setprecision(4) << cal.tare_V << ", " << cal.N_per_V << ")\n";
+      std::cout << "  " << std::left << std::setw(12) << cell_name(r, i) << std::right << std::setprecision(4)
+                << std::setw(10) << c.mean_v() << " / " << std::setw(6) << c.sd_v() << "   " << std::setprecision(3)
+                << std::setw(8) << tidy(c.mean_f(), 1e-3) << " / " << std::setw(5) << c.sd_f() << "    ("
+                << std::setprecision(4) << cal.tare_V << ", " << cal.N_per_V << ")\n";
       if (a->known_N >= 0) {
         const double above = c.mean_v() - cal.tare_V;
-        if (a->known_N == 0) std::cout << "    no load: its tare_V is " << std::setprecision(4) << c.mean_v() << "\n";
-        else if (std::abs(above) < 1e-6) std::cout << "    the reading is at the tare: no gain can be found (is the weight on?)\n";
-        else std::cout << "    " << std::setprecision(3) << a->known_N << " N on it: its N_per_V is " << std::setprecision(4)
-                       << a->known_N / above << "\n";
+        if (a->known_N == 0)
+          std::cout << "    no load: its tare_V is " << std::setprecision(4) << c.mean_v() << "\n";
+        else if (std::abs(above) < 1e-6)
+          std::cout << "    the reading is at the tare: no gain can be found (is the weight on?)\n";
+        else
+          std::cout << "    " << std::setprecision(3) << a->known_N << " N on it: its N_per_V is "
+                    << std::setprecision(4) << a->known_N / above << "\n";
       }
     }
   });
@@ -125,13 +140,20 @@ void register_load_cell_command(CLI::App& app) {
   };
   auto p = std::make_shared<PressArgs>();
   CLI::App* press = group->add_subcommand(
-      "press", "Record one reference press (a cuff at 60 or 120 mmHg over the cell, paper 003) into a presses CSV for "
-               "calibrate fit --force-presses");
-  press->add_option("--rig", p->rig, "Rig file (JSON) with a \"load_cells\" section")->required()->check(CLI::ExistingFile);
+      "press",
+      "Record one reference press (a cuff at 60 or 120 mmHg over the cell, paper 003) into a presses CSV for "
+      "calibrate fit --force-presses");
+  press->add_option("--rig", p->rig, "Rig file (JSON) with a \"load_cells\" section")
+      ->required()
+      ->check(CLI::ExistingFile);
   press->add_option("--mmHg", p->mmHg, "The cuff's pressure")->required()->check(CLI::Range(1.0, 400.0));
-  press->add_option("--presses", p->presses, "Presses CSV to append to (reference_mmHg,force_N; created with its header)")->required();
+  press
+      ->add_option("--presses", p->presses,
+                   "Presses CSV to append to (reference_mmHg,force_N; created with its header)")
+      ->required();
   press->add_option("--seconds", p->seconds, "How long to average")->default_val(3.0)->check(CLI::Range(0.01, 600.0));
-  press->add_option("--load-N", p->load_N, "Simulated rig: the force the cuff presses with")->check(CLI::Range(0.0, 1000.0));
+  press->add_option("--load-N", p->load_N, "Simulated rig: the force the cuff presses with")
+      ->check(CLI::Range(0.0, 1000.0));
   press->callback([p] {
     cli::install_stop_signals();
     const Reading r = read_cells(p->rig, p->seconds, p->load_N);
@@ -152,7 +174,8 @@ void register_load_cell_command(CLI::App& app) {
     out.stream() << before << p->mmHg << "," << std::setprecision(6) << force << "\n";
     out.commit();
     std::cout << "palprig load-cell press: " << std::fixed << std::setprecision(0) << p->mmHg << " mmHg read as "
-              << std::setprecision(3) << force << " N (mean of " << r.cells.size() << (r.cells.size() == 1 ? " cell" : " cells")
-              << " over " << std::setprecision(1) << p->seconds << " s); appended to " << p->presses << "\n";
+              << std::setprecision(3) << force << " N (mean of " << r.cells.size()
+              << (r.cells.size() == 1 ? " cell" : " cells") << " over " << std::setprecision(1) << p->seconds
+              << " s); appended to " << p->presses << "\n";
   });
 }

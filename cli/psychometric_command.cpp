@@ -58,7 +58,8 @@ void run(const Args& a) {
   auto rate = [](const std::string& text, const std::string& flag) -> std::optional<double> {
     if (text == "fit") return std::nullopt;
     double v = 0;
-    if (!parse_finite_number(text, v) || v < 0 || v >= 1) throw InputError("command line", flag, "a rate in [0, 1) or 'fit', got '" + text + "'");
+    if (!parse_finite_number(text, v) || v < 0 || v >= 1)
+      throw InputError("command line", flag, "a rate in [0, 1) or 'fit', got '" + text + "'");
     return v;
   };
   const bool database = is_sqlite_file(a.file);
@@ -115,8 +116,10 @@ void run(const Args& a) {
     }
     report["plots"] = plots;
   }
-  if (a.json) std::cout << report.dump(2) << "\n";
-  else std::cout << stats::render_text(report);
+  if (a.json)
+    std::cout << report.dump(2) << "\n";
+  else
+    std::cout << stats::render_text(report);
 }
 
 }  // namespace
@@ -130,22 +133,34 @@ void register_psychometric_command(CLI::App& stats_app) {
       "threshold at F = 0.5 or a given proportion) and psignifit (threshold at F = 0.5, GOF by deviance)");
   sub->add_option("file", a->file, "CSV (per trial, or per level with --n) or a trial database")->required();
   sub->add_option("--level", a->level, "Stimulus level column (database default: level_kPa)");
-  sub->add_option("--response", a->response, "Response column: 0/1 per trial, or the count of yes/correct with --n "
-                                              "(database default: correct)");
+  sub->add_option("--response", a->response,
+                  "Response column: 0/1 per trial, or the count of yes/correct with --n "
+                  "(database default: correct)");
   sub->add_option("--n", a->n, "CSV with counts per level: the column with the number of trials");
-  sub->add_option("--by", a->by, "Group column: one fit per group (database: track_name, fingers, participant, session_id)");
+  sub->add_option("--by", a->by,
+                  "Group column: one fit per group (database: track_name, fingers, participant, session_id)");
   sub->add_option("--sigmoid", a->sigmoid, "cumulative-gaussian (default), logistic or weibull")
       ->check(CLI::IsMember({"cumulative-gaussian", "logistic", "weibull"}));
-  sub->add_option("--guess", a->guess, "Guess rate, fixed (0 yes/no, 0.5 2AFC) or 'fit'; default 0 for a CSV, 0.5 for "
-                                       "a database's 'correct' column");
-  sub->add_option("--lapse", a->lapse, "Lapse rate, fixed or 'fit' (default: fitted within [0, --lapse-max])")->default_val("fit");
-  sub->add_option("--guess-max", a->guess_max, "Upper bound of a fitted guess rate")->default_val(0.5)->check(CLI::Range(0.001, 0.999));
-  sub->add_option("--lapse-max", a->lapse_max, "Upper bound of a fitted lapse rate")->default_val(0.1)->check(CLI::Range(0.001, 0.999));
+  sub->add_option("--guess", a->guess,
+                  "Guess rate, fixed (0 yes/no, 0.5 2AFC) or 'fit'; default 0 for a CSV, 0.5 for "
+                  "a database's 'correct' column");
+  sub->add_option("--lapse", a->lapse, "Lapse rate, fixed or 'fit' (default: fitted within [0, --lapse-max])")
+      ->default_val("fit");
+  sub->add_option("--guess-max", a->guess_max, "Upper bound of a fitted guess rate")
+      ->default_val(0.5)
+      ->check(CLI::Range(0.001, 0.999));
+  sub->add_option("--lapse-max", a->lapse_max, "Upper bound of a fitted lapse rate")
+      ->default_val(0.1)
+      ->check(CLI::Range(0.001, 0.999));
   sub->add_option("--threshold-at", a->threshold_at, "Threshold at this proportion of psi (default: F = 0.5, the PSE)")
       ->check(CLI::Range(0.001, 0.999));
-  sub->add_option("--bootstrap", a->bootstrap, "Parametric bootstrap resamples (0: none)")->default_val(1000)->check(CLI::Range(0, 1000000));
+  sub->add_option("--bootstrap", a->bootstrap, "Parametric bootstrap resamples (0: none)")
+      ->default_val(1000)
+      ->check(CLI::Range(0, 1000000));
   sub->add_option("--seed", a->seed, "Seed of the bootstrap")->default_val(1);
-  sub->add_option("--confidence", a->confidence, "Confidence level of the intervals")->default_val(0.95)->check(CLI::Range(0.5, 0.9999));
+  sub->add_option("--confidence", a->confidence, "Confidence level of the intervals")
+      ->default_val(0.95)
+      ->check(CLI::Range(0.5, 0.9999));
   sub->add_option("--plot", a->plot, "Folder for PNG plots: data and fit per group; a database's staircase tracks");
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a] { run(*a); });

@@ -21,8 +21,8 @@ class TerminalPulseReport final : public PulseSessionListener {
 
   void session_started(const SessionStart& s) override {
     session_id_ = s.session_id;
-    std::cout << "palprig experiment: " << s.protocol_name << " (pulse localisation), participant " << s.participant.code
-              << ", session " << s.session_id << ", "
+    std::cout << "palprig experiment: " << s.protocol_name << " (pulse localisation), participant "
+              << s.participant.code << ", session " << s.session_id << ", "
               << (s.resumed ? "resumed at trial " + std::to_string(s.start_position + 1) : std::string("new")) << ", "
               << s.total_trials << " trials, seed " << s.seed << ", database " << db_ << "\n"
               << std::flush;
@@ -32,7 +32,8 @@ class TerminalPulseReport final : public PulseSessionListener {
     char buf[256];
     if (t.answered) {
       std::snprintf(buf, sizeof buf, "trial %d/%d %s: mark (%.1f, %.1f) mm, %.1f mm from %s, %s", t.position + 1, total,
-                    t.condition.c_str(), t.mark_x_mm, t.mark_y_mm, t.distance_mm, t.artery.c_str(), t.hit ? "hit" : "miss");
+                    t.condition.c_str(), t.mark_x_mm, t.mark_y_mm, t.distance_mm, t.artery.c_str(),
+                    t.hit ? "hit" : "miss");
     } else {
       std::snprintf(buf, sizeof buf, "trial %d/%d %s: no mark", t.position + 1, total, t.condition.c_str());
     }
@@ -54,7 +55,8 @@ void run_pulse_experiment(const StudySessionRequest& request, bool quiet) {
   const SessionEnd end = run_pulse_study(request, nullptr, report, &stop_signal());
   if (const std::string telemetry = telemetry_summary(end); !telemetry.empty()) std::cout << telemetry << "\n";
   if (end.completed) {
-    std::cout << "session " << report.session_id() << " completed: " << cli::counted(end.committed_trials, "trial", "trials") << " in "
+    std::cout << "session " << report.session_id()
+              << " completed: " << cli::counted(end.committed_trials, "trial", "trials") << " in "
               << request.store_location << "\n";
     return;
   }

@@ -6,7 +6,8 @@
 #include "cli/commands.hpp"
 
 void register_rig_commands(CLI::App& app) {
-  for (const char* name : {"run", "demo", "telemetry", "experiment", "sim-rig", "calibrate", "rt-check", "check", "igtl-replay", "tracking", "load-cell"}) {
+  for (const char* name : {"run", "demo", "telemetry", "experiment", "sim-rig", "calibrate", "rt-check", "check",
+                           "igtl-replay", "tracking", "load-cell"}) {
     CLI::App* sub = app.add_subcommand(name, "(not in this analyst-only build: configure with -DPALPRIG_RIG=ON)");
     sub->allow_extras();
     sub->callback([name] {

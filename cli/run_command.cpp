@@ -24,11 +24,13 @@ void register_run_command(CLI::App& app) {
     int compensate_lag = 0;  // +1 --compensate-lag, -1 --no-compensate-lag, 0 the calibration file decides
   };
   auto o = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand("run", "Run the loop: pen input -> scene -> pressures -> rig, and print a summary");
+  CLI::App* sub =
+      app.add_subcommand("run", "Run the loop: pen input -> scene -> pressures -> rig, and print a summary");
   sub->add_option("--scene", o->files.scene, "Scene file (JSON)")->required()->check(CLI::ExistingFile);
-  sub->add_option("--input", o->files.input, "Pen input: trace:FILE (CSV t_s,x_mm,y_mm,force_N), sweep, tablet (the first pen tablet), "
-                 "tablet:/dev/input/eventN, tablet:FILE.evemu (a recording replayed in real time), or igtl:HOST:PORT "
-                 "(tracked fingers from an OpenIGTLink server, with --tracking)")
+  sub->add_option("--input", o->files.input,
+                  "Pen input: trace:FILE (CSV t_s,x_mm,y_mm,force_N), sweep, tablet (the first pen tablet), "
+                  "tablet:/dev/input/eventN, tablet:FILE.evemu (a recording replayed in real time), or igtl:HOST:PORT "
+                  "(tracked fingers from an OpenIGTLink server, with --tracking)")
       ->default_val("sweep");
   sub->add_option("--tracking", o->files.tracking,
                   "With --input igtl:HOST:PORT: the tracking file (which tool is which finger, fingertip offsets, "
@@ -36,19 +38,25 @@ void register_run_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   sub->add_option("--rig", o->files.rig, "Rig file (JSON); default: the simulated rig in data/rigs/simulated.json");
   sub->add_option("--cal", o->files.calibration, "Calibration file (JSON); default: paper 002's models");
-  sub->add_option("--rate-hz", o->run.rate_hz, "Loop rate in Hz")->default_val(1000.0)->check(CLI::Range(1.0, 100000.0));
+  sub->add_option("--rate-hz", o->run.rate_hz, "Loop rate in Hz")
+      ->default_val(1000.0)
+      ->check(CLI::Range(1.0, 100000.0));
   sub->add_option("--duration-s", o->timing.duration_s, "Run length in seconds; default: the length of the input");
   auto* rt = sub->add_flag("--realtime", o->timing.realtime, "Real time: absolute deadlines on the monotonic clock");
   sub->add_flag("--replay", o->timing.replay, "As fast as possible on simulated time (default)")->excludes(rt);
-  sub->add_flag("--no-fifo", [o](std::int64_t) { o->run.want_fifo = false; }, "Real time without SCHED_FIFO");
-  sub->add_option("--priority", o->run.realtime.fifo_priority,
-                  "SCHED_FIFO priority of the loop in real time (the Modbus bus thread and the tablet reader run below it)")
+  sub->add_flag(
+      "--no-fifo", [o](std::int64_t) { o->run.want_fifo = false; }, "Real time without SCHED_FIFO");
+  sub->add_option(
+         "--priority", o->run.realtime.fifo_priority,
+         "SCHED_FIFO priority of the loop in real time (the Modbus bus thread and the tablet reader run below it)")
       ->default_val(80)
       ->check(CLI::Range(1, 98));
-  sub->add_option("--cpu", o->run.realtime.cpu, "Pin the real-time loop to this CPU (e.g. one in isolcpus); default: not pinned")
+  sub->add_option("--cpu", o->run.realtime.cpu,
+                  "Pin the real-time loop to this CPU (e.g. one in isolcpus); default: not pinned")
       ->check(CLI::Range(0, 1023));
-  sub->add_flag("--no-pm-qos", [o](std::int64_t) { o->run.realtime.pm_qos = false; },
-                "Real time without holding /dev/cpu_dma_latency at 0 (lets the CPUs sleep deeply: a laptop on battery)");
+  sub->add_flag(
+      "--no-pm-qos", [o](std::int64_t) { o->run.realtime.pm_qos = false; },
+      "Real time without holding /dev/cpu_dma_latency at 0 (lets the CPUs sleep deeply: a laptop on battery)");
   sub->add_flag("--compensate-lag,!--no-compensate-lag", o->compensate_lag,
                 "Lag-compensate the whole target with the calibration's identified regulator dynamics (or not), "
                 "whatever the calibration file's lag_compensation.enabled says");

@@ -45,14 +45,16 @@ void render(const RenderArgs& a) {
   std::vector<float> values(cols * rows);
   for (std::size_t r = 0; r < rows; ++r)
     for (std::size_t c = 0; c < cols; ++c)
-      values[r * cols + c] = static_cast<float>(
-          std::clamp(sf.scene->sample({double(c) * a.res_mm, double(r) * a.res_mm}, a.force_N, a.t_s).stiffness, 0.0, 1.0));
+      values[r * cols + c] = static_cast<float>(std::clamp(
+          sf.scene->sample({double(c) * a.res_mm, double(r) * a.res_mm}, a.force_N, a.t_s).stiffness, 0.0, 1.0));
   const double width_mm = double(cols - 1) * a.res_mm, height_mm = double(rows - 1) * a.res_mm;
   const StiffnessMap map(cols, rows, width_mm, height_mm, std::move(values));
   {
     CheckedOutputFile f(out);
-    if (ext == ".pgm") write_stiffness_pgm16(f.stream(), map);
-    else write_stiffness_csv(f.stream(), map);
+    if (ext == ".pgm")
+      write_stiffness_pgm16(f.stream(), map);
+    else
+      write_stiffness_csv(f.stream(), map);
     f.commit();
   }
   std::cout << "palprig scene render: " << a.scene << " -> " << out.string() << " (" << cols << " x " << rows
@@ -64,14 +66,20 @@ void render(const RenderArgs& a) {
     for (const TumorTruth& t : sf.tumors)
       tumors.push_back({{"name", t.name}, {"x_mm", t.x_mm}, {"y_mm", t.y_mm}, {"radius_mm", t.radius_mm}});
     const std::filesystem::path ms = a.map_scene;
-    std::filesystem::path rel = std::filesystem::relative(std::filesystem::absolute(out), std::filesystem::absolute(ms).parent_path());
+    std::filesystem::path rel =
+        std::filesystem::relative(std::filesystem::absolute(out), std::filesystem::absolute(ms).parent_path());
     nlohmann::json j = {
         {"version", kSceneFileVersion},
         {"name", sf.name + "-map"},
-        {"description", "Baked from " + a.scene + " by palprig scene render (pressing " + std::to_string(a.force_N) + " N)."},
+        {"description",
+         "Baked from " + a.scene + " by palprig scene render (pressing " + std::to_string(a.force_N) + " N)."},
         {"kind", "map"},
-        {"map", {{"file", rel.generic_string()}, {"width_mm", width_mm}, {"height_mm", height_mm}, {"sampling", "bilinear"},
-                 {"outside", {{"background", 0.0}}}}},
+        {"map",
+         {{"file", rel.generic_string()},
+          {"width_mm", width_mm},
+          {"height_mm", height_mm},
+          {"sampling", "bilinear"},
+          {"outside", {{"background", 0.0}}}}},
     };
     if (!tumors.empty()) j["tumors"] = tumors;
     write_scene_json(ms, j);
@@ -135,7 +143,8 @@ void info(const std::string& path) {
     }
   }
   for (const TumorTruth& t : sf.tumors)
-    std::cout << "  tumor " << t.name << " at (" << t.x_mm << ", " << t.y_mm << ") mm, radius " << t.radius_mm << " mm\n";
+    std::cout << "  tumor " << t.name << " at (" << t.x_mm << ", " << t.y_mm << ") mm, radius " << t.radius_mm
+              << " mm\n";
 }
 
 }  // namespace
@@ -145,10 +154,13 @@ void register_scene_command(CLI::App& app) {
   scene->require_subcommand(1);
 
   auto ra = std::make_shared<RenderArgs>();
-  CLI::App* r = scene->add_subcommand("render", "Bake the stiffness the fingers feel on a scene into a map (PGM or CSV)");
+  CLI::App* r =
+      scene->add_subcommand("render", "Bake the stiffness the fingers feel on a scene into a map (PGM or CSV)");
   r->add_option("scene", ra->scene, "Scene file (JSON, map or function)")->required()->check(CLI::ExistingFile);
   r->add_option("--out", ra->out, "Map file to write: .pgm (16-bit) or .csv")->required();
-  r->add_option("--res-mm", ra->res_mm, "Distance between map vertices in mm")->default_val(1.0)->check(CLI::Range(0.05, 100.0));
+  r->add_option("--res-mm", ra->res_mm, "Distance between map vertices in mm")
+      ->default_val(1.0)
+      ->check(CLI::Range(0.05, 100.0));
   r->add_option("--force-N", ra->force_N, "Pressing force the map is felt with (deep inclusions need more)")
       ->default_val(2.0)
       ->check(CLI::Range(0.01, 100.0));
@@ -157,7 +169,8 @@ void register_scene_command(CLI::App& app) {
   r->callback([ra]() { render(*ra); });
 
   auto ga = std::make_shared<GenerateArgs>();
-  CLI::App* g = scene->add_subcommand("generate", "Make a random rehearsal case (same seed, same case) with its ground truth");
+  CLI::App* g =
+      scene->add_subcommand("generate", "Make a random rehearsal case (same seed, same case) with its ground truth");
   g->add_option("--seed", ga->seed, "Seed (0..2^63-1)")->required()->check(CLI::Range(std::int64_t{0}, INT64_MAX));
   g->add_option("--difficulty", ga->difficulty, "easy, medium or hard")
       ->default_val("medium")

@@ -25,22 +25,27 @@ void register_sim_rig_command(CLI::App& app) {
   sub->add_option("--rig", *rig_path, "Rig file (JSON) with backend \"modbus\": its register map and plants")
       ->required()
       ->check(CLI::ExistingFile);
-  sub->add_option("--listen", *listen,
-                  "HOST:PORT to serve, one per link of the map in order (port 0: any free port, printed on start), or "
-                  "pty to serve that link as Modbus RTU on a new pseudo-terminal; default: the rig file's own TCP addresses");
-  sub->add_option("--write-log", *write_log, "Write every output-register write to FILE (CSV t_s,channel,word,kPa,mono_ns; mono_ns: arrival on CLOCK_MONOTONIC)");
+  sub->add_option(
+      "--listen", *listen,
+      "HOST:PORT to serve, one per link of the map in order (port 0: any free port, printed on start), or "
+      "pty to serve that link as Modbus RTU on a new pseudo-terminal; default: the rig file's own TCP addresses");
+  sub->add_option("--write-log", *write_log,
+                  "Write every output-register write to FILE (CSV t_s,channel,word,kPa,mono_ns; mono_ns: arrival on "
+                  "CLOCK_MONOTONIC)");
   sub->add_option("--watchdog-ms", *watchdog_ms,
                   "Like a module's communication watchdog: outputs of a link silent this long go to 0 kPa (0: off)")
       ->check(CLI::Range(0.0, 600000.0));
   sub->add_option("--duration-s", *duration_s, "Stop after this long (default: until SIGINT/SIGTERM)")
       ->check(CLI::Range(0.0, 1e9));
-  sub->add_option("--load-N", *load_N,
-                  "The rig file's load cells: serve each as a cell with this load on it (its tare and gain from the file)")
+  sub->add_option(
+         "--load-N", *load_N,
+         "The rig file's load cells: serve each as a cell with this load on it (its tare and gain from the file)")
       ->check(CLI::Range(0.0, 1000.0));
   sub->callback([=]() {
     const RigConfig rig = load_rig_file(*rig_path);
     if (rig.backend != "modbus")
-      throw InputError(rig.source, "backend", "\"modbus\" (sim-rig serves the rig's register map), got \"" + rig.backend + "\"");
+      throw InputError(rig.source, "backend",
+                       "\"modbus\" (sim-rig serves the rig's register map), got \"" + rig.backend + "\"");
     const ModbusRigConfig map = rig.modbus.value();
     std::vector<ListenAddress> addresses;
     if (listen->empty()) {
@@ -54,7 +59,8 @@ void register_sim_rig_command(CLI::App& app) {
         const std::string where = "modbus.links[" + std::to_string(i) + "].tcp.host";
         if (!numeric.error.empty()) throw InputError(rig.source, where, numeric.error);
         if (numeric.ipv6)
-          throw InputError(rig.source, where, "an IPv4 address to serve on (sim-rig listens on IPv4), got " + numeric.address);
+          throw InputError(rig.source, where,
+                           "an IPv4 address to serve on (sim-rig listens on IPv4), got " + numeric.address);
         addresses.push_back({numeric.address, map.links[i].port});
       }
     } else {
@@ -72,8 +78,10 @@ void register_sim_rig_command(CLI::App& app) {
     ModbusSimServer server(map, rig.plants);
     if (!write_log->empty()) server.set_write_log(*write_log);
     server.set_watchdog_s(*watchdog_ms / 1000.0);
-    if (rig.load_cells) server.set_load_cells(*rig.load_cells, *load_N);
-    else if (*load_N > 0) throw InputError(rig.source, "load_cells", "a \"load_cells\" section (--load-N loads the rig's load cells)");
+    if (rig.load_cells)
+      server.set_load_cells(*rig.load_cells, *load_N);
+    else if (*load_N > 0)
+      throw InputError(rig.source, "load_cells", "a \"load_cells\" section (--load-N loads the rig's load cells)");
     cli::install_stop_signals();
     try {
       server.start(addresses);
@@ -82,17 +90,20 @@ void register_sim_rig_command(CLI::App& app) {
       cli::finish(cli::kExitBadInput);
     }
     for (std::size_t i = 0; i < map.links.size(); ++i) {
-      std::cout << "palprig sim-rig: rig '" << rig.id << "' link '" << map.links[i].name << "' (unit " << map.links[i].unit_id << ") ";
+      std::cout << "palprig sim-rig: rig '" << rig.id << "' link '" << map.links[i].name << "' (unit "
+                << map.links[i].unit_id << ") ";
       if (addresses[i].pty)
-        std::cout << "serving Modbus RTU on " << server.pty_path(i) << " (" << map.links[i].baud << " " << map.links[i].data_bits
-                  << map.links[i].parity << map.links[i].stop_bits << "; point the rig file's rtu.device there)\n";
+        std::cout << "serving Modbus RTU on " << server.pty_path(i) << " (" << map.links[i].baud << " "
+                  << map.links[i].data_bits << map.links[i].parity << map.links[i].stop_bits
+                  << "; point the rig file's rtu.device there)\n";
       else
         std::cout << "listening on " << addresses[i].host << ":" << server.port(i) << "\n";
     }
     std::cout << "palprig sim-rig: serving " << kFingerCount << " channels; stop with Ctrl-C" << std::endl;
     const auto start = std::chrono::steady_clock::now();
     while (cli::stop_signal().load() == 0) {
-      if (*duration_s > 0 && std::chrono::steady_clock::now() - start >= std::chrono::duration<double>(*duration_s)) break;
+      if (*duration_s > 0 && std::chrono::steady_clock::now() - start >= std::chrono::duration<double>(*duration_s))
+        break;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     server.stop();

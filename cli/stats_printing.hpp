@@ -14,8 +14,10 @@
 namespace palprig::cli {
 
 inline void print(const stats::Report& report, bool json) {
-  if (json) std::cout << report.dump(2) << "\n";
-  else std::cout << stats::render_text(report);
+  if (json)
+    std::cout << report.dump(2) << "\n";
+  else
+    std::cout << stats::render_text(report);
 }
 
 // Run a computation; a StatisticsError (too few values, constant data) becomes a refusal of
@@ -31,7 +33,7 @@ inline stats::Report refuse_bad_data(const std::string& file, const std::string&
 
 inline stats::RankOptions rank_options(const std::string& method, bool no_correction) {
   stats::RankOptions o;
-  o.method = method == "exact" ? stats::RankMethod::exact
+  o.method = method == "exact"    ? stats::RankMethod::exact
              : method == "normal" ? stats::RankMethod::normal
                                   : stats::RankMethod::automatic;
   o.continuity_correction = !no_correction;

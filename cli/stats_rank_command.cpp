@@ -15,7 +15,6 @@
 #include "store/trial_summary_report.hpp"
 #include "models/parse_error.hpp"
 
-
 using namespace palprig;
 using namespace palprig::cli;
 
@@ -29,8 +28,9 @@ void register_mannwhitney(CLI::App* stats_app) {
   };
   auto a = std::make_shared<Args>();
   auto* sub = stats_app->add_subcommand(
-      "mannwhitney", "Mann-Whitney U (Wilcoxon rank-sum), two-sided, average ranks for ties: U, z, p and effect size "
-                     "r = z / sqrt(N) (papers 000, 003). Defaults of R wilcox.test");
+      "mannwhitney",
+      "Mann-Whitney U (Wilcoxon rank-sum), two-sided, average ranks for ties: U, z, p and effect size "
+      "r = z / sqrt(N) (papers 000, 003). Defaults of R wilcox.test");
   sub->add_option("file", a->file, "CSV file with a header row")->required();
   sub->add_option("--column", a->column, "Numeric column tested")->required();
   sub->add_option("--by", a->by, "Group column (two groups)")->required();
@@ -42,7 +42,8 @@ void register_mannwhitney(CLI::App* stats_app) {
     const CsvTable table = CsvTable::read(a->file);
     const auto groups = two_groups(table, a->column, a->by, a->groups);
     stats::Report report = refuse_bad_data(a->file, "column '" + a->column + "'", [&] {
-      return stats::to_report(stats::mann_whitney(groups[0].values, groups[1].values, rank_options(a->method, a->no_correction)));
+      return stats::to_report(
+          stats::mann_whitney(groups[0].values, groups[1].values, rank_options(a->method, a->no_correction)));
     });
     report["group1"] = groups[0].label;
     report["group2"] = groups[1].label;
@@ -58,9 +59,10 @@ void register_wilcoxon(CLI::App* stats_app) {
   };
   auto a = std::make_shared<Args>();
   auto* sub = stats_app->add_subcommand(
-      "wilcoxon", "Wilcoxon signed-rank test, two-sided: one column against a value (e.g. a Likert scale's neutral "
-                  "point, paper 003) or paired columns. Zero differences dropped (Wilcoxon's method), average ranks "
-                  "for ties. Defaults of R wilcox.test");
+      "wilcoxon",
+      "Wilcoxon signed-rank test, two-sided: one column against a value (e.g. a Likert scale's neutral "
+      "point, paper 003) or paired columns. Zero differences dropped (Wilcoxon's method), average ranks "
+      "for ties. Defaults of R wilcox.test");
   sub->add_option("file", a->file, "CSV file with a header row")->required();
   sub->add_option("--column", a->column, "Numeric column tested")->required();
   auto* against = sub->add_option("--against", a->against, "Hypothesised location");
@@ -88,15 +90,21 @@ void register_wilcoxon(CLI::App* stats_app) {
 }
 
 void register_pearson(CLI::App* stats_app) {
-  struct Args { std::string file, x, y; double confidence = 0.95; bool json = false; };
+  struct Args {
+    std::string file, x, y;
+    double confidence = 0.95;
+    bool json = false;
+  };
   auto a = std::make_shared<Args>();
   auto* sub = stats_app->add_subcommand(
-      "pearson", "Pearson's r with t = r sqrt((n-2)/(1-r^2)), df = n-2, two-sided p and the Fisher z interval "
-                 "(R cor.test; scipy pearsonr)");
+      "pearson",
+      "Pearson's r with t = r sqrt((n-2)/(1-r^2)), df = n-2, two-sided p and the Fisher z interval "
+      "(R cor.test; scipy pearsonr)");
   sub->add_option("file", a->file, "CSV file with a header row")->required();
   sub->add_option("--x", a->x, "First numeric column")->required();
   sub->add_option("--y", a->y, "Second numeric column")->required();
-  sub->add_option("--confidence", a->confidence, "Confidence level of the interval")->default_val(0.95)
+  sub->add_option("--confidence", a->confidence, "Confidence level of the interval")
+      ->default_val(0.95)
       ->check(kConfidenceLevel);
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a] {
@@ -110,11 +118,16 @@ void register_pearson(CLI::App* stats_app) {
 }
 
 void register_describe(CLI::App* stats_app) {
-  struct Args { std::string file, column, by; int quantile_type = 7; bool json = false; };
+  struct Args {
+    std::string file, column, by;
+    int quantile_type = 7;
+    bool json = false;
+  };
   auto a = std::make_shared<Args>();
   auto* sub = stats_app->add_subcommand(
-      "describe", "n, mean, sd (n-1), min, quartiles, median, max, IQR of a CSV column, optionally per group. "
-                  "Quartiles: R type 7 (R quantile() and numpy default) or --quantile-type 6 (SPSS)");
+      "describe",
+      "n, mean, sd (n-1), min, quartiles, median, max, IQR of a CSV column, optionally per group. "
+      "Quartiles: R type 7 (R quantile() and numpy default) or --quantile-type 6 (SPSS)");
   sub->add_option("file", a->file, "CSV file with a header row")->required();
   sub->add_option("--column", a->column, "Numeric column")->required();
   sub->add_option("--by", a->by, "Group column: one description per group, in order of appearance");
@@ -135,7 +148,8 @@ void register_describe(CLI::App* stats_app) {
       report["by"] = a->by;
       report["groups"] = stats::Report::array();
       const auto groups = group_numbers(table, a->column, a->by);
-      if (groups.empty()) throw InputError(a->file, "column '" + a->by + "'", "at least one data row to group (the table is empty)");
+      if (groups.empty())
+        throw InputError(a->file, "column '" + a->by + "'", "at least one data row to group (the table is empty)");
       for (const auto& g : groups) {
         stats::Report one;
         one["group"] = g.label;

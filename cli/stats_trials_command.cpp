@@ -21,17 +21,24 @@ void register_stats_trials(CLI::App* stats_app) {
   };
   auto a = std::make_shared<Args>();
   auto* sub = stats_app->add_subcommand(
-      "trials", "Scores of a trial database: TP/FN/TN/FP per finger value (discrimination) or per tumor "
-                "(localisation), Se, Sp, PPV, ACC (paper 002 eq. 5-8) with Wilson 95 % intervals (no continuity "
-                "correction), mean and sd of response times; practice trials left out");
-  sub->add_option("db", a->db, "Trial store written by palprig experiment run: an SQLite file or postgresql://user@host:port/dbname")->required();
-  sub->add_option("--by", a->by, "Group by a comma list of: condition, participant, finger, tumor, combination, session "
-                                 "(empty: everything in one row)")
+      "trials",
+      "Scores of a trial database: TP/FN/TN/FP per finger value (discrimination) or per tumor "
+      "(localisation), Se, Sp, PPV, ACC (paper 002 eq. 5-8) with Wilson 95 % intervals (no continuity "
+      "correction), mean and sd of response times; practice trials left out");
+  sub->add_option("db", a->db,
+                  "Trial store written by palprig experiment run: an SQLite file or postgresql://user@host:port/dbname")
+      ->required();
+  sub->add_option("--by", a->by,
+                  "Group by a comma list of: condition, participant, finger, tumor, combination, session "
+                  "(empty: everything in one row)")
       ->default_val("condition");
-  sub->add_option("--format", a->format, "table, csv or json")->check(CLI::IsMember({"table", "csv", "json"}))->default_val("table");
+  sub->add_option("--format", a->format, "table, csv or json")
+      ->check(CLI::IsMember({"table", "csv", "json"}))
+      ->default_val("table");
   sub->add_flag("--json", a->json, "Same as --format json");
   sub->add_flag("--include-practice", a->include_practice, "Score practice trials too");
-  sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson intervals")->default_val(0.95)
+  sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson intervals")
+      ->default_val(0.95)
       ->check(cli::kConfidenceLevel);
   sub->callback([a] {
     SummaryOptions options;

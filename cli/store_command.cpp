@@ -24,10 +24,12 @@ void register_sync(CLI::App* store) {
   };
   auto a = std::make_shared<Args>();
   auto* sub = store->add_subcommand(
-      "sync", "Push the trials of a bench's journal (or any palprig SQLite file) that the lab server does not have yet; "
-              "sessions are matched by their global id, trials by position, so pushing twice stores once");
+      "sync",
+      "Push the trials of a bench's journal (or any palprig SQLite file) that the lab server does not have yet; "
+      "sessions are matched by their global id, trials by position, so pushing twice stores once");
   sub->add_option("--from", a->from, "The journal or trial file (SQLite)")->required();
-  sub->add_option("--to", a->to, "The lab server: postgresql://user@host:port/dbname (password from PGPASSWORD or ~/.pgpass)")
+  sub->add_option("--to", a->to,
+                  "The lab server: postgresql://user@host:port/dbname (password from PGPASSWORD or ~/.pgpass)")
       ->required();
   sub->add_option("--study", a->study, "Only the sessions of this protocol name");
   sub->callback([a] {
@@ -39,7 +41,8 @@ void register_sync(CLI::App* store) {
       throw InputError("command line", "to", "a postgresql:// URI of the lab server (got the file " + a->to + ")");
     }
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(a->from, ec)) throw InputError(a->from, "file", "an existing palprig trial database");
+    if (!std::filesystem::is_regular_file(a->from, ec))
+      throw InputError(a->from, "file", "an existing palprig trial database");
     SqliteTrialStore file(a->from, TrialStore::Access::read_write);
     PostgresTrialStore server(parse_pg_target(a->to), TrialStore::Access::read_write);
     PushOptions options;
@@ -57,8 +60,9 @@ void register_copy(CLI::App* store) {
   };
   auto a = std::make_shared<Args>();
   auto* sub = store->add_subcommand(
-      "copy", "Copy a study (or every session) between trial stores: SQLite file to PostgreSQL server or back "
-              "(the target is created when missing; what is already there is kept, nothing is stored twice)");
+      "copy",
+      "Copy a study (or every session) between trial stores: SQLite file to PostgreSQL server or back "
+      "(the target is created when missing; what is already there is kept, nothing is stored twice)");
   sub->add_option("--from", a->from, "Source: SQLite file or postgresql://user@host:port/dbname")->required();
   sub->add_option("--to", a->to, "Target: SQLite file or postgresql://user@host:port/dbname")->required();
   sub->add_option("--study", a->study, "Only the sessions of this protocol name");

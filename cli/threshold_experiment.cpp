@@ -57,7 +57,8 @@ class TerminalThresholdReport final : public ThresholdSessionListener {
     } else if (!quiet_) {
       std::cout << "trial " << t.position + 1 << " " << t.track_name << " +" << format(t.level_kPa) << " kPa, "
                 << (t.answered ? (t.correct ? "correct" : "wrong") : "no answer") << (t.reversal ? ", reversal" : "")
-                << "\n" << std::flush;
+                << "\n"
+                << std::flush;
     }
   }
 
@@ -79,12 +80,14 @@ void run_threshold_experiment(const ThresholdStudyRequest& request, bool quiet) 
   if (const std::string telemetry = telemetry_summary(end.session); !telemetry.empty()) std::cout << telemetry << "\n";
   const int done = end.session.committed_trials;
   if (end.session.completed) {
-    std::cout << "session " << end.session_id << " completed: " << cli::counted(done, "trial", "trials") << " in " << db << "\n";
+    std::cout << "session " << end.session_id << " completed: " << cli::counted(done, "trial", "trials") << " in " << db
+              << "\n";
     print_estimates(end.tracks);
     return;
   }
   if (!end.session.fault.empty()) {
-    std::cerr << "palprig: rig fault: " << end.session.fault << "; " << done << " trials kept, continue with --resume\n";
+    std::cerr << "palprig: rig fault: " << end.session.fault << "; " << done
+              << " trials kept, continue with --resume\n";
   } else {
     std::cerr << "palprig: session " << end.session_id << " stopped after " << done
               << " trials (all kept); continue with --resume\n";

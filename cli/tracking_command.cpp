@@ -58,18 +58,25 @@ void register_register(CLI::App* parent) {
   };
   auto a = std::make_shared<Args>();
   CLI::App* sub = parent->add_subcommand(
-      "register", "Tracker -> scene registration from fiducials touched with a tracked tip (fiducial registration error reported)");
+      "register",
+      "Tracker -> scene registration from fiducials touched with a tracked tip (fiducial registration error reported)");
   add_common(sub, *a, false);
   sub->add_option("--fiducials", a->fiducials,
-                  "Fiducials CSV name,x_mm,y_mm,z_mm (scene); with tracker_x_mm,tracker_y_mm,tracker_z_mm columns no tracker is needed")
+                  "Fiducials CSV name,x_mm,y_mm,z_mm (scene); with tracker_x_mm,tracker_y_mm,tracker_z_mm columns no "
+                  "tracker is needed")
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("--tool", a->tool,
                   "The tool whose tip touches them (default: the tracking file's first); a tool the file does not name "
                   "(a stylus) has its tip at its origin, or at --tool-tip");
-  sub->add_option("--tool-tip", a->tool_tip, "The tip of a --tool the tracking file does not name, mm in its frame")->expected(3);
-  sub->add_option("--hold-s", a->rules.hold_s, "A touch is taken when the tip rests this long")->default_val(1.0)->check(CLI::Range(0.05, 60.0));
-  sub->add_option("--radius-mm", a->rules.radius_mm, "... within this radius")->default_val(1.0)->check(CLI::Range(0.01, 50.0));
+  sub->add_option("--tool-tip", a->tool_tip, "The tip of a --tool the tracking file does not name, mm in its frame")
+      ->expected(3);
+  sub->add_option("--hold-s", a->rules.hold_s, "A touch is taken when the tip rests this long")
+      ->default_val(1.0)
+      ->check(CLI::Range(0.05, 60.0));
+  sub->add_option("--radius-mm", a->rules.radius_mm, "... within this radius")
+      ->default_val(1.0)
+      ->check(CLI::Range(0.01, 50.0));
   sub->add_option("--max-fre-mm", a->max_fre_mm, "Refuse to write a registration whose FRE is larger")
       ->default_val(2.0)
       ->check(CLI::Range(0.0, 1000.0));
@@ -94,7 +101,8 @@ void register_register(CLI::App* parent) {
                 << a->fiducials << "\n";
     } else {
       if (a->igtl.empty())
-        throw InputError(a->fiducials, "header", "tracker_x_mm,tracker_y_mm,tracker_z_mm columns, or --igtl HOST:PORT to touch them live");
+        throw InputError(a->fiducials, "header",
+                         "tracker_x_mm,tracker_y_mm,tracker_z_mm columns, or --igtl HOST:PORT to touch them live");
       const IgtlEndpoint e = endpoint_of(a->igtl);
       std::cout << "palprig tracking register: " << fiducials.size() << " fiducials from " << a->fiducials << ", tool "
                 << tool.name << " at igtl:" << e.text() << std::endl;
@@ -109,8 +117,10 @@ void register_register(CLI::App* parent) {
     const PointRegistration reg = register_fiducials(fiducials, touched, a->fiducials);
     std::cout << "  fiducial   residual mm\n";
     for (std::size_t i = 0; i < fiducials.size(); ++i)
-      std::cout << "  " << std::left << std::setw(10) << fiducials[i].name << " " << fixed(reg.residual_mm[i], 2) << "\n";
-    std::cout << std::right << "  FRE " << fixed(reg.fre_mm, 2) << " mm (RMS over " << fiducials.size() << " fiducials)\n";
+      std::cout << "  " << std::left << std::setw(10) << fiducials[i].name << " " << fixed(reg.residual_mm[i], 2)
+                << "\n";
+    std::cout << std::right << "  FRE " << fixed(reg.fre_mm, 2) << " mm (RMS over " << fiducials.size()
+              << " fiducials)\n";
     const RigidTransform& r = reg.from_to;
     std::cout << "  tracker -> scene: rotation [";
     for (int i = 0; i < 3; ++i)
@@ -161,10 +171,10 @@ void register_pivot(CLI::App* parent) {
       cli::finish(cli::kExitFault);
     }
     std::cout << "  tip (" << fixed(pc.tip_mm[0], 2) << ", " << fixed(pc.tip_mm[1], 2) << ", " << fixed(pc.tip_mm[2], 2)
-              << ") mm in the tool's frame; pivot point (" << fixed(pc.pivot_mm[0], 2) << ", " << fixed(pc.pivot_mm[1], 2)
-              << ", " << fixed(pc.pivot_mm[2], 2) << ") mm in the tracker's\n"
-              << "  RMS residual " << fixed(pc.rms_mm, 2) << " mm (max " << fixed(pc.max_mm, 2) << " mm), rotation spread "
-              << fixed(pc.rotation_spread_deg, 0) << " degrees\n";
+              << ") mm in the tool's frame; pivot point (" << fixed(pc.pivot_mm[0], 2) << ", "
+              << fixed(pc.pivot_mm[1], 2) << ", " << fixed(pc.pivot_mm[2], 2) << ") mm in the tracker's\n"
+              << "  RMS residual " << fixed(pc.rms_mm, 2) << " mm (max " << fixed(pc.max_mm, 2)
+              << " mm), rotation spread " << fixed(pc.rotation_spread_deg, 0) << " degrees\n";
     if (pc.rms_mm > a->max_rms_mm) {
       std::cerr << "palprig tracking pivot: RMS residual " << fixed(pc.rms_mm, 2) << " mm is over --max-rms-mm "
                 << fixed(a->max_rms_mm, 2) << ": " << a->out << " not written (keep the tip in the divot)\n";
@@ -184,26 +194,32 @@ void register_digitize(CLI::App* parent) {
   };
   auto a = std::make_shared<Args>();
   CLI::App* sub = parent->add_subcommand(
-      "digitize", "The fingertip offset of a finger's sensor by static digitization with a tracked digitizer (paper 003)");
+      "digitize",
+      "The fingertip offset of a finger's sensor by static digitization with a tracked digitizer (paper 003)");
   add_common(sub, *a, true);
   sub->add_option("--tool", a->tool, "The finger's sensor (default: the tracking file's first tool)");
   sub->add_option("--digitizer", a->digitizer, "The digitizer tool, e.g. StylusTipToTracker")->required();
-  sub->add_option("--digitizer-tip", a->digitizer_tip,
-                  "The digitizer's tip in its own frame, mm (default 0 0 0: a tip transform such as PLUS's StylusTipToTracker)")
+  sub->add_option(
+         "--digitizer-tip", a->digitizer_tip,
+         "The digitizer's tip in its own frame, mm (default 0 0 0: a tip transform such as PLUS's StylusTipToTracker)")
       ->expected(3);
-  sub->add_option("--hold-s", a->rules.hold_s, "Taken when the two rest together this long")->default_val(1.0)->check(CLI::Range(0.05, 60.0));
-  sub->add_option("--radius-mm", a->rules.radius_mm, "... within this radius")->default_val(1.0)->check(CLI::Range(0.01, 50.0));
+  sub->add_option("--hold-s", a->rules.hold_s, "Taken when the two rest together this long")
+      ->default_val(1.0)
+      ->check(CLI::Range(0.05, 60.0));
+  sub->add_option("--radius-mm", a->rules.radius_mm, "... within this radius")
+      ->default_val(1.0)
+      ->check(CLI::Range(0.01, 50.0));
   sub->callback([a] {
     TrackingConfig t = load_tracking_file(a->tracking);
     const std::string name = tool_in(t, a->tool).name;
     const IgtlEndpoint e = endpoint_of(a->igtl);
-    std::cout << "palprig tracking digitize: " << name << "'s fingertip with " << a->digitizer << " at igtl:" << e.text()
-              << std::endl;
+    std::cout << "palprig tracking digitize: " << name << "'s fingertip with " << a->digitizer
+              << " at igtl:" << e.text() << std::endl;
     IgtlPoseReader tracker(e.host, e.port, "--igtl");
     Vec3_mm tip{};
     try {
-      tip = digitize_from_tracker(tracker, name, a->digitizer, {a->digitizer_tip[0], a->digitizer_tip[1], a->digitizer_tip[2]},
-                                  a->rules, say);
+      tip = digitize_from_tracker(tracker, name, a->digitizer,
+                                  {a->digitizer_tip[0], a->digitizer_tip[1], a->digitizer_tip[2]}, a->rules, say);
     } catch (const std::runtime_error& err) {
       std::cerr << "palprig tracking digitize: " << err.what() << "; nothing written\n";
       cli::finish(cli::kExitFault);
@@ -219,7 +235,8 @@ void register_digitize(CLI::App* parent) {
 
 void register_tracking_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
-      "tracking", "Calibrate a tracker to the rig: tracker -> scene registration, fingertip offsets (pivot, digitization)");
+      "tracking",
+      "Calibrate a tracker to the rig: tracker -> scene registration, fingertip offsets (pivot, digitization)");
   sub->require_subcommand(1);
   register_register(sub);
   register_pivot(sub);

@@ -27,7 +27,8 @@ std::unique_ptr<RigBackend> make_backend(const RigConfig& rig) {
   }
   throw InputError(rig.source, "backend",
                    "a backend this build supports (\"simulated\", \"modbus\", \"comedi\") with its section loaded, "
-                   "got \"" + rig.backend + "\"");
+                   "got \"" +
+                       rig.backend + "\"");
 }
 
 }  // namespace palprig

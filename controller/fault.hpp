@@ -6,17 +6,17 @@ namespace palprig {
 
 enum class FaultCode : std::uint8_t {
   none = 0,
-  bad_sample,        // non-finite or negative pen force
-  non_finite_target, // a model produced NaN/inf
-  backend_error,     // the rig backend failed to write or read
-  input_stale,       // the pen sample is older than the configured limit
-  overrun_limit,     // too many consecutive missed deadlines
-  signal,            // SIGINT / SIGTERM
-  thread_exception,  // an exception on another thread (writer, I/O, input)
-  operator_stop,     // stopped on purpose (end of run, GUI stop button)
-  bad_position,      // non-finite pen position (added after the others: stored codes keep their values)
-  bad_time,          // non-finite pen sample time or loop time
-  lost_time_limit,   // the loop lost more than safety.max_lost_time_s of periods: it cannot hold its rate
+  bad_sample,         // non-finite or negative pen force
+  non_finite_target,  // a model produced NaN/inf
+  backend_error,      // the rig backend failed to write or read
+  input_stale,        // the pen sample is older than the configured limit
+  overrun_limit,      // too many consecutive missed deadlines
+  signal,             // SIGINT / SIGTERM
+  thread_exception,   // an exception on another thread (writer, I/O, input)
+  operator_stop,      // stopped on purpose (end of run, GUI stop button)
+  bad_position,       // non-finite pen position (added after the others: stored codes keep their values)
+  bad_time,           // non-finite pen sample time or loop time
+  lost_time_limit,    // the loop lost more than safety.max_lost_time_s of periods: it cannot hold its rate
 };
 
 constexpr const char* to_string(FaultCode f) noexcept {

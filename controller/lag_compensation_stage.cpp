@@ -6,16 +6,20 @@
 namespace palprig {
 
 LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompensationSetting& setting,
-                              const std::array<RegulatorLag, kFingerCount>& pulse_lag, bool pulse_compensation,
-                              bool on, bool has_pulse, double period_s) noexcept {
+                              const std::array<RegulatorLag, kFingerCount>& pulse_lag, bool pulse_compensation, bool on,
+                              bool has_pulse, double period_s) noexcept {
   LagPlan plan;
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     // The identified model where calibration has one that fits, else the rig file's plant.
     plan.model[i] = setting.identified[i] ? setting.regulator[i] : pulse_lag[i];
-    if (!on) plan.part[i] = CompensatedPart::none;
-    else if (setting.whole(i)) plan.part[i] = CompensatedPart::total;
-    else if (has_pulse && pulse_compensation) plan.part[i] = CompensatedPart::pulse;
-    else plan.part[i] = CompensatedPart::none;
+    if (!on)
+      plan.part[i] = CompensatedPart::none;
+    else if (setting.whole(i))
+      plan.part[i] = CompensatedPart::total;
+    else if (has_pulse && pulse_compensation)
+      plan.part[i] = CompensatedPart::pulse;
+    else
+      plan.part[i] = CompensatedPart::none;
     if (plan.part[i] == CompensatedPart::none) continue;
     // A command issued now reaches the regulator one tick later and acts a dead time after that.
     plan.lead_s[i] = plan.model[i].dead_time_s + period_s;
@@ -37,7 +41,7 @@ double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y
   const double tau = model.time_constant_s;
   if (!anticipate || samples_ahead < 2 || !(tau > 0) || !std::isfinite(at_lead) || !std::isfinite(y_kPa))
     return at_lead;
-  constexpr double kEdge_kPa = 0.25;  // smaller changes are followed as they come
+  constexpr double kEdge_kPa = 0.25;                 // smaller changes are followed as they come
   const double window_s = tau * 0.6931471805599453;  // the half-life: a whole fall's half-way time
   double later;
   if (window.target_kPa && window.sampled && *window.sampled && !window.fresh) {
@@ -80,10 +84,14 @@ ChannelPressures lag_compensation_stage(LagCompensationState& state, const LagPl
       // The compensator now stands for another part of the command: carry its model over to
       // the new part (the regulator's output does not jump because its command's meaning did).
       double y = c.predicted_kPa(), u = c.last_command_kPa();
-      if (state.part[i] == CompensatedPart::pulse && part == CompensatedPart::total) y += base, u += base;
-      else if (state.part[i] == CompensatedPart::total && part == CompensatedPart::pulse) y -= base, u -= base;
-      else if (part == CompensatedPart::total) y = u = now;
-      else y = u = in.pulse_now_kPa[i];
+      if (state.part[i] == CompensatedPart::pulse && part == CompensatedPart::total)
+        y += base, u += base;
+      else if (state.part[i] == CompensatedPart::total && part == CompensatedPart::pulse)
+        y -= base, u -= base;
+      else if (part == CompensatedPart::total)
+        y = u = now;
+      else
+        y = u = in.pulse_now_kPa[i];
       c.reset(y, u);
     }
     state.part[i] = part;
@@ -92,9 +100,7 @@ ChannelPressures lag_compensation_stage(LagCompensationState& state, const LagPl
       continue;
     }
     switch (part) {
-      case CompensatedPart::none:
-        command[i] = now;
-        break;
+      case CompensatedPart::none: command[i] = now; break;
       case CompensatedPart::pulse: {
         // The pulse part may dip below zero (to speed a fall) but never takes the total below
         // 0 kPa or above p_max.
@@ -110,7 +116,8 @@ ChannelPressures lag_compensation_stage(LagCompensationState& state, const LagPl
         // light push), whatever the regulator model says; and never above p_max.
         const double ceiling = std::max(std::isfinite(want) ? std::max(now, want) : now, 0.0);
         const double hi = std::clamp(ceiling + std::min(limits.max_lead_kPa, ceiling), 0.0, limits.p_max_kPa);
-        command[i] = c.command(plan.model[i], std::isfinite(want) ? want : now, 0.0, hi, max_step, stepped ? dt_s : 0.0);
+        command[i] =
+            c.command(plan.model[i], std::isfinite(want) ? want : now, 0.0, hi, max_step, stepped ? dt_s : 0.0);
         break;
       }
     }

@@ -35,11 +35,11 @@ namespace palprig {
 
 // The setting calibration gives (controller/tick_setup.cpp fills it from the calibration file).
 struct LagCompensationSetting {
-  bool whole_target = false;                          // switched on for the whole target
-  std::array<bool, kFingerCount> identified{};        // the channel's dynamics were identified with a good fit
-  std::array<RegulatorLag, kFingerCount> regulator{}; // the identified models
-  double max_lead_kPa = 10.0;                         // the command's lead above the target, at most
-  bool anticipate_edges = true;                       // ask for edges the regulator takes time over earlier
+  bool whole_target = false;                           // switched on for the whole target
+  std::array<bool, kFingerCount> identified{};         // the channel's dynamics were identified with a good fit
+  std::array<RegulatorLag, kFingerCount> regulator{};  // the identified models
+  double max_lead_kPa = 10.0;                          // the command's lead above the target, at most
+  bool anticipate_edges = true;                        // ask for edges the regulator takes time over earlier
   // How many times per finger and tick the scene may be sampled ahead (the target one lead
   // ahead, then up to two more for the edges): 3, or fewer where a function scene's sampling is
   // too costly for a tick (controller/run_setup.cpp); 0 compensates toward the target now.
@@ -88,8 +88,8 @@ struct LagPlan {
 // the rig file's regulators, has_pulse whether the scene has arteries, period_s the time the
 // command takes to reach the regulator (one tick).
 LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompensationSetting& setting,
-                              const std::array<RegulatorLag, kFingerCount>& pulse_lag, bool pulse_compensation,
-                              bool on, bool has_pulse, double period_s) noexcept;
+                              const std::array<RegulatorLag, kFingerCount>& pulse_lag, bool pulse_compensation, bool on,
+                              bool has_pulse, double period_s) noexcept;
 
 // Edges the regulator takes time over, asked for earlier so that the regulator's output is
 // half-way at the edge (the least squared error for a step). `sample(context, s)` is the target

@@ -110,8 +110,10 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
     // 0 kPa under the slew limit.
     const bool vent_held = opt.vent_request && opt.vent_request->load(std::memory_order_relaxed);
     if (vent_held != vent_was_held) {
-      if (vent_held) rig.disarm();
-      else rig.arm();
+      if (vent_held)
+        rig.disarm();
+      else
+        rig.arm();
       vent_was_held = vent_held;
     }
 
@@ -168,8 +170,7 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
         if (++consecutive_overruns > config.safety.max_consecutive_overruns) rig.enter_fault(FaultCode::overrun_limit);
         // Resynchronise to the next period still in the future: missed periods are skipped,
         // never run late in a burst, and the schedule keeps its original phase (no drift).
-        const auto resume =
-            std::min(total_ticks, static_cast<std::uint64_t>((now - start_ns) / period_ns) + 1);
+        const auto resume = std::min(total_ticks, static_cast<std::uint64_t>((now - start_ns) / period_ns) + 1);
         sum.missed_periods += resume - k;
         add_lost(resume - k);  // skipped periods are time the rig went uncontrolled
         k = resume;
@@ -180,8 +181,10 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
     }
     if (opt.observer) opt.observer->on_tick(rec);
     if (telemetry) {
-      if (realtime) telemetry->try_push(rec);
-      else telemetry->push_wait(rec);
+      if (realtime)
+        telemetry->try_push(rec);
+      else
+        telemetry->push_wait(rec);
     }
     if (rig.faulted()) {
       sum.fault = rig.fault();

@@ -9,8 +9,8 @@
 // (replay), add up and drain by 1 % of the time run; beyond safety.max_lost_time_s the loop
 // cannot hold its rate and faults (lost_time_limit), in real time and in a replay alike.
 // Stop requests, worker-thread exceptions, telemetry failures, deadline overruns beyond the
-// limit and lost time beyond its limit latch a fault in the rig step; any fault vents every channel and ends the run with the
-// reason.
+// limit and lost time beyond its limit latch a fault in the rig step; any fault vents every channel and ends the run
+// with the reason.
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -79,18 +79,18 @@ struct RunSummary {
   std::uint64_t overruns = 0;        // ticks that finished after the next deadline
   std::uint64_t missed_periods = 0;  // periods skipped to resynchronise after overruns
   std::uint64_t telemetry_dropped = 0;
-  std::uint64_t link_outages = 0;    // times the backend's link dropped (alarm, vented, reconnecting)
-  std::uint64_t unlinked_ticks = 0;  // ticks run while it was down
-  std::array<RangeStats, kFingerCount> target_kPa{};   // what the models asked for
-  std::array<RangeStats, kFingerCount> setpoint_kPa{}; // what went to the backend
-  std::array<RangeStats, kFingerCount> monitor_kPa{};  // what the regulators reported
-  std::array<RangeStats, kFingerCount> force_N{};      // each finger's pressing force (pen or load cell)
+  std::uint64_t link_outages = 0;                     // times the backend's link dropped (alarm, vented, reconnecting)
+  std::uint64_t unlinked_ticks = 0;                   // ticks run while it was down
+  std::array<RangeStats, kFingerCount> target_kPa{};  // what the models asked for
+  std::array<RangeStats, kFingerCount> setpoint_kPa{};  // what went to the backend
+  std::array<RangeStats, kFingerCount> monitor_kPa{};   // what the regulators reported
+  std::array<RangeStats, kFingerCount> force_N{};       // each finger's pressing force (pen or load cell)
   // Ticks each finger spent vented for a reason of its own (tracked fingers: FingerVent), by reason.
   static constexpr std::size_t kVentReasons = 6;
   std::array<std::array<std::uint64_t, kVentReasons>, kFingerCount> finger_vent_ticks{};
   FaultCode fault = FaultCode::none;
   double fault_t_s = 0;
-  std::string fault_detail;  // the backend's or worker's own message
+  std::string fault_detail;     // the backend's or worker's own message
   LatencySummary wake_latency;  // realtime only
   LatencySummary io_time;
   LatencySummary tick_time;

@@ -12,7 +12,8 @@ void apply_pulse_stage(PulseTickState& state, const PulseStageSetting& setting, 
   const PulseRendering& rendering = setting.rendering;
   setting.arteries.update_clocks(state.clocks, t_s);
   for (std::size_t i = 0; i < kFingerCount; ++i) {
-    const FingerContact contact{fingers.centres[i], fingers.finger_force_N[i], fingers.pressed && fingers.finger_pressed[i]};
+    const FingerContact contact{fingers.centres[i], fingers.finger_force_N[i],
+                                fingers.pressed && fingers.finger_pressed[i]};
     const PulseFelt felt = setting.arteries.felt(contact, state.clocks, state.activation[i], t_s, ahead[i],
                                                  rendering.has_measured_window ? &rendering.measured_window : nullptr);
     out.now_kPa[i] = felt.now_kPa;

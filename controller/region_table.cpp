@@ -35,7 +35,8 @@ bool RegionTable::tumors_feel_harder() const {
   const Row& soft = rows_.back();
   bool all = soft.n > 0;
   for (std::size_t t = 0; t < tumors_.size(); ++t)
-    all = all && rows_[t].n > 0 && rows_[t].target_mean() > soft.target_mean() && rows_[t].plant_mean() > soft.plant_mean();
+    all = all && rows_[t].n > 0 && rows_[t].target_mean() > soft.target_mean() &&
+          rows_[t].plant_mean() > soft.plant_mean();
   return all;
 }
 
@@ -47,15 +48,16 @@ void RegionTable::print(std::ostream& out) const {
       << std::fixed;
   for (std::size_t t = 0; t <= tumors_.size(); ++t) {
     const Row& r = rows_[t];
-    const std::string name = t < tumors_.size()
-                                 ? "tumor " + tumors_[t].name + " (r " + std::to_string(int(tumors_[t].radius_mm)) + " mm)"
-                                 : "soft tissue";
+    const std::string name =
+        t < tumors_.size() ? "tumor " + tumors_[t].name + " (r " + std::to_string(int(tumors_[t].radius_mm)) + " mm)"
+                           : "soft tissue";
     out << "  " << std::left << std::setw(18) << name << std::right << std::setw(12) << r.n << "   "
-        << std::setprecision(2) << std::setw(9) << r.target_mean() << " / " << std::setw(6) << r.target_max
-        << "       " << std::setw(7) << r.plant_mean() << " / " << std::setw(6) << r.plant_max << "\n";
+        << std::setprecision(2) << std::setw(9) << r.target_mean() << " / " << std::setw(6) << r.target_max << "       "
+        << std::setw(7) << r.plant_mean() << " / " << std::setw(6) << r.plant_max << "\n";
   }
-  out << "\n  " << (tumors_feel_harder() ? "Every tumor got higher pressure than soft tissue."
-                                         : "WARNING: a tumor did not get higher pressure than soft tissue.")
+  out << "\n  "
+      << (tumors_feel_harder() ? "Every tumor got higher pressure than soft tissue."
+                               : "WARNING: a tumor did not get higher pressure than soft tissue.")
       << "\n";
   out.flags(flags);
   out.precision(precision);
@@ -66,8 +68,11 @@ nlohmann::json RegionTable::json() const {
   for (std::size_t t = 0; t <= tumors_.size(); ++t) {
     const Row& r = rows_[t];
     regions.push_back({{"region", t < tumors_.size() ? "tumor " + tumors_[t].name : "soft tissue"},
-                       {"finger_ticks", r.n}, {"target_kPa_mean", r.target_mean()}, {"target_kPa_max", r.target_max},
-                       {"plant_kPa_mean", r.plant_mean()}, {"plant_kPa_max", r.plant_max}});
+                       {"finger_ticks", r.n},
+                       {"target_kPa_mean", r.target_mean()},
+                       {"target_kPa_max", r.target_max},
+                       {"plant_kPa_mean", r.plant_mean()},
+                       {"plant_kPa_max", r.plant_max}});
   }
   return regions;
 }

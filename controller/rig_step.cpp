@@ -20,8 +20,7 @@ TickConfig with_period(TickConfig config, double rate_hz) {
 }  // namespace
 
 RigStep::RigStep(const TickConfig& config, RigBackend& backend, const RigStepOptions& options)
-    : config_(with_period(config, options.rate_hz)), backend_(backend),
-      state_(make_tick_state(config_)) {
+    : config_(with_period(config, options.rate_hz)), backend_(backend), state_(make_tick_state(config_)) {
   // Asked once here: capabilities() builds strings, which the loop thread must not.
   read_sensors_ = options.read_sensors && backend.capabilities().has_sensor;
   result_.sensor.fill(std::numeric_limits<double>::quiet_NaN());
@@ -57,14 +56,18 @@ void RigStep::disarm() noexcept {
 
 void RigStep::vent_and_disarm() noexcept {
   // disarm() vents an armed backend; one that is not armed is vented all the same.
-  if (backend_.armed()) backend_.disarm();
-  else backend_.vent();
+  if (backend_.armed())
+    backend_.disarm();
+  else
+    backend_.vent();
 }
 
 void RigStep::apply_request() noexcept {
   const int request = request_.exchange(kNone, std::memory_order_acq_rel);
-  if (request == kArm && !backend_.armed()) arm();
-  else if (request == kDisarm) disarm();
+  if (request == kArm && !backend_.armed())
+    arm();
+  else if (request == kDisarm)
+    disarm();
 }
 
 TouchSample RigStep::with_load_cell_force(const TouchSample& sample, double t_s) noexcept {
@@ -88,7 +91,8 @@ TouchSample RigStep::with_load_cell_force(const TouchSample& sample, double t_s)
     s.force_N = 0;
     for (std::size_t i = 0; i < kFingerCount; ++i) {
       s.fingers[i].force_N = newtons(cells.force_N[i]);
-      s.force_N = std::isfinite(s.fingers[i].force_N) ? std::max(s.force_N, s.fingers[i].force_N) : s.fingers[i].force_N;
+      s.force_N =
+          std::isfinite(s.fingers[i].force_N) ? std::max(s.force_N, s.fingers[i].force_N) : s.fingers[i].force_N;
     }
   } else {
     s.force_N = newtons(cells.force_N[0]);
@@ -143,8 +147,10 @@ void RigStep::finish(std::int64_t tick_start, bool linked, double t_s) noexcept 
   bool io_ok = true;
   // While armed the vented setpoints of a down link still go through write(): a backend that
   // bounds its outages (Modbus max_outage_s) reports an outage that lasts too long there.
-  if (armed) io_ok = backend_.write(r.setpoint_kPa, t_s) == BackendStatus::ok;
-  else backend_.vent();
+  if (armed)
+    io_ok = backend_.write(r.setpoint_kPa, t_s) == BackendStatus::ok;
+  else
+    backend_.vent();
   io_ok = io_ok && backend_.read_monitors(result_.monitor_kPa, t_s) == BackendStatus::ok;
   // A tick that began with the link down has no reading it can vouch for: the bus thread may
   // publish the first fresh monitors of a reconnect between our linked() and read_monitors(),

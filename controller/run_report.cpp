@@ -34,10 +34,10 @@ nlohmann::json run_summary_json(const RunSummary& s, const LoadedRun& run, const
       {"setpoint_kPa", stats(s.setpoint_kPa)},
       {"plant_kPa", stats(s.monitor_kPa)},
       {"fault", s.fault == FaultCode::none ? json(nullptr)
-                                            : json{{"code", static_cast<int>(s.fault)},
-                                                   {"reason", to_string(s.fault)},
-                                                   {"detail", s.fault_detail},
-                                                   {"t_s", s.fault_t_s}}},
+                                           : json{{"code", static_cast<int>(s.fault)},
+                                                  {"reason", to_string(s.fault)},
+                                                  {"detail", s.fault_detail},
+                                                  {"t_s", s.fault_t_s}}},
       {"tick_time", lat(s.tick_time)},
       {"io_time", lat(s.io_time)},
       {"telemetry", s.telemetry_path.empty() ? json(nullptr) : json(s.telemetry_path)},
@@ -49,7 +49,8 @@ nlohmann::json run_summary_json(const RunSummary& s, const LoadedRun& run, const
       json vents = json::object();
       for (std::size_t why = 1; why < RunSummary::kVentReasons; ++why)
         if (s.finger_vent_ticks[i][why]) vents[to_string(static_cast<FingerVent>(why))] = s.finger_vent_ticks[i][why];
-      fingers.push_back({{"force_N", {{"mean", s.force_N[i].mean()}, {"max", s.force_N[i].max}}}, {"vented_ticks", vents}});
+      fingers.push_back(
+          {{"force_N", {{"mean", s.force_N[i].mean()}, {"max", s.force_N[i].max}}}, {"vented_ticks", vents}});
     }
     j["tracked_fingers"] = fingers;
   }
@@ -106,12 +107,14 @@ void print_run_summary(std::ostream& out, const RunSummary& s, const LoadedRun& 
     out << "  real time: " << s.realtime_practices << "\n";
     if (!s.realtime_note.empty()) out << "  note: " << s.realtime_note << "\n";
   }
-  out << "  faults: " << (s.fault == FaultCode::none ? std::string("none") : std::string(to_string(s.fault)) +
-                                                                               (s.fault_detail.empty() ? "" : ": " + s.fault_detail))
+  out << "  faults: "
+      << (s.fault == FaultCode::none
+              ? std::string("none")
+              : std::string(to_string(s.fault)) + (s.fault_detail.empty() ? "" : ": " + s.fault_detail))
       << "\n";
   if (!s.telemetry_path.empty())
-    out << "  telemetry: " << s.telemetry_path << (s.telemetry_dropped ? " (" + std::to_string(s.telemetry_dropped) + " records dropped)" : "")
-        << "\n";
+    out << "  telemetry: " << s.telemetry_path
+        << (s.telemetry_dropped ? " (" + std::to_string(s.telemetry_dropped) + " records dropped)" : "") << "\n";
 }
 
 }  // namespace palprig

@@ -23,7 +23,8 @@ std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& sc
   if (is_igtl_input(spec)) {
     const IgtlEndpoint endpoint = parse_igtl_spec(spec);
     if (!tracking)
-      throw InputError("input", spec, "a tracking file with it (--tracking FILE: which tool is which finger, docs/tracking.md)");
+      throw InputError("input", spec,
+                       "a tracking file with it (--tracking FILE: which tool is which finger, docs/tracking.md)");
     return std::make_unique<IgtlInput>(endpoint, *tracking, max_pose_age_s);
   }
   const bool unbounded = trace_limits.max_length_s == TraceLimits::unbounded().max_length_s;
@@ -39,12 +40,14 @@ std::unique_ptr<InputSource> make_input(const std::string& spec, const Scene& sc
   if (spec.rfind("trace:", 0) == 0) {
     const std::filesystem::path p = spec.substr(6);
     try {
-      return std::make_unique<TraceInput>(load_trace_csv(p, contact_force_N, trace_limits), p.string(), contact_force_N);
+      return std::make_unique<TraceInput>(load_trace_csv(p, contact_force_N, trace_limits), p.string(),
+                                          contact_force_N);
     } catch (const TraceBoundError& e) {
       throw InputError(e.file(), e.where(), e.expected() + "; give `duration_s` to run it anyway");
     }
   }
-  throw InputError("input", spec, "trace:FILE, sweep, tablet, tablet:/dev/input/eventN, tablet:FILE.evemu or igtl:HOST:PORT");
+  throw InputError("input", spec,
+                   "trace:FILE, sweep, tablet, tablet:/dev/input/eventN, tablet:FILE.evemu or igtl:HOST:PORT");
 }
 
 LoadedRun load_run_files(const RunFiles& files) {
@@ -57,35 +60,39 @@ LoadedRun load_run_files(const RunFiles& files) {
     bool any = false;
     for (std::size_t i = 0; i < kFingerCount; ++i) any = any || run.cal.dynamics[i].has_value();
     if (*files.compensate_lag && !any)
-      throw InputError(files.calibration.empty() ? std::string("(paper 002's models: no --cal)") : files.calibration.string(),
-                       "lag_compensation",
-                       "identified regulator dynamics (channels[].dynamics) for --compensate-lag: calibrate sweep "
-                       "--excitation staircase,random,sine,step,chirp, then calibrate fit");
+      throw InputError(
+          files.calibration.empty() ? std::string("(paper 002's models: no --cal)") : files.calibration.string(),
+          "lag_compensation",
+          "identified regulator dynamics (channels[].dynamics) for --compensate-lag: calibrate sweep "
+          "--excitation staircase,random,sine,step,chirp, then calibrate fit");
   }
   run.scene = load_scene_file(files.scene);
   run.config = make_tick_config(run.rig, run.cal);
   run.lag_compensation_notes = describe_lag_compensation(run.cal);
   // Compensating the whole target samples the scene ahead too (up to three more times per finger
   // and tick): on a function scene only as often as the tick's sampling budget leaves room for.
-  if (const auto* fs = dynamic_cast<const FunctionScene*>(run.scene.scene.get()); fs && run.config.lag_compensation.whole_target) {
+  if (const auto* fs = dynamic_cast<const FunctionScene*>(run.scene.scene.get());
+      fs && run.config.lag_compensation.whole_target) {
     const double per_tick = double(kFingerCount) * fs->field().worst_case_sample_cost();
     const int room = per_tick > 0 ? static_cast<int>(std::floor(kMaxTickShapeCost / per_tick)) - 1 : 3;
     LagCompensationSetting& lag = run.config.lag_compensation;
     lag.samples_ahead = std::clamp(room, 0, lag.samples_ahead);
     if (lag.samples_ahead < 3)
       run.lag_compensation_notes.push_back(
-          lag.samples_ahead == 0 ? "the scene is too costly to sample ahead within a tick: lag compensation "
-                                   "compensates toward the target now, without looking ahead"
-                                 : "the scene is costly to sample: lag compensation looks ahead " +
-                                       std::to_string(lag.samples_ahead) + " time(s) per finger and tick (edges " +
-                                       std::string(lag.samples_ahead < 2 ? "not anticipated" : "anticipated coarsely") + ")");
+          lag.samples_ahead == 0
+              ? "the scene is too costly to sample ahead within a tick: lag compensation "
+                "compensates toward the target now, without looking ahead"
+              : "the scene is costly to sample: lag compensation looks ahead " + std::to_string(lag.samples_ahead) +
+                    " time(s) per finger and tick (edges " +
+                    std::string(lag.samples_ahead < 2 ? "not anticipated" : "anticipated coarsely") + ")");
   }
   run.input_spec = files.input;
   run.live = run.rig.backend != "simulated" || is_live_input(files.input);
   if (is_igtl_input(files.input)) {
     (void)parse_igtl_spec(files.input);
     if (files.tracking.empty())
-      throw InputError("tracking", "input " + files.input, "a tracking file (--tracking FILE) that maps the tracker's tools to fingers (docs/tracking.md)");
+      throw InputError("tracking", "input " + files.input,
+                       "a tracking file (--tracking FILE) that maps the tracker's tools to fingers (docs/tracking.md)");
     run.tracking = load_tracking_file(files.tracking);
     // A tracker gives positions only: the pressing force is the load cells'.
     if (!run.rig.load_cells)
@@ -93,7 +100,8 @@ LoadedRun load_run_files(const RunFiles& files) {
                        "load cells measuring the pressing force, for input " + files.input +
                            " (a tracker gives positions only; docs/tracking.md)");
   } else if (!files.tracking.empty()) {
-    throw InputError("tracking", files.tracking.string(), "--input igtl:HOST:PORT with it (a tracking file is for a tracker)");
+    throw InputError("tracking", files.tracking.string(),
+                     "--input igtl:HOST:PORT with it (a tracking file is for a tracker)");
   }
   return run;
 }
@@ -124,7 +132,8 @@ void settle_timing(const LoadedRun& run, const RunTiming& timing, RunOptions& op
     throw InputError("duration_s", "value", "a positive duration (the input has no length of its own)");
   }
   if (options.realtime.cpu >= 0 && !cpu_allowed(options.realtime.cpu))
-    throw InputError("cpu", std::to_string(options.realtime.cpu), "a CPU this process may run on (" + allowed_cpus_text() + ")");
+    throw InputError("cpu", std::to_string(options.realtime.cpu),
+                     "a CPU this process may run on (" + allowed_cpus_text() + ")");
 }
 
 RunSummary execute_run(LoadedRun& run, const RunOptions& options) {

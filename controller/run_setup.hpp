@@ -40,8 +40,8 @@ struct LoadedRun {
   std::unique_ptr<InputSource> input;
   std::string input_spec;
   std::optional<TrackingConfig> tracking;  // an igtl input's
-  std::unique_ptr<RigBackend> backend;  // made by execute_run
-  bool live = false;  // hardware or a live pen: runs on the wall clock only
+  std::unique_ptr<RigBackend> backend;     // made by execute_run
+  bool live = false;                       // hardware or a live pen: runs on the wall clock only
   // What the run does about the regulators' lag (controller/tick_setup.hpp's
   // describe_lag_compensation): lines for the front end to print before it runs.
   std::vector<std::string> lag_compensation_notes;

@@ -22,7 +22,7 @@ struct TelemetryRecord {
   float wake_latency_us = 0;              // real-time mode: wake-up minus deadline
   float io_us = 0;                        // time spent in the backend this tick
   FaultCode fault = FaultCode::none;
-  std::uint8_t flags = 0;                 // TelemetryFlag bits
+  std::uint8_t flags = 0;  // TelemetryFlag bits
   // Where each finger was and how hard it pressed (the pen's triangle, or each tracked
   // fingertip with its own load cell: issue 26), and why a tracked finger was vented.
   float finger_x_mm[kFingerCount] = {};
@@ -37,12 +37,12 @@ struct TelemetryRecord {
 
 enum TelemetryFlag : std::uint8_t {
   kInContact = 1 << 0,
-  kClamped = 1 << 1,   // a target was above p_max and clamped
+  kClamped = 1 << 1,  // a target was above p_max and clamped
   kSlewLimited = 1 << 2,
   kVented = 1 << 3,
-  kOverrun = 1 << 4,   // this tick finished after the next deadline
-  kDisarmed = 1 << 5,  // the backend was not armed: vented, monitors still read
-  kOwnPositions = 1 << 6,  // each finger at its own tracked position (finger_x_mm, finger_y_mm), no triangle
+  kOverrun = 1 << 4,         // this tick finished after the next deadline
+  kDisarmed = 1 << 5,        // the backend was not armed: vented, monitors still read
+  kOwnPositions = 1 << 6,    // each finger at its own tracked position (finger_x_mm, finger_y_mm), no triangle
   kLagCompensated = 1 << 7,  // a channel's whole target was lag-compensated (calibration's identified regulators)
 };
 

@@ -30,7 +30,9 @@ TelemetryFormat telemetry_format_for(const std::filesystem::path& path) {
 
 TelemetryWriter::TelemetryWriter(std::filesystem::path path, TelemetryFormat format, std::size_t capacity,
                                  TelemetryLimits limits)
-    : path_(std::move(path)), format_(format), limits_(limits),
+    : path_(std::move(path)),
+      format_(format),
+      limits_(limits),
       queue_(std::make_unique<boost::lockfree::spsc_queue<TelemetryRecord>>(capacity)) {
   {  // Fail now, before anything moves, if the file cannot be created. Only a regular file (or
      // a new one) is taken: opening a FIFO for writing waits for a reader, for ever, before
@@ -39,17 +41,20 @@ TelemetryWriter::TelemetryWriter(std::filesystem::path path, TelemetryFormat for
     std::error_code ec;
     const auto status = std::filesystem::status(path_, ec);
     if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-      throw InputError(path_.string(), "telemetry", expected + ", got " + regular_file_problem(path_, ~std::uintmax_t(0)));
+      throw InputError(path_.string(), "telemetry",
+                       expected + ", got " + regular_file_problem(path_, ~std::uintmax_t(0)));
     }
     const int fd = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_NONBLOCK | O_NOCTTY | O_CLOEXEC, 0644);
-    if (fd < 0) throw InputError(path_.string(), "telemetry", expected + " (cannot create it: " + std::strerror(errno) + ")");
+    if (fd < 0)
+      throw InputError(path_.string(), "telemetry", expected + " (cannot create it: " + std::strerror(errno) + ")");
     struct stat st {};
     const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
     const bool truncated = regular && ::ftruncate(fd, 0) == 0;
     const int error = errno;
     ::close(fd);
     if (!regular) throw InputError(path_.string(), "telemetry", expected + ", got not a regular file");
-    if (!truncated) throw InputError(path_.string(), "telemetry", expected + " (cannot truncate it: " + std::strerror(error) + ")");
+    if (!truncated)
+      throw InputError(path_.string(), "telemetry", expected + " (cannot truncate it: " + std::strerror(error) + ")");
   }
   thread_ = std::thread([this] { run(); });
 }
@@ -116,8 +121,10 @@ void TelemetryWriter::run() noexcept {
       const bool finishing = done_.load(std::memory_order_acquire);
       const std::size_t n = queue_->pop(batch, 256);
       for (std::size_t i = 0; i < n; ++i) {
-        if (format_ == TelemetryFormat::binary) chunk.write(reinterpret_cast<const char*>(&batch[i]), sizeof batch[i]);
-        else write_telemetry_csv_row(chunk, batch[i]);
+        if (format_ == TelemetryFormat::binary)
+          chunk.write(reinterpret_cast<const char*>(&batch[i]), sizeof batch[i]);
+        else
+          write_telemetry_csv_row(chunk, batch[i]);
       }
       const std::string bytes = std::move(chunk).str();
       chunk.str({});

@@ -14,7 +14,6 @@
 
 #include "controller/telemetry.hpp"
 
-
 namespace palprig {
 
 // The binary telemetry file's version (its header). 2: the per-finger position, force and vent

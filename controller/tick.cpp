@@ -73,11 +73,19 @@ void safety_stage(TickState& state, const TickConfig& config, const ChannelPress
     const double max_step = lim.slew_kPa_per_s * dt;
     for (std::size_t i = 0; i < kFingerCount; ++i) {
       double p = command_kPa[i];
-      if (p > lim.p_max_kPa) { p = lim.p_max_kPa; rec.flags |= kClamped; }
+      if (p > lim.p_max_kPa) {
+        p = lim.p_max_kPa;
+        rec.flags |= kClamped;
+      }
       if (p < 0) p = 0;
       const double prev = state.last_setpoint_kPa[i];
-      if (p > prev + max_step) { p = prev + max_step; rec.flags |= kSlewLimited; }
-      else if (p < prev - max_step) { p = prev - max_step; rec.flags |= kSlewLimited; }
+      if (p > prev + max_step) {
+        p = prev + max_step;
+        rec.flags |= kSlewLimited;
+      } else if (p < prev - max_step) {
+        p = prev - max_step;
+        rec.flags |= kSlewLimited;
+      }
       out.setpoint_kPa[i] = p;
     }
   }
@@ -204,8 +212,8 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   // What each channel compensates this tick, and the targets it compensates toward: the scene
   // where the fingers will be (channels compensating the whole target), the pulse now and ahead.
   const PulseField* arteries = scene.pulse();
-  const bool switch_on = !config.pulse.compensate_lag_switch ||
-                         config.pulse.compensate_lag_switch->load(std::memory_order_relaxed);
+  const bool switch_on =
+      !config.pulse.compensate_lag_switch || config.pulse.compensate_lag_switch->load(std::memory_order_relaxed);
   const double period_s = dt_s > 0 && std::isfinite(dt_s) ? dt_s : state.pulse.last_dt_s;
   const LagPlan plan = plan_lag_compensation(state.lag, config.lag_compensation, config.pulse.lag,
                                              config.pulse.compensate_lag, switch_on, arteries != nullptr, period_s);

@@ -39,7 +39,7 @@ struct TickConfig {
   // (TickState::hysteresis_model) at each point of the actuator's history.
   std::array<PrandtlIshlinskii, kFingerCount> hysteresis_inverse{};
   SafetyLimits safety;
-  double contact_force_N = 0.05;    // below this the pen is lifted: targets go to 0 kPa
+  double contact_force_N = 0.05;  // below this the pen is lifted: targets go to 0 kPa
   // Nominal time between ticks (1 / loop rate). The first tick of a run has no previous time,
   // so its slew allowance from the vented state is one nominal period's.
   double period_s = 0.001;
@@ -55,14 +55,14 @@ struct TickState {
   // vented state) after a (re)start.
   ChannelPressures last_setpoint_kPa{};
   double last_t_s = 0;
-  bool started = false;           // a tick has run: last_t_s is a time
+  bool started = false;               // a tick has run: last_t_s is a time
   FaultCode fault = FaultCode::none;  // latched: once set, every later tick vents
   std::uint64_t ticks = 0;
   // Per channel, the hysteresis model TickConfig::hysteresis_inverse inverts (identity: none),
   // its play states driven by the setpoints actually sent, with the regulator's exhaust near
   // 0 kPa: the actuator's state as the inverse stage needs it.
   std::array<PrandtlIshlinskii, kFingerCount> hysteresis_model{};
-  PulseTickState pulse;  // pulse clocks and per-finger activation (fixed size)
+  PulseTickState pulse;      // pulse clocks and per-finger activation (fixed size)
   LagCompensationState lag;  // per-channel lag compensators and the pen's recent samples
   // Per finger: how the tissue under it is dragged, and the layer it pressed into last tick
   // (whose stick/slip parameters apply).
@@ -93,8 +93,8 @@ struct TickResult {
 // Prepare a state for a run: the hysteresis models of the configuration's inverses, relaxed at 0.
 TickState make_tick_state(const TickConfig& config) noexcept;
 
-TickResult tick(TickState& state, const TickConfig& config, const Scene& scene,
-                const TouchSample& sample, double t_s) noexcept;
+TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, const TouchSample& sample,
+                double t_s) noexcept;
 
 // Direct per-finger pressures (experiments, calibration): hysteresis inverse and safety only.
 TickResult tick_direct(TickState& state, const TickConfig& config, const ChannelPressures& target_kPa,

@@ -19,7 +19,8 @@ std::string lag_compensation_refusal(const CalibrationModels& cal, std::size_t i
   if (!d) return "no identified dynamics (calibrate sweep --excitation ...,step,chirp, then calibrate fit)";
   if (!(d->r_squared >= cal.lag_compensation.min_r_squared))
     return "its identified dynamics fit with R^2 " + fixed(d->r_squared, 4) + ", below the bound " +
-           fixed(cal.lag_compensation.min_r_squared, 4) + " (lag_compensation.min_r_squared): a poor model could push "
+           fixed(cal.lag_compensation.min_r_squared, 4) +
+           " (lag_compensation.min_r_squared): a poor model could push "
            "harder than the uncompensated rig";
   return {};
 }

@@ -15,8 +15,8 @@ namespace palprig {
 // What reaches the participant's fingers at one moment of a trial.
 struct FeltSample {
   double t_s = 0;
-  ChannelPressures felt_kPa{};           // actuator pressures (monitor readings)
-  FingerFlags active{};                  // fingers carrying the stimulus now
+  ChannelPressures felt_kPa{};              // actuator pressures (monitor readings)
+  FingerFlags active{};                     // fingers carrying the stimulus now
   const TelemetryRecord* record = nullptr;  // the rig's last tick (pen position), when available
 };
 

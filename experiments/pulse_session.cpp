@@ -65,7 +65,8 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
       }
       const Scene& scene = condition.generated ? *generated.scene : *scenes.at(c).scene;
       r.onset_s = clock.now_s();
-      if (options.on_trial_started) options.on_trial_started(PulseTrialStart{position, static_cast<int>(c), r.scene_seed, r.onset_s});
+      if (options.on_trial_started)
+        options.on_trial_started(PulseTrialStart{position, static_cast<int>(c), r.scene_seed, r.onset_s});
       InputSource& pen = participant.trial_started(position, condition, scene, r.onset_s);
       output.palpate(scene, pen, r.onset_s);
       std::optional<Mark> mark;

@@ -50,7 +50,7 @@ struct PulseTrialStart {
 struct PulseSessionOptions {
   std::uint64_t seed = 1;
   int start_position = 0;
-  double period_s = 0.002;  // the pulse is a 72 BPM wave: service the rig often
+  double period_s = 0.002;                 // the pulse is a 72 BPM wave: service the rig often
   const std::atomic<int>* stop = nullptr;  // non-zero: vent and stop (the trial in progress is not kept)
   // true: pause, with the discrimination session's semantics (experiments/session_loop.hpp): vents
   // at once and holds the trial in progress, which is presented again from its start once the

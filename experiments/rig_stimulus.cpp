@@ -53,8 +53,10 @@ ChannelPressures RigStimulus::service(double t_s) {
   last_ = result.tick.record;
   if (telemetry_) {
     if (telemetry_->failed()) fault("telemetry: " + telemetry_->failure());
-    if (keep_every_record_) telemetry_->push_wait(last_);
-    else telemetry_->try_push(last_);
+    if (keep_every_record_)
+      telemetry_->push_wait(last_);
+    else
+      telemetry_->try_push(last_);
   }
   if (observer_) observer_->on_tick(last_);
   return result.monitor_kPa;

@@ -12,15 +12,15 @@
 namespace palprig {
 
 struct SessionLoopOptions {
-  double period_s = 0.005;                   // how often the runner and rig are serviced
-  const std::atomic<int>* stop = nullptr;    // non-zero: stop (vents; the current trial is not kept)
+  double period_s = 0.005;                 // how often the runner and rig are serviced
+  const std::atomic<int>* stop = nullptr;  // non-zero: stop (vents; the current trial is not kept)
   // true: pause (TrialRunner::pause: vents, holds the session, the trial in progress is not
   // kept); back to false: resume. The runner then waits in `ready` until the participant says
   // ready again, as at the start of the session and after a break: the experimenter's Continue
   // alone does not put a stimulus under fingers that may have left the actuators. The held
   // trial is then presented again from its start. The rig is serviced all along.
   const std::atomic<bool>* pause = nullptr;
-  const StimulusOutput* output = nullptr;    // for the rig's last tick record (pen position)
+  const StimulusOutput* output = nullptr;  // for the rig's last tick record (pen position)
 };
 
 struct SessionLoopResult {

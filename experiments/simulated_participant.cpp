@@ -129,7 +129,8 @@ std::optional<Response> SimulatedParticipant::answer(double t_s) {
 }
 
 Response SimulatedParticipant::discrimination_answer() {
-  const double noise = model_.noise_kPa * (mode_ == PresentationMode::sequential ? model_.sequential_noise_factor : 1.0);
+  const double noise =
+      model_.noise_kPa * (mode_ == PresentationMode::sequential ? model_.sequential_noise_factor : 1.0);
   std::array<double, kFingerCount> perceived{};
   for (std::size_t f = 0; f < kFingerCount; ++f) {
     const double felt = felt_count_[f] ? felt_sum_[f] / felt_count_[f] : 0.0;
@@ -144,7 +145,8 @@ Response SimulatedParticipant::discrimination_answer() {
       margin_kPa = std::min(margin_kPa, std::abs(perceived[f] - lowest - model_.criterion_kPa));
     }
     // A noiseless observer is sure of every decision not exactly on its criterion.
-    const double margin = noise > 0 ? margin_kPa / noise : (margin_kPa > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+    const double margin =
+        noise > 0 ? margin_kPa / noise : (margin_kPa > 0 ? std::numeric_limits<double>::infinity() : 0.0);
     r.confidence = confidence_from_margin(margin, protocol_.confidence.levels);
   }
   return r;
@@ -155,7 +157,8 @@ Response SimulatedParticipant::localisation_answer() {
   for (const Candidate& c : candidates_) {
     const double p = normal_cdf((c.peak_kPa - model_.detection_threshold_kPa) / model_.detection_noise_kPa);
     if (random_.uniform() < p) {
-      r.marks.push_back({c.x_mm + model_.mark_noise_mm * random_.normal(), c.y_mm + model_.mark_noise_mm * random_.normal()});
+      r.marks.push_back(
+          {c.x_mm + model_.mark_noise_mm * random_.normal(), c.y_mm + model_.mark_noise_mm * random_.normal()});
     }
   }
   return r;

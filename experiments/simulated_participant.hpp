@@ -51,7 +51,7 @@ struct SimulatedObserverModel {
   double detection_noise_kPa = 1.5;
   double mark_noise_mm = 2.0;
   double raster_speed_mm_per_s = 40.0;
-  double raster_row_step_mm = 20.0;       // fingers pass 16 mm apart: paths 4 and 16 mm apart
+  double raster_row_step_mm = 20.0;  // fingers pass 16 mm apart: paths 4 and 16 mm apart
   double press_force_N = 2.0;
 };
 

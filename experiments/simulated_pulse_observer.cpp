@@ -47,7 +47,8 @@ void SimulatedPulseObserver::feel(const FeltSample& s) {
 std::optional<Mark> SimulatedPulseObserver::answer(double t_s) {
   if (t_s < done_at_s_ + 1.0) return std::nullopt;
   if (best_swing_kPa_ <= 0) return std::nullopt;  // felt nothing: no mark (the trial times out)
-  return Mark{best_.x_mm + model_.mark_noise_mm * random_.normal(), best_.y_mm + model_.mark_noise_mm * random_.normal()};
+  return Mark{best_.x_mm + model_.mark_noise_mm * random_.normal(),
+              best_.y_mm + model_.mark_noise_mm * random_.normal()};
 }
 
 }  // namespace palprig

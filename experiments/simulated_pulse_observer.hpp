@@ -26,7 +26,8 @@ struct PulseObserverModel {
 
 class SimulatedPulseObserver final : public PulseParticipant {
  public:
-  SimulatedPulseObserver(const PulseObserverModel& model, FingerLayout layout) : model_(model), layout_(layout), random_(model.seed) {}
+  SimulatedPulseObserver(const PulseObserverModel& model, FingerLayout layout)
+      : model_(model), layout_(layout), random_(model.seed) {}
   InputSource& trial_started(int position, const PulseCondition& condition, const Scene& scene, double t_s) override;
   void feel(const FeltSample& sample) override;
   std::optional<Mark> answer(double t_s) override;

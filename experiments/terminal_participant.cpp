@@ -48,7 +48,8 @@ std::optional<Response> TerminalParticipant::answer(double t_s) {
     // The rating line: exactly one digit 1..levels (spaces around it allowed).
     const auto first = line->find_first_not_of(' ');
     const auto last = line->find_last_not_of(' ');
-    const bool one_digit = first != std::string::npos && first == last && (*line)[first] >= '1' && (*line)[first] <= '9';
+    const bool one_digit =
+        first != std::string::npos && first == last && (*line)[first] >= '1' && (*line)[first] <= '9';
     const int rating = one_digit ? (*line)[first] - '0' : 0;
     if (!protocol_.confidence.valid(rating)) {
       out_ << "  Please type one number from 1 to " << protocol_.confidence.levels << ".\n" << std::flush;
@@ -63,9 +64,12 @@ std::optional<Response> TerminalParticipant::answer(double t_s) {
   bool ok = !line->empty();
   bool none = false;
   for (char c : *line) {
-    if (c == '0' || c == 'n') none = true;
-    else if (c >= '1' && c <= '0' + kFingerCount) r.tumor_under[static_cast<std::size_t>(c - '1')] = true;
-    else if (c != ' ' && c != ',') ok = false;
+    if (c == '0' || c == 'n')
+      none = true;
+    else if (c >= '1' && c <= '0' + kFingerCount)
+      r.tumor_under[static_cast<std::size_t>(c - '1')] = true;
+    else if (c != ' ' && c != ',')
+      ok = false;
   }
   const bool any = r.tumor_under[0] || r.tumor_under[1] || r.tumor_under[2];
   if (!ok || (none && any)) {

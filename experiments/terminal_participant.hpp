@@ -2,9 +2,9 @@
 // TerminalParticipant: a person at a text terminal. Prompts go to an output stream; answers are
 // typed lines read from a file descriptor without ever blocking the session loop ("2", "12",
 // "0" for no tumor) and, when the protocol asks for a confidence rating, one more line with the
-// rating 1..levels (both re-asked on bad input); Enter goes on after a break; "q" or the end of input asks the session to
-// stop (it stays resumable). Discrimination only: a person palpates a scene with the pen,
-// which a terminal does not read.
+// rating 1..levels (both re-asked on bad input); Enter goes on after a break; "q" or the end of input asks the session
+// to stop (it stays resumable). Discrimination only: a person palpates a scene with the pen, which a terminal does not
+// read.
 #include <atomic>
 #include <iosfwd>
 #include <optional>

@@ -14,7 +14,8 @@ bool TerminalThresholdParticipant::ready(double) {
 
 void TerminalThresholdParticipant::trial_started(const ThresholdTrialInfo& trial, double) {
   out_ << "\nTrial " << trial.position + 1 << " ("
-       << (trial.spec->fingers == FingerSet::one ? "one finger" : "three fingers") << ")\n" << std::flush;
+       << (trial.spec->fingers == FingerSet::one ? "one finger" : "three fingers") << ")\n"
+       << std::flush;
 }
 
 void TerminalThresholdParticipant::interval_started(int interval, double) {

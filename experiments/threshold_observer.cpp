@@ -6,16 +6,13 @@
 namespace palprig {
 
 nlohmann::json to_json(const ThresholdObserverModel& m) {
-  return {{"model", "threshold observer"},
-          {"seed", m.seed},
-          {"noise_kPa", m.noise_kPa},
-          {"criterion_kPa", m.criterion_kPa},
-          {"settle_s", m.settle_s},
-          {"response_time_mean_s", m.response.mean_s},
+  return {{"model", "threshold observer"},        {"seed", m.seed},         {"noise_kPa", m.noise_kPa},
+          {"criterion_kPa", m.criterion_kPa},     {"settle_s", m.settle_s}, {"response_time_mean_s", m.response.mean_s},
           {"response_time_sd_s", m.response.sd_s}};
 }
 
-double analytic_threshold_kPa(const ThresholdObserverModel& m, ThresholdMethod method, FingerSet fingers, double p_correct) {
+double analytic_threshold_kPa(const ThresholdObserverModel& m, ThresholdMethod method, FingerSet fingers,
+                              double p_correct) {
   const double n = fingers == FingerSet::three ? 3.0 : 1.0;
   const double s = m.noise_kPa * std::sqrt(2.0 / n);
   const double z = boost::math::quantile(boost::math::normal_distribution<>(), p_correct);
@@ -29,7 +26,9 @@ void SimulatedThresholdObserver::trial_started(const ThresholdTrialInfo& trial, 
   answer_at_s_ = -1;
 }
 
-void SimulatedThresholdObserver::interval_started(int interval, double t_s) { start_s_[static_cast<std::size_t>(interval)] = t_s; }
+void SimulatedThresholdObserver::interval_started(int interval, double t_s) {
+  start_s_[static_cast<std::size_t>(interval)] = t_s;
+}
 
 void SimulatedThresholdObserver::feel(int interval, const FeltSample& sample) {
   const auto i = static_cast<std::size_t>(interval);

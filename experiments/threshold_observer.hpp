@@ -29,7 +29,8 @@ struct ThresholdObserverModel {
 
 nlohmann::json to_json(const ThresholdObserverModel& m);
 
-double analytic_threshold_kPa(const ThresholdObserverModel& m, ThresholdMethod method, FingerSet fingers, double p_correct);
+double analytic_threshold_kPa(const ThresholdObserverModel& m, ThresholdMethod method, FingerSet fingers,
+                              double p_correct);
 
 class SimulatedThresholdObserver final : public ThresholdParticipant {
  public:

@@ -30,8 +30,8 @@ struct ThresholdTrialInfo {
   int track = 0;
   const TrackSpec* spec = nullptr;
   ThresholdMethod method = ThresholdMethod::two_afc;
-  double level_kPa = 0;      // the increment (a person is not told)
-  FingerFlags active{};      // fingers carrying the stimulus
+  double level_kPa = 0;  // the increment (a person is not told)
+  FingerFlags active{};  // fingers carrying the stimulus
 };
 
 class ThresholdParticipant {
@@ -47,7 +47,7 @@ class ThresholdParticipant {
 
 struct ThresholdSessionOptions {
   std::uint64_t seed = 1;
-  int start_position = 0;      // trials already committed
+  int start_position = 0;  // trials already committed
   double period_s = 0.005;
   const std::atomic<int>* stop = nullptr;
   std::function<void(const ThresholdTrialRecord&)> on_trial;

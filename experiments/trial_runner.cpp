@@ -20,8 +20,14 @@ const char* to_string(RunnerState s) noexcept {
 
 TrialRunner::TrialRunner(const Protocol& protocol, const SessionPlan& plan, int start_position, StimulusOutput& output,
                          RunnerListener& listener, const Scene* scene, InputSource* pen)
-    : protocol_(protocol), plan_(plan), output_(output), listener_(listener), scene_(scene), pen_(pen),
-      position_(start_position), reached_s_(std::numeric_limits<double>::quiet_NaN()),
+    : protocol_(protocol),
+      plan_(plan),
+      output_(output),
+      listener_(listener),
+      scene_(scene),
+      pen_(pen),
+      position_(start_position),
+      reached_s_(std::numeric_limits<double>::quiet_NaN()),
       felt_prev_t_s_(std::numeric_limits<double>::quiet_NaN()) {
   if (protocol.task == TaskKind::localisation && (scene == nullptr || pen == nullptr)) {
     throw std::invalid_argument("a localisation session needs a scene and a pen input");
@@ -190,9 +196,12 @@ void TrialRunner::advance(double t_s) {
         if (t_s - state_since_s_ >= protocol_.timing.inter_trial_s) {
           const PlannedTrial& finished = plan_.trials[static_cast<std::size_t>(position_)];
           ++position_;
-          if (position_ >= total_trials()) enter(RunnerState::done, t_s);
-          else if (finished.break_after) enter(RunnerState::rest, t_s);
-          else start_trial(t_s);
+          if (position_ >= total_trials())
+            enter(RunnerState::done, t_s);
+          else if (finished.break_after)
+            enter(RunnerState::rest, t_s);
+          else
+            start_trial(t_s);
         }
         break;
       case RunnerState::rest:
@@ -235,7 +244,8 @@ bool TrialRunner::takes_answers() const noexcept {
   if (state_ == RunnerState::respond) return true;
   if (state_ != RunnerState::present) return false;
   const PlannedTrial* t = current_trial();
-  return t && answers_during_presentation(protocol_, protocol_.conditions.at(static_cast<std::size_t>(t->condition)).mode);
+  return t &&
+         answers_during_presentation(protocol_, protocol_.conditions.at(static_cast<std::size_t>(t->condition)).mode);
 }
 
 bool TrialRunner::respond(const Response& response, double t_s) {
@@ -257,8 +267,7 @@ void TrialRunner::finish_trial(const Response* response, double t_s) {
   // The moment the participant answered: when it reached the runner, or earlier when the
   // participant says so (a rating given after the finger answer; an answer typed during a
   // sequence), never before this presentation's onset.
-  const double answered_t_s =
-      response && response->given_at_s ? std::clamp(*response->given_at_s, onset_s_, t_s) : t_s;
+  const double answered_t_s = response && response->given_at_s ? std::clamp(*response->given_at_s, onset_s_, t_s) : t_s;
   r.response_time_s = r.answered ? answered_t_s - onset_s_ : std::numeric_limits<double>::quiet_NaN();
   // An answer during the presentation ends the stimulus at the answer's time (or at its
   // planned end, when that passed before the loop noticed it). With a rating after the finger

@@ -57,8 +57,8 @@ struct RunnerEvent {
   Kind kind = Kind::state_changed;
   RunnerState state = RunnerState::ready;
   double t_s = 0;
-  int position = -1;         // the current trial's position, -1 when none
-  FingerFlags active{};      // stimulus_changed: fingers carrying a stimulus now
+  int position = -1;     // the current trial's position, -1 when none
+  FingerFlags active{};  // stimulus_changed: fingers carrying a stimulus now
 };
 
 class RunnerListener {
@@ -139,7 +139,7 @@ class TrialRunner {
   // When the stimulus reached the fingers (TrialRecord::stimulus_reached_s): each finger's last
   // monitor sample (to interpolate the half-level crossing between samples) and when the
   // finger's stimulus was commanded on (a crossing is never placed before it).
-  double reached_s_ = 0;  // NaN until reached in the current presentation
+  double reached_s_ = 0;      // NaN until reached in the current presentation
   double felt_prev_t_s_ = 0;  // NaN before the first sample
   ChannelPressures felt_prev_{};
   std::array<double, kFingerCount> active_since_s_{};

@@ -20,7 +20,8 @@ std::string plain(double v) {
 void check_fit_tables(const nlohmann::json& v, const std::string& file, const std::string& where, int depth = 0) {
   if (depth > 16) return;  // the JSON reader bounds nesting; the tables are 4 levels deep
   if (v.is_array()) {
-    for (std::size_t i = 0; i < v.size(); ++i) check_fit_tables(v[i], file, where + "[" + std::to_string(i) + "]", depth + 1);
+    for (std::size_t i = 0; i < v.size(); ++i)
+      check_fit_tables(v[i], file, where + "[" + std::to_string(i) + "]", depth + 1);
     return;
   }
   if (!v.is_object()) return;
@@ -33,8 +34,9 @@ void check_fit_tables(const nlohmann::json& v, const std::string& file, const st
         throw InputError(file, where + "." + key, expected + ", got " + json_excerpt(x));
     };
     if (!v.contains("slope")) throw InputError(file, where + ".slope", "a fit line's slope beside its intercept");
-    number("slope", 1e-9, kMaxActuatorSlope,
-           "a rising fit line: a slope in 1e-09.." + plain(kMaxActuatorSlope) + " (a flat or falling fit is degenerate)");
+    number(
+        "slope", 1e-9, kMaxActuatorSlope,
+        "a rising fit line: a slope in 1e-09.." + plain(kMaxActuatorSlope) + " (a flat or falling fit is degenerate)");
     number("intercept", -1e6, 1e6, "an intercept in -1e+06..1e+06 kPa");
     number("r_squared", -1e9, 1, "an R^2 of at most 1");
     number("residual_sd", 0, 1e6, "a residual sd in 0..1e+06");
@@ -66,7 +68,8 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
   }
   const auto channels = root.objects("channels");
   if (channels.size() != kFingerCount)
-    root.fail("channels", "exactly " + std::to_string(kFingerCount) + " channels, got " + std::to_string(channels.size()));
+    root.fail("channels",
+              "exactly " + std::to_string(kFingerCount) + " channels, got " + std::to_string(channels.size()));
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     const JsonObject& ch = channels[i];
     const JsonObject a = ch.object("actuator");
@@ -83,7 +86,8 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
     const double hard = cal.stress.hard_stress_kPa;
     if (!(cal.actuators[i].intercept_kPa >= kMinActuatorIntercept_kPa && cal.actuators[i].intercept_kPa < hard))
       a.fail("intercept_kPa", "the stress of the uninflated actuator in " + plain(kMinActuatorIntercept_kPa) + ".." +
-                                  plain(hard) + " kPa (below the stress model's hard_stress_kPa, or every target is 0 kPa), got " +
+                                  plain(hard) +
+                                  " kPa (below the stress model's hard_stress_kPa, or every target is 0 kPa), got " +
                                   plain(cal.actuators[i].intercept_kPa));
     if (a.has("r_squared")) (void)a.number("r_squared", -1e9, 1);
     a.refuse_unknown();
@@ -93,11 +97,15 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
       pi.linear_weight = h.number("linear_weight", -1e6, 1e6);
       const auto r = h.numbers("thresholds_kPa", -1e6, 1e6);
       const auto w = h.numbers("weights", -1e6, 1e6);
-      if (r.size() != w.size()) h.fail("weights", "as many weights as thresholds_kPa (" + std::to_string(r.size()) + ")");
+      if (r.size() != w.size())
+        h.fail("weights", "as many weights as thresholds_kPa (" + std::to_string(r.size()) + ")");
       if (r.size() > kMaxPlayOperators)
         h.fail("thresholds_kPa", "at most " + std::to_string(kMaxPlayOperators) + " play operators");
       pi.operator_count = r.size();
-      for (std::size_t k = 0; k < r.size(); ++k) { pi.thresholds_kPa[k] = r[k]; pi.weights[k] = w[k]; }
+      for (std::size_t k = 0; k < r.size(); ++k) {
+        pi.thresholds_kPa[k] = r[k];
+        pi.weights[k] = w[k];
+      }
       if (!pi.valid())
         h.fail("weights", "an invertible model: linear_weight > 0, weights >= 0, thresholds > 0 and increasing");
       // A regulator's output follows its command about one to one; a gain far from it is a
@@ -105,9 +113,11 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
       double gain = pi.linear_weight;
       for (std::size_t k = 0; k < pi.operator_count; ++k) gain += pi.weights[k];
       if (!(gain >= 0.2 && gain <= 5.0))
-        h.fail("weights", "a model of gain near 1 (linear_weight + sum of weights in 0.2..5), got " + std::to_string(gain));
+        h.fail("weights",
+               "a model of gain near 1 (linear_weight + sum of weights in 0.2..5), got " + std::to_string(gain));
       // Fit-quality fields written by calibration are informative here.
-      for (const char* k : {"rms_error_kPa", "r_squared"}) if (h.has(k)) (void)h.number(k, -1e9, 1e9);
+      for (const char* k : {"rms_error_kPa", "r_squared"})
+        if (h.has(k)) (void)h.number(k, -1e9, 1e9);
       h.refuse_unknown();
     }
     if (ch.has("dynamics")) {
@@ -159,8 +169,9 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
       bool any = false;
       for (const auto& d : cal.dynamics) any = any || d.has_value();
       if (!any)
-        l.fail("enabled", "identified regulator dynamics (channels[].dynamics, from calibrate sweep --excitation "
-                          "...,step,chirp and calibrate fit) before lag compensation is enabled");
+        l.fail("enabled",
+               "identified regulator dynamics (channels[].dynamics, from calibrate sweep --excitation "
+               "...,step,chirp and calibrate fit) before lag compensation is enabled");
     }
     l.refuse_unknown();
   }
@@ -170,8 +181,9 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
 
 void check_calibration_matches(const CalibrationModels& cal, const std::string& rig_id, const std::string& rig_source) {
   if (cal.rig_id != "*" && cal.rig_id != rig_id)
-    throw InputError(cal.source, "rig_id",
-                     "the id of the rig in use (\"" + rig_id + "\" from " + rig_source + "), got \"" + cal.rig_id + "\"");
+    throw InputError(
+        cal.source, "rig_id",
+        "the id of the rig in use (\"" + rig_id + "\" from " + rig_source + "), got \"" + cal.rig_id + "\"");
 }
 
 }  // namespace palprig

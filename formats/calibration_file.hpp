@@ -15,7 +15,7 @@ namespace palprig {
 inline constexpr int kCalibrationFileVersion = 1;
 // Bounds of an actuator line (stress = slope * p + intercept_kPa) beyond the stress model's own:
 // README, "Hardening notes".
-inline constexpr double kMaxActuatorSlope = 1000;            // kPa of stress per kPa of air
+inline constexpr double kMaxActuatorSlope = 1000;  // kPa of stress per kPa of air
 inline constexpr double kMinActuatorIntercept_kPa = -1000;
 
 // Throws InputError naming the field: wrong version, channel count, degenerate fits (a slope of

@@ -40,21 +40,23 @@ ComediRigConfig parse_comedi_config(const RigConfig& rig, const nlohmann::json& 
   cfg.ao_subdevice = static_cast<int>(c.integer_or("ao_subdevice", -1, -1, 255));
   cfg.ai_subdevice = static_cast<int>(c.integer_or("ai_subdevice", -1, -1, 255));
   const std::string cal = c.choice_or("calibration", "auto", {"auto", "soft", "hard"});
-  cfg.calibration = cal == "soft" ? ComediCalibration::soft : cal == "hard" ? ComediCalibration::hard
-                                                                             : ComediCalibration::automatic;
+  cfg.calibration = cal == "soft"   ? ComediCalibration::soft
+                    : cal == "hard" ? ComediCalibration::hard
+                                    : ComediCalibration::automatic;
   cfg.calibration_file = c.string_or("calibration_file", "");
   if (!cfg.calibration_file.empty() && cfg.calibration == ComediCalibration::hard)
     c.fail("calibration_file", "no file with \"calibration\": \"hard\" (files are for soft calibration)");
   const std::string ref = c.choice_or("ai_reference", "ground", {"ground", "common", "differential", "other"});
-  cfg.ai_reference = ref == "common" ? ComediReference::common
+  cfg.ai_reference = ref == "common"         ? ComediReference::common
                      : ref == "differential" ? ComediReference::differential
-                     : ref == "other" ? ComediReference::other
-                                      : ComediReference::ground;
+                     : ref == "other"        ? ComediReference::other
+                                             : ComediReference::ground;
   c.refuse_unknown();
 
   if (!channels.is_array())
-    throw InputError(rig.source, "channels", "an array of " + std::to_string(kFingerCount) +
-                                                 " channel objects with \"output\" and \"monitor\" DAQ channels");
+    throw InputError(rig.source, "channels",
+                     "an array of " + std::to_string(kFingerCount) +
+                         " channel objects with \"output\" and \"monitor\" DAQ channels");
   const nlohmann::json channels_doc = {{"channels", channels}};
   const JsonObject root(channels_doc, rig.source, "");
   const auto ch = root.objects("channels");

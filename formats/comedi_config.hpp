@@ -40,7 +40,7 @@ struct ComediRigConfig {
   std::string device = "/dev/comedi0";
   int ao_subdevice = -1, ai_subdevice = -1;  // -1: the first of that type
   ComediCalibration calibration = ComediCalibration::automatic;
-  std::string calibration_file;              // soft calibration; empty: comedi's default path
+  std::string calibration_file;  // soft calibration; empty: comedi's default path
   ComediReference ai_reference = ComediReference::ground;
   std::array<ComediChannelSpec, kFingerCount> outputs{}, monitors{};
   double p_max_kPa = 60.0;

@@ -38,7 +38,9 @@ double positive(const JsonObject& o, const std::string& key, const char* what, d
   const auto& v = o.raw(key);
   if (!v.is_number()) o.fail(key, std::string("a positive ") + what + ", got " + json_excerpt(v));
   const double d = v.get<double>();
-  if (!std::isfinite(d) || d <= 0) o.fail(key, std::string("a positive ") + what + " (sizes and moduli cannot be zero or negative), got " + json_excerpt(v));
+  if (!std::isfinite(d) || d <= 0)
+    o.fail(key, std::string("a positive ") + what + " (sizes and moduli cannot be zero or negative), got " +
+                    json_excerpt(v));
   if (d > hi) o.fail(key, std::string("a ") + what + " no larger than " + number_text(hi) + ", got " + json_excerpt(v));
   return d;
 }
@@ -117,7 +119,8 @@ FrepShape::Node parse_shape(const JsonObject& s, FrepShape& shape, int nesting) 
     std::vector<Blob> terms;
     // Every blob counts at every point (a sum, not a union): a few hundred is the useful limit.
     if (const auto& list = s.raw("blobs"); list.is_array() && list.size() > kMaxBlobTerms)
-      s.fail("blobs", "at most " + std::to_string(kMaxBlobTerms) + " blobs in one shape, got " + std::to_string(list.size()));
+      s.fail("blobs",
+             "at most " + std::to_string(kMaxBlobTerms) + " blobs in one shape, got " + std::to_string(list.size()));
     for (const JsonObject& b : s.objects("blobs")) {
       Blob t;
       t.centre = point3(b, "centre_mm");
@@ -201,7 +204,8 @@ ArterySpec parse_artery(const JsonObject& a, const std::filesystem::path& scene_
     const auto& p = path[i];
     if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number() ||
         !std::isfinite(p[0].get<double>()) || !std::isfinite(p[1].get<double>()))
-      throw InputError(a.file(), a.path("path_mm") + "[" + std::to_string(i) + "]", "a point [x_mm, y_mm], got " + json_excerpt(p));
+      throw InputError(a.file(), a.path("path_mm") + "[" + std::to_string(i) + "]",
+                       "a point [x_mm, y_mm], got " + json_excerpt(p));
     s.path.push_back({p[0].get<double>(), p[1].get<double>()});
   }
   s.radius_mm = positive(a, "radius_mm", "artery radius in mm", 100);
@@ -222,7 +226,8 @@ ArterySpec parse_artery(const JsonObject& a, const std::filesystem::path& scene_
   s.own_force_window = a.has("force_window_N");
   if (s.own_force_window) {
     const auto fw = triple(a, "force_window_N", 2, 0, 1000);
-    if (!(fw[0] < fw[1])) a.fail("force_window_N", "[F_min, F_max] with F_min < F_max, got " + json_excerpt(a.raw("force_window_N")));
+    if (!(fw[0] < fw[1]))
+      a.fail("force_window_N", "[F_min, F_max] with F_min < F_max, got " + json_excerpt(a.raw("force_window_N")));
     s.force_window.min_N = fw[0];
     s.force_window.max_N = fw[1];
   }
@@ -259,7 +264,8 @@ PulseWaveform load_waveform_csv(const std::filesystem::path& path) {
     if (line.empty() || line[0] == '#') continue;
     const auto comma = line.find(',');
     if (comma == std::string::npos)
-      throw InputError(file, "line " + std::to_string(line_no), "two comma-separated numbers t_s,value, got \"" + line + "\"");
+      throw InputError(file, "line " + std::to_string(line_no),
+                       "two comma-separated numbers t_s,value, got \"" + line + "\"");
     const std::string a = line.substr(0, comma), b = line.substr(comma + 1);
     double ta = 0, vb = 0;
     const bool ok = parse_decimal(a, ta) == DecimalCell::number && parse_decimal(b, vb) == DecimalCell::number;
@@ -311,7 +317,8 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
     l.refuse_unknown();
     tissue.layers.push_back(layer);
   }
-  if (root.has("support_kPa")) tissue.support_kPa = positive(root, "support_kPa", "Young's modulus in kPa", kMaxModulus_kPa);
+  if (root.has("support_kPa"))
+    tissue.support_kPa = positive(root, "support_kPa", "Young's modulus in kPa", kMaxModulus_kPa);
 
   const JsonObject felt = root.object("felt_range_kPa");
   tissue.felt.soft_kPa = positive(felt, "soft", "modulus in kPa felt as 0", kMaxModulus_kPa);
@@ -323,8 +330,10 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
 
   if (root.has("press")) {
     const JsonObject p = root.object("press");
-    tissue.press.finger_radius_mm = positive_or(p, "finger_radius_mm", tissue.press.finger_radius_mm, "radius in mm", 100);
-    tissue.press.reference_force_N = positive_or(p, "reference_force_N", tissue.press.reference_force_N, "force in N", 1000);
+    tissue.press.finger_radius_mm =
+        positive_or(p, "finger_radius_mm", tissue.press.finger_radius_mm, "radius in mm", 100);
+    tissue.press.reference_force_N =
+        positive_or(p, "reference_force_N", tissue.press.reference_force_N, "force in N", 1000);
     tissue.press.reference_indentation_mm =
         positive_or(p, "reference_indentation_mm", tissue.press.reference_indentation_mm, "indentation in mm", 100);
     p.refuse_unknown();
@@ -338,7 +347,8 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
   std::vector<std::pair<std::string, std::size_t>> tumor_names;  // name, index in "inclusions"
   if (root.has("inclusions")) {
     const auto incs = root.objects("inclusions");
-    if (incs.size() > kMaxInclusions) root.fail("inclusions", "at most " + std::to_string(kMaxInclusions) + " inclusions");
+    if (incs.size() > kMaxInclusions)
+      root.fail("inclusions", "at most " + std::to_string(kMaxInclusions) + " inclusions");
     for (const JsonObject& o : incs) {
       Inclusion inc;
       inc.name = o.string("name");

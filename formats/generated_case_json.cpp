@@ -30,10 +30,11 @@ nlohmann::json generated_case_json(const GeneratedCase& c) {
       case GeneratedTumor::Shape::blobs: {
         json blobs = json::array();
         for (const Blob& b : t.lobes)
-          blobs.push_back({{"centre_mm", p3(b.centre)},
-                           {"k", b.k},
-                           {"inverse_scale_per_mm2", json::array({b.inverse_scale_per_mm2[0], b.inverse_scale_per_mm2[1],
-                                                                  b.inverse_scale_per_mm2[2]})}});
+          blobs.push_back(
+              {{"centre_mm", p3(b.centre)},
+               {"k", b.k},
+               {"inverse_scale_per_mm2",
+                json::array({b.inverse_scale_per_mm2[0], b.inverse_scale_per_mm2[1], b.inverse_scale_per_mm2[2]})}});
         shape = {{"type", "blobs"}, {"threshold", t.threshold}, {"blobs", blobs}};
         break;
       }

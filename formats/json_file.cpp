@@ -71,8 +71,10 @@ class CheckedSax {
     for (std::size_t i = 0; i < frames_.size(); ++i) {
       const Frame& f = frames_[i];
       const bool pending = being_read && i + 1 == frames_.size();
-      if (f.array) p += "[" + std::to_string(pending || f.index == 0 ? f.index : f.index - 1) + "]";
-      else if (!f.key.empty() || !p.empty()) p += (p.empty() ? "" : ".") + f.key;
+      if (f.array)
+        p += "[" + std::to_string(pending || f.index == 0 ? f.index : f.index - 1) + "]";
+      else if (!f.key.empty() || !p.empty())
+        p += (p.empty() ? "" : ".") + f.key;
       if (p.size() > kMaxWhereChars) break;  // InputError cuts it anyway
     }
     return p.empty() ? fallback : p;

@@ -30,11 +30,13 @@ ModbusRegisterRef modbus_input(const JsonObject& o, const ModbusRigConfig& modbu
   ModbusRegisterRef r;
   r.link = find_link(o, modbus.links);
   r.address = static_cast<int>(o.integer("register", 0, 65535));
-  r.kind = o.choice_or("function", "input", {"input", "holding"}) == "input" ? RegisterKind::input : RegisterKind::holding;
+  r.kind =
+      o.choice_or("function", "input", {"input", "holding"}) == "input" ? RegisterKind::input : RegisterKind::holding;
   r.scale.is_signed = o.boolean_or("signed", false);
   r.scale.raw_full_scale = static_cast<std::int32_t>(o.integer_or("raw_full_scale", r.scale.raw_full_scale, 1, 65535));
   if (r.scale.is_signed && r.scale.raw_full_scale > 32767)
-    o.fail("raw_full_scale", "at most 32767 for a signed (int16) register, got " + std::to_string(r.scale.raw_full_scale));
+    o.fail("raw_full_scale",
+           "at most 32767 for a signed (int16) register, got " + std::to_string(r.scale.raw_full_scale));
   std::tie(r.scale.volts_lo, r.scale.volts_hi) = volts_span(o);
   o.refuse_unknown();
   return r;
@@ -73,24 +75,30 @@ LoadCellConfig parse_load_cell_config(const RigConfig& rig, const nlohmann::json
           if (m.channel == ch.comedi_channel)
             in.fail("channel", "an analog input no regulator monitor uses, got " + std::to_string(ch.comedi_channel));
         if (!used.insert({0, ch.comedi_channel}).second)
-          in.fail("channel", "an analog input no other load cell uses, got " + std::to_string(ch.comedi_channel) + " twice");
+          in.fail("channel",
+                  "an analog input no other load cell uses, got " + std::to_string(ch.comedi_channel) + " twice");
       } else {
         ch.modbus = modbus_input(in, *rig.modbus);
         for (const auto& m : rig.modbus->channels)
-          if (m.monitor.link == ch.modbus->link && m.monitor.address == ch.modbus->address && m.monitor.kind == ch.modbus->kind)
+          if (m.monitor.link == ch.modbus->link && m.monitor.address == ch.modbus->address &&
+              m.monitor.kind == ch.modbus->kind)
             in.fail("register", "a register no regulator monitor reads, got " + std::to_string(ch.modbus->address));
         for (const auto& m : rig.modbus->channels)
-          if (ch.modbus->kind == RegisterKind::holding && m.output.link == ch.modbus->link && m.output.address == ch.modbus->address)
-            in.fail("register", "a register that is no regulator's output, got holding register " + std::to_string(ch.modbus->address));
+          if (ch.modbus->kind == RegisterKind::holding && m.output.link == ch.modbus->link &&
+              m.output.address == ch.modbus->address)
+            in.fail("register", "a register that is no regulator's output, got holding register " +
+                                    std::to_string(ch.modbus->address));
         if (!used.insert({ch.modbus->link * 2 + (ch.modbus->kind == RegisterKind::input), ch.modbus->address}).second)
-          in.fail("register", "a register no other load cell reads, got " + std::to_string(ch.modbus->address) + " twice");
+          in.fail("register",
+                  "a register no other load cell reads, got " + std::to_string(ch.modbus->address) + " twice");
       }
     }
     c.refuse_unknown();
     cfg.channels.push_back(ch);
   }
   if (o.has("simulated")) {
-    if (rig.backend != "simulated") o.fail("simulated", "nothing on a \"" + rig.backend + "\" rig (its cells are real)");
+    if (rig.backend != "simulated")
+      o.fail("simulated", "nothing on a \"" + rig.backend + "\" rig (its cells are real)");
     const JsonObject s = o.object("simulated");
     SimulatedLoadCellParams& p = cfg.simulated;
     p.stiffness_N_per_mm = s.number_or("stiffness_N_per_mm", p.stiffness_N_per_mm, 1e-6, 1e6);

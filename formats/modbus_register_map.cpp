@@ -17,7 +17,8 @@ namespace palprig {
 std::uint16_t RegisterScale::word_from_volts(double volts) const noexcept {
   if (!std::isfinite(volts)) volts = volts_lo;  // never reached with validated setpoints; safe side
   volts = std::clamp(volts, volts_lo, volts_hi);
-  const double counts = double(raw_lo()) + (volts - volts_lo) / (volts_hi - volts_lo) * double(raw_full_scale - raw_lo());
+  const double counts =
+      double(raw_lo()) + (volts - volts_lo) / (volts_hi - volts_lo) * double(raw_full_scale - raw_lo());
   const auto raw = static_cast<std::int32_t>(std::lround(std::clamp(counts, double(raw_lo()), double(raw_full_scale))));
   return static_cast<std::uint16_t>(raw);  // two's complement for negative counts
 }
@@ -30,15 +31,18 @@ double RegisterScale::volts_from_word(std::uint16_t word) const noexcept {
 std::string ModbusLinkConfig::endpoint() const {
   // Host and device come from a file: escaped, so no message carries a control character.
   std::ostringstream s;
-  if (rtu) s << "rtu " << printable_excerpt(device, 120) << " " << baud << " " << data_bits << parity << stop_bits;
-  else s << "tcp " << printable_excerpt(host, 120) << ":" << port;
+  if (rtu)
+    s << "rtu " << printable_excerpt(device, 120) << " " << baud << " " << data_bits << parity << stop_bits;
+  else
+    s << "tcp " << printable_excerpt(host, 120) << ":" << port;
   return s.str();
 }
 
 std::string modbus_host_refusal(const std::string& host) {
   const std::string expected =
       "a host name (letters, digits, '-' and '.', labels of at most 63 and at most 253 characters) or an IPv4 or "
-      "IPv6 address, got \"" + host + "\"";
+      "IPv6 address, got \"" +
+      host + "\"";
   if (host.empty() || host.size() > 253) return expected;
   in_addr v4{};
   in6_addr v6{};
@@ -115,8 +119,9 @@ ModbusRegisterRef parse_register(const JsonObject& o, const std::vector<ModbusLi
   r.link = find_link(o, links);
   r.address = static_cast<int>(o.integer("register", 0, 65535));
   r.kind = RegisterKind::holding;
-  if (is_monitor) r.kind = o.choice_or("function", "input", {"input", "holding"}) == "input" ? RegisterKind::input
-                                                                                          : RegisterKind::holding;
+  if (is_monitor)
+    r.kind =
+        o.choice_or("function", "input", {"input", "holding"}) == "input" ? RegisterKind::input : RegisterKind::holding;
   RegisterScale& s = r.scale;
   s.is_signed = o.boolean_or("signed", s.is_signed);
   s.raw_full_scale = static_cast<std::int32_t>(o.integer_or("raw_full_scale", s.raw_full_scale, 1, 65535));
@@ -132,8 +137,8 @@ ModbusRegisterRef parse_register(const JsonObject& o, const std::vector<ModbusLi
     o.fail("volts_span", "[low, high] in volts (field is missing)");
   }
   if (base) s.regulator = base->scale.regulator;
-  s.regulator.kPa_per_volt = base ? o.number_or("kPa_per_volt", s.regulator.kPa_per_volt, 1e-6, 1e6)
-                                  : o.number("kPa_per_volt", 1e-6, 1e6);
+  s.regulator.kPa_per_volt =
+      base ? o.number_or("kPa_per_volt", s.regulator.kPa_per_volt, 1e-6, 1e6) : o.number("kPa_per_volt", 1e-6, 1e6);
   s.regulator.volts_at_0_kPa = o.number_or("volts_at_0_kPa", base ? s.regulator.volts_at_0_kPa : 0.0, -1000, 1000);
   o.refuse_unknown();
   return r;
@@ -165,23 +170,27 @@ ModbusRigConfig parse_modbus_config(const RigConfig& rig, const nlohmann::json& 
   for (std::size_t i = 0; i < cfg.links.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (cfg.links[i].name == cfg.links[j].name)
-        m.fail("links[" + std::to_string(i) + "].name", "a name no other link has, got \"" + cfg.links[i].name + "\" twice");
+        m.fail("links[" + std::to_string(i) + "].name",
+               "a name no other link has, got \"" + cfg.links[i].name + "\" twice");
   cfg.io_rate_hz = m.number_or("io_rate_hz", cfg.io_rate_hz, 1, 5000);
   cfg.response_timeout_s = m.number_or("response_timeout_ms", cfg.response_timeout_s * 1e3, 1, 10000) / 1e3;
   if (m.has("reconnect_backoff_ms")) {
     const auto b = m.numbers("reconnect_backoff_ms", 1, 600000);
-    if (b.size() != 2 || b[0] > b[1]) m.fail("reconnect_backoff_ms", "[first, longest] wait in ms with first <= longest");
+    if (b.size() != 2 || b[0] > b[1])
+      m.fail("reconnect_backoff_ms", "[first, longest] wait in ms with first <= longest");
     cfg.reconnect_initial_s = b[0] / 1e3;
     cfg.reconnect_max_s = b[1] / 1e3;
   }
   cfg.setpoint_timeout_s = m.number_or("setpoint_timeout_ms", cfg.setpoint_timeout_s * 1e3, 1, 60000) / 1e3;
   cfg.max_outage_s = m.number_or("max_outage_s", cfg.max_outage_s, 0, 86400);
-  cfg.io_thread_fifo_priority = static_cast<int>(m.integer_or("io_thread_fifo_priority", cfg.io_thread_fifo_priority, 0, 98));
+  cfg.io_thread_fifo_priority =
+      static_cast<int>(m.integer_or("io_thread_fifo_priority", cfg.io_thread_fifo_priority, 0, 98));
   m.refuse_unknown();
 
   if (!channels.is_array())
-    throw InputError(rig.source, "channels", "an array of " + std::to_string(kFingerCount) +
-                                                 " channel objects with \"output\" and \"monitor\" registers");
+    throw InputError(
+        rig.source, "channels",
+        "an array of " + std::to_string(kFingerCount) + " channel objects with \"output\" and \"monitor\" registers");
   const nlohmann::json channels_doc = {{"channels", channels}};  // JsonObject keeps a pointer: keep it alive
   const JsonObject root(channels_doc, rig.source, "");
   const auto ch = root.objects("channels");  // rig_file already checked the count
@@ -221,9 +230,9 @@ ModbusRigConfig parse_modbus_config(const RigConfig& rig, const nlohmann::json& 
     if (mon.kind == RegisterKind::holding) {
       const auto it = outputs.find({mon.link, mon.address});
       if (it != outputs.end() && it->second != i)
-        ch[i].object("monitor").fail("register", "a register that is not another channel's output, got holding register " +
-                                                     std::to_string(mon.address) + " (channel " +
-                                                     std::to_string(it->second + 1) + "'s output)");
+        ch[i].object("monitor").fail(
+            "register", "a register that is not another channel's output, got holding register " +
+                            std::to_string(mon.address) + " (channel " + std::to_string(it->second + 1) + "'s output)");
     }
     const auto key = std::make_tuple(mon.link, mon.address, mon.kind);
     if (auto it = monitors.find(key); it != monitors.end())
@@ -234,7 +243,8 @@ ModbusRigConfig parse_modbus_config(const RigConfig& rig, const nlohmann::json& 
   }
   for (std::size_t l = 0; l < cfg.links.size(); ++l)
     if (!used_links.count(l))
-      m.fail("links[" + std::to_string(l) + "]", "a link some channel uses (\"" + cfg.links[l].name + "\" is used by none)");
+      m.fail("links[" + std::to_string(l) + "]",
+             "a link some channel uses (\"" + cfg.links[l].name + "\" is used by none)");
   return cfg;
 }
 

@@ -44,7 +44,9 @@ struct RegisterScale {
   std::int32_t raw_lo() const noexcept { return is_signed ? -raw_full_scale : 0; }
   // Volts clamped to the span, rounded to the nearest count, encoded as the 16-bit word.
   std::uint16_t word_from_volts(double volts) const noexcept;
-  std::uint16_t word_from_kPa(double pressure_kPa) const noexcept { return word_from_volts(regulator.volts(pressure_kPa)); }
+  std::uint16_t word_from_kPa(double pressure_kPa) const noexcept {
+    return word_from_volts(regulator.volts(pressure_kPa));
+  }
   // Decodes the word (sign-extended when signed); counts beyond the full scale are reported as
   // they are (a module over-range reading), not clamped.
   double volts_from_word(std::uint16_t word) const noexcept;
@@ -58,17 +60,17 @@ struct ModbusLinkConfig {
   bool rtu = false;
   std::string host = "127.0.0.1";  // tcp
   int port = 502;
-  std::string device;              // rtu: serial device
+  std::string device;  // rtu: serial device
   int baud = 9600;
   char parity = 'N';
   int data_bits = 8, stop_bits = 1;
   int unit_id = 1;
-  std::string endpoint() const;    // "tcp 127.0.0.1:502" or "rtu /dev/ttyUSB0 9600 8N1"
+  std::string endpoint() const;  // "tcp 127.0.0.1:502" or "rtu /dev/ttyUSB0 9600 8N1"
 };
 
 struct ModbusRegisterRef {
-  std::size_t link = 0;            // index into ModbusRigConfig::links
-  int address = 0;                 // 0-based
+  std::size_t link = 0;  // index into ModbusRigConfig::links
+  int address = 0;       // 0-based
   RegisterKind kind = RegisterKind::holding;
   RegisterScale scale;
 };
@@ -79,24 +81,24 @@ struct ModbusRegisterRef {
 std::string modbus_host_refusal(const std::string& host);
 
 struct ModbusChannelMap {
-  ModbusRegisterRef output;        // always a holding register
+  ModbusRegisterRef output;  // always a holding register
   ModbusRegisterRef monitor;
 };
 
 struct ModbusRigConfig {
-  std::string source;              // rig file, for messages
+  std::string source;  // rig file, for messages
   std::string rig_id;
-  std::string module;              // free-text description
+  std::string module;  // free-text description
   std::vector<ModbusLinkConfig> links;
   std::array<ModbusChannelMap, kFingerCount> channels{};
   double io_rate_hz = 500.0;
   double response_timeout_s = 0.05;
   double reconnect_initial_s = 0.1, reconnect_max_s = 2.0;
-  double setpoint_timeout_s = 0.1;  // loop silent this long: the bus thread vents on its own
-  double max_outage_s = 2.0;        // a link down this long ends the run (backend error); 0: never
-  int io_thread_fifo_priority = 70; // 0: normal scheduling
-  double p_max_kPa = 60.0;          // from the rig's safety section
-  double slew_kPa_per_s = 2000.0;   // re-engagement ramp after a vent or a reconnect
+  double setpoint_timeout_s = 0.1;   // loop silent this long: the bus thread vents on its own
+  double max_outage_s = 2.0;         // a link down this long ends the run (backend error); 0: never
+  int io_thread_fifo_priority = 70;  // 0: normal scheduling
+  double p_max_kPa = 60.0;           // from the rig's safety section
+  double slew_kPa_per_s = 2000.0;    // re-engagement ramp after a vent or a reconnect
 
   // True when the monitor of `channel` reads back its own output register (modules without
   // analog inputs): the simulator then leaves that register as the client wrote it.

@@ -54,8 +54,8 @@ static RigConfig parse_rig(const nlohmann::json& doc, const std::string& file) {
   if (root.has("channels")) {
     const auto ch = root.objects("channels");
     if (ch.size() != kFingerCount)
-      root.fail("channels", "exactly " + std::to_string(kFingerCount) + " channel objects, got " +
-                                std::to_string(ch.size()));
+      root.fail("channels",
+                "exactly " + std::to_string(kFingerCount) + " channel objects, got " + std::to_string(ch.size()));
     for (std::size_t i = 0; i < kFingerCount; ++i) {
       if (ch[i].has("plant")) rig.plants[i] = parse_plant(ch[i].object("plant"), rig.plants[i]);
       if (rig.backend != "simulated") {

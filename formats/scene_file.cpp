@@ -38,8 +38,9 @@ SceneFile load_scene_file(const std::filesystem::path& path) {
   const double width_mm = m.number("width_mm", 1e-3, 1e5);
   const double height_mm = m.number("height_mm", 1e-3, 1e5);
   const double scale = m.number_or("value_scale", 0.0, 0.0, 1e9);
-  const MapSampling sampling =
-      m.choice_or("sampling", "nearest", {"nearest", "bilinear"}) == "nearest" ? MapSampling::nearest : MapSampling::bilinear;
+  const MapSampling sampling = m.choice_or("sampling", "nearest", {"nearest", "bilinear"}) == "nearest"
+                                   ? MapSampling::nearest
+                                   : MapSampling::bilinear;
   OutsidePolicy outside;
   if (m.has("outside")) {
     const auto& o = m.raw("outside");
@@ -69,7 +70,7 @@ SceneFile load_scene_file(const std::filesystem::path& path) {
       tt.x_mm = t.number("x_mm", 0, width_mm);
       tt.y_mm = t.number("y_mm", 0, height_mm);
       tt.radius_mm = t.number("radius_mm", 1e-3, 1e4);
-      if (t.has("depth_mm")) (void)t.number("depth_mm", 0, 1e4);            // documentation of the phantom
+      if (t.has("depth_mm")) (void)t.number("depth_mm", 0, 1e4);  // documentation of the phantom
       if (t.has("stiffness_kPa")) (void)t.number("stiffness_kPa", 0, 1e7);
       t.refuse_unknown();
       out.tumors.push_back(tt);

@@ -40,12 +40,15 @@ TabletConfig parse_tablet_config(const JsonObject& o) {
     if (!raw.is_array() || raw.size() < 2) o.fail("pressure_curve_N", expected);
     t.pressure.points.clear();
     for (const auto& pt : raw) {
-      if (!pt.is_array() || pt.size() != 2 || !pt[0].is_number() || !pt[1].is_number()) o.fail("pressure_curve_N", expected);
+      if (!pt.is_array() || pt.size() != 2 || !pt[0].is_number() || !pt[1].is_number())
+        o.fail("pressure_curve_N", expected);
       t.pressure.points.emplace_back(pt[0].get<double>(), pt[1].get<double>());
     }
     const auto& pts = t.pressure.points;
-    bool ok = pts.front().first == 0.0 && pts.back().first == 1.0 && pts.front().second >= 0 && pts.back().second <= 100;
-    for (std::size_t i = 1; i < pts.size(); ++i) ok = ok && pts[i].first > pts[i - 1].first && pts[i].second >= pts[i - 1].second;
+    bool ok =
+        pts.front().first == 0.0 && pts.back().first == 1.0 && pts.front().second >= 0 && pts.back().second <= 100;
+    for (std::size_t i = 1; i < pts.size(); ++i)
+      ok = ok && pts[i].first > pts[i - 1].first && pts[i].second >= pts[i - 1].second;
     if (!ok) o.fail("pressure_curve_N", expected + " (forces 0..100 N)");
   }
   t.grab = o.boolean_or("grab", t.grab);

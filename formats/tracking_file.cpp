@@ -38,7 +38,8 @@ Rotation3 rotation(const JsonObject& o, const std::string& key) {
   for (std::size_t i = 0; i < 3; ++i) {
     if (!v[i].is_array() || v[i].size() != 3) o.fail(key, expected + ", got " + json_excerpt(v));
     for (std::size_t j = 0; j < 3; ++j) {
-      if (!v[i][j].is_number() || !std::isfinite(v[i][j].get<double>())) o.fail(key, expected + ", got " + json_excerpt(v));
+      if (!v[i][j].is_number() || !std::isfinite(v[i][j].get<double>()))
+        o.fail(key, expected + ", got " + json_excerpt(v));
       r[i][j] = v[i][j].get<double>();
     }
   }
@@ -66,11 +67,13 @@ TrackingConfig parse_tracking(const nlohmann::json& doc, const std::string& file
   JsonObject root(doc, file, "");
   root.require_version(kTrackingFileVersion);
   t.placement = root.choice("placement", {"triangle", "per_finger"}) == "triangle" ? TrackedPlacement::triangle
-                                                                                     : TrackedPlacement::per_finger;
+                                                                                   : TrackedPlacement::per_finger;
   const auto tools = root.objects("tools");
-  if (tools.empty() || tools.size() > kFingerCount) root.fail("tools", "1 to 3 tools, got " + std::to_string(tools.size()));
+  if (tools.empty() || tools.size() > kFingerCount)
+    root.fail("tools", "1 to 3 tools, got " + std::to_string(tools.size()));
   if (t.placement == TrackedPlacement::triangle && tools.size() != 1)
-    root.fail("tools", "one tool with placement \"triangle\" (the fingers stand around it), got " + std::to_string(tools.size()));
+    root.fail("tools", "one tool with placement \"triangle\" (the fingers stand around it), got " +
+                           std::to_string(tools.size()));
   std::set<std::string> names;
   std::set<int> fingers;
   for (const JsonObject& o : tools) {
@@ -142,8 +145,8 @@ std::string tracking_text(const TrackingConfig& t) {
     o << "}}" << (i + 1 < t.tools.size() ? "," : "") << "\n";
   }
   const RigidTransform& r = t.registration.tracker_to_scene;
-  o << "  ],\n  \"tracker_to_scene\": {\n    \"rotation\": [" << vec(r.rotation[0]) << ", " << vec(r.rotation[1]) << ", "
-    << vec(r.rotation[2]) << "],\n    \"translation_mm\": " << vec(r.translation_mm);
+  o << "  ],\n  \"tracker_to_scene\": {\n    \"rotation\": [" << vec(r.rotation[0]) << ", " << vec(r.rotation[1])
+    << ", " << vec(r.rotation[2]) << "],\n    \"translation_mm\": " << vec(r.translation_mm);
   if (std::isfinite(t.registration.fre_mm)) o << ",\n    \"fre_mm\": " << num(t.registration.fre_mm);
   if (t.registration.fiducials > 0) o << ",\n    \"fiducials\": " << t.registration.fiducials;
   o << "\n  },\n  \"reader_fifo_priority\": " << t.reader_fifo_priority << "\n}\n";

@@ -34,8 +34,8 @@ inline constexpr std::size_t kMaxToolNameChars = 20;
 enum class TrackedPlacement { triangle, per_finger };
 
 struct ToolTip {
-  Vec3_mm offset_mm{};    // the fingertip in the tool's frame (paper 003's p_local)
-  std::string method;       // how it was found: "pivot", "digitized", "measured" ("" unknown)
+  Vec3_mm offset_mm{};           // the fingertip in the tool's frame (paper 003's p_local)
+  std::string method;            // how it was found: "pivot", "digitized", "measured" ("" unknown)
   double rms_mm = std::nan("");  // its residual, when a calibration measured one
 };
 

@@ -18,8 +18,8 @@
 namespace palprig::fuzz {
 
 inline std::filesystem::path input_file(std::string_view data, const std::string& extension) {
-  static const std::filesystem::path dir = std::filesystem::exists("/dev/shm") ? std::filesystem::path("/dev/shm")
-                                                                               : std::filesystem::temp_directory_path();
+  static const std::filesystem::path dir =
+      std::filesystem::exists("/dev/shm") ? std::filesystem::path("/dev/shm") : std::filesystem::temp_directory_path();
   const auto path = dir / ("palprig-fuzz-" + std::to_string(::getpid()) + extension);
   std::ofstream(path, std::ios::binary | std::ios::trunc).write(data.data(), static_cast<std::streamsize>(data.size()));
   return path;

@@ -25,17 +25,17 @@ CalibrationJob::CalibrationJob(RigBackend& backend, RigConfig rig, CalibrationMo
                                std::filesystem::path chart_dir)
     : evaluation_channels_(options.channels) {
   options.stop_signal = &stop_flag_;
-  worker_ = std::thread([this, &backend, rig = std::move(rig), cal = std::move(cal), options,
-                         chart_dir = std::move(chart_dir)] {
-    try {
-      evaluation_ = evaluate_compensation(backend, rig, cal, options);
-      charts_ = charts::plot_evaluation(chart_dir, *evaluation_, options.channels);
-    } catch (const std::exception& e) {
-      error_ = e.what();
-      backend.vent();
-    }
-    finished_.store(true, std::memory_order_release);
-  });
+  worker_ = std::thread(
+      [this, &backend, rig = std::move(rig), cal = std::move(cal), options, chart_dir = std::move(chart_dir)] {
+        try {
+          evaluation_ = evaluate_compensation(backend, rig, cal, options);
+          charts_ = charts::plot_evaluation(chart_dir, *evaluation_, options.channels);
+        } catch (const std::exception& e) {
+          error_ = e.what();
+          backend.vent();
+        }
+        finished_.store(true, std::memory_order_release);
+      });
 }
 
 CalibrationJob::~CalibrationJob() {

@@ -142,8 +142,9 @@ CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidge
   evaluate_ = new QPushButton("Evaluate (with / without compensation)");
   evaluate_->setObjectName("cal_evaluate");
   evaluate_->setEnabled(false);
-  evaluate_->setToolTip("palprig calibrate evaluate with the fitted file: the same test trajectory without and with "
-                        "the hysteresis compensation, RMS tracking error per channel");
+  evaluate_->setToolTip(
+      "palprig calibrate evaluate with the fitted file: the same test trajectory without and with "
+      "the hysteresis compensation, RMS tracking error per channel");
   fit_form->addRow(evaluate_);
 
   status_ = new QLabel("Start runs the sweep on the connected rig; the live loop is vented meanwhile.");
@@ -177,9 +178,10 @@ CalibrationPage::CalibrationPage(CalibrationHost host, QWidget* parent) : QWidge
   auto* right = new QVBoxLayout;
   right->addWidget(new QLabel("Fit table (paper 002 fig. 8 layout)"));
   right->addWidget(table_, 2);
-  auto* chart_note = new QLabel("Per channel: branch lines; recorded holds (the loop before compensation) and the "
-                                "fitted model's loops; after Evaluate, tracking error and output against target without "
-                                "and with compensation");
+  auto* chart_note = new QLabel(
+      "Per channel: branch lines; recorded holds (the loop before compensation) and the "
+      "fitted model's loops; after Evaluate, tracking error and output against target without "
+      "and with compensation");
   chart_note->setWordWrap(true);  // unwrapped, its one line set the window's minimum width (1531 px)
   right->addWidget(chart_note);
   right->addWidget(scroll, 3);
@@ -273,7 +275,8 @@ void CalibrationPage::start_sweep() {
   // The data goes where the user said, else beside the rig file; an earlier sweep is never replaced.
   const QString chosen = sweep_path_->text().trimmed();
   if (!chosen.isEmpty() && std::filesystem::exists(chosen.toStdString())) {
-    say("palprig: " + chosen + ": exists; choose a new file for the sweep data (an earlier sweep is never overwritten)", true);
+    say("palprig: " + chosen + ": exists; choose a new file for the sweep data (an earlier sweep is never overwritten)",
+        true);
     return;
   }
   sweep_file_ = chosen.isEmpty() ? QString::fromStdString(default_file("-sweep.csv").string()) : chosen;
@@ -284,7 +287,8 @@ void CalibrationPage::start_sweep() {
   progress_->setValue(0);
   start_->setEnabled(false);
   stop_->setEnabled(true);
-  say(QString("Sweeping on rig %1 (%2)...").arg(QString::fromStdString(rig.id), run.realtime ? "real time" : "simulated time"));
+  say(QString("Sweeping on rig %1 (%2)...")
+          .arg(QString::fromStdString(rig.id), run.realtime ? "real time" : "simulated time"));
   timer_->start();
 }
 

@@ -51,9 +51,9 @@ struct CalibrationFitOutcome {
 
 // What the page needs from the window that owns the rig.
 struct CalibrationHost {
-  std::function<RigConfig()> rig;               // the connected rig's configuration
-  std::function<RigBackend&()> take_backend;    // stop and vent the live loop, hand its backend over
-  std::function<void()> give_back_backend;      // the sweep ended: the live loop starts again as on opening
+  std::function<RigConfig()> rig;                           // the connected rig's configuration
+  std::function<RigBackend&()> take_backend;                // stop and vent the live loop, hand its backend over
+  std::function<void()> give_back_backend;                  // the sweep ended: the live loop starts again as on opening
   std::function<bool(const std::string&)> use_calibration;  // reload the window with this file
   // Where the sweep data and the fitted file go unless the user chooses: beside the rig file
   // the user opened (the shipped rigs' folder is not the user's: the current directory then).

@@ -146,14 +146,16 @@ void CalibrationPage::evaluation_done(const CalibrationJob& job) {
     if (!job.evaluated_channels()[c]) continue;
     lines << QString("channel %1: RMS %2 -> %3 kPa (%4x), gap %5 -> %6 kPa")
                  .arg(c + 1)
-                 .arg(number(r.uncompensated.channels[c].rms_error_kPa, 3), number(r.compensated.channels[c].rms_error_kPa, 3),
-                      number(r.improvement[c], 1), number(r.uncompensated.channels[c].gap_kPa, 2),
-                      number(r.compensated.channels[c].gap_kPa, 2));
+                 .arg(number(r.uncompensated.channels[c].rms_error_kPa, 3),
+                      number(r.compensated.channels[c].rms_error_kPa, 3), number(r.improvement[c], 1),
+                      number(r.uncompensated.channels[c].gap_kPa, 2), number(r.compensated.channels[c].gap_kPa, 2));
   }
   QString text = "Evaluated (as `palprig calibrate evaluate`): " + lines.join("; ") + ".";
   const EvaluationRun& bad = r.uncompensated.stopped || r.uncompensated.faulted ? r.uncompensated : r.compensated;
-  if (bad.faulted) text = "Fault: " + QString::fromStdString(bad.fault) + "; every channel vented. " + text;
-  else if (bad.stopped) text = "Stopped: every channel vented. " + text;
+  if (bad.faulted)
+    text = "Fault: " + QString::fromStdString(bad.fault) + "; every channel vented. " + text;
+  else if (bad.stopped)
+    text = "Stopped: every channel vented. " + text;
   say(text, bad.faulted);
   show_charts();
   // Bring the new charts into view once the layout has placed them (queued after its request).

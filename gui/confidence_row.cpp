@@ -15,8 +15,8 @@ void ConfidenceRow::set_scale(const ConfidenceScale& scale) {
   buttons_.clear();
   labels_.clear();
   for (int level = 1; level <= scale.levels; ++level) {
-    const QString label = scale.labels.empty() ? QString()
-                                               : QString::fromStdString(scale.labels[static_cast<std::size_t>(level - 1)]);
+    const QString label =
+        scale.labels.empty() ? QString() : QString::fromStdString(scale.labels[static_cast<std::size_t>(level - 1)]);
     labels_ << label;
     auto* b = new QPushButton(label.isEmpty() ? QString::number(level) : QString("%1  %2").arg(level).arg(label));
     b->setObjectName(QString("confidence_%1").arg(level));

@@ -14,8 +14,8 @@ double ms_of(EventClock::time_point t) noexcept {
 }
 
 EventClock::time_point at_ms(double ms) noexcept {
-  return EventClock::time_point(std::chrono::duration_cast<EventClock::time_point::duration>(
-      std::chrono::duration<double, std::milli>(ms)));
+  return EventClock::time_point(
+      std::chrono::duration_cast<EventClock::time_point::duration>(std::chrono::duration<double, std::milli>(ms)));
 }
 
 }  // namespace

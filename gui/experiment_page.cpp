@@ -93,22 +93,25 @@ ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(p
 
 void ExperimentPage::connect_session() {
   connect(&run_, &SessionRun::started, this, &ExperimentPage::on_started);
-  connect(&run_, &SessionRun::trialStarted, this,
-          [this](int, const PlannedTrial& trial, const Condition& condition) {
-            screen_->show_trial(trial, condition);
-            status_->setText(QString("Trial %1 of %2: %3").arg(trial.position + 1).arg(table_->rowCount())
-                                 .arg(QString::fromStdString(condition.name)));
-            if (trial.position < table_->rowCount()) table_->scrollToItem(table_->item(trial.position, 0));
-          });
+  connect(&run_, &SessionRun::trialStarted, this, [this](int, const PlannedTrial& trial, const Condition& condition) {
+    screen_->show_trial(trial, condition);
+    status_->setText(QString("Trial %1 of %2: %3")
+                         .arg(trial.position + 1)
+                         .arg(table_->rowCount())
+                         .arg(QString::fromStdString(condition.name)));
+    if (trial.position < table_->rowCount()) table_->scrollToItem(table_->item(trial.position, 0));
+  });
   connect(&run_, &SessionRun::runnerState, this, [this](RunnerState s, int position) {
-    if (s == RunnerState::ready && !run_.paused()) screen_->show_ready();
+    if (s == RunnerState::ready && !run_.paused())
+      screen_->show_ready();
     else if (s == RunnerState::ready) {
       screen_->show_wait("Paused. Please wait.");
       pause_held_ = true;  // the session loop has vented and holds: Continue may go on
       set_buttons();
-    }
-    else if (s == RunnerState::rest) screen_->show_wait("Break. Please rest.");
-    else if (s == RunnerState::respond) screen_->stimulus_ended(position);
+    } else if (s == RunnerState::rest)
+      screen_->show_wait("Break. Please rest.");
+    else if (s == RunnerState::respond)
+      screen_->stimulus_ended(position);
   });
   connect(&run_, &SessionRun::trialCommitted, this, [this](const TrialRecord& t, int) {
     tick_row(t);
@@ -156,7 +159,8 @@ void ExperimentPage::set_fields(const ExperimentFields& f) {
 
 ExperimentFields ExperimentPage::fields() const {
   return {protocol_edit_->text().trimmed().toStdString(), participant_edit_->text().trimmed().toStdString(),
-          store_edit_->text().trimmed().toStdString(), speed_->value(), telemetry_edit_->text().trimmed().toStdString()};
+          store_edit_->text().trimmed().toStdString(), speed_->value(),
+          telemetry_edit_->text().trimmed().toStdString()};
 }
 
 QString ExperimentPage::refusal_text() const { return status_->property("refusal").toString(); }
@@ -221,8 +225,10 @@ void ExperimentPage::update_plan() {
     for (const StoredTrial& t : preview.committed) {
       if (t.position >= table_->rowCount()) continue;
       table_->item(t.position, kAnswer)->setText(t.answered ? stored_flags_text(t.answer) : "no answer");
-      table_->item(t.position, kScore)->setText(QString::fromStdString(t.outcome[0] + " " + t.outcome[1] + " " + t.outcome[2]).trimmed());
-      table_->item(t.position, kResponseTime)->setText(t.response_time_s ? QString::number(*t.response_time_s, 'f', 2) : "");
+      table_->item(t.position, kScore)
+          ->setText(QString::fromStdString(t.outcome[0] + " " + t.outcome[1] + " " + t.outcome[2]).trimmed());
+      table_->item(t.position, kResponseTime)
+          ->setText(t.response_time_s ? QString::number(*t.response_time_s, 'f', 2) : "");
       table_->item(t.position, kRtAfterStimulus)
           ->setText(t.rt_after_stimulus_s ? QString::number(*t.rt_after_stimulus_s, 'f', 2) : "");
       table_->item(t.position, kConfidence)->setText(t.confidence ? QString::number(*t.confidence) : "");
@@ -230,15 +236,21 @@ void ExperimentPage::update_plan() {
     }
     resume_note_->setText(QString("%1 has an unfinished session (%2) with this protocol: %3 of %4 trials committed. "
                                   "Resume session continues at trial %5.")
-                              .arg(participant_edit_->text()).arg(*id).arg(preview.completed_trials)
-                              .arg(preview.plan.trials.size()).arg(preview.completed_trials + 1));
+                              .arg(participant_edit_->text())
+                              .arg(*id)
+                              .arg(preview.completed_trials)
+                              .arg(preview.plan.trials.size())
+                              .arg(preview.completed_trials + 1));
     plan_note_->setText(QString("Stored order of session %1 (seed %2).").arg(*id).arg(preview.seed));
   } else if (f.store.empty()) {
     plan_note_->setText(QString("Choose the trial database: the order depends on the participant's number in it "
-                                "(shown: a first participant's, seed %1).").arg(preview.seed));
+                                "(shown: a first participant's, seed %1).")
+                            .arg(preview.seed));
   } else {
     plan_note_->setText(QString("Planned order for participant number %1 (seed %2), as `palprig experiment plan` "
-                                "prints it.").arg(preview.participant_number).arg(preview.seed));
+                                "prints it.")
+                            .arg(preview.participant_number)
+                            .arg(preview.seed));
   }
   set_buttons();
 }
@@ -254,9 +266,17 @@ void ExperimentPage::show_plan(const Protocol& p, const SessionPlan& plan) {
       stimulus = QString::fromStdString(combination.label);
       tumor = flags_text(combination.tumor);
     }
-    const QStringList cells = {QString::number(t.position + 1), QString::number(t.block + 1),
-                               QString::fromStdString(c.name) + (t.practice ? " (practice)" : ""), stimulus, tumor,
-                               "", "", "", "", "", ""};
+    const QStringList cells = {QString::number(t.position + 1),
+                               QString::number(t.block + 1),
+                               QString::fromStdString(c.name) + (t.practice ? " (practice)" : ""),
+                               stimulus,
+                               tumor,
+                               "",
+                               "",
+                               "",
+                               "",
+                               "",
+                               ""};
     for (int col = 0; col < kColumns; ++col) table_->setItem(t.position, col, new QTableWidgetItem(cells[col]));
   }
 }
@@ -267,12 +287,15 @@ void ExperimentPage::tick_row(const TrialRecord& t) {
   QString answer = "no answer", score;
   if (t.answered && t.mode != PresentationMode::scene) {
     answer = flags_text(t.answer);
-    score = QString("%1 %2 %3").arg(to_string(t.finger_outcomes[0])).arg(to_string(t.finger_outcomes[1]))
+    score = QString("%1 %2 %3")
+                .arg(to_string(t.finger_outcomes[0]))
+                .arg(to_string(t.finger_outcomes[1]))
                 .arg(to_string(t.finger_outcomes[2]));
   } else if (t.answered) {
     answer = QString("%1 marks").arg(t.marks.size());
     QStringList found;
-    for (const auto& s : t.localisation.tumors) found << QString("%1 %2").arg(QString::fromStdString(s.tumor)).arg(s.hit ? "found" : "missed");
+    for (const auto& s : t.localisation.tumors)
+      found << QString("%1 %2").arg(QString::fromStdString(s.tumor)).arg(s.hit ? "found" : "missed");
     score = found.join(", ") + QString("; %1 false").arg(t.localisation.false_marks);
   }
   table_->item(row, kAnswer)->setText(answer);
@@ -286,4 +309,3 @@ void ExperimentPage::tick_row(const TrialRecord& t) {
 }
 
 }  // namespace palprig::gui
-

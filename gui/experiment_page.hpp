@@ -49,7 +49,7 @@ struct ExperimentHost {
 
 struct ExperimentFields {
   std::string protocol, participant, store;
-  double speed = 0;  // simulated participant only (0: as fast as the simulated rig allows)
+  double speed = 0;       // simulated participant only (0: as fast as the simulated rig allows)
   std::string telemetry;  // the session's rig ticks to this new file (.bin or .csv); empty: none
 };
 
@@ -102,10 +102,22 @@ class ExperimentPage final : public QWidget {
   void sessionRefused(const QString& line, int exit_code);
 
  private:
-  // The trial table's columns. kResponseTime: from onset (paper 002's measure, its t-test); kRtAfterStimulus: from the end of
-  // the stimulus (what the participant was asked to answer after). kCommitted stays last.
-  enum Column { kPosition, kBlock, kCondition, kStimulus, kTumor, kAnswer, kScore, kResponseTime, kRtAfterStimulus,
-                kConfidence, kCommitted, kColumns };
+  // The trial table's columns. kResponseTime: from onset (paper 002's measure, its t-test); kRtAfterStimulus: from the
+  // end of the stimulus (what the participant was asked to answer after). kCommitted stays last.
+  enum Column {
+    kPosition,
+    kBlock,
+    kCondition,
+    kStimulus,
+    kTumor,
+    kAnswer,
+    kScore,
+    kResponseTime,
+    kRtAfterStimulus,
+    kConfidence,
+    kCommitted,
+    kColumns
+  };
 
   // The widgets (experiment_page_layout.cpp).
   QWidget* build_session_form();
@@ -113,7 +125,7 @@ class ExperimentPage final : public QWidget {
   QWidget* build_trial_list();
   QWidget* build_participant_side();
   void connect_session();  // the session run's signals to the page
-  void update_plan();  // the planned order (or stored order) and the resume offer
+  void update_plan();      // the planned order (or stored order) and the resume offer
   void show_plan(const Protocol& protocol, const SessionPlan& plan);
   void tick_row(const TrialRecord& trial);
   void refuse(const QString& line);
@@ -129,7 +141,7 @@ class ExperimentPage final : public QWidget {
   void start_pulse_run(const StudySessionRequest& request);
   void connect_pulse();
   std::vector<int> answer_key_columns() const;  // of the table's current task (experiment_page_pulse.cpp)
-  void apply_answer_key();  // hides or shows those columns for the state above
+  void apply_answer_key();                      // hides or shows those columns for the state above
 
   ExperimentHost host_;
   SessionRun run_;
@@ -141,9 +153,10 @@ class ExperimentPage final : public QWidget {
   bool rig_taken_ = false;
   bool simulated_ = false;
   bool pause_held_ = false;
-  bool person_session_ = false;     // a person (not sim:SEED) answers in the session running
+  bool person_session_ = false;  // a person (not sim:SEED) answers in the session running
   bool answer_key_hidden_ = false;
-  bool last_completed_ = false;  // the last session ended completed  // the session loop reported the pause (vented, holding)
+  bool last_completed_ =
+      false;  // the last session ended completed  // the session loop reported the pause (vented, holding)
   QStringList files_written_;  // the database first, then exports
   QString store_note_;
 

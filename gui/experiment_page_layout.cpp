@@ -55,8 +55,8 @@ QWidget* ExperimentPage::build_session_form() {
     auto* browse = new QPushButton("...");
     browse->setMaximumWidth(32);
     connect(browse, &QPushButton::clicked, this, [this, edit, filter, save] {
-      const QString path = save ? QFileDialog::getSaveFileName(this, "Trial database", edit->text(), filter,
-                                                               nullptr, QFileDialog::DontConfirmOverwrite)
+      const QString path = save ? QFileDialog::getSaveFileName(this, "Trial database", edit->text(), filter, nullptr,
+                                                               QFileDialog::DontConfirmOverwrite)
                                 : QFileDialog::getOpenFileName(this, "Protocol", edit->text(), filter);
       if (path.isEmpty()) return;
       edit->setText(path);
@@ -78,8 +78,9 @@ QWidget* ExperimentPage::build_session_form() {
   speed_->setRange(0, 1000);
   speed_->setDecimals(1);
   speed_->setSpecialValueText("0 (as fast as the simulated rig allows)");
-  speed_->setToolTip("Simulated participant on the simulated rig: 0 = as fast as possible, 1 = real time (to watch "
-                     "it). People and hardware rigs always run in real time.");
+  speed_->setToolTip(
+      "Simulated participant on the simulated rig: 0 = as fast as possible, 1 = real time (to watch "
+      "it). People and hardware rigs always run in real time.");
   form->addRow("Pilot speed", speed_);
   {  // Optional: every rig tick of the session, as `experiment run --telemetry` records it.
     auto* row = new QHBoxLayout;
@@ -90,8 +91,8 @@ QWidget* ExperimentPage::build_session_form() {
     auto* browse = new QPushButton("...");
     browse->setMaximumWidth(32);
     connect(browse, &QPushButton::clicked, this, [this] {
-      const QString path = QFileDialog::getSaveFileName(this, "Session telemetry", telemetry_edit_->text(),
-                                                        "Telemetry (*.bin *.csv)");
+      const QString path =
+          QFileDialog::getSaveFileName(this, "Session telemetry", telemetry_edit_->text(), "Telemetry (*.bin *.csv)");
       if (!path.isEmpty()) telemetry_edit_->setText(path);
     });
     row->addWidget(browse);
@@ -122,7 +123,9 @@ void ExperimentPage::build_session_controls(QVBoxLayout* left_layout) {
   // an Enter or Space meant for the participant would end the session (keys are routed to the
   // participant anyway; gui/participant_keys.hpp). A click still asks first (ask_abort).
   abort_->setFocusPolicy(Qt::ClickFocus);
-  pause_->setToolTip("Vents every channel and holds the trial in progress (it is presented again after Continue, once the participant says Ready)");
+  pause_->setToolTip(
+      "Vents every channel and holds the trial in progress (it is presented again after Continue, once the participant "
+      "says Ready)");
   abort_->setToolTip("Vents and ends the session; every committed trial is kept and the session can be resumed");
   for (QPushButton* b : {begin_, resume_session_, pause_, continue_, abort_}) buttons->addWidget(b);
   connect(begin_, &QPushButton::clicked, this, [this] { begin(false); });
@@ -135,7 +138,6 @@ void ExperimentPage::build_session_controls(QVBoxLayout* left_layout) {
   status_->setObjectName("session_status");
   status_->setWordWrap(true);
   left_layout->addWidget(status_);
-
 }
 
 QWidget* ExperimentPage::build_trial_list() {
@@ -155,9 +157,10 @@ QWidget* ExperimentPage::build_trial_list() {
   show_key_ = button("show_answer_key", "Show the answer key (stimulus, tumor, score)");
   show_key_->setCheckable(true);
   show_key_->setFocusPolicy(Qt::ClickFocus);  // Space and Enter are the participant's
-  show_key_->setToolTip("The participant screen shares this window: the columns that give the answers away are hidden "
-                        "while a person's session runs. With two displays the participant screen goes to the second one "
-                        "and the columns stay.");
+  show_key_->setToolTip(
+      "The participant screen shares this window: the columns that give the answers away are hidden "
+      "while a person's session runs. With two displays the participant screen goes to the second one "
+      "and the columns stay.");
   show_key_->hide();
   connect(show_key_, &QPushButton::toggled, this, &ExperimentPage::apply_answer_key);
   auto* trials_page = new QWidget;
@@ -180,8 +183,10 @@ QWidget* ExperimentPage::build_participant_side() {
   full_screen_ = button("participant_full_screen", "Participant screen on the second display");
   full_screen_->setCheckable(true);
   connect(full_screen_, &QPushButton::toggled, this, [this](bool on) {
-    if (on) screen_->show_full_screen_on(participant_display(*this));
-    else screen_->back_to_console();
+    if (on)
+      screen_->show_full_screen_on(participant_display(*this));
+    else
+      screen_->back_to_console();
     apply_answer_key();
   });
   connect(screen_, &ParticipantScreen::backInConsole, this, [this] {

@@ -25,7 +25,17 @@ namespace palprig::gui {
 
 namespace {
 
-enum PulseColumn { kPulsePosition, kPulseCondition, kMarkX, kMarkY, kDistance, kHit, kPulseRt, kPulseCommitted, kPulseColumns };
+enum PulseColumn {
+  kPulsePosition,
+  kPulseCondition,
+  kMarkX,
+  kMarkY,
+  kDistance,
+  kHit,
+  kPulseRt,
+  kPulseCommitted,
+  kPulseColumns
+};
 
 QString mm(double v) { return std::isfinite(v) ? QString::number(v, 'f', 1) : QString(); }
 
@@ -37,8 +47,8 @@ void ExperimentPage::set_table_columns(bool pulse) {
     table_->setHorizontalHeaderLabels({"#", "Condition", "Mark x mm", "Mark y mm", "Distance mm", "Hit", "RT s", ""});
   } else {
     // experiment_page.cpp's Column enum, in order.
-    const QStringList headers = {"#",     "Block", "Condition",  "Stimulus kPa",        "Tumor", "Answer",
-                                 "Score", "RT onset s", "RT after stimulus s", "Rating", ""};
+    const QStringList headers = {"#",     "Block",      "Condition",           "Stimulus kPa", "Tumor", "Answer",
+                                 "Score", "RT onset s", "RT after stimulus s", "Rating",       ""};
     table_->setColumnCount(static_cast<int>(headers.size()));
     table_->setHorizontalHeaderLabels(headers);
   }
@@ -97,12 +107,16 @@ bool ExperimentPage::update_pulse_plan(const ExperimentFields& f) {
     for (const PulseTrialRecord& t : preview.committed) tick_pulse_row(t);
     resume_note_->setText(QString("%1 has an unfinished session (%2) with this protocol: %3 of %4 trials committed. "
                                   "Resume session continues at trial %5.")
-                              .arg(participant_edit_->text()).arg(*id).arg(preview.completed_trials)
-                              .arg(preview.order.size()).arg(preview.completed_trials + 1));
+                              .arg(participant_edit_->text())
+                              .arg(*id)
+                              .arg(preview.completed_trials)
+                              .arg(preview.order.size())
+                              .arg(preview.completed_trials + 1));
     plan_note_->setText(QString("Stored order of session %1 (seed %2).").arg(*id).arg(preview.seed));
   } else {
     plan_note_->setText(QString("Planned order of the pulse-localisation session (seed %1), as `palprig experiment "
-                                "run` presents it.").arg(preview.seed));
+                                "run` presents it.")
+                            .arg(preview.seed));
   }
   set_buttons();
   return true;
@@ -138,17 +152,20 @@ void ExperimentPage::start_pulse_run(const StudySessionRequest& request) {
 }
 
 void ExperimentPage::connect_pulse() {
-  connect(&run_, &SessionRun::pulseTrialStarted, this, [this](const PulseTrialStart& start, const PulseCondition& condition) {
-    try {
-      screen_->show_pulse_trial(start, condition);
-    } catch (const std::exception& e) {  // the scene was loaded by the session: should not happen
-      status_->setText(QString("Cannot show the scene: %1").arg(e.what()));
-      return;
-    }
-    status_->setText(QString("Trial %1 of %2: %3").arg(start.position + 1).arg(table_->rowCount())
-                         .arg(QString::fromStdString(condition.name)));
-    if (start.position < table_->rowCount()) table_->scrollToItem(table_->item(start.position, 0));
-  });
+  connect(&run_, &SessionRun::pulseTrialStarted, this,
+          [this](const PulseTrialStart& start, const PulseCondition& condition) {
+            try {
+              screen_->show_pulse_trial(start, condition);
+            } catch (const std::exception& e) {  // the scene was loaded by the session: should not happen
+              status_->setText(QString("Cannot show the scene: %1").arg(e.what()));
+              return;
+            }
+            status_->setText(QString("Trial %1 of %2: %3")
+                                 .arg(start.position + 1)
+                                 .arg(table_->rowCount())
+                                 .arg(QString::fromStdString(condition.name)));
+            if (start.position < table_->rowCount()) table_->scrollToItem(table_->item(start.position, 0));
+          });
   connect(&run_, &SessionRun::pulseTrialCommitted, this, [this](const PulseTrialRecord& t, int) {
     tick_pulse_row(t);
     statistics_->refresh();  // coalesced with the view's own refresh on the file change

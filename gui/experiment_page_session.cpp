@@ -78,8 +78,10 @@ bool ExperimentPage::begin(bool resume) {
     };
   }
   try {
-    if (pulse_protocol_) screen_->start_pulse_session(*pulse_protocol_, channel_);
-    else screen_->start_session(*protocol_, channel_);
+    if (pulse_protocol_)
+      screen_->start_pulse_session(*pulse_protocol_, channel_);
+    else
+      screen_->start_session(*protocol_, channel_);
   } catch (const std::exception& e) {  // a localisation scene that does not load
     refuse(e.what());
     return false;
@@ -92,13 +94,16 @@ bool ExperimentPage::begin(bool resume) {
   status_->setText(resume ? "Resuming..." : "Starting...");
   if (host_.take_rig) host_.take_rig();
   rig_taken_ = true;
-  if (pulse_protocol_) start_pulse_run(request);
-  else run_.start(request, person);
+  if (pulse_protocol_)
+    start_pulse_run(request);
+  else
+    run_.start(request, person);
   if (!simulated_) participant_keys_->install();
   // The participant never sees the answer key: on its own display when there is a second one
   // (as PsychoPy opens its window there), else the key columns are hidden in this window.
   person_session_ = !simulated_;
-  if (person_session_ && QGuiApplication::screens().size() > 1 && !full_screen_->isChecked()) full_screen_->setChecked(true);
+  if (person_session_ && QGuiApplication::screens().size() > 1 && !full_screen_->isChecked())
+    full_screen_->setChecked(true);
   {
     const QSignalBlocker quiet(show_key_);
     show_key_->setChecked(false);
@@ -116,23 +121,28 @@ void ExperimentPage::on_started(const SessionStart& s) {
     if (protocol_) {  // a pulse session's order is the one shown (same seed, same protocol)
       const auto store = open_trial_store(fields().store, TrialStore::Access::read_only);
       const StoredSession stored = store->load_session(s.session_id);
-      if (table_->rowCount() != static_cast<int>(stored.plan.trials.size()) || !s.resumed) show_plan(*protocol_, stored.plan);
+      if (table_->rowCount() != static_cast<int>(stored.plan.trials.size()) || !s.resumed)
+        show_plan(*protocol_, stored.plan);
     }
   } catch (const std::exception&) {
     // Reading the order back is for display only; the session goes on.
   }
   plan_note_->setText(QString("%1, participant %2 (no. %3), session %4, seed %5%6%7")
-                          .arg(QString::fromStdString(s.protocol_name)).arg(QString::fromStdString(s.participant.code))
-                          .arg(s.participant.number).arg(s.session_id).arg(s.seed)
+                          .arg(QString::fromStdString(s.protocol_name))
+                          .arg(QString::fromStdString(s.participant.code))
+                          .arg(s.participant.number)
+                          .arg(s.session_id)
+                          .arg(s.seed)
                           .arg(s.simulated ? ", simulated participant (stored as simulated)" : "")
                           .arg(s.real_time_hardware ? ", hardware rig: real time" : ""));
-  status_->setText(s.resumed ? QString("Resumed at trial %1 of %2.").arg(s.start_position + 1).arg(s.total_trials)
-                             : QString("Session %1 started: %2.").arg(s.session_id).arg(counted(s.total_trials, "trial", "trials")));
+  status_->setText(
+      s.resumed ? QString("Resumed at trial %1 of %2.").arg(s.start_position + 1).arg(s.total_trials)
+                : QString("Session %1 started: %2.").arg(s.session_id).arg(counted(s.total_trials, "trial", "trials")));
   // The runner starts in `ready` (no event says so): the participant's go-ahead is awaited.
   if (s.start_position < s.total_trials) screen_->show_ready();
   // The store exists now (created by the session): the statistics follow it.
-  statistics_->set_export_directory(QString::fromStdString(
-      (std::filesystem::path(fields().store).parent_path() / "exports").string()));
+  statistics_->set_export_directory(
+      QString::fromStdString((std::filesystem::path(fields().store).parent_path() / "exports").string()));
   statistics_->set_store(QString::fromStdString(fields().store));
   emit sessionStarted();
 }
@@ -140,19 +150,26 @@ void ExperimentPage::on_started(const SessionStart& s) {
 void ExperimentPage::on_ended(const SessionEnd& e) {
   last_completed_ = e.completed;
   QString text;
-  if (e.completed) text = QString("Session completed: %1 committed.").arg(counted(e.committed_trials, "trial", "trials"));
-  else if (!e.fault.empty()) text = QString("Rig fault: %1. Every channel vented; %2 of %3 kept; resume to go on.")
-                                        .arg(QString::fromStdString(e.fault)).arg(e.committed_trials)
-                                        .arg(counted(e.total_trials, "trial", "trials"));
-  else text = QString("Session stopped (vented): %1 of %2 kept; it can be resumed.").arg(e.committed_trials)
-                .arg(counted(e.total_trials, "trial", "trials"));
+  if (e.completed)
+    text = QString("Session completed: %1 committed.").arg(counted(e.committed_trials, "trial", "trials"));
+  else if (!e.fault.empty())
+    text = QString("Rig fault: %1. Every channel vented; %2 of %3 kept; resume to go on.")
+               .arg(QString::fromStdString(e.fault))
+               .arg(e.committed_trials)
+               .arg(counted(e.total_trials, "trial", "trials"));
+  else
+    text = QString("Session stopped (vented): %1 of %2 kept; it can be resumed.")
+               .arg(e.committed_trials)
+               .arg(counted(e.total_trials, "trial", "trials"));
   status_->setStyleSheet(e.fault.empty() ? "" : "color: #b00020");
   status_->setText(text);
   screen_->show_wait(e.completed ? "Thank you, the session is complete." : "The session has stopped.");
   screen_->marking()->clear_marks();  // the next participant starts on a clean scene
   files_written_ = {QString::fromStdString(fields().store)};
-  store_note_ = QString(" (%1 of %2 committed)").arg(e.committed_trials).arg(counted(e.total_trials, "trial", "trials"));
-  if (const std::string telemetry = telemetry_summary(e); !telemetry.empty()) files_written_ << QString::fromStdString(telemetry);
+  store_note_ =
+      QString(" (%1 of %2 committed)").arg(e.committed_trials).arg(counted(e.total_trials, "trial", "trials"));
+  if (const std::string telemetry = telemetry_summary(e); !telemetry.empty())
+    files_written_ << QString::fromStdString(telemetry);
   show_files();
   statistics_->refresh();
   emit sessionEnded(e);
@@ -172,7 +189,9 @@ void ExperimentPage::pause() {
   run_.pause();
   if (channel_) channel_->withdraw_ready();
   pause_held_ = false;
-  status_->setText("Paused: every channel vented; the trial in progress is presented again after Continue and the participant's Ready.");
+  status_->setText(
+      "Paused: every channel vented; the trial in progress is presented again after Continue and the participant's "
+      "Ready.");
   screen_->show_wait("Paused. Please wait.");
   set_buttons();
 }
@@ -218,15 +237,16 @@ void ExperimentPage::abort_and_wait(bool give_back_rig) {
 
 void ExperimentPage::set_buttons() {
   const bool running = run_.running();
-  const bool ready = (protocol_.has_value() || pulse_protocol_.has_value()) && !participant_edit_->text().trimmed().isEmpty() &&
-                     !store_edit_->text().trimmed().isEmpty();
+  const bool ready = (protocol_.has_value() || pulse_protocol_.has_value()) &&
+                     !participant_edit_->text().trimmed().isEmpty() && !store_edit_->text().trimmed().isEmpty();
   begin_->setEnabled(!running && ready && !offered_session_);
   resume_session_->setVisible(offered_session_.has_value());
   resume_session_->setEnabled(!running && offered_session_.has_value());
   pause_->setEnabled(running && !run_.paused());
   continue_->setEnabled(running && run_.paused() && pause_held_);
   abort_->setEnabled(running);
-  for (QWidget* w : std::initializer_list<QWidget*>{protocol_edit_, participant_edit_, store_edit_, telemetry_edit_}) w->setEnabled(!running);
+  for (QWidget* w : std::initializer_list<QWidget*>{protocol_edit_, participant_edit_, store_edit_, telemetry_edit_})
+    w->setEnabled(!running);
   speed_->setEnabled(!running && is_simulated_code(participant_edit_->text().trimmed().toStdString()));
   full_screen_->setEnabled(QGuiApplication::screens().size() > 1 || full_screen_->isChecked());
 }

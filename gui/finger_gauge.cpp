@@ -51,9 +51,9 @@ void FingerGauge::paintEvent(QPaintEvent*) {
   }
   p.setPen(Qt::black);
   const QString mon = std::isfinite(monitor_) ? QString::number(monitor_, 'f', 1) : QString("--");
-  p.drawText(QRectF(0, height() - text_h, width(), text_h), Qt::AlignCenter,
-             QString("target %1\nsetpoint %2\nmonitor %3 kPa")
-                 .arg(target_, 0, 'f', 1).arg(setpoint_, 0, 'f', 1).arg(mon));
+  p.drawText(
+      QRectF(0, height() - text_h, width(), text_h), Qt::AlignCenter,
+      QString("target %1\nsetpoint %2\nmonitor %3 kPa").arg(target_, 0, 'f', 1).arg(setpoint_, 0, 'f', 1).arg(mon));
 }
 
 }  // namespace palprig::gui

@@ -104,7 +104,8 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
       std::cout << "palprig gui: " << s.protocol_name << ", participant " << s.participant.code << ", session "
                 << s.session_id << ", "
                 << (s.resumed ? "resumed at trial " + std::to_string(s.start_position + 1) : std::string("new")) << ", "
-                << s.total_trials << " trials, database " << o.session.store << "\n" << std::flush;
+                << s.total_trials << " trials, database " << o.session.store << "\n"
+                << std::flush;
     });
     QObject::connect(&page, &ExperimentPage::sessionEnded, &window, [&](const SessionEnd& e) {
       if (!e.fault.empty()) {
@@ -113,7 +114,8 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
         exit_code = 1;
       } else {
         std::cout << "palprig gui: session " << (e.completed ? "completed" : "stopped") << ": " << e.committed_trials
-                  << " of " << e.total_trials << " trials in " << o.session.store << "\n" << std::flush;
+                  << " of " << e.total_trials << " trials in " << o.session.store << "\n"
+                  << std::flush;
       }
       if (const std::string telemetry = telemetry_summary(e); !telemetry.empty())
         std::cout << "palprig gui: " << telemetry << "\n" << std::flush;
@@ -164,8 +166,8 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
       if (!o.session.protocol.empty()) {
         window.experiment_page()->show_statistics();
         take_screenshot(*window.experiment_page()->statistics());
-      }
-      else take_screenshot(window);
+      } else
+        take_screenshot(window);
     });
   }
   app.exec();
@@ -176,7 +178,8 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
   if (o.json) {
     nlohmann::json summary = summary_json(s);
     if (o.session.participant_display > 0)
-      summary["participant_screen"] = participant_screen_seen.is_null() ? participant_screen_json(window) : participant_screen_seen;
+      summary["participant_screen"] =
+          participant_screen_seen.is_null() ? participant_screen_json(window) : participant_screen_seen;
     std::cout << summary.dump(2) << "\n";
   }
   if (s.fault != FaultCode::none) {

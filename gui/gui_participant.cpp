@@ -12,13 +12,14 @@ bool ParticipantChannel::give_answer(int position, const Response& response,
   a.confidence = response.confidence.value_or(0);
   a.mark_count = static_cast<int>(response.marks.size());
   for (std::size_t i = 0; i < response.marks.size(); ++i) a.marks[i] = response.marks[i];
-  if (given_at) a.given_at_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(given_at->time_since_epoch()).count();
+  if (given_at)
+    a.given_at_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(given_at->time_since_epoch()).count();
   answers_.publish(a);
   return true;
 }
 
-std::optional<Response> ParticipantChannel::take_answer(int position,
-                                                        std::optional<std::chrono::steady_clock::time_point>* given_at) {
+std::optional<Response> ParticipantChannel::take_answer(
+    int position, std::optional<std::chrono::steady_clock::time_point>* given_at) {
   const GivenAnswer& a = answers_.latest();
   if (a.serial == 0 || a.serial == taken_serial_ || a.position != position) return std::nullopt;
   taken_serial_ = a.serial;

@@ -21,10 +21,10 @@ namespace palprig::gui {
 inline constexpr int kMaxMarks = 32;  // marks per localisation answer (a scene has a handful of tumors)
 
 struct GivenAnswer {
-  int position = -1;      // the trial answered
+  int position = -1;         // the trial answered
   std::uint64_t serial = 0;  // 0: nothing given yet
   FingerFlags tumor_under{};
-  int confidence = 0;      // the rating 1..levels given with the answer; 0: none asked
+  int confidence = 0;  // the rating 1..levels given with the answer; 0: none asked
   int mark_count = 0;
   std::array<Mark, kMaxMarks> marks{};
   // When the participant gave it: the input event's own time on steady_clock (ns since its

@@ -32,7 +32,7 @@ class GuiPulseParticipant final : public PulseParticipant {
     given_at_s_.reset();
     if (!given || given->marks.empty()) return std::nullopt;
     if (given_at && clock_) given_at_s_ = clock_->at_steady(*given_at);  // the click or key's own time
-    return given->marks.front();  // the screen hands over exactly one mark
+    return given->marks.front();                                         // the screen hands over exactly one mark
   }
   void session_clock(const SessionClock& clock) override { clock_ = &clock; }
   std::optional<double> answer_given_at_s() const override { return given_at_s_; }

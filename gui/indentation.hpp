@@ -19,7 +19,7 @@ namespace palprig::gui {
 
 struct IndentationModel {
   double reference_force_N = 2.0;
-  double soft_depth_mm = 7.0;           // at the reference force, stiffness 0
+  double soft_depth_mm = 7.0;                   // at the reference force, stiffness 0
   double hard_over_soft_modulus = 21.9 / 14.7;  // stiffness 1 (a tumor) against the silicone
   double max_depth_mm = 12.0;
   double depth_mm(double force_N, double stiffness) const noexcept;

@@ -52,7 +52,8 @@ LivePage::LivePage(LiveRun& run, QWidget* parent)
   pen_row->addWidget(tumors_);
   left_col->addLayout(pen_row);
   if (!run.window_pen())
-    left_col->addWidget(new QLabel("Pen input: " + QString::fromStdString(run.input_text()) + " (the window pen is off)"));
+    left_col->addWidget(
+        new QLabel("Pen input: " + QString::fromStdString(run.input_text()) + " (the window pen is off)"));
   connect(force_, &QSlider::valueChanged, this, [this, force_text](int v) {
     scene_view_->set_mouse_force_N(v / 10.0);
     force_text->setText(QString("%1 N").arg(v / 10.0, 0, 'f', 1));

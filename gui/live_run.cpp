@@ -45,8 +45,9 @@ LiveRunSetup load_live_run(const LiveRunFiles& f) {
   const std::string& in = s.input_spec;
   if (!(in == "window" || in == "sweep" || in == "raster" || in == "tablet" || in.rfind("tablet:", 0) == 0 ||
         in.rfind("trace:", 0) == 0 || is_igtl_input(in)))
-    throw InputError("input", in,
-                     "window, trace:FILE, sweep, tablet, tablet:/dev/input/eventN, tablet:FILE.evemu or igtl:HOST:PORT");
+    throw InputError(
+        "input", in,
+        "window, trace:FILE, sweep, tablet, tablet:/dev/input/eventN, tablet:FILE.evemu or igtl:HOST:PORT");
   return s;
 }
 
@@ -63,8 +64,7 @@ std::unique_ptr<InputSource> make_live_input(const LiveRunSetup& s) {
 
 }  // namespace
 
-LiveRun::LiveRun(LiveRunSetup setup, const LiveRunOptions& options)
-    : setup_(std::move(setup)), options_(options) {
+LiveRun::LiveRun(LiveRunSetup setup, const LiveRunOptions& options) : setup_(std::move(setup)), options_(options) {
   setup_.config.pulse.compensate_lag_switch = &lag_compensation_;
   lag_compensation_.store(setup_.config.pulse.compensate_lag);
   input_ = make_live_input(setup_);

@@ -35,9 +35,9 @@
 namespace palprig::gui {
 
 struct LiveRunFiles {
-  std::string scene_path;        // empty: the bundled phantom
-  std::string rig_path;          // empty: the default simulated rig
-  std::string cal_path;          // empty: paper 002's models
+  std::string scene_path;             // empty: the bundled phantom
+  std::string rig_path;               // empty: the default simulated rig
+  std::string cal_path;               // empty: paper 002's models
   std::string input_spec = "window";  // window, trace:FILE, sweep, tablet[:DEV or FILE.evemu], igtl:HOST:PORT
   std::string tracking_path;          // with igtl: the tracking file (tools -> fingers)
   std::filesystem::path data_dir;     // where the bundled scene and rig live
@@ -48,7 +48,7 @@ struct LiveRunOptions {
   bool want_fifo = true;
   std::filesystem::path telemetry_path;           // every tick, as `palprig run --telemetry`
   const std::atomic<int>* stop_signal = nullptr;  // SIGINT/SIGTERM: the loop vents and ends
-  bool arm_at_start = true;  // honoured for the simulated rig only; hardware waits for Arm
+  bool arm_at_start = true;                       // honoured for the simulated rig only; hardware waits for Arm
 };
 
 enum class RigLifecycle { connected, armed, vented, fault, stopped };
@@ -76,14 +76,14 @@ class LiveRun {
   LiveRun& operator=(const LiveRun&) = delete;
 
   // GUI thread.
-  void arm();    // setpoints flow (from 0 under the slew limit)
-  void vent();   // every setpoint 0 kPa from the loop's next tick
-  void disarm(); // the same on the loop's side; shown as connected rather than vented
+  void arm();     // setpoints flow (from 0 under the slew limit)
+  void vent();    // every setpoint 0 kPa from the loop's next tick
+  void disarm();  // the same on the loop's side; shown as connected rather than vented
   // Loop time of the last tick finished when VENT was last pressed: every tick after the next
   // one sends 0 kPa (the next may have been under way).
   double vent_pressed_after_t_s() const noexcept { return vent_pressed_after_t_s_; }
   void acknowledge_fault();  // clears the banner; the loop restarts vented
-  void stop();   // ends the loop (vented); idempotent
+  void stop();               // ends the loop (vented); idempotent
   // After stop(): the loop thread is gone and the backend (still open) can be lent to one other
   // user at a time, e.g. the calibration page's sweep. Throws std::logic_error before stop().
   RigBackend& backend_when_stopped();

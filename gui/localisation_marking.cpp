@@ -108,4 +108,3 @@ void LocalisationMarking::mark_at_cursor() {
 }
 
 }  // namespace palprig::gui
-

@@ -38,7 +38,8 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
   statusBar()->addPermanentWidget(status_, 1);
 
   QMenu* file = menuBar()->addMenu("&File");
-  file->addAction("Open &scene...", this, [this] { choose_file("scene", &LiveRunFiles::scene_path, "Scenes (*.json)"); });
+  file->addAction("Open &scene...", this,
+                  [this] { choose_file("scene", &LiveRunFiles::scene_path, "Scenes (*.json)"); });
   file->addAction("Open &rig...", this, [this] { choose_file("rig", &LiveRunFiles::rig_path, "Rig files (*.json)"); });
   file->addAction("Open &calibration...", this,
                   [this] { choose_file("calibration", &LiveRunFiles::cal_path, "Calibration files (*.json)"); });
@@ -70,7 +71,7 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
 
 MainWindow::~MainWindow() {
   experiment_page_->abort_and_wait(false);  // the session vents and closes its rig first
-  calibration_page_->cancel_sweep();  // before the backend it borrowed goes with run_
+  calibration_page_->cancel_sweep();        // before the backend it borrowed goes with run_
   if (run_) run_->stop();
 }
 
@@ -91,7 +92,8 @@ void MainWindow::build_calibration_page() {
     // Beside the rig file the user opened; the shipped rigs (the default simulated one) are
     // not the user's folder: the current directory then, as the command line writes there.
     std::error_code ec;
-    const std::filesystem::path rig = files_.rig_path.empty() ? std::filesystem::path{} : std::filesystem::path(files_.rig_path);
+    const std::filesystem::path rig =
+        files_.rig_path.empty() ? std::filesystem::path{} : std::filesystem::path(files_.rig_path);
     const auto shipped = std::filesystem::weakly_canonical(files_.data_dir / "rigs", ec);
     if (rig.empty() || std::filesystem::weakly_canonical(rig, ec).parent_path() == shipped)
       return std::filesystem::current_path(ec);
@@ -112,11 +114,12 @@ void MainWindow::build_calibration_page() {
 void MainWindow::build_experiment_page() {
   ExperimentHost host;
   host.rig_file = [this] {
-    return files_.rig_path.empty() ? files_.data_dir / "rigs" / "simulated.json" : std::filesystem::path(files_.rig_path);
+    return files_.rig_path.empty() ? files_.data_dir / "rigs" / "simulated.json"
+                                   : std::filesystem::path(files_.rig_path);
   };
   host.calibration_file = [this] { return std::filesystem::path(files_.cal_path); };
   host.take_rig = [this] {
-    run_->stop();  // the live loop vents and ends: one user of the rig at a time
+    run_->stop();                            // the live loop vents and ends: one user of the rig at a time
     live_page_->set_session_owns_rig(true);  // no Arm; the gauges and traces follow the session
   };
   // The live loop is stopped while a session runs, so its feed has one producer at a time; the
@@ -156,7 +159,9 @@ void MainWindow::poll() {
   run_->poll_finished();
   const FeedStatus st = live_page_->poll();
   if (experiment_page_->session_running()) {
-    status_->setText("study session running: it owns the rig (the live loop is stopped until it ends; the Live rig tab shows the session's pressures)");
+    status_->setText(
+        "study session running: it owns the rig (the live loop is stopped until it ends; the Live rig tab shows the "
+        "session's pressures)");
     emit polled();
     return;
   }
@@ -210,8 +215,9 @@ bool MainWindow::open_files(const LiveRunFiles& files) {
 void MainWindow::choose_file(const QString& what, std::string LiveRunFiles::*field, const QString& filter) {
   if (experiment_page_->session_running()) {
     // Opening files restarts the live loop on a new backend: not while a session owns the rig.
-    QMessageBox::information(this, "palprig", "A study session owns the rig: open the " + what +
-                                                  " after it ends (Abort keeps every committed trial).");
+    QMessageBox::information(
+        this, "palprig",
+        "A study session owns the rig: open the " + what + " after it ends (Abort keeps every committed trial).");
     return;
   }
   const QString path = QFileDialog::getOpenFileName(this, "Open " + what, QString(), filter);
@@ -245,7 +251,7 @@ void MainWindow::closeEvent(QCloseEvent* e) {
   experiment_page_->participant_screen()->back_to_console();
   timer_->stop();
   calibration_page_->cancel_sweep();  // the runner vents every channel
-  run_->stop();  // the loop vents every channel as it ends
+  run_->stop();                       // the loop vents every channel as it ends
   e->accept();
 }
 

@@ -26,8 +26,9 @@ void ParticipantKeys::remove() {
 }
 
 bool ParticipantKeys::is_participant_key(int key) noexcept {
-  return (key >= Qt::Key_0 && key <= Qt::Key_9) || key == Qt::Key_Return || key == Qt::Key_Enter || key == Qt::Key_Space ||
-         key == Qt::Key_M || key == Qt::Key_Backspace;  // M and Backspace: mark and undo (localisation)
+  return (key >= Qt::Key_0 && key <= Qt::Key_9) || key == Qt::Key_Return || key == Qt::Key_Enter ||
+         key == Qt::Key_Space || key == Qt::Key_M ||
+         key == Qt::Key_Backspace;  // M and Backspace: mark and undo (localisation)
 }
 
 bool ParticipantKeys::eventFilter(QObject* watched, QEvent* event) {
@@ -45,7 +46,8 @@ bool ParticipantKeys::eventFilter(QObject* watched, QEvent* event) {
     return QObject::eventFilter(watched, event);
   }
   auto* key = static_cast<QKeyEvent*>(event);
-  if (!is_participant_key(key->key()) || (key->modifiers() & (Qt::ControlModifier | Qt::AltModifier | Qt::MetaModifier))) {
+  if (!is_participant_key(key->key()) ||
+      (key->modifiers() & (Qt::ControlModifier | Qt::AltModifier | Qt::MetaModifier))) {
     return QObject::eventFilter(watched, event);
   }
   // The same key event reaches the filter once per widget it propagates through: only the first
@@ -55,7 +57,8 @@ bool ParticipantKeys::eventFilter(QObject* watched, QEvent* event) {
     return true;
   }
   // Timed by the event's own stamp (when the key went down), not by when this ran.
-  if (type == QEvent::KeyPress && !key->isAutoRepeat()) screen_.participant_key(key->key(), screen_.input_time(key->timestamp()));
+  if (type == QEvent::KeyPress && !key->isAutoRepeat())
+    screen_.participant_key(key->key(), screen_.input_time(key->timestamp()));
   return true;  // consumed: no focused button clicks on Space, nothing else sees a digit
 }
 

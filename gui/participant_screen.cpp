@@ -89,7 +89,7 @@ ParticipantScreen::ParticipantScreen(QWidget* parent) : QWidget(parent) {
 
 void ParticipantScreen::start_session(const Protocol& protocol, std::shared_ptr<ParticipantChannel> channel) {
   marking_->detach_pen();  // before the last session's channel (and its pen) may go
-  event_clock_.reset();  // a foreign clock's offset is estimated afresh for each session
+  event_clock_.reset();    // a foreign clock's offset is estimated afresh for each session
   pressed_ = nullptr;
   channel_ = std::move(channel);
   finger_names_ = protocol.finger_names;
@@ -154,7 +154,8 @@ void ParticipantScreen::show_trial(const PlannedTrial& trial, const Condition& c
 
 void ParticipantScreen::stimulus_ended(int position) {
   if (!channel_ || marks_answer() || position != presented_ || answering_ == position) return;
-  prompt_->setText(QString("Trial %1. Which fingers feel a tumor? 1/2/3 choose, Enter answers; 0 for none.").arg(position + 1));
+  prompt_->setText(
+      QString("Trial %1. Which fingers feel a tumor? 1/2/3 choose, Enter answers; 0 for none.").arg(position + 1));
   answering_ = position;
   set_answering(true);
   setFocus();
@@ -224,7 +225,8 @@ void ParticipantScreen::give(const FingerFlags& fingers, const QWidget* clicked)
     pending_at_ = given_at;
     channel_->say_rating(answering_);
     pages_->setCurrentWidget(confidence_);
-    prompt_->setText(QString("How confident are you? %1 (keys 1-%2).").arg(confidence_->legend()).arg(confidence_->levels()));
+    prompt_->setText(
+        QString("How confident are you? %1 (keys 1-%2).").arg(confidence_->legend()).arg(confidence_->levels()));
     return;
   }
   hand_over(r, given_at);
@@ -295,8 +297,10 @@ bool ParticipantScreen::participant_key(int key, std::optional<std::chrono::stea
       return true;
     case Qt::Key_Return:
     case Qt::Key_Enter:
-      if (marks_answer()) marking_->finish();
-      else answer_->click();
+      if (marks_answer())
+        marking_->finish();
+      else
+        answer_->click();
       return true;
     case Qt::Key_Space:
       if (ready_->isVisible() && ready_->isEnabled()) ready_->click();
@@ -346,4 +350,3 @@ void ParticipantScreen::back_to_console() {
 }
 
 }  // namespace palprig::gui
-

@@ -44,7 +44,7 @@ class ParticipantScreen final : public QWidget {
   // A new session: its protocol (finger names, task) and the channel answers go through; null
   // channel: a simulated participant answers (the screen only shows what happens).
   void start_session(const Protocol& protocol, std::shared_ptr<ParticipantChannel> channel);
-  void show_ready();                    // waiting for the participant's go-ahead
+  void show_ready();  // waiting for the participant's go-ahead
   void show_trial(const PlannedTrial& trial, const Condition& condition);
   // The runner left `present` for `respond` at this trial: discrimination answers are taken now.
   void stimulus_ended(int position);
@@ -57,7 +57,7 @@ class ParticipantScreen final : public QWidget {
   void start_pulse_session(const PulseProtocol& protocol, std::shared_ptr<ParticipantChannel> channel);
   void show_pulse_trial(const PulseTrialStart& start, const PulseCondition& condition);
   int answering_position() const noexcept { return answering_; }  // -1: no answer is taken now
-  bool rating() const noexcept { return pending_.has_value(); }    // in the confidence step
+  bool rating() const noexcept { return pending_.has_value(); }   // in the confidence step
   LocalisationMarking* marking() const noexcept { return marking_; }
   // A participant key (digits, Enter, Space) whatever widget had the focus (gui/participant_keys.hpp
   // routes them here during a person's session); false when the key means nothing now. `at`:
@@ -104,13 +104,13 @@ class ParticipantScreen final : public QWidget {
   bool localisation_ = false;
   bool pulse_ = false;
   int answering_ = -1;
-  int presented_ = -1;               // the trial on show (answers wait for its stimulus to end)
-  std::optional<Response> pending_;  // the finger answer waiting for its rating
+  int presented_ = -1;                                  // the trial on show (answers wait for its stimulus to end)
+  std::optional<Response> pending_;                     // the finger answer waiting for its rating
   std::chrono::steady_clock::time_point pending_at_{};  // when that finger answer was given
   EventClock event_clock_;
   EventClock::Source last_source_ = EventClock::Source::delivery;
   std::optional<std::chrono::steady_clock::time_point> key_at_;  // the key being handled
-  QPointer<QObject> pressed_;                                   // the last mouse press: where and when
+  QPointer<QObject> pressed_;                                    // the last mouse press: where and when
   std::chrono::steady_clock::time_point pressed_at_{};
   QLabel* prompt_ = nullptr;
   QPushButton* ready_ = nullptr;

@@ -29,8 +29,9 @@ void ParticipantScreen::show_pulse_trial(const PulseTrialStart& start, const Pul
   ready_->setVisible(false);
   // The scene the session presents: the condition's file (validated with the protocol), or the
   // generated case of the trial's seed (the same seed gives the same scene).
-  SceneFile scene = condition.generated && start.scene_seed ? generated_pulse_scene(*start.scene_seed, *condition.generated)
-                                                            : load_scene_file(condition.scene_file);
+  SceneFile scene = condition.generated && start.scene_seed
+                        ? generated_pulse_scene(*start.scene_seed, *condition.generated)
+                        : load_scene_file(condition.scene_file);
   marking_->show_scene(std::move(scene), channel_ ? &channel_->pen() : nullptr);
   if (!channel_) {
     prompt_->setText(QString("Simulated participant (pilot run): trial %1").arg(start.position + 1));

@@ -62,10 +62,15 @@ void fill_pulse_table(QTableWidget& table, const std::vector<PulseConditionSumma
   table.setRowCount(static_cast<int>(rows.size()));
   for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
     const PulseConditionSummary& r = rows[static_cast<std::size_t>(i)];
-    const QStringList cells = {QString::fromStdString(r.condition), QString::number(r.trials), QString::number(r.answered),
-                               QString::number(r.hits),
-                               QString("%1 [%2, %3]").arg(number(r.hit_rate, 3), number(r.hit_low, 3), number(r.hit_high, 3)),
-                               number(r.distance_mean_mm, 2), number(r.distance_median_mm, 2), number(r.distance_iqr_mm, 2)};
+    const QStringList cells = {
+        QString::fromStdString(r.condition),
+        QString::number(r.trials),
+        QString::number(r.answered),
+        QString::number(r.hits),
+        QString("%1 [%2, %3]").arg(number(r.hit_rate, 3), number(r.hit_low, 3), number(r.hit_high, 3)),
+        number(r.distance_mean_mm, 2),
+        number(r.distance_median_mm, 2),
+        number(r.distance_iqr_mm, 2)};
     for (int c = 0; c < pulse_column_count; ++c) table.setItem(i, c, new QTableWidgetItem(cells[c]));
   }
   table.horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);

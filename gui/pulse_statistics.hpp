@@ -15,9 +15,17 @@ namespace palprig::gui {
 charts::Chart pulse_hit_rate_chart(const std::vector<PulseConditionSummary>& rows, double confidence);
 charts::Chart pulse_distance_chart(const std::vector<PulseConditionSummary>& rows);
 
-enum PulseStatisticsColumn { pulse_condition_column = 0, pulse_trials_column, pulse_answered_column, pulse_hits_column,
-                             pulse_hit_rate_column, pulse_mean_column, pulse_median_column, pulse_iqr_column,
-                             pulse_column_count };
+enum PulseStatisticsColumn {
+  pulse_condition_column = 0,
+  pulse_trials_column,
+  pulse_answered_column,
+  pulse_hits_column,
+  pulse_hit_rate_column,
+  pulse_mean_column,
+  pulse_median_column,
+  pulse_iqr_column,
+  pulse_column_count
+};
 
 void fill_pulse_table(QTableWidget& table, const std::vector<PulseConditionSummary>& rows, double confidence);
 

@@ -104,8 +104,9 @@ void RigPanel::update_controls() {
   }
   const RigLifecycle s = run_.state();
   state_->setText(to_string(s));
-  state_->setStyleSheet(s == RigLifecycle::armed ? "color: #0a7a1e; font-weight: bold;"
-                        : s == RigLifecycle::fault ? "color: #c0161e; font-weight: bold;" : "font-weight: bold;");
+  state_->setStyleSheet(s == RigLifecycle::armed   ? "color: #0a7a1e; font-weight: bold;"
+                        : s == RigLifecycle::fault ? "color: #c0161e; font-weight: bold;"
+                                                   : "font-weight: bold;");
   arm_->setEnabled(s == RigLifecycle::connected || s == RigLifecycle::vented);
   disarm_->setEnabled(s == RigLifecycle::armed);
   vent_->setEnabled(true);  // never disabled
@@ -123,7 +124,8 @@ void RigPanel::refresh(const FeedStatus& st) {
   const double p_max = run_.setup().rig.safety.p_max_kPa;
   if (st.have_record)
     for (int i = 0; i < kFingerCount; ++i)
-      gauges_[std::size_t(i)]->set_values(st.latest.target_kPa[i], st.latest.setpoint_kPa[i], st.latest.monitor_kPa[i], p_max);
+      gauges_[std::size_t(i)]->set_values(st.latest.target_kPa[i], st.latest.setpoint_kPa[i], st.latest.monitor_kPa[i],
+                                          p_max);
 }
 
 }  // namespace palprig::gui

@@ -9,7 +9,8 @@ namespace {
 
 QColor blend(const QColor& a, const QColor& b, double f) {
   f = std::clamp(f, 0.0, 1.0);
-  return QColor::fromRgbF(float(a.redF() + (b.redF() - a.redF()) * f), float(a.greenF() + (b.greenF() - a.greenF()) * f),
+  return QColor::fromRgbF(float(a.redF() + (b.redF() - a.redF()) * f),
+                          float(a.greenF() + (b.greenF() - a.greenF()) * f),
                           float(a.blueF() + (b.blueF() - a.blueF()) * f));
 }
 
@@ -17,7 +18,8 @@ QColor blend(const QColor& a, const QColor& b, double f) {
 
 QColor stiffness_colour(double s) noexcept {
   if (!std::isfinite(s)) return QColor(40, 40, 40);
-  static const QColor stops[] = {QColor(252, 236, 226), QColor(240, 170, 150), QColor(205, 85, 75), QColor(120, 20, 30)};
+  static const QColor stops[] = {QColor(252, 236, 226), QColor(240, 170, 150), QColor(205, 85, 75),
+                                 QColor(120, 20, 30)};
   const double x = std::clamp(s, 0.0, 1.0) * 3.0;
   const int i = std::min(int(x), 2);
   return blend(stops[i], stops[i + 1], x - i);

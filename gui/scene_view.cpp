@@ -25,8 +25,12 @@ constexpr double kRenderForce_N = 2.0;  // the scene as the reference press feel
 }  // namespace
 
 SceneView::SceneView(const SceneFile& scene, const FingerLayout& layout, double p_max_kPa, QWidget* parent)
-    : QWidget(parent), scene_(scene.scene.get()), bounds_(scene.scene->bounds()), tumors_(scene.tumors),
-      layout_(layout), p_max_kPa_(p_max_kPa) {
+    : QWidget(parent),
+      scene_(scene.scene.get()),
+      bounds_(scene.scene->bounds()),
+      tumors_(scene.tumors),
+      layout_(layout),
+      p_max_kPa_(p_max_kPa) {
   setObjectName("scene_view");
   setMinimumSize(320, 240);
   setMouseTracking(false);
@@ -159,8 +163,7 @@ void SceneView::show_record(const TelemetryRecord& r) {
 
 void SceneView::advance_scene_time(double t_s) {
   if (!breathing_) return;
-  if (pending_image_.valid() &&
-      pending_image_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+  if (pending_image_.valid() && pending_image_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
     image_ = pending_image_.get();
     update();
   }
@@ -217,7 +220,8 @@ void SceneView::draw_indentation(QPainter& p, const Point2_mm& c, double depth_m
   for (int r = 0; r + 1 < side; ++r)
     for (int col = 0; col + 1 < side; ++col) {
       const std::size_t a = std::size_t(r * side + col);
-      const double d = (grid[a].depth_mm + grid[a + 1].depth_mm + grid[a + side].depth_mm + grid[a + side + 1].depth_mm) / 4;
+      const double d =
+          (grid[a].depth_mm + grid[a + 1].depth_mm + grid[a + side].depth_mm + grid[a + side + 1].depth_mm) / 4;
       QPolygonF quad({px[a], px[a + 1], px[a + side + 1], px[a + side]});
       p.setPen(QPen(QColor(70, 40, 40, 140), 0.8));
       p.setBrush(QColor(30, 10, 10, int(std::clamp(d / indentation_.max_depth_mm, 0.0, 1.0) * 150)));
@@ -234,29 +238,36 @@ void SceneView::render_to(QPainter& p) {
   p.setRenderHint(QPainter::Antialiasing);
   p.fillRect(rect(), QColor(60, 60, 66));
   const QRectF r = scene_rect();
-  if (map_visible_) p.drawImage(r, image_);
-  else p.fillRect(r, QColor(222, 184, 160));  // plain tissue: nothing to see, only to feel
+  if (map_visible_)
+    p.drawImage(r, image_);
+  else
+    p.fillRect(r, QColor(222, 184, 160));  // plain tissue: nothing to see, only to feel
   p.save();
   p.setClipRect(r);  // the tissue, its arteries and dimples end at the scene's edge
   const double px_per_mm = r.width() / (bounds_.x1_mm - bounds_.x0_mm);
   // A light 10 mm grid: the undeformed surface the dimples sink into.
   p.setPen(QPen(QColor(255, 255, 255, 60), 1));
-  for (double x = bounds_.x0_mm + 10; x < bounds_.x1_mm; x += 10) p.drawLine(pixel_of(x, bounds_.y0_mm), pixel_of(x, bounds_.y1_mm));
-  for (double y = bounds_.y0_mm + 10; y < bounds_.y1_mm; y += 10) p.drawLine(pixel_of(bounds_.x0_mm, y), pixel_of(bounds_.x1_mm, y));
+  for (double x = bounds_.x0_mm + 10; x < bounds_.x1_mm; x += 10)
+    p.drawLine(pixel_of(x, bounds_.y0_mm), pixel_of(x, bounds_.y1_mm));
+  for (double y = bounds_.y0_mm + 10; y < bounds_.y1_mm; y += 10)
+    p.drawLine(pixel_of(bounds_.x0_mm, y), pixel_of(bounds_.x1_mm, y));
   // Arteries.
   for (std::size_t a = 0; arteries_visible_ && a < arteries_.size(); ++a) {
     QPainterPath path;
     for (std::size_t i = 0; i < arteries_[a].size(); ++i) {
       const QPointF q = pixel_of(arteries_[a][i].x_mm, arteries_[a][i].y_mm);
-      if (i == 0) path.moveTo(q);
-      else path.lineTo(q);
+      if (i == 0)
+        path.moveTo(q);
+      else
+        path.lineTo(q);
     }
     p.setPen(QPen(QColor(170, 0, 30, 200), std::max(2.0, 2.0 * px_per_mm), Qt::SolidLine, Qt::RoundCap));
     p.setBrush(Qt::NoBrush);
     p.drawPath(path);
     if (!arteries_[a].empty()) {
       p.setPen(Qt::white);
-      p.drawText(pixel_of(arteries_[a][0].x_mm, arteries_[a][0].y_mm) + QPointF(4, -4), QString::fromStdString(artery_names_[a]));
+      p.drawText(pixel_of(arteries_[a][0].x_mm, arteries_[a][0].y_mm) + QPointF(4, -4),
+                 QString::fromStdString(artery_names_[a]));
     }
   }
   // Tumor outlines (experimenter only).
@@ -298,7 +309,8 @@ void SceneView::render_to(QPainter& p) {
     const double rad = kFingerRadius_mm * px_per_mm;
     if (vented(i)) {
       // A tool never seen (or no tool at all) has no place to be drawn.
-      if (record_.finger_vent[i] == FingerVent::no_tool || record_.finger_vent[i] == FingerVent::tool_not_seen) continue;
+      if (record_.finger_vent[i] == FingerVent::no_tool || record_.finger_vent[i] == FingerVent::tool_not_seen)
+        continue;
       p.setBrush(Qt::NoBrush);
       p.setPen(QPen(QColor(230, 230, 230), 1.5, Qt::DashLine));
       p.drawEllipse(c, rad, rad);

@@ -44,9 +44,9 @@ class SceneView final : public QWidget {
   // The pulse-localisation participant's view hides the arteries (and their names) too.
   void set_arteries_visible(bool on);
   bool arteries_visible() const noexcept { return arteries_visible_; }
-  void heartbeat();                                // GUI poll: re-publish the pen state
-  void show_record(const TelemetryRecord& r);      // what the loop did last
-  void advance_scene_time(double t_s);             // breathing scenes: re-render now and then
+  void heartbeat();                            // GUI poll: re-publish the pen state
+  void show_record(const TelemetryRecord& r);  // what the loop did last
+  void advance_scene_time(double t_s);         // breathing scenes: re-render now and then
 
   // Where the fingers are drawn (widget pixels) and their fill colours, for tests.
   std::array<QPointF, kFingerCount> finger_pixels() const;
@@ -57,7 +57,7 @@ class SceneView final : public QWidget {
   QPointF pixel_of(double x_mm, double y_mm) const;
   bool pen_down() const noexcept { return pen_.in_contact; }
   double shown_force_N() const noexcept { return record_.force_N; }  // the loop's, as drawn
-  void render_to(QPainter& p);  // the whole view into any painter (benchmarks)
+  void render_to(QPainter& p);                                       // the whole view into any painter (benchmarks)
 
  signals:
   void mouseForceChanged(double force_N);

@@ -28,7 +28,8 @@ class QueuedListener final : public SessionListener {
     post([run = run_, trial, total] { emit run->trialCommitted(trial, total); });
   }
   void participant_feedback(int position, const std::string& text) override {
-    post([run = run_, position, text = QString::fromStdString(text)] { emit run->participantFeedback(position, text); });
+    post(
+        [run = run_, position, text = QString::fromStdString(text)] { emit run->participantFeedback(position, text); });
   }
   void session_ended(const SessionEnd& end) override {
     post([run = run_, end] { emit run->ended(end); });
@@ -140,4 +141,3 @@ void SessionRun::join() {
 }
 
 }  // namespace palprig::gui
-

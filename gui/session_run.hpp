@@ -1,8 +1,8 @@
 #pragma once
 // SessionRun: the GUI's one adapter to sessions/study_session's run_study_session (and to
-// sessions/pulse_study's run_pulse_study for pulse protocols), as LiveRun is to run_loop. The session runs on its own thread; what it reports (SessionListener calls,
-// on that thread) is copied and handed to the GUI thread with queued calls, so the session
-// thread never waits for the window. Pause, Resume and Abort reach the session loop through
+// sessions/pulse_study's run_pulse_study for pulse protocols), as LiveRun is to run_loop. The session runs on its own
+// thread; what it reports (SessionListener calls, on that thread) is copied and handed to the GUI thread with queued
+// calls, so the session thread never waits for the window. Pause, Resume and Abort reach the session loop through
 // atomics it reads every pass.
 #include <QObject>
 #include <QString>
@@ -50,7 +50,7 @@ class SessionRun final : public QObject {
   void pulseTrialStarted(const palprig::PulseTrialStart& start, const palprig::PulseCondition& condition);
   void pulseTrialCommitted(const palprig::PulseTrialRecord& trial, int total);
   void refused(const QString& line, int exit_code);  // the CLI's one line; 2 input, 1 rig
-  void finished();  // after ended() or refused(): the thread is gone
+  void finished();                                   // after ended() or refused(): the thread is gone
 
  private:
   void join();

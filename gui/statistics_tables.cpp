@@ -8,7 +8,9 @@ namespace palprig::gui {
 
 namespace {
 
-QString number(double v, int decimals = 3) { return std::isfinite(v) ? QString::number(v, 'f', decimals) : QStringLiteral("n/a"); }
+QString number(double v, int decimals = 3) {
+  return std::isfinite(v) ? QString::number(v, 'f', decimals) : QStringLiteral("n/a");
+}
 
 void set_cell(QTableWidget& table, int row, int column, const QString& text, const QString& tip = {}) {
   auto* item = new QTableWidgetItem(text);
@@ -23,7 +25,9 @@ void add_rows(QTableWidget& table, const TrialSummary& summary, const QString& p
     const int row = table.rowCount();
     table.insertRow(row);
     set_cell(table, row, group_column, prefix + QString::fromStdString(r.key.empty() ? "all" : r.key[0]));
-    set_cell(table, row, trials_column, QString::number(r.trials) + (r.unanswered ? QStringLiteral(" (%1 unanswered)").arg(r.unanswered) : QString()));
+    set_cell(
+        table, row, trials_column,
+        QString::number(r.trials) + (r.unanswered ? QStringLiteral(" (%1 unanswered)").arg(r.unanswered) : QString()));
     set_cell(table, row, tp_column, QString::number(r.counts.tp));
     set_cell(table, row, fn_column, QString::number(r.counts.fn));
     set_cell(table, row, tn_column, r.negatives_counted ? QString::number(r.counts.tn) : QStringLiteral("n/a"),
@@ -33,7 +37,9 @@ void add_rows(QTableWidget& table, const TrialSummary& summary, const QString& p
     set_cell(table, row, sp_column, measure_text(r.measures.sp));
     set_cell(table, row, ppv_column, measure_text(r.measures.ppv));
     set_cell(table, row, acc_column, measure_text(r.measures.acc));
-    set_cell(table, row, rt_column, std::isfinite(r.mean_rt_s) ? number(r.mean_rt_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_s, 2) : QStringLiteral("n/a"));
+    set_cell(table, row, rt_column,
+             std::isfinite(r.mean_rt_s) ? number(r.mean_rt_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_s, 2)
+                                        : QStringLiteral("n/a"));
     set_cell(table, row, rt_after_column,
              std::isfinite(r.mean_rt_after_stimulus_s)
                  ? number(r.mean_rt_after_stimulus_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_after_stimulus_s, 2)
@@ -42,8 +48,9 @@ void add_rows(QTableWidget& table, const TrialSummary& summary, const QString& p
              std::isfinite(r.mean_rt_from_reached_s)
                  ? number(r.mean_rt_from_reached_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_from_reached_s, 2)
                  : QStringLiteral("n/a"));
-    set_cell(table, row, confidence_column,
-             r.rated > 0 ? number(r.mean_confidence, 2) + QStringLiteral(" (n=%1)").arg(r.rated) : QStringLiteral("n/a"));
+    set_cell(
+        table, row, confidence_column,
+        r.rated > 0 ? number(r.mean_confidence, 2) + QStringLiteral(" (n=%1)").arg(r.rated) : QStringLiteral("n/a"));
   }
 }
 
@@ -92,7 +99,12 @@ void fill_comparisons_table(QTableWidget& table, const TrialStatistics& s) {
       continue;
     }
     const auto& t = *c.test;
-    set_cell(table, row, 2, QStringLiteral("%1 s (n=%2) vs %3 s (n=%4)").arg(number(t.mean_x, 3)).arg(t.n_x).arg(number(t.mean_y, 3)).arg(t.n_y));
+    set_cell(table, row, 2,
+             QStringLiteral("%1 s (n=%2) vs %3 s (n=%4)")
+                 .arg(number(t.mean_x, 3))
+                 .arg(t.n_x)
+                 .arg(number(t.mean_y, 3))
+                 .arg(t.n_y));
     const QString p_text = t.p < 1e-4 ? QStringLiteral("p < 0.0001") : QStringLiteral("p = ") + number(t.p, 4);
     set_cell(table, row, 3, QStringLiteral("t(%1) = %2, %3").arg(number(t.df, 0), number(t.t, 3), p_text));
     set_cell(table, row, 4, t.p < alpha ? QObject::tr("different (p < %1)").arg(alpha) : QObject::tr("not different"));
@@ -103,10 +115,13 @@ void fill_comparisons_table(QTableWidget& table, const TrialStatistics& s) {
     const auto& p = c.comparison;
     set_cell(table, row, 0, QString::fromStdString(c.measure) + QObject::tr(" (combined interval, eq. 10)"));
     set_cell(table, row, 1, QString::fromStdString(c.first + " vs " + c.second));
-    set_cell(table, row, 2, QStringLiteral("%1 vs %2, difference %3").arg(number(p.first.p), number(p.second.p), number(p.difference)));
+    set_cell(
+        table, row, 2,
+        QStringLiteral("%1 vs %2, difference %3").arg(number(p.first.p), number(p.second.p), number(p.difference)));
     // Eq. 10: different when |difference| exceeds the combined interval; say which way it went.
-    set_cell(table, row, 3, QStringLiteral("|difference| %1 combined CI %2")
-                                .arg(p.significant ? QStringLiteral(">") : QStringLiteral("<="), number(p.combined_interval)));
+    set_cell(table, row, 3,
+             QStringLiteral("|difference| %1 combined CI %2")
+                 .arg(p.significant ? QStringLiteral(">") : QStringLiteral("<="), number(p.combined_interval)));
     set_cell(table, row, 4, p.significant ? QObject::tr("different") : QObject::tr("not different"));
   }
   table.resizeColumnsToContents();

@@ -13,10 +13,23 @@ namespace palprig::gui {
 // "0.857 [0.720, 0.933] n=42", or "n/a" when the measure has no cases.
 QString measure_text(const Measure& m);
 
-enum MeasureColumn { group_column = 0, trials_column, tp_column, fn_column, tn_column, fp_column,
-                     se_column, sp_column, ppv_column, acc_column, rt_column, rt_after_column, rt_reached_column,
-                     confidence_column,
-                     measure_column_count };
+enum MeasureColumn {
+  group_column = 0,
+  trials_column,
+  tp_column,
+  fn_column,
+  tn_column,
+  fp_column,
+  se_column,
+  sp_column,
+  ppv_column,
+  acc_column,
+  rt_column,
+  rt_after_column,
+  rt_reached_column,
+  confidence_column,
+  measure_column_count
+};
 
 void fill_measures_table(QTableWidget& table, const TrialStatistics& statistics);
 void fill_comparisons_table(QTableWidget& table, const TrialStatistics& statistics);

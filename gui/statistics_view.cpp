@@ -76,8 +76,8 @@ bool has_bars(const charts::Chart& chart) {
 }
 
 // Runs on the worker; the same library calls as `palprig export` and `palprig stats trials --json`.
-StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& location, const std::filesystem::path& dir,
-                            std::shared_ptr<const TrialStatistics> shown) {
+StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& location,
+                            const std::filesystem::path& dir, std::shared_ptr<const TrialStatistics> shown) {
   using Kind = StatisticsView::ExportKind;
   StatisticsExport out;
   try {
@@ -103,8 +103,10 @@ StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& 
       const char* ext = kind == Kind::chart_png ? ".png" : ".svg";
       auto write = [&](const charts::Chart& chart, const std::string& name) {
         const auto path = dir / (name + ext);
-        if (kind == Kind::chart_png) charts::write_chart_png(chart, path);
-        else charts::write_chart_svg(chart, path);
+        if (kind == Kind::chart_png)
+          charts::write_chart_png(chart, path);
+        else
+          charts::write_chart_svg(chart, path);
         files.push_back(path);
       };
       write(condition_chart(*shown), pulse_only(*shown) ? "pulse_hit_rate_by_condition" : "measures_by_condition");
@@ -140,9 +142,11 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   refresh_button->setObjectName("refreshStatistics");
   connect(refresh_button, &QPushButton::clicked, this, &StatisticsView::refresh);
   top->addWidget(refresh_button);
-  const std::pair<ExportKind, const char*> buttons[] = {
-      {ExportKind::long_csv, "Long CSV"}, {ExportKind::bids, "BIDS"}, {ExportKind::statistics_json, "Statistics JSON"},
-      {ExportKind::chart_png, "Chart PNG"}, {ExportKind::chart_svg, "Chart SVG"}};
+  const std::pair<ExportKind, const char*> buttons[] = {{ExportKind::long_csv, "Long CSV"},
+                                                        {ExportKind::bids, "BIDS"},
+                                                        {ExportKind::statistics_json, "Statistics JSON"},
+                                                        {ExportKind::chart_png, "Chart PNG"},
+                                                        {ExportKind::chart_svg, "Chart SVG"}};
   const char* names[] = {"exportLongCsv", "exportBids", "exportStatisticsJson", "exportChartPng", "exportChartSvg"};
   for (std::size_t i = 0; i < std::size(buttons); ++i) {
     auto* b = new QPushButton(tr(buttons[i].second), this);
@@ -192,7 +196,8 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
       status_->setText(tr("export refused: %1").arg(r.error));
       emit export_failed(r.error);
     } else {
-      status_->setText(tr("exported %1 file(s) to %2").arg(r.files.size()).arg(QFileInfo(r.files.value(0)).absolutePath()));
+      status_->setText(
+          tr("exported %1 file(s) to %2").arg(r.files.size()).arg(QFileInfo(r.files.value(0)).absolutePath()));
       emit exported(r.files);
     }
   });
@@ -250,8 +255,10 @@ void StatisticsView::refresh_done() {
     status_->setText(tr("cannot read: %1").arg(r.error));
   }
   if (pending_) start_refresh();
-  if (r.statistics) emit refreshed();
-  else emit refresh_failed(r.error);
+  if (r.statistics)
+    emit refreshed();
+  else
+    emit refresh_failed(r.error);
 }
 
 void StatisticsView::display(const TrialStatistics& s) {
@@ -282,7 +289,8 @@ void StatisticsView::display(const TrialStatistics& s) {
   measures_table_->setVisible(!pulse_only(s));
   comparisons_table_->setVisible(!pulse_only(s));
   if (pulse_only(s) != was_pulse_only) {
-    tables_->setSizes(pulse_only(s) ? QList<int>{520, 0, 0, 230} : QList<int>{520, 230, 170, s.pulse.empty() ? 0 : 150});
+    tables_->setSizes(pulse_only(s) ? QList<int>{520, 0, 0, 230}
+                                    : QList<int>{520, 230, 170, s.pulse.empty() ? 0 : 150});
   }
   for (auto* b : export_buttons_) b->setEnabled(!export_watcher_.isRunning());
 }
@@ -311,8 +319,8 @@ void StatisticsView::export_to(ExportKind kind, const QString& dir) {
   }
   for (auto* b : export_buttons_) b->setEnabled(false);
   status_->setText(tr("exporting to %1…").arg(dir));
-  export_watcher_.setFuture(
-      QtConcurrent::run(run_export, kind, location_.toStdString(), std::filesystem::path(dir.toStdString()), statistics_));
+  export_watcher_.setFuture(QtConcurrent::run(run_export, kind, location_.toStdString(),
+                                              std::filesystem::path(dir.toStdString()), statistics_));
 }
 
 }  // namespace palprig::gui

@@ -83,7 +83,7 @@ class StatisticsView : public QWidget {
   void refresh();  // recompute off the GUI thread; a refresh asked while one runs is coalesced
 
  signals:
-  void refreshed();  // the view now shows the numbers of the last refresh
+  void refreshed();                             // the view now shows the numbers of the last refresh
   void refresh_failed(const QString& message);  // the store could not be read; old numbers stay
   void exported(const QStringList& files);
   void export_failed(const QString& message);

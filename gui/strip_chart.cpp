@@ -89,12 +89,17 @@ void StripChart::render_to(QPainter& p, const QRect& area) {
       float prev_min = 0, prev_max = 0;
       for (int c = 0; c < columns; ++c) {
         const ColumnExtent& e = cols[std::size_t(c)];
-        if (e.empty) { have_prev = false; continue; }
+        if (e.empty) {
+          have_prev = false;
+          continue;
+        }
         const double x = left + c + 0.5;
         lines_.emplace_back(x, y_of(e.min), x, y_of(e.max) - 0.01);  // the column's span (at least a dot)
         if (have_prev) {  // join to the previous column so a slow trace is a line, not dots
-          if (e.max < prev_min) lines_.emplace_back(x - 1, y_of(prev_min), x, y_of(e.max));
-          else if (e.min > prev_max) lines_.emplace_back(x - 1, y_of(prev_max), x, y_of(e.min));
+          if (e.max < prev_min)
+            lines_.emplace_back(x - 1, y_of(prev_min), x, y_of(e.max));
+          else if (e.min > prev_max)
+            lines_.emplace_back(x - 1, y_of(prev_max), x, y_of(e.min));
         }
         have_prev = true;
         prev_min = e.min;

@@ -42,8 +42,10 @@ void TelemetryFeed::reader_main() {
       staged_.push_back(trace_sample_of(r));
       ++status_.ticks;
       if (r.flags & kOverrun) ++status_.overruns;
-      if (wake_window_.size() < 1000) wake_window_.push_back(r.wake_latency_us);
-      else wake_window_[wake_next_] = r.wake_latency_us;
+      if (wake_window_.size() < 1000)
+        wake_window_.push_back(r.wake_latency_us);
+      else
+        wake_window_[wake_next_] = r.wake_latency_us;
       wake_next_ = (wake_next_ + 1) % 1000;
       second_of_ticks_.push_back(r.t_s);
       while (!second_of_ticks_.empty() && second_of_ticks_.front() <= r.t_s - 1.0) second_of_ticks_.pop_front();

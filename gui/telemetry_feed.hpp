@@ -21,12 +21,12 @@ namespace palprig::gui {
 
 struct FeedStatus {
   bool have_record = false;
-  TelemetryRecord latest;                 // newest record seen
-  double loop_rate_hz = 0;                // ticks per second over the last second of loop time
-  std::uint64_t ticks = 0;                // records seen
-  std::uint64_t overruns = 0;             // records flagged overrun
+  TelemetryRecord latest;                   // newest record seen
+  double loop_rate_hz = 0;                  // ticks per second over the last second of loop time
+  std::uint64_t ticks = 0;                  // records seen
+  std::uint64_t overruns = 0;               // records flagged overrun
   double wake_p50_us = 0, wake_p99_us = 0;  // over the last 1000 ticks (real-time runs)
-  std::uint64_t dropped = 0;              // records the loop could not queue
+  std::uint64_t dropped = 0;                // records the loop could not queue
 };
 
 class TelemetryFeed final : public TickObserver {

@@ -38,8 +38,10 @@ void TraceHistory::columns_min_max(TraceKind kind, int finger, double t0_s, doub
   std::size_t lo = 0, hi = size_;
   while (lo < hi) {
     const std::size_t mid = (lo + hi) / 2;
-    if (at(mid).t_s < t0_s) lo = mid + 1;
-    else hi = mid;
+    if (at(mid).t_s < t0_s)
+      lo = mid + 1;
+    else
+      hi = mid;
   }
   const double per_column = double(columns) / (t1_s - t0_s);
   const int k = int(kind);
@@ -50,8 +52,13 @@ void TraceHistory::columns_min_max(TraceKind kind, int finger, double t0_s, doub
     if (!std::isfinite(v)) continue;  // a monitor with no reading (link down) is a gap
     const int c = std::min(columns - 1, int((s.t_s - t0_s) * per_column));
     ColumnExtent& e = out[std::size_t(c)];
-    if (e.empty) { e.min = e.max = v; e.empty = false; }
-    else { e.min = std::min(e.min, v); e.max = std::max(e.max, v); }
+    if (e.empty) {
+      e.min = e.max = v;
+      e.empty = false;
+    } else {
+      e.min = std::min(e.min, v);
+      e.max = std::max(e.max, v);
+    }
   }
 }
 

@@ -32,7 +32,10 @@ class TraceHistory {
  public:
   explicit TraceHistory(std::size_t capacity);
   void push(const TraceSample& s) noexcept;  // overwrites the oldest when full
-  void clear() noexcept { size_ = 0; head_ = 0; }
+  void clear() noexcept {
+    size_ = 0;
+    head_ = 0;
+  }
   std::size_t size() const noexcept { return size_; }
   std::size_t capacity() const noexcept { return ring_.size(); }
   const TraceSample& at(std::size_t i) const noexcept;  // 0 = oldest

@@ -19,7 +19,7 @@ TrackerPanel::TrackerPanel(LiveRun& run, QWidget* parent) : QGroupBox("Tracker",
   for (int k = 0; k < n; ++k) {
     const TrackedTool& tool = t->tools[std::size_t(k)];
     const QString finger = t->placement == TrackedPlacement::per_finger ? QString("finger %1").arg(tool.finger + 1)
-                                                                          : QString("fingers 1-3 (triangle)");
+                                                                        : QString("fingers 1-3 (triangle)");
     grid->addWidget(new QLabel(QString::fromStdString(tool.name) + " -> " + finger), k + 1, 0);
     auto* state = new QLabel("-");
     state->setObjectName(QString("tracker_tool_%1").arg(k));
@@ -47,12 +47,17 @@ void TrackerPanel::refresh() {
     const TrackedToolState& ts = st->tools[k];
     QString text;
     bool bad = true;
-    if (ts.refused != FingerVent::none) text = QString::fromUtf8(to_string(ts.refused));
-    else if (ts.arrived_ns == 0) text = "not seen: vented";
+    if (ts.refused != FingerVent::none)
+      text = QString::fromUtf8(to_string(ts.refused));
+    else if (ts.arrived_ns == 0)
+      text = "not seen: vented";
     else {
       const double age_s = double(now - ts.arrived_ns) * 1e-9;
       bad = age_s > stale_s;
-      text = QString("%1 poses, last %2 ms ago%3").arg(ts.poses).arg(age_s * 1000, 0, 'f', 0).arg(bad ? ": out of view, vented" : "");
+      text = QString("%1 poses, last %2 ms ago%3")
+                 .arg(ts.poses)
+                 .arg(age_s * 1000, 0, 'f', 0)
+                 .arg(bad ? ": out of view, vented" : "");
     }
     tools_[k]->setText(text);
     tools_[k]->setStyleSheet(bad ? "color: #c00000" : "");

@@ -32,7 +32,8 @@ IgtlEndpoint parse_igtl_spec(const std::string& spec) {
   IgtlEndpoint e;
   e.host = rest.substr(0, colon);
   const std::string port = rest.substr(colon + 1);
-  if (const std::string why = modbus_host_refusal(e.host); !why.empty()) throw InputError("input", spec, kSpecForm + std::string(": ") + why);
+  if (const std::string why = modbus_host_refusal(e.host); !why.empty())
+    throw InputError("input", spec, kSpecForm + std::string(": ") + why);
   char* end = nullptr;
   const long p = std::strtol(port.c_str(), &end, 10);
   if (port.empty() || *end != '\0' || p < 1 || p > 65535)
@@ -42,7 +43,8 @@ IgtlEndpoint parse_igtl_spec(const std::string& spec) {
 }
 
 IgtlInput::IgtlInput(const IgtlEndpoint& endpoint, TrackingConfig tracking, double max_pose_age_s)
-    : endpoint_(endpoint), tracking_(std::move(tracking)),
+    : endpoint_(endpoint),
+      tracking_(std::move(tracking)),
       max_pose_age_ns_(static_cast<std::int64_t>(std::llround(max_pose_age_s * 1e9))),
       reader_socket_(std::make_unique<IgtlPoseReader>(endpoint_.host, endpoint_.port, "input igtl")) {
   TrackerStatus first;
@@ -87,7 +89,7 @@ void IgtlInput::reader_main() noexcept {
         char why[240];
         std::snprintf(why, sizeof why, "%s; every finger vented",
                       got == IgtlPoseReader::Status::closed ? "the server closed the connection (the tracker stopped)"
-                                                              : reader_socket_->why());
+                                                            : reader_socket_->why());
         report_worker_fault(who.c_str(), why);
         return;
       }

@@ -44,17 +44,17 @@ bool is_igtl_input(const std::string& spec);
 
 // What the reader knows of one tool the tracking file names. Plain data: crosses threads as is.
 struct TrackedToolState {
-  std::int64_t arrived_ns = 0;      // CLOCK_MONOTONIC of its last usable pose; 0: none yet
-  std::uint64_t poses = 0;          // usable poses received
+  std::int64_t arrived_ns = 0;            // CLOCK_MONOTONIC of its last usable pose; 0: none yet
+  std::uint64_t poses = 0;                // usable poses received
   FingerVent refused = FingerVent::none;  // the last pose was unusable (tool_invalid, tool_no_rotation)
-  Vec3_mm tip_scene_mm{};           // its fingertip in scene space (mm)
+  Vec3_mm tip_scene_mm{};                 // its fingertip in scene space (mm)
 };
 
 // The tracker as the window shows it (one thread besides the loop, the window's poll, copies it
 // through IgtlInput::status()).
 struct TrackerStatus {
   bool connected = false;
-  std::int64_t heartbeat_ns = 0;    // the reader's last wake
+  std::int64_t heartbeat_ns = 0;  // the reader's last wake
   std::int64_t last_message_ns = 0;
   std::uint64_t messages = 0, skipped = 0;
   std::array<TrackedToolState, kFingerCount> tools{};  // indexed as TrackingConfig::tools

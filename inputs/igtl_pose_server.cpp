@@ -63,7 +63,8 @@ void IgtlPoseServer::accept_main() noexcept {
     igtl::ClientSocket::Pointer client = listener_->socket->WaitForConnection(100);
     if (client.IsNull()) continue;
     char text[160];
-    std::snprintf(text, sizeof text, "a client connected; replaying %zu poses over %.2f s", poses_.size(), duration_s());
+    std::snprintf(text, sizeof text, "a client connected; replaying %zu poses over %.2f s", poses_.size(),
+                  duration_s());
     log(text);
     clients_.fetch_add(1, std::memory_order_relaxed);
     // The thread owns a reference to the socket (released when it ends).

@@ -23,9 +23,9 @@
 namespace palprig {
 
 struct PoseServerOptions {
-  int port = 18944;                 // 0: a free port (see port())
-  bool position_messages = false;   // POSITION instead of TRANSFORM
-  bool loop = false;                // start the recording over at its end
+  int port = 18944;                // 0: a free port (see port())
+  bool position_messages = false;  // POSITION instead of TRANSFORM
+  bool loop = false;               // start the recording over at its end
 };
 
 class IgtlPoseServer {

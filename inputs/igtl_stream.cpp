@@ -71,9 +71,12 @@ bool IgtlStreamDecoder::feed(const std::uint8_t* data, std::size_t n, std::vecto
       if (!version_1 || !well_sized) {
         // Not kept: skip its body as it streams past.
         ++counts_.messages;
-        if (!version_1) ++counts_.other_versions;
-        else if (transform || position) ++counts_.malformed;
-        else ++counts_.other_types;
+        if (!version_1)
+          ++counts_.other_versions;
+        else if (transform || position)
+          ++counts_.malformed;
+        else
+          ++counts_.other_types;
         skip_ = body;
         pending_.clear();
         continue;

@@ -29,12 +29,12 @@ struct DecodedPose {
 };
 
 struct IgtlStreamCounts {
-  std::uint64_t messages = 0;         // whole messages seen, of any type
-  std::uint64_t poses = 0;            // TRANSFORM and POSITION decoded
-  std::uint64_t other_types = 0;      // skipped: not a pose
-  std::uint64_t other_versions = 0;   // skipped: header version other than 1
-  std::uint64_t crc_failures = 0;     // skipped: the body's CRC did not match
-  std::uint64_t malformed = 0;        // skipped: a TRANSFORM or POSITION whose body has the wrong size
+  std::uint64_t messages = 0;        // whole messages seen, of any type
+  std::uint64_t poses = 0;           // TRANSFORM and POSITION decoded
+  std::uint64_t other_types = 0;     // skipped: not a pose
+  std::uint64_t other_versions = 0;  // skipped: header version other than 1
+  std::uint64_t crc_failures = 0;    // skipped: the body's CRC did not match
+  std::uint64_t malformed = 0;       // skipped: a TRANSFORM or POSITION whose body has the wrong size
 };
 
 class IgtlStreamDecoder {

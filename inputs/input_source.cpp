@@ -69,7 +69,8 @@ std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, doubl
     if (line.empty() || line[0] == '#') continue;
     if (!header) {
       if (line.rfind("t_s,x_mm,y_mm,force_N", 0) != 0)
-        throw InputError(file, "line " + std::to_string(line_no), "the header 't_s,x_mm,y_mm,force_N', got '" + line + "'");
+        throw InputError(file, "line " + std::to_string(line_no),
+                         "the header 't_s,x_mm,y_mm,force_N', got '" + line + "'");
       header = true;
       continue;
     }
@@ -79,26 +80,34 @@ std::vector<TouchSample> load_trace_csv(const std::filesystem::path& path, doubl
     int n = 0;
     static const char* names[4] = {"t_s", "x_mm", "y_mm", "force_N"};
     while (std::getline(ss, cell, ',')) {
-      if (n >= 4) throw InputError(file, "line " + std::to_string(line_no), "4 values (t_s,x_mm,y_mm,force_N), got more");
+      if (n >= 4)
+        throw InputError(file, "line " + std::to_string(line_no), "4 values (t_s,x_mm,y_mm,force_N), got more");
       if (parse_decimal(cell, v[n]) != DecimalCell::number)
-        throw InputError(file, "line " + std::to_string(line_no) + ", " + names[n], "a finite number, got '" + cell + "'");
+        throw InputError(file, "line " + std::to_string(line_no) + ", " + names[n],
+                         "a finite number, got '" + cell + "'");
       ++n;
     }
-    if (n != 4) throw InputError(file, "line " + std::to_string(line_no), "4 values (t_s,x_mm,y_mm,force_N), got " + std::to_string(n));
-    if (v[3] < 0) throw InputError(file, "line " + std::to_string(line_no) + ", force_N", "a force >= 0 N, got " + std::to_string(v[3]));
+    if (n != 4)
+      throw InputError(file, "line " + std::to_string(line_no),
+                       "4 values (t_s,x_mm,y_mm,force_N), got " + std::to_string(n));
+    if (v[3] < 0)
+      throw InputError(file, "line " + std::to_string(line_no) + ", force_N",
+                       "a force >= 0 N, got " + std::to_string(v[3]));
     if (out.empty()) first_t_s = v[0];
     const double t_s = v[0] - first_t_s;  // relative to the first row
     const std::string where_t = "line " + std::to_string(line_no) + ", t_s";
     if (!out.empty() && !(t_s > out.back().t_s))
-      throw InputError(file, where_t, "a time after the previous row's " + std::to_string(out.back().t_s + first_t_s) + " s");
+      throw InputError(file, where_t,
+                       "a time after the previous row's " + std::to_string(out.back().t_s + first_t_s) + " s");
     if (!out.empty() && t_s - out.back().t_s > limits.max_gap_s)
       throw TraceBoundError(file, where_t,
                             "rows at most " + seconds_text(limits.max_gap_s) +
                                 " apart (the stale-input limit), got a gap of " + seconds_text(t_s - out.back().t_s));
     if (t_s > limits.max_length_s)
       throw TraceBoundError(file, where_t,
-                            "a trace at most " + seconds_text(limits.max_length_s) + " long (times count from the first row, " +
-                                seconds_text(first_t_s) + "), got " + seconds_text(t_s));
+                            "a trace at most " + seconds_text(limits.max_length_s) +
+                                " long (times count from the first row, " + seconds_text(first_t_s) + "), got " +
+                                seconds_text(t_s));
     out.push_back({t_s, v[1], v[2], v[3], v[3] >= contact_force_N});
   }
   if (!header) throw InputError(file, "line 1", "the header 't_s,x_mm,y_mm,force_N'");

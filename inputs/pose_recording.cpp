@@ -41,7 +41,8 @@ std::vector<RecordedPose> load_pose_recording(const std::filesystem::path& path,
     std::stringstream ss(line);
     std::string cell;
     while (std::getline(ss, cell, ',')) cells.push_back(cell);
-    if (cells.size() != 9) throw InputError(file, where, "9 values (" + std::string(kHeader) + "), got " + std::to_string(cells.size()));
+    if (cells.size() != 9)
+      throw InputError(file, where, "9 values (" + std::string(kHeader) + "), got " + std::to_string(cells.size()));
     double v[9] = {};
     for (int i = 0; i < 9; ++i) {
       if (i == 1) continue;
@@ -51,9 +52,11 @@ std::vector<RecordedPose> load_pose_recording(const std::filesystem::path& path,
     RecordedPose p;
     p.tool = cells[1];
     if (p.tool.empty() || p.tool.size() > 20)
-      throw InputError(file, where + ", tool", "an OpenIGTLink device name of 1 to 20 characters, got '" + p.tool + "'");
+      throw InputError(file, where + ", tool",
+                       "an OpenIGTLink device name of 1 to 20 characters, got '" + p.tool + "'");
     for (unsigned char c : p.tool)
-      if (c < 0x21 || c > 0x7e) throw InputError(file, where + ", tool", "printable ASCII without spaces, got '" + p.tool + "'");
+      if (c < 0x21 || c > 0x7e)
+        throw InputError(file, where + ", tool", "printable ASCII without spaces, got '" + p.tool + "'");
     if (out.empty()) first_t = v[0];
     p.t_s = v[0] - first_t;
     if (!out.empty() && p.t_s < out.back().t_s)

@@ -28,7 +28,8 @@ struct PoseRecordingLimits {
 };
 
 // Throws InputError naming the file and line. Times are shifted so the first row is at 0 s.
-std::vector<RecordedPose> load_pose_recording(const std::filesystem::path& path, const PoseRecordingLimits& limits = {});
+std::vector<RecordedPose> load_pose_recording(const std::filesystem::path& path,
+                                              const PoseRecordingLimits& limits = {});
 // The distinct tool names in order of first appearance.
 std::vector<std::string> recorded_tools(const std::vector<RecordedPose>& poses);
 

@@ -10,10 +10,12 @@ enum SeenBit : unsigned { kSeenX = 1, kSeenY = 2, kSeenPressure = 4, kSeenTouch 
 
 bool is_tool_key(int code) noexcept {
   switch (code) {
-    case BTN_TOOL_PEN: case BTN_TOOL_RUBBER: case BTN_TOOL_BRUSH: case BTN_TOOL_PENCIL: case BTN_TOOL_AIRBRUSH:
-      return true;
-    default:
-      return false;
+    case BTN_TOOL_PEN:
+    case BTN_TOOL_RUBBER:
+    case BTN_TOOL_BRUSH:
+    case BTN_TOOL_PENCIL:
+    case BTN_TOOL_AIRBRUSH: return true;
+    default: return false;
   }
 }
 }  // namespace
@@ -58,9 +60,18 @@ bool TabletDecoder::feed(const input_event& ev) noexcept {
   }
   if (ev.type == EV_ABS) {
     switch (ev.code) {
-      case ABS_X: state_.x = ev.value; seen_since_drop_ |= kSeenX; break;
-      case ABS_Y: state_.y = ev.value; seen_since_drop_ |= kSeenY; break;
-      case ABS_PRESSURE: state_.pressure = ev.value; seen_since_drop_ |= kSeenPressure; break;
+      case ABS_X:
+        state_.x = ev.value;
+        seen_since_drop_ |= kSeenX;
+        break;
+      case ABS_Y:
+        state_.y = ev.value;
+        seen_since_drop_ |= kSeenY;
+        break;
+      case ABS_PRESSURE:
+        state_.pressure = ev.value;
+        seen_since_drop_ |= kSeenPressure;
+        break;
       default: break;  // tilt, distance, misc: not used
     }
   } else if (ev.type == EV_KEY) {
@@ -103,8 +114,8 @@ void TabletDecoder::close_frame(double t_s) noexcept {
   f.in_proximity = f.synced && (state_.tool || !tool_keys_seen_);
   const bool pressed = axes_.has_touch_key ? state_.touch : state_.pressure > axes_.pressure_min;
   f.in_contact = f.in_proximity && pressed;
-  const double normalised = std::clamp(double(state_.pressure - axes_.pressure_min) /
-                                           double(axes_.pressure_max - axes_.pressure_min), 0.0, 1.0);
+  const double normalised = std::clamp(
+      double(state_.pressure - axes_.pressure_min) / double(axes_.pressure_max - axes_.pressure_min), 0.0, 1.0);
   f.force_N = f.in_contact ? config_.pressure.force_N(normalised) : 0.0;
   frame_ = f;
 }

@@ -44,7 +44,7 @@ struct PenFrame {
   double force_N = 0;
   bool in_proximity = false;
   bool in_contact = false;
-  bool synced = true;         // false while the state is unknown after SYN_DROPPED
+  bool synced = true;  // false while the state is unknown after SYN_DROPPED
 };
 
 class TabletDecoder {
@@ -67,10 +67,10 @@ class TabletDecoder {
   TabletConfig config_;
   double x_units_per_mm_, y_units_per_mm_;
   PenState state_;
-  bool tool_keys_seen_ = false;  // the device reports tool keys at all
-  bool dropping_ = false;        // discarding until SYN_REPORT
-  bool unknown_ = false;         // after a drop, until the state is known again
-  unsigned seen_since_drop_ = 0; // bits: x, y, pressure, touch, tool
+  bool tool_keys_seen_ = false;   // the device reports tool keys at all
+  bool dropping_ = false;         // discarding until SYN_REPORT
+  bool unknown_ = false;          // after a drop, until the state is known again
+  unsigned seen_since_drop_ = 0;  // bits: x, y, pressure, touch, tool
   PenFrame frame_;
 };
 

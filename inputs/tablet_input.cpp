@@ -20,8 +20,11 @@ constexpr int kHeartbeatMs = 10;
 }  // namespace
 
 TabletInput::TabletInput(std::unique_ptr<PenEventSource> source, const TabletConfig& config)
-    : source_(std::move(source)), decoder_(source_->axes(), config), description_(source_->describe()),
-      duration_s_(source_->duration_s()), reader_fifo_priority_(config.reader_fifo_priority) {
+    : source_(std::move(source)),
+      decoder_(source_->axes(), config),
+      description_(source_->describe()),
+      duration_s_(source_->duration_s()),
+      reader_fifo_priority_(config.reader_fifo_priority) {
   Published first;
   first.frame = decoder_.frame();
   first.heartbeat_ns = mono_ns();
@@ -100,12 +103,16 @@ TouchSample TabletInput::latest(double t_s) noexcept {
 std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const TabletConfig& config,
                                                const PenRecordingLimits& recording_limits) {
   std::string path = config.device;
-  if (spec.rfind("tablet:", 0) == 0) path = spec.substr(7);
-  else if (spec != "tablet") throw InputError("input", spec, "tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
+  if (spec.rfind("tablet:", 0) == 0)
+    path = spec.substr(7);
+  else if (spec != "tablet")
+    throw InputError("input", spec, "tablet, tablet:/dev/input/eventN or tablet:FILE.evemu");
   std::unique_ptr<PenEventSource> source;
-  struct stat st{};
-  if (path != "auto" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) source = std::make_unique<EvemuPenSource>(path, recording_limits);
-  else source = std::make_unique<EvdevPenSource>(path, config.grab);
+  struct stat st {};
+  if (path != "auto" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode))
+    source = std::make_unique<EvemuPenSource>(path, recording_limits);
+  else
+    source = std::make_unique<EvdevPenSource>(path, config.grab);
   try {
     return std::make_unique<TabletInput>(std::move(source), config);
   } catch (const std::invalid_argument& e) {

@@ -50,8 +50,9 @@ EvdevPenSource::EvdevPenSource(const std::string& path, bool grab) {
     const int fd = ::open(p.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
       if (path != "auto")
-        throw InputError("input", "tablet:" + path, std::string("a readable event device (") + std::strerror(errno) +
-                                                          (errno == EACCES ? "; join the 'input' group or add a udev rule" : "") + ")");
+        throw InputError("input", "tablet:" + path,
+                         std::string("a readable event device (") + std::strerror(errno) +
+                             (errno == EACCES ? "; join the 'input' group or add a udev rule" : "") + ")");
       if (errno == EACCES) refused += " " + p;
       continue;
     }
@@ -69,9 +70,10 @@ EvdevPenSource::EvdevPenSource(const std::string& path, bool grab) {
     break;
   }
   if (!dev_)
-    throw InputError("input", "tablet", "a pen tablet under /dev/input (none of " + std::to_string(candidates.size()) +
-                                              " event devices has ABS_X, ABS_Y, ABS_PRESSURE and a pen tool" +
-                                              (refused.empty() ? std::string() : "; no permission to read" + refused) + ")");
+    throw InputError("input", "tablet",
+                     "a pen tablet under /dev/input (none of " + std::to_string(candidates.size()) +
+                         " event devices has ABS_X, ABS_Y, ABS_PRESSURE and a pen tool" +
+                         (refused.empty() ? std::string() : "; no permission to read" + refused) + ")");
   name_ = libevdev_get_name(dev_) ? libevdev_get_name(dev_) : "unnamed";
   // Event times on the loop's clock, so ages compare directly.
   libevdev_set_clock_id(dev_, CLOCK_MONOTONIC);
@@ -111,8 +113,7 @@ PenEventSource::Status EvdevPenSource::next(std::vector<input_event>& out, int t
       // Kernel buffer overflow: hand the decoder the SYN_DROPPED, let libevdev resynchronise
       // its view of the device, and pass on the state it ends with.
       out.push_back(ev);
-      while ((rc = libevdev_next_event(dev_, LIBEVDEV_READ_FLAG_SYNC, &ev)) == LIBEVDEV_READ_STATUS_SYNC) {
-      }
+      while ((rc = libevdev_next_event(dev_, LIBEVDEV_READ_FLAG_SYNC, &ev)) == LIBEVDEV_READ_STATUS_SYNC) {}
       resynced.x = libevdev_get_event_value(dev_, EV_ABS, ABS_X);
       resynced.y = libevdev_get_event_value(dev_, EV_ABS, ABS_Y);
       resynced.pressure = libevdev_get_event_value(dev_, EV_ABS, ABS_PRESSURE);
@@ -159,7 +160,8 @@ std::string description_problem(const std::string& line, int format_minor, char&
   const auto rank = order.find(tag);
   const auto last = last_tag ? order.find(last_tag) : std::string::npos;
   if (last_tag == 0 && tag != 'N') return "the device name first ('N: <name>')";
-  if (last_tag == 'N' && tag != 'I') return "the device id after the name ('I: <bus> <vendor> <product> <version>' in hex)";
+  if (last_tag == 'N' && tag != 'I')
+    return "the device id after the name ('I: <bus> <vendor> <product> <version>' in hex)";
   if (last_tag != 0 && last_tag != 'N' && (tag == 'N' || tag == 'I' || rank < last))
     return "description lines in evemu-record's order (N:, I:, P:, B:, A:, L:, S:)";
   last_tag = tag;
@@ -297,22 +299,25 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
   // libevemu reads the description from memory. Its parser reports problems on stderr by
   // itself; given only lines that look like a description, what it can still refuse is
   // reported below as palprig's one line.
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> fp(fmemopen(description.data(), description.size(), "r"), std::fclose);
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> fp(fmemopen(description.data(), description.size(), "r"),
+                                                     std::fclose);
   std::unique_ptr<evemu_device, void (*)(evemu_device*)> dev(evemu_new(nullptr), evemu_delete);
   if (!fp || !dev || description.find("N:") == std::string::npos || evemu_read(dev.get(), fp.get()) <= 0)
-    throw InputError(file, "device description", "an evemu recording (N:, I:, P:, B:, A: lines as evemu-record writes)");
+    throw InputError(file, "device description",
+                     "an evemu recording (N:, I:, P:, B:, A: lines as evemu-record writes)");
   if (!evemu_has_event(dev.get(), EV_ABS, ABS_X) || !evemu_has_event(dev.get(), EV_ABS, ABS_Y))
     throw InputError(file, "device description", "a pen tablet (ABS_X and ABS_Y axes)");
   // Without a pressure axis every touch would read as full force: refused, not guessed. An
   // axis whose bit is set but that has no 'A:' line gets the range 0..1 from libevemu, so any
   // pressure reads as the top of the curve: its range line is required, as X's and Y's are.
-  for (const auto& [axis, name] : {std::pair{ABS_X, "ABS_X"}, std::pair{ABS_Y, "ABS_Y"}, std::pair{ABS_PRESSURE, "ABS_PRESSURE"}}) {
+  for (const auto& [axis, name] :
+       {std::pair{ABS_X, "ABS_X"}, std::pair{ABS_Y, "ABS_Y"}, std::pair{ABS_PRESSURE, "ABS_PRESSURE"}}) {
     if (evemu_has_event(dev.get(), EV_ABS, axis) && !ranged_axes.count(static_cast<unsigned long>(axis))) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "%02x", axis);
       throw InputError(file, "device description",
-                       std::string("a range line for every pen axis ('A: ") + hex + " <min> <max> <fuzz> <flat> <resolution>'), got none for " +
-                           name);
+                       std::string("a range line for every pen axis ('A: ") + hex +
+                           " <min> <max> <fuzz> <flat> <resolution>'), got none for " + name);
     }
   }
   if (!evemu_has_event(dev.get(), EV_ABS, ABS_PRESSURE) ||
@@ -321,15 +326,19 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
                      "a pen tablet with a pressure axis (ABS_PRESSURE with a range, an 'A: 18 min max ...' line)");
   // A pen's tool key (in proximity) and BTN_TOUCH (down) are what tell hovering from pressing:
   // a recording without them cannot say when the pen touches.
-  const bool tool_key = evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_PEN) || evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_RUBBER) ||
-                        evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_BRUSH) || evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_PENCIL) ||
-                        evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_AIRBRUSH);
+  const bool tool_key =
+      evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_PEN) || evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_RUBBER) ||
+      evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_BRUSH) || evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_PENCIL) ||
+      evemu_has_event(dev.get(), EV_KEY, BTN_TOOL_AIRBRUSH);
   const bool touch_key = evemu_has_event(dev.get(), EV_KEY, BTN_TOUCH);
   if (!tool_key || !touch_key)
-    throw InputError(file, "device description",
-                     "a pen tablet with a pen tool key (BTN_TOOL_PEN, RUBBER, BRUSH, PENCIL or AIRBRUSH) and BTN_TOUCH in its "
-                     "'B: 01' lines, got " +
-                         std::string(!tool_key && !touch_key ? "neither" : !tool_key ? "no tool key" : "no BTN_TOUCH"));
+    throw InputError(
+        file, "device description",
+        "a pen tablet with a pen tool key (BTN_TOOL_PEN, RUBBER, BRUSH, PENCIL or AIRBRUSH) and BTN_TOUCH in its "
+        "'B: 01' lines, got " +
+            std::string(!tool_key && !touch_key ? "neither"
+                        : !tool_key             ? "no tool key"
+                                                : "no BTN_TOUCH"));
   PenRecording r;
   r.device_name = evemu_get_name(dev.get()) ? evemu_get_name(dev.get()) : "";
   r.axes.x_min = evemu_get_abs_minimum(dev.get(), ABS_X);
@@ -346,14 +355,15 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
     const std::string where = "line " + std::to_string(number);
     input_event ev;
     if (!parse_event_line(text, ev))
-      throw InputError(file, where, "an event line 'E: <sec>.<usec> <type hex> <code hex> <value>', got '" + text + "'");
+      throw InputError(file, where,
+                       "an event line 'E: <sec>.<usec> <type hex> <code hex> <value>', got '" + text + "'");
     if (!r.events.empty()) {
       const double gap_s = event_time_s(ev) - event_time_s(r.events.back());
       if (gap_s < 0) throw InputError(file, where, "event times that never go back");
       if (gap_s > limits.max_gap_s)
-        throw PenRecordingBoundError(file, where,
-                                     "events at most " + seconds_text(limits.max_gap_s) + " apart, got a gap of " +
-                                         seconds_text(gap_s));
+        throw PenRecordingBoundError(
+            file, where,
+            "events at most " + seconds_text(limits.max_gap_s) + " apart, got a gap of " + seconds_text(gap_s));
       const double length_s = event_time_s(ev) - event_time_s(r.events.front());
       if (length_s > limits.max_length_s)
         throw PenRecordingBoundError(file, where,

@@ -26,7 +26,8 @@ double segment_distance(const Point2_mm& p, const Point2_mm& a, const Point2_mm&
 Artery::Artery(ArterySpec spec, double pad_radius_mm) : spec_(std::move(spec)) {
   const std::string who = "artery '" + spec_.name + "': ";
   need(spec_.path.size() >= 2, who + "its path needs at least 2 points");
-  for (const Point2_mm& p : spec_.path) need(std::isfinite(p.x_mm) && std::isfinite(p.y_mm), who + "path points must be finite");
+  for (const Point2_mm& p : spec_.path)
+    need(std::isfinite(p.x_mm) && std::isfinite(p.y_mm), who + "path points must be finite");
   need(std::isfinite(spec_.radius_mm) && spec_.radius_mm > 0, who + "radius must be > 0");
   need(std::isfinite(spec_.depth_mm) && spec_.depth_mm >= spec_.radius_mm,
        who + "depth of the centreline must be at least the radius (the artery lies under the skin)");
@@ -42,8 +43,8 @@ Artery::Artery(ArterySpec spec, double pad_radius_mm) : spec_(std::move(spec)) {
   need(std::isfinite(spec_.release_margin_mm) && spec_.release_margin_mm >= 0, who + "release margin must be >= 0");
 
   const double depth = spec_.depth_mm;
-  const double delta = spec_.activation_margin_mm >= 0 ? spec_.activation_margin_mm
-                                                       : std::hypot(depth, pad_radius_mm) - depth;
+  const double delta =
+      spec_.activation_margin_mm >= 0 ? spec_.activation_margin_mm : std::hypot(depth, pad_radius_mm) - depth;
   need(std::isfinite(delta), who + "activation margin must be finite");
   on_mm_ = depth + delta;  // R + h + delta
   off_mm_ = on_mm_ + spec_.release_margin_mm;
@@ -73,7 +74,8 @@ Artery::Artery(ArterySpec spec, double pad_radius_mm) : spec_(std::move(spec)) {
 
   // Broad phase box: the path's box grown by the farthest lateral reach of a source or of the
   // release distance.
-  const double reach = std::max(std::sqrt(range_mm_ * range_mm_ - depth * depth), std::sqrt(off_mm_ * off_mm_ - depth * depth));
+  const double reach =
+      std::max(std::sqrt(range_mm_ * range_mm_ - depth * depth), std::sqrt(off_mm_ * off_mm_ - depth * depth));
   region_x0_ = region_x1_ = spec_.path[0].x_mm;
   region_y0_ = region_y1_ = spec_.path[0].y_mm;
   for (const Point2_mm& p : spec_.path) {
@@ -90,7 +92,8 @@ Artery::Artery(ArterySpec spec, double pad_radius_mm) : spec_(std::move(spec)) {
 
 double Artery::centreline_distance_mm(const Point2_mm& p) const noexcept {
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 1; i < spec_.path.size(); ++i) best = std::min(best, segment_distance(p, spec_.path[i - 1], spec_.path[i]));
+  for (std::size_t i = 1; i < spec_.path.size(); ++i)
+    best = std::min(best, segment_distance(p, spec_.path[i - 1], spec_.path[i]));
   return best;
 }
 
@@ -131,7 +134,8 @@ int PulseField::find(const std::string& name) const noexcept {
 }
 
 bool PulseField::request_rate_bpm(std::size_t artery, double bpm) const noexcept {
-  if (artery >= arteries_.size() || !std::isfinite(bpm) || bpm < kMinPulseRateBpm || bpm > kMaxPulseRateBpm) return false;
+  if (artery >= arteries_.size() || !std::isfinite(bpm) || bpm < kMinPulseRateBpm || bpm > kMaxPulseRateBpm)
+    return false;
   requested_bpm_[artery].store(bpm, std::memory_order_relaxed);
   return true;
 }
@@ -189,8 +193,8 @@ PulseFelt PulseField::felt(const FingerContact& finger, const PulseClocks& clock
     ++out.arteries_on;
     const ForceWindow& window =
         !a.spec().own_force_window && measured_window ? *measured_window : a.spec().force_window;
-    const double amp = requested_amplitude_kPa_[i].load(std::memory_order_relaxed) * a.distance_factor(at) *
-                       window.factor(force_N);
+    const double amp =
+        requested_amplitude_kPa_[i].load(std::memory_order_relaxed) * a.distance_factor(at) * window.factor(force_N);
     if (amp <= 0) continue;
     const PulseClock& c = clocks.clock[i];
     out.now_kPa += amp * a.spec().waveform.value(c.phase(t_s));

@@ -60,7 +60,7 @@ struct ArterySpec {
   double range_mm = 0.0;        // r of each source; 0: depth + activation + release margins
   double amplitude_kPa = 6.0;   // pulse pressure straight over the artery at the force window's top
   double rate_bpm = 72.0;
-  double phase_offset = 0.0;    // cycles: the pulse wave arrives later in distal arteries
+  double phase_offset = 0.0;  // cycles: the pulse wave arrives later in distal arteries
   PulseWaveform waveform;
   ForceWindow force_window;
   // False when the scene left the window out: a window measured by calibration (003's

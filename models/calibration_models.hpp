@@ -28,11 +28,11 @@ struct MeasuredForceWindow {
 struct RegulatorDynamics {
   double dead_time_s = 0;
   double time_constant_s = 0;
-  double r_squared = 0;           // of the monitor over the step and chirp samples
+  double r_squared = 0;  // of the monitor over the step and chirp samples
   double rms_residual_kPa = 0;
   double max_residual_kPa = 0;
   std::size_t samples = 0;
-  double rate_hz = 0;             // the rate the samples were taken at
+  double rate_hz = 0;  // the rate the samples were taken at
 };
 
 // Below this R^2 a channel's identified dynamics are not trusted: its lag compensation stays off
@@ -44,7 +44,7 @@ inline constexpr double kLowestMinDynamicsRSquared = 0.9;
 // target with the identified dynamics (off until identified and switched on), and its bounds.
 struct LagCompensationChoice {
   bool enabled = false;
-  double max_lead_kPa = 10.0;       // the command at most this far above the target
+  double max_lead_kPa = 10.0;  // the command at most this far above the target
   double min_r_squared = kDefaultMinDynamicsRSquared;
   bool anticipate_edges = true;
 };
@@ -54,8 +54,8 @@ struct CalibrationModels {
   std::string rig_id = "*";  // "*" fits any rig
   StressModel stress;
   std::array<ActuatorModel, kFingerCount> actuators{};
-  std::array<PrandtlIshlinskii, kFingerCount> hysteresis{};  // forward models; identity when absent
-  std::optional<MeasuredForceWindow> force_window;            // absent until calibrated
+  std::array<PrandtlIshlinskii, kFingerCount> hysteresis{};               // forward models; identity when absent
+  std::optional<MeasuredForceWindow> force_window;                        // absent until calibrated
   std::array<std::optional<RegulatorDynamics>, kFingerCount> dynamics{};  // absent until identified
   LagCompensationChoice lag_compensation;
 };

@@ -134,7 +134,9 @@ CheckedOutputFile::~CheckedOutputFile() {
 
 std::ostream& CheckedOutputFile::stream() noexcept { return *stream_; }
 
-void CheckedOutputFile::write(std::string_view bytes) { stream_->write(bytes.data(), static_cast<std::streamsize>(bytes.size())); }
+void CheckedOutputFile::write(std::string_view bytes) {
+  stream_->write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
 
 void CheckedOutputFile::commit() { commit(nullptr); }
 

@@ -15,7 +15,7 @@ struct Point2_mm {
 inline constexpr int kFingerCount = 3;
 
 struct FingerLayout {
-  double spacing_mm = 16.0;     // centre-to-centre along each leg; a fingertip is ~16 mm wide
+  double spacing_mm = 16.0;  // centre-to-centre along each leg; a fingertip is ~16 mm wide
   double orientation_deg = 0.0;
 
   std::array<Point2_mm, kFingerCount> centres(double pen_x_mm, double pen_y_mm) const noexcept;

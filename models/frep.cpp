@@ -265,12 +265,9 @@ double FrepShape::cost_of(const NodeData& n) const noexcept {
   switch (n.kind) {
     case Kind::sphere:
     case Kind::ellipsoid:
-    case Kind::tube:
-      return kVisit;
-    case Kind::superellipsoid:
-      return kPowCalls;
-    case Kind::blobs:
-      return kVisit + kExpCall * n.count;
+    case Kind::tube: return kVisit;
+    case Kind::superellipsoid: return kPowCalls;
+    case Kind::blobs: return kVisit + kExpCall * n.count;
     case Kind::unite:
       if (n.grid >= 0) {  // value() visits the parts of one cell: the fullest one bounds it
         const PartGrid& g = grids_[static_cast<std::size_t>(n.grid)];
@@ -300,11 +297,9 @@ double FrepShape::eval(Node index, const Point3_mm& p) const noexcept {
   if (!n.box.contains(p)) return kOutside;
   const double dx = p.x_mm - n.a.x_mm, dy = p.y_mm - n.a.y_mm, dz = p.z_mm - n.a.z_mm;
   switch (n.kind) {
-    case Kind::sphere:
-      return 1.0 - (dx * dx + dy * dy + dz * dz) / (n.p0 * n.p0);
+    case Kind::sphere: return 1.0 - (dx * dx + dy * dy + dz * dz) / (n.p0 * n.p0);
     case Kind::ellipsoid: {
-      const double u = (n.p1 * dx + n.p2 * dy) / n.b.x_mm, v = (-n.p2 * dx + n.p1 * dy) / n.b.y_mm,
-                   w = dz / n.b.z_mm;
+      const double u = (n.p1 * dx + n.p2 * dy) / n.b.x_mm, v = (-n.p2 * dx + n.p1 * dy) / n.b.y_mm, w = dz / n.b.z_mm;
       return 1.0 - (u * u + v * v + w * w);
     }
     case Kind::superellipsoid: {
@@ -337,8 +332,8 @@ double FrepShape::eval(Node index, const Point3_mm& p) const noexcept {
           const double c = std::floor((v - origin) * inv);
           return static_cast<std::int32_t>(std::clamp(c, 0.0, double(cells - 1)));
         };
-        const std::size_t k =
-            static_cast<std::size_t>(cell(p.y_mm, g.y0, g.inv_cell_y, g.ny)) * g.nx + cell(p.x_mm, g.x0, g.inv_cell_x, g.nx);
+        const std::size_t k = static_cast<std::size_t>(cell(p.y_mm, g.y0, g.inv_cell_y, g.ny)) * g.nx +
+                              cell(p.x_mm, g.x0, g.inv_cell_x, g.nx);
         for (std::int32_t i = g.cell_start[k]; i < g.cell_start[k + 1]; ++i)
           v = std::max(v, eval(g.parts[static_cast<std::size_t>(i)], p));
         return v;

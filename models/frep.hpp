@@ -89,7 +89,7 @@ class FrepShape {
     Box3_mm box;
     // Geometry: centre / segment start (a), radii or segment end (b), extra numbers.
     Point3_mm a, b;
-    double p0 = 0, p1 = 0, p2 = 0;  // meaning per kind (radius, cos yaw, sin yaw, exponent, threshold)
+    double p0 = 0, p1 = 0, p2 = 0;      // meaning per kind (radius, cos yaw, sin yaw, exponent, threshold)
     std::int32_t first = 0, count = 0;  // children (into children_) or blob terms (into terms_)
     std::int32_t grid = -1;             // unions of many parts: their grid in grids_
     double cost = 0;                    // worst_case_cost() of this node, set when it is added

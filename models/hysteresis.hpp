@@ -14,8 +14,8 @@ namespace palprig {
 inline constexpr std::size_t kMaxPlayOperators = 16;
 
 struct PrandtlIshlinskii {
-  double linear_weight = 1.0;                      // w0
-  std::size_t operator_count = 0;                  // n <= kMaxPlayOperators
+  double linear_weight = 1.0;                              // w0
+  std::size_t operator_count = 0;                          // n <= kMaxPlayOperators
   std::array<double, kMaxPlayOperators> thresholds_kPa{};  // r_1 < r_2 < ... (strictly increasing, > 0)
   std::array<double, kMaxPlayOperators> weights{};         // w_i
   std::array<double, kMaxPlayOperators> state_kPa{};       // play outputs

@@ -28,8 +28,10 @@ double overshoot_walked(const LagStep& s, double y, double u, double want, doubl
     y = s.advance(y, u);
     worst = std::max(worst, sign * (y - want));
     if (u == want) break;
-    if (s.max_du > 0) u = u > want ? std::max(u - s.max_du, want) : std::min(u + s.max_du, want);
-    else u = want;
+    if (s.max_du > 0)
+      u = u > want ? std::max(u - s.max_du, want) : std::min(u + s.max_du, want);
+    else
+      u = want;
   }
   return worst;
 }
@@ -45,7 +47,7 @@ double overshoot(const LagStep& s, double y, double u, double want, double sign)
   const bool linear = s.alpha * std::max(std::abs(U0 - Y0), std::abs(U0)) <= s.max_dy;
   if (!linear || !(U0 > Y0) || !(U0 > 0) || !(a > 0) || !(a < 1)) return overshoot_walked(s, y, u, want, sign);
   if (!(D > 0)) return std::max(0.0, a * Y0 + s.alpha * U0);  // the command is back on want next tick
-  const double K = std::ceil(U0 / D);  // ticks of the ramp down
+  const double K = std::ceil(U0 / D);                         // ticks of the ramp down
   const double c = D / s.alpha;
   const double kappa = std::log(D / ((U0 - Y0) * s.alpha + D)) / std::log(a);
   const double k = std::clamp(std::ceil(kappa), 1.0, K);
@@ -134,8 +136,10 @@ double LagCompensator::command(const RegulatorLag& lag, double want_ahead_kPa, d
       }
       for (int i = 0; i < kBisections && std::abs(strong - weak) > 1e-3 * (std::abs(want - y) + 1e-3); ++i) {
         const double mid = 0.5 * (weak + strong);
-        if (overshoot(s, y, mid, want, sign) <= tolerance) weak = mid;
-        else strong = mid;
+        if (overshoot(s, y, mid, want, sign) <= tolerance)
+          weak = mid;
+        else
+          strong = mid;
       }
       u = weak;
     }

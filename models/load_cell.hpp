@@ -14,8 +14,8 @@
 namespace palprig {
 
 struct LoadCellCalibration {
-  double tare_V = 0.0;    // reading with no load
-  double N_per_V = 1.0;   // gain: newtons per volt above the tare
+  double tare_V = 0.0;   // reading with no load
+  double N_per_V = 1.0;  // gain: newtons per volt above the tare
   double force_N(double volts) const noexcept { return (volts - tare_V) * N_per_V; }
 };
 
@@ -24,7 +24,7 @@ struct SimulatedLoadCellParams {
   double tare_V = 0.1;              // the sensor's true offset
   double N_per_V = 2.0;             // its true gain
   double noise_sd_V = 0.002;
-  double max_V = 10.0;              // the input's range: readings clip here
+  double max_V = 10.0;  // the input's range: readings clip here
   std::uint64_t seed = 1;
 };
 

@@ -32,8 +32,10 @@ inline std::string printable_excerpt(std::string_view text, std::size_t max_char
       case '\r': piece = "\\r"; break;
       case '\t': piece = "\\t"; break;
       default:
-        if (c < 0x20 || c == 0x7f) piece = {'\\', 'x', kHex[c >> 4], kHex[c & 15]};
-        else piece = std::string(1, static_cast<char>(c));
+        if (c < 0x20 || c == 0x7f)
+          piece = {'\\', 'x', kHex[c >> 4], kHex[c & 15]};
+        else
+          piece = std::string(1, static_cast<char>(c));
     }
     // Do not stop inside a UTF-8 sequence: continuation bytes (10xxxxxx) follow their lead.
     const bool continuation = (c & 0xC0) == 0x80;
@@ -61,7 +63,9 @@ class InputError : public std::runtime_error {
   };
   explicit InputError(Parts p)
       : std::runtime_error(p.file + ": " + p.where + ": " + p.expected),
-        file_(std::move(p.file)), where_(std::move(p.where)), expected_(std::move(p.expected)) {}
+        file_(std::move(p.file)),
+        where_(std::move(p.where)),
+        expected_(std::move(p.expected)) {}
 
   std::string file_, where_, expected_;
 };

@@ -15,8 +15,10 @@ void PenPredictor::observe(const TouchSample& s, const PenPrediction& how) noexc
     const TouchSample& newest = at(0);
     if (s.t_s <= newest.t_s) {
       // A held reading (same time) or a clock that went back: keep the history, refresh nothing.
-      if (s.t_s < newest.t_s) clear();
-      else return;
+      if (s.t_s < newest.t_s)
+        clear();
+      else
+        return;
     }
   }
   head_ = (head_ + 1) % kCapacity;

@@ -50,7 +50,10 @@ double PneumaticPlant::step(double command_kPa, double dt_s) noexcept {
   const std::size_t cap = delay_.size();
   delay_[(head_ + count_) % cap] = {time_s_, play_kPa_};
   time_s_ += dt_s;
-  if (count_ < cap) ++count_; else head_ = (head_ + 1) % cap;
+  if (count_ < cap)
+    ++count_;
+  else
+    head_ = (head_ + 1) % cap;
   const double due = time_s_ - params_.dead_time_s + 1e-12;
   while (count_ > 1 && delay_[(head_ + 1) % cap].t_s <= due) {
     head_ = (head_ + 1) % cap;

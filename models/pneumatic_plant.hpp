@@ -18,8 +18,8 @@ struct PlantParams {
   double slew_kPa_per_s = 2000.0;
   double min_kPa = 0.0;
   double max_kPa = 100.0;
-  double hysteresis_kPa = 2.0;   // half-width of the play operator (inflation vs deflation gap / 2)
-  double noise_sd_kPa = 0.1;     // monitor noise, standard deviation
+  double hysteresis_kPa = 2.0;  // half-width of the play operator (inflation vs deflation gap / 2)
+  double noise_sd_kPa = 0.1;    // monitor noise, standard deviation
   std::uint64_t seed = 1;
 };
 
@@ -42,7 +42,9 @@ class PneumaticPlant {
   double initial_kPa_ = 0.0;
   double time_s_ = 0.0;
   // Dead-time delay line: (time, value) pairs in a fixed ring, allocated once.
-  struct Stamped { double t_s, value_kPa; };
+  struct Stamped {
+    double t_s, value_kPa;
+  };
   std::vector<Stamped> delay_;
   std::size_t head_ = 0, count_ = 0;
   std::mt19937_64 rng_;

@@ -14,7 +14,8 @@ Eigen::Matrix3Xd columns(const std::vector<Vec3_mm>& points) {
   Eigen::Matrix3Xd m(3, static_cast<Eigen::Index>(points.size()));
   for (std::size_t i = 0; i < points.size(); ++i)
     for (int r = 0; r < 3; ++r) {
-      if (!std::isfinite(points[i][r])) throw std::invalid_argument("fiducial " + std::to_string(i + 1) + " has a non-finite coordinate");
+      if (!std::isfinite(points[i][r]))
+        throw std::invalid_argument("fiducial " + std::to_string(i + 1) + " has a non-finite coordinate");
       m(r, static_cast<Eigen::Index>(i)) = points[i][r];
     }
   return m;
@@ -40,7 +41,8 @@ PointRegistration register_points(const std::vector<Vec3_mm>& from, const std::v
   if (second_spread_mm(b) < kMinSpread_mm)
     throw std::invalid_argument("fiducials that are not all on one line (their spread off the line is under 1 mm)");
   if (second_spread_mm(a) < kMinSpread_mm)
-    throw std::invalid_argument("touched points that are not all on one line (their spread off the line is under 1 mm)");
+    throw std::invalid_argument(
+        "touched points that are not all on one line (their spread off the line is under 1 mm)");
   const Eigen::Matrix4d t = Eigen::umeyama(a, b, false);
   PointRegistration out;
   for (int r = 0; r < 3; ++r) {

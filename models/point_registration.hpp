@@ -12,9 +12,9 @@
 namespace palprig {
 
 struct PointRegistration {
-  RigidTransform from_to;              // maps `from` points onto `to` points
-  double fre_mm = 0;                   // RMS of residual_mm
-  std::vector<double> residual_mm;     // per fiducial: |to - from_to(from)|
+  RigidTransform from_to;           // maps `from` points onto `to` points
+  double fre_mm = 0;                // RMS of residual_mm
+  std::vector<double> residual_mm;  // per fiducial: |to - from_to(from)|
 };
 
 // Throws std::invalid_argument (with what is wrong) for fewer than 3 pairs, different counts,

@@ -34,8 +34,10 @@ PulseWaveform PulseWaveform::table(const std::vector<double>& t_s, const std::ve
   need(!t_s.empty() && t_s.size() == value.size(), "waveform table is empty");
   need(t_s.size() >= 4, "waveform table needs at least 4 samples over one beat, got " + std::to_string(t_s.size()));
   for (std::size_t i = 0; i < t_s.size(); ++i) {
-    need(std::isfinite(t_s[i]) && std::isfinite(value[i]), "waveform table row " + std::to_string(i + 1) + " is not finite");
-    if (i > 0) need(t_s[i] > t_s[i - 1], "waveform table times must increase strictly (row " + std::to_string(i + 1) + ")");
+    need(std::isfinite(t_s[i]) && std::isfinite(value[i]),
+         "waveform table row " + std::to_string(i + 1) + " is not finite");
+    if (i > 0)
+      need(t_s[i] > t_s[i - 1], "waveform table times must increase strictly (row " + std::to_string(i + 1) + ")");
   }
   const auto [lo_it, hi_it] = std::minmax_element(value.begin(), value.end());
   const double lo = *lo_it, hi = *hi_it, range = hi - lo;
@@ -64,10 +66,8 @@ double PulseWaveform::value(double phase) const noexcept {
   if (!std::isfinite(phase)) return 0.0;
   const double f = phase - std::floor(phase);  // 0 <= f < 1
   switch (shape_) {
-    case WaveShape::rectangular:
-      return f < param_ ? 1.0 : 0.0;
-    case WaveShape::sawtooth:
-      return f < param_ ? f / param_ : (1.0 - f) / (1.0 - param_);
+    case WaveShape::rectangular: return f < param_ ? 1.0 : 0.0;
+    case WaveShape::sawtooth: return f < param_ ? f / param_ : (1.0 - f) / (1.0 - param_);
     case WaveShape::table: {
       const double x = f * kTableSize;
       const std::size_t i = std::min(static_cast<std::size_t>(x), kTableSize - 1);

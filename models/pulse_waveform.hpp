@@ -19,7 +19,7 @@
 
 namespace palprig {
 
-inline constexpr double kMinPulseRateBpm = 20.0;   // refused outside this range
+inline constexpr double kMinPulseRateBpm = 20.0;  // refused outside this range
 inline constexpr double kMaxPulseRateBpm = 250.0;
 
 enum class WaveShape : std::uint8_t { rectangular, sawtooth, table };

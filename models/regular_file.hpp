@@ -15,10 +15,10 @@ namespace palprig {
 inline constexpr std::uintmax_t kMiB = std::uintmax_t(1) << 20;
 
 // The bounds of the readers (docs/developing.md, "Hardening notes").
-inline constexpr std::uintmax_t kMaxJsonFileBytes = 16 * kMiB;       // rig, scene, calibration, protocol files
-inline constexpr std::uintmax_t kMaxMapFileBytes = 256 * kMiB;       // stiffness map CSV and PGM
-inline constexpr std::uintmax_t kMaxTraceFileBytes = 256 * kMiB;     // pen trace CSV (1 h at 1 kHz is ~150 MiB)
-inline constexpr std::uintmax_t kMaxTableFileBytes = 64 * kMiB;      // statistics and calibration CSV tables
+inline constexpr std::uintmax_t kMaxJsonFileBytes = 16 * kMiB;        // rig, scene, calibration, protocol files
+inline constexpr std::uintmax_t kMaxMapFileBytes = 256 * kMiB;        // stiffness map CSV and PGM
+inline constexpr std::uintmax_t kMaxTraceFileBytes = 256 * kMiB;      // pen trace CSV (1 h at 1 kHz is ~150 MiB)
+inline constexpr std::uintmax_t kMaxTableFileBytes = 64 * kMiB;       // statistics and calibration CSV tables
 inline constexpr std::uintmax_t kMaxRecordingFileBytes = 512 * kMiB;  // evemu recordings
 inline constexpr std::uintmax_t kMaxTelemetryFileBytes = std::uintmax_t(4) << 30;  // what the writer may write
 

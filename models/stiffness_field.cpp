@@ -81,9 +81,7 @@ double PressModel::contact_radius_mm(double force_N) const noexcept {
   return std::max(std::sqrt(finger_radius_mm * indentation_mm(force_N)), min_contact_radius_mm);
 }
 
-double PressModel::reach_mm(double force_N) const noexcept {
-  return kReachInContactRadii * contact_radius_mm(force_N);
-}
+double PressModel::reach_mm(double force_N) const noexcept { return kReachInContactRadii * contact_radius_mm(force_N); }
 
 StiffnessField::StiffnessField(TissueDefinition d) : def_(std::move(d)) {
   const BodyOutline& b = def_.body;
@@ -107,7 +105,8 @@ StiffnessField::StiffnessField(TissueDefinition d) : def_(std::move(d)) {
   double depth = 0;
   for (std::size_t i = 0; i < def_.layers.size(); ++i) {
     const TissueLayer& l = def_.layers[i];
-    need(positive(l.thickness_mm) && positive(l.stiffness_kPa), "layer '" + l.name + "' needs thickness and modulus > 0");
+    need(positive(l.thickness_mm) && positive(l.stiffness_kPa),
+         "layer '" + l.name + "' needs thickness and modulus > 0");
     need(std::isfinite(l.drag.f_stick_N) && l.drag.f_stick_N >= 0 && std::isfinite(l.drag.d_lat_max_mm) &&
              l.drag.d_lat_max_mm >= 0 && std::isfinite(l.drag.relax_s) && l.drag.relax_s >= 0,
          "layer '" + l.name + "' needs a drag with f_stick_N, d_lat_max_mm and relax_s >= 0");
@@ -214,8 +213,10 @@ TissueSample StiffnessField::sample(const Point2_mm& at, double force_N, double 
       if (level_at({q.x_mm, q.y_mm, above}, cand.data(), n_cand, shift).rigid) in = above;
       for (int it = 0; it < 8 && in - above > 0.05; ++it) {
         const double mid = 0.5 * (above + in);
-        if (level_at({q.x_mm, q.y_mm, mid}, cand.data(), n_cand, shift).rigid) in = mid;
-        else above = mid;
+        if (level_at({q.x_mm, q.y_mm, mid}, cand.data(), n_cand, shift).rigid)
+          in = mid;
+        else
+          above = mid;
       }
       const double u = std::max(in - sunk, 0.0) / a;
       pressed_on = std::max(pressed_on, lp.bearing * rigid_level * (1.0 - u * u * u / std::pow(1.0 + u * u, 1.5)));

@@ -87,10 +87,10 @@ struct FeltRange {
 };
 
 struct PressModel {
-  double finger_radius_mm = 8.0;           // half of paper 002's 16 mm fingertip
-  double reference_force_N = 2.0;          // the press of paper 002's FE study...
-  double reference_indentation_mm = 7.0;   // ...sinks 7 mm
-  double min_contact_radius_mm = 1.0;      // a barely touching finger still feels its contact patch
+  double finger_radius_mm = 8.0;          // half of paper 002's 16 mm fingertip
+  double reference_force_N = 2.0;         // the press of paper 002's FE study...
+  double reference_indentation_mm = 7.0;  // ...sinks 7 mm
+  double min_contact_radius_mm = 1.0;     // a barely touching finger still feels its contact patch
 
   double indentation_mm(double force_N) const noexcept;
   double contact_radius_mm(double force_N) const noexcept;

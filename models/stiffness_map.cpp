@@ -13,8 +13,12 @@ namespace palprig {
 
 StiffnessMap::StiffnessMap(std::size_t cols, std::size_t rows, double width_mm, double height_mm,
                            std::vector<float> values, OutsidePolicy outside)
-    : cols_(cols), rows_(rows), width_mm_(width_mm), height_mm_(height_mm),
-      values_(std::move(values)), outside_(outside) {
+    : cols_(cols),
+      rows_(rows),
+      width_mm_(width_mm),
+      height_mm_(height_mm),
+      values_(std::move(values)),
+      outside_(outside) {
   if (cols < 2 || rows < 2) throw std::invalid_argument("StiffnessMap: need at least 2x2 vertices");
   if (!(width_mm > 0) || !(height_mm > 0) || !std::isfinite(width_mm) || !std::isfinite(height_mm))
     throw std::invalid_argument("StiffnessMap: width_mm and height_mm must be positive");
@@ -73,8 +77,8 @@ std::string trim(const std::string& s) {
 
 }  // namespace
 
-StiffnessMap parse_stiffness_csv(std::istream& in, const std::string& source, double width_mm,
-                                 double height_mm, double value_scale) {
+StiffnessMap parse_stiffness_csv(std::istream& in, const std::string& source, double width_mm, double height_mm,
+                                 double value_scale) {
   check_size(source, width_mm, height_mm);
   if (value_scale < 0 || !std::isfinite(value_scale))
     throw InputError(source, "value_scale", "a positive scale (or 0 for values already in 0..1)");
@@ -109,7 +113,8 @@ StiffnessMap parse_stiffness_csv(std::istream& in, const std::string& source, do
     }
     if (!t.empty() && t.back() == ',')
       throw InputError(source, "line " + std::to_string(line_no), "no trailing comma (empty last value)");
-    if (rows == 0) cols = n;
+    if (rows == 0)
+      cols = n;
     else if (n != cols)
       throw InputError(source, "line " + std::to_string(line_no),
                        std::to_string(cols) + " values like the first row, got " + std::to_string(n));
@@ -169,8 +174,7 @@ std::size_t bytes_left(std::istream& in) {
 
 }  // namespace
 
-StiffnessMap parse_stiffness_pgm(std::istream& in, const std::string& source, double width_mm,
-                                 double height_mm) {
+StiffnessMap parse_stiffness_pgm(std::istream& in, const std::string& source, double width_mm, double height_mm) {
   check_size(source, width_mm, height_mm);
   const std::string magic = pgm_token(in);
   if (magic != "P5" && magic != "P2")
@@ -197,8 +201,8 @@ StiffnessMap parse_stiffness_pgm(std::istream& in, const std::string& source, do
     in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size()));
     if (static_cast<std::size_t>(in.gcount()) != raw.size())
       throw InputError(source, "pixel data",
-                       std::to_string(raw.size()) + " bytes for " + std::to_string(cols) + "x" +
-                           std::to_string(rows) + " pixels, got " + std::to_string(in.gcount()));
+                       std::to_string(raw.size()) + " bytes for " + std::to_string(cols) + "x" + std::to_string(rows) +
+                           " pixels, got " + std::to_string(in.gcount()));
     for (std::size_t i = 0; i < values.size(); ++i) {
       const long v = bytes == 2 ? (long(raw[2 * i]) << 8) | raw[2 * i + 1] : long(raw[i]);
       if (v > maxval)
@@ -211,8 +215,8 @@ StiffnessMap parse_stiffness_pgm(std::istream& in, const std::string& source, do
       values[i] = static_cast<float>(double(v) / double(maxval));
     }
   }
-  return StiffnessMap(static_cast<std::size_t>(cols), static_cast<std::size_t>(rows), width_mm,
-                      height_mm, std::move(values));
+  return StiffnessMap(static_cast<std::size_t>(cols), static_cast<std::size_t>(rows), width_mm, height_mm,
+                      std::move(values));
 }
 
 void write_stiffness_csv(std::ostream& out, const StiffnessMap& map) {

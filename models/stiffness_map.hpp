@@ -21,8 +21,8 @@ class StiffnessMap {
  public:
   StiffnessMap() = default;
   // values: rows*cols in row-major order, row 0 at y = 0 mm; each must be finite and in 0..1.
-  StiffnessMap(std::size_t cols, std::size_t rows, double width_mm, double height_mm,
-               std::vector<float> values, OutsidePolicy outside = {});
+  StiffnessMap(std::size_t cols, std::size_t rows, double width_mm, double height_mm, std::vector<float> values,
+               OutsidePolicy outside = {});
 
   std::size_t cols() const noexcept { return cols_; }
   std::size_t rows() const noexcept { return rows_; }
@@ -60,11 +60,10 @@ inline constexpr long kMaxMapVertices = 4096L * 4096L;
 
 // CSV: one grid row per line, comma separated, '#' comment lines allowed. Values must lie in
 // 0..1 unless value_scale is given (e.g. 65535 for raw counts), then value/scale must.
-StiffnessMap parse_stiffness_csv(std::istream& in, const std::string& source, double width_mm,
-                                 double height_mm, double value_scale = 0.0);
+StiffnessMap parse_stiffness_csv(std::istream& in, const std::string& source, double width_mm, double height_mm,
+                                 double value_scale = 0.0);
 // PGM: binary P5 with maxval up to 65535 (16-bit big-endian) or ASCII P2; value / maxval.
-StiffnessMap parse_stiffness_pgm(std::istream& in, const std::string& source, double width_mm,
-                                 double height_mm);
+StiffnessMap parse_stiffness_pgm(std::istream& in, const std::string& source, double width_mm, double height_mm);
 // Writers (used by scene rendering and tests).
 void write_stiffness_csv(std::ostream& out, const StiffnessMap& map);
 void write_stiffness_pgm16(std::ostream& out, const StiffnessMap& map);

@@ -14,7 +14,8 @@ Vec3_mm digitize_tip(const RigidTransform& sensor, const Vec3_mm& p) noexcept {
   Vec3_mm d{p[0] - sensor.translation_mm[0], p[1] - sensor.translation_mm[1], p[2] - sensor.translation_mm[2]};
   // R^-1 = R^T for a rotation.
   Vec3_mm out{};
-  for (int r = 0; r < 3; ++r) out[r] = sensor.rotation[0][r] * d[0] + sensor.rotation[1][r] * d[1] + sensor.rotation[2][r] * d[2];
+  for (int r = 0; r < 3; ++r)
+    out[r] = sensor.rotation[0][r] * d[0] + sensor.rotation[1][r] * d[1] + sensor.rotation[2][r] * d[2];
   return out;
 }
 
@@ -40,10 +41,11 @@ PivotCalibration pivot_calibrate(const std::vector<RigidTransform>& poses, doubl
   PivotCalibration out;
   for (std::size_t i = 0; i < poses.size(); ++i)
     for (std::size_t j = i + 1; j < poses.size(); ++j)
-      out.rotation_spread_deg = std::max(out.rotation_spread_deg, angle_between_deg(poses[i].rotation, poses[j].rotation));
+      out.rotation_spread_deg =
+          std::max(out.rotation_spread_deg, angle_between_deg(poses[i].rotation, poses[j].rotation));
   if (out.rotation_spread_deg < min_spread_deg)
-    throw std::invalid_argument("poses that pivot at least " + std::to_string(int(min_spread_deg)) + " degrees apart, got " +
-                                std::to_string(out.rotation_spread_deg) + " degrees");
+    throw std::invalid_argument("poses that pivot at least " + std::to_string(int(min_spread_deg)) +
+                                " degrees apart, got " + std::to_string(out.rotation_spread_deg) + " degrees");
   const auto n = static_cast<Eigen::Index>(poses.size());
   Eigen::MatrixXd a(3 * n, 6);
   Eigen::VectorXd b(3 * n);
@@ -59,7 +61,8 @@ PivotCalibration pivot_calibrate(const std::vector<RigidTransform>& poses, doubl
   const Eigen::VectorXd s = svd.singularValues();
   // Turning about one axis only leaves the tip along that axis free: A loses rank.
   if (s(5) < 1e-3 * s(0))
-    throw std::invalid_argument("poses that turn about more than one axis (pivot the tool in a cone, not in one plane)");
+    throw std::invalid_argument(
+        "poses that turn about more than one axis (pivot the tool in a cone, not in one plane)");
   const Eigen::VectorXd x = svd.solve(b);
   for (int r = 0; r < 3; ++r) {
     out.tip_mm[r] = x(r);

@@ -17,8 +17,7 @@ void relax(FingerDrag& d, const DragSetting& s, double dt_s) noexcept {
 
 void step_drag(FingerDrag& d, const DragSetting& s, const Point2_mm& centre, double force_N, bool pressed,
                double dt_s) noexcept {
-  if (!std::isfinite(centre.x_mm) || !std::isfinite(centre.y_mm) || !std::isfinite(force_N) ||
-      !std::isfinite(dt_s)) {
+  if (!std::isfinite(centre.x_mm) || !std::isfinite(centre.y_mm) || !std::isfinite(force_N) || !std::isfinite(dt_s)) {
     d = {};  // the tick faults on the bad reading; nothing is carried
     return;
   }

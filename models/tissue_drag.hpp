@@ -19,9 +19,9 @@ namespace palprig {
 // A layer's stick/slip parameters (the scene file's "drag" of a layer). d_lat_max_mm 0: the
 // layer does not drag.
 struct DragSetting {
-  double f_stick_N = 0.5;      // normal force from which the finger sticks
-  double d_lat_max_mm = 0;     // longest stretch before the skin slips (paper 000: 20-40 mm)
-  double relax_s = 0.05;       // the released skin's relaxation time constant (0: at once)
+  double f_stick_N = 0.5;   // normal force from which the finger sticks
+  double d_lat_max_mm = 0;  // longest stretch before the skin slips (paper 000: 20-40 mm)
+  double relax_s = 0.05;    // the released skin's relaxation time constant (0: at once)
   bool drags() const noexcept { return d_lat_max_mm > 0; }
 };
 

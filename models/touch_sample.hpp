@@ -12,11 +12,11 @@ namespace palprig {
 // (values kept as they are: add new reasons at the end).
 enum class FingerVent : std::uint8_t {
   none = 0,
-  no_tool,          // the tracking file maps no tool to this finger
-  tool_not_seen,    // its tool has not been seen since the tracker connected
-  tool_stale,       // no pose of its tool for safety.max_input_age_s (out of view, or the tracker stopped)
-  tool_invalid,     // the tracker sent a pose that is no rigid transform (a lost tool, e.g. all zeros)
-  tool_no_rotation, // POSITION without orientation, and the tracking file gives a tip offset
+  no_tool,           // the tracking file maps no tool to this finger
+  tool_not_seen,     // its tool has not been seen since the tracker connected
+  tool_stale,        // no pose of its tool for safety.max_input_age_s (out of view, or the tracker stopped)
+  tool_invalid,      // the tracker sent a pose that is no rigid transform (a lost tool, e.g. all zeros)
+  tool_no_rotation,  // POSITION without orientation, and the tracking file gives a tip offset
 };
 
 constexpr const char* to_string(FingerVent v) noexcept {
@@ -24,7 +24,8 @@ constexpr const char* to_string(FingerVent v) noexcept {
     case FingerVent::none: return "placed";
     case FingerVent::no_tool: return "no tool mapped to this finger";
     case FingerVent::tool_not_seen: return "tool not seen yet";
-    case FingerVent::tool_stale: return "no pose of the tool within safety.max_input_age_s (out of view or tracker stopped)";
+    case FingerVent::tool_stale:
+      return "no pose of the tool within safety.max_input_age_s (out of view or tracker stopped)";
     case FingerVent::tool_invalid: return "the tracker sent an invalid pose (tool lost)";
     case FingerVent::tool_no_rotation: return "POSITION without orientation cannot place a tip offset";
   }
@@ -35,21 +36,21 @@ constexpr const char* to_string(FingerVent v) noexcept {
 // positive, so a fingertip pressing in has z < 0).
 struct FingerTouch {
   double x_mm = 0, y_mm = 0, z_mm = 0;
-  double force_N = 0;                // its own load cell (TouchSample::per_finger_force)
+  double force_N = 0;  // its own load cell (TouchSample::per_finger_force)
   FingerVent vent = FingerVent::none;
 };
 
 struct TouchSample {
-  double t_s = 0;        // when it was taken, on the loop's clock (seconds since run start)
+  double t_s = 0;  // when it was taken, on the loop's clock (seconds since run start)
   double x_mm = 0, y_mm = 0;
-  double force_N = 0;    // pressing force, >= 0 (with per-finger forces: the largest)
+  double force_N = 0;  // pressing force, >= 0 (with per-finger forces: the largest)
   bool in_contact = false;
 
   // Tracked fingers (issue 26). The pen leaves all of these at their defaults, and the tick then
   // places the three fingers in FingerLayout's triangle around (x_mm, y_mm), as it always did.
-  bool own_positions = false;         // each finger at fingers[i] (no triangle)
-  bool per_finger_force = false;      // each finger pressed with fingers[i].force_N
-  bool force_from_load_cells = false; // the rig's load cells give the force: RigStep fills it in
+  bool own_positions = false;                       // each finger at fingers[i] (no triangle)
+  bool per_finger_force = false;                    // each finger pressed with fingers[i].force_N
+  bool force_from_load_cells = false;               // the rig's load cells give the force: RigStep fills it in
   std::array<FingerTouch, kFingerCount> fingers{};  // vent applies in either placement
 };
 

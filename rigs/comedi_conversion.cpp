@@ -40,7 +40,8 @@ ComediConversion make_comedi_conversion(const comedi_polynomial_t& to_counts, co
   };
   double lo = std::max(span_lo_V, range_min_V), hi = std::min(span_hi_V, range_max_V);
   if (lo > hi) throw std::invalid_argument("the regulator's volts span lies outside the card's range");
-  if (!(counts_at(hi) > counts_at(lo))) throw std::invalid_argument("the conversion polynomial does not rise with volts");
+  if (!(counts_at(hi) > counts_at(lo)))
+    throw std::invalid_argument("the conversion polynomial does not rise with volts");
   // Move an edge inwards to where the counts become representable (bisection on a rising
   // polynomial); a calibrated polynomial may put the range edges a few counts outside.
   auto solve = [&](double a, double b, double target) {  // counts_at(a) on the wrong side, counts_at(b) inside
@@ -73,6 +74,8 @@ double kPa_from_counts(const ComediConversion& c, lsampl_t counts) noexcept {
   return c.regulator.pressure_kPa(comedi_to_physical(counts, &c.to_volts));
 }
 
-double volts_from_counts(const ComediConversion& c, lsampl_t counts) noexcept { return comedi_to_physical(counts, &c.to_volts); }
+double volts_from_counts(const ComediConversion& c, lsampl_t counts) noexcept {
+  return comedi_to_physical(counts, &c.to_volts);
+}
 
 }  // namespace palprig

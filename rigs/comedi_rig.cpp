@@ -31,7 +31,8 @@ std::string ranges_text(comedi_t* dev, unsigned subdevice, unsigned channel) {
   for (int r = 0; r < n; ++r) {
     const comedi_range* range = comedi_get_range(dev, subdevice, channel, unsigned(r));
     if (!range) continue;
-    s << (r ? ", " : "") << "[" << range->min << ", " << range->max << "]" << (range->unit == UNIT_volt ? " V" : " (not volts)");
+    s << (r ? ", " : "") << "[" << range->min << ", " << range->max << "]"
+      << (range->unit == UNIT_volt ? " V" : " (not volts)");
   }
   return s.str();
 }
@@ -40,9 +41,7 @@ std::string ranges_text(comedi_t* dev, unsigned subdevice, unsigned channel) {
 
 ComediRig::ComediRig(ComediRigConfig config) : RigBackend(config.p_max_kPa), config_(std::move(config)) {}
 
-ComediRig::~ComediRig() {
-  close();
-}
+ComediRig::~ComediRig() { close(); }
 
 std::string ComediRig::describe() const {
   return "comedi " + config_.device + (board_.empty() ? std::string() : " (" + board_ + ")");
@@ -64,7 +63,8 @@ void ComediRig::do_open() {
   // Quiet comedilib's own perror output: our message says it once, with the device path.
   comedi_loglevel(0);
   dev_ = comedi_open(config_.device.c_str());
-  if (!dev_) refuse("comedi.device", "a comedi device at " + config_.device + " (comedi_open: " + comedi_error_text() + ")");
+  if (!dev_)
+    refuse("comedi.device", "a comedi device at " + config_.device + " (comedi_open: " + comedi_error_text() + ")");
   board_ = std::string(comedi_get_driver_name(dev_)) + "/" + comedi_get_board_name(dev_);
 
   auto pick_subdevice = [&](int wanted, int type, const char* field, const char* what) -> unsigned {
@@ -76,15 +76,16 @@ void ComediRig::do_open() {
     }
     const int found = comedi_find_subdevice_by_type(dev_, type, 0);
     if (found < 0)
-      refuse("comedi.device", std::string("a card with an ") + what + " subdevice; " + config_.device + " (" + board_ +
-                                  ") has none");
+      refuse("comedi.device",
+             std::string("a card with an ") + what + " subdevice; " + config_.device + " (" + board_ + ") has none");
     return unsigned(found);
   };
   ao_subdevice_ = pick_subdevice(config_.ao_subdevice, COMEDI_SUBD_AO, "ao_subdevice", "analog output");
   ai_subdevice_ = pick_subdevice(config_.ai_subdevice, COMEDI_SUBD_AI, "ai_subdevice", "analog input");
 
   // Soft calibration: the board needs it (SDF_SOFT_CALIBRATED) or the file asks for it.
-  std::unique_ptr<comedi_calibration_t, void (*)(comedi_calibration_t*)> calibration(nullptr, comedi_cleanup_calibration);
+  std::unique_ptr<comedi_calibration_t, void (*)(comedi_calibration_t*)> calibration(nullptr,
+                                                                                     comedi_cleanup_calibration);
   const bool soft_needed = (comedi_get_subdevice_flags(dev_, ao_subdevice_) & SDF_SOFT_CALIBRATED) ||
                            (comedi_get_subdevice_flags(dev_, ai_subdevice_) & SDF_SOFT_CALIBRATED);
   const bool use_soft = config_.calibration == ComediCalibration::soft ||
@@ -100,8 +101,9 @@ void ComediRig::do_open() {
     }
     calibration.reset(path.empty() ? nullptr : comedi_parse_calibration_file(path.c_str()));
     if (!calibration)
-      refuse("comedi.calibration", "a soft calibration file for " + board_ + " (cannot read '" + path +
-                                       "': run comedi_soft_calibrate, or set \"calibration\": \"hard\" to use the nominal ranges)");
+      refuse("comedi.calibration",
+             "a soft calibration file for " + board_ + " (cannot read '" + path +
+                 "': run comedi_soft_calibrate, or set \"calibration\": \"hard\" to use the nominal ranges)");
   } else if (config_.calibration == ComediCalibration::hard && soft_needed) {
     refuse("comedi.calibration", "\"soft\" or \"auto\": " + board_ + " is soft-calibrated (no hardware calibration)");
   }
@@ -111,11 +113,13 @@ void ComediRig::do_open() {
     const int n_channels = comedi_get_n_channels(dev_, subdevice);
     if (spec.channel >= n_channels)
       refuse(field + ".channel", "a channel of subdevice " + std::to_string(subdevice) + " (0.." +
-                                     std::to_string(n_channels - 1) + " on " + board_ + "), got " + std::to_string(spec.channel));
+                                     std::to_string(n_channels - 1) + " on " + board_ + "), got " +
+                                     std::to_string(spec.channel));
     const unsigned chan = unsigned(spec.channel);
     const int range = comedi_find_range(dev_, subdevice, chan, UNIT_volt, spec.volts_lo, spec.volts_hi);
     if (range < 0)
-      refuse(field + ".volts_span", "a span one of the card's ranges holds (" + ranges_text(dev_, subdevice, chan) + ")");
+      refuse(field + ".volts_span",
+             "a span one of the card's ranges holds (" + ranges_text(dev_, subdevice, chan) + ")");
     const comedi_range* r = comedi_get_range(dev_, subdevice, chan, unsigned(range));
     const lsampl_t maxdata = comedi_get_maxdata(dev_, subdevice, chan);
     comedi_polynomial_t to_counts{}, to_volts{};
@@ -123,11 +127,14 @@ void ComediRig::do_open() {
     const comedi_conversion_direction back = output ? COMEDI_TO_PHYSICAL : COMEDI_FROM_PHYSICAL;
     int rc_a, rc_b;
     if (use_soft) {
-      rc_a = comedi_get_softcal_converter(subdevice, chan, unsigned(range), fwd, calibration.get(), output ? &to_counts : &to_volts);
-      rc_b = comedi_get_softcal_converter(subdevice, chan, unsigned(range), back, calibration.get(), output ? &to_volts : &to_counts);
+      rc_a = comedi_get_softcal_converter(subdevice, chan, unsigned(range), fwd, calibration.get(),
+                                          output ? &to_counts : &to_volts);
+      rc_b = comedi_get_softcal_converter(subdevice, chan, unsigned(range), back, calibration.get(),
+                                          output ? &to_volts : &to_counts);
     } else {
       rc_a = comedi_get_hardcal_converter(dev_, subdevice, chan, unsigned(range), fwd, output ? &to_counts : &to_volts);
-      rc_b = comedi_get_hardcal_converter(dev_, subdevice, chan, unsigned(range), back, output ? &to_volts : &to_counts);
+      rc_b =
+          comedi_get_hardcal_converter(dev_, subdevice, chan, unsigned(range), back, output ? &to_volts : &to_counts);
     }
     // A soft calibration covers the directions the board needs; the reverse one of a channel
     // is then the nominal line of its range.
@@ -141,7 +148,8 @@ void ComediRig::do_open() {
       to_counts = linear_polynomial(r->min, r->max, maxdata, COMEDI_FROM_PHYSICAL);
     }
     try {
-      conv = make_comedi_conversion(to_counts, to_volts, maxdata, r->min, r->max, spec.volts_lo, spec.volts_hi, spec.regulator);
+      conv = make_comedi_conversion(to_counts, to_volts, maxdata, r->min, r->max, spec.volts_lo, spec.volts_hi,
+                                    spec.regulator);
     } catch (const std::invalid_argument& e) {
       refuse(field, std::string("a usable conversion (") + e.what() + ")");
     }
@@ -155,7 +163,8 @@ void ComediRig::do_open() {
   for (std::size_t c = 0; c < kFingerCount; ++c) {
     const std::string where = "channels[" + std::to_string(c) + "]";
     prepare(ao_subdevice_, config_.outputs[c], where + ".output", true, out_conv_[c], write_insns_[c], &out_counts_[c]);
-    prepare(ai_subdevice_, config_.monitors[c], where + ".monitor", false, mon_conv_[c], read_insns_[c], &mon_counts_[c]);
+    prepare(ai_subdevice_, config_.monitors[c], where + ".monitor", false, mon_conv_[c], read_insns_[c],
+            &mon_counts_[c]);
   }
   if (load_cells()) {
     const auto& cells = load_cells()->channels;
@@ -164,8 +173,8 @@ void ComediRig::do_open() {
       spec.channel = cells[i].comedi_channel;
       spec.volts_lo = cells[i].volts_lo;
       spec.volts_hi = cells[i].volts_hi;
-      prepare(ai_subdevice_, spec, "load_cells.channels[" + std::to_string(i) + "].input", false, cell_conv_[i], cell_insns_[i],
-              &cell_counts_[i]);
+      prepare(ai_subdevice_, spec, "load_cells.channels[" + std::to_string(i) + "].input", false, cell_conv_[i],
+              cell_insns_[i], &cell_counts_[i]);
     }
     cell_list_.n_insns = unsigned(cells.size());
     cell_list_.insns = cell_insns_.data();
@@ -175,7 +184,8 @@ void ComediRig::do_open() {
   read_list_.n_insns = kFingerCount;
   read_list_.insns = read_insns_.data();
   for (std::size_t c = 0; c < kFingerCount; ++c) out_counts_[c] = counts_from_kPa(out_conv_[c], 0.0);
-  if (write_counts() != BackendStatus::ok) refuse("comedi.device", std::string("a device that accepts analog output (") + last_error() + ")");
+  if (write_counts() != BackendStatus::ok)
+    refuse("comedi.device", std::string("a device that accepts analog output (") + last_error() + ")");
 }
 
 void ComediRig::do_close() noexcept {
@@ -229,7 +239,8 @@ BackendStatus ComediRig::do_read_load_cells(std::array<double, kFingerCount>& vo
   }
   if (comedi_do_insnlist(dev_, &cell_list_) != int(cell_list_.n_insns)) {
     char msg[200];
-    std::snprintf(msg, sizeof msg, "comedi load cell read on %s: %s", config_.device.c_str(), comedi_strerror(comedi_errno()));
+    std::snprintf(msg, sizeof msg, "comedi load cell read on %s: %s", config_.device.c_str(),
+                  comedi_strerror(comedi_errno()));
     set_error(msg);
     return BackendStatus::error;
   }

@@ -21,8 +21,7 @@ std::vector<RegisterRun> contiguous_runs(std::vector<std::pair<int, int>> pairs)
   std::sort(pairs.begin(), pairs.end());
   std::vector<RegisterRun> runs;
   for (const auto& [address, channel] : pairs) {
-    if (runs.empty() || address != runs.back().start + int(runs.back().channels.size()))
-      runs.push_back({address, {}});
+    if (runs.empty() || address != runs.back().start + int(runs.back().channels.size())) runs.push_back({address, {}});
     runs.back().channels.push_back(channel);
   }
   return runs;
@@ -58,8 +57,10 @@ NumericHost resolve_modbus_host(const std::string& host) {
     inet_ntop(AF_INET6, &reinterpret_cast<const sockaddr_in6*>(pick->ai_addr)->sin6_addr, text, sizeof text);
   if (pick) out.ipv6 = pick->ai_family == AF_INET6;
   freeaddrinfo(found);
-  if (text[0] == '\0') out.error = "a host name with an IPv4 or IPv6 address, got \"" + host + "\"";
-  else out.address = text;
+  if (text[0] == '\0')
+    out.error = "a host name with an IPv4 or IPv6 address, got \"" + host + "\"";
+  else
+    out.address = text;
   return out;
 }
 
@@ -77,7 +78,8 @@ ModbusLink::ModbusLink(const ModbusRigConfig& rig, std::size_t index) : link_(ri
     ctx_ = numeric.ipv6 ? modbus_new_tcp_pi(numeric.address.c_str(), std::to_string(link_.port).c_str())
                         : modbus_new_tcp(numeric.address.c_str(), link_.port);
   }
-  if (!ctx_) throw std::runtime_error("modbus link '" + link_.name + "' (" + link_.endpoint() + "): " + modbus_strerror(errno));
+  if (!ctx_)
+    throw std::runtime_error("modbus link '" + link_.name + "' (" + link_.endpoint() + "): " + modbus_strerror(errno));
   modbus_set_slave(ctx_, link_.unit_id);
   // The I/O thread decides about reconnecting itself (with backoff); libmodbus must not retry
   // or sleep on its own.
@@ -115,9 +117,11 @@ void ModbusLink::plan_load_cells(const LoadCellConfig& cells, std::size_t index)
   std::vector<std::pair<int, int>> input_regs, holding_regs;
   for (std::size_t i = 0; i < cells.channels.size(); ++i) {
     const auto& ref = cells.channels[i].modbus;
-    if (ref && ref->link == index) (ref->kind == RegisterKind::input ? input_regs : holding_regs).emplace_back(ref->address, int(i));
+    if (ref && ref->link == index)
+      (ref->kind == RegisterKind::input ? input_regs : holding_regs).emplace_back(ref->address, int(i));
   }
-  for (const auto& [pairs, kind] : {std::pair{input_regs, RegisterKind::input}, std::pair{holding_regs, RegisterKind::holding}})
+  for (const auto& [pairs, kind] :
+       {std::pair{input_regs, RegisterKind::input}, std::pair{holding_regs, RegisterKind::holding}})
     for (const auto& run : contiguous_runs(pairs)) {
       Block b;
       b.start = run.start;
@@ -133,7 +137,8 @@ bool ModbusLink::read_load_cells(ChannelWords& words) noexcept {
   for (const Block& b : cell_reads_) {
     const int rc = b.kind == RegisterKind::input ? modbus_read_input_registers(ctx_, b.start, b.count, buf)
                                                  : modbus_read_registers(ctx_, b.start, b.count, buf);
-    if (rc == -1) return fail(b.kind == RegisterKind::input ? "read load cell input" : "read load cell holding", b.start);
+    if (rc == -1)
+      return fail(b.kind == RegisterKind::input ? "read load cell input" : "read load cell holding", b.start);
     for (int k = 0; k < b.count; ++k) words[b.channel_at[k]] = buf[k];
   }
   return true;

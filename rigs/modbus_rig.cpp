@@ -29,7 +29,8 @@ std::string seconds_text(double s) {
 }  // namespace
 
 ModbusRig::ModbusRig(ModbusRigConfig config)
-    : RigBackend(config.p_max_kPa), config_(std::move(config)),
+    : RigBackend(config.p_max_kPa),
+      config_(std::move(config)),
       log_([](const std::string& line) { std::fprintf(stderr, "palprig: %s\n", line.c_str()); }) {
   for (std::size_t i = 0; i < config_.links.size(); ++i) {
     LinkState s;
@@ -43,9 +44,7 @@ ModbusRig::ModbusRig(ModbusRigConfig config)
   monitors_.publish(nan_monitors);
 }
 
-ModbusRig::~ModbusRig() {
-  close();
-}
+ModbusRig::~ModbusRig() { close(); }
 
 std::string ModbusRig::describe() const {
   std::string s = "modbus";
@@ -79,9 +78,10 @@ void ModbusRig::do_open() {
     if (load_cells()) links_[i].link->plan_load_cells(*load_cells(), i);
   for (std::size_t i = 0; i < links_.size(); ++i) {
     ModbusLink& link = *links_[i].link;
-    const std::string where = "modbus.links[" + std::to_string(i) + "] \"" + link.config().name + "\" (" +
-                              link.config().endpoint() + ")";
-    if (!link.connect()) throw InputError(config_.source, where, std::string("a Modbus device that answers (") + link.last_error() + ")");
+    const std::string where =
+        "modbus.links[" + std::to_string(i) + "] \"" + link.config().name + "\" (" + link.config().endpoint() + ")";
+    if (!link.connect())
+      throw InputError(config_.source, where, std::string("a Modbus device that answers (") + link.last_error() + ")");
     ChannelWords monitors{};
     ChannelWords cells{};
     if (!link.write_outputs(zero_words_) || !link.read_monitors(monitors) || !link.read_load_cells(cells)) {
@@ -90,7 +90,8 @@ void ModbusRig::do_open() {
       link.disconnect();
       throw InputError(config_.source, where,
                        device ? "registers the device accepts (it refused: " + why + ")"
-                              : "a Modbus device that answers within " + seconds_text(config_.response_timeout_s) + " (" + why + ")");
+                              : "a Modbus device that answers within " + seconds_text(config_.response_timeout_s) +
+                                    " (" + why + ")");
     }
     links_[i].up = true;
   }
@@ -198,13 +199,13 @@ void ModbusRig::io_thread_main() noexcept {
     }
     const ModbusBusStats s = bus_stats();
     char line[256];
-    std::snprintf(line, sizeof line,
-                  "modbus: %llu bus cycles at %.0f Hz (%llu late), cycle p50/p99/max %.0f/%.0f/%.0f us, %llu outage(s), "
-                  "%llu reconnect(s)",
-                  static_cast<unsigned long long>(s.cycles), config_.io_rate_hz,
-                  static_cast<unsigned long long>(s.late_cycles), s.cycle_time.p50_us, s.cycle_time.p99_us,
-                  s.cycle_time.max_us, static_cast<unsigned long long>(s.outages),
-                  static_cast<unsigned long long>(s.reconnects));
+    std::snprintf(
+        line, sizeof line,
+        "modbus: %llu bus cycles at %.0f Hz (%llu late), cycle p50/p99/max %.0f/%.0f/%.0f us, %llu outage(s), "
+        "%llu reconnect(s)",
+        static_cast<unsigned long long>(s.cycles), config_.io_rate_hz, static_cast<unsigned long long>(s.late_cycles),
+        s.cycle_time.p50_us, s.cycle_time.p99_us, s.cycle_time.max_us, static_cast<unsigned long long>(s.outages),
+        static_cast<unsigned long long>(s.reconnects));
     log(line);
   } catch (const std::exception& e) {
     char text[200];
@@ -248,7 +249,8 @@ void ModbusRig::io_cycle(std::int64_t now, double dt_s) {
       continue;
     }
     // While some other link is down this one carries 0 kPa (out_words_ hold 0 kPa then).
-    if (l.link->write_outputs(out_words_) && l.link->read_monitors(mon_words_) && l.link->read_load_cells(cell_words_)) continue;
+    if (l.link->write_outputs(out_words_) && l.link->read_monitors(mon_words_) && l.link->read_load_cells(cell_words_))
+      continue;
     if (l.link->last_error_kind() == LinkError::device) {
       char text[256];
       std::snprintf(text, sizeof text, "modbus link '%s' (%s): device refused: %s", l.link->config().name.c_str(),

@@ -100,16 +100,16 @@ class ModbusRig final : public RigBackend {
   std::atomic<bool> fatal_{false};
   std::atomic<int> fatal_state_{0};
   std::atomic<std::int64_t> down_since_ns_{0};  // 0 while linked
-  char fatal_text_[256] = {0};                   // written before fatal_ is set (release)
+  char fatal_text_[256] = {0};                  // written before fatal_ is set (release)
 
   LatestValue<Command> commands_;   // loop -> I/O thread
   LatestValue<Monitors> monitors_;  // I/O thread -> loop
 
   // I/O thread state.
-  ChannelPressures ramp_kPa_{};     // what the re-engagement ramp allows now
+  ChannelPressures ramp_kPa_{};  // what the re-engagement ramp allows now
   std::array<bool, kFingerCount> engaging_{};
   ChannelWords out_words_{}, mon_words_{}, cell_words_{};
-  ChannelWords zero_words_{};       // every output at 0 kPa (not always word 0: signed or offset maps)
+  ChannelWords zero_words_{};  // every output at 0 kPa (not always word 0: signed or offset maps)
   LatencyHistogram cycle_hist_;
   ModbusBusStats stats_;
   std::int64_t start_ns_ = 0;

@@ -48,7 +48,8 @@ ListenAddress parse_listen_address(const std::string& text) {
 }
 
 ModbusSimServer::ModbusSimServer(ModbusRigConfig map, const std::array<PlantParams, kFingerCount>& plants)
-    : map_(std::move(map)), plants_{PneumaticPlant(plants[0]), PneumaticPlant(plants[1]), PneumaticPlant(plants[2])},
+    : map_(std::move(map)),
+      plants_{PneumaticPlant(plants[0]), PneumaticPlant(plants[1]), PneumaticPlant(plants[2])},
       log_([](const std::string& line) { std::fprintf(stderr, "palprig sim-rig: %s\n", line.c_str()); }) {}
 
 ModbusSimServer::~ModbusSimServer() {
@@ -63,7 +64,8 @@ void ModbusSimServer::log(const std::string& line) {
 void ModbusSimServer::set_write_log(const std::filesystem::path& path) {
   if (write_log_) std::fclose(write_log_);
   write_log_ = std::fopen(path.c_str(), "w");
-  if (!write_log_) throw std::runtime_error("cannot create the write log " + path.string() + ": " + std::strerror(errno));
+  if (!write_log_)
+    throw std::runtime_error("cannot create the write log " + path.string() + ": " + std::strerror(errno));
   std::setvbuf(write_log_, nullptr, _IOLBF, 0);  // a killed simulator still leaves whole lines
   std::fprintf(write_log_, "t_s,channel,word,kPa,mono_ns\n");
 }
@@ -76,7 +78,8 @@ std::uint16_t* ModbusSimServer::output_register(std::size_t c) const noexcept {
 
 std::uint16_t* ModbusSimServer::register_of(const ModbusRegisterRef& ref) const noexcept {
   modbus_mapping_t* m = links_[ref.link]->mapping;
-  if (ref.kind == RegisterKind::input) return &m->tab_input_registers[ref.address - static_cast<int>(m->start_input_registers)];
+  if (ref.kind == RegisterKind::input)
+    return &m->tab_input_registers[ref.address - static_cast<int>(m->start_input_registers)];
   return &m->tab_registers[ref.address - static_cast<int>(m->start_registers)];
 }
 
@@ -100,15 +103,16 @@ void ModbusSimServer::set_load_cells(const LoadCellConfig& cells, double load_N)
 std::uint16_t* ModbusSimServer::monitor_register(std::size_t c) const noexcept {
   const auto& ref = map_.channels[c].monitor;
   modbus_mapping_t* m = links_[ref.link]->mapping;
-  if (ref.kind == RegisterKind::input) return &m->tab_input_registers[ref.address - static_cast<int>(m->start_input_registers)];
+  if (ref.kind == RegisterKind::input)
+    return &m->tab_input_registers[ref.address - static_cast<int>(m->start_input_registers)];
   return &m->tab_registers[ref.address - static_cast<int>(m->start_registers)];
 }
 
 void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
   stop();
   if (listen.size() != map_.links.size())
-    throw std::runtime_error("the register map has " + std::to_string(map_.links.size()) + " link(s); give one listen address each, got " +
-                             std::to_string(listen.size()));
+    throw std::runtime_error("the register map has " + std::to_string(map_.links.size()) +
+                             " link(s); give one listen address each, got " + std::to_string(listen.size()));
   links_.clear();
   for (std::size_t i = 0; i < map_.links.size(); ++i) {
     auto link = std::make_unique<Link>();
@@ -128,12 +132,16 @@ void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
     }
     for (const ModbusRegisterRef& ref : cell_registers_) {
       if (ref.link != i) continue;
-      if (ref.kind == RegisterKind::holding) h_lo = std::min(h_lo, ref.address), h_hi = std::max(h_hi, ref.address);
-      else i_lo = std::min(i_lo, ref.address), i_hi = std::max(i_hi, ref.address);
+      if (ref.kind == RegisterKind::holding)
+        h_lo = std::min(h_lo, ref.address), h_hi = std::max(h_hi, ref.address);
+      else
+        i_lo = std::min(i_lo, ref.address), i_hi = std::max(i_hi, ref.address);
     }
-    link->mapping = modbus_mapping_new_start_address(0, 0, 0, 0, h_hi < 0 ? 0 : unsigned(h_lo), h_hi < 0 ? 0 : unsigned(h_hi - h_lo + 1),
-                                                     i_hi < 0 ? 0 : unsigned(i_lo), i_hi < 0 ? 0 : unsigned(i_hi - i_lo + 1));
-    if (!link->mapping) throw std::runtime_error(std::string("cannot allocate the register space: ") + modbus_strerror(errno));
+    link->mapping = modbus_mapping_new_start_address(
+        0, 0, 0, 0, h_hi < 0 ? 0 : unsigned(h_lo), h_hi < 0 ? 0 : unsigned(h_hi - h_lo + 1),
+        i_hi < 0 ? 0 : unsigned(i_lo), i_hi < 0 ? 0 : unsigned(i_hi - i_lo + 1));
+    if (!link->mapping)
+      throw std::runtime_error(std::string("cannot allocate the register space: ") + modbus_strerror(errno));
     if (link->address.pty) {
       link->pty_master = posix_openpt(O_RDWR | O_NOCTTY);
       if (link->pty_master < 0 || grantpt(link->pty_master) != 0 || unlockpt(link->pty_master) != 0)
@@ -159,8 +167,8 @@ void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
     if (!link->ctx) throw std::runtime_error(std::string("modbus_new_tcp: ") + modbus_strerror(errno));
     link->listen_fd = modbus_tcp_listen(link->ctx, 16);
     if (link->listen_fd == -1)
-      throw std::runtime_error("cannot listen on " + link->address.host + ":" + std::to_string(link->address.port) + ": " +
-                               modbus_strerror(errno));
+      throw std::runtime_error("cannot listen on " + link->address.host + ":" + std::to_string(link->address.port) +
+                               ": " + modbus_strerror(errno));
     sockaddr_in bound{};
     socklen_t len = sizeof bound;
     getsockname(link->listen_fd, reinterpret_cast<sockaddr*>(&bound), &len);
@@ -192,7 +200,8 @@ void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
     }
   });
   for (std::size_t i = 0; i < links_.size(); ++i)
-    links_[i]->thread = std::thread([this, i] { links_[i]->address.pty ? serve_rtu(*links_[i], i) : serve(*links_[i], i); });
+    links_[i]->thread =
+        std::thread([this, i] { links_[i]->address.pty ? serve_rtu(*links_[i], i) : serve(*links_[i], i); });
 }
 
 void ModbusSimServer::stop() noexcept {
@@ -228,14 +237,16 @@ void ModbusSimServer::step_plants() noexcept {
         for (std::size_t c = 0; c < kFingerCount; ++c)
           if (map_.channels[c].output.link == i) *output_register(c) = map_.channels[c].output.scale.word_from_kPa(0.0);
         l.watchdog_tripped = true;
-        log("link '" + map_.links[i].name + "': no request for " + std::to_string(watchdog_s_) + " s, outputs set to 0 kPa (watchdog)");
+        log("link '" + map_.links[i].name + "': no request for " + std::to_string(watchdog_s_) +
+            " s, outputs set to 0 kPa (watchdog)");
       }
     }
   }
   for (std::size_t c = 0; c < kFingerCount; ++c) {
     const double command_kPa = map_.channels[c].output.scale.kPa_from_word(*output_register(c));
     plants_[c].step(command_kPa, dt);
-    if (!map_.monitor_is_readback(c)) *monitor_register(c) = map_.channels[c].monitor.scale.word_from_kPa(plants_[c].monitor_kPa());
+    if (!map_.monitor_is_readback(c))
+      *monitor_register(c) = map_.channels[c].monitor.scale.word_from_kPa(plants_[c].monitor_kPa());
   }
   for (std::size_t i = 0; i < cells_.size(); ++i)
     *register_of(cell_registers_[i]) = cell_registers_[i].scale.word_from_volts(cells_[i].volts(0.0, cell_load_N_));
@@ -340,8 +351,10 @@ void ModbusSimServer::serve_rtu(Link& link, std::size_t index) noexcept {
     timeval timeout{0, 50'000};
     if (select(link.pty_master + 1, &readable, nullptr, nullptr, &timeout) <= 0) continue;
     const int rc = modbus_receive(link.ctx, query);  // a whole frame, CRC checked, our unit only
-    if (rc > 0) handle(link, index, query, rc);
-    else if (rc == -1) modbus_flush(link.ctx);       // a broken frame: drop what is buffered
+    if (rc > 0)
+      handle(link, index, query, rc);
+    else if (rc == -1)
+      modbus_flush(link.ctx);  // a broken frame: drop what is buffered
   }
 }
 

@@ -71,8 +71,8 @@ BackendStatus RigBackend::write(const ChannelPressures& setpoint_kPa, double t_s
     const double p = setpoint_kPa[i];
     if (!std::isfinite(p) || p < 0 || p > p_max_kPa_) {
       char msg[160];
-      std::snprintf(msg, sizeof msg, "refused setpoint %.3f kPa on channel %zu (allowed 0..%.1f kPa); vented",
-                    p, i + 1, p_max_kPa_);
+      std::snprintf(msg, sizeof msg, "refused setpoint %.3f kPa on channel %zu (allowed 0..%.1f kPa); vented", p, i + 1,
+                    p_max_kPa_);
       do_vent();
       set_error(msg);
       return BackendStatus::error;

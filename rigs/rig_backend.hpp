@@ -40,19 +40,19 @@ const char* to_string(BackendState state) noexcept;
 // What a backend offers, known before anything is written (the GUI's rig panel shows it).
 struct BackendCapabilities {
   std::size_t channel_count = kFingerCount;
-  bool has_monitor = true;       // regulators report their output pressure
-  bool has_sensor = false;       // a per-channel sensor calibration sweeps record beside the monitors
-  std::string sensor_name;       // with its unit, e.g. "deformation_mm"; empty without a sensor
-  std::string sensor_unit;       // e.g. "mm"
-  std::string link_kind;         // "in-process", "modbus-tcp", "modbus-rtu", "comedi"
-  std::string endpoint;          // e.g. "127.0.0.1:1502", "/dev/ttyUSB0 9600 8N1", "/dev/comedi0"
-  std::size_t load_cells = 0;    // load cells measuring the pressing force (issue 26): 0, 1 or 3
+  bool has_monitor = true;             // regulators report their output pressure
+  bool has_sensor = false;             // a per-channel sensor calibration sweeps record beside the monitors
+  std::string sensor_name;             // with its unit, e.g. "deformation_mm"; empty without a sensor
+  std::string sensor_unit;             // e.g. "mm"
+  std::string link_kind;               // "in-process", "modbus-tcp", "modbus-rtu", "comedi"
+  std::string endpoint;                // e.g. "127.0.0.1:1502", "/dev/ttyUSB0 9600 8N1", "/dev/comedi0"
+  std::size_t load_cells = 0;          // load cells measuring the pressing force (issue 26): 0, 1 or 3
   bool load_cells_per_finger = false;  // 3 cells, one under each finger; else 1 shared
 };
 
 // One reading of the load cells: each cell's voltage and its force (its calibration applied).
 struct LoadCellReading {
-  std::size_t count = 0;                         // cells read: 1 (shared) or kFingerCount
+  std::size_t count = 0;  // cells read: 1 (shared) or kFingerCount
   std::array<double, kFingerCount> volts{};
   std::array<double, kFingerCount> force_N{};
 };

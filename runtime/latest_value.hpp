@@ -22,7 +22,8 @@ class LatestValue {
   // Writer thread only.
   void publish(const T& value) noexcept {
     slots_[back_] = value;
-    const std::uint8_t previous = middle_.exchange(static_cast<std::uint8_t>(back_ | kFresh), std::memory_order_acq_rel);
+    const std::uint8_t previous =
+        middle_.exchange(static_cast<std::uint8_t>(back_ | kFresh), std::memory_order_acq_rel);
     back_ = previous & kIndexMask;
     published_.fetch_add(1, std::memory_order_relaxed);
   }

@@ -17,8 +17,7 @@ inline std::int64_t mono_ns() noexcept {
 
 inline void sleep_until_ns(std::int64_t deadline_ns) noexcept {
   const timespec ts{static_cast<time_t>(deadline_ns / 1'000'000'000), static_cast<long>(deadline_ns % 1'000'000'000)};
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-  }
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {}
 }
 
 }  // namespace palprig

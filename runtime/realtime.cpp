@@ -34,39 +34,46 @@ RealtimeSetup enter_realtime(const RealtimeOptions& o) noexcept {
   RealtimeSetup r;
   try {
     if (o.lock_memory) {
-      if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) r.memory_locked = true;
-      else append(r.note, std::string("mlockall refused (") + std::strerror(errno) + ")");
+      if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0)
+        r.memory_locked = true;
+      else
+        append(r.note, std::string("mlockall refused (") + std::strerror(errno) + ")");
     }
     if (o.fifo) {
       sched_param sp{};
       sp.sched_priority = o.fifo_priority;
       const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
-      if (rc == 0) r.fifo = true;
-      else append(r.note, std::string("SCHED_FIFO refused (") + std::strerror(rc) +
-                              "): running at normal priority; grant CAP_SYS_NICE or an rtprio limit for lower jitter");
+      if (rc == 0)
+        r.fifo = true;
+      else
+        append(r.note, std::string("SCHED_FIFO refused (") + std::strerror(rc) +
+                           "): running at normal priority; grant CAP_SYS_NICE or an rtprio limit for lower jitter");
     }
     if (o.pm_qos) {
       r.pm_qos = CpuLatencyRequest(0);
       if (!r.pm_qos.held()) append(r.note, r.pm_qos.note());
     }
     if (o.timer_slack_ns > 0) {
-      if (prctl(PR_SET_TIMERSLACK, static_cast<unsigned long>(o.timer_slack_ns), 0, 0, 0) == 0) r.timer_slack_set = true;
-      else append(r.note, std::string("timer slack not set (") + std::strerror(errno) + ")");
+      if (prctl(PR_SET_TIMERSLACK, static_cast<unsigned long>(o.timer_slack_ns), 0, 0, 0) == 0)
+        r.timer_slack_set = true;
+      else
+        append(r.note, std::string("timer slack not set (") + std::strerror(errno) + ")");
     }
     if (o.cpu >= 0) {
       cpu_set_t set;
       CPU_ZERO(&set);
       CPU_SET(o.cpu, &set);
       const int rc = o.cpu < CPU_SETSIZE ? pthread_setaffinity_np(pthread_self(), sizeof set, &set) : EINVAL;
-      if (rc == 0) r.pinned = true;
-      else append(r.note, "cannot pin the loop to CPU " + std::to_string(o.cpu) + " (" + std::strerror(rc) + ")");
+      if (rc == 0)
+        r.pinned = true;
+      else
+        append(r.note, "cannot pin the loop to CPU " + std::to_string(o.cpu) + " (" + std::strerror(rc) + ")");
     }
     if (o.prefault_stack_bytes > 0) {
       prefault_stack(o.prefault_stack_bytes);
       r.stack_prefaulted = true;
     }
-  } catch (...) {
-  }
+  } catch (...) {}
   return r;
 }
 

@@ -209,14 +209,12 @@ SystemFacts probe_system(const ProbeRoots& roots, int fifo_priority) {
   if (auto on = read_text(cpu_dir / "online")) {
     try {
       f.cpus_online = int(parse_cpu_list(*on).size());
-    } catch (const std::invalid_argument&) {
-    }
+    } catch (const std::invalid_argument&) {}
   }
   if (auto iso = read_text(cpu_dir / "isolated")) {
     try {
       f.isolated_cpus = parse_cpu_list(*iso);
-    } catch (const std::invalid_argument&) {
-    }
+    } catch (const std::invalid_argument&) {}
   }
   for (int c = 0; c < 4096; ++c) {
     const auto dir = cpu_dir / ("cpu" + std::to_string(c));
@@ -237,7 +235,8 @@ SystemFacts probe_system(const ProbeRoots& roots, int fifo_priority) {
   if (auto info = read_text(roots.proc / "cpuinfo")) {
     for (std::size_t at = info->find("flags"); at != std::string::npos; at = info->find("flags", at + 1)) {
       const std::size_t eol = info->find('\n', at);
-      if (has_word(std::string_view(*info).substr(at, eol == std::string::npos ? std::string::npos : eol - at), "hypervisor")) {
+      if (has_word(std::string_view(*info).substr(at, eol == std::string::npos ? std::string::npos : eol - at),
+                   "hypervisor")) {
         f.hypervisor = true;
         break;
       }
@@ -263,18 +262,23 @@ SystemFacts probe_system(const ProbeRoots& roots, int fifo_priority) {
 Readiness assess(const SystemFacts& f, const LoopMeasurement& m, int fifo_priority) {
   using L = Finding::Level;
   Readiness r;
-  auto add = [&](L level, std::string topic, std::string text) { r.findings.push_back({level, std::move(topic), std::move(text)}); };
+  auto add = [&](L level, std::string topic, std::string text) {
+    r.findings.push_back({level, std::move(topic), std::move(text)});
+  };
 
   // Kernel.
   const std::string kernel = f.kernel_release.empty() ? std::string("kernel") : "kernel " + f.kernel_release;
   if (f.preempt == PreemptModel::rt) {
     add(L::ok, "kernel", kernel + ", preemption " + to_string(f.preempt) + " (from " + f.preempt_source + ")");
   } else {
-    add(L::info, "kernel", kernel + ", preemption " + to_string(f.preempt) +
-                              (f.preempt_source.empty() ? "" : " (from " + f.preempt_source + ")") + ", not PREEMPT_RT");
-    r.advice.push_back("for the shortest tails install Debian's PREEMPT_RT kernel (apt install linux-image-rt-amd64) and boot it");
+    add(L::info, "kernel",
+        kernel + ", preemption " + to_string(f.preempt) +
+            (f.preempt_source.empty() ? "" : " (from " + f.preempt_source + ")") + ", not PREEMPT_RT");
+    r.advice.push_back(
+        "for the shortest tails install Debian's PREEMPT_RT kernel (apt install linux-image-rt-amd64) and boot it");
     if (f.preempt == PreemptModel::dynamic || f.preempt == PreemptModel::none || f.preempt == PreemptModel::voluntary)
-      r.advice.push_back("on this kernel, boot with preempt=full on the kernel command line for lower latency than the default");
+      r.advice.push_back(
+          "on this kernel, boot with preempt=full on the kernel command line for lower latency than the default");
   }
   // Scheduling and memory.
   std::string limit = "rtprio limit ";
@@ -284,22 +288,27 @@ Readiness assess(const SystemFacts& f, const LoopMeasurement& m, int fifo_priori
   limit += ")";
   if (f.fifo_permitted) {
     const bool by_limit = !f.rtprio_soft || *f.rtprio_soft >= std::uint64_t(fifo_priority);
-    add(L::ok, "scheduling", "SCHED_FIFO " + std::to_string(fifo_priority) + " permitted; " + limit +
-                                 (by_limit ? "" : ", so through CAP_SYS_NICE (root)"));
+    add(L::ok, "scheduling",
+        "SCHED_FIFO " + std::to_string(fifo_priority) + " permitted; " + limit +
+            (by_limit ? "" : ", so through CAP_SYS_NICE (root)"));
   } else {
-    add(L::warn, "scheduling", "SCHED_FIFO " + std::to_string(fifo_priority) + " refused (" + f.fifo_error + "); " + limit);
-    r.advice.push_back("add the user to a group with rtprio 95 in /etc/security/limits.d (e.g. a file realtime.conf with "
-                       "\"@realtime - rtprio 95\"), or grant CAP_SYS_NICE, then log in again");
+    add(L::warn, "scheduling",
+        "SCHED_FIFO " + std::to_string(fifo_priority) + " refused (" + f.fifo_error + "); " + limit);
+    r.advice.push_back(
+        "add the user to a group with rtprio 95 in /etc/security/limits.d (e.g. a file realtime.conf with "
+        "\"@realtime - rtprio 95\"), or grant CAP_SYS_NICE, then log in again");
   }
   if (f.mlock_permitted) {
     add(L::ok, "memory", "mlockall permitted");
   } else {
     add(L::warn, "memory", "mlockall refused (" + f.mlock_error + ")");
-    r.advice.push_back("allow locked memory: \"@realtime - memlock unlimited\" in /etc/security/limits.d, then log in again");
+    r.advice.push_back(
+        "allow locked memory: \"@realtime - memlock unlimited\" in /etc/security/limits.d, then log in again");
   }
   if (f.rt_runtime_us >= 0)
-    add(L::info, "scheduling", "real-time throttling: FIFO threads get at most " + std::to_string(f.rt_runtime_us / 1000) +
-                                   " ms per second (kernel.sched_rt_runtime_us); a runaway loop cannot freeze the machine");
+    add(L::info, "scheduling",
+        "real-time throttling: FIFO threads get at most " + std::to_string(f.rt_runtime_us / 1000) +
+            " ms per second (kernel.sched_rt_runtime_us); a runaway loop cannot freeze the machine");
   // Idle states and the PM QoS request.
   std::string idle = f.idle_driver.empty() ? std::string("no cpuidle driver") : "cpuidle driver " + f.idle_driver;
   int deepest_us = 0;
@@ -309,35 +318,41 @@ Readiness assess(const SystemFacts& f, const LoopMeasurement& m, int fifo_priori
     add(L::ok, "idle", "/dev/cpu_dma_latency writable: the loop holds the CPUs out of deep idle; " + idle);
   } else {
     add(L::warn, "idle", "/dev/cpu_dma_latency not usable (" + f.cpu_dma_latency_error + "); " + idle);
-    r.advice.push_back("let the loop keep the CPUs out of deep idle: a udev rule KERNEL==\"cpu_dma_latency\", GROUP=\"realtime\", "
-                       "MODE=\"0660\" in /etc/udev/rules.d, or boot with processor.max_cstate=1 intel_idle.max_cstate=0");
+    r.advice.push_back(
+        "let the loop keep the CPUs out of deep idle: a udev rule KERNEL==\"cpu_dma_latency\", GROUP=\"realtime\", "
+        "MODE=\"0660\" in /etc/udev/rules.d, or boot with processor.max_cstate=1 intel_idle.max_cstate=0");
   }
   // Frequency.
   if (f.governors.empty()) {
     add(L::info, "frequency", "no cpufreq (fixed frequency or a virtual machine)");
   } else {
-    const bool all_perf = std::all_of(f.governors.begin(), f.governors.end(), [](const std::string& g) { return g == "performance"; });
+    const bool all_perf =
+        std::all_of(f.governors.begin(), f.governors.end(), [](const std::string& g) { return g == "performance"; });
     std::string list;
     for (const auto& g : f.governors) list += (list.empty() ? "" : ",") + g;
     if (all_perf) {
       add(L::ok, "frequency", "governor performance on every CPU");
     } else {
       add(L::warn, "frequency", "CPU frequency governor " + list + " (frequency changes stretch ticks)");
-      r.advice.push_back("set the governor to performance: cpupower frequency-set -g performance (package linux-cpupower)");
+      r.advice.push_back(
+          "set the governor to performance: cpupower frequency-set -g performance (package linux-cpupower)");
     }
   }
   if (f.hypervisor)
-    add(L::info, "machine", "a virtual machine: the hypervisor can stall the guest for milliseconds; a lab PC runs on bare metal");
+    add(L::info, "machine",
+        "a virtual machine: the hypervisor can stall the guest for milliseconds; a lab PC runs on bare metal");
   // Isolation.
   if (f.isolated_cpus.empty()) {
     add(L::info, "isolation", "no isolated CPUs (" + std::to_string(f.cpus_online) + " online)");
     if (f.cpus_online >= 4)
-      r.advice.push_back("optionally isolate one CPU for the loop: isolcpus=N nohz_full=N on the kernel command line, then "
-                         "palprig run --cpu N");
+      r.advice.push_back(
+          "optionally isolate one CPU for the loop: isolcpus=N nohz_full=N on the kernel command line, then "
+          "palprig run --cpu N");
   } else {
     std::string list;
     for (int c : f.isolated_cpus) list += (list.empty() ? "" : ",") + std::to_string(c);
-    add(L::ok, "isolation", "isolated CPUs " + list + ": run the loop there with --cpu " + std::to_string(f.isolated_cpus.front()));
+    add(L::ok, "isolation",
+        "isolated CPUs " + list + ": run the loop there with --cpu " + std::to_string(f.isolated_cpus.front()));
   }
 
   // The measured loop: the verdict.
@@ -348,24 +363,28 @@ Readiness assess(const SystemFacts& f, const LoopMeasurement& m, int fifo_priori
   const bool few_overruns = m.overruns <= allowed;
   r.ready = m.ticks > 0 && fits && few_overruns;
   char line[400];
-  std::snprintf(line, sizeof line,
-                "%.1f s at %.0f Hz: %llu ticks, %llu overruns (%llu periods skipped); wake-up latency p50/p99/p99.9/max "
-                "%s/%s/%s/%s; tick p99.9 %s",
-                m.seconds, m.rate_hz, static_cast<unsigned long long>(m.ticks), static_cast<unsigned long long>(m.overruns),
-                static_cast<unsigned long long>(m.missed_periods), us_text(m.wake.p50_us).c_str(),
-                us_text(m.wake.p99_us).c_str(), us_text(m.wake.p999_us).c_str(), us_text(m.wake.max_us).c_str(),
-                us_text(m.tick.p999_us).c_str());
+  std::snprintf(
+      line, sizeof line,
+      "%.1f s at %.0f Hz: %llu ticks, %llu overruns (%llu periods skipped); wake-up latency p50/p99/p99.9/max "
+      "%s/%s/%s/%s; tick p99.9 %s",
+      m.seconds, m.rate_hz, static_cast<unsigned long long>(m.ticks), static_cast<unsigned long long>(m.overruns),
+      static_cast<unsigned long long>(m.missed_periods), us_text(m.wake.p50_us).c_str(), us_text(m.wake.p99_us).c_str(),
+      us_text(m.wake.p999_us).c_str(), us_text(m.wake.max_us).c_str(), us_text(m.tick.p999_us).c_str());
   add(r.ready ? L::ok : L::fail, "loop", line);
-  std::snprintf(line, sizeof line,
-                "needs wake-up + tick under one period (%s at %.0f Hz) and at most %llu overrun(s): p99.9 %s + %s = %s, %s",
-                us_text(r.budget_us).c_str(), m.rate_hz, static_cast<unsigned long long>(allowed),
-                us_text(m.wake.p999_us).c_str(), us_text(m.tick.p999_us).c_str(), us_text(r.needed_us).c_str(),
-                r.ready ? "holds the rate" : "does NOT hold the rate");
+  std::snprintf(
+      line, sizeof line,
+      "needs wake-up + tick under one period (%s at %.0f Hz) and at most %llu overrun(s): p99.9 %s + %s = %s, %s",
+      us_text(r.budget_us).c_str(), m.rate_hz, static_cast<unsigned long long>(allowed),
+      us_text(m.wake.p999_us).c_str(), us_text(m.tick.p999_us).c_str(), us_text(r.needed_us).c_str(),
+      r.ready ? "holds the rate" : "does NOT hold the rate");
   add(r.ready ? L::ok : L::fail, "loop", line);
   if (!r.ready) {
-    r.advice.push_back("the loop missed its budget: follow the advice above, stop other work on the machine, or lower --rate-hz");
+    r.advice.push_back(
+        "the loop missed its budget: follow the advice above, stop other work on the machine, or lower --rate-hz");
     if (f.hypervisor)
-      r.advice.push_back("on a virtual machine the hypervisor's stalls show up as millisecond tails no setting inside the guest removes");
+      r.advice.push_back(
+          "on a virtual machine the hypervisor's stalls show up as millisecond tails no setting inside the guest "
+          "removes");
   }
   if (!m.practices.empty()) add(L::info, "loop", "measured with " + m.practices);
   return r;

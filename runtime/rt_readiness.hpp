@@ -38,7 +38,7 @@ struct IdleState {
 struct SystemFacts {
   std::string kernel_release, kernel_version;
   PreemptModel preempt = PreemptModel::unknown;
-  std::string preempt_source;       // which file or string told
+  std::string preempt_source;  // which file or string told
   int cpus_online = 0;
   std::vector<int> isolated_cpus;
   std::vector<std::string> governors;  // one per CPU with cpufreq; empty: no cpufreq
@@ -81,9 +81,9 @@ struct Finding {
 const char* to_string(Finding::Level l) noexcept;
 
 struct Readiness {
-  bool ready = false;          // the machine held the configured rate
-  double budget_us = 0;        // one period
-  double needed_us = 0;        // measured p99.9 wake-up latency + p99.9 tick time
+  bool ready = false;    // the machine held the configured rate
+  double budget_us = 0;  // one period
+  double needed_us = 0;  // measured p99.9 wake-up latency + p99.9 tick time
   std::vector<Finding> findings;
   std::vector<std::string> advice;
 };

@@ -5,7 +5,8 @@
 
 namespace palprig {
 
-OpenedPulseSession open_pulse_session(SqliteTrialStore& store, const PulseProtocol& protocol, const PulseSessionRequest& request) {
+OpenedPulseSession open_pulse_session(SqliteTrialStore& store, const PulseProtocol& protocol,
+                                      const PulseSessionRequest& request) {
   PulseStore pulse_store(store);
   OpenedPulseSession opened;
   std::optional<StoredPulseSession> stored;
@@ -17,13 +18,16 @@ OpenedPulseSession open_pulse_session(SqliteTrialStore& store, const PulseProtoc
   };
   steps.load = [&](std::int64_t id) {
     stored = pulse_store.load_session(id);
-    return StoredSessionHead{stored->id, stored->participant, stored->seed, stored->completed_trials, stored->protocol_snapshot};
+    return StoredSessionHead{stored->id, stored->participant, stored->seed, stored->completed_trials,
+                             stored->protocol_snapshot};
   };
   steps.create = [&](const ParticipantRecord& who, std::uint64_t seed) {
     return pulse_store.create_session(who, protocol, seed, request.setup);
   };
-  const OpenedSessionHead head = open_task_session(store, protocol.name, protocol.snapshot, protocol.source, request, steps);
-  opened.protocol = head.resumed ? parse_pulse_protocol(stored->protocol_snapshot, protocol.source, stored->protocol_dir) : protocol;
+  const OpenedSessionHead head =
+      open_task_session(store, protocol.name, protocol.snapshot, protocol.source, request, steps);
+  opened.protocol =
+      head.resumed ? parse_pulse_protocol(stored->protocol_snapshot, protocol.source, stored->protocol_dir) : protocol;
   opened.session_id = head.session_id;
   opened.participant = head.participant;
   opened.seed = head.seed;

@@ -23,6 +23,7 @@ struct OpenedPulseSession {
   bool resumed = false;
 };
 
-OpenedPulseSession open_pulse_session(SqliteTrialStore& store, const PulseProtocol& protocol, const PulseSessionRequest& request);
+OpenedPulseSession open_pulse_session(SqliteTrialStore& store, const PulseProtocol& protocol,
+                                      const PulseSessionRequest& request);
 
 }  // namespace palprig

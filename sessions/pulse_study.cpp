@@ -11,8 +11,9 @@
 
 namespace palprig {
 
-SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactory& person, PulseSessionListener& listener,
-                           const std::atomic<int>* stop, const std::atomic<bool>* pause) {
+SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactory& person,
+                           PulseSessionListener& listener, const std::atomic<int>* stop,
+                           const std::atomic<bool>* pause) {
   refuse_server_store_for_task_session(r.store_location);
   const PulseProtocol from_file = load_pulse_protocol(r.protocol_file);
   std::uint64_t sim_seed = 0;
@@ -23,7 +24,8 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
                      "not read; run it from the GUI)");
   }
   std::vector<SceneFile> scenes;
-  for (const auto& c : from_file.conditions) scenes.push_back(c.generated ? SceneFile{} : load_scene_file(c.scene_file));
+  for (const auto& c : from_file.conditions)
+    scenes.push_back(c.generated ? SceneFile{} : load_scene_file(c.scene_file));
   StudyRig rig = load_study_rig(r.rig_file, r.calibration_file);
   refuse_speed_on_hardware(rig, r.speed);
   if (!r.telemetry_file.empty()) refuse_unusable_telemetry_file(r.telemetry_file);
@@ -38,9 +40,13 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
   opening.resume = r.resume;
   opening.seed = r.seed;
   opening.setup = {rig.rig.id, rig.rig.backend, rig.cal.source,
-                   !simulated ? nlohmann::json(nullptr) : nlohmann::json{{"model", "pulse observer"}, {"seed", sim_seed}, {"press_force_N", model.press_force_N},
-                                  {"sweep_speed_mm_per_s", model.sweep_speed_mm_per_s},
-                                  {"sweep_row_step_mm", model.sweep_row_step_mm}, {"mark_noise_mm", model.mark_noise_mm}},
+                   !simulated ? nlohmann::json(nullptr)
+                              : nlohmann::json{{"model", "pulse observer"},
+                                               {"seed", sim_seed},
+                                               {"press_force_N", model.press_force_N},
+                                               {"sweep_speed_mm_per_s", model.sweep_speed_mm_per_s},
+                                               {"sweep_row_step_mm", model.sweep_row_step_mm},
+                                               {"mark_noise_mm", model.mark_noise_mm}},
                    std::filesystem::absolute(r.protocol_file).parent_path().string()};
   const OpenedPulseSession session = open_pulse_session(store, from_file, opening);
   PulseStore pulse_store(store);

@@ -25,7 +25,8 @@ std::optional<std::int64_t> session_to_resume(TrialStore& store, const std::stri
     if (!unfinished) {
       throw InputError(store.location(), "resume",
                        "participant '" + participant_code + "' has no unfinished session with protocol '" +
-                           protocol_name + "' to continue (none was started, or it was completed); to start a new "
+                           protocol_name +
+                           "' to continue (none was started, or it was completed); to start a new "
                            "session, run the same command without `resume`");
     }
     // Held from here on: a second --resume of the same session at the same time is refused.
@@ -54,7 +55,8 @@ OpenedSessionHead open_task_session(TrialStore& store, const std::string& protoc
                                     const nlohmann::json& file_snapshot, const std::string& protocol_file,
                                     const SessionRequest& request, const TaskSessionSteps& steps) {
   OpenedSessionHead opened;
-  const auto resumed = session_to_resume(store, request.participant_code, protocol_name, request.resume, steps.progress);
+  const auto resumed =
+      session_to_resume(store, request.participant_code, protocol_name, request.resume, steps.progress);
   if (resumed) {
     const StoredSessionHead stored = steps.load(*resumed);
     refuse_changed_protocol(stored.id, stored.protocol_snapshot, file_snapshot, protocol_file);
@@ -77,7 +79,8 @@ OpenedSession open_session(TrialStore& store, const Protocol& protocol, const Se
   TaskSessionSteps steps;
   steps.progress = [&](std::int64_t id) {
     const StoredSession s = store.load_session(id);
-    return "stopped after " + std::to_string(s.completed_trials) + " of " + std::to_string(s.plan.trials.size()) + " trials";
+    return "stopped after " + std::to_string(s.completed_trials) + " of " + std::to_string(s.plan.trials.size()) +
+           " trials";
   };
   steps.load = [&](std::int64_t id) {
     stored = store.load_session(id);
@@ -87,7 +90,8 @@ OpenedSession open_session(TrialStore& store, const Protocol& protocol, const Se
     opened.plan = make_session_plan(protocol, who.number, seed);
     return store.create_session(who, protocol, opened.plan, request.setup);
   };
-  const OpenedSessionHead head = open_task_session(store, protocol.name, protocol.snapshot, protocol.source, request, steps);
+  const OpenedSessionHead head =
+      open_task_session(store, protocol.name, protocol.snapshot, protocol.source, request, steps);
   if (head.resumed) {
     opened.protocol = parse_protocol(stored->protocol_snapshot, protocol.source, stored->protocol_dir);
     opened.plan = std::move(stored->plan);

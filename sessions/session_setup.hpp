@@ -51,8 +51,8 @@ struct StoredSessionHead {
   nlohmann::json protocol_snapshot;
 };
 struct TaskSessionSteps {
-  std::function<std::string(std::int64_t)> progress;     // "stopped after 12 of 32 trials"
-  std::function<StoredSessionHead(std::int64_t)> load;    // the unfinished session being resumed
+  std::function<std::string(std::int64_t)> progress;    // "stopped after 12 of 32 trials"
+  std::function<StoredSessionHead(std::int64_t)> load;  // the unfinished session being resumed
   std::function<std::int64_t(const ParticipantRecord&, std::uint64_t seed)> create;  // a new one
 };
 struct OpenedSessionHead {

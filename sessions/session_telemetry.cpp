@@ -17,14 +17,16 @@ void refuse_unusable_telemetry_file(const std::filesystem::path& file) {
   }
   const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
   if (!std::filesystem::is_directory(folder, ec)) {
-    throw InputError(file.string(), "telemetry", "a file in an existing folder (" + folder.string() + " does not exist)");
+    throw InputError(file.string(), "telemetry",
+                     "a file in an existing folder (" + folder.string() + " does not exist)");
   }
 }
 
 std::string telemetry_summary(const SessionEnd& end) {
   if (end.telemetry_file.empty()) return "";
   std::string line = "telemetry: " + std::to_string(end.telemetry_records) + " ticks in " + end.telemetry_file.string();
-  if (end.telemetry_dropped > 0) line += " (" + std::to_string(end.telemetry_dropped) + " dropped: the disk fell behind)";
+  if (end.telemetry_dropped > 0)
+    line += " (" + std::to_string(end.telemetry_dropped) + " dropped: the disk fell behind)";
   return line;
 }
 

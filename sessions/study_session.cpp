@@ -39,7 +39,8 @@ class ListenerBridge final : public RunnerListener {
       : recorder_(store, session_id), plan_(plan), protocol_(protocol), listener_(listener) {}
 
   void on_event(const RunnerEvent& e) override {
-    if (e.kind == RunnerEvent::Kind::state_changed && e.state == RunnerState::ready) last_started_ = -1;  // a pause holds the trial
+    if (e.kind == RunnerEvent::Kind::state_changed && e.state == RunnerState::ready)
+      last_started_ = -1;  // a pause holds the trial
     if (e.kind == RunnerEvent::Kind::state_changed && e.state == RunnerState::present && e.position >= 0 &&
         e.position != last_started_) {
       last_started_ = e.position;
@@ -51,7 +52,8 @@ class ListenerBridge final : public RunnerListener {
   void on_trial_completed(const TrialRecord& trial) override {
     recorder_.on_trial_completed(trial);  // committed before anyone is told
     listener_.trial_committed(trial, static_cast<int>(plan_.trials.size()));
-    if (const auto text = trial_feedback(protocol_, trial)) listener_.participant_feedback(trial.planned.position, *text);
+    if (const auto text = trial_feedback(protocol_, trial))
+      listener_.participant_feedback(trial.planned.position, *text);
   }
   int committed() const noexcept { return recorder_.committed(); }
 
@@ -69,8 +71,8 @@ std::uint64_t resumed_simulation_seed(std::uint64_t seed, int start_position) no
   return seed + static_cast<std::uint64_t>(start_position) * 0x9E3779B97F4A7C15ULL;
 }
 
-SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person,
-                             SessionListener& listener, const std::atomic<int>* stop, const std::atomic<bool>* pause) {
+SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person, SessionListener& listener,
+                             const std::atomic<int>* stop, const std::atomic<bool>* pause) {
   // Everything is loaded and validated before the rig is opened.
   const Protocol from_file = load_protocol(request.protocol_file);
   std::uint64_t sim_seed = 0;
@@ -140,7 +142,8 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   std::unique_ptr<Participant> participant;
   if (simulated) {
     model.seed = resumed_simulation_seed(sim_seed, session.start_position);
-    participant = std::make_unique<SimulatedParticipant>(model, protocol, scene ? scene->scene.get() : nullptr, config.layout);
+    participant =
+        std::make_unique<SimulatedParticipant>(model, protocol, scene ? scene->scene.get() : nullptr, config.layout);
   } else {
     participant = person(protocol);
   }
@@ -148,8 +151,10 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   const int total = static_cast<int>(session.plan.trials.size());
   // The clock first, so the start can say where session time 0 is on steady_clock.
   std::unique_ptr<SessionClock> clock;
-  if (simulated && !hardware && request.speed <= 0) clock = std::make_unique<SimulatedClock>();
-  else clock = std::make_unique<SteadyClock>(simulated && !hardware ? request.speed : 1.0);
+  if (simulated && !hardware && request.speed <= 0)
+    clock = std::make_unique<SimulatedClock>();
+  else
+    clock = std::make_unique<SteadyClock>(simulated && !hardware ? request.speed : 1.0);
   listener.session_started(SessionStart{protocol.name, session.participant, session.session_id, session.resumed,
                                         session.start_position, total, session.plan.seed, simulated, hardware,
                                         journaled ? journaled->pushed_at_open() : 0, clock->steady_origin()});

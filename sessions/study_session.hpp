@@ -31,14 +31,14 @@ class TickObserver;  // controller/loop_runner.hpp
 
 struct StudySessionRequest {
   std::filesystem::path protocol_file;
-  std::string participant_code;       // a person's code, or sim:SEED for the simulated observer
-  std::string store_location;         // trial store (open_trial_store): SQLite file, created when missing,
-                                      // or the lab's postgresql:// server
-  std::filesystem::path journal_file;  // postgresql:// store: the bench journal; empty: default_journal_file()
-  std::filesystem::path rig_file;     // the rig the stimuli go to
+  std::string participant_code;            // a person's code, or sim:SEED for the simulated observer
+  std::string store_location;              // trial store (open_trial_store): SQLite file, created when missing,
+                                           // or the lab's postgresql:// server
+  std::filesystem::path journal_file;      // postgresql:// store: the bench journal; empty: default_journal_file()
+  std::filesystem::path rig_file;          // the rig the stimuli go to
   std::filesystem::path calibration_file;  // empty: paper 002's models
-  bool resume = false;                // continue the unfinished session of participant and protocol
-  std::optional<std::uint64_t> seed;  // of the generated order; default: derived from participant and protocol
+  bool resume = false;                     // continue the unfinished session of participant and protocol
+  std::optional<std::uint64_t> seed;       // of the generated order; default: derived from participant and protocol
   double speed = 0;  // simulated participant: 0 = as fast as possible on simulated time, else times real time
   SimulatedObserverModel model;  // simulated participant's parameters (its seed comes from sim:SEED)
   bool person_palpates = false;  // the front end gives a person a pen (GUI); a terminal does not
@@ -63,7 +63,7 @@ struct SessionStart {
   std::uint64_t seed = 0;
   bool simulated = false;
   bool real_time_hardware = false;  // a hardware rig: the session runs on the wall clock
-  int pushed_from_journal = 0;  // lab store: trials an earlier run left in the journal, pushed at the start
+  int pushed_from_journal = 0;      // lab store: trials an earlier run left in the journal, pushed at the start
   // The steady_clock (CLOCK_MONOTONIC) moment of session time 0 when the session runs in real
   // time at speed 1 (a person's session), so a front end or a benchmark can place the stored
   // onsets on the clock its input events are stamped on; none on simulated or scaled time.
@@ -71,9 +71,9 @@ struct SessionStart {
 };
 
 struct SessionEnd {
-  bool completed = false;  // every planned trial committed; the session is marked completed
-  bool stopped = false;    // a stop was requested; committed trials kept, resumable
-  std::string fault;       // non-empty when the rig faulted (channels vented); resumable
+  bool completed = false;    // every planned trial committed; the session is marked completed
+  bool stopped = false;      // a stop was requested; committed trials kept, resumable
+  std::string fault;         // non-empty when the rig faulted (channels vented); resumable
   int committed_trials = 0;  // in the store for this session, including those before a resume
   int total_trials = 0;
   // Lab store: journal commits the server has not confirmed after a short wait at the end
@@ -111,9 +111,8 @@ using PersonFactory = std::function<std::unique_ptr<Participant>(const Protocol&
 // refused input (before anything moves, or when the store refuses the session).
 // `pause` (optional): true vents and holds the session at the trial in progress, false goes on
 // with it (experiments/session_loop.hpp).
-SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person,
-                             SessionListener& listener, const std::atomic<int>* stop,
-                             const std::atomic<bool>* pause = nullptr);
+SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person, SessionListener& listener,
+                             const std::atomic<int>* stop, const std::atomic<bool>* pause = nullptr);
 
 // The simulated observer's seed for a session resumed at `start_position`: moved on by the
 // trials done, so the answers differ from those of the lost attempt.

@@ -18,12 +18,14 @@ OpenedThresholdSession open_threshold_session(SqliteTrialStore& store, const Thr
   };
   steps.load = [&](std::int64_t id) {
     stored = threshold_store.load_session(id);
-    return StoredSessionHead{stored->id, stored->participant, stored->seed, stored->completed_trials, stored->protocol_snapshot};
+    return StoredSessionHead{stored->id, stored->participant, stored->seed, stored->completed_trials,
+                             stored->protocol_snapshot};
   };
   steps.create = [&](const ParticipantRecord& who, std::uint64_t seed) {
     return threshold_store.create_session(who, protocol, seed, request.setup);
   };
-  const OpenedSessionHead head = open_task_session(store, protocol.name, protocol.snapshot, protocol.source, request, steps);
+  const OpenedSessionHead head =
+      open_task_session(store, protocol.name, protocol.snapshot, protocol.source, request, steps);
   if (head.resumed) {
     opened.protocol = parse_threshold_protocol(stored->protocol_snapshot, protocol.source);
     for (const TrackSpec& spec : opened.protocol.tracks) opened.tracks.emplace_back(spec);

@@ -29,7 +29,8 @@ ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const Thr
   const ThresholdProtocol from_file = load_threshold_protocol(r.protocol_file);
   std::uint64_t sim_seed = 0;
   const bool simulated = simulated_participant(r.participant_code, sim_seed);
-  if (!simulated && !person) throw InputError("command line", "participant", "sim:SEED (this front end cannot ask a person)");
+  if (!simulated && !person)
+    throw InputError("command line", "participant", "sim:SEED (this front end cannot ask a person)");
   StudyRig rig = load_study_rig(r.rig_file, r.calibration_file);
   if (!r.telemetry_file.empty()) refuse_unusable_telemetry_file(r.telemetry_file);
   if (from_file.max_pressure_kPa() > rig.rig.safety.p_max_kPa) {

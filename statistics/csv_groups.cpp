@@ -34,8 +34,7 @@ std::vector<NumericGroup> group_numbers(const CsvTable& table, std::string_view 
 }
 
 std::vector<NumericGroup> two_groups(const CsvTable& table, std::string_view value_column,
-                                     std::string_view group_column,
-                                     const std::vector<std::string>& selected_groups) {
+                                     std::string_view group_column, const std::vector<std::string>& selected_groups) {
   if (!selected_groups.empty() && selected_groups.size() != 2) {
     throw InputError(table.source(), "`groups`", "exactly two group labels");
   }

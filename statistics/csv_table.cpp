@@ -85,9 +85,9 @@ CsvTable CsvTable::parse(std::string_view text, std::string source_name, char de
       continue;
     }
     if (fields.size() != table.header_.size()) {
-      throw InputError(table.source_, "line " + std::to_string(record_line),
-                       std::to_string(table.header_.size()) + " fields like the header, got " +
-                           std::to_string(fields.size()));
+      throw InputError(
+          table.source_, "line " + std::to_string(record_line),
+          std::to_string(table.header_.size()) + " fields like the header, got " + std::to_string(fields.size()));
     }
     table.cells_.push_back(std::move(fields));
     table.lines_.push_back(record_line);
@@ -111,8 +111,7 @@ double CsvTable::number(std::size_t row, std::size_t column) const {
   if (!parse_finite_number(cell, value)) {
     const std::string where = "line " + std::to_string(lines_[row]) + ", column '" + header_[column] + "'";
     throw InputError(source_, where,
-                     cell.empty() ? std::string("a number (the value is missing)")
-                                        : "a number, got '" + cell + "'");
+                     cell.empty() ? std::string("a number (the value is missing)") : "a number, got '" + cell + "'");
   }
   return value;
 }

@@ -19,7 +19,10 @@ struct ConfusionCounts {
     }
   }
   ConfusionCounts& operator+=(const ConfusionCounts& o) noexcept {
-    tp += o.tp; fn += o.fn; tn += o.tn; fp += o.fp;
+    tp += o.tp;
+    fn += o.fn;
+    tn += o.tn;
+    fp += o.fp;
     return *this;
   }
   std::int64_t total() const noexcept { return tp + fn + tn + fp; }

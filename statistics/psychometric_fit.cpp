@@ -246,7 +246,8 @@ Fitted minimise(const std::vector<LevelCounts>& data, const Parameterisation& pa
   }();
   (void)quiet;
   const std::vector<StandardLevel> levels = standard_levels(data, param);
-  auto* function = new ceres::AutoDiffFirstOrderFunction<NegativeLogLikelihood, 4>(new NegativeLogLikelihood{&levels, &param});
+  auto* function =
+      new ceres::AutoDiffFirstOrderFunction<NegativeLogLikelihood, 4>(new NegativeLogLikelihood{&levels, &param});
   ceres::GradientProblem problem(function);
   ceres::GradientProblemSolver::Options options;
   options.logging_type = ceres::SILENT;
@@ -305,7 +306,8 @@ void describe(const Parameterisation& param, const double p[4], const std::vecto
   fit.jnd = inverse_f(fit.sigmoid, fit.alpha, fit.beta, 0.75) - inverse_f(fit.sigmoid, fit.alpha, fit.beta, 0.5);
   double ll = 0, deviance = 0;
   for (const LevelCounts& c : data) {
-    const double psi = std::clamp(psychometric_value(fit.sigmoid, fit.alpha, fit.beta, fit.guess, fit.lapse, c.level), 1e-300, 1 - 1e-16);
+    const double psi = std::clamp(psychometric_value(fit.sigmoid, fit.alpha, fit.beta, fit.guess, fit.lapse, c.level),
+                                  1e-300, 1 - 1e-16);
     ll += c.k * std::log(psi) + (c.n - c.k) * std::log1p(-psi);
     deviance += 2 * (xlogy_ratio(c.k, c.n * psi) + xlogy_ratio(c.n - c.k, c.n * (1 - psi)));
   }
@@ -443,7 +445,8 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
 
   const auto boot_started = std::chrono::steady_clock::now();
   std::vector<double> predicted;
-  for (const LevelCounts& c : used) predicted.push_back(psychometric_value(fit.sigmoid, fit.alpha, fit.beta, fit.guess, fit.lapse, c.level));
+  for (const LevelCounts& c : used)
+    predicted.push_back(psychometric_value(fit.sigmoid, fit.alpha, fit.beta, fit.guess, fit.lapse, c.level));
   SplitMix random{o.seed};
   std::vector<double> alphas, betas, thresholds, slopes, jnds;
   int deviance_at_least = 0, good = 0;

@@ -36,8 +36,8 @@ std::optional<Sigmoid> sigmoid_from_string(const std::string& text) noexcept;
 // Counts at one stimulus level.
 struct LevelCounts {
   double level = 0;
-  int n = 0;      // trials
-  int k = 0;      // "yes" or correct answers
+  int n = 0;  // trials
+  int k = 0;  // "yes" or correct answers
 };
 
 // Per-trial (level, 0/1) pairs grouped into counts per distinct level, in increasing level.
@@ -45,8 +45,8 @@ std::vector<LevelCounts> counts_per_level(const std::vector<double>& levels, con
 
 struct PsychometricOptions {
   Sigmoid sigmoid = Sigmoid::cumulative_gaussian;
-  std::optional<double> guess = 0.0;   // nullopt: fitted within [0, guess_max]
-  std::optional<double> lapse;         // nullopt: fitted within [0, lapse_max]
+  std::optional<double> guess = 0.0;  // nullopt: fitted within [0, guess_max]
+  std::optional<double> lapse;        // nullopt: fitted within [0, lapse_max]
   double guess_max = 0.5, lapse_max = 0.1;
   std::optional<double> threshold_at;  // proportion on psi; default: F = 0.5
   int bootstrap = 1000;                // resamples (0: no intervals, no GOF p)

@@ -63,7 +63,8 @@ std::vector<PsychometricGroup> psychometric_groups(const CsvTable& table, const 
 }
 
 std::vector<PsychometricGroup> psychometric_groups(const std::vector<std::string>& labels,
-                                                   const std::vector<double>& levels, const std::vector<int>& responses) {
+                                                   const std::vector<double>& levels,
+                                                   const std::vector<int>& responses) {
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> x;
   std::map<std::string, std::vector<int>> y;

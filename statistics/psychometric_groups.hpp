@@ -28,7 +28,8 @@ std::vector<PsychometricGroup> psychometric_groups(const CsvTable& table, const 
 
 // One group per label; trial i has level levels[i] and response responses[i] (0/1).
 std::vector<PsychometricGroup> psychometric_groups(const std::vector<std::string>& labels,
-                                                   const std::vector<double>& levels, const std::vector<int>& responses);
+                                                   const std::vector<double>& levels,
+                                                   const std::vector<int>& responses);
 
 // The fit as the report `palprig stats psychometric` prints (one object per group).
 Report psychometric_report(const PsychometricFit& fit, double confidence);

@@ -11,8 +11,8 @@ namespace palprig::stats {
 class MannWhitneyExact {
  public:
   MannWhitneyExact(std::size_t m, std::size_t n);
-  double cdf(double u) const noexcept;           // P(U <= u)
-  double upper_tail(double u) const noexcept;    // P(U >= u)
+  double cdf(double u) const noexcept;         // P(U <= u)
+  double upper_tail(double u) const noexcept;  // P(U >= u)
   std::size_t max_u() const noexcept { return counts_.size() - 1; }
 
  private:

@@ -72,8 +72,9 @@ Description describe(std::span<const double> values, QuantileRule rule) {
   // Quartiles interpolate between neighbours: a spread beyond the largest double (values near
   // +-1e308) has no finite IQR, and a NaN would be printed as if it were a result.
   if (!std::isfinite(d.q1) || !std::isfinite(d.q3) || !std::isfinite(d.median) || !std::isfinite(d.iqr)) {
-    throw StatisticsError("the values are too large: their spread (IQR) exceeds the largest double (1.8e308); "
-                          "rescale the column, e.g. to other units");
+    throw StatisticsError(
+        "the values are too large: their spread (IQR) exceeds the largest double (1.8e308); "
+        "rescale the column, e.g. to other units");
   }
   return d;
 }

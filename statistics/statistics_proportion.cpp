@@ -38,8 +38,8 @@ WilsonInterval wilson_interval(std::int64_t k, std::int64_t n, double confidence
   return w;
 }
 
-ProportionComparison compare_proportions(std::int64_t k1, std::int64_t n1, std::int64_t k2,
-                                         std::int64_t n2, double confidence) {
+ProportionComparison compare_proportions(std::int64_t k1, std::int64_t n1, std::int64_t k2, std::int64_t n2,
+                                         double confidence) {
   ProportionComparison c;
   c.first = wilson_interval(k1, n1, confidence);
   c.second = wilson_interval(k2, n2, confidence);

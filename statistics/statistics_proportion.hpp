@@ -29,13 +29,13 @@ double two_sided_z(double confidence);
 
 struct ProportionComparison {
   WilsonInterval first, second;
-  double difference = 0;        // p1 - p2
-  double combined_interval = 0; // paper 002 eq. 10
-  bool significant = false;     // |p1 - p2| > combined_interval
+  double difference = 0;                          // p1 - p2
+  double combined_interval = 0;                   // paper 002 eq. 10
+  bool significant = false;                       // |p1 - p2| > combined_interval
   double newcombe_lower = 0, newcombe_upper = 0;  // interval for p1 - p2
 };
 
-ProportionComparison compare_proportions(std::int64_t k1, std::int64_t n1, std::int64_t k2,
-                                         std::int64_t n2, double confidence = 0.95);
+ProportionComparison compare_proportions(std::int64_t k1, std::int64_t n1, std::int64_t k2, std::int64_t n2,
+                                         double confidence = 0.95);
 
 }  // namespace palprig::stats

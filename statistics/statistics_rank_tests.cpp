@@ -35,7 +35,8 @@ bool use_exact(const RankOptions& options, bool small_enough, bool untied) {
   switch (options.method) {
     case RankMethod::automatic: return small_enough && untied;
     case RankMethod::exact:
-      if (!untied) throw StatisticsError("an exact p needs untied data without zero differences; use the normal method");
+      if (!untied)
+        throw StatisticsError("an exact p needs untied data without zero differences; use the normal method");
       return true;
     case RankMethod::normal: return false;
   }
@@ -159,7 +160,8 @@ SignedRankResult signed_rank_of_differences(std::vector<double> differences, con
 
   r.exact = use_exact(options, r.n_used < kExactLimit, !r.ties && r.zeros == 0);
   if (r.exact) {
-    if (n * n * n > kMaxExactTableCells) throw StatisticsError("sample too large for an exact p; use the normal method");
+    if (n * n * n > kMaxExactTableCells)
+      throw StatisticsError("sample too large for an exact p; use the normal method");
     r.p = exact_two_sided_p(SignedRankExact(r.n_used), r.v, centre);
   } else {
     if (!(variance > 0.0)) throw StatisticsError("all differences are tied: the normal approximation is undefined");

@@ -38,11 +38,11 @@ Ranking rank_average(std::span<const double> values);
 
 struct MannWhitneyResult {
   std::size_t n1 = 0, n2 = 0;
-  double u1 = 0;  // pairs where group 1 is larger (+0.5 per tie): R's W, scipy's U1
-  double u2 = 0;  // n1 * n2 - u1
-  double u = 0;   // min(u1, u2), the U that SPSS and paper 000 report
-  double z = 0;   // (u1 - n1 n2 / 2 [-/+ 0.5]) / sigma: negative when group 1 ranks lower
-  double p = 1;   // two-sided
+  double u1 = 0;        // pairs where group 1 is larger (+0.5 per tie): R's W, scipy's U1
+  double u2 = 0;        // n1 * n2 - u1
+  double u = 0;         // min(u1, u2), the U that SPSS and paper 000 report
+  double z = 0;         // (u1 - n1 n2 / 2 [-/+ 0.5]) / sigma: negative when group 1 ranks lower
+  double p = 1;         // two-sided
   double effect_r = 0;  // z / sqrt(n1 + n2)
   bool exact = false;   // p from the exact distribution
   bool ties = false;
@@ -55,13 +55,13 @@ MannWhitneyResult mann_whitney(std::span<const double> group1, std::span<const d
                                const RankOptions& options = {});
 
 struct SignedRankResult {
-  std::size_t n = 0;        // values given
-  std::size_t n_used = 0;   // non-zero differences that were ranked
-  std::size_t zeros = 0;    // differences equal to zero, dropped
-  double v = 0;             // sum of the ranks of the positive differences (R's V)
+  std::size_t n = 0;       // values given
+  std::size_t n_used = 0;  // non-zero differences that were ranked
+  std::size_t zeros = 0;   // differences equal to zero, dropped
+  double v = 0;            // sum of the ranks of the positive differences (R's V)
   double z = 0;
-  double p = 1;             // two-sided
-  double effect_r = 0;      // z / sqrt(n_used)
+  double p = 1;                  // two-sided
+  double effect_r = 0;           // z / sqrt(n_used)
   double median_difference = 0;  // median of the differences (zeros included)
   bool exact = false;
   bool ties = false;

@@ -35,10 +35,14 @@ void render(std::ostringstream& out, const Report& report, int indent) {
       }
     } else {
       std::string text;
-      if (value.is_number_float()) text = format_number(value.get<double>());
-      else if (value.is_string()) text = value.get<std::string>();
-      else if (value.is_null()) text = "NA";
-      else text = value.dump();
+      if (value.is_number_float())
+        text = format_number(value.get<double>());
+      else if (value.is_string())
+        text = value.get<std::string>();
+      else if (value.is_null())
+        text = "NA";
+      else
+        text = value.dump();
       out << pad << it.key() << std::string(it.key().size() < 22 ? 22 - it.key().size() : 1, ' ') << text << "\n";
     }
   }
@@ -50,16 +54,19 @@ std::string format_number(double x) {
   if (std::isnan(x)) return "NA";
   if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
   char buf[40];
-  if (x != 0.0 && std::fabs(x) < 1e-4) std::snprintf(buf, sizeof buf, "%.3e", x);
-  else std::snprintf(buf, sizeof buf, "%.6g", x);
+  if (x != 0.0 && std::fabs(x) < 1e-4)
+    std::snprintf(buf, sizeof buf, "%.3e", x);
+  else
+    std::snprintf(buf, sizeof buf, "%.6g", x);
   return buf;
 }
 
 Report to_report(const WilsonInterval& w) {
   Report r;
   r["test"] = "proportion";
-  r["convention"] = "Wilson score interval without continuity correction (paper 002 eq. 9; statsmodels "
-                    "proportion_confint method='wilson'; R prop.test(correct=FALSE))";
+  r["convention"] =
+      "Wilson score interval without continuity correction (paper 002 eq. 9; statsmodels "
+      "proportion_confint method='wilson'; R prop.test(correct=FALSE))";
   r["k"] = w.k;
   r["n"] = w.n;
   r["p"] = w.p;
@@ -72,8 +79,9 @@ Report to_report(const WilsonInterval& w) {
 Report to_report(const ProportionComparison& c) {
   Report r;
   r["test"] = "compare-proportions";
-  r["convention"] = "paper 002 eq. 10: CI = sqrt((P1-p1)^2 + (P2-p2)^2) from Wilson bounds facing each other, "
-                    "significant if |p1-p2| > CI; Newcombe (1998) hybrid score interval for p1-p2";
+  r["convention"] =
+      "paper 002 eq. 10: CI = sqrt((P1-p1)^2 + (P2-p2)^2) from Wilson bounds facing each other, "
+      "significant if |p1-p2| > CI; Newcombe (1998) hybrid score interval for p1-p2";
   r["first"] = to_report(c.first);
   r["second"] = to_report(c.second);
   r["first"].erase("test");

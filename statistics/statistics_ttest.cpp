@@ -55,8 +55,9 @@ void unscale(TTestResult& r, double scale) {
   for (double* x : {&r.mean_x, &r.mean_y, &r.estimate, &r.standard_error, &r.ci_lower, &r.ci_upper}) *x *= scale;
   for (double x : {r.mean_x, r.mean_y, r.estimate, r.standard_error, r.ci_lower, r.ci_upper}) {
     if (!std::isfinite(x)) {
-      throw StatisticsError("the values are too large: the difference of means or its interval exceeds the largest "
-                            "double (1.8e308); rescale the column, e.g. to other units");
+      throw StatisticsError(
+          "the values are too large: the difference of means or its interval exceeds the largest "
+          "double (1.8e308); rescale the column, e.g. to other units");
     }
   }
 }
@@ -69,9 +70,8 @@ void check_confidence(double confidence) {
 
 }  // namespace
 
-TTestResult two_sample_t_test_from_summary(double mean_x, double sd_x, std::size_t n_x, double mean_y,
-                                           double sd_y, std::size_t n_y, bool equal_variance,
-                                           double confidence) {
+TTestResult two_sample_t_test_from_summary(double mean_x, double sd_x, std::size_t n_x, double mean_y, double sd_y,
+                                           std::size_t n_y, bool equal_variance, double confidence) {
   check_confidence(confidence);
   if (n_x < 2 || n_y < 2) throw StatisticsError("a two-sample t-test needs at least 2 values per group");
   const double summary[] = {mean_x, sd_x, mean_y, sd_y};

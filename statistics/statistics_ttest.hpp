@@ -24,8 +24,8 @@ struct TTestResult {
   TTestKind kind = TTestKind::welch;
   double t = 0;
   double df = 0;
-  double p = 1;                   // two-sided
-  double estimate = 0;            // mean(x) - mean(y), the mean difference, or mean(x) - mu
+  double p = 1;         // two-sided
+  double estimate = 0;  // mean(x) - mean(y), the mean difference, or mean(x) - mu
   double standard_error = 0;
   double confidence = 0.95;
   double ci_lower = 0, ci_upper = 0;  // interval for the estimate
@@ -44,9 +44,8 @@ TTestResult paired_t_test(std::span<const double> x, std::span<const double> y, 
 TTestResult one_sample_t_test(std::span<const double> x, double mu, double confidence = 0.95);
 
 // The same test from summary figures (mean, sd, n per group), for checking published results.
-TTestResult two_sample_t_test_from_summary(double mean_x, double sd_x, std::size_t n_x, double mean_y,
-                                           double sd_y, std::size_t n_y, bool equal_variance,
-                                           double confidence = 0.95);
+TTestResult two_sample_t_test_from_summary(double mean_x, double sd_x, std::size_t n_x, double mean_y, double sd_y,
+                                           std::size_t n_y, bool equal_variance, double confidence = 0.95);
 
 // Two-sided p of a t statistic with df degrees of freedom (df may be fractional).
 double two_sided_t_p(double t, double df);

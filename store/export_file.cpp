@@ -16,7 +16,8 @@ void write_export_json(const std::filesystem::path& path, const nlohmann::ordere
 void make_export_dir(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir)) throw InputError(dir.string(), "`out_dir`", "a folder that can be created");
+  if (ec || !std::filesystem::is_directory(dir))
+    throw InputError(dir.string(), "`out_dir`", "a folder that can be created");
 }
 
 }  // namespace palprig

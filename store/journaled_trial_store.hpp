@@ -62,7 +62,9 @@ class JournaledTrialStore final : public TrialStore {
     server_.scan_scored_trials(family, include_practice, visit);
   }
   std::vector<StoredTrial> read_trials(bool include_practice) override { return server_.read_trials(include_practice); }
-  std::vector<StoredTrial> read_session_trials(std::int64_t session_id) override { return server_.read_session_trials(session_id); }
+  std::vector<StoredTrial> read_session_trials(std::int64_t session_id) override {
+    return server_.read_session_trials(session_id);
+  }
   int next_participant_number() override { return server_.next_participant_number(); }
 
   // Waits up to `timeout` for the pushes; returns the journal commits still pending.
@@ -79,7 +81,7 @@ class JournaledTrialStore final : public TrialStore {
   std::filesystem::path journal_file_;
   SqliteTrialStore journal_;
   std::map<std::int64_t, std::int64_t> journal_id_of_;  // server session id -> journal session id
-  std::string server_identity_;                          // pg_store_identity: the store, not its address
+  std::string server_identity_;                         // pg_store_identity: the store, not its address
   int pushed_at_open_ = 0;
   std::unique_ptr<JournalPusher> pusher_;
 };

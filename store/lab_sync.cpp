@@ -72,7 +72,8 @@ PushReport push_file_to_server(Database& file, PgConnection& server, const PushO
       tx.commit();
     }
     if (journal_session && options.mark_synced && local.rows.text(kSessionStatus) == "completed") {
-      auto mark = file.prepare("UPDATE lab_store_sessions SET synced = 1, server_session_id = ?2 WHERE session_id = ?1");
+      auto mark =
+          file.prepare("UPDATE lab_store_sessions SET synced = 1, server_session_id = ?2 WHERE session_id = ?1");
       mark.bind(1, local.id).bind(2, server_id).run();
       ++report.sessions_synced;
     }
@@ -97,7 +98,8 @@ CopyReport copy_study(const std::string& from, const std::string& to, const std:
   }
   if (!from_server) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(from, ec)) throw InputError(from, "file", "an existing palprig trial database");
+    if (!std::filesystem::is_regular_file(from, ec))
+      throw InputError(from, "file", "an existing palprig trial database");
   }
   CopyReport report;
   // Source: sessions with all their trials, one session at a time.
@@ -106,10 +108,12 @@ CopyReport copy_study(const std::string& from, const std::string& to, const std:
   std::vector<std::pair<std::int64_t, SessionRows>> sessions;
   if (from_server) {
     server_source = std::make_unique<PostgresTrialStore>(*from_target, TrialStore::Access::read_only);
-    for (ServerSession& s : pg_read_sessions(server_source->connection(), study)) sessions.emplace_back(s.id, std::move(s.rows));
+    for (ServerSession& s : pg_read_sessions(server_source->connection(), study))
+      sessions.emplace_back(s.id, std::move(s.rows));
   } else {
     sqlite_source = std::make_unique<SqliteTrialStore>(from, TrialStore::Access::read_only);
-    for (LocalSession& s : read_sqlite_sessions(sqlite_source->database(), study)) sessions.emplace_back(s.id, std::move(s.rows));
+    for (LocalSession& s : read_sqlite_sessions(sqlite_source->database(), study))
+      sessions.emplace_back(s.id, std::move(s.rows));
   }
   if (to_server) {
     PostgresTrialStore target(*to_target, TrialStore::Access::read_write);

@@ -76,8 +76,9 @@ std::int64_t PgResult::integer(int row, int column) const {
   std::int64_t v = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
   if (ec != std::errc() || end != t.data() + t.size()) {
-    throw PgError("PostgreSQL: column " + std::string(PQfname(r_, column)) + ": an integer, got '" + std::string(t) + "'",
-                  "", false);
+    throw PgError(
+        "PostgreSQL: column " + std::string(PQfname(r_, column)) + ": an integer, got '" + std::string(t) + "'", "",
+        false);
   }
   return v;
 }
@@ -128,7 +129,8 @@ PgConnection::PgConnection(const PgTarget& target, int connect_timeout_s) : targ
     throw PgError("cannot connect to PostgreSQL at " + target_.describe() + ": " + reason, "", true, reason);
   }
   // Notices (e.g. "relation already exists, skipping") are not for the participant's terminal.
-  PQsetNoticeProcessor(conn_, [](void*, const char*) {}, nullptr);
+  PQsetNoticeProcessor(
+      conn_, [](void*, const char*) {}, nullptr);
   // Doubles are sent as text: the shortest text that reads back to the same bits (PostgreSQL 12+
   // with extra_float_digits > 0), so a trial's numbers are the same in either store.
   PQclear(PQexec(conn_, "SET extra_float_digits = 3"));
@@ -146,7 +148,8 @@ void PgConnection::fail(std::string_view what, pg_result* r) {
   PQclear(r);
   // Class 08 is "connection exception"; a broken socket gives no SQLSTATE at all.
   const bool lost = PQstatus(conn_) != CONNECTION_OK || sqlstate.rfind("08", 0) == 0 || sqlstate.rfind("57P", 0) == 0;
-  throw PgError("PostgreSQL at " + target_.describe() + ": " + std::string(what) + ": " + reason, sqlstate, lost, reason);
+  throw PgError("PostgreSQL at " + target_.describe() + ": " + std::string(what) + ": " + reason, sqlstate, lost,
+                reason);
 }
 
 PgResult PgConnection::exec(std::string_view sql) {
@@ -170,8 +173,8 @@ PgResult PgConnection::exec(std::string_view sql, const std::vector<PgParam>& pa
   std::vector<const char*> values;
   values.reserve(params.size());
   for (const PgParam& p : params) values.push_back(p ? p->c_str() : nullptr);
-  pg_result* r = PQexecParams(conn_, text.c_str(), static_cast<int>(values.size()), nullptr, values.data(), nullptr,
-                              nullptr, 0);
+  pg_result* r =
+      PQexecParams(conn_, text.c_str(), static_cast<int>(values.size()), nullptr, values.data(), nullptr, nullptr, 0);
   const auto status = r ? PQresultStatus(r) : PGRES_FATAL_ERROR;
   if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) fail(sql.substr(0, 60), r);
   return PgResult(r);

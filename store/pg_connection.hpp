@@ -21,7 +21,9 @@ class PgError : public std::runtime_error {
  public:
   // sqlstate: the server's five-character SQLSTATE, empty when the connection itself failed.
   PgError(const std::string& what, std::string sqlstate, bool connection_lost, std::string reason = {})
-      : std::runtime_error(what), sqlstate_(std::move(sqlstate)), connection_lost_(connection_lost),
+      : std::runtime_error(what),
+        sqlstate_(std::move(sqlstate)),
+        connection_lost_(connection_lost),
         reason_(std::move(reason)) {}
   const std::string& sqlstate() const noexcept { return sqlstate_; }
   // True when the server could not be reached or went away: the caller may retry later.

@@ -80,8 +80,9 @@ PgTarget parse_pg_target(const std::string& uri) {
   if (!parsed) {
     std::string reason = error ? trim(error) : std::string("out of memory");
     PQfreemem(error);
-    throw InputError(shown.text, "URI", "a PostgreSQL connection URI postgresql://user@host:port/dbname (" +
-                                            scrub(reason, shown.secret) + ")");
+    throw InputError(
+        shown.text, "URI",
+        "a PostgreSQL connection URI postgresql://user@host:port/dbname (" + scrub(reason, shown.secret) + ")");
   }
   PgTarget target;
   target.conninfo = uri;

@@ -27,9 +27,9 @@ std::string key_params(std::int64_t session_id) {
 }
 
 std::string participant_of(PgConnection& db, std::int64_t session_id, std::string* status = nullptr) {
-  const PgResult q = db.exec(
-      "SELECT s.status, p.code FROM sessions s JOIN participants p ON p.id = s.participant_id WHERE s.id = $1",
-      {pg_text(session_id)});
+  const PgResult q =
+      db.exec("SELECT s.status, p.code FROM sessions s JOIN participants p ON p.id = s.participant_id WHERE s.id = $1",
+              {pg_text(session_id)});
   if (q.rows() == 0) return {};
   if (status) *status = q.text(0, 0);
   return "participant '" + q.text(0, 1) + "'";
@@ -61,15 +61,17 @@ void PostgresTrialStore::refuse_if_held_elsewhere(std::int64_t session_id, const
   const std::string backend = lock.text(0, 0);
   const PgResult row =
       db_.exec("SELECT pid, host, since_utc FROM session_locks WHERE session_id = $1", {pg_text(session_id)});
-  const std::string holder = row.rows() > 0 ? "process " + row.text(0, 0) + " on " + row.text(0, 1) +
-                                                  " has run it since " + row.text(0, 2)
-                                            : std::string("a process is starting it");
+  const std::string holder =
+      row.rows() > 0 ? "process " + row.text(0, 0) + " on " + row.text(0, 1) + " has run it since " + row.text(0, 2)
+                     : std::string("a process is starting it");
   // Kept short (a refusal part is cut at a few hundred characters): the holder, and the way out
   // when its bench is gone but the server has not noticed yet (no TCP keepalive reply).
   throw InputError(location_, "session " + std::to_string(session_id),
                    "no other palprig process running session " + std::to_string(session_id) + " of " + who + " (" +
-                       holder + "; wait for it to finish, or stop it and continue with --resume; if that bench is "
-                       "gone, run on the server: SELECT pg_terminate_backend(" + backend + "))");
+                       holder +
+                       "; wait for it to finish, or stop it and continue with --resume; if that bench is "
+                       "gone, run on the server: SELECT pg_terminate_backend(" +
+                       backend + "))");
 }
 
 void PostgresTrialStore::take_lock(std::int64_t session_id, const std::string& who) {
@@ -86,7 +88,8 @@ void PostgresTrialStore::take_lock(std::int64_t session_id, const std::string& w
   try {
     db_.exec(
         "INSERT INTO session_locks (session_id, pid, host, since_utc) VALUES ($1, $2, $3, $4) "
-        "ON CONFLICT (session_id) DO UPDATE SET pid = EXCLUDED.pid, host = EXCLUDED.host, since_utc = EXCLUDED.since_utc",
+        "ON CONFLICT (session_id) DO UPDATE SET pid = EXCLUDED.pid, host = EXCLUDED.host, since_utc = "
+        "EXCLUDED.since_utc",
         {pg_text(session_id), std::to_string(::getpid()), this_host_name(), utc_now_text()});
   } catch (...) {
     drop_lock(session_id);

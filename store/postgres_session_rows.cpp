@@ -32,7 +32,8 @@ template <std::size_t N>
 SqlRow read_row(const PgResult& r, int row, int first_column, const std::array<SqlColumn, N>& columns) {
   SqlRow out;
   out.reserve(N);
-  for (std::size_t i = 0; i < N; ++i) out.push_back(read_value(r, row, first_column + static_cast<int>(i), columns[i].type));
+  for (std::size_t i = 0; i < N; ++i)
+    out.push_back(read_value(r, row, first_column + static_cast<int>(i), columns[i].type));
   return out;
 }
 
@@ -85,8 +86,8 @@ void append_params(std::vector<PgParam>& to, const SqlRow& row) {
 
 }  // namespace
 
-std::int64_t pg_participant_id(PgConnection& db, const std::string& code, bool simulated, const std::string& created_utc,
-                               int* number) {
+std::int64_t pg_participant_id(PgConnection& db, const std::string& code, bool simulated,
+                               const std::string& created_utc, int* number) {
   // Numbers are the enrolment order across every rig: one enrolment at a time.
   db.exec("LOCK TABLE participants IN SHARE ROW EXCLUSIVE MODE");
   PgResult found = db.exec("SELECT id, number FROM participants WHERE code = $1", {code});
@@ -107,15 +108,16 @@ std::int64_t pg_push_session(PgConnection& db, const SessionRows& in, bool* adde
   if (known.rows() > 0) {
     id = known.integer(0, 0);
   } else {
-    const std::int64_t participant = pg_participant_id(db, in.participant_code, in.simulated, in.participant_created_utc);
+    const std::int64_t participant =
+        pg_participant_id(db, in.participant_code, in.simulated, in.participant_created_utc);
     std::vector<PgParam> params{pg_text(participant), in.session_uid, in.host_name, in.origin};
     for (const SqlValue& v : in.session) params.push_back(param_of(v));
     // ON CONFLICT: another process pushing the same session at the same moment.
-    PgResult ins = db.exec("INSERT INTO sessions (participant_id, session_uid, host_name, origin, " +
-                               column_list(kSessionColumns) + ") VALUES ($1, $2, $3, $4, " +
-                               placeholders<kSessionColumns.size()>(5) +
-                               ") ON CONFLICT (session_uid) DO NOTHING RETURNING id",
-                           params);
+    PgResult ins =
+        db.exec("INSERT INTO sessions (participant_id, session_uid, host_name, origin, " +
+                    column_list(kSessionColumns) + ") VALUES ($1, $2, $3, $4, " +
+                    placeholders<kSessionColumns.size()>(5) + ") ON CONFLICT (session_uid) DO NOTHING RETURNING id",
+                params);
     if (ins.rows() == 0) {
       id = db.exec("SELECT id FROM sessions WHERE session_uid = $1", {in.session_uid}).integer(0, 0);
     } else {
@@ -184,12 +186,13 @@ int pg_push_trials(PgConnection& db, std::int64_t session_id, std::span<const Tr
 
 namespace {
 
-std::vector<ServerSession> read_sessions_where(PgConnection& db, const std::string& where, const std::vector<PgParam>& params) {
-  const PgResult r = db.exec("SELECT s.id, p.code, p.simulated, p.created_utc, s.session_uid, s.host_name, s.origin, " +
-                                 column_list(kSessionColumns, "s.") +
-                                 " FROM sessions s JOIN participants p ON p.id = s.participant_id " +
-                                 where + " ORDER BY s.id",
-                             params);
+std::vector<ServerSession> read_sessions_where(PgConnection& db, const std::string& where,
+                                               const std::vector<PgParam>& params) {
+  const PgResult r =
+      db.exec("SELECT s.id, p.code, p.simulated, p.created_utc, s.session_uid, s.host_name, s.origin, " +
+                  column_list(kSessionColumns, "s.") +
+                  " FROM sessions s JOIN participants p ON p.id = s.participant_id " + where + " ORDER BY s.id",
+              params);
   std::vector<ServerSession> sessions;
   for (int i = 0; i < r.rows(); ++i) {
     ServerSession s;
@@ -201,9 +204,9 @@ std::vector<ServerSession> read_sessions_where(PgConnection& db, const std::stri
     s.rows.host_name = r.text(i, 5);
     s.rows.origin = r.text(i, 6);
     s.rows.session = read_row(r, i, 7, kSessionColumns);
-    const PgResult p = db.exec("SELECT " + column_list(kPlannedColumns) +
-                                   " FROM planned_trials WHERE session_id = $1 ORDER BY position",
-                               {pg_text(s.id)});
+    const PgResult p = db.exec(
+        "SELECT " + column_list(kPlannedColumns) + " FROM planned_trials WHERE session_id = $1 ORDER BY position",
+        {pg_text(s.id)});
     for (int j = 0; j < p.rows(); ++j) s.rows.planned.push_back(read_row(p, j, 0, kPlannedColumns));
     sessions.push_back(std::move(s));
   }
@@ -234,10 +237,11 @@ std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id,
     trials.push_back(TrialRows{read_row(r, i, 1, kTrialColumns), {}, {}});
   }
   const std::vector<PgParam> p{pg_text(session_id), pg_text(from_position)};
-  const PgResult ts = db.exec("SELECT ts.trial_id, " + column_list(kTumorScoreColumns, "ts.") +
-                                  " FROM tumor_scores ts JOIN trials t ON t.id = ts.trial_id "
-                                  "WHERE t.session_id = $1 AND t.position >= $2 ORDER BY ts.trial_id, ts.tumor COLLATE \"C\"",
-                              p);
+  const PgResult ts =
+      db.exec("SELECT ts.trial_id, " + column_list(kTumorScoreColumns, "ts.") +
+                  " FROM tumor_scores ts JOIN trials t ON t.id = ts.trial_id "
+                  "WHERE t.session_id = $1 AND t.position >= $2 ORDER BY ts.trial_id, ts.tumor COLLATE \"C\"",
+              p);
   for (int i = 0; i < ts.rows(); ++i) {
     trials[index.at(ts.integer(i, 0))].tumor_scores.push_back(read_row(ts, i, 1, kTumorScoreColumns));
   }
@@ -245,7 +249,8 @@ std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id,
                                   " FROM marks m JOIN trials t ON t.id = m.trial_id "
                                   "WHERE t.session_id = $1 AND t.position >= $2 ORDER BY m.trial_id, m.mark",
                               p);
-  for (int i = 0; i < mk.rows(); ++i) trials[index.at(mk.integer(i, 0))].marks.push_back(read_row(mk, i, 1, kMarkColumns));
+  for (int i = 0; i < mk.rows(); ++i)
+    trials[index.at(mk.integer(i, 0))].marks.push_back(read_row(mk, i, 1, kMarkColumns));
   return trials;
 }
 

@@ -14,8 +14,8 @@
 namespace palprig {
 
 // The participant of this code (enrolled with the next number when new); needs a transaction.
-std::int64_t pg_participant_id(PgConnection& db, const std::string& code, bool simulated, const std::string& created_utc,
-                               int* number = nullptr);
+std::int64_t pg_participant_id(PgConnection& db, const std::string& code, bool simulated,
+                               const std::string& created_utc, int* number = nullptr);
 
 // Finds or adds the session and its planned order; marks it completed when the rows say so.
 // Returns its id on the server and whether it was added.

@@ -81,7 +81,8 @@ TrialRows trial_rows_of(const TrialRecord& r) {
   if (r.answered && r.confidence) t[kTrialConfidence] = std::int64_t{*r.confidence};
   if (discrimination) {
     t[6] = r.combination_label;
-    for (int f = 0; f < kFingerCount; ++f) t[static_cast<std::size_t>(7 + f)] = r.stimulus_kPa[static_cast<std::size_t>(f)];
+    for (int f = 0; f < kFingerCount; ++f)
+      t[static_cast<std::size_t>(7 + f)] = r.stimulus_kPa[static_cast<std::size_t>(f)];
     t[10] = trial_rows::flags_text(r.truth);
   }
   for (int f = 0; f < kFingerCount; ++f) {
@@ -105,9 +106,9 @@ TrialRows trial_rows_of(const TrialRecord& r) {
     }
     for (std::size_t i = 0; i < r.marks.size(); ++i) {
       const int hit = i < r.localisation.mark_tumor.size() ? r.localisation.mark_tumor[i] : -1;
-      rows.marks.push_back(SqlRow{static_cast<std::int64_t>(i), r.marks[i].x_mm, r.marks[i].y_mm,
-                                  hit >= 0 ? SqlValue(r.localisation.tumors[static_cast<std::size_t>(hit)].tumor)
-                                           : SqlValue()});
+      rows.marks.push_back(
+          SqlRow{static_cast<std::int64_t>(i), r.marks[i].x_mm, r.marks[i].y_mm,
+                 hit >= 0 ? SqlValue(r.localisation.tumors[static_cast<std::size_t>(hit)].tumor) : SqlValue()});
     }
   }
   return rows;
@@ -115,8 +116,10 @@ TrialRows trial_rows_of(const TrialRecord& r) {
 
 PostgresTrialStore::PostgresTrialStore(const PgTarget& target, Access access, int connect_timeout_s) try
     : db_(target, connect_timeout_s), location_(target.conninfo) {
-  if (access == Access::read_write) ensure_pg_schema(db_);
-  else check_pg_schema(db_);
+  if (access == Access::read_write)
+    ensure_pg_schema(db_);
+  else
+    check_pg_schema(db_);
   trial_columns_ = pg_trial_column_count(pg_schema_version(db_));
 } catch (const PgError& e) {
   // Nothing moves on the rig before the store is known to be writable: a server that cannot
@@ -229,7 +232,8 @@ StoredSession PostgresTrialStore::load_session(std::int64_t session_id) {
   s.status = q.text(0, 3);
   s.plan.seed = static_cast<std::uint64_t>(q.integer(0, 4));
   s.plan.condition_order = nlohmann::json::parse(q.text(0, 5)).get<std::vector<int>>();
-  s.participant = ParticipantRecord{q.integer(0, 6), q.text(0, 7), static_cast<int>(q.integer(0, 8)), q.integer(0, 9) != 0};
+  s.participant =
+      ParticipantRecord{q.integer(0, 6), q.text(0, 7), static_cast<int>(q.integer(0, 8)), q.integer(0, 9) != 0};
   s.plan.participant_number = s.participant.number;
   const PgResult t = db_.exec(
       "SELECT position, block, condition_index, practice, combination, break_after FROM planned_trials "
@@ -305,23 +309,28 @@ void PostgresTrialStore::scan_scored_trials(TrialFamily family, bool include_pra
     ScoredTrial t;
     // ORDER BY id: commit order, as the SQLite store's rowid scan (response-time means then add
     // up in the same order, to the last bit).
-    stream_rows(db_,
-                std::string("SELECT ") + kScoredDiscriminationColumns + later_columns() +
-                    " FROM trials t WHERE t.mode != 'scene'" + practice_filter(include_practice, "AND") + " ORDER BY t.id",
-                [&](const PgResult& q, int i) {
-                  decode_scored_discrimination(PgRow{q, i}, t);
-                  visit(t);
-                },
-                true);
+    stream_rows(
+        db_,
+        std::string("SELECT ") + kScoredDiscriminationColumns + later_columns() +
+            " FROM trials t WHERE t.mode != 'scene'" + practice_filter(include_practice, "AND") + " ORDER BY t.id",
+        [&](const PgResult& q, int i) {
+          decode_scored_discrimination(PgRow{q, i}, t);
+          visit(t);
+        },
+        true);
     return;
   }
   // Localisation: one row per (trial, tumor score), gathered per trial.
   LocalisationGatherer gather(visit);
-  stream_rows(db_,
-              std::string("SELECT ") + kScoredLocalisationColumns + later_columns() +
-                  " FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
-                  practice_filter(include_practice, "AND") + " ORDER BY t.id, ts.tumor COLLATE \"C\"",
-              [&](const PgResult& q, int i) { gather.add(PgRow{q, i}); }, true);
+  stream_rows(
+      db_,
+      std::string("SELECT ") + kScoredLocalisationColumns + later_columns() +
+          " FROM trials t LEFT JOIN tumor_scores ts ON ts.trial_id = t.id WHERE t.mode = 'scene'" +
+          practice_filter(include_practice, "AND") + " ORDER BY t.id, ts.tumor COLLATE \"C\"",
+      [&](const PgResult& q, int i) {
+        gather.add(PgRow{q, i});
+      },
+      true);
   gather.finish();
 }
 
@@ -342,20 +351,22 @@ std::vector<StoredTrial> PostgresTrialStore::read_trials_where(const std::string
   using namespace trial_rows;
   std::vector<StoredTrial> trials;
   std::map<std::int64_t, std::size_t> scene_trials;  // trial id -> index, for scores and marks
-  stream_rows(db_,
-              std::string("SELECT ") + kStoredTrialColumns + later_columns() +
-                  " FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
-                  where + " ORDER BY p.number, s.id, t.position",
-              [&](const PgResult& q, int i) {
-                StoredTrial t = decode_stored_trial(PgRow{q, i});
-                if (t.mode == "scene") scene_trials[t.id] = trials.size();
-                trials.push_back(std::move(t));
-              });
+  stream_rows(
+      db_,
+      std::string("SELECT ") + kStoredTrialColumns + later_columns() +
+          " FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
+          where + " ORDER BY p.number, s.id, t.position",
+      [&](const PgResult& q, int i) {
+        StoredTrial t = decode_stored_trial(PgRow{q, i});
+        if (t.mode == "scene") scene_trials[t.id] = trials.size();
+        trials.push_back(std::move(t));
+      });
   if (scene_trials.empty()) return trials;
   stream_rows(db_, "SELECT trial_id, tumor, outcome FROM tumor_scores ORDER BY trial_id, tumor COLLATE \"C\"",
               [&](const PgResult& q, int i) {
                 const auto it = scene_trials.find(q.integer(i, 0));
-                if (it != scene_trials.end()) trials[it->second].tumor_outcomes.push_back(decode_tumor_outcome(PgRow{q, i}, 1));
+                if (it != scene_trials.end())
+                  trials[it->second].tumor_outcomes.push_back(decode_tumor_outcome(PgRow{q, i}, 1));
               });
   stream_rows(db_, "SELECT trial_id, mark, x_mm, y_mm, tumor FROM marks ORDER BY trial_id, mark",
               [&](const PgResult& q, int i) {

@@ -78,7 +78,7 @@ class PostgresTrialStore final : public TrialStore {
   PgConnection db_;
   std::string location_;
   std::vector<std::int64_t> held_;  // sessions whose advisory lock this connection holds
-  std::size_t trial_columns_ = 0;    // of kTrialColumns the server has (fewer: an older one opened for reading)
+  std::size_t trial_columns_ = 0;   // of kTrialColumns the server has (fewer: an older one opened for reading)
 };
 
 // A new session's global identity: host, UTC time and 64 random bits.

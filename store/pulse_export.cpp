@@ -22,7 +22,8 @@ double stored_hit_radius_mm(SqliteTrialStore& store, std::int64_t session) {
   if (pulse == snapshot.end() || !pulse->is_object() || !pulse->contains("hit_radius_mm")) return 5.0;
   const auto& r = (*pulse)["hit_radius_mm"];
   if (!r.is_number() || !(r.get<double>() > 0)) {
-    throw InputError(store.location(), "sessions.protocol_json of session " + std::to_string(session) + ": pulse.hit_radius_mm",
+    throw InputError(store.location(),
+                     "sessions.protocol_json of session " + std::to_string(session) + ": pulse.hit_radius_mm",
                      "the positive hit radius stored when the session started");
   }
   return r.get<double>();
@@ -80,9 +81,10 @@ void write_pulse_bids_run(const std::vector<const PulseExportRow*>& rows, const 
   tsv << "trial\tcondition\tscene_seed\tartery\tmark_x\tmark_y\tdistance_to_artery\thit\tresponse_time\tonset\n";
   for (const PulseExportRow* r : rows) {
     const PulseTrialRecord& t = r->trial;
-    tsv << t.position + 1 << "\t" << tsv_field(t.condition) << "\t" << seed_text(t) << "\t" << tsv_field(t.artery) << "\t"
-        << (t.answered ? number(t.mark_x_mm, 2) : "n/a") << "\t" << (t.answered ? number(t.mark_y_mm, 2) : "n/a") << "\t"
-        << (t.answered ? number(t.distance_mm, 2) : "n/a") << "\t" << (t.answered ? (t.hit ? "1" : "0") : "n/a") << "\t"
+    tsv << t.position + 1 << "\t" << tsv_field(t.condition) << "\t" << seed_text(t) << "\t" << tsv_field(t.artery)
+        << "\t" << (t.answered ? number(t.mark_x_mm, 2) : "n/a") << "\t"
+        << (t.answered ? number(t.mark_y_mm, 2) : "n/a") << "\t" << (t.answered ? number(t.distance_mm, 2) : "n/a")
+        << "\t" << (t.answered ? (t.hit ? "1" : "0") : "n/a") << "\t"
         << (t.answered ? number(t.response_time_s) : "n/a") << "\t" << number(t.onset_s) << "\n";
   }
   commit_into(tsv, written);
@@ -100,8 +102,7 @@ void write_pulse_bids_run(const std::vector<const PulseExportRow*>& rows, const 
   side["mark_x"] = column("Marked position, x on the scene (n/a: no mark before the time limit)", "mm");
   side["mark_y"] = column("Marked position, y on the scene (n/a: no mark)", "mm");
   side["distance_to_artery"] = column("Distance from the mark to the artery's centreline (n/a: no mark)", "mm");
-  side["hit"] = column("The mark lies within the hit radius of the centreline", "",
-                       {{"0", "miss"}, {"1", "hit"}});
+  side["hit"] = column("The mark lies within the hit radius of the centreline", "", {{"0", "miss"}, {"1", "hit"}});
   side["response_time"] = column("Time from the scene's presentation to the mark (n/a: no mark)", "s");
   side["onset"] = column("Presentation onset on the session's monotonic clock", "s");
   write_export_json(dir / (stem + "_beh.json"), side, written);

@@ -40,9 +40,10 @@ PulseStore::PulseStore(SqliteTrialStore& store, bool writable) : store_(store) {
 
 std::int64_t PulseStore::create_session(const ParticipantRecord& who, const PulseProtocol& protocol, std::uint64_t seed,
                                         const SessionSetup& setup) {
-  return store_.create_task_session(
-      who, {"pulse", protocol.name, protocol.bids_task, protocol.snapshot, seed, nlohmann::json(pulse_trial_order(protocol, seed))},
-      setup);
+  return store_.create_task_session(who,
+                                    {"pulse", protocol.name, protocol.bids_task, protocol.snapshot, seed,
+                                     nlohmann::json(pulse_trial_order(protocol, seed))},
+                                    setup);
 }
 
 StoredPulseSession PulseStore::load_session(std::int64_t session_id) {
@@ -54,7 +55,8 @@ void PulseStore::commit_trial(std::int64_t session_id, const PulseTrialRecord& r
   Transaction tx(db);
   auto ins = db.prepare(
       "INSERT INTO pulse_trials (session_id, position, condition, answered, mark_x_mm, mark_y_mm, artery, distance_mm, "
-      "hit, response_time_s, onset_s, completed_utc, scene_seed) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)");
+      "hit, response_time_s, onset_s, completed_utc, scene_seed) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, "
+      "?12, ?13)");
   ins.bind(1, session_id).bind(2, r.position).bind(3, r.condition).bind(4, r.answered ? 1 : 0).bind(9, r.hit ? 1 : 0);
   ins.bind(11, r.onset_s).bind(12, utc_now_text());
   if (r.scene_seed) ins.bind(13, static_cast<std::int64_t>(*r.scene_seed));
@@ -106,7 +108,8 @@ std::vector<PulseConditionSummary> PulseStore::summarise(double confidence) {
   std::map<std::string, std::vector<double>> distances;
   std::map<std::string, PulseConditionSummary> by;
   std::vector<std::string> order;
-  auto q = store_.database().prepare("SELECT condition, answered, hit, distance_mm FROM pulse_trials ORDER BY session_id, position");
+  auto q = store_.database().prepare(
+      "SELECT condition, answered, hit, distance_mm FROM pulse_trials ORDER BY session_id, position");
   while (q.step()) {
     const std::string c = q.text(0);
     if (!by.count(c)) order.push_back(c);
@@ -143,26 +146,35 @@ std::vector<PulseConditionSummary> PulseStore::summarise(double confidence) {
 nlohmann::ordered_json pulse_summary_json(const std::vector<PulseConditionSummary>& rows, double confidence) {
   nlohmann::ordered_json j;
   j["task"] = "pulse";
-  j["convention"] = "hit rate = hits / trials (unanswered trials count as misses), Wilson interval without continuity "
-                    "correction; distance from the mark to the artery centreline over answered trials, quartiles R type 7";
+  j["convention"] =
+      "hit rate = hits / trials (unanswered trials count as misses), Wilson interval without continuity "
+      "correction; distance from the mark to the artery centreline over answered trials, quartiles R type 7";
   j["confidence"] = confidence;
   j["conditions"] = nlohmann::ordered_json::array();
   for (const auto& r : rows) {
-    j["conditions"].push_back({{"condition", r.condition}, {"trials", r.trials}, {"answered", r.answered},
-                               {"hits", r.hits}, {"hit_rate", r.hit_rate}, {"hit_rate_low", r.hit_low},
-                               {"hit_rate_high", r.hit_high}, {"distance_mean_mm", r.distance_mean_mm}, {"distance_median_mm", r.distance_median_mm},
-                               {"distance_q1_mm", r.distance_q1_mm}, {"distance_q3_mm", r.distance_q3_mm},
+    j["conditions"].push_back({{"condition", r.condition},
+                               {"trials", r.trials},
+                               {"answered", r.answered},
+                               {"hits", r.hits},
+                               {"hit_rate", r.hit_rate},
+                               {"hit_rate_low", r.hit_low},
+                               {"hit_rate_high", r.hit_high},
+                               {"distance_mean_mm", r.distance_mean_mm},
+                               {"distance_median_mm", r.distance_median_mm},
+                               {"distance_q1_mm", r.distance_q1_mm},
+                               {"distance_q3_mm", r.distance_q3_mm},
                                {"distance_iqr_mm", r.distance_iqr_mm}});
   }
   return j;
 }
 
 std::string pulse_summary_table(const std::vector<PulseConditionSummary>& rows, double confidence) {
-  std::string out = "Pulse localisation (hit rate with " + std::to_string(static_cast<int>(std::round(confidence * 100))) +
+  std::string out = "Pulse localisation (hit rate with " +
+                    std::to_string(static_cast<int>(std::round(confidence * 100))) +
                     " % Wilson interval; distance to the artery centreline)\n";
   char line[256];
-  std::snprintf(line, sizeof line, "  %-16s %6s %6s %22s %10s %12s %10s\n", "condition", "trials", "hits", "hit rate [CI]",
-                "mean mm", "median mm", "IQR mm");
+  std::snprintf(line, sizeof line, "  %-16s %6s %6s %22s %10s %12s %10s\n", "condition", "trials", "hits",
+                "hit rate [CI]", "mean mm", "median mm", "IQR mm");
   out += line;
   for (const auto& r : rows) {
     std::snprintf(line, sizeof line, "  %-16s %6d %6d %6.3f [%.3f, %.3f] %10.2f %12.2f %10.2f\n", r.condition.c_str(),

@@ -24,7 +24,7 @@ struct PulseConditionSummary {
   std::string condition;
   int trials = 0, answered = 0, hits = 0;
   double hit_rate = 0, hit_low = 0, hit_high = 0;  // hits / trials, Wilson interval
-  double distance_mean_mm = 0;  // NaN without answers
+  double distance_mean_mm = 0;                     // NaN without answers
   double distance_median_mm = 0, distance_q1_mm = 0, distance_q3_mm = 0, distance_iqr_mm = 0;  // NaN without answers
 };
 

@@ -21,33 +21,68 @@ struct SqlColumn {
 };
 
 // Session columns moved as they are (ids, participant and the lab columns are handled apart).
-inline constexpr std::array<SqlColumn, 14> kSessionColumns{{
-    {"protocol_name", 't'}, {"task", 't'}, {"bids_task", 't'}, {"protocol_json", 't'}, {"protocol_dir", 't'},
-    {"seed", 'i'}, {"condition_order", 't'}, {"rig_id", 't'}, {"rig_backend", 't'}, {"calibration", 't'},
-    {"participant_model", 't'}, {"status", 't'}, {"started_utc", 't'}, {"finished_utc", 't'}}};
-inline constexpr std::size_t kSessionProtocolName = 0, kSessionSeed = 5, kSessionStatus = 11,
-                             kSessionStartedUtc = 12, kSessionFinishedUtc = 13;
+inline constexpr std::array<SqlColumn, 14> kSessionColumns{{{"protocol_name", 't'},
+                                                            {"task", 't'},
+                                                            {"bids_task", 't'},
+                                                            {"protocol_json", 't'},
+                                                            {"protocol_dir", 't'},
+                                                            {"seed", 'i'},
+                                                            {"condition_order", 't'},
+                                                            {"rig_id", 't'},
+                                                            {"rig_backend", 't'},
+                                                            {"calibration", 't'},
+                                                            {"participant_model", 't'},
+                                                            {"status", 't'},
+                                                            {"started_utc", 't'},
+                                                            {"finished_utc", 't'}}};
+inline constexpr std::size_t kSessionProtocolName = 0, kSessionSeed = 5, kSessionStatus = 11, kSessionStartedUtc = 12,
+                             kSessionFinishedUtc = 13;
 
-inline constexpr std::array<SqlColumn, 7> kPlannedColumns{{{"position", 'i'}, {"block", 'i'}, {"condition_index", 'i'},
-                                                           {"condition", 't'}, {"practice", 'i'}, {"combination", 'i'},
+inline constexpr std::array<SqlColumn, 7> kPlannedColumns{{{"position", 'i'},
+                                                           {"block", 'i'},
+                                                           {"condition_index", 'i'},
+                                                           {"condition", 't'},
+                                                           {"practice", 'i'},
+                                                           {"combination", 'i'},
                                                            {"break_after", 'i'}}};
 
 // trials without id and session_id; position first. Later schemas appended columns at the end:
 // confidence and stimulus_end_s with schema 2 (SQLite) / 3 (PostgreSQL), stimulus_reached_s
 // with schema 4 / 5. A store older than a column has the ones before it only (trial_column_count)
 // and reads the rest as NULL (trial_select_list).
-inline constexpr std::array<SqlColumn, 26> kTrialColumns{{
-    {"position", 'i'}, {"block", 'i'}, {"condition", 't'}, {"mode", 't'}, {"practice", 'i'}, {"combination", 'i'},
-    {"combination_label", 't'}, {"stimulus1_kPa", 'r'}, {"stimulus2_kPa", 'r'}, {"stimulus3_kPa", 'r'},
-    {"truth", 't'}, {"answered", 'i'}, {"answer", 't'}, {"response_time_s", 'r'}, {"onset_s", 'r'},
-    {"felt1_kPa", 'r'}, {"felt2_kPa", 'r'}, {"felt3_kPa", 'r'}, {"outcome1", 't'}, {"outcome2", 't'},
-    {"outcome3", 't'}, {"false_marks", 'i'}, {"completed_utc", 't'}, {"confidence", 'i'}, {"stimulus_end_s", 'r'},
-    {"stimulus_reached_s", 'r'}}};
+inline constexpr std::array<SqlColumn, 26> kTrialColumns{{{"position", 'i'},
+                                                          {"block", 'i'},
+                                                          {"condition", 't'},
+                                                          {"mode", 't'},
+                                                          {"practice", 'i'},
+                                                          {"combination", 'i'},
+                                                          {"combination_label", 't'},
+                                                          {"stimulus1_kPa", 'r'},
+                                                          {"stimulus2_kPa", 'r'},
+                                                          {"stimulus3_kPa", 'r'},
+                                                          {"truth", 't'},
+                                                          {"answered", 'i'},
+                                                          {"answer", 't'},
+                                                          {"response_time_s", 'r'},
+                                                          {"onset_s", 'r'},
+                                                          {"felt1_kPa", 'r'},
+                                                          {"felt2_kPa", 'r'},
+                                                          {"felt3_kPa", 'r'},
+                                                          {"outcome1", 't'},
+                                                          {"outcome2", 't'},
+                                                          {"outcome3", 't'},
+                                                          {"false_marks", 'i'},
+                                                          {"completed_utc", 't'},
+                                                          {"confidence", 'i'},
+                                                          {"stimulus_end_s", 'r'},
+                                                          {"stimulus_reached_s", 'r'}}};
 inline constexpr std::size_t kTrialConfidence = 23, kTrialStimulusEnd = 24, kTrialStimulusReached = 25;
 // How many of kTrialColumns a store of each generation has.
-inline constexpr std::size_t kTrialColumnsBeforeRating = kTrialConfidence, kTrialColumnsBeforeReached = kTrialStimulusReached;
+inline constexpr std::size_t kTrialColumnsBeforeRating = kTrialConfidence,
+                             kTrialColumnsBeforeReached = kTrialStimulusReached;
 
-inline constexpr std::array<SqlColumn, 3> kTumorScoreColumns{{{"tumor", 't'}, {"outcome", 't'}, {"nearest_mark_mm", 'r'}}};
+inline constexpr std::array<SqlColumn, 3> kTumorScoreColumns{
+    {{"tumor", 't'}, {"outcome", 't'}, {"nearest_mark_mm", 'r'}}};
 inline constexpr std::array<SqlColumn, 4> kMarkColumns{{{"mark", 'i'}, {"x_mm", 'r'}, {"y_mm", 'r'}, {"tumor", 't'}}};
 
 struct TrialRows {

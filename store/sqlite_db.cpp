@@ -25,8 +25,9 @@ namespace {
                                int system_errno = 0) {
   if ((code & 0xff) == SQLITE_CORRUPT) throw InputError(file, "database pages", damaged_database_expectation(detail));
   if (const std::string cause = sqlite_environment_cause(file, code, system_errno); !cause.empty())
-    throw SqliteError(file + ": the trial database cannot be used: " + cause + " (SQLite: " + detail.substr(0, 120) + ")", code,
-                      true, system_errno);
+    throw SqliteError(
+        file + ": the trial database cannot be used: " + cause + " (SQLite: " + detail.substr(0, 120) + ")", code, true,
+        system_errno);
   throw SqliteError(file + ": " + (what.empty() ? detail : what + ": " + detail), code);
 }
 
@@ -50,24 +51,22 @@ std::string sqlite_environment_cause(const std::string& file, int code, int syst
   switch (code & 0xff) {
     case SQLITE_READONLY:
       if (std::filesystem::exists(path) && !writable(path)) return "the file is read-only";
-      if (!writable(folder)) return "its folder " + folder.string() + " is read-only (SQLite writes -wal and -shm files beside it)";
+      if (!writable(folder))
+        return "its folder " + folder.string() + " is read-only (SQLite writes -wal and -shm files beside it)";
       return "the file or its folder is read-only" + os;
     case SQLITE_CANTOPEN:
       if (!std::filesystem::is_directory(folder)) return "its folder " + folder.string() + " does not exist";
       if (!std::filesystem::exists(path) && !writable(folder)) return "its folder " + folder.string() + " is read-only";
       return "it cannot be opened" + os;
-    case SQLITE_PERM:
-      return "permission denied" + os;
-    case SQLITE_FULL:
-      return "the disk is full (or the file may grow no further)";
+    case SQLITE_PERM: return "permission denied" + os;
+    case SQLITE_FULL: return "the disk is full (or the file may grow no further)";
     case SQLITE_IOERR:
       if (system_errno == ENOSPC || system_errno == EFBIG || system_errno == EDQUOT)
         return "the disk is full (or the file may grow no further)" + os;
       // SQLite's errno is often lost by the time it reports (it rolls back first): say what
       // a failed write usually is.
       return "a read or write failed (the disk may be full, the file may grow no further, or the device failed)" + os;
-    default:
-      return "";
+    default: return "";
   }
 }
 
@@ -111,8 +110,8 @@ void Database::open_for_reading() {
   const ReadAccess access = plan_read_access(file_);
   immutable_ = access.immutable;
   if (immutable_) identity_at_open_ = file_identity(file_);
-  const int rc = sqlite3_open_v2(access.uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX,
-                                 nullptr);
+  const int rc =
+      sqlite3_open_v2(access.uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX, nullptr);
   if (rc != SQLITE_OK) fail_open(rc);
   tidy_sidecars_ = access.tidy_sidecars;
 }

@@ -53,8 +53,8 @@ class Database {
   Database& operator=(const Database&) = delete;
 
   static constexpr int kBusyTimeoutMs = 5000;  // how long a statement waits for another process's lock
-  void exec(std::string_view sql);  // one or more statements, no results
-  void exec_waiting(std::string_view sql);  // exec, retrying SQLITE_BUSY for up to kBusyTimeoutMs
+  void exec(std::string_view sql);             // one or more statements, no results
+  void exec_waiting(std::string_view sql);     // exec, retrying SQLITE_BUSY for up to kBusyTimeoutMs
   Statement prepare(std::string_view sql);
   std::int64_t pragma_integer(std::string_view name);  // e.g. "user_version"
   std::int64_t last_insert_rowid() const noexcept;
@@ -84,7 +84,7 @@ class Database {
   std::string file_;
   Mode mode_;
   bool immutable_ = false;
-  bool tidy_sidecars_ = false;  // remove the -wal/-shm this reader's connection made (on close)
+  bool tidy_sidecars_ = false;    // remove the -wal/-shm this reader's connection made (on close)
   std::string identity_at_open_;  // immutable readers: the file's identity when opened
 };
 

@@ -164,8 +164,8 @@ void SqliteTrialStore::migrate_if_older() {
     const int primary = e.code() & 0xff;
     if (primary == SQLITE_BUSY || primary == SQLITE_LOCKED) throw;
     throw InputError(db_.file(), step,
-                     std::string("a schema-") + std::to_string(version) + " trial database palprig can migrate (SQLite: " +
-                         e.what() + "); the file was not changed");
+                     std::string("a schema-") + std::to_string(version) +
+                         " trial database palprig can migrate (SQLite: " + e.what() + "); the file was not changed");
   }
   tx.commit();
 }

@@ -87,15 +87,16 @@ void SqliteTrialStore::refuse_if_held_elsewhere(std::int64_t session_id, const s
                          " (process " + std::to_string(pid) + " on " + host + " has run it since " + since +
                          "; wait for it to finish, or stop it and continue with --resume";
   if (!same_host) {
-    expected += "; if that process is gone, run: sqlite3 " + db_.file() + " \"DELETE FROM session_locks WHERE session_id = " +
-                std::to_string(session_id) + "\"";
+    expected += "; if that process is gone, run: sqlite3 " + db_.file() +
+                " \"DELETE FROM session_locks WHERE session_id = " + std::to_string(session_id) + "\"";
   }
   throw InputError(db_.file(), "session " + std::to_string(session_id), expected + ")");
 }
 
 void SqliteTrialStore::write_lock_row(std::int64_t session_id) {
   auto ins = db_.prepare(
-      "INSERT OR REPLACE INTO session_locks (session_id, pid, host, process_start, since_utc) VALUES (?1, ?2, ?3, ?4, ?5)");
+      "INSERT OR REPLACE INTO session_locks (session_id, pid, host, process_start, since_utc) VALUES (?1, ?2, ?3, ?4, "
+      "?5)");
   ins.bind(1, session_id)
       .bind(2, static_cast<std::int64_t>(::getpid()))
       .bind(3, this_host_name())

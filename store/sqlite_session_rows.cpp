@@ -24,10 +24,14 @@ SqlRow read_row(const Statement& s, int first_column, const std::array<SqlColumn
 }
 
 void bind_value(Statement& s, int index, const SqlValue& v) {
-  if (const auto* i = std::get_if<std::int64_t>(&v)) s.bind(index, *i);
-  else if (const auto* d = std::get_if<double>(&v)) s.bind(index, *d);
-  else if (const auto* t = std::get_if<std::string>(&v)) s.bind(index, *t);
-  else s.bind_null(index);
+  if (const auto* i = std::get_if<std::int64_t>(&v))
+    s.bind(index, *i);
+  else if (const auto* d = std::get_if<double>(&v))
+    s.bind(index, *d);
+  else if (const auto* t = std::get_if<std::string>(&v))
+    s.bind(index, *t);
+  else
+    s.bind_null(index);
 }
 
 template <std::size_t N>
@@ -51,9 +55,9 @@ void ensure_lab_sessions_table(Database& db) {
       "  session_id        INTEGER PRIMARY KEY REFERENCES sessions(id),"
       "  session_uid       TEXT NOT NULL UNIQUE,"  // the session's identity on every store
       "  host_name         TEXT NOT NULL,"
-      "  server            TEXT,"                  // journal: the server it is pushed to (host port database)
-      "  server_uri        TEXT,"                  // journal: the URI (holds no password)
-      "  server_session_id INTEGER,"               // journal: its id there
+      "  server            TEXT,"                       // journal: the server it is pushed to (host port database)
+      "  server_uri        TEXT,"                       // journal: the URI (holds no password)
+      "  server_session_id INTEGER,"                    // journal: its id there
       "  synced            INTEGER NOT NULL DEFAULT 0"  // journal: every trial and the end are on the server
       ")");
 }
@@ -108,7 +112,8 @@ std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional
                            std::to_string(s.id);
     }
     s.rows.origin = "copy:" + db.file();
-    auto p = db.prepare("SELECT " + column_list(kPlannedColumns) + " FROM planned_trials WHERE session_id = ?1 ORDER BY position");
+    auto p = db.prepare("SELECT " + column_list(kPlannedColumns) +
+                        " FROM planned_trials WHERE session_id = ?1 ORDER BY position");
     p.bind(1, s.id);
     while (p.step()) s.rows.planned.push_back(read_row(p, 0, kPlannedColumns));
     sessions.push_back(std::move(s));
@@ -126,7 +131,8 @@ std::vector<TrialRows> read_sqlite_trials(Database& db, std::int64_t session_id,
     ids.push_back(q.integer(0));
     trials.push_back(TrialRows{read_row(q, 1, kTrialColumns), {}, {}});
   }
-  auto ts = db.prepare("SELECT " + column_list(kTumorScoreColumns) + " FROM tumor_scores WHERE trial_id = ?1 ORDER BY tumor");
+  auto ts =
+      db.prepare("SELECT " + column_list(kTumorScoreColumns) + " FROM tumor_scores WHERE trial_id = ?1 ORDER BY tumor");
   auto mk = db.prepare("SELECT " + column_list(kMarkColumns) + " FROM marks WHERE trial_id = ?1 ORDER BY mark");
   for (std::size_t i = 0; i < trials.size(); ++i) {
     ts.bind(1, ids[i]);
@@ -169,8 +175,8 @@ SqliteWriteResult write_sqlite_session(Database& db, const SessionRows& in) {
     result.session_added = true;
     auto lab = db.prepare("INSERT INTO lab_store_sessions (session_id, session_uid, host_name) VALUES (?1, ?2, ?3)");
     lab.bind(1, result.session_id).bind(2, in.session_uid).bind(3, in.host_name).run();
-    auto planned = db.prepare("INSERT INTO planned_trials (session_id, " + column_list(kPlannedColumns) + ") VALUES (?1, " +
-                              placeholders<kPlannedColumns.size()>(2) + ")");
+    auto planned = db.prepare("INSERT INTO planned_trials (session_id, " + column_list(kPlannedColumns) +
+                              ") VALUES (?1, " + placeholders<kPlannedColumns.size()>(2) + ")");
     for (const SqlRow& row : in.planned) {
       planned.bind(1, result.session_id);
       for (std::size_t i = 0; i < row.size(); ++i) bind_value(planned, static_cast<int>(i + 2), row[i]);
@@ -179,7 +185,8 @@ SqliteWriteResult write_sqlite_session(Database& db, const SessionRows& in) {
   }
   // A session completed in the source is completed here too (never the other way round).
   if (in.text(kSessionStatus) == "completed") {
-    auto done = db.prepare("UPDATE sessions SET status = 'completed', finished_utc = ?2 WHERE id = ?1 AND status != 'completed'");
+    auto done = db.prepare(
+        "UPDATE sessions SET status = 'completed', finished_utc = ?2 WHERE id = ?1 AND status != 'completed'");
     done.bind(1, result.session_id);
     bind_value(done, 2, in.session[kSessionFinishedUtc]);
     done.run();

@@ -88,9 +88,10 @@ int SqliteTrialStore::next_participant_number() {
 std::vector<StoredTrial> SqliteTrialStore::read_trials_where(const std::string& where) {
   using namespace trial_rows;
   std::vector<StoredTrial> trials;
-  auto q = db_.prepare(std::string("SELECT ") + kStoredTrialColumns + later_columns("t.") +
-                       " FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" +
-                       where + " ORDER BY p.number, s.id, t.position");
+  auto q = db_.prepare(
+      std::string("SELECT ") + kStoredTrialColumns + later_columns("t.") +
+      " FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON p.id = s.participant_id" + where +
+      " ORDER BY p.number, s.id, t.position");
   while (q.step()) trials.push_back(decode_stored_trial(SqliteRow{q}));
   auto ts = db_.prepare("SELECT tumor, outcome FROM tumor_scores WHERE trial_id = ?1 ORDER BY tumor");
   auto mk = db_.prepare("SELECT mark, x_mm, y_mm, tumor FROM marks WHERE trial_id = ?1 ORDER BY mark");

@@ -32,14 +32,16 @@ const std::filesystem::path& regular_or_new(const std::filesystem::path& file) {
   std::error_code ec;
   const auto status = std::filesystem::status(file, ec);
   if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    throw InputError(file.string(), "file", "a trial database: a regular file or a new path (this is a device, FIFO or folder)");
+    throw InputError(file.string(), "file",
+                     "a trial database: a regular file or a new path (this is a device, FIFO or folder)");
   return file;
 }
 
 }  // namespace
 
 SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access access) try
-    : db_(regular_or_new(file), access == Access::read_only ? Database::Mode::read_only : Database::Mode::read_write_create) {
+    : db_(regular_or_new(file),
+          access == Access::read_only ? Database::Mode::read_only : Database::Mode::read_write_create) {
   if (access == Access::read_write) create_schema_if_blank();
   check_identity();
   // Scans of large stores (stats, export, and quick_check below) read through a memory map
@@ -75,8 +77,9 @@ SqliteTrialStore::SqliteTrialStore(const std::filesystem::path& file, Access acc
   // A reader writes nothing, ever: what kept it from reading is the file's or the machine's.
   if (access == Access::read_only && e.code() == SQLITE_CANTOPEN) {
     std::string cause = sqlite_environment_cause(file.string(), e.code(), e.system_errno());
-    throw InputError(file.string(), "file",
-                     "a trial database palprig can open and read (" + (cause.empty() ? std::string(e.what()) : cause) + ")");
+    throw InputError(
+        file.string(), "file",
+        "a trial database palprig can open and read (" + (cause.empty() ? std::string(e.what()) : cause) + ")");
   }
   throw;
 }
@@ -115,7 +118,8 @@ ParticipantRecord SqliteTrialStore::enrol(const std::string& code, bool simulate
   return ParticipantRecord{id, code, number, simulated};
 }
 
-std::optional<std::int64_t> SqliteTrialStore::find_unfinished_session(const ParticipantRecord& who, const std::string& protocol_name) {
+std::optional<std::int64_t> SqliteTrialStore::find_unfinished_session(const ParticipantRecord& who,
+                                                                      const std::string& protocol_name) {
   auto s = db_.prepare(
       "SELECT id FROM sessions WHERE participant_id = ?1 AND protocol_name = ?2 AND status = 'running' "
       "ORDER BY id DESC LIMIT 1");
@@ -125,7 +129,7 @@ std::optional<std::int64_t> SqliteTrialStore::find_unfinished_session(const Part
 }
 
 std::int64_t SqliteTrialStore::insert_session_row(const ParticipantRecord& who, const TaskSessionRow& row,
-                                                 const SessionSetup& setup) {
+                                                  const SessionSetup& setup) {
   // Under the write lock: another process may have started this participant's session since
   // the caller looked for an unfinished one (the same participant started twice at once).
   {
@@ -157,8 +161,10 @@ std::int64_t SqliteTrialStore::insert_session_row(const ParticipantRecord& who, 
       .bind(9, setup.rig_id)
       .bind(10, setup.rig_backend)
       .bind(11, setup.calibration);
-  if (setup.participant_model.is_null()) ins.bind_null(12);
-  else ins.bind(12, setup.participant_model.dump());
+  if (setup.participant_model.is_null())
+    ins.bind_null(12);
+  else
+    ins.bind(12, setup.participant_model.dump());
   ins.bind(13, utc_now_text()).run();
   return db_.last_insert_rowid();
 }
@@ -189,7 +195,8 @@ StoredTaskSession SqliteTrialStore::load_task_session(std::int64_t session_id, c
   s.status = q.text(4);
   s.participant = ParticipantRecord{q.integer(5), q.text(6), static_cast<int>(q.integer(7)), q.integer(8) != 0};
   // trial_table is one of the store's own table names (threshold_trials, pulse_trials), never user text.
-  auto done = db_.prepare("SELECT count(*), COALESCE(MAX(position), -1) FROM " + trial_table + " WHERE session_id = ?1");
+  auto done =
+      db_.prepare("SELECT count(*), COALESCE(MAX(position), -1) FROM " + trial_table + " WHERE session_id = ?1");
   done.bind(1, session_id);
   done.step();
   s.completed_trials = static_cast<int>(done.integer(0));
@@ -200,11 +207,11 @@ StoredTaskSession SqliteTrialStore::load_task_session(std::int64_t session_id, c
   return s;
 }
 
-std::int64_t SqliteTrialStore::create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
-                                        const SessionSetup& setup) {
+std::int64_t SqliteTrialStore::create_session(const ParticipantRecord& who, const Protocol& protocol,
+                                              const SessionPlan& plan, const SessionSetup& setup) {
   Transaction tx(db_);
-  const TaskSessionRow row{to_string(protocol.task), protocol.name, protocol.bids_task, protocol.snapshot, plan.seed,
-                           nlohmann::json(plan.condition_order)};
+  const TaskSessionRow row{to_string(protocol.task), protocol.name, protocol.bids_task,
+                           protocol.snapshot,        plan.seed,     nlohmann::json(plan.condition_order)};
   const std::int64_t session_id = insert_session_row(who, row, setup);
 
   auto planned = db_.prepare(
@@ -276,13 +283,14 @@ void SqliteTrialStore::complete_session(std::int64_t session_id) {
 void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& r) {
   const bool discrimination = r.mode != PresentationMode::scene;
   if (!insert_trial_) {
-    insert_trial_ = std::make_unique<Statement>(db_,
-      "INSERT INTO trials (session_id, position, block, condition, mode, practice, combination, combination_label, "
-      "stimulus1_kPa, stimulus2_kPa, stimulus3_kPa, truth, answered, answer, response_time_s, onset_s, felt1_kPa, "
-      "felt2_kPa, felt3_kPa, outcome1, outcome2, outcome3, false_marks, completed_utc, confidence, stimulus_end_s, "
-      "stimulus_reached_s) "
-      "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, "
-      "?23, ?24, ?25, ?26, ?27)");
+    insert_trial_ = std::make_unique<Statement>(
+        db_,
+        "INSERT INTO trials (session_id, position, block, condition, mode, practice, combination, combination_label, "
+        "stimulus1_kPa, stimulus2_kPa, stimulus3_kPa, truth, answered, answer, response_time_s, onset_s, felt1_kPa, "
+        "felt2_kPa, felt3_kPa, outcome1, outcome2, outcome3, false_marks, completed_utc, confidence, stimulus_end_s, "
+        "stimulus_reached_s) "
+        "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, "
+        "?23, ?24, ?25, ?26, ?27)");
   }
   Statement& ins = *insert_trial_;
   ins.bind(1, session_id)
@@ -308,7 +316,8 @@ void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& 
     ins.bind(15, r.response_time_s);
     if (discrimination) {
       ins.bind(14, trial_rows::flags_text(r.answer));
-      for (int f = 0; f < kFingerCount; ++f) ins.bind(20 + f, to_string(r.finger_outcomes[static_cast<std::size_t>(f)]));
+      for (int f = 0; f < kFingerCount; ++f)
+        ins.bind(20 + f, to_string(r.finger_outcomes[static_cast<std::size_t>(f)]));
     } else {
       ins.bind(23, r.localisation.false_marks);
     }
@@ -316,7 +325,8 @@ void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& 
   ins.run();
   const std::int64_t trial_id = db_.last_insert_rowid();
   if (!discrimination && r.answered) {
-    auto ts = db_.prepare("INSERT INTO tumor_scores (trial_id, tumor, outcome, nearest_mark_mm) VALUES (?1, ?2, ?3, ?4)");
+    auto ts =
+        db_.prepare("INSERT INTO tumor_scores (trial_id, tumor, outcome, nearest_mark_mm) VALUES (?1, ?2, ?3, ?4)");
     for (const TumorScore& score : r.localisation.tumors) {
       ts.bind(1, trial_id).bind(2, score.tumor).bind(3, score.hit ? "TP" : "FN");
       if (score.nearest_mark_mm >= 0) ts.bind(4, score.nearest_mark_mm);

@@ -94,7 +94,7 @@ class SqliteTrialStore final : public TrialStore {
 
  private:
   std::vector<StoredTrial> read_trials_where(const std::string& where);  // " WHERE ..." or ""
-  bool is_blank();  // a new file: no tables, no palprig marks
+  bool is_blank();                                                       // a new file: no tables, no palprig marks
   void create_schema_if_blank();
   bool has_lock_table();
   void create_lock_table();
@@ -111,8 +111,8 @@ class SqliteTrialStore final : public TrialStore {
 
   Database db_;
   std::unique_ptr<Statement> insert_trial_;  // prepared once: trials are inserted one by one
-  std::vector<std::int64_t> held_;            // sessions whose lock row this process wrote
-  std::size_t trial_columns_ = 0;             // of kTrialColumns this file has (fewer: an older file read as it is)
+  std::vector<std::int64_t> held_;           // sessions whose lock row this process wrote
+  std::size_t trial_columns_ = 0;            // of kTrialColumns this file has (fewer: an older file read as it is)
 };
 
 // Open an existing SQLite trial database for reading; refuses a missing, foreign or newer file.

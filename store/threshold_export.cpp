@@ -24,7 +24,8 @@ std::string response_text(const ThresholdExportRow& r) {
 
 }  // namespace
 
-std::vector<ThresholdExportRow> threshold_export_rows(SqliteTrialStore& store, const std::vector<SessionOverview>& sessions) {
+std::vector<ThresholdExportRow> threshold_export_rows(SqliteTrialStore& store,
+                                                      const std::vector<SessionOverview>& sessions) {
   std::vector<ThresholdExportRow> out;
   ThresholdStore threshold(store, false);
   if (!threshold.has_table()) return out;
@@ -114,30 +115,34 @@ void write_threshold_bids_run(const std::vector<const ThresholdExportRow*>& rows
   side["track"] = column("Adaptive track of the trial (1-based, in the protocol's order)");
   side["track_name"] = column("Name of the track in the protocol");
   side["fingers"] = column("Fingers stimulated", "", {{"one", "one finger"}, {"three", "all three fingers"}});
-  side["procedure"] = column("Adaptive procedure of the track", "",
-                             {{"staircase", "transformed up-down staircase (Levitt 1971)"},
-                              {"quest", "QUEST (Watson and Pelli 1983)"}});
+  side["procedure"] = column(
+      "Adaptive procedure of the track", "",
+      {{"staircase", "transformed up-down staircase (Levitt 1971)"}, {"quest", "QUEST (Watson and Pelli 1983)"}});
   side["reference_pressure"] = column("Reference air pressure under the stimulated fingers", "kPa");
   side["level"] = column("Pressure increment over the reference presented in the signal interval", "kPa");
-  side["signal_interval"] = column(two_afc ? "Interval that held reference + level" : "Interval that held reference + level "
-                                                                                       "(always the second in yes/no)",
+  side["signal_interval"] = column(two_afc ? "Interval that held reference + level"
+                                           : "Interval that held reference + level "
+                                             "(always the second in yes/no)",
                                    "", {{"1", "first interval"}, {"2", "second interval"}});
-  side["response"] = two_afc ? column("Interval the participant chose as stronger (n/a: no answer, the trial was repeated)",
-                                      "", {{"interval1", "first"}, {"interval2", "second"}})
-                             : column("Whether the second interval felt stronger (n/a: no answer, the trial was repeated)",
-                                      "", {{"yes", "stronger"}, {"no", "not stronger"}});
+  side["response"] = two_afc
+                         ? column("Interval the participant chose as stronger (n/a: no answer, the trial was repeated)",
+                                  "", {{"interval1", "first"}, {"interval2", "second"}})
+                         : column("Whether the second interval felt stronger (n/a: no answer, the trial was repeated)",
+                                  "", {{"yes", "stronger"}, {"no", "not stronger"}});
   side["correct"] = column(two_afc ? "Chose the signal interval" : "Answered yes (counted as correct by the track)", "",
                            {{"0", "no"}, {"1", "yes"}});
   side["reversal"] = column("The answer reversed the track's direction (staircases; 0 for QUEST)", "",
                             {{"0", "no"}, {"1", "reversal"}});
-  side["threshold_estimate"] = column("The track's threshold estimate after this trial: the mean of its last reversals "
-                                      "(staircase; the current level before any) or the posterior mean (QUEST)",
-                                      "kPa");
+  side["threshold_estimate"] = column(
+      "The track's threshold estimate after this trial: the mean of its last reversals "
+      "(staircase; the current level before any) or the posterior mean (QUEST)",
+      "kPa");
   side["response_time"] = column("Time from the end of the second interval to the answer", "s");
   side["onset"] = column("Trial onset on the session's monotonic clock", "s");
-  side["felt_interval1"] = column("Mean regulator monitor pressure on the stimulated fingers in the first interval's "
-                                  "second half",
-                                  "kPa");
+  side["felt_interval1"] = column(
+      "Mean regulator monitor pressure on the stimulated fingers in the first interval's "
+      "second half",
+      "kPa");
   side["felt_interval2"] = column("Same for the second interval", "kPa");
   write_export_json(dir / (stem + "_beh.json"), side, written);
 }

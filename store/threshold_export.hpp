@@ -26,7 +26,8 @@ struct ThresholdExportRow {
 
 // Every threshold trial of the store, by session and position. InputError naming the store and
 // session when a session's stored protocol or trials no longer replay (a damaged or edited file).
-std::vector<ThresholdExportRow> threshold_export_rows(SqliteTrialStore& store, const std::vector<SessionOverview>& sessions);
+std::vector<ThresholdExportRow> threshold_export_rows(SqliteTrialStore& store,
+                                                      const std::vector<SessionOverview>& sessions);
 
 // threshold_trials.csv: the header and one line per row.
 void write_threshold_csv(const std::vector<ThresholdExportRow>& rows, const std::filesystem::path& file);

@@ -25,7 +25,8 @@ std::string column_label(const ThresholdTrialRow& r, const std::string& column, 
   if (column == "fingers") return r.trial.fingers;
   if (column == "participant") return r.participant;
   if (column == "session_id" || column == "session") return std::to_string(r.session_id);
-  throw InputError(file, "column '" + column + "'", "a threshold_trials group column: track_name, fingers, participant, session_id");
+  throw InputError(file, "column '" + column + "'",
+                   "a threshold_trials group column: track_name, fingers, participant, session_id");
 }
 
 }  // namespace

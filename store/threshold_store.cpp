@@ -46,7 +46,8 @@ bool ThresholdStore::has_table() {
 
 std::int64_t ThresholdStore::create_session(const ParticipantRecord& who, const ThresholdProtocol& protocol,
                                             std::uint64_t seed, const SessionSetup& setup) {
-  return store_.create_task_session(who, {"threshold", protocol.name, protocol.bids_task, protocol.snapshot, seed}, setup);
+  return store_.create_task_session(who, {"threshold", protocol.name, protocol.bids_task, protocol.snapshot, seed},
+                                    setup);
 }
 
 StoredThresholdSession ThresholdStore::load_session(std::int64_t session_id) {
@@ -96,8 +97,10 @@ std::vector<ThresholdTrialRow> ThresholdStore::trials(std::optional<std::int64_t
       "t.signal_interval, t.answered, t.response, t.correct, t.reversal, t.response_time_s, t.onset_s, t.felt1_kPa, "
       "t.felt2_kPa FROM threshold_trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON "
       "p.id = s.participant_id WHERE ?1 IS NULL OR t.session_id = ?1 ORDER BY t.session_id, t.position");
-  if (session_id) q.bind(1, *session_id);
-  else q.bind_null(1);
+  if (session_id)
+    q.bind(1, *session_id);
+  else
+    q.bind_null(1);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   while (q.step()) {
     ThresholdTrialRow row;

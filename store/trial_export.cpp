@@ -41,8 +41,9 @@ std::array<std::string, kFingerCount> stored_finger_names(const std::string& fil
                                                           const nlohmann::json& protocol) {
   const std::string where = "sessions.protocol_json of session " + std::to_string(session);
   if (protocol.is_discarded() || !protocol.is_object()) {
-    throw InputError(file, where, "the protocol stored when the session started, as a JSON object (it no longer "
-                                  "parses: the database was damaged or edited)");
+    throw InputError(file, where,
+                     "the protocol stored when the session started, as a JSON object (it no longer "
+                     "parses: the database was damaged or edited)");
   }
   std::array<std::string, kFingerCount> names{"finger1", "finger2", "finger3"};
   const auto fingers = protocol.find("fingers");
@@ -108,8 +109,9 @@ StoreContents read_contents(TrialStore& store, const ExportOptions& options) {
     bool practice_left_out = false;
     if (!options.include_practice) practice_left_out = !store.read_trials(true).empty();
     throw InputError(store.location(), "trials",
-                     practice_left_out ? "trials to export (it holds practice trials only, and --no-practice leaves them out)"
-                                       : "trials to export (it holds none: no session has committed a trial)");
+                     practice_left_out
+                         ? "trials to export (it holds practice trials only, and --no-practice leaves them out)"
+                         : "trials to export (it holds none: no session has committed a trial)");
   }
   return c;
 }
@@ -171,15 +173,15 @@ void write_trials_run(const std::vector<const ExportTrial*>& rows, const std::st
       tsv << "\tstimulus_finger" << n << "\tfelt_finger" << n << "\ttumor_finger" << n << "\tresponse_finger" << n
           << "\toutcome_finger" << n;
       side["stimulus_finger" + n] = column("Air pressure commanded under finger " + n + " (" + name + ")", "kPa");
-      side["felt_finger" + n] = column("Mean regulator monitor pressure under finger " + n +
-                                           " while its stimulus was on", "kPa");
+      side["felt_finger" + n] =
+          column("Mean regulator monitor pressure under finger " + n + " while its stimulus was on", "kPa");
       side["tumor_finger" + n] = column("Ground truth: tumor under finger " + n + " by paper 002's rule", "",
                                         {{"0", "no tumor"}, {"1", "tumor"}});
-      side["response_finger" + n] = column("Participant answered a tumor under finger " + n, "",
-                                           {{"0", "no"}, {"1", "yes"}});
-      side["outcome_finger" + n] = column("Score of finger " + n + "'s value", "",
-                                          {{"TP", "true positive"}, {"FN", "false negative"},
-                                           {"TN", "true negative"}, {"FP", "false positive"}});
+      side["response_finger" + n] =
+          column("Participant answered a tumor under finger " + n, "", {{"0", "no"}, {"1", "yes"}});
+      side["outcome_finger" + n] = column(
+          "Score of finger " + n + "'s value", "",
+          {{"TP", "true positive"}, {"FN", "false negative"}, {"TN", "true negative"}, {"FP", "false positive"}});
     }
   } else {
     for (const auto& tumor : tumors) {
@@ -191,16 +193,24 @@ void write_trials_run(const std::vector<const ExportTrial*>& rows, const std::st
     side["false_marks"] = column("Marks near no tumor");
   }
   tsv << "\tresponse_time\tonset\trt_after_stimulus\tstimulus_reached\trt_from_reached";
-  side["response_time"] = column("Time from stimulus onset to the answer (n/a when the response timed out); "
-                                 "paper 002's measure, which includes a sequential presentation", "s");
+  side["response_time"] = column(
+      "Time from stimulus onset to the answer (n/a when the response timed out); "
+      "paper 002's measure, which includes a sequential presentation",
+      "s");
   side["onset"] = column("Stimulus onset on the session's monotonic clock", "s");
-  side["rt_after_stimulus"] = column("Time from the end of the stimulus to the answer (0 when answered during the "
-                                     "stimulus; n/a when the response timed out or was not recorded)", "s");
-  side["stimulus_reached"] = column("When the stimulus reached the fingers on the session's monotonic clock: the first "
-                                    "regulator monitor crossing of half a commanded level (n/a when no finger carried "
-                                    "a level above 0 kPa, for a scene, or when the answer came first)", "s");
-  side["rt_from_reached"] = column("Time from when the stimulus reached the fingers to the answer (n/a when either is "
-                                   "unknown)", "s");
+  side["rt_after_stimulus"] = column(
+      "Time from the end of the stimulus to the answer (0 when answered during the "
+      "stimulus; n/a when the response timed out or was not recorded)",
+      "s");
+  side["stimulus_reached"] = column(
+      "When the stimulus reached the fingers on the session's monotonic clock: the first "
+      "regulator monitor crossing of half a commanded level (n/a when no finger carried "
+      "a level above 0 kPa, for a scene, or when the answer came first)",
+      "s");
+  side["rt_from_reached"] = column(
+      "Time from when the stimulus reached the fingers to the answer (n/a when either is "
+      "unknown)",
+      "s");
   const nlohmann::json& scale = rows.empty() ? nlohmann::json() : rows.front()->confidence_scale;
   if (!scale.is_null()) {
     tsv << "\tconfidence";
@@ -208,7 +218,8 @@ void write_trials_run(const std::vector<const ExportTrial*>& rows, const std::st
     const int count = scale.value("levels", 0);
     const auto labels = scale.find("labels");
     for (int level = 1; level <= count; ++level) {
-      const bool labelled = labels != scale.end() && labels->is_array() && labels->size() == static_cast<std::size_t>(count);
+      const bool labelled =
+          labels != scale.end() && labels->is_array() && labels->size() == static_cast<std::size_t>(count);
       levels[std::to_string(level)] = labelled ? (*labels)[static_cast<std::size_t>(level - 1)].get<std::string>()
                                                : "rating " + std::to_string(level) + " of " + std::to_string(count);
     }
@@ -225,8 +236,8 @@ void write_trials_run(const std::vector<const ExportTrial*>& rows, const std::st
       tsv << "\t" << tsv_field(t->combination_label);
       for (int f = 0; f < kFingerCount; ++f) {
         const auto fi = static_cast<std::size_t>(f);
-        tsv << "\t" << number(t->stimulus_kPa[fi], 3) << "\t" << number(t->felt_kPa[fi], 3) << "\t"
-            << bit(t->truth, f) << "\t" << (t->answered ? bit(t->answer, f) : "n/a") << "\t"
+        tsv << "\t" << number(t->stimulus_kPa[fi], 3) << "\t" << number(t->felt_kPa[fi], 3) << "\t" << bit(t->truth, f)
+            << "\t" << (t->answered ? bit(t->answer, f) : "n/a") << "\t"
             << (t->outcome[fi].empty() ? "n/a" : t->outcome[fi]);
       }
     } else {
@@ -262,10 +273,11 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
            "finger_name,tumor,stimulus_kPa,felt_kPa,tumor_present,answered,answered_tumor,outcome,response_time_s,"
            "onset_s,completed_utc,rt_after_stimulus_s,confidence,stimulus_reached_s,rt_from_reached_s\n";
     for (const ExportTrial& t : c.trials) {
-      const std::string head = csv_field(t.participant) + "," + (t.simulated ? "1" : "0") + "," + std::to_string(t.session) +
-                               "," + csv_field(t.protocol) + "," + t.task + "," + std::to_string(t.position + 1) + "," +
-                               std::to_string(t.block + 1) + "," + csv_field(t.condition) + "," + t.mode + "," +
-                               (t.practice ? "1" : "0") + "," + (t.combination_label.empty() ? "n/a" : t.combination_label);
+      const std::string head = csv_field(t.participant) + "," + (t.simulated ? "1" : "0") + "," +
+                               std::to_string(t.session) + "," + csv_field(t.protocol) + "," + t.task + "," +
+                               std::to_string(t.position + 1) + "," + std::to_string(t.block + 1) + "," +
+                               csv_field(t.condition) + "," + t.mode + "," + (t.practice ? "1" : "0") + "," +
+                               (t.combination_label.empty() ? "n/a" : t.combination_label);
       const std::string tail = std::string(t.answered ? "1" : "0");
       // rt_after_stimulus_s: from the stimulus end (n/a when unanswered or stored before the
       // column existed); confidence: empty when the protocol did not ask or no answer was given;
@@ -278,14 +290,14 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
         for (int f = 0; f < kFingerCount; ++f) {
           const auto fi = static_cast<std::size_t>(f);
           out << head << ",finger" << f + 1 << "," << f + 1 << "," << csv_field(t.finger_names[fi]) << ",n/a,"
-              << number(t.stimulus_kPa[fi], 3) << "," << number(t.felt_kPa[fi], 3) << "," << bit(t.truth, f) << "," << tail
-              << "," << (t.answered ? bit(t.answer, f) : "n/a") << "," << (t.outcome[fi].empty() ? "n/a" : t.outcome[fi])
-              << "," << times << "\n";
+              << number(t.stimulus_kPa[fi], 3) << "," << number(t.felt_kPa[fi], 3) << "," << bit(t.truth, f) << ","
+              << tail << "," << (t.answered ? bit(t.answer, f) : "n/a") << ","
+              << (t.outcome[fi].empty() ? "n/a" : t.outcome[fi]) << "," << times << "\n";
         }
       } else {
         for (const auto& [tumor, outcome] : t.tumor_outcomes) {
-          out << head << ",tumor " << csv_field(tumor) << ",n/a,n/a," << csv_field(tumor) << ",n/a,n/a,1," << tail << ","
-              << (outcome == "TP" ? "1" : "0") << "," << outcome << "," << times << "\n";
+          out << head << ",tumor " << csv_field(tumor) << ",n/a,n/a," << csv_field(tumor) << ",n/a,n/a,1," << tail
+              << "," << (outcome == "TP" ? "1" : "0") << "," << outcome << "," << times << "\n";
         }
         if (!t.answered || t.tumor_outcomes.empty()) {
           out << head << ",trial,n/a,n/a,n/a,n/a,n/a,n/a," << tail << ",n/a,n/a," << times << "\n";
@@ -300,7 +312,8 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
     for (const ExportTrial& t : c.trials) {  // ordered by participant, session, position; marks by mark
       for (const StoredMark& m : t.marks) {
         marks << csv_field(t.participant) << "," << t.session << "," << t.position + 1 << "," << m.mark + 1 << ","
-              << number(m.x_mm, 2) << "," << number(m.y_mm, 2) << "," << (m.tumor ? csv_field(*m.tumor) : "n/a") << "\n";
+              << number(m.x_mm, 2) << "," << number(m.y_mm, 2) << "," << (m.tumor ? csv_field(*m.tumor) : "n/a")
+              << "\n";
       }
     }
     commit_into(marks, result.files);
@@ -337,7 +350,8 @@ ExportResult export_bids(TrialStore& store, const std::filesystem::path& out_dir
     participants.emplace_back(code, simulated);
   };
   for (const ExportTrial& t : c.trials) enrol(t.participant, t.participant_number, t.simulated);
-  for (const ThresholdExportRow& r : c.threshold) enrol(r.participant.code, r.participant.number, r.participant.simulated);
+  for (const ThresholdExportRow& r : c.threshold)
+    enrol(r.participant.code, r.participant.number, r.participant.simulated);
   for (const PulseExportRow& r : c.pulse) enrol(r.participant.code, r.participant.number, r.participant.simulated);
 
   // Runs: participant x task, one run per session, whatever the task kind.
@@ -356,8 +370,8 @@ ExportResult export_bids(TrialStore& store, const std::filesystem::path& out_dir
   description["Name"] = options.dataset_name.empty() ? "palprig trial export" : options.dataset_name;
   description["BIDSVersion"] = "1.8.0";
   description["DatasetType"] = "raw";
-  description["Authors"] = options.authors.empty() ? std::vector<std::string>{"Unknown (palprig export --author NAME)"}
-                                                   : options.authors;
+  description["Authors"] =
+      options.authors.empty() ? std::vector<std::string>{"Unknown (palprig export --author NAME)"} : options.authors;
   description["GeneratedBy"] = {{{"Name", "palprig"}, {"Description", "palprig export --format bids"}}};
   write_export_json(out_dir / "dataset_description.json", description, result.files);
   {
@@ -367,7 +381,8 @@ ExportResult export_bids(TrialStore& store, const std::filesystem::path& out_dir
     ExportFile out(out_dir / "README");
     out << "palprig trial export\n====================\n\n"
         << "Behavioural data of palpation studies run on a pneumatic multi-finger palpation rig with palprig, "
-           "exported by `palprig export --format bids` from the trial store " << store.location() << ".\n\n"
+           "exported by `palprig export --format bids` from the trial store "
+        << store.location() << ".\n\n"
         << participants.size() << " participants; tasks:";
     for (const std::string& t : tasks) out << " " << t;
     out << ".\n\nEach sub-<label>/beh/*_beh.tsv holds one session (a run), one row per trial; the JSON sidecar "
@@ -410,9 +425,12 @@ ExportResult export_bids(TrialStore& store, const std::filesystem::path& out_dir
       for (const PulseExportRow& r : c.pulse) {
         if (r.session == session) pulse_rows.push_back(&r);
       }
-      if (!rows.empty()) write_trials_run(rows, task, dir, stem, result.files);
-      else if (!threshold_rows.empty()) write_threshold_bids_run(threshold_rows, task, dir, stem, result.files);
-      else write_pulse_bids_run(pulse_rows, task, dir, stem, result.files);
+      if (!rows.empty())
+        write_trials_run(rows, task, dir, stem, result.files);
+      else if (!threshold_rows.empty())
+        write_threshold_bids_run(threshold_rows, task, dir, stem, result.files);
+      else
+        write_pulse_bids_run(pulse_rows, task, dir, stem, result.files);
     }
   }
   return result;

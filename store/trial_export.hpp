@@ -23,14 +23,14 @@
 namespace palprig {
 
 struct ExportOptions {
-  bool include_practice = true;  // practice rows are marked by a column either way
+  bool include_practice = true;      // practice rows are marked by a column either way
   std::vector<std::string> authors;  // BIDS dataset_description Authors (empty: "Unknown ...")
   std::string dataset_name;          // BIDS Name (empty: "palprig trial export")
 };
 
 struct ExportResult {
-  std::vector<std::filesystem::path> files;  // written, in order
-  std::size_t trials = 0;                    // of every kind
+  std::vector<std::filesystem::path> files;            // written, in order
+  std::size_t trials = 0;                              // of every kind
   std::size_t threshold_trials = 0, pulse_trials = 0;  // of which
 };
 

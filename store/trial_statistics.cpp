@@ -45,7 +45,8 @@ TrialStatistics compute_trial_statistics(TrialStore& store, const SummaryOptions
   s.by_tumor = summary_by(store, options, SummaryKey::tumor);
   drop_placeholder_rows(s.by_finger);
   drop_placeholder_rows(s.by_tumor);
-  if (auto* sqlite = dynamic_cast<SqliteTrialStore*>(&store)) s.pulse = PulseStore(*sqlite, false).summarise(options.confidence);
+  if (auto* sqlite = dynamic_cast<SqliteTrialStore*>(&store))
+    s.pulse = PulseStore(*sqlite, false).summarise(options.confidence);
 
   const auto times = response_times_by_condition(store, options.include_practice);
   const auto& rows = s.by_condition.rows;  // sorted by condition
@@ -67,9 +68,10 @@ TrialStatistics compute_trial_statistics(TrialStore& store, const SummaryOptions
       }
       s.response_times.push_back(std::move(rt));
 
-      const std::pair<const char*, Measure DiagnosticMeasures::*> named[] = {
-          {"Se", &DiagnosticMeasures::se}, {"Sp", &DiagnosticMeasures::sp},
-          {"PPV", &DiagnosticMeasures::ppv}, {"ACC", &DiagnosticMeasures::acc}};
+      const std::pair<const char*, Measure DiagnosticMeasures::*> named[] = {{"Se", &DiagnosticMeasures::se},
+                                                                             {"Sp", &DiagnosticMeasures::sp},
+                                                                             {"PPV", &DiagnosticMeasures::ppv},
+                                                                             {"ACC", &DiagnosticMeasures::acc}};
       for (const auto& [name, member] : named) {
         const Measure& ma = rows[i].measures.*member;
         const Measure& mb = rows[j].measures.*member;

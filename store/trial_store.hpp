@@ -76,13 +76,13 @@ struct ScoredTrial {
   std::string_view condition;
   std::optional<std::string_view> combination_label;  // discrimination; absent for localisation
   bool answered = false;
-  double response_time_s = 0;  // NaN when none was stored
+  double response_time_s = 0;      // NaN when none was stored
   double rt_after_stimulus_s = 0;  // from the stimulus end to the answer; NaN when unknown
   double rt_from_reached_s = 0;    // from when the stimulus reached the fingers to the answer; NaN when unknown
   std::optional<int> confidence;   // the rating, when asked and given
   std::array<std::optional<Outcome>, kFingerCount> finger_outcomes{};  // discrimination, when answered
-  std::span<const ScoredTumor> tumors;  // localisation, when answered
-  std::int64_t false_marks = 0;         // localisation, when answered
+  std::span<const ScoredTumor> tumors;                                 // localisation, when answered
+  std::int64_t false_marks = 0;                                        // localisation, when answered
 };
 
 struct StoredMark {
@@ -146,8 +146,8 @@ class TrialStore {
   // Stores the session, its protocol snapshot and its whole planned order in one transaction;
   // refuses (InputError) when this participant already has an unfinished session with this
   // protocol (e.g. one another process created a moment ago). The new session is claimed.
-  virtual std::int64_t create_session(const ParticipantRecord& who, const Protocol& protocol,
-                                      const SessionPlan& plan, const SessionSetup& setup) = 0;
+  virtual std::int64_t create_session(const ParticipantRecord& who, const Protocol& protocol, const SessionPlan& plan,
+                                      const SessionSetup& setup) = 0;
   // Throws InputError when there is no such session or its trials are not positions 0..n-1.
   // One process per session: claiming refuses (InputError) a session a live process holds or
   // that was completed; a holder that died is stale and taken over. Released by

@@ -64,12 +64,12 @@ struct RunningMoments {
 struct Accumulator {
   ConfusionCounts counts;
   std::int64_t trials = 0, unanswered = 0;
-  RunningMoments rt, rt_after;     // from onset (paper 002) and from the stimulus end
-  RunningMoments rt_reached;       // from when the stimulus reached the fingers
+  RunningMoments rt, rt_after;  // from onset (paper 002) and from the stimulus end
+  RunningMoments rt_reached;    // from when the stimulus reached the fingers
   std::int64_t rated = 0;
   double confidence_sum = 0;
-  std::int64_t last_trial = -1;   // a trial adds its response time once per group
-  bool localisation = false;      // holds localisation values (no true negatives)
+  std::int64_t last_trial = -1;  // a trial adds its response time once per group
+  bool localisation = false;     // holds localisation values (no true negatives)
 
   void add_trial(const ScoredTrial& t) {
     if (t.trial_id == last_trial) return;
@@ -159,7 +159,8 @@ std::vector<SummaryKey> parse_summary_keys(const std::string& list) {
       }
     }
     if (!found) {
-      throw InputError("command line", "group_by", "a list of condition, participant, finger, tumor, combination, session; got '" + word + "'");
+      throw InputError("command line", "group_by",
+                       "a list of condition, participant, finger, tumor, combination, session; got '" + word + "'");
     }
   }
   return keys;
@@ -282,11 +283,13 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     row.mean_rt_from_reached_s = a.rt_reached.mean_or_nan();
     row.sd_rt_from_reached_s = a.rt_reached.sd_or_nan();
     row.rated = a.rated;
-    row.mean_confidence = a.rated > 0 ? a.confidence_sum / static_cast<double>(a.rated) : std::numeric_limits<double>::quiet_NaN();
+    row.mean_confidence =
+        a.rated > 0 ? a.confidence_sum / static_cast<double>(a.rated) : std::numeric_limits<double>::quiet_NaN();
     if (a.rated > 0) summary.any_rated = true;
     summary.rows.push_back(std::move(row));
   }
-  std::sort(summary.rows.begin(), summary.rows.end(), [](const SummaryRow& a, const SummaryRow& b) { return a.key < b.key; });
+  std::sort(summary.rows.begin(), summary.rows.end(),
+            [](const SummaryRow& a, const SummaryRow& b) { return a.key < b.key; });
   return summary;
 }
 

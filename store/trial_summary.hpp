@@ -33,8 +33,8 @@ struct SummaryRow {
   std::vector<std::string> key;  // one value per SummaryOptions::by, in that order
   ConfusionCounts counts;
   DiagnosticMeasures measures;
-  std::int64_t trials = 0;      // trials that contributed (answered or not)
-  std::int64_t unanswered = 0;  // of which timed out
+  std::int64_t trials = 0;            // trials that contributed (answered or not)
+  std::int64_t unanswered = 0;        // of which timed out
   double mean_rt_s = 0, sd_rt_s = 0;  // from onset (paper 002); NaN when fewer than 1 (mean) or 2 (sd) answered trials
   // From the end of the stimulus (0 for an answer during it); NaN likewise, and for trials
   // stored before the stimulus end was.
@@ -42,8 +42,8 @@ struct SummaryRow {
   // From when the stimulus reached the fingers (half the commanded level on the monitor); NaN
   // likewise, and for trials without that time (0/0/0, scenes, stored before the column).
   double mean_rt_from_reached_s = 0, sd_rt_from_reached_s = 0;
-  std::int64_t rated = 0;       // answered trials with a confidence rating
-  double mean_confidence = 0;   // NaN when none was rated
+  std::int64_t rated = 0;      // answered trials with a confidence rating
+  double mean_confidence = 0;  // NaN when none was rated
   // False for localisation: true negatives are not counted (every tumor-free spot would be
   // one), so TN, Sp and ACC have no denominator and are n/a, never 0.
   bool negatives_counted = true;

@@ -62,8 +62,9 @@ std::string summary_table(const TrialSummary& s) {
     }
     if (!r.negatives_counted) line[line.size() - 2] = "n/a";  // TN
     for (const auto& nm : measures_of(r)) {
-      line.push_back(nm.m.defined ? fixed(nm.m.value, 3) + " [" + fixed(nm.m.lower, 3) + ", " + fixed(nm.m.upper, 3) + "]"
-                                  : std::string("n/a"));
+      line.push_back(nm.m.defined
+                         ? fixed(nm.m.value, 3) + " [" + fixed(nm.m.lower, 3) + ", " + fixed(nm.m.upper, 3) + "]"
+                         : std::string("n/a"));
     }
     line.push_back(fixed(r.mean_rt_s, 2));
     line.push_back(fixed(r.sd_rt_s, 2));
@@ -103,11 +104,13 @@ std::string summary_csv(const TrialSummary& s) {
     out << r.trials << "," << r.unanswered << "," << r.counts.tp << "," << r.counts.fn << ","
         << (r.negatives_counted ? std::to_string(r.counts.tn) : std::string("NA")) << "," << r.counts.fp;
     for (const auto& nm : measures_of(r)) {
-      if (nm.m.defined) out << "," << fixed(nm.m.value, 6) << "," << fixed(nm.m.lower, 6) << "," << fixed(nm.m.upper, 6);
-      else out << ",NA,NA,NA";
+      if (nm.m.defined)
+        out << "," << fixed(nm.m.value, 6) << "," << fixed(nm.m.lower, 6) << "," << fixed(nm.m.upper, 6);
+      else
+        out << ",NA,NA,NA";
     }
-    out << "," << fixed(r.mean_rt_s, 4) << "," << fixed(r.sd_rt_s, 4) << "," << fixed(r.mean_rt_after_stimulus_s, 4) << ","
-        << fixed(r.sd_rt_after_stimulus_s, 4);
+    out << "," << fixed(r.mean_rt_s, 4) << "," << fixed(r.sd_rt_s, 4) << "," << fixed(r.mean_rt_after_stimulus_s, 4)
+        << "," << fixed(r.sd_rt_after_stimulus_s, 4);
     if (s.any_rated) out << "," << r.rated << "," << fixed(r.mean_confidence, 4);
     out << "," << fixed(r.mean_rt_from_reached_s, 4) << "," << fixed(r.sd_rt_from_reached_s, 4);
     out << "\n";
@@ -117,9 +120,10 @@ std::string summary_csv(const TrialSummary& s) {
 
 nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence) {
   nlohmann::ordered_json j;
-  j["convention"] = "per finger value (discrimination) or per tumor (localisation): Se = TP/(TP+FN), "
-                    "Sp = TN/(TN+FP), PPV = TP/(TP+FP), ACC = (TP+TN)/all (paper 002 eq. 5-8); Wilson score "
-                    "intervals without continuity correction";
+  j["convention"] =
+      "per finger value (discrimination) or per tumor (localisation): Se = TP/(TP+FN), "
+      "Sp = TN/(TN+FP), PPV = TP/(TP+FP), ACC = (TP+TN)/all (paper 002 eq. 5-8); Wilson score "
+      "intervals without continuity correction";
   j["confidence"] = confidence;
   j["by"] = nlohmann::ordered_json::array();
   for (SummaryKey k : s.by) j["by"].push_back(to_string(k));
@@ -135,7 +139,8 @@ nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence) {
     row["FP"] = r.counts.fp;
     for (const auto& nm : measures_of(r)) {
       if (nm.m.defined) {
-        row[nm.name] = {{"k", nm.m.k}, {"n", nm.m.n}, {"value", nm.m.value}, {"lower", nm.m.lower}, {"upper", nm.m.upper}};
+        row[nm.name] = {
+            {"k", nm.m.k}, {"n", nm.m.n}, {"value", nm.m.value}, {"lower", nm.m.lower}, {"upper", nm.m.upper}};
       } else {
         row[nm.name] = nullptr;
       }
@@ -171,9 +176,12 @@ std::string stats_trials_text(TrialStore& store, const SummaryOptions& options, 
     }
   }
   const TrialSummary summary = summarise_trials(store, options);
-  if (format == "json") out += summary_json(summary, options.confidence).dump(2) + "\n";
-  else if (format == "csv") out += summary_csv(summary);
-  else out += summary_table(summary);
+  if (format == "json")
+    out += summary_json(summary, options.confidence).dump(2) + "\n";
+  else if (format == "csv")
+    out += summary_csv(summary);
+  else
+    out += summary_table(summary);
   return out;
 }
 

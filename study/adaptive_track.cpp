@@ -37,7 +37,8 @@ TrackEstimate AdaptiveTrack::estimate() const {
     e.threshold_kPa = staircase_.threshold_kPa();
     e.trials = staircase_.state().trials;
     e.reversals = static_cast<int>(r.size());
-    const std::size_t n = std::min<std::size_t>(r.size(), static_cast<std::size_t>(std::max(1, spec_.staircase.threshold_reversals)));
+    const std::size_t n =
+        std::min<std::size_t>(r.size(), static_cast<std::size_t>(std::max(1, spec_.staircase.threshold_reversals)));
     double ss = 0;
     for (std::size_t i = r.size() - n; i < r.size(); ++i) ss += (r[i] - e.threshold_kPa) * (r[i] - e.threshold_kPa);
     e.sd = n > 1 ? std::sqrt(ss / static_cast<double>(n - 1)) : nan;
@@ -60,12 +61,15 @@ nlohmann::json AdaptiveTrack::state_json() const {
 }
 
 void AdaptiveTrack::restore(const nlohmann::json& state) {
-  if (spec_.procedure == AdaptiveProcedure::staircase) staircase_ = Staircase(spec_.staircase, staircase_state_from_json(state));
-  else quest_.restore(state);
+  if (spec_.procedure == AdaptiveProcedure::staircase)
+    staircase_ = Staircase(spec_.staircase, staircase_state_from_json(state));
+  else
+    quest_.restore(state);
 }
 
 std::uint64_t trial_seed(std::uint64_t seed, int position, std::uint64_t purpose) noexcept {
-  RandomSource r(seed ^ (static_cast<std::uint64_t>(position) * 0x9E3779B97F4A7C15ULL) ^ (purpose * 0xD1B54A32D192ED03ULL));
+  RandomSource r(seed ^ (static_cast<std::uint64_t>(position) * 0x9E3779B97F4A7C15ULL) ^
+                 (purpose * 0xD1B54A32D192ED03ULL));
   return r.next();
 }
 

@@ -29,10 +29,10 @@ struct TrackSpec {
 
 struct TrackEstimate {
   double threshold_kPa = 0;
-  double sd = 0;             // staircase: sd of the reversals averaged (kPa); QUEST: posterior sd (log10)
+  double sd = 0;                           // staircase: sd of the reversals averaged (kPa); QUEST: posterior sd (log10)
   double ci_low_kPa = 0, ci_high_kPa = 0;  // QUEST: 95 % credible interval; staircase: NaN
   int trials = 0;
-  int reversals = 0;         // staircase only
+  int reversals = 0;              // staircase only
   double target_probability = 0;  // the proportion correct the estimate refers to
 };
 

@@ -53,8 +53,9 @@ std::vector<std::pair<int, int>> read_adjacent_fingers(const JsonObject& root) {
                     p[0].get<int>() >= 1 && p[0].get<int>() <= kFingerCount && p[1].get<int>() >= 1 &&
                     p[1].get<int>() <= kFingerCount && p[0].get<int>() != p[1].get<int>();
     if (!ok) {
-      throw InputError(root.file(), where + "[" + std::to_string(i) + "]",
-                       "a pair of two different finger numbers 1.." + std::to_string(kFingerCount) + ", got " + p.dump());
+      throw InputError(
+          root.file(), where + "[" + std::to_string(i) + "]",
+          "a pair of two different finger numbers 1.." + std::to_string(kFingerCount) + ", got " + p.dump());
     }
     pairs.emplace_back(p[0].get<int>() - 1, p[1].get<int>() - 1);
   }
@@ -66,7 +67,8 @@ std::array<std::string, kFingerCount> read_finger_names(const JsonObject& root) 
   if (!root.has("fingers")) return names;
   const auto& raw = root.raw("fingers");
   if (!raw.is_array() || raw.size() != kFingerCount) {
-    throw InputError(root.file(), root.path("fingers"), "an array of " + std::to_string(kFingerCount) + " finger names");
+    throw InputError(root.file(), root.path("fingers"),
+                     "an array of " + std::to_string(kFingerCount) + " finger names");
   }
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     if (!raw[i].is_string() || raw[i].get<std::string>().empty()) {
@@ -82,20 +84,23 @@ void read_combinations(const JsonObject& root, Protocol& p) {
   p.combinations_how_chosen = combos.string("how_chosen");
   const auto& list = combos.raw("list_kPa");
   const std::string where = combos.path("list_kPa");
-  if (!list.is_array() || list.empty()) throw InputError(root.file(), where, "a non-empty array of [p1, p2, p3] in kPa");
+  if (!list.is_array() || list.empty())
+    throw InputError(root.file(), where, "a non-empty array of [p1, p2, p3] in kPa");
   std::set<std::array<double, kFingerCount>> seen;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string at = where + "[" + std::to_string(i) + "]";
     const auto& entry = list[i];
     if (!entry.is_array() || entry.size() != kFingerCount) {
-      throw InputError(root.file(), at, "an array of " + std::to_string(kFingerCount) + " pressures in kPa, got " + entry.dump());
+      throw InputError(root.file(), at,
+                       "an array of " + std::to_string(kFingerCount) + " pressures in kPa, got " + entry.dump());
     }
     StimulusCombination c;
     for (std::size_t f = 0; f < kFingerCount; ++f) {
       const auto& v = entry[f];
-      const bool is_level = v.is_number() &&
-          std::find(p.levels_kPa.begin(), p.levels_kPa.end(), v.get<double>()) != p.levels_kPa.end();
-      if (!is_level) throw InputError(root.file(), at + "[" + std::to_string(f) + "]", "one of levels_kPa, got " + v.dump());
+      const bool is_level =
+          v.is_number() && std::find(p.levels_kPa.begin(), p.levels_kPa.end(), v.get<double>()) != p.levels_kPa.end();
+      if (!is_level)
+        throw InputError(root.file(), at + "[" + std::to_string(f) + "]", "one of levels_kPa, got " + v.dump());
       c.pressure_kPa[f] = v.get<double>();
       c.label += (f ? "/" : "") + format_kPa(c.pressure_kPa[f]);
     }
@@ -103,7 +108,8 @@ void read_combinations(const JsonObject& root, Protocol& p) {
     if (!classify_by_tumor_rule(c.pressure_kPa, p.adjacent_fingers, c.tumor, reason)) {
       throw InputError(root.file(), at, "a pattern the tumor rule classifies: " + reason);
     }
-    if (!seen.insert(c.pressure_kPa).second) throw InputError(root.file(), at, "each combination once (" + c.label + " repeats)");
+    if (!seen.insert(c.pressure_kPa).second)
+      throw InputError(root.file(), at, "each combination once (" + c.label + " repeats)");
     p.combinations.push_back(c);
   }
   combos.refuse_unknown();
@@ -120,7 +126,7 @@ void read_conditions(const JsonObject& root, Protocol& p) {
     if (!names.insert(cond.name).second) c.fail("name", "a name not used by another condition");
     if (p.task == TaskKind::discrimination) {
       cond.mode = c.choice("mode", {"simultaneous", "sequential"}) == "sequential" ? PresentationMode::sequential
-                                                                                 : PresentationMode::simultaneous;
+                                                                                   : PresentationMode::simultaneous;
     } else {
       c.choice_or("mode", "scene", {"scene"});
       cond.mode = PresentationMode::scene;
@@ -150,7 +156,9 @@ void read_randomisation(const JsonObject& root, Protocol& p) {
   if (!root.has("randomisation")) return;
   const JsonObject r = root.object("randomisation");
   const std::string scheme = r.choice_or("scheme", "full", {"fixed", "full", "blocked"});
-  p.randomisation.scheme = scheme == "fixed" ? RandomScheme::fixed : scheme == "blocked" ? RandomScheme::blocked : RandomScheme::full;
+  p.randomisation.scheme = scheme == "fixed"     ? RandomScheme::fixed
+                           : scheme == "blocked" ? RandomScheme::blocked
+                                                 : RandomScheme::full;
   p.randomisation.max_repeats_in_a_row = static_cast<int>(r.integer_or("max_repeats_in_a_row", 0, 0, 1000));
   p.randomisation.min_distance = static_cast<int>(r.integer_or("min_distance", 0, 0, 1000));
   r.refuse_unknown();
@@ -158,17 +166,20 @@ void read_randomisation(const JsonObject& root, Protocol& p) {
 
 void read_confidence(const JsonObject& root, Protocol& p) {
   if (!root.has("confidence")) return;
-  if (p.task != TaskKind::discrimination) root.fail("confidence", "no confidence rating (it is asked after a discrimination answer only)");
+  if (p.task != TaskKind::discrimination)
+    root.fail("confidence", "no confidence rating (it is asked after a discrimination answer only)");
   const JsonObject c = root.object("confidence");
   p.confidence.levels = static_cast<int>(c.integer("levels", kMinConfidenceLevels, kMaxConfidenceLevels));
   if (c.has("labels")) {
     const auto& raw = c.raw("labels");
     if (!raw.is_array() || raw.size() != static_cast<std::size_t>(p.confidence.levels)) {
-      c.fail("labels", "an array of exactly " + std::to_string(p.confidence.levels) + " labels (one per level), got " + raw.dump());
+      c.fail("labels", "an array of exactly " + std::to_string(p.confidence.levels) + " labels (one per level), got " +
+                           raw.dump());
     }
     for (std::size_t i = 0; i < raw.size(); ++i) {
       if (!raw[i].is_string() || raw[i].get<std::string>().empty()) {
-        throw InputError(root.file(), c.path("labels") + "[" + std::to_string(i) + "]", "a non-empty label, got " + raw[i].dump());
+        throw InputError(root.file(), c.path("labels") + "[" + std::to_string(i) + "]",
+                         "a non-empty label, got " + raw[i].dump());
       }
       p.confidence.labels.push_back(raw[i].get<std::string>());
     }
@@ -204,8 +215,9 @@ void check_order_feasible(const Protocol& p) {
                              " combinations cannot keep identical trials further apart)");
       }
       if (reps > 1 && kinds == 1 && constraints.max_repeats_in_a_row > 0 && reps > constraints.max_repeats_in_a_row) {
-        throw InputError(p.source, where + ".max_repeats_in_a_row",
-                         "at least " + std::to_string(reps) + " (one combination repeated " + std::to_string(reps) + " times)");
+        throw InputError(
+            p.source, where + ".max_repeats_in_a_row",
+            "at least " + std::to_string(reps) + " (one combination repeated " + std::to_string(reps) + " times)");
       }
       break;
     }
@@ -257,7 +269,8 @@ bool classify_by_tumor_rule(const std::array<double, kFingerCount>& pressure_kPa
   return true;
 }
 
-Protocol parse_protocol(const nlohmann::json& document, const std::string& source, const std::filesystem::path& base_dir) {
+Protocol parse_protocol(const nlohmann::json& document, const std::string& source,
+                        const std::filesystem::path& base_dir) {
   const JsonObject root(document, source, "");
   root.require_version(kProtocolFileVersion);
   Protocol p;
@@ -267,7 +280,7 @@ Protocol parse_protocol(const nlohmann::json& document, const std::string& sourc
   if (p.name.empty()) root.fail("name", "a non-empty protocol name");
   p.description = root.string_or("description", "");
   p.task = root.choice("task", {"discrimination", "localisation"}) == "discrimination" ? TaskKind::discrimination
-                                                                                     : TaskKind::localisation;
+                                                                                       : TaskKind::localisation;
   p.bids_task = root.string_or("bids_task", bids_label(p.name));
   if (p.bids_task.empty() || bids_label(p.bids_task) != p.bids_task) {
     root.fail("bids_task", "letters and digits only (a BIDS task label), got \"" + p.bids_task + "\"");
@@ -290,7 +303,8 @@ Protocol parse_protocol(const nlohmann::json& document, const std::string& sourc
     const SceneFile scene_file = load_scene_file(p.localisation.scene_file);
     p.localisation.tumors = scene_file.tumors;
     if (p.localisation.tumors.empty()) {
-      loc.fail("scene", "a scene that lists its tumors' outlines (" + p.localisation.scene_file.string() + " has none)");
+      loc.fail("scene",
+               "a scene that lists its tumors' outlines (" + p.localisation.scene_file.string() + " has none)");
     }
   }
 
@@ -300,12 +314,14 @@ Protocol parse_protocol(const nlohmann::json& document, const std::string& sourc
   const std::size_t per_condition =
       static_cast<std::size_t>(p.repetitions) * (p.task == TaskKind::discrimination ? p.combinations.size() : 1);
   if (per_condition % static_cast<std::size_t>(p.blocks_per_condition) != 0) {
-    root.fail("blocks_per_condition", "a divisor of the " + std::to_string(per_condition) + " trials of each condition");
+    root.fail("blocks_per_condition",
+              "a divisor of the " + std::to_string(per_condition) + " trials of each condition");
   }
   p.practice_trials = static_cast<int>(root.integer_or("practice_trials", 0, 0, 1000));
   const long long session_trials =
       static_cast<long long>(per_condition) * static_cast<long long>(p.conditions.size()) + p.practice_trials;
-  if (session_trials > kMaxSessionTrials) root.fail("repetitions", "a protocol of " + session_bound_text(session_trials));
+  if (session_trials > kMaxSessionTrials)
+    root.fail("repetitions", "a protocol of " + session_bound_text(session_trials));
   p.break_every_trials = static_cast<int>(root.integer_or("break_every_trials", 0, 0, 100000));
   const std::string cb = root.choice_or("counterbalancing", "none", {"none", "alternate", "latin-square", "random"});
   p.counterbalancing = cb == "alternate"      ? Counterbalancing::alternate

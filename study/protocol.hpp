@@ -48,12 +48,12 @@ struct Condition {
 };
 
 struct Timing {
-  double max_present_s = 30.0;      // stimulus on at most this long (the participant may answer sooner)
-  double sequential_step_s = 2.0;   // sequential mode: each finger's pressure is on this long
-  double sequential_gap_s = 0.5;    // ... with this pause (vented) between fingers
-  double response_timeout_s = 30.0; // after the stimulus ends, wait this long for an answer
-  double inter_trial_s = 2.0;       // vented pause after each answer
-  double break_s = 0.0;             // length of a break; 0: until the participant is ready
+  double max_present_s = 30.0;       // stimulus on at most this long (the participant may answer sooner)
+  double sequential_step_s = 2.0;    // sequential mode: each finger's pressure is on this long
+  double sequential_gap_s = 0.5;     // ... with this pause (vented) between fingers
+  double response_timeout_s = 30.0;  // after the stimulus ends, wait this long for an answer
+  double inter_trial_s = 2.0;        // vented pause after each answer
+  double break_s = 0.0;              // length of a break; 0: until the participant is ready
   // Simultaneous discrimination: the participant may answer while the stimulus is on, which
   // ends it (paper 002's three-finger trials, the stimulus staying until the answer; true), or
   // only once max_present_s has passed (a fixed-length stimulus, the response time after it is a
@@ -102,15 +102,15 @@ struct Protocol {
   std::vector<Condition> conditions;
   int repetitions = 1;
   int blocks_per_condition = 1;
-  int practice_trials = 0;      // at the start of each condition
-  int break_every_trials = 0;   // 0: breaks only between blocks
+  int practice_trials = 0;     // at the start of each condition
+  int break_every_trials = 0;  // 0: breaks only between blocks
   Counterbalancing counterbalancing = Counterbalancing::none;
   Randomisation randomisation;
   Timing timing;
-  LocalisationTask localisation;  // task == localisation only
-  ConfidenceScale confidence;     // discrimination only; not asked unless the file says so
+  LocalisationTask localisation;       // task == localisation only
+  ConfidenceScale confidence;          // discrimination only; not asked unless the file says so
   Feedback feedback = Feedback::none;  // "feedback": none (default), practice trials only, all
-  nlohmann::json snapshot;        // the file as read, stored with every session
+  nlohmann::json snapshot;             // the file as read, stored with every session
 };
 
 // Throws InputError (file, field, what was expected).

@@ -43,7 +43,8 @@ PulseProtocol parse_pulse_protocol(const nlohmann::json& document, const std::st
     for (const auto& other : p.conditions) {
       if (other.name == pc.name) c.fail("name", "a name used by one condition only");
     }
-    if (c.has("generate") == c.has("scene")) c.fail("scene", "either a scene file or \"generate\": {\"difficulty\": ...}");
+    if (c.has("generate") == c.has("scene"))
+      c.fail("scene", "either a scene file or \"generate\": {\"difficulty\": ...}");
     if (c.has("generate")) {
       const JsonObject g = c.object("generate");
       pc.generated = parse_difficulty(g.choice("difficulty", {"easy", "medium", "hard"}));
@@ -67,7 +68,8 @@ PulseProtocol parse_pulse_protocol(const nlohmann::json& document, const std::st
     p.conditions.push_back(pc);
   }
   const long long session_trials = static_cast<long long>(p.repetitions) * static_cast<long long>(p.conditions.size());
-  if (session_trials > kMaxSessionTrials) root.fail("repetitions", "a protocol of " + session_bound_text(session_trials));
+  if (session_trials > kMaxSessionTrials)
+    root.fail("repetitions", "a protocol of " + session_bound_text(session_trials));
   root.refuse_unknown();
   return p;
 }
@@ -82,7 +84,8 @@ std::vector<int> pulse_trial_order(const PulseProtocol& protocol, std::uint64_t 
     for (std::size_t c = 0; c < protocol.conditions.size(); ++c) order.push_back(static_cast<int>(c));
   }
   RandomSource random(seed);
-  for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[static_cast<std::size_t>(random.below(i))]);
+  for (std::size_t i = order.size(); i > 1; --i)
+    std::swap(order[i - 1], order[static_cast<std::size_t>(random.below(i))]);
   return order;
 }
 

@@ -13,8 +13,8 @@ struct PulseTrialRecord {
   std::optional<std::uint64_t> scene_seed;  // generated conditions: the case's seed
   bool answered = false;
   double mark_x_mm = 0, mark_y_mm = 0;
-  std::string artery;         // the artery scored against
-  double distance_mm = 0;     // to its centreline; NaN when not answered
+  std::string artery;      // the artery scored against
+  double distance_mm = 0;  // to its centreline; NaN when not answered
   bool hit = false;
   double onset_s = 0, response_time_s = 0;
 };

@@ -14,7 +14,7 @@ SceneFile generated_pulse_scene(std::uint64_t seed, CaseDifficulty difficulty) {
   RandomSource random(seed ^ 0xA5A5A5A5DEADBEEFULL);
   const double cx = c.body.centre.x_mm, cy = c.body.centre.y_mm;
   const double hx = c.body.half_width_mm, hy = c.body.half_height_mm;
-  const double x0 = cx + (random.uniform() - 0.5) * hx;        // enters within the middle half
+  const double x0 = cx + (random.uniform() - 0.5) * hx;  // enters within the middle half
   const double x1 = cx + (random.uniform() - 0.5) * hx;
   const double xm = 0.5 * (x0 + x1) + (random.uniform() - 0.5) * 0.4 * hx;
   const double depth = difficulty == CaseDifficulty::easy ? 6.0 : difficulty == CaseDifficulty::medium ? 10.0 : 14.0;

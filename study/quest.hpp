@@ -23,14 +23,14 @@ struct QuestSettings {
   double prior_sd_log10 = 0.5;       // prior sd in log10 units (0.5: a factor of ~3)
   double grid_step_log10 = 0.005;
   double grid_half_width_log10 = 1.5;  // the grid spans the prior mean +/- this
-  double beta = 1.4;                 // Weibull slope in log10 units
-  double delta = 0.01;               // lapse rate
-  double gamma = 0.5;                // guess rate: 0.5 for 2AFC, the false-alarm rate for yes/no
-  double p_threshold = 0.82;         // T is the level answered correctly this often
+  double beta = 1.4;                   // Weibull slope in log10 units
+  double delta = 0.01;                 // lapse rate
+  double gamma = 0.5;                  // guess rate: 0.5 for 2AFC, the false-alarm rate for yes/no
+  double p_threshold = 0.82;           // T is the level answered correctly this often
   enum class Placement { mean, mode } placement = Placement::mean;
   double min_kPa = 0.05, max_kPa = 20.0;  // levels presented stay in here (min > 0: log scale)
   int max_trials = 60;
-  double stop_sd_log10 = 0.0;        // also stop when the posterior sd is below this (0: never)
+  double stop_sd_log10 = 0.0;  // also stop when the posterior sd is below this (0: never)
 };
 
 struct QuestEstimate {
@@ -59,7 +59,9 @@ class Quest {
 
  private:
   void update(double level_kPa, bool correct);
-  double grid_log10(std::size_t i) const noexcept { return first_log10_ + static_cast<double>(i) * settings_.grid_step_log10; }
+  double grid_log10(std::size_t i) const noexcept {
+    return first_log10_ + static_cast<double>(i) * settings_.grid_step_log10;
+  }
 
   QuestSettings settings_;
   double epsilon_ = 0;

@@ -25,8 +25,10 @@ std::optional<Outcome> outcome_from_string(std::string_view text) noexcept {
 std::array<Outcome, kFingerCount> score_discrimination(const FingerFlags& truth, const FingerFlags& answer) noexcept {
   std::array<Outcome, kFingerCount> out{};
   for (std::size_t f = 0; f < kFingerCount; ++f) {
-    if (truth[f]) out[f] = answer[f] ? Outcome::tp : Outcome::fn;
-    else out[f] = answer[f] ? Outcome::fp : Outcome::tn;
+    if (truth[f])
+      out[f] = answer[f] ? Outcome::tp : Outcome::fn;
+    else
+      out[f] = answer[f] ? Outcome::fp : Outcome::tn;
   }
   return out;
 }

@@ -18,7 +18,6 @@
 
 namespace palprig {
 
-
 const char* to_string(Outcome o) noexcept;  // "TP", "FN", "TN", "FP"
 std::optional<Outcome> outcome_from_string(std::string_view text) noexcept;
 

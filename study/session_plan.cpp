@@ -38,14 +38,15 @@ std::vector<int> condition_sequence(const Protocol& p, RandomSource& random) {
       }
       return order;
     case RandomScheme::full:
-      if (!extend_constrained_order(order, std::vector<int>(static_cast<std::size_t>(kinds), p.repetitions), constraints,
-                                    random)) {
+      if (!extend_constrained_order(order, std::vector<int>(static_cast<std::size_t>(kinds), p.repetitions),
+                                    constraints, random)) {
         throw InputError(p.source, "randomisation", "constraints some order satisfies");
       }
       return order;
     case RandomScheme::blocked:
       for (int r = 0; r < p.repetitions; ++r) {
-        if (!extend_constrained_order(order, std::vector<int>(static_cast<std::size_t>(kinds), 1), constraints, random)) {
+        if (!extend_constrained_order(order, std::vector<int>(static_cast<std::size_t>(kinds), 1), constraints,
+                                      random)) {
           throw InputError(p.source, "randomisation", "constraints some blocked order satisfies");
         }
       }
@@ -121,8 +122,8 @@ SessionPlan make_session_plan(const Protocol& protocol, int participant_number, 
       if (i > 0 && in_block == 0) ++block;
       PlannedTrial t{0, block, c, false, sequence[i], false};
       const bool block_end = in_block + 1 == per_block;
-      t.break_after = block_end ||
-                      (protocol.break_every_trials > 0 && (in_block + 1) % static_cast<std::size_t>(protocol.break_every_trials) == 0);
+      t.break_after = block_end || (protocol.break_every_trials > 0 &&
+                                    (in_block + 1) % static_cast<std::size_t>(protocol.break_every_trials) == 0);
       plan.trials.push_back(t);
     }
     ++block;
@@ -150,8 +151,8 @@ void write_plan_csv(std::ostream& out, const Protocol& p, const SessionPlan& pla
       stimulus = combination.label;
       tumor = finger_numbers_text(combination.tumor);
     }
-    out << t.position + 1 << "," << t.block + 1 << "," << c.name << "," << to_string(c.mode) << "," << (t.practice ? 1 : 0)
-        << "," << stimulus << "," << tumor << "," << (t.break_after ? 1 : 0) << "\n";
+    out << t.position + 1 << "," << t.block + 1 << "," << c.name << "," << to_string(c.mode) << ","
+        << (t.practice ? 1 : 0) << "," << stimulus << "," << tumor << "," << (t.break_after ? 1 : 0) << "\n";
   }
 }
 

@@ -18,9 +18,9 @@
 namespace palprig {
 
 struct PlannedTrial {
-  int position = 0;      // 0-based position in the session
-  int block = 0;         // 0-based block number in presentation order
-  int condition = 0;     // index into Protocol::conditions
+  int position = 0;   // 0-based position in the session
+  int block = 0;      // 0-based block number in presentation order
+  int condition = 0;  // index into Protocol::conditions
   bool practice = false;
   int combination = -1;  // index into Protocol::combinations; -1 for localisation
   bool break_after = false;
@@ -28,8 +28,8 @@ struct PlannedTrial {
 
 struct SessionPlan {
   std::uint64_t seed = 0;
-  int participant_number = 1;       // 1-based order of enrolment, drives counterbalancing
-  std::vector<int> condition_order; // indices into Protocol::conditions
+  int participant_number = 1;        // 1-based order of enrolment, drives counterbalancing
+  std::vector<int> condition_order;  // indices into Protocol::conditions
   std::vector<PlannedTrial> trials;
 };
 

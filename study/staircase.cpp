@@ -22,10 +22,14 @@ double staircase_target_probability(const StaircaseSettings& s) noexcept {
 }
 
 nlohmann::json to_json(const StaircaseState& s) {
-  return {{"level_kPa", s.level_kPa},         {"correct_in_a_row", s.correct_in_a_row},
-          {"wrong_in_a_row", s.wrong_in_a_row}, {"direction", s.direction},
-          {"halvings", s.halvings},             {"trials", s.trials},
-          {"reversals_kPa", s.reversals_kPa},   {"finished", s.finished}};
+  return {{"level_kPa", s.level_kPa},
+          {"correct_in_a_row", s.correct_in_a_row},
+          {"wrong_in_a_row", s.wrong_in_a_row},
+          {"direction", s.direction},
+          {"halvings", s.halvings},
+          {"trials", s.trials},
+          {"reversals_kPa", s.reversals_kPa},
+          {"finished", s.finished}};
 }
 
 StaircaseState staircase_state_from_json(const nlohmann::json& j) {
@@ -47,7 +51,8 @@ StaircaseState staircase_state_from_json(const nlohmann::json& j) {
 
 Staircase::Staircase(const StaircaseSettings& settings) : settings_(settings) {
   if (settings.up < 1 || settings.down < 1) throw std::invalid_argument("staircase: up and down must be at least 1");
-  if (!(settings.step_up_kPa > 0) || !(settings.step_down_kPa > 0)) throw std::invalid_argument("staircase: steps must be > 0");
+  if (!(settings.step_up_kPa > 0) || !(settings.step_down_kPa > 0))
+    throw std::invalid_argument("staircase: steps must be > 0");
   if (!(settings.min_kPa <= settings.start_kPa && settings.start_kPa <= settings.max_kPa)) {
     throw std::invalid_argument("staircase: start level outside [min, max]");
   }
@@ -101,7 +106,8 @@ bool Staircase::record(bool correct) {
     state_.direction = move;
     step(move);
   }
-  if (static_cast<int>(state_.reversals_kPa.size()) >= settings_.stop_reversals || state_.trials >= settings_.max_trials) {
+  if (static_cast<int>(state_.reversals_kPa.size()) >= settings_.stop_reversals ||
+      state_.trials >= settings_.max_trials) {
     state_.finished = true;
   }
   return reversal;
@@ -110,7 +116,8 @@ bool Staircase::record(bool correct) {
 double Staircase::threshold_kPa() const noexcept {
   const auto& r = state_.reversals_kPa;
   if (r.empty()) return state_.level_kPa;
-  const std::size_t n = std::min<std::size_t>(r.size(), static_cast<std::size_t>(std::max(1, settings_.threshold_reversals)));
+  const std::size_t n =
+      std::min<std::size_t>(r.size(), static_cast<std::size_t>(std::max(1, settings_.threshold_reversals)));
   double sum = 0;
   for (std::size_t i = r.size() - n; i < r.size(); ++i) sum += r[i];
   return sum / static_cast<double>(n);

@@ -19,8 +19,8 @@
 namespace palprig {
 
 struct StaircaseSettings {
-  int up = 1;                    // wrong answers in a row before a step up
-  int down = 3;                  // correct answers in a row before a step down
+  int up = 1;    // wrong answers in a row before a step up
+  int down = 3;  // correct answers in a row before a step down
   double start_kPa = 4.0;
   double step_up_kPa = 0.5;
   double step_down_kPa = 0.5;
@@ -29,7 +29,7 @@ struct StaircaseSettings {
   double min_kPa = 0.0, max_kPa = 20.0;
   int stop_reversals = 12;
   int max_trials = 120;
-  int threshold_reversals = 8;   // threshold = mean of the last N reversals (all when fewer)
+  int threshold_reversals = 8;  // threshold = mean of the last N reversals (all when fewer)
 };
 
 // The proportion correct the track converges on.
@@ -39,8 +39,8 @@ struct StaircaseState {
   double level_kPa = 0;
   int correct_in_a_row = 0;
   int wrong_in_a_row = 0;
-  int direction = 0;           // last step: +1 up, -1 down, 0 none yet
-  int halvings = 0;            // how many times the steps were halved
+  int direction = 0;  // last step: +1 up, -1 down, 0 none yet
+  int halvings = 0;   // how many times the steps were halved
   int trials = 0;
   std::vector<double> reversals_kPa;
   bool finished = false;

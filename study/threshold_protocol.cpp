@@ -134,8 +134,8 @@ ThresholdProtocol parse_threshold_protocol(const nlohmann::json& document, const
   if (most_trials > kMaxSessionTrials) root.fail("tracks", "max_trials summing to " + session_bound_text(most_trials));
   root.refuse_unknown();
   if (p.max_pressure_kPa() > kMaxKPa) {
-    root.fail("threshold.reference_kPa", "reference + the largest track level at most 100 kPa, got " +
-                                             std::to_string(p.max_pressure_kPa()));
+    root.fail("threshold.reference_kPa",
+              "reference + the largest track level at most 100 kPa, got " + std::to_string(p.max_pressure_kPa()));
   }
   return p;
 }

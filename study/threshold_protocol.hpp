@@ -24,10 +24,10 @@ enum class ThresholdMethod { two_afc, yes_no };
 const char* to_string(ThresholdMethod m) noexcept;
 
 struct ThresholdTiming {
-  double interval_s = 1.0;          // each interval's pressure is on this long
-  double gap_s = 0.5;               // vented pause between the intervals
-  double response_timeout_s = 10.0; // after the second interval; no answer: the trial is repeated
-  double inter_trial_s = 1.0;       // vented pause after the answer
+  double interval_s = 1.0;           // each interval's pressure is on this long
+  double gap_s = 0.5;                // vented pause between the intervals
+  double response_timeout_s = 10.0;  // after the second interval; no answer: the trial is repeated
+  double inter_trial_s = 1.0;        // vented pause after the answer
 };
 
 struct ThresholdProtocol {

@@ -20,8 +20,9 @@ void restore_tracks(std::vector<AdaptiveTrack>& tracks, const nlohmann::json& st
   for (std::size_t i = 0; i < tracks.size(); ++i) tracks[i].restore(state[i]);
 }
 
-void replay_tracks(std::vector<AdaptiveTrack>& tracks, const std::vector<ThresholdTrialRecord>& trials,
-                   const std::function<void(const ThresholdTrialRecord&, const std::vector<AdaptiveTrack>&)>& after_each) {
+void replay_tracks(
+    std::vector<AdaptiveTrack>& tracks, const std::vector<ThresholdTrialRecord>& trials,
+    const std::function<void(const ThresholdTrialRecord&, const std::vector<AdaptiveTrack>&)>& after_each) {
   for (const ThresholdTrialRecord& r : trials) {
     const std::string at = "trial at position " + std::to_string(r.position) + ": ";
     if (r.track < 0 || static_cast<std::size_t>(r.track) >= tracks.size()) {
@@ -33,12 +34,13 @@ void replay_tracks(std::vector<AdaptiveTrack>& tracks, const std::vector<Thresho
     // order give the same doubles, so any difference beyond rounding means other answers.
     const double expected = track.next_level_kPa();
     if (!(std::abs(r.level_kPa - expected) <= 1e-9 * std::max(1.0, std::abs(expected)))) {
-      throw std::invalid_argument(at + "level " + std::to_string(r.level_kPa) + " kPa, but the track's answers before it give " +
-                                  std::to_string(expected) + " kPa");
+      throw std::invalid_argument(at + "level " + std::to_string(r.level_kPa) +
+                                  " kPa, but the track's answers before it give " + std::to_string(expected) + " kPa");
     }
     if (r.answered) {
       const bool reversal = track.record(r.level_kPa, r.correct);
-      if (reversal != r.reversal) throw std::invalid_argument(at + "its reversal flag disagrees with the track's answers");
+      if (reversal != r.reversal)
+        throw std::invalid_argument(at + "its reversal flag disagrees with the track's answers");
     }
     if (after_each) after_each(r, tracks);
   }

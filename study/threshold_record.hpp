@@ -20,15 +20,15 @@ struct ThresholdTrialRecord {
   int position = 0;
   int track = 0;
   std::string track_name;
-  std::string fingers;       // "one" or "three"
+  std::string fingers;  // "one" or "three"
   double level_kPa = 0, reference_kPa = 0;
-  int signal_interval = 1;   // 0 or 1: the interval with reference + level
+  int signal_interval = 1;  // 0 or 1: the interval with reference + level
   bool answered = false;
-  int response = -1;         // 2afc: chosen interval 0/1; yes-no: 1 yes, 0 no; -1 no answer
-  bool correct = false;      // 2afc: chose the signal interval; yes-no: answered yes
+  int response = -1;     // 2afc: chosen interval 0/1; yes-no: 1 yes, 0 no; -1 no answer
+  bool correct = false;  // 2afc: chose the signal interval; yes-no: answered yes
   bool reversal = false;
   double onset_s = 0, response_time_s = 0;  // response time from the end of the second interval
-  std::array<double, 2> felt_kPa{};          // mean pressure on the active fingers per interval
+  std::array<double, 2> felt_kPa{};         // mean pressure on the active fingers per interval
 };
 
 // Every track's state as one JSON array, and back (throws std::invalid_argument).
@@ -42,8 +42,8 @@ void restore_tracks(std::vector<AdaptiveTrack>& tracks, const nlohmann::json& st
 // std::invalid_argument naming the position when a trial names no track of the protocol, or its
 // level or reversal is not what the replayed track gives (a damaged or edited store, or one
 // written under another protocol).
-void replay_tracks(std::vector<AdaptiveTrack>& tracks, const std::vector<ThresholdTrialRecord>& trials,
-                   const std::function<void(const ThresholdTrialRecord&, const std::vector<AdaptiveTrack>&)>&
-                       after_each = {});
+void replay_tracks(
+    std::vector<AdaptiveTrack>& tracks, const std::vector<ThresholdTrialRecord>& trials,
+    const std::function<void(const ThresholdTrialRecord&, const std::vector<AdaptiveTrack>&)>& after_each = {});
 
 }  // namespace palprig

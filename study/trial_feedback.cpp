@@ -32,7 +32,8 @@ std::string localisation_feedback(const TrialRecord& trial) {
   }
   std::string out = "Found: " + (found.empty() ? std::string("none") : found) + ".";
   if (!missed.empty()) out += " Missed: " + missed + ".";
-  if (trial.localisation.false_marks > 0) out += " Marks on no tumor: " + std::to_string(trial.localisation.false_marks) + ".";
+  if (trial.localisation.false_marks > 0)
+    out += " Marks on no tumor: " + std::to_string(trial.localisation.false_marks) + ".";
   return out;
 }
 
@@ -47,7 +48,8 @@ std::optional<std::string> trial_feedback(const Protocol& protocol, const TrialR
     case Feedback::all: break;
   }
   if (!trial.answered) return "No answer in time.";
-  return protocol.task == TaskKind::discrimination ? discrimination_feedback(protocol, trial) : localisation_feedback(trial);
+  return protocol.task == TaskKind::discrimination ? discrimination_feedback(protocol, trial)
+                                                   : localisation_feedback(trial);
 }
 
 }  // namespace palprig

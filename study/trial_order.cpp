@@ -125,7 +125,8 @@ bool extend_constrained_order(std::vector<int>& order, const std::vector<int>& c
       for (int i : pool) weight_total += remaining[static_cast<std::size_t>(i)];
       auto draw = static_cast<int>(random.below(static_cast<std::uint64_t>(weight_total)));
       std::size_t pick = 0;
-      while (draw >= remaining[static_cast<std::size_t>(pool[pick])]) draw -= remaining[static_cast<std::size_t>(pool[pick++])];
+      while (draw >= remaining[static_cast<std::size_t>(pool[pick])])
+        draw -= remaining[static_cast<std::size_t>(pool[pick++])];
       const int candidate = pool[pick];
       OrderState next = state;
       next.push(candidate);
@@ -157,8 +158,8 @@ std::optional<std::string> order_infeasibility(const std::vector<int>& counts, c
   const std::string name = most < names.size() ? names[most] : "item " + std::to_string(most);
   if (constraints.min_distance > 1) {
     return "'" + name + "' occurs " + std::to_string(m) + " times in " + std::to_string(n) +
-           " trials; keeping identical trials " + std::to_string(constraints.min_distance) +
-           " apart needs at least " + std::to_string((m - 1) * constraints.min_distance + tied) + " trials";
+           " trials; keeping identical trials " + std::to_string(constraints.min_distance) + " apart needs at least " +
+           std::to_string((m - 1) * constraints.min_distance + tied) + " trials";
   }
   return "'" + name + "' occurs " + std::to_string(m) + " times in " + std::to_string(n) + " trials; with at most " +
          std::to_string(constraints.max_repeats_in_a_row) + " in a row it needs at least " +

@@ -17,14 +17,14 @@ struct TrialRecord {
   PlannedTrial planned;
   std::string condition;
   PresentationMode mode = PresentationMode::simultaneous;
-  std::string combination_label;                  // discrimination: e.g. "0/30/0"
+  std::string combination_label;                    // discrimination: e.g. "0/30/0"
   std::array<double, kFingerCount> stimulus_kPa{};  // discrimination: the commanded levels
   FingerFlags truth{};                              // discrimination: tumor under each finger
   bool answered = false;                            // false: the response timed out
   FingerFlags answer{};                             // discrimination: fingers answered
   std::vector<Mark> marks;                          // localisation
-  double onset_s = 0;                 // stimulus onset on the runner's monotonic clock
-  double response_time_s = 0;         // from onset to the answer (paper 002's measure); NaN when not answered
+  double onset_s = 0;                               // stimulus onset on the runner's monotonic clock
+  double response_time_s = 0;  // from onset to the answer (paper 002's measure); NaN when not answered
   // When the stimulus ended on the same clock: the runner left `present` (the sequence or
   // max_present_s ran out, or an answer during the presentation ended it at the answer's time).
   double stimulus_end_s = std::numeric_limits<double>::quiet_NaN();  // NaN: unknown (stored NULL)
@@ -35,10 +35,10 @@ struct TrialRecord {
   // combination), for a scene (localisation: the level follows the pen), and when it had not
   // happened by the answer or the stimulus end.
   double stimulus_reached_s = std::numeric_limits<double>::quiet_NaN();
-  std::optional<int> confidence;      // 1..levels when the protocol asks and it was answered
-  std::array<double, kFingerCount> felt_kPa{};  // mean actuator pressure while the stimulus was on
+  std::optional<int> confidence;                        // 1..levels when the protocol asks and it was answered
+  std::array<double, kFingerCount> felt_kPa{};          // mean actuator pressure while the stimulus was on
   std::array<Outcome, kFingerCount> finger_outcomes{};  // discrimination, when answered
-  LocalisationScore localisation;                        // localisation, when answered
+  LocalisationScore localisation;                       // localisation, when answered
 };
 
 // The response time measured from the end of the stimulus (what the experimenter's console

@@ -46,10 +46,12 @@ double highest_command(const std::string& csv) {
 TEST(CalibrateCli, SweepFitEvaluateOnTheDefaultSimulatedRig) {
   TempDir dir;
   const std::string data = (dir.path() / "data.csv").string(), cal = (dir.path() / "cal.json").string();
-  const ProcessResult sweep = run_process(palprig_cmd() + " calibrate sweep --excitation staircase,random,sine --out " + data);
+  const ProcessResult sweep =
+      run_process(palprig_cmd() + " calibrate sweep --excitation staircase,random,sine --out " + data);
   ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
   EXPECT_NE(sweep.out.find("193 of 193 holds (0 not settled)"), std::string::npos) << sweep.out;
-  EXPECT_NE(sweep.err.find("note: the rig's p_max is 60 kPa: sweep levels above it are clamped to 60 kPa"), std::string::npos);
+  EXPECT_NE(sweep.err.find("note: the rig's p_max is 60 kPa: sweep levels above it are clamped to 60 kPa"),
+            std::string::npos);
   EXPECT_NE(sweep.err.find("sweep: staircase repeat 5/5"), std::string::npos) << sweep.err;
   EXPECT_DOUBLE_EQ(highest_command(read_file(data)), 60.0);
 
@@ -73,8 +75,8 @@ TEST(CalibrateCli, SweepFitEvaluateOnTheDefaultSimulatedRig) {
     EXPECT_LT(std::abs(ch["compensated"]["gap_kPa"].get<double>()), 0.3);
   }
   // The controller runs with it: `palprig run` accepts the file for this rig.
-  const ProcessResult run = run_process(palprig_cmd() + " run --scene " + source_dir() + "/data/scenes/phantom_abc.json --cal " +
-                                        cal + " --duration-s 2");
+  const ProcessResult run = run_process(palprig_cmd() + " run --scene " + source_dir() +
+                                        "/data/scenes/phantom_abc.json --cal " + cal + " --duration-s 2");
   EXPECT_EQ(run.exit_code, 0) << run.err;
 }
 
@@ -91,11 +93,13 @@ TEST(CalibrateCli, ASweepTooShortToFitIsSaidBeforeItRunsAndTheFitAgrees) {
             std::string::npos)
       << sweep.err;
   EXPECT_LT(sweep.err.find("warning: this sweep"), sweep.err.find("sweep: staircase repeat 1/1")) << sweep.err;
-  const ProcessResult fit = run_process(palprig_cmd() + " calibrate fit " + data + " --out " + (dir.path() / "c.json").string());
+  const ProcessResult fit =
+      run_process(palprig_cmd() + " calibrate fit " + data + " --out " + (dir.path() / "c.json").string());
   EXPECT_EQ(fit.exit_code, 2) << fit.err;
   EXPECT_NE(fit.err.find("at least 3 points for a line, got 2"), std::string::npos) << fit.err;
   // Paper 002's staircase is long enough: nothing said.
-  const ProcessResult full = run_process(palprig_cmd() + " calibrate sweep --repeats 1 --out " + (dir.path() / "full.csv").string());
+  const ProcessResult full =
+      run_process(palprig_cmd() + " calibrate sweep --repeats 1 --out " + (dir.path() / "full.csv").string());
   ASSERT_EQ(full.exit_code, 0) << full.err;
   EXPECT_EQ(full.err.find("too short"), std::string::npos) << full.err;
 }
@@ -110,7 +114,8 @@ TEST(CalibrateCli, CtrlCDuringARealTimeSweepVentsAndKeepsTheRows) {
     const std::string err = (dir.path() / "stderr").string();
     freopen(err.c_str(), "w", stderr);
     freopen("/dev/null", "w", stdout);
-    execl(bin.c_str(), bin.c_str(), "calibrate", "sweep", "--realtime", "--out", data.c_str(), static_cast<char*>(nullptr));
+    execl(bin.c_str(), bin.c_str(), "calibrate", "sweep", "--realtime", "--out", data.c_str(),
+          static_cast<char*>(nullptr));
     _exit(127);
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(1800));  // a few holds in real time
@@ -132,7 +137,8 @@ TEST(CalibrateCli, RefusedInputExitsTwoWithOneLine) {
   TempDir dir;
   auto one_line = [](const ProcessResult& r) { return r.err.find('\n') == r.err.size() - 1; };
   const auto bad = dir.write("bad.csv", "# rig_id: sim-default\nchannel,command_kPa,monitor_kPa\n1,10,8\n1,20,nan\n");
-  ProcessResult r = run_process(palprig_cmd() + " calibrate fit " + bad.string() + " --out " + (dir.path() / "c.json").string());
+  ProcessResult r =
+      run_process(palprig_cmd() + " calibrate fit " + bad.string() + " --out " + (dir.path() / "c.json").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "palprig: " + bad.string() + ": line 4: a finite number in column monitor_kPa, got \"nan\"\n");
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "c.json"));
@@ -143,15 +149,15 @@ TEST(CalibrateCli, RefusedInputExitsTwoWithOneLine) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "d.csv"));  // refused before anything moved
 
   // A calibration made on another rig.
-  const std::string ch =
-      R"({"actuator": {"slope": 0.25, "intercept_kPa": 5},)"
-      R"( "hysteresis": {"linear_weight": 0.5, "thresholds_kPa": [2], "weights": [0.5]}})";
+  const std::string ch = R"({"actuator": {"slope": 0.25, "intercept_kPa": 5},)"
+                         R"( "hysteresis": {"linear_weight": 0.5, "thresholds_kPa": [2], "weights": [0.5]}})";
   const auto other =
       dir.write("other.json", R"({"version": 1, "rig_id": "bench-A", "channels": [)" + ch + "," + ch + "," + ch + "]}");
   r = run_process(palprig_cmd() + " calibrate evaluate --cal " + other.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(one_line(r)) << r.err;
-  EXPECT_NE(r.err.find(other.string() + ": rig_id: the id of the rig in use (\"sim-default\""), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(other.string() + ": rig_id: the id of the rig in use (\"sim-default\""), std::string::npos)
+      << r.err;
 
   // A calibration file of a newer version.
   const auto newer = dir.write("newer.json", R"({"version": 2, "rig_id": "sim-default", "channels": []})");
@@ -161,8 +167,8 @@ TEST(CalibrateCli, RefusedInputExitsTwoWithOneLine) {
   EXPECT_NE(r.err.find(newer.string() + ": version"), std::string::npos) << r.err;
 
   // Hardware can't be hurried.
-  r = run_process(palprig_cmd() + " calibrate sweep --fast --rig " + source_dir() + "/data/rigs/wago_750_559.json --out " +
-                  (dir.path() / "d.csv").string());
+  r = run_process(palprig_cmd() + " calibrate sweep --fast --rig " + source_dir() +
+                  "/data/rigs/wago_750_559.json --out " + (dir.path() / "d.csv").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "palprig: --fast: modbus: a simulated rig (hardware runs in real time)\n");
 }
@@ -184,9 +190,11 @@ TEST(CalibrateCli, RefusalsNameTheFlagsTheUserTyped) {
 TEST(CalibrateCli, PlotWritesPngFilesOrIsRefusedWithoutTheChartDrawing) {
   TempDir dir;
   const std::string data = (dir.path() / "data.csv").string(), cal = (dir.path() / "cal.json").string();
-  ASSERT_EQ(run_process(palprig_cmd() + " calibrate sweep --excitation staircase,random --quiet --out " + data).exit_code, 0);
+  ASSERT_EQ(
+      run_process(palprig_cmd() + " calibrate sweep --excitation staircase,random --quiet --out " + data).exit_code, 0);
   const std::string plots = (dir.path() / "plots").string();
-  const ProcessResult fit = run_process(palprig_cmd() + " calibrate fit " + data + " --out " + cal + " --plot " + plots);
+  const ProcessResult fit =
+      run_process(palprig_cmd() + " calibrate fit " + data + " --out " + cal + " --plot " + plots);
   if (fit.exit_code == 2) {
     // A build without Qt: refused before anything is written.
     EXPECT_EQ(fit.err, "palprig: --plot: " + plots +

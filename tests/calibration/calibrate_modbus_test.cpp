@@ -37,8 +37,8 @@ TEST(CalibrateOverModbus, StaircaseThroughARealTcpServerSettlesOnThePlantsHyster
     if (p.segment != SweepSegment::staircase || p.command_kPa == 60) continue;
     // The served plant's 2 kPa play, read back through the register map's 0-10 V scaling.
     const double expected = p.command_kPa + (p.branch == SweepBranch::inflation ? -2.0 : 2.0);
-    EXPECT_NEAR(p.monitor_kPa, expected, 0.3) << "channel " << p.channel << " " << to_string(p.branch) << " "
-                                              << p.command_kPa;
+    EXPECT_NEAR(p.monitor_kPa, expected, 0.3)
+        << "channel " << p.channel << " " << to_string(p.branch) << " " << p.command_kPa;
     ++checked;
   }
   EXPECT_EQ(checked, 3u * 4u);

@@ -60,10 +60,13 @@ struct SyntheticRig {
     for (int c : channels) {
       for (int r = 1; r <= repeats; ++r) {
         d.points.push_back(read(c, 0, SweepSegment::vent, 0, SweepBranch::none));
-        for (int l = 10; l <= 60; l += 10) d.points.push_back(read(c, l, SweepSegment::staircase, r, SweepBranch::inflation));
-        for (int l = 60; l >= 10; l -= 10) d.points.push_back(read(c, l, SweepSegment::staircase, r, SweepBranch::deflation));
+        for (int l = 10; l <= 60; l += 10)
+          d.points.push_back(read(c, l, SweepSegment::staircase, r, SweepBranch::inflation));
+        for (int l = 60; l >= 10; l -= 10)
+          d.points.push_back(read(c, l, SweepSegment::staircase, r, SweepBranch::deflation));
       }
-      for (int k = 0; k < random_levels; ++k) d.points.push_back(read(c, level(pick), SweepSegment::random, 0, SweepBranch::none));
+      for (int k = 0; k < random_levels; ++k)
+        d.points.push_back(read(c, level(pick), SweepSegment::random, 0, SweepBranch::none));
     }
     return d;
   }
@@ -149,7 +152,7 @@ TEST(CalibrationFit, WrittenFileIsWhatTheControllerLoads) {
     }
   }
   EXPECT_TRUE(again.hysteresis[2].is_identity());
-  EXPECT_NEAR(again.actuators[0].slope, 0.25, 1e-9);  // shared pairs
+  EXPECT_NEAR(again.actuators[0].slope, 0.25, 1e-9);   // shared pairs
   EXPECT_NEAR(again.actuators[1].slope, 0.275, 1e-9);  // shared + channel 2's own
   EXPECT_NEAR(again.actuators[2].slope, 0.25, 1e-9);
   ASSERT_TRUE(again.force_window);
@@ -205,22 +208,26 @@ TEST(CalibrationFit, RefusesBadSweepsNamingTheLineAndChannel) {
     SweepData d = rig.sweep({1, 2});
     // A leak: channel 2's monitor falls while the inflation command rises.
     for (auto& p : d.points)
-      if (p.channel == 2 && p.repeat == 3 && p.branch == SweepBranch::inflation && p.command_kPa == 40) p.monitor_kPa = 20;
+      if (p.channel == 2 && p.repeat == 3 && p.branch == SweepBranch::inflation && p.command_kPa == 40)
+        p.monitor_kPa = 20;
     const std::string m = refusal([&] { fit_calibration(d, options()); });
     EXPECT_EQ(m.rfind("DATA.csv: line ", 0), 0u) << m;
-    EXPECT_NE(m.find("(channel 2, repeat 3 inflation, 40 kPa): a monotone monitor along the inflation staircase of channel 2: "
-                     "it fell from 28 to 20 while the command went from 30 to 40 kPa"),
-              std::string::npos)
+    EXPECT_NE(
+        m.find(
+            "(channel 2, repeat 3 inflation, 40 kPa): a monotone monitor along the inflation staircase of channel 2: "
+            "it fell from 28 to 20 while the command went from 30 to 40 kPa"),
+        std::string::npos)
         << m;
     EXPECT_NE(m.find("non-monotone sweep"), std::string::npos) << m;
   }
   {
     SyntheticRig rig;
     rig.gain = 0.8;  // regulator without enough supply: about 13 kPa short at 60
-    EXPECT_EQ(refusal([&] { fit_calibration(rig.sweep({1}), options()); }),
-              "DATA.csv: channel 1 regulator: a monitor within 3.0 kPa of the command; its line monitor = 0.777 * command + "
-              "0.54 kPa is off by 12.84 kPa at 60.0 kPa (check the regulator's supply, range and scaling, or raise "
-              "`regulator_tolerance_kPa`)");
+    EXPECT_EQ(
+        refusal([&] { fit_calibration(rig.sweep({1}), options()); }),
+        "DATA.csv: channel 1 regulator: a monitor within 3.0 kPa of the command; its line monitor = 0.777 * command + "
+        "0.54 kPa is off by 12.84 kPa at 60.0 kPa (check the regulator's supply, range and scaling, or raise "
+        "`regulator_tolerance_kPa`)");
     CalibrationFitOptions lax = options();
     lax.regulator_tolerance_kPa = 15;
     EXPECT_EQ(refusal([&] { fit_calibration(rig.sweep({1}), lax); }), "accepted");
@@ -230,9 +237,10 @@ TEST(CalibrationFit, RefusesBadSweepsNamingTheLineAndChannel) {
     rig.sensor = true;
     SweepData d = rig.sweep({1});
     for (auto& p : d.points) p.sensor = 0.0;
-    EXPECT_EQ(refusal([&] { fit_calibration(d, options()); }),
-              "DATA.csv: channel 1 sensor: a sensor that moves with the command; it never moved (all 145 readings are 0): "
-              "check its wiring, supply and scaling");
+    EXPECT_EQ(
+        refusal([&] { fit_calibration(d, options()); }),
+        "DATA.csv: channel 1 sensor: a sensor that moves with the command; it never moved (all 145 readings are 0): "
+        "check its wiring, supply and scaling");
   }
   {
     SyntheticRig rig;
@@ -250,9 +258,10 @@ TEST(CalibrationFit, RefusesBadSweepsNamingTheLineAndChannel) {
   {
     SyntheticRig rig;
     SweepData d = rig.sweep({1}, 1, 0);  // one staircase: 13 holds, not enough for 8 operators
-    EXPECT_EQ(refusal([&] { fit_calibration(d, options()); }),
-              "DATA.csv: channel 1 hysteresis: at least 68 quasi-static samples for 8 play operators, got 13 (record more "
-              "holds or use fewer operators)");
+    EXPECT_EQ(
+        refusal([&] { fit_calibration(d, options()); }),
+        "DATA.csv: channel 1 hysteresis: at least 68 quasi-static samples for 8 play operators, got 13 (record more "
+        "holds or use fewer operators)");
   }
 }
 
@@ -261,7 +270,9 @@ TEST(CalibrationFit, AFitCeresDidNotConvergeOnIsReportedAsSuch) {
   CalibrationFitOptions o = options();
   o.hysteresis.max_iterations = 1;
   const std::string m = refusal([&] { fit_calibration(rig.sweep({1}), o); });
-  EXPECT_EQ(m.rfind("DATA.csv: channel 1 hysteresis: a fit Ceres converges on; it did not (Ceres Solver Report: ", 0), 0u) << m;
+  EXPECT_EQ(m.rfind("DATA.csv: channel 1 hysteresis: a fit Ceres converges on; it did not (Ceres Solver Report: ", 0),
+            0u)
+      << m;
   EXPECT_NE(m.find("Termination: NO_CONVERGENCE"), std::string::npos) << m;
 }
 
@@ -269,15 +280,17 @@ TEST(CalibrationFile, RefusesDegenerateHysteresisAndBadForceWindows) {
   TempDir dir;
   const std::string ch = R"({"actuator": {"slope": 0.25, "intercept_kPa": 5}})";
   auto load = [&](const std::string& channel3, const std::string& extra) {
-    const auto p = dir.write("c.json", R"({"version": 1, "rig_id": "r", "channels": [)" + ch + "," + ch + "," + channel3 +
-                                           "]" + extra + "}");
+    const auto p = dir.write("c.json", R"({"version": 1, "rig_id": "r", "channels": [)" + ch + "," + ch + "," +
+                                           channel3 + "]" + extra + "}");
     return refusal([&] { load_calibration_file(p); });
   };
   const std::string f = (dir.path() / "c.json").string();
-  EXPECT_EQ(load(R"({"actuator": {"slope": 0.25, "intercept_kPa": 5}, "hysteresis": {"linear_weight": 0.01,
-                   "thresholds_kPa": [2], "weights": [0.05]}})", ""),
-            f + ": channels[2].hysteresis.weights: a model of gain near 1 (linear_weight + sum of weights in 0.2..5), got "
-                "0.060000");
+  EXPECT_EQ(
+      load(R"({"actuator": {"slope": 0.25, "intercept_kPa": 5}, "hysteresis": {"linear_weight": 0.01,
+                   "thresholds_kPa": [2], "weights": [0.05]}})",
+           ""),
+      f + ": channels[2].hysteresis.weights: a model of gain near 1 (linear_weight + sum of weights in 0.2..5), got "
+          "0.060000");
   EXPECT_EQ(load(ch, R"(, "force_window": {"f_min_N": 2, "f_max_N": 1})"),
             f + ": force_window.f_max_N: a force above f_min_N (the systolic press above the diastolic)");
   EXPECT_EQ(load(ch, R"(, "force_window": {"f_min_N": 1, "f_max_N": 2, "fmax": 3})"),

@@ -152,7 +152,8 @@ TEST(DynamicsFit, APoorFitIsReportedAndKeepsLagCompensationOff) {
   EXPECT_TRUE(said);
   const CalibrationModels cal = write_calibration_file(dir.path() / "poor.json", calibration_json(r));
   EXPECT_TRUE(cal.lag_compensation.enabled);
-  const TickConfig cfg = make_tick_config(load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/simulated.json"), cal);
+  const TickConfig cfg =
+      make_tick_config(load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/simulated.json"), cal);
   for (std::size_t i = 0; i < kFingerCount; ++i) EXPECT_FALSE(cfg.lag_compensation.whole(i)) << i;
   const auto notes = describe_lag_compensation(cal);
   ASSERT_EQ(notes.size(), 3u);
@@ -183,8 +184,8 @@ TEST(CalibrationFile, DynamicsAndLagCompensationAreValidatedAndOlderFilesLoad) {
     return R"({"actuator": {"slope": 0.25, "intercept_kPa": 5}, "dynamics": )" + d + "}";
   };
   auto load = [&](const std::string& channel3, const std::string& extra) {
-    const auto p = dir.write("c.json", R"({"version": 1, "rig_id": "r", "channels": [)" + ch + "," + ch + "," + channel3 +
-                                           "]" + extra + "}");
+    const auto p = dir.write("c.json", R"({"version": 1, "rig_id": "r", "channels": [)" + ch + "," + ch + "," +
+                                           channel3 + "]" + extra + "}");
     return refusal([&] { load_calibration_file(p); });
   };
   const std::string f = (dir.path() / "c.json").string();
@@ -207,7 +208,8 @@ TEST(CalibrationFile, DynamicsAndLagCompensationAreValidatedAndOlderFilesLoad) {
             f + ": lag_compensation.max_lead_kPa: a number in 0..100, got -1");
   // Files written before dynamics existed load as before: no whole-target compensation.
   for (const char* shipped : {"paper002.json", "sim-default.json"}) {
-    const CalibrationModels cal = load_calibration_file(std::string(PALPRIG_SOURCE_DIR) + "/data/calibration/" + shipped);
+    const CalibrationModels cal =
+        load_calibration_file(std::string(PALPRIG_SOURCE_DIR) + "/data/calibration/" + shipped);
     EXPECT_FALSE(cal.lag_compensation.enabled) << shipped;
   }
   EXPECT_EQ(load(ch, ""), "accepted");

@@ -121,8 +121,9 @@ TEST(CompensationEvaluation, RefusesWhatCannotBeEvaluated) {
   };
   const std::string paper_file = std::string(PALPRIG_SOURCE_DIR) + "/data/calibration/paper002.json";
   const CalibrationModels paper = load_calibration_file(paper_file);
-  EXPECT_EQ(refusal(paper, fast()), paper_file + ": channels[0].hysteresis: a hysteresis model for channel 1 to evaluate "
-                                                 "(run palprig calibrate fit first)");
+  EXPECT_EQ(refusal(paper, fast()), paper_file +
+                                        ": channels[0].hysteresis: a hysteresis model for channel 1 to evaluate "
+                                        "(run palprig calibrate fit first)");
   CalibrationModels cal;
   cal.hysteresis[0].linear_weight = 0.5;  // any non-identity model passes this check
   cal.hysteresis[1] = cal.hysteresis[2] = cal.hysteresis[0];

@@ -23,7 +23,10 @@ std::vector<double> reversal_sequence(std::size_t samples, double lo, double hi,
   double goal = level(rng);
   while (x.size() < samples) {
     const double cur = x.back();
-    if (std::abs(goal - cur) < 1e-9) { goal = level(rng); continue; }
+    if (std::abs(goal - cur) < 1e-9) {
+      goal = level(rng);
+      continue;
+    }
     x.push_back(cur + std::clamp(goal - cur, -step_kPa, step_kPa));
   }
   return x;

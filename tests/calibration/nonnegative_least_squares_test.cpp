@@ -11,7 +11,9 @@ using namespace palprig;
 
 namespace {
 
-double cost(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& w) { return (A * w - b).squaredNorm(); }
+double cost(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& w) {
+  return (A * w - b).squaredNorm();
+}
 
 Eigen::VectorXd brute_force(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
   const int m = int(A.cols());
@@ -27,7 +29,10 @@ Eigen::VectorXd brute_force(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) 
     if ((s.array() < 0).any()) continue;
     Eigen::VectorXd w = Eigen::VectorXd::Zero(m);
     for (std::size_t k = 0; k < cols.size(); ++k) w[cols[k]] = s[Eigen::Index(k)];
-    if (cost(A, b, w) < best_cost) { best_cost = cost(A, b, w); best = w; }
+    if (cost(A, b, w) < best_cost) {
+      best_cost = cost(A, b, w);
+      best = w;
+    }
   }
   return best;
 }

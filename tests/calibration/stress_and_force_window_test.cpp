@@ -49,14 +49,18 @@ TEST(StressLine, RefusesBadPairs) {
     return refusal([&] { fit_actuator_stress(read_stress_pairs_csv(f), 1, f.string()); });
   };
   const std::string f = (dir.path() / "p.csv").string();
-  EXPECT_EQ(fit("pressure,stress\n1,2\n"), f + ": line 1: columns pressure_kPa, stress_kPa and optionally channel, got \"pressure\"");
-  EXPECT_EQ(fit("pressure_kPa,stress_kPa\n1,2\n2,nan\n"), f + ": line 3: a finite number in column stress_kPa, got \"nan\"");
+  EXPECT_EQ(fit("pressure,stress\n1,2\n"),
+            f + ": line 1: columns pressure_kPa, stress_kPa and optionally channel, got \"pressure\"");
+  EXPECT_EQ(fit("pressure_kPa,stress_kPa\n1,2\n2,nan\n"),
+            f + ": line 3: a finite number in column stress_kPa, got \"nan\"");
   EXPECT_EQ(fit("pressure_kPa,stress_kPa,channel\n1,2,4\n"), f + ": line 2: a channel 1..3 (or empty for all)");
   EXPECT_EQ(fit("pressure_kPa,stress_kPa\n0,5\n10,5\n20,5\n"),
             f + ": stress line of channel 1: a response that moves (all 3 readings are 5)");
   EXPECT_EQ(fit("pressure_kPa,stress_kPa\n0,9\n10,7\n20,5\n"),
-            f + ": stress line of channel 1: a fingertip stress that rises with air pressure (the fitted slope is -0.2 kPa/kPa)");
-  EXPECT_EQ(fit("pressure_kPa,stress_kPa\n0,9\n10,7\n"), f + ": stress line of channel 1: at least 3 points for a line, got 2");
+            f + ": stress line of channel 1: a fingertip stress that rises with air pressure (the fitted slope is -0.2 "
+                "kPa/kPa)");
+  EXPECT_EQ(fit("pressure_kPa,stress_kPa\n0,9\n10,7\n"),
+            f + ": stress line of channel 1: at least 3 points for a line, got 2");
 }
 
 TEST(ForceWindow, MeansOfTheReferencePresses) {

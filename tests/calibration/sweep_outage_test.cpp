@@ -63,8 +63,9 @@ TEST(SweepOverAFailingLink, AHoldThatSpansAnOutageIsRedoneAndTheFileFits) {
   std::atomic<std::size_t> done{0};
   SweepRecording recording;
   std::thread sweep([&] {
-    recording = record_calibration_sweep(backend, rig, schedule, run, data,
-                                         [&](std::size_t d, std::size_t, const SweepHold&, const HoldOutcome&) { done = d; });
+    recording =
+        record_calibration_sweep(backend, rig, schedule, run, data,
+                                 [&](std::size_t d, std::size_t, const SweepHold&, const HoldOutcome&) { done = d; });
   });
   // Into the falling branch: the next hold (40 kPa coming down from 60) is the one cut.
   const std::size_t cut_after = 9;  // holds: vent, 10..60 up (1-6), 60..10 down (7-12), vent
@@ -99,16 +100,16 @@ TEST(SweepOverAFailingLink, AHoldThatSpansAnOutageIsRedoneAndTheFileFits) {
   for (const HoldPoint& p : d.points) {
     if (p.segment != SweepSegment::staircase || p.command_kPa == 60) continue;
     const double expected = p.command_kPa + (p.branch == SweepBranch::inflation ? -2.0 : 2.0);
-    EXPECT_NEAR(p.monitor_kPa, expected, 0.3) << "channel " << p.channel << " hold " << p.hold << " "
-                                              << to_string(p.branch) << " " << p.command_kPa;
+    EXPECT_NEAR(p.monitor_kPa, expected, 0.3)
+        << "channel " << p.channel << " hold " << p.hold << " " << to_string(p.branch) << " " << p.command_kPa;
     ++checked;
   }
   EXPECT_EQ(checked, 3u * 10u);
   EXPECT_EQ(d.unsettled_holds, 0u);
 
   // The sweep's own file is fittable.
-  const auto r = run_process(palprig_bin() + " calibrate fit " + data.string() + " --out " +
-                             (dir.path() / "cal.json").string());
+  const auto r =
+      run_process(palprig_bin() + " calibrate fit " + data.string() + " --out " + (dir.path() / "cal.json").string());
   EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
 }
 

@@ -11,10 +11,11 @@ namespace {
 
 TEST(SweepSensorName, UnnamedSensorColumnIsCalledSensor) {
   test_support::TempDir dir;
-  const auto file = dir.write("caliper.csv",
-                              "# rig_id: bench\n"
-                              "channel,branch,repeat,command_kPa,sensor\n"
-                              "1,inflation,1,10,0.8\n1,inflation,1,20,1.7\n1,deflation,1,20,1.9\n1,deflation,1,10,1.0\n");
+  const auto file =
+      dir.write("caliper.csv",
+                "# rig_id: bench\n"
+                "channel,branch,repeat,command_kPa,sensor\n"
+                "1,inflation,1,10,0.8\n1,inflation,1,20,1.7\n1,deflation,1,20,1.9\n1,deflation,1,10,1.0\n");
   const SweepData data = read_sweep_csv(file);
   EXPECT_TRUE(data.has_sensor);
   EXPECT_EQ(data.info.sensor_name, "sensor");

@@ -67,7 +67,8 @@ class CaliperRig final : public RigBackend {
   }
   BackendStatus do_write(const ChannelPressures& s, double t) noexcept override {
     for (double p : s) highest_write_kPa = std::max(highest_write_kPa, p);
-    for (std::size_t c = 0; c < kFingerCount; ++c) largest_rise_kPa = std::max(largest_rise_kPa, s[c] - last_write_kPa[c]);
+    for (std::size_t c = 0; c < kFingerCount; ++c)
+      largest_rise_kPa = std::max(largest_rise_kPa, s[c] - last_write_kPa[c]);
     last_write_kPa = s;
     return inner_.write(s, t);
   }
@@ -107,7 +108,10 @@ double settled_mean(const MemorySink::Hold& h, std::size_t channel) {
   double sum = 0;
   int n = 0;
   for (const auto& s : h.samples)
-    if (s.settled) { sum += s.monitor_kPa[channel]; ++n; }
+    if (s.settled) {
+      sum += s.monitor_kPa[channel];
+      ++n;
+    }
   return n ? sum / n : std::nan("");
 }
 
@@ -139,7 +143,8 @@ TEST(SweepPlan, PaperStaircaseWithRepeatsFromVented) {
 TEST(SweepPlan, LevelsAbovePMaxAreClampedAndSaidSo) {
   const SweepSchedule plan = plan_calibration_sweep({}, 60.0);
   ASSERT_EQ(plan.notes.size(), 1u);
-  EXPECT_EQ(plan.notes[0], "the rig's p_max is 60 kPa: sweep levels above it are clamped to 60 kPa (asked up to 100 kPa)");
+  EXPECT_EQ(plan.notes[0],
+            "the rig's p_max is 60 kPa: sweep levels above it are clamped to 60 kPa (asked up to 100 kPa)");
   double top = 0;
   for (const auto& h : plan.holds) top = std::max(top, h.level_kPa);
   EXPECT_DOUBLE_EQ(top, 60.0);
@@ -164,7 +169,10 @@ TEST(SweepPlan, IdentificationExcitationsStayInRangeAndReverse) {
   std::size_t random = 0, sine = 0;
   for (std::size_t k = 0; k < plan.holds.size(); ++k) {
     const SweepHold& h = plan.holds[k];
-    if (h.segment == SweepSegment::vent) { direction = 0; continue; }
+    if (h.segment == SweepSegment::vent) {
+      direction = 0;
+      continue;
+    }
     random += h.segment == SweepSegment::random;
     sine += h.segment == SweepSegment::sine;
     EXPECT_GE(h.level_kPa, 10.0 - 1e-9);
@@ -414,7 +422,7 @@ TEST(SweepCsv, RoundTripAveragesSettledRowsPerHold) {
     EXPECT_EQ(ch3[k].repeat, memory.holds[k].hold.repeat);
     EXPECT_DOUBLE_EQ(ch3[k].command_kPa, memory.holds[k].hold.level_kPa);
     EXPECT_NEAR(ch3[k].monitor_kPa, settled_mean(memory.holds[k], 2), 1e-3);  // 4 decimals in the file
-    EXPECT_EQ(ch3[k].samples, 30u);  // the 0.3 s settle window at 100 Hz
+    EXPECT_EQ(ch3[k].samples, 30u);                                           // the 0.3 s settle window at 100 Hz
   }
   EXPECT_TRUE(data.channel_points(2).empty());
 }
@@ -443,11 +451,13 @@ TEST(SweepCsv, MalformedFilesAreRefusedWithTheLine) {
     return refusal([&] { read_sweep_csv(p); });
   };
   const std::string f = (dir.path() / "d.csv").string();
-  EXPECT_EQ(read("channel,command_kPa,pressure\n"),
-            f + ": line 1: known columns (t_s, channel, hold, segment, repeat, branch, command_kPa, monitor_kPa, sensor, "
-                "settled), got \"pressure\"");
+  EXPECT_EQ(
+      read("channel,command_kPa,pressure\n"),
+      f + ": line 1: known columns (t_s, channel, hold, segment, repeat, branch, command_kPa, monitor_kPa, sensor, "
+          "settled), got \"pressure\"");
   EXPECT_EQ(read("channel,command_kPa\n"), f + ": line 1: a monitor_kPa or a sensor column (the response to fit)");
-  EXPECT_EQ(read("channel,command_kPa,monitor_kPa\n4,10,9\n"), f + ": line 2: an integer 1..3 in column channel, got \"4\"");
+  EXPECT_EQ(read("channel,command_kPa,monitor_kPa\n4,10,9\n"),
+            f + ": line 2: an integer 1..3 in column channel, got \"4\"");
   EXPECT_EQ(read("channel,command_kPa,monitor_kPa\n1,10,NaN\n"),
             f + ": line 2: a finite number in column monitor_kPa, got \"NaN\"");
   EXPECT_EQ(read("channel,command_kPa,monitor_kPa\n1,10\n"), f + ": line 2: 3 cells like the header, got 2");

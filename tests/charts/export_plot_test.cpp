@@ -12,9 +12,9 @@ TEST(ExportPlot, MeasuresByConditionChartIsWritten) {
   TempDir dir;
   const std::string db = (dir.path() / "t.db").string();
   for (int seed : {1, 2}) {
-    const ProcessResult r = run_process(palprig_bin() + " experiment run --quiet --protocol " + source_dir() +
-                                        "/data/protocols/discrimination_002.json --participant sim:" +
-                                        std::to_string(seed) + " --db " + db);
+    const ProcessResult r = run_process(
+        palprig_bin() + " experiment run --quiet --protocol " + source_dir() +
+        "/data/protocols/discrimination_002.json --participant sim:" + std::to_string(seed) + " --db " + db);
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   const auto plots = dir.path() / "plots";

@@ -34,10 +34,10 @@ TEST(MeasuresChart, ProportionAxisIsZeroToOneAndUndefinedMeasuresAreGaps) {
   EXPECT_EQ(chart.series[0].label, "three-finger");
   for (double y : chart.series[0].y) EXPECT_TRUE(std::isfinite(y));
   const auto& loc = chart.series[1];
-  EXPECT_NEAR(loc.y[0], 0.75, 1e-12);       // Se = 9/12
-  EXPECT_TRUE(std::isnan(loc.y[1]));        // Sp: no true negatives exist
+  EXPECT_NEAR(loc.y[0], 0.75, 1e-12);        // Se = 9/12
+  EXPECT_TRUE(std::isnan(loc.y[1]));         // Sp: no true negatives exist
   EXPECT_NEAR(loc.y[2], 9.0 / 13.0, 1e-12);  // PPV
-  EXPECT_TRUE(std::isnan(loc.y[3]));        // ACC
+  EXPECT_TRUE(std::isnan(loc.y[3]));         // ACC
   EXPECT_TRUE(std::isnan(loc.y_low[1]) && std::isnan(loc.y_high[3]));
 }
 

@@ -25,7 +25,8 @@ namespace {
 // A discrimination session of paper 002's protocol, answered exactly on every trial but the
 // first (all fingers), committed the way a session commits (one transaction per trial).
 std::filesystem::path write_store(const std::filesystem::path& dir) {
-  const Protocol p = load_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data/protocols/discrimination_002.json");
+  const Protocol p =
+      load_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data/protocols/discrimination_002.json");
   const auto db = dir / "analyst.db";
   SqliteTrialStore store(db, TrialStore::Access::read_write);
   const ParticipantRecord who = store.enrol("P01", false);
@@ -57,14 +58,17 @@ TEST(AnalystCommands, StatsTrialsReadsAStoreWrittenWithoutARig) {
 TEST(AnalystCommands, ExportWritesEveryTrialAsLongCsvAndBids) {
   palprig::test_support::TempDir dir;
   const auto db = write_store(dir.path());
-  const auto csv = run_process(palprig_bin() + " export " + db.string() + " --format csv --out " + (dir.path() / "csv").string());
+  const auto csv =
+      run_process(palprig_bin() + " export " + db.string() + " --format csv --out " + (dir.path() / "csv").string());
   ASSERT_EQ(csv.exit_code, 0) << csv.err;
   const std::string long_csv = slurp(dir.path() / "csv" / "trials_long.csv");
   // Paper 002's protocol: 3 fingers a trial, one row per finger value.
   const auto rows = std::count(long_csv.begin(), long_csv.end(), '\n');
-  const Protocol p = load_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data/protocols/discrimination_002.json");
+  const Protocol p =
+      load_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data/protocols/discrimination_002.json");
   EXPECT_EQ(rows, 1 + 3 * static_cast<long>(make_session_plan(p, 1, 7).trials.size()));
-  const auto bids = run_process(palprig_bin() + " export " + db.string() + " --format bids --out " + (dir.path() / "bids").string());
+  const auto bids =
+      run_process(palprig_bin() + " export " + db.string() + " --format bids --out " + (dir.path() / "bids").string());
   ASSERT_EQ(bids.exit_code, 0) << bids.err;
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "bids" / "dataset_description.json"));
 }

@@ -14,19 +14,19 @@ std::string data(const std::string& rel) { return source_dir() + "/data/" + rel;
 }  // namespace
 
 TEST(CheckCommand, EveryShippedFileIsReadAndNamedByItsKind) {
-  const ProcessResult r = run_process(
-      palprig_bin() + " check " + data("rigs/wago_750_559.json") + " " + data("rigs/ni_pcie_6259_comedi.json") + " " +
-      data("scenes/phantom_abc.json") + " " + data("scenes/brachial_pulse.json") + " " +
-      data("protocols/discrimination_002.json") + " " + data("protocols/threshold_quest.json") + " " +
-      data("protocols/pulse_generated.json") + " " + data("calibration/sim-default.json") + " " +
-      data("traces/phantom_abc_pass.csv") + " " + data("waveforms/brachial_pressure.csv") + " " +
-      data("scenes/phantom_abc.pgm"));
+  const ProcessResult r =
+      run_process(palprig_bin() + " check " + data("rigs/wago_750_559.json") + " " +
+                  data("rigs/ni_pcie_6259_comedi.json") + " " + data("scenes/phantom_abc.json") + " " +
+                  data("scenes/brachial_pulse.json") + " " + data("protocols/discrimination_002.json") + " " +
+                  data("protocols/threshold_quest.json") + " " + data("protocols/pulse_generated.json") + " " +
+                  data("calibration/sim-default.json") + " " + data("traces/phantom_abc_pass.csv") + " " +
+                  data("waveforms/brachial_pressure.csv") + " " + data("scenes/phantom_abc.pgm"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* said : {"rig 'wago-750-559', backend modbus", "rig 'ni-pcie-6259-comedi', backend comedi",
-                           "map scene 'phantom_abc', 3 tumors", "function scene 'brachial_pulse', 0 tumors, arteries",
-                           "discrimination protocol", "threshold protocol", "pulse protocol",
-                           "calibration for rig 'sim-default'", "pen trace, 1330 rows", "waveform table",
-                           "stiffness map, 161 x 121 vertices"})
+  for (const char* said :
+       {"rig 'wago-750-559', backend modbus", "rig 'ni-pcie-6259-comedi', backend comedi",
+        "map scene 'phantom_abc', 3 tumors", "function scene 'brachial_pulse', 0 tumors, arteries",
+        "discrimination protocol", "threshold protocol", "pulse protocol", "calibration for rig 'sim-default'",
+        "pen trace, 1330 rows", "waveform table", "stiffness map, 161 x 121 vertices"})
     EXPECT_NE(r.out.find(said), std::string::npos) << said << "\n" << r.out;
 }
 

@@ -38,8 +38,10 @@ TEST(experiments_cli_experiment, simulated_study_then_stats_and_exports) {
   EXPECT_EQ(scalar(db, "SELECT count(*) FROM trials"), 4 * 32);
   EXPECT_EQ(scalar(db, "SELECT count(*) FROM sessions WHERE status = 'completed'"), 4);
   // Alternate counterbalancing: participants 1 and 3 start three-finger, 2 and 4 single-finger.
-  EXPECT_EQ(scalar(db, "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id "
-                       "WHERE t.position = 0 AND t.condition = 'three-finger'"), 2);
+  EXPECT_EQ(scalar(db,
+                   "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id "
+                   "WHERE t.position = 0 AND t.condition = 'three-finger'"),
+            2);
 
   auto r = run_palprig({"stats", "trials", db, "--by", "condition", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -95,8 +97,8 @@ TEST(experiments_cli_experiment, simulated_localisation_scores_tumors) {
   ScratchDir dir;
   const std::string db = (dir / "loc.db").string();
   for (int seed = 1; seed <= 3; ++seed) {
-    const auto r = run_palprig({"experiment", "run", "--protocol", kLocalisation, "--participant",
-                                "sim:" + std::to_string(seed), "--db", db});
+    const auto r = run_palprig(
+        {"experiment", "run", "--protocol", kLocalisation, "--participant", "sim:" + std::to_string(seed), "--db", db});
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   const auto r = run_palprig({"stats", "trials", db, "--by", "tumor", "--json"});
@@ -138,8 +140,8 @@ TEST(experiments_cli_experiment, a_person_answers_at_the_terminal) {
 TEST(experiments_cli_experiment, end_of_input_stops_and_resume_continues) {
   ScratchDir dir;
   const std::string db = (dir / "p.db").string();
-  auto r = run_palprig({"experiment", "run", "--protocol", kDiscrimination, "--participant", "P02", "--db", db},
-                       "\n1\n2\n");
+  auto r =
+      run_palprig({"experiment", "run", "--protocol", kDiscrimination, "--participant", "P02", "--db", db}, "\n1\n2\n");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("--resume"), std::string::npos);
   EXPECT_EQ(scalar(db, "SELECT count(*) FROM trials"), 2);
@@ -189,7 +191,8 @@ TEST(experiments_cli_experiment, bad_input_is_refused_before_any_stimulus) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("not an SQLite database"), std::string::npos) << r.err;
 
-  r = run_palprig({"experiment", "run", "--protocol", kLocalisation, "--participant", "P01", "--db", (dir / "y.db").string()});
+  r = run_palprig(
+      {"experiment", "run", "--protocol", kLocalisation, "--participant", "P01", "--db", (dir / "y.db").string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--participant"), std::string::npos) << r.err;
 

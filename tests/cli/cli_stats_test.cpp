@@ -17,7 +17,8 @@ using testing::ScratchDir;
 void write(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
 
 TEST(experiments_cli_stats, compare_proportions_reproduces_paper_002) {
-  const auto r = run_palprig({"stats", "compare-proportions", "--k1", "488", "--n1", "504", "--k2", "470", "--n2", "504", "--json"});
+  const auto r = run_palprig(
+      {"stats", "compare-proportions", "--k1", "488", "--n1", "504", "--k2", "470", "--n2", "504", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["combined_interval"].get<double>(), 0.027, 0.0005);
@@ -29,9 +30,11 @@ TEST(experiments_cli_stats, csv_tests_match_the_library_oracles) {
   ScratchDir dir;
   write(dir / "d.csv",
         "group,time,before,after\n"
-        "x,5.1,12.1,11.4\nx,4.9,14.3,13.9\nx,6.2,11.8,11.9\nx,5.8,13.5,12.6\nx,6.0,12.9,12.1\nx,5.5,15.0,14.2\nx,5.3,13.2,12.8\n"
+        "x,5.1,12.1,11.4\nx,4.9,14.3,13.9\nx,6.2,11.8,11.9\nx,5.8,13.5,12.6\nx,6.0,12.9,12.1\nx,5.5,15.0,14.2\nx,5.3,"
+        "13.2,12.8\n"
         "y,4.2,12.4,12.0\ny,4.8,1,1\ny,4.5,1,1\ny,5.0,1,1\ny,4.1,1,1\ny,4.6,1,1\n");
-  auto r = run_palprig({"stats", "ttest", (dir / "d.csv").string(), "--column", "time", "--by", "group", "--student", "--json"});
+  auto r = run_palprig(
+      {"stats", "ttest", (dir / "d.csv").string(), "--column", "time", "--by", "group", "--student", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["t"].get<double>(), 4.2872645411485274, 1e-9);
@@ -59,7 +62,8 @@ TEST(experiments_cli_stats, csv_tests_match_the_library_oracles) {
   EXPECT_GT(nlohmann::json::parse(r.out)["r"].get<double>(), 0.99);
 
   write(dir / "likert.csv", "item6\n3\n4\n4\n4\n4\n4\n4\n4\n4\n4\n");
-  r = run_palprig({"stats", "wilcoxon", (dir / "likert.csv").string(), "--column", "item6", "--against", "3", "--json"});
+  r = run_palprig(
+      {"stats", "wilcoxon", (dir / "likert.csv").string(), "--column", "item6", "--against", "3", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["p"].get<double>(), 0.0033534364549463227, 1e-12);

@@ -77,7 +77,8 @@ TEST(experiments_confidence_cli, a_person_types_answers_and_ratings_at_the_termi
                              "\n2\n7\n3\n0\nx\n1\n");
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("How confident are you? Type 1-4 (1 = guess, 2 = unsure, 3 = fairly sure, 4 = sure)"),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("Please type one number from 1 to 4."), std::string::npos);
 
   SqliteTrialStore store(db, TrialStore::Access::read_only);
@@ -177,7 +178,8 @@ TEST(experiments_confidence_cli, simulated_ratings_are_higher_on_correct_trials_
                                 db.string(), "--quiet"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
-  SqliteTrialStore with(dir / "rated.db", TrialStore::Access::read_only), without(dir / "plain.db", TrialStore::Access::read_only);
+  SqliteTrialStore with(dir / "rated.db", TrialStore::Access::read_only),
+      without(dir / "plain.db", TrialStore::Access::read_only);
   const auto a = with.read_trials(true), b = without.read_trials(true);
   ASSERT_EQ(a.size(), b.size());
   double correct_sum = 0, wrong_sum = 0;
@@ -191,8 +193,10 @@ TEST(experiments_confidence_cli, simulated_ratings_are_higher_on_correct_trials_
     ASSERT_TRUE(a[i].confidence.has_value()) << i;
     EXPECT_GE(*a[i].confidence, 1);
     EXPECT_LE(*a[i].confidence, 4);
-    if (a[i].answer == a[i].truth) correct_sum += *a[i].confidence, ++correct_n;
-    else wrong_sum += *a[i].confidence, ++wrong_n;
+    if (a[i].answer == a[i].truth)
+      correct_sum += *a[i].confidence, ++correct_n;
+    else
+      wrong_sum += *a[i].confidence, ++wrong_n;
   }
   ASSERT_GT(correct_n, 0);
   ASSERT_GT(wrong_n, 0) << "the observer should err sometimes (10 vs 0 kPa is near its criterion)";

@@ -40,14 +40,14 @@ TEST(experiments_crash_resume, sigkill_mid_session_loses_at_most_the_trial_in_pr
   int reported = 0;
   {
     // 50 times real time: a session of about 4.5 simulated minutes takes a few seconds.
-    ChildProcess child({"experiment", "run", "--protocol", protocol, "--participant", "sim:5", "--db", db, "--speed", "50"});
+    ChildProcess child(
+        {"experiment", "run", "--protocol", protocol, "--participant", "sim:5", "--db", db, "--speed", "50"});
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (reported_trials(child.out()) < 5 && std::chrono::steady_clock::now() < deadline) child.pump(50);
     ASSERT_GE(reported_trials(child.out()), 5) << "the session did not get going: " << child.out();
     ASSERT_EQ(::kill(child.pid(), SIGKILL), 0);
     EXPECT_EQ(child.wait(), 128 + SIGKILL);
-    while (child.pump(0)) {
-    }
+    while (child.pump(0)) {}
     reported = reported_trials(child.out());
   }
   std::int64_t committed = 0;
@@ -63,8 +63,10 @@ TEST(experiments_crash_resume, sigkill_mid_session_loses_at_most_the_trial_in_pr
     EXPECT_EQ(scalar(store, "SELECT max(position) FROM trials"), committed - 1) << "committed trials are contiguous";
     EXPECT_EQ(scalar(store, "SELECT count(*) FROM sessions WHERE status = 'running'"), 1);
     // Every committed trial is whole: scored on all three fingers.
-    EXPECT_EQ(scalar(store, "SELECT count(*) FROM trials WHERE answered = 1 AND (outcome1 IS NULL OR outcome2 IS NULL "
-                            "OR outcome3 IS NULL)"), 0);
+    EXPECT_EQ(scalar(store,
+                     "SELECT count(*) FROM trials WHERE answered = 1 AND (outcome1 IS NULL OR outcome2 IS NULL "
+                     "OR outcome3 IS NULL)"),
+              0);
   }
 
   const auto resumed = testing::run_palprig(
@@ -78,9 +80,11 @@ TEST(experiments_crash_resume, sigkill_mid_session_loses_at_most_the_trial_in_pr
   EXPECT_EQ(scalar(store, "SELECT count(*) FROM sessions"), 1);
   EXPECT_EQ(scalar(store, "SELECT count(*) FROM sessions WHERE status = 'completed'"), 1);
   // The resumed part followed the stored order exactly.
-  EXPECT_EQ(scalar(store, "SELECT count(*) FROM trials t JOIN planned_trials p ON p.session_id = t.session_id AND "
-                          "p.position = t.position WHERE p.combination = t.combination AND p.condition = t.condition "
-                          "AND p.practice = t.practice"), 32);
+  EXPECT_EQ(scalar(store,
+                   "SELECT count(*) FROM trials t JOIN planned_trials p ON p.session_id = t.session_id AND "
+                   "p.position = t.position WHERE p.combination = t.combination AND p.condition = t.condition "
+                   "AND p.practice = t.practice"),
+            32);
 }
 
 }  // namespace

@@ -34,10 +34,9 @@ namespace fs = std::filesystem;
 using testing::run_palprig;
 using testing::ScratchDir;
 
-const std::vector<std::string> kProtocols = {"discrimination_002.json", "discrimination_002_confidence.json",
-                                              "localisation_002.json",   "threshold_1up3down.json",
-                                              "threshold_quest.json",    "pulse_localisation_000.json",
-                                              "pulse_generated.json"};
+const std::vector<std::string> kProtocols = {
+    "discrimination_002.json", "discrimination_002_confidence.json", "localisation_002.json", "threshold_1up3down.json",
+    "threshold_quest.json",    "pulse_localisation_000.json",        "pulse_generated.json"};
 const std::vector<std::string> kParticipants = {"sim:1", "sim:2"};
 
 std::string read_text(const fs::path& p) {
@@ -94,12 +93,13 @@ class ExportEveryTask : public ::testing::Test {
     const fs::path bin = PALPRIG_BIN;
     const fs::path cache = bin.parent_path() / "test-cache";
     fs::create_directories(cache);
-    const std::string stamp = std::to_string(fs::last_write_time(bin).time_since_epoch().count()) + "-" +
-                              std::to_string(fs::file_size(bin));
+    const std::string stamp =
+        std::to_string(fs::last_write_time(bin).time_since_epoch().count()) + "-" + std::to_string(fs::file_size(bin));
     const fs::path cached_db = cache / ("every_task-" + stamp + ".db");
     const fs::path cached_runs = cache / ("every_task-" + stamp + ".json");
     const int lock = ::open((cache / "every_task.lock").c_str(), O_CREAT | O_RDWR, 0644);
-    if (lock < 0 || ::flock(lock, LOCK_EX) != 0) throw std::runtime_error("cannot lock " + (cache / "every_task.lock").string());
+    if (lock < 0 || ::flock(lock, LOCK_EX) != 0)
+      throw std::runtime_error("cannot lock " + (cache / "every_task.lock").string());
     struct Unlock {
       int fd;
       ~Unlock() { ::close(fd); }  // closing releases the lock
@@ -113,7 +113,8 @@ class ExportEveryTask : public ::testing::Test {
           const auto r = run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / protocol).string(),
                                       "--participant", participant, "--db", making.string()});
           if (r.exit_code != 0)
-            throw std::runtime_error(protocol + " " + participant + ": exit " + std::to_string(r.exit_code) + ": " + r.err);
+            throw std::runtime_error(protocol + " " + participant + ": exit " + std::to_string(r.exit_code) + ": " +
+                                     r.err);
           printed[protocol + " " + participant] = r.out;
         }
       }
@@ -187,7 +188,8 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
   for (const char* name : {"mark_x_mm", "distance_mm", "hit", "hit_radius_mm", "artery"}) {
     EXPECT_NE(std::find(pulse_header.begin(), pulse_header.end(), name), pulse_header.end()) << name;
   }
-  for (std::size_t i = 1; i < pulse_lines.size(); ++i) EXPECT_EQ(split(pulse_lines[i], ',').size(), pulse_header.size());
+  for (std::size_t i = 1; i < pulse_lines.size(); ++i)
+    EXPECT_EQ(split(pulse_lines[i], ',').size(), pulse_header.size());
   EXPECT_TRUE(fs::exists(out / "trials_long.csv"));
   EXPECT_TRUE(fs::exists(out / "marks.csv"));
   for (const auto& e : fs::recursive_directory_iterator(out)) {
@@ -197,7 +199,8 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
 
 TEST_F(ExportEveryTask, BidsHasARunPerSessionWithEveryTrialAndEveryColumnDescribed) {
   const fs::path out = dir_ / "bids";
-  const auto r = run_palprig({"export", db_.string(), "--format", "bids", "--out", out.string(), "--author", "A. Tester"});
+  const auto r =
+      run_palprig({"export", db_.string(), "--format", "bids", "--out", out.string(), "--author", "A. Tester"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto description = nlohmann::json::parse(read_text(out / "dataset_description.json"));
   EXPECT_EQ(description["Authors"], nlohmann::json::array({"A. Tester"}));
@@ -219,8 +222,9 @@ TEST_F(ExportEveryTask, BidsHasARunPerSessionWithEveryTrialAndEveryColumnDescrib
     for (const std::string& column : header) EXPECT_TRUE(side.contains(column)) << sidecar << " describes " << column;
   }
   EXPECT_EQ(runs, scalar(db_, "SELECT count(*) FROM sessions"));
-  EXPECT_EQ(rows, scalar(db_, "SELECT (SELECT count(*) FROM trials) + (SELECT count(*) FROM threshold_trials) + "
-                              "(SELECT count(*) FROM pulse_trials)"));
+  EXPECT_EQ(rows, scalar(db_,
+                         "SELECT (SELECT count(*) FROM trials) + (SELECT count(*) FROM threshold_trials) + "
+                         "(SELECT count(*) FROM pulse_trials)"));
   const std::string participants = read_text(out / "participants.tsv");
   EXPECT_EQ(lines_of(participants).size(), kParticipants.size() + 1) << participants;
 }
@@ -239,8 +243,8 @@ TEST_F(ExportEveryTask, OfficialBidsValidatorReportsNoErrorAndNoWarning) {
   const fs::path out = dir_ / "bids_validated";
   // Two authors: with one, the validator warns TOO_FEW_AUTHORS ("ignore if all contributors are
   // listed"), which a single-author lab may do.
-  const auto r = run_palprig({"export", db_.string(), "--format", "bids", "--out", out.string(), "--author", "A. Tester",
-                              "--author", "B. Tester"});
+  const auto r = run_palprig({"export", db_.string(), "--format", "bids", "--out", out.string(), "--author",
+                              "A. Tester", "--author", "B. Tester"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto v = test_support::run_process(validator.string() + " --json " + out.string());
   const auto report = nlohmann::json::parse(v.out, nullptr, false);
@@ -252,15 +256,16 @@ TEST_F(ExportEveryTask, OfficialBidsValidatorReportsNoErrorAndNoWarning) {
 
 TEST_F(ExportEveryTask, PlotDrawsEveryKindAsPngAndSvg) {
   const fs::path plots = dir_ / "plots";
-  const auto r = run_palprig({"export", db_.string(), "--out", (dir_ / "csv_for_plots").string(), "--plot",
-                              plots.string(), "--svg"});
+  const auto r = run_palprig(
+      {"export", db_.string(), "--out", (dir_ / "csv_for_plots").string(), "--plot", plots.string(), "--svg"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* stem : {"measures_by_condition", "pulse_hits_by_condition", "psychometric_one_finger"}) {
     EXPECT_GT(fs::file_size(plots / (std::string(stem) + ".png")), 2000u) << stem;
     EXPECT_NE(read_text(plots / (std::string(stem) + ".svg")).find("<svg"), std::string::npos) << stem;
   }
   int tracks = 0;
-  for (const auto& e : fs::directory_iterator(plots)) tracks += e.path().filename().string().rfind("track_session", 0) == 0;
+  for (const auto& e : fs::directory_iterator(plots))
+    tracks += e.path().filename().string().rfind("track_session", 0) == 0;
   EXPECT_EQ(tracks, 2 * 2 * 2) << "a PNG and an SVG per threshold session";
 }
 
@@ -280,8 +285,9 @@ TEST(ExportRefusals, AStoreWithoutTrialsIsAnErrorNotAnEmptyExport) {
 }
 
 std::string one_session(const fs::path& db) {
-  const auto r = run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / "discrimination_002.json").string(),
-                              "--participant", "sim:9", "--db", db.string(), "--quiet"});
+  const auto r =
+      run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / "discrimination_002.json").string(),
+                   "--participant", "sim:9", "--db", db.string(), "--quiet"});
   return r.exit_code == 0 ? "" : r.err;
 }
 
@@ -329,7 +335,8 @@ TEST(ExportRefusals, AnUnwritableFolderIsOneLineNamingTheFile) {
                            fs::perms::others_read | fs::perms::others_exec);
   fs::permissions(dir.path(), fs::perms::all);
   const std::string as_nobody = ::geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : "";
-  const auto r = test_support::run_process(as_nobody + PALPRIG_BIN + " export " + db.string() + " --out " + out.string());
+  const auto r =
+      test_support::run_process(as_nobody + PALPRIG_BIN + " export " + db.string() + " --out " + out.string());
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find((out / "trials_long.csv").string()), std::string::npos) << r.err;

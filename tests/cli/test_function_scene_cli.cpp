@@ -21,11 +21,13 @@ TEST(SceneCommand, GenerateIsReproducibleFromTheSeed) {
   TempDir dir;
   const auto a = dir.path() / "a.json", b = dir.path() / "b.json", c = dir.path() / "c.json";
   for (const auto& p : {a, b}) {
-    const ProcessResult r = run_process(palprig_bin() + " scene generate --seed 77 --difficulty medium --out " + p.string());
+    const ProcessResult r =
+        run_process(palprig_bin() + " scene generate --seed 77 --difficulty medium --out " + p.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("seed 77, medium"), std::string::npos) << r.out;
   }
-  ASSERT_EQ(run_process(palprig_bin() + " scene generate --seed 78 --difficulty medium --out " + c.string()).exit_code, 0);
+  ASSERT_EQ(run_process(palprig_bin() + " scene generate --seed 78 --difficulty medium --out " + c.string()).exit_code,
+            0);
   EXPECT_EQ(read_file(a), read_file(b));
   EXPECT_NE(read_file(a), read_file(c));
   const SceneFile sf = load_scene_file(a);
@@ -52,8 +54,8 @@ TEST(SceneCommand, RenderBakesTheFeltStiffnessIntoAMap) {
   const StiffnessMap m = parse_stiffness_pgm(in, pgm.string(), 160, 120);
   ASSERT_EQ(m.cols(), 81u);
   ASSERT_EQ(m.rows(), 61u);
-  EXPECT_GT(m.at(55, 25), 0.7);         // tumor B at (110, 50) mm
-  EXPECT_LT(m.at(10, 50), 0.01);        // silicone at (20, 100) mm
+  EXPECT_GT(m.at(55, 25), 0.7);           // tumor B at (110, 50) mm
+  EXPECT_LT(m.at(10, 50), 0.01);          // silicone at (20, 100) mm
   EXPECT_GT(m.at(55, 25), m.at(20, 20));  // B over A
   // The companion map scene runs as a paper 002-style map with the same tumors.
   const SceneFile baked = load_scene_file(map_scene);
@@ -84,12 +86,15 @@ TEST(SceneCommand, BadInputExitsTwoWithOneClearLine) {
     "half_size_mm": [80, 60]}, "layers": [{"name": "fat", "thickness_mm": 10, "stiffness_kPa": 4}],
     "felt_range_kPa": {"soft": 4, "hard": 300},
     "inclusions": [{"name": "T", "stiffness_kPa": 30, "shape": {"type": "sphere", "centre_mm": [1, 2, 8], "radius_mm": -4}}]})");
-  ProcessResult r = run_process(palprig_bin() + " scene render " + bad.string() + " --out " + (dir.path() / "x.pgm").string());
+  ProcessResult r =
+      run_process(palprig_bin() + " scene render " + bad.string() + " --out " + (dir.path() / "x.pgm").string());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find(bad.string() + ": inclusions[0].shape.radius_mm: a positive radius"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(bad.string() + ": inclusions[0].shape.radius_mm: a positive radius"), std::string::npos)
+      << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.pgm"));
 
-  r = run_process(palprig_bin() + " scene generate --seed 1 --difficulty extreme --out " + (dir.path() / "c.json").string());
+  r = run_process(palprig_bin() + " scene generate --seed 1 --difficulty extreme --out " +
+                  (dir.path() / "c.json").string());
   EXPECT_EQ(r.exit_code, 2);
   r = run_process(palprig_bin() + " scene render " + data("scenes/brachial_pulse.json") + " --out " +
                   (dir.path() / "x.png").string());

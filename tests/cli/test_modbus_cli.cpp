@@ -39,7 +39,8 @@ nlohmann::json mixed_map_rig(int port) {
 
 // Pen held at tumor B's centre pressing 4 N: finger 1 over the tumor, 2 and 3 on soft tissue.
 std::string write_hold_trace(const TempDir& dir, double seconds) {
-  return dir.write("hold.csv", "t_s,x_mm,y_mm,force_N\n0,110,50,4\n" + std::to_string(seconds) + ",110,50,4\n").string();
+  return dir.write("hold.csv", "t_s,x_mm,y_mm,force_N\n0,110,50,4\n" + std::to_string(seconds) + ",110,50,4\n")
+      .string();
 }
 
 struct RunResult {
@@ -114,7 +115,8 @@ TEST(ModbusEndToEnd, RunDrivesSimRigWithTheExactWordsOfTheMap) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.summary["fault"].is_null()) << r.summary.dump();
   EXPECT_EQ(r.summary["link_outages"], 0);
-  EXPECT_NE(r.summary["backend"].get<std::string>().find("modbus tcp 127.0.0.1:" + std::to_string(port)), std::string::npos);
+  EXPECT_NE(r.summary["backend"].get<std::string>().find("modbus tcp 127.0.0.1:" + std::to_string(port)),
+            std::string::npos);
 
   // The steady setpoints the tick computed (finger 1 is paper 002's hard nodule at 2x the
   // reference force: 2 x 11.75 = 23.5 kPa).
@@ -181,7 +183,8 @@ TEST(ModbusEndToEnd, KilledServerVentsReportsAndReconnectsWithoutSpike) {
       << "the run never pressurised the module: " << read_file(dir.path() / "run.err");
   sim->signal(SIGKILL);
   sim->wait();
-  ASSERT_TRUE(poll_until([&] { return file_has(dir.path() / "run.err", "lost"); }, 30.0)) << read_file(dir.path() / "run.err");
+  ASSERT_TRUE(poll_until([&] { return file_has(dir.path() / "run.err", "lost"); }, 30.0))
+      << read_file(dir.path() / "run.err");
   // The scenario: the module stays away for half a second (a deliberate outage, not a wait for
   // an event), so the run spends hundreds of ticks unlinked and retries with its backoff.
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -203,7 +206,8 @@ TEST(ModbusEndToEnd, KilledServerVentsReportsAndReconnectsWithoutSpike) {
   EXPECT_NE(r.err.find("back after"), std::string::npos) << r.err;
 
   const auto tel = read_csv((dir.path() / "telemetry.csv").string());
-  const std::size_t t = tel.col("t_s"), fault = tel.col("fault"), flags = tel.col("flags"), mon = tel.col("monitor_kPa_1");
+  const std::size_t t = tel.col("t_s"), fault = tel.col("fault"), flags = tel.col("flags"),
+                    mon = tel.col("monitor_kPa_1");
   const std::size_t sp[3] = {tel.col("setpoint_kPa_1"), tel.col("setpoint_kPa_2"), tel.col("setpoint_kPa_3")};
   std::size_t first_alarm = 0, back_at = 0;
   for (std::size_t i = 0; i < tel.rows.size(); ++i) {
@@ -255,8 +259,8 @@ TEST(ModbusEndToEnd, SilentServerIsDetectedByTimeoutWithoutStallingTheLoop) {
   std::unique_ptr<ChildProcess> sim;
   const auto writes = dir.path() / "writes.csv";
   const auto run_err = dir.path() / "run.err";
-  const int port = start_sim_rig(sim, palprig_bin(), PALPRIG_SOURCE_DIR + std::string("/data/rigs/wago_750_559.json"), 0,
-                                 writes.string(), (dir.path() / "sim.err").string());
+  const int port = start_sim_rig(sim, palprig_bin(), PALPRIG_SOURCE_DIR + std::string("/data/rigs/wago_750_559.json"),
+                                 0, writes.string(), (dir.path() / "sim.err").string());
   const auto rig = dir.write("rig.json", mixed_map_rig(port).dump(2)).string();
   // As above: each step waits for what the previous one caused; SIGTERM ends the run.
   auto run = start_run(dir, rig, write_hold_trace(dir, 120.0), 120.0);
@@ -265,7 +269,8 @@ TEST(ModbusEndToEnd, SilentServerIsDetectedByTimeoutWithoutStallingTheLoop) {
   ASSERT_TRUE(poll_until([&] { return file_has(run_err, "Connection timed out"); }, 30.0)) << read_file(run_err);
   const std::size_t writes_before = line_count(writes);
   sim->signal(SIGCONT);
-  ASSERT_TRUE(poll_until([&] { return file_has(run_err, "back after") && line_count(writes) > writes_before + 30; }, 60.0))
+  ASSERT_TRUE(
+      poll_until([&] { return file_has(run_err, "back after") && line_count(writes) > writes_before + 30; }, 60.0))
       << read_file(run_err);
   run->signal(SIGTERM);
   const RunResult r = finish_run(*run, dir);

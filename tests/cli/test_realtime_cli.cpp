@@ -25,7 +25,8 @@ TEST(RtCheckCli, JsonReportOfAShortRealRun) {
   // 500 periods in 1 s, each either run or skipped after an overrun.
   EXPECT_EQ(loop.at("ticks").get<std::uint64_t>() + loop.at("missed_periods").get<std::uint64_t>(), 500u);
   EXPECT_GT(loop.at("wake_latency").at("p50_us").get<double>(), 0.0);
-  EXPECT_GE(loop.at("wake_latency").at("max_us").get<double>(), loop.at("wake_latency").at("p999_us").get<double>() - 1.0);
+  EXPECT_GE(loop.at("wake_latency").at("max_us").get<double>(),
+            loop.at("wake_latency").at("p999_us").get<double>() - 1.0);
   EXPECT_TRUE(j.at("sched_fifo").contains("permitted"));
   EXPECT_TRUE(j.at("cpu_dma_latency").contains("available"));
   EXPECT_FALSE(j.at("findings").empty());
@@ -34,8 +35,9 @@ TEST(RtCheckCli, JsonReportOfAShortRealRun) {
 TEST(RtCheckCli, TextReportEndsWithTheVerdict) {
   const ProcessResult r = run_process(palprig_bin() + " rt-check --seconds 0.5");
   ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << r.err;
-  EXPECT_NE(r.out.find(r.exit_code == 0 ? "palprig rt-check: ready for 1000 Hz" : "palprig rt-check: NOT ready for 1000 Hz"),
-            std::string::npos)
+  EXPECT_NE(
+      r.out.find(r.exit_code == 0 ? "palprig rt-check: ready for 1000 Hz" : "palprig rt-check: NOT ready for 1000 Hz"),
+      std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("kernel"), std::string::npos);
   EXPECT_NE(r.out.find("wake-up latency p50/p99/p99.9/max"), std::string::npos);
@@ -63,8 +65,9 @@ TEST(RunCliRealtime, CpuThatDoesNotExistIsRefusedBeforeAnythingMoves) {
 }
 
 TEST(RunCliRealtime, SummarySaysWhichPracticesWereInEffect) {
-  const ProcessResult r = run_process(palprig_bin() + " run --scene " + source_dir() +
-                                      "/data/scenes/phantom_abc.json --realtime --duration-s 0.2 --no-pm-qos --cpu 0 --json");
+  const ProcessResult r =
+      run_process(palprig_bin() + " run --scene " + source_dir() +
+                  "/data/scenes/phantom_abc.json --realtime --duration-s 0.2 --no-pm-qos --cpu 0 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   const std::string practices = j.at("realtime_practices");

@@ -15,10 +15,10 @@ std::string data(const std::string& rel) { return source_dir() + "/data/" + rel;
 TEST(RunCommand, ReplayOfTheBundledTraceGivesTheSummaryAsJson) {
   TempDir dir;
   const auto telemetry = dir.path() / "tel.csv";
-  const ProcessResult r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") +
-                                      " --input trace:" + data("traces/phantom_abc_pass.csv") + " --rig " +
-                                      data("rigs/simulated.json") + " --rate-hz 1000 --replay --json --telemetry " +
-                                      telemetry.string());
+  const ProcessResult r =
+      run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") +
+                  " --input trace:" + data("traces/phantom_abc_pass.csv") + " --rig " + data("rigs/simulated.json") +
+                  " --rate-hz 1000 --replay --json --telemetry " + telemetry.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["ticks"], 13290);  // the trace lasts 13.29 s
@@ -34,8 +34,8 @@ TEST(RunCommand, ReplayOfTheBundledTraceGivesTheSummaryAsJson) {
 }
 
 TEST(RunCommand, TextSummaryNamesTicksFingersAndFaults) {
-  const ProcessResult r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") +
-                                      " --input sweep --duration-s 2");
+  const ProcessResult r =
+      run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") + " --input sweep --duration-s 2");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("2000 ticks at 1000 Hz"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("finger   target kPa"), std::string::npos);
@@ -68,14 +68,16 @@ TEST(RunCommand, BadFilesStopBeforeAnythingMovesWithExitTwo) {
   EXPECT_FALSE(std::filesystem::exists(telemetry));  // nothing started
 
   const auto bad_trace = dir.write("t.csv", "t_s,x_mm,y_mm,force_N\n0,1,1,1\n0.5,2,2,nan\n");
-  r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") + " --input trace:" +
-                  bad_trace.string());
+  r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") +
+                  " --input trace:" + bad_trace.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "palprig: " + bad_trace.string() + ": line 3, force_N: a finite number, got 'nan'\n");
 
   r = run_process(palprig_bin() + " run --scene " + data("scenes/phantom_abc.json") + " --input joystick");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "palprig: --input: joystick: trace:FILE, sweep, tablet, tablet:/dev/input/eventN, tablet:FILE.evemu or igtl:HOST:PORT\n");
+  EXPECT_EQ(r.err,
+            "palprig: --input: joystick: trace:FILE, sweep, tablet, tablet:/dev/input/eventN, tablet:FILE.evemu or "
+            "igtl:HOST:PORT\n");
 }
 
 TEST(DemoCommand, TumorsFeelHarderThanSoftTissue) {
@@ -106,7 +108,8 @@ TEST(RunCommand, CompensateLagNeedsIdentifiedDynamicsAndSaysWhatItDoes) {
   const ProcessResult on = run_process(base + " --cal " + data("calibration/sim-default.json") + " --compensate-lag");
   ASSERT_EQ(on.exit_code, 0) << on.err;
   EXPECT_NE(on.err.find("palprig: lag compensation on for channels 1 (dead time"), std::string::npos) << on.err;
-  const ProcessResult off = run_process(base + " --cal " + data("calibration/sim-default.json") + " --no-compensate-lag");
+  const ProcessResult off =
+      run_process(base + " --cal " + data("calibration/sim-default.json") + " --no-compensate-lag");
   ASSERT_EQ(off.exit_code, 0) << off.err;
   EXPECT_EQ(off.err.find("lag compensation"), std::string::npos) << off.err;
   const auto a = nlohmann::json::parse(on.out), b = nlohmann::json::parse(off.out);

@@ -18,9 +18,9 @@
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
+using palprig::test_support::TempDir;
 using palprig::testing::ChildProcess;
 using palprig::testing::run_palprig;
-using palprig::test_support::TempDir;
 
 namespace {
 
@@ -56,7 +56,8 @@ std::string head_of_pass(const TempDir& dir, double seconds) {
 // are not what this test is about (a busy CI machine loses 50 ms now and then).
 std::string patient_rig(const TempDir& dir) {
   std::string rig = test_support::read_file(kData + "/rigs/simulated_load_cells.json");
-  const std::string from = "\"max_consecutive_overruns\": 20", to = "\"max_consecutive_overruns\": 100000, \"max_lost_time_s\": 10";
+  const std::string from = "\"max_consecutive_overruns\": 20",
+                    to = "\"max_consecutive_overruns\": 100000, \"max_lost_time_s\": 10";
   rig.replace(rig.find(from), from.size(), to);
   return dir.write("rig.json", rig).string();
 }
@@ -67,11 +68,12 @@ TEST(TrackingCli, RunOverAReplayedTrackerPrintsThePerRegionTable) {
   const int port = start_replay(server);
   ASSERT_GT(port, 0) << server.out() << server.err();
   const auto r = run_palprig({"run", "--input", "igtl:127.0.0.1:" + std::to_string(port), "--tracking",
-                              kData + "/tracking/tracking_three_fingers.json", "--rig", patient_rig(dir),
-                              "--scene", kData + "/scenes/phantom_abc.json", "--duration-s", "3", "--regions", "--json"});
+                              kData + "/tracking/tracking_three_fingers.json", "--rig", patient_rig(dir), "--scene",
+                              kData + "/scenes/phantom_abc.json", "--duration-s", "3", "--regions", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["input"], "tracker igtl:127.0.0.1:" + std::to_string(port) + " (Finger1ToTracker, Finger2ToTracker, Finger3ToTracker)");
+  EXPECT_EQ(j["input"], "tracker igtl:127.0.0.1:" + std::to_string(port) +
+                            " (Finger1ToTracker, Finger2ToTracker, Finger3ToTracker)");
   EXPECT_EQ(j["mode"], "realtime");
   EXPECT_TRUE(j["fault"].is_null());
   // Finger 2 pressed tumor B: its region's target is paper 002's hard nodule; soft tissue ~0.
@@ -97,12 +99,16 @@ TEST(TrackingCli, RefusalsAreOneLineBeforeAnythingMoves) {
   };
   auto r = with({"--input", "igtl:127.0.0.1:9", "--rig", kData + "/rigs/simulated_load_cells.json"});
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "palprig: tracking: input igtl:127.0.0.1:9: a tracking file (--tracking FILE) that maps the tracker's tools "
-                   "to fingers (docs/tracking.md)\n");
+  EXPECT_EQ(
+      r.err,
+      "palprig: tracking: input igtl:127.0.0.1:9: a tracking file (--tracking FILE) that maps the tracker's tools "
+      "to fingers (docs/tracking.md)\n");
   r = with({"--input", "igtl:127.0.0.1:9", "--tracking", kData + "/tracking/tracking_three_fingers.json"});
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("simulated.json: load_cells: load cells measuring the pressing force, for input igtl:127.0.0.1:9"),
-            std::string::npos) << r.err;
+  EXPECT_NE(
+      r.err.find("simulated.json: load_cells: load cells measuring the pressing force, for input igtl:127.0.0.1:9"),
+      std::string::npos)
+      << r.err;
   r = with({"--input", "igtl:127.0.0.1:9", "--tracking", kData + "/tracking/tracking_three_fingers.json", "--rig",
             kData + "/rigs/simulated_load_cells.json"});
   EXPECT_EQ(r.exit_code, 2);
@@ -120,9 +126,10 @@ TEST(TrackingCli, RefusalsAreOneLineBeforeAnythingMoves) {
 TEST(TrackingCli, RegisterFromTouchedPointsAndPivotOverAReplayedSession) {
   TempDir dir;
   // Offline: the touched points are in the file (a 90-degree turn and a shift, 0.1 mm off).
-  const auto fid = dir.write("fid.csv",
-                             "name,x_mm,y_mm,z_mm,tracker_x_mm,tracker_y_mm,tracker_z_mm\n"
-                             "F1,10,10,0,-10,10.1,0\nF2,150,10,0,-10,150,0\nF3,150,110,0,-110,150,0.1\nF4,10,110,5,-110,10,5\n");
+  const auto fid =
+      dir.write("fid.csv",
+                "name,x_mm,y_mm,z_mm,tracker_x_mm,tracker_y_mm,tracker_z_mm\n"
+                "F1,10,10,0,-10,10.1,0\nF2,150,10,0,-10,150,0\nF3,150,110,0,-110,150,0.1\nF4,10,110,5,-110,10,5\n");
   const std::string out = (dir.path() / "reg.json").string();
   auto r = run_palprig({"tracking", "register", "--tracking", kData + "/tracking/tracking_stylus.json", "--fiducials",
                         fid.string(), "--out", out});
@@ -133,22 +140,25 @@ TEST(TrackingCli, RegisterFromTouchedPointsAndPivotOverAReplayedSession) {
   EXPECT_LT(t.registration.fre_mm, 0.1);
   EXPECT_NEAR(t.registration.tracker_to_scene.rotation[0][1], 1, 1e-3);  // tracker y is scene x
   // A bad touch: refused and not written.
-  const auto bad = dir.write("bad.csv",
-                             "name,x_mm,y_mm,z_mm,tracker_x_mm,tracker_y_mm,tracker_z_mm\n"
-                             "F1,10,10,0,-10,10,0\nF2,150,10,0,-10,150,0\nF3,150,110,0,-110,150,0\nF4,10,110,5,-80,30,5\n");
-  r = run_palprig({"tracking", "register", "--tracking", kData + "/tracking/tracking_stylus.json", "--fiducials", bad.string(),
-                   "--out", (dir.path() / "bad.json").string()});
+  const auto bad =
+      dir.write("bad.csv",
+                "name,x_mm,y_mm,z_mm,tracker_x_mm,tracker_y_mm,tracker_z_mm\n"
+                "F1,10,10,0,-10,10,0\nF2,150,10,0,-10,150,0\nF3,150,110,0,-110,150,0\nF4,10,110,5,-80,30,5\n");
+  r = run_palprig({"tracking", "register", "--tracking", kData + "/tracking/tracking_stylus.json", "--fiducials",
+                   bad.string(), "--out", (dir.path() / "bad.json").string()});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("is over --max-fre-mm 2.00"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "bad.json"));
 
   // Live: the shipped pivot session served by a real replay process.
-  ChildProcess server({"igtl-replay", "--poses", kData + "/tracking/pivot_finger1.csv", "--port", "0", "--duration-s", "60"});
+  ChildProcess server(
+      {"igtl-replay", "--poses", kData + "/tracking/pivot_finger1.csv", "--port", "0", "--duration-s", "60"});
   const int port = start_replay(server);
   ASSERT_GT(port, 0);
   const std::string pivoted = (dir.path() / "pivot.json").string();
   r = run_palprig({"tracking", "pivot", "--igtl", "127.0.0.1:" + std::to_string(port), "--tracking",
-                   kData + "/tracking/tracking_three_fingers.json", "--tool", "Finger1ToTracker", "--seconds", "2", "--out", pivoted});
+                   kData + "/tracking/tracking_three_fingers.json", "--tool", "Finger1ToTracker", "--seconds", "2",
+                   "--out", pivoted});
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const TrackingConfig p = load_tracking_file(pivoted);
   // tools/make_tracking_data.py put the tip 12 mm along the sensor's -z.
@@ -168,10 +178,15 @@ TEST(TrackingCli, LoadCellReadAndPressOnTheSimulatedRig) {
   EXPECT_NE(r.out.find("3 cells, 100 readings each"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("5.000 N on it: its N_per_V is 2.00"), std::string::npos) << r.out;
   const std::string presses = (dir.path() / "presses.csv").string();
-  ASSERT_EQ(run_palprig({"load-cell", "press", "--rig", rig, "--mmHg", "60", "--load-N", "1.2", "--presses", presses}).exit_code, 0);
-  ASSERT_EQ(run_palprig({"load-cell", "press", "--rig", rig, "--mmHg", "120", "--load-N", "2.4", "--presses", presses}).exit_code, 0);
+  ASSERT_EQ(run_palprig({"load-cell", "press", "--rig", rig, "--mmHg", "60", "--load-N", "1.2", "--presses", presses})
+                .exit_code,
+            0);
+  ASSERT_EQ(run_palprig({"load-cell", "press", "--rig", rig, "--mmHg", "120", "--load-N", "2.4", "--presses", presses})
+                .exit_code,
+            0);
   const std::string text = test_support::read_file(presses);
-  EXPECT_TRUE(std::regex_match(text, std::regex("reference_mmHg,force_N\n60,1\\.(2|19)[0-9]*\n120,2\\.(4|39)[0-9]*\n"))) << text;
+  EXPECT_TRUE(std::regex_match(text, std::regex("reference_mmHg,force_N\n60,1\\.(2|19)[0-9]*\n120,2\\.(4|39)[0-9]*\n")))
+      << text;
   // The presses are what `calibrate fit --force-presses` reads: paper 003's force window.
   const ForceWindowFit window = force_window_from_presses(presses);
   EXPECT_NEAR(window.window.f_min_N, 1.2, 0.01);

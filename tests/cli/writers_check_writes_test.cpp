@@ -2,8 +2,8 @@
 // full file system (a filled 64 KiB tmpfs) and in a folder it may not write, `telemetry to-csv`,
 // `scene render`, `scene generate`, `stats psychometric --plot`, `calibrate sweep` and `store
 // copy` fail with one line naming the file and the system's reason, exit 1 (store copy: its
-// store's convention, see there), and leave no file that looks complete. Before, they said "wrote N records" and exited 0
-// over an empty or short file.
+// store's convention, see there), and leave no file that looks complete. Before, they said "wrote N records" and exited
+// 0 over an empty or short file.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -88,8 +88,8 @@ TEST(WritersCheckWrites, TelemetryToCsv) {
 
   FullFilesystem full(dir.path() / "full");
   SKIP_UNLESS_MOUNTED(full);
-  expect_failed_write(run_process(telemetry_to_csv(bin, full.folder() / "run.csv")), (full.folder() / "run.csv").string(),
-                      "No space left on device");
+  expect_failed_write(run_process(telemetry_to_csv(bin, full.folder() / "run.csv")),
+                      (full.folder() / "run.csv").string(), "No space left on device");
   EXPECT_TRUE(full.left_behind().empty()) << *full.left_behind().begin();
 }
 
@@ -169,8 +169,9 @@ TEST(WritersCheckWrites, StatsPsychometricPlot) {
 TEST(WritersCheckWrites, StoreCopy) {
   TempDir dir;
   const auto db = dir.path() / "study.db";
-  const auto made = run_process(palprig_bin() + " experiment run --protocol " + source("data/protocols/discrimination_002.json") +
-                                " --participant sim:2 --quiet --db " + db.string());
+  const auto made =
+      run_process(palprig_bin() + " experiment run --protocol " + source("data/protocols/discrimination_002.json") +
+                  " --participant sim:2 --quiet --db " + db.string());
   ASSERT_EQ(made.exit_code, 0) << made.err;
   ::chmod(db.c_str(), 0644);
   const std::string copy = palprig_bin() + " store copy --from " + db.string() + " --to ";
@@ -178,7 +179,8 @@ TEST(WritersCheckWrites, StoreCopy) {
   const auto dev = run_process(copy + "/dev/full");
   EXPECT_EQ(dev.exit_code, 2) << dev.err;
   EXPECT_EQ(line_count(dev.err), 1) << dev.err;
-  EXPECT_NE(dev.err.find("/dev/full: file: a trial database: a regular file or a new path"), std::string::npos) << dev.err;
+  EXPECT_NE(dev.err.find("/dev/full: file: a trial database: a regular file or a new path"), std::string::npos)
+      << dev.err;
   EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
 
   const auto ro = read_only_folder(dir);
@@ -205,7 +207,8 @@ TEST(WritersCheckWrites, StoreCopy) {
 // renamed NAME.partial, which the line names).
 TEST(WritersCheckWrites, CalibrateSweep) {
   TempDir dir;
-  const std::string sweep = palprig_bin() + " calibrate sweep --channels 1 --from-kPa 10 --to-kPa 20 --step-kPa 10 "
+  const std::string sweep = palprig_bin() +
+                            " calibrate sweep --channels 1 --from-kPa 10 --to-kPa 20 --step-kPa 10 "
                             "--repeats 1 --out ";
   expect_failed_write(run_process(sweep + "/dev/full"), "/dev/full", "No space left on device");
 

@@ -84,9 +84,9 @@ TEST(FunctionSceneTick, FingersOverTheArteryPulseAtItsRateOthersDoNot) {
       }
     }
   }
-  EXPECT_EQ(onsets[0], 10);  // 10 s at 60 BPM
-  EXPECT_EQ(onsets[1], 10);  // the second finger along the artery feels it too
-  EXPECT_EQ(onsets[2], 0);   // the third is 16 mm across it
+  EXPECT_EQ(onsets[0], 10);                 // 10 s at 60 BPM
+  EXPECT_EQ(onsets[1], 10);                 // the second finger along the artery feels it too
+  EXPECT_EQ(onsets[2], 0);                  // the third is 16 mm across it
   EXPECT_GT(hi[0] - lo[0], 8 * 0.8 * 0.8);  // amplitude 8 kPa * force factor (2.5-0.5)/2.5
   EXPECT_LT(hi[2] - lo[2], 0.5);
 }

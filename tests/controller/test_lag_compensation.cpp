@@ -105,7 +105,7 @@ TEST(LagCompensation, StepArrivesOnTimeWithoutOvershootWithinItsLimits) {
   EXPECT_GT(plain_90, 110u);
   EXPECT_LT(comp_90, 40u) << "ms to 90 %";
   // Sampled one lead ahead, the rise starts at the step itself, not a dead time after it.
-  EXPECT_LT(comp.output[100 + 1], 0.2);  // not before the edge...
+  EXPECT_LT(comp.output[100 + 1], 0.2);                        // not before the edge...
   EXPECT_GT(comp.output[100 + 6], 2 * plain.output[100 + 6]);  // ...but right after it
   double overshoot = 0, max_command = 0, max_step = 0;
   for (std::size_t k = 0; k < comp.output.size(); ++k) {
@@ -208,7 +208,7 @@ Crossing cross_tumor(bool compensate, const RegulatorLag& model, double max_lead
     }
     const StepResult& r = step.step(scene, pen, t);
     if (tracked) {
-      EXPECT_EQ(r.tick.setpoint_kPa[2], 0.0) << k;  // the vented finger gets nothing, compensated or not
+      EXPECT_EQ(r.tick.setpoint_kPa[2], 0.0) << k;       // the vented finger gets nothing, compensated or not
       EXPECT_LT(r.tick.record.target_kPa[1], 1.0) << k;  // finger 2 stays on soft tissue
     }
     const double target = r.tick.record.target_kPa[0], out = r.monitor_kPa[0];
@@ -243,7 +243,8 @@ TEST(LagCompensation, TrackedFingersCrossATumorOnTimeFromTheirOwnPastPoses) {
   // The same crossing with the finger placed by a 60 Hz tracker and pressed by its own load cell:
   // the stage extrapolates that finger's own past poses (not a pen's triangle), a vented
   // finger is left at 0 kPa, and the edges still arrive on time.
-  const Crossing plain = cross_tumor(false, kIdentified, 10, 1e9, true), comp = cross_tumor(true, kIdentified, 10, 1e9, true);
+  const Crossing plain = cross_tumor(false, kIdentified, 10, 1e9, true),
+                 comp = cross_tumor(true, kIdentified, 10, 1e9, true);
   EXPECT_LT(plain.tumor_ratio, 0.9);
   EXPECT_GT(comp.tumor_ratio, 0.95);
   EXPECT_LT(comp.rms_kPa, 0.6 * plain.rms_kPa);

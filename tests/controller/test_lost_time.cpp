@@ -32,8 +32,7 @@ std::unique_ptr<FunctionScene> slow_function_scene() {
     inc.name = "slow-" + std::to_string(i);
     inc.stiffness_kPa = 21.9;
     std::vector<FrepShape::Node> parts;
-    for (int k = 0; k < 2000; ++k)
-      parts.push_back(inc.shape.sphere({100 - 350 + 0.001 * k, 60 - 350, -350}, 400));
+    for (int k = 0; k < 2000; ++k) parts.push_back(inc.shape.sphere({100 - 350 + 0.001 * k, 60 - 350, -350}, 400));
     inc.shape.intersect(parts);
     t.inclusions.push_back(std::move(inc));
   }
@@ -55,8 +54,7 @@ class IntermittentlySlowScene final : public Scene {
     if (++calls_ % 6 == 1) {  // the first finger of every other tick
       (void)t_s;
       const std::int64_t end = cpu_now_ns() + spin_ns_;
-      while (cpu_now_ns() < end) {
-      }
+      while (cpu_now_ns() < end) {}
     }
     return {0.5, -1};
   }
@@ -102,7 +100,7 @@ TEST(LostTime, ASlowFunctionSceneFaultsInReplayInsteadOfRunningForHours) {
   RecordingRig rig;
   rig.open();
   RestingPen pen(100, 60);
-  RunOptions opt;  // replay, simulated time
+  RunOptions opt;         // replay, simulated time
   opt.duration_s = 10.0;  // 10,000 ticks of 0.1 s or more each: hours without the bound
   const RunSummary s = run_loop(cfg, *scene, pen, rig, opt);
   // Two ticks at most, so the run ended within seconds instead of hours (the tick count says it;

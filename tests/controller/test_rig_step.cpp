@@ -50,7 +50,7 @@ TEST(RigStep, APenAlreadyPressedWhenTheRunStartsRampsFromVented) {
   for (std::size_t i = 1; i < rec.records.size(); ++i)
     EXPECT_LE(rec.records[i].setpoint_kPa[1] - rec.records[i - 1].setpoint_kPa[1], 2.0f + 1e-4f) << i;
   EXPECT_NEAR(rec.records[10].setpoint_kPa[1], 11.75, 1e-4);  // reached after 6 ticks
-  EXPECT_EQ(rig.state(), BackendState::disarmed);  // the run disarms at its end
+  EXPECT_EQ(rig.state(), BackendState::disarmed);             // the run disarms at its end
 }
 
 TEST(RigStep, ADisarmedRigIsVentedAndReadAndRampsAgainAfterReArming) {
@@ -93,7 +93,8 @@ TEST(RigStep, ABackendErrorVentsDisarmsAndKeepsTheBackendsWords) {
   RigStep step(TickConfig{}, rig);
   ASSERT_EQ(step.arm(), BackendStatus::ok);
   double t = 0;
-  for (int k = 0; k < 4; ++k, t += 0.001) EXPECT_EQ(step.step_direct({10, 10, 10}, t).tick.record.fault, FaultCode::none);
+  for (int k = 0; k < 4; ++k, t += 0.001)
+    EXPECT_EQ(step.step_direct({10, 10, 10}, t).tick.record.fault, FaultCode::none);
   const int vents_before = rig.vents;
   const StepResult& r = step.step_direct({10, 10, 10}, t);
   EXPECT_EQ(r.tick.record.fault, FaultCode::backend_error);

@@ -43,8 +43,7 @@ TelemetryRecord extreme_record(float v) {
   r.tick = std::numeric_limits<std::uint64_t>::max();
   r.t_s = -std::numeric_limits<double>::max();
   r.x_mm = r.y_mm = r.force_N = v;
-  for (int i = 0; i < kFingerCount; ++i)
-    r.stiffness[i] = r.target_kPa[i] = r.setpoint_kPa[i] = r.monitor_kPa[i] = v;
+  for (int i = 0; i < kFingerCount; ++i) r.stiffness[i] = r.target_kPa[i] = r.setpoint_kPa[i] = r.monitor_kPa[i] = v;
   for (int i = 0; i < kFingerCount; ++i) r.drag_x_mm[i] = r.drag_y_mm[i] = v;
   r.wake_latency_us = r.io_us = -v;
   r.fault = static_cast<FaultCode>(255);
@@ -77,13 +76,13 @@ TEST(TelemetryHardening, RowsWithExtremeFloatsAreWholeRows) {
     EXPECT_EQ(v[0], "18446744073709551615");
     EXPECT_EQ(v[1].size(), 317u);  // -1.8e308 with 6 decimals: 309 digits, sign, point, 6
     EXPECT_EQ(v[5], c.text);       // stiffness_1
-    EXPECT_EQ(v[19], "255");  // the fault
-    EXPECT_EQ(v[20], "255");  // the flags, then the fingers' positions, forces and vents, the drag
-    EXPECT_EQ(v[27], c.text);  // finger_force_N_1
-    EXPECT_EQ(v[32], "255");   // finger_vent_3
+    EXPECT_EQ(v[19], "255");       // the fault
+    EXPECT_EQ(v[20], "255");       // the flags, then the fingers' positions, forces and vents, the drag
+    EXPECT_EQ(v[27], c.text);      // finger_force_N_1
+    EXPECT_EQ(v[32], "255");       // finger_vent_3
     char drag[512];
     std::snprintf(drag, sizeof drag, "%.3f", double(c.value));
-    EXPECT_EQ(v[33], drag);  // drag_x_mm_1, printed whole
+    EXPECT_EQ(v[33], drag);     // drag_x_mm_1, printed whole
     EXPECT_EQ(v.back(), drag);  // drag_y_mm_3
   }
 }

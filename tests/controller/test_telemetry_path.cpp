@@ -48,8 +48,10 @@ TEST(TelemetryPath, AFifoOrADeviceIsRefusedWithoutBlocking) {
   TempDir dir;
   const auto fifo = dir.path() / "t.bin";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_EQ(writer_refusal(fifo), fifo.string() + ": telemetry: a regular file (or a new path) to write telemetry to, got a FIFO");
-  EXPECT_EQ(writer_refusal("/dev/zero"), "/dev/zero: telemetry: a regular file (or a new path) to write telemetry to, got a device");
+  EXPECT_EQ(writer_refusal(fifo),
+            fifo.string() + ": telemetry: a regular file (or a new path) to write telemetry to, got a FIFO");
+  EXPECT_EQ(writer_refusal("/dev/zero"),
+            "/dev/zero: telemetry: a regular file (or a new path) to write telemetry to, got a device");
   std::filesystem::create_directory(dir.path() / "folder");
   EXPECT_NE(writer_refusal(dir.path() / "folder").find("got a directory"), std::string::npos);
   // A new path and an existing regular file are taken (the latter truncated).

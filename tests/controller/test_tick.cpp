@@ -73,7 +73,7 @@ TEST(Tick, SlewLimitBoundsEachStep) {
   TickConfig cfg;
   cfg.safety.slew_kPa_per_s = 1000.0;  // 1 kPa per 1 ms tick
   TickState st = make_tick_state(cfg);
-  tick(st, cfg, scene, press(0, 0, 20), 0);  // all soft
+  tick(st, cfg, scene, press(0, 0, 20), 0);                                // all soft
   const TickResult r = tick(st, cfg, scene, press(0.001, 90, 20), 0.001);  // pen jumps onto hard tissue
   EXPECT_NEAR(r.setpoint_kPa[0], 1.0, 1e-9);
   EXPECT_TRUE(r.record.flags & kSlewLimited);

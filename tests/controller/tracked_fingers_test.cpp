@@ -109,7 +109,8 @@ TrackingConfig three_finger_tracking(const RigidTransform& tracker_to_scene) {
   TrackingConfig t;
   t.placement = TrackedPlacement::per_finger;
   for (int i = 0; i < kFingerCount; ++i)
-    t.tools.push_back(TrackedTool{"Finger" + std::to_string(i + 1) + "ToTracker", i, {{0, 0, -12}, "pivot", std::nan("")}});
+    t.tools.push_back(
+        TrackedTool{"Finger" + std::to_string(i + 1) + "ToTracker", i, {{0, 0, -12}, "pivot", std::nan("")}});
   t.registration.tracker_to_scene = tracker_to_scene;
   t.reader_fifo_priority = 0;
   return t;
@@ -125,7 +126,8 @@ std::vector<RecordedPose> three_fingers(double seconds, Path path) {
     const Vec3_mm mid = path(t);
     for (int i = 0; i < kFingerCount; ++i) {
       const Vec3_mm tip{mid[0], mid[1] + 16.0 * (i - 1), mid[2]};
-      rec.push_back(RecordedPose{t, "Finger" + std::to_string(i + 1) + "ToTracker", sensor_at(tip, 0.3 * std::sin(t + i))});
+      rec.push_back(
+          RecordedPose{t, "Finger" + std::to_string(i + 1) + "ToTracker", sensor_at(tip, 0.3 * std::sin(t + i))});
     }
   }
   return rec;
@@ -175,10 +177,11 @@ TEST(TrackedTick, EachFingerAtItsOwnPositionWithItsOwnForceAndAVentedOneAtZero) 
   TickConfig cfg;
   TickState st = make_tick_state(cfg);
   // Finger 1 on hard tissue, finger 2 on soft, finger 3 on hard but its tool is out of view.
-  const TickResult r = tick(st, cfg, scene,
-                            tracked(0, {FingerTouch{80, 50, -4, 2.0, FingerVent::none}, FingerTouch{10, 50, -4, 2.0, FingerVent::none},
-                                        FingerTouch{90, 20, -4, 2.0, FingerVent::tool_stale}}),
-                            0);
+  const TickResult r =
+      tick(st, cfg, scene,
+           tracked(0, {FingerTouch{80, 50, -4, 2.0, FingerVent::none}, FingerTouch{10, 50, -4, 2.0, FingerVent::none},
+                       FingerTouch{90, 20, -4, 2.0, FingerVent::tool_stale}}),
+           0);
   EXPECT_NEAR(r.record.target_kPa[0], 11.75, 0.01);  // paper 002's hard nodule at the reference press
   EXPECT_NEAR(r.record.target_kPa[1], 0.0, 1e-9);
   EXPECT_EQ(r.record.target_kPa[2], 0.0f);
@@ -189,10 +192,11 @@ TEST(TrackedTick, EachFingerAtItsOwnPositionWithItsOwnForceAndAVentedOneAtZero) 
   EXPECT_TRUE(r.record.flags & kInContact);
   // Each finger's own force: finger 1 pressing twice as hard asks for more.
   TickState st2 = make_tick_state(cfg);
-  const TickResult harder = tick(st2, cfg, scene,
-                                 tracked(0, {FingerTouch{80, 50, -8, 4.0, FingerVent::none}, FingerTouch{10, 50, 0, 0, FingerVent::none},
-                                             FingerTouch{0, 0, 0, 0, FingerVent::no_tool}}),
-                                 0);
+  const TickResult harder =
+      tick(st2, cfg, scene,
+           tracked(0, {FingerTouch{80, 50, -8, 4.0, FingerVent::none}, FingerTouch{10, 50, 0, 0, FingerVent::none},
+                       FingerTouch{0, 0, 0, 0, FingerVent::no_tool}}),
+           0);
   EXPECT_NEAR(harder.record.target_kPa[0], 2 * 11.75, 0.02);
   EXPECT_FLOAT_EQ(harder.record.finger_force_N[0], 4.0f);
   EXPECT_EQ(harder.record.finger_vent[2], FingerVent::no_tool);
@@ -224,8 +228,9 @@ TEST(TrackedRigStep, TheLoadCellsGiveEachFingerItsForce) {
   EXPECT_EQ(rig.capabilities().load_cells, 3u);
   RigStep step(TickConfig{}, rig);
   ASSERT_EQ(step.arm(), BackendStatus::ok);
-  TouchSample s = tracked(0, {FingerTouch{80, 50, -4, 0, FingerVent::none}, FingerTouch{80, 20, -2, 0, FingerVent::none},
-                              FingerTouch{80, 80, 3, 0, FingerVent::none}});
+  TouchSample s =
+      tracked(0, {FingerTouch{80, 50, -4, 0, FingerVent::none}, FingerTouch{80, 20, -2, 0, FingerVent::none},
+                  FingerTouch{80, 80, 3, 0, FingerVent::none}});
   s.force_from_load_cells = true;
   s.per_finger_force = false;  // the step says so from the cells
   const StepResult& r = step.step(scene, s, 0);
@@ -298,7 +303,9 @@ TEST(TrackedEndToEnd, FingersFollowAKnownPathAndTumorBGetsThePressure) {
       if (r.finger_vent[i] != FingerVent::none) continue;
       ++placed;
       const double y_expected = 50 + 16.0 * (i - 1);
-      const double dx = r.finger_x_mm[i] < 110 ? 110 - r.finger_x_mm[i] : r.finger_x_mm[i] > 140 ? r.finger_x_mm[i] - 140 : 0;
+      const double dx = r.finger_x_mm[i] < 110   ? 110 - r.finger_x_mm[i]
+                        : r.finger_x_mm[i] > 140 ? r.finger_x_mm[i] - 140
+                                                 : 0;
       worst = std::max(worst, std::hypot(dx, r.finger_y_mm[i] - y_expected));
     }
     if (r.t_s > 1.2 && r.finger_vent[1] == FingerVent::none) {
@@ -384,7 +391,8 @@ TEST(TrackedEndToEnd, LagCompensationFollowsEachTrackedFingerOverTheStream) {
   // (against 0.79 and less without compensation).
   EXPECT_GT(comp_ratio, plain_ratio + 0.05) << plain_ratio << " -> " << comp_ratio;
   EXPECT_GT(comp_ratio, 0.85) << plain_ratio << " -> " << comp_ratio;
-  std::printf("tumor B monitor/target %.3f -> %.3f, RMS %.2f -> %.2f kPa\n", plain_ratio, comp_ratio, plain_rms, comp_rms);
+  std::printf("tumor B monitor/target %.3f -> %.3f, RMS %.2f -> %.2f kPa\n", plain_ratio, comp_ratio, plain_rms,
+              comp_rms);
   EXPECT_LE(comp_max, 60.0);
 }
 
@@ -434,18 +442,21 @@ TEST(TrackedEndToEnd, ATrackerProcessKilledForRealVentsEveryFinger) {
     const double y = std::copysign(std::sqrt(std::max(0.0, 1 - r[0][0] + r[1][1] - r[2][2])) / 2, r[0][2] - r[2][0]);
     const double z = std::copysign(std::sqrt(std::max(0.0, 1 - r[0][0] - r[1][1] + r[2][2])) / 2, r[1][0] - r[0][1]);
     char row[200];
-    std::snprintf(row, sizeof row, "%.3f,%s,%.4f,%.4f,%.4f,%.7f,%.7f,%.7f,%.7f\n", p.t_s, p.tool.c_str(), p.pose.translation_mm[0],
-                  p.pose.translation_mm[1], p.pose.translation_mm[2], x, y, z, w);
+    std::snprintf(row, sizeof row, "%.3f,%s,%.4f,%.4f,%.4f,%.7f,%.7f,%.7f,%.7f\n", p.t_s, p.tool.c_str(),
+                  p.pose.translation_mm[0], p.pose.translation_mm[1], p.pose.translation_mm[2], x, y, z, w);
     csv += row;
   }
   const auto poses = dir.write("poses.csv", csv);
   palprig::testing::ChildProcess tracker({"igtl-replay", "--poses", poses.string(), "--port", "0"});
   std::smatch m;
   const std::regex listening("listening on port ([0-9]+)");
-  ASSERT_TRUE(eventually([&] {
-    tracker.pump(10);
-    return std::regex_search(tracker.out(), m, listening);
-  }, 10000ms)) << tracker.out() << tracker.err();
+  ASSERT_TRUE(eventually(
+      [&] {
+        tracker.pump(10);
+        return std::regex_search(tracker.out(), m, listening);
+      },
+      10000ms))
+      << tracker.out() << tracker.err();
   const int port = std::stoi(m[1]);
   const SceneFile scene = load_scene_file(kData / "scenes" / "phantom_abc.json");
   const RigConfig rig_cfg = load_cell_rig();

@@ -122,7 +122,7 @@ TEST(experiments_pulse_pause, pause_vents_holds_and_presents_the_same_trial_agai
   WatchedOutput output(rig_output);
 
   std::atomic<bool> pause{false};
-  ScriptedPauseClock clock(pause, 1.5, 3.0);  // paused 1.5 s into trial 1, lifted at 3 s
+  ScriptedPauseClock clock(pause, 1.5, 3.0);    // paused 1.5 s into trial 1, lifted at 3 s
   PressingParticipant participant(80.5, 45.0);  // on the femoral artery's course (x 79..82 mm)
   std::vector<PulseTrialRecord> committed;
   std::vector<std::pair<int, bool>> waits;
@@ -149,7 +149,7 @@ TEST(experiments_pulse_pause, pause_vents_holds_and_presents_the_same_trial_agai
   ASSERT_EQ(waits.size(), 2u);
   EXPECT_EQ(waits[0], std::make_pair(0, true));   // holding, vented
   EXPECT_EQ(waits[1], std::make_pair(0, false));  // waiting for the participant's Ready
-  ASSERT_EQ(committed.size(), 2u);  // each trial committed once
+  ASSERT_EQ(committed.size(), 2u);                // each trial committed once
   EXPECT_EQ(committed[0].position, 0);
   EXPECT_EQ(committed[1].position, 1);
   EXPECT_GE(committed[0].onset_s, 3.5);

@@ -57,7 +57,8 @@ TEST(experiments_simulated_session, discrimination_on_the_simulated_rig) {
   // The actuators delivered the commanded levels (within the plant's hysteresis and lag).
   for (const TrialRecord& t : seen) {
     if (t.mode != PresentationMode::simultaneous) continue;
-    for (std::size_t f = 0; f < kFingerCount; ++f) EXPECT_NEAR(t.felt_kPa[f], t.stimulus_kPa[f], 3.0) << t.combination_label;
+    for (std::size_t f = 0; f < kFingerCount; ++f)
+      EXPECT_NEAR(t.felt_kPa[f], t.stimulus_kPa[f], 3.0) << t.combination_label;
   }
   // Response times follow the mode: sequential needs every finger felt first.
   const Timing& tm = p.timing;

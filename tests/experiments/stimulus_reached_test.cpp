@@ -148,16 +148,18 @@ TEST(experiments_stimulus_reached, a_presentation_again_after_a_pause_is_timed_a
 TEST(experiments_stimulus_reached, a_simulated_session_on_the_simulated_rig_stores_when_the_stimulus_arrived) {
   testing::ScratchDir dir;
   const auto db = (dir / "sim.db").string();
-  const auto run = testing::run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / "discrimination_002.json").string(),
+  const auto run = testing::run_palprig({"experiment", "run", "--protocol",
+                                         (testing::protocols_dir() / "discrimination_002.json").string(),
                                          "--participant", "sim:4", "--db", db, "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   SqliteTrialStore reader(db, TrialStore::Access::read_only);
-  const auto timing = nlohmann::json::parse(std::ifstream(testing::protocols_dir() / "discrimination_002.json"))["timing"];
+  const auto timing =
+      nlohmann::json::parse(std::ifstream(testing::protocols_dir() / "discrimination_002.json"))["timing"];
   const double step_s = timing["sequential_step_s"].get<double>(), gap_s = timing["sequential_gap_s"].get<double>();
   int reached = 0, none_carried = 0;
   for (const StoredTrial& t : reader.read_trials(true)) {
-    const bool carries = (t.stimulus_kPa[0].value_or(0) > 0 || t.stimulus_kPa[1].value_or(0) > 0 ||
-                          t.stimulus_kPa[2].value_or(0) > 0);
+    const bool carries =
+        (t.stimulus_kPa[0].value_or(0) > 0 || t.stimulus_kPa[1].value_or(0) > 0 || t.stimulus_kPa[2].value_or(0) > 0);
     if (!carries) {
       ++none_carried;
       EXPECT_FALSE(t.stimulus_reached_s.has_value()) << t.position;

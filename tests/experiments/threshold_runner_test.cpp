@@ -25,7 +25,8 @@ class ScriptedParticipant final : public ThresholdParticipant {
   }
   void interval_started(int, double) override {}
   void feel(int interval, const FeltSample& s) override {
-    for (std::size_t f = 0; f < kFingerCount; ++f) felt_[static_cast<std::size_t>(interval)] = std::max(felt_[static_cast<std::size_t>(interval)], s.felt_kPa[f]);
+    for (std::size_t f = 0; f < kFingerCount; ++f)
+      felt_[static_cast<std::size_t>(interval)] = std::max(felt_[static_cast<std::size_t>(interval)], s.felt_kPa[f]);
   }
   std::optional<int> answer(double) override {
     if (silent_) return std::nullopt;

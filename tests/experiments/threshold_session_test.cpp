@@ -43,8 +43,8 @@ ThresholdProtocol quick(const std::string& file) {
 }
 
 struct Outcome {
-  std::vector<double> mean_estimate;  // per track, over observers
-  double mean_trials = 0;             // per track and observer
+  std::vector<double> mean_estimate;    // per track, over observers
+  double mean_trials = 0;               // per track and observer
   double worst_delivery_error_kPa = 0;  // felt increment vs commanded level, mean per observer
 };
 
@@ -152,7 +152,8 @@ void sigkill_and_resume(bool resume_a_schema_2_store) {
   const std::string protocol = (testing::protocols_dir() / "threshold_1up3down.json").string();
   {
     // 20 times real time: about 0.25 s per trial.
-    ChildProcess child({"experiment", "run", "--protocol", protocol, "--participant", "sim:3", "--db", db, "--speed", "20"});
+    ChildProcess child(
+        {"experiment", "run", "--protocol", protocol, "--participant", "sim:3", "--db", db, "--speed", "20"});
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(90);
     while (reported_trials(child.out()) < 8 && std::chrono::steady_clock::now() < deadline) child.pump(50);
     ASSERT_GE(reported_trials(child.out()), 8) << "the session did not get going: " << child.out();
@@ -183,8 +184,9 @@ void sigkill_and_resume(bool resume_a_schema_2_store) {
   const ThresholdProtocol p = load_threshold_protocol(protocol);
   std::vector<AdaptiveTrack> replay;
   for (const auto& spec : p.tracks) replay.emplace_back(spec);
-  auto q = store.database().prepare("SELECT position, track, level_kPa, answered, correct FROM threshold_trials "
-                                    "ORDER BY position");
+  auto q = store.database().prepare(
+      "SELECT position, track, level_kPa, answered, correct FROM threshold_trials "
+      "ORDER BY position");
   int rows = 0;
   while (q.step()) {
     const auto track = static_cast<std::size_t>(q.integer(1));
@@ -203,15 +205,16 @@ void sigkill_and_resume(bool resume_a_schema_2_store) {
   EXPECT_EQ(scalar(store, "SELECT count(*) FROM pragma_table_info('threshold_trials') WHERE name = 'state'"), 0);
 
   // The stored trials feed the psychometric fit, one group per track, and the plots.
-  const auto fit = testing::run_palprig({"stats", "psychometric", db, "--by", "track_name", "--bootstrap", "100", "--json"});
+  const auto fit =
+      testing::run_palprig({"stats", "psychometric", db, "--by", "track_name", "--bootstrap", "100", "--json"});
   ASSERT_EQ(fit.exit_code, 0) << fit.err;
   const auto report = nlohmann::json::parse(fit.out);
   ASSERT_EQ(report["groups"].size(), 2u);
   EXPECT_EQ(report["groups"][0]["guess"].get<double>(), 0.5);
   for (const auto& g : report["groups"]) EXPECT_GT(g["threshold"].get<double>(), 0.0);
   // --plot: PNGs in a build with the chart drawing, a one-line refusal without it.
-  const auto plot = testing::run_palprig({"stats", "psychometric", db, "--by", "track_name", "--bootstrap", "50", "--plot",
-                                          (dir / "plots").string()});
+  const auto plot = testing::run_palprig(
+      {"stats", "psychometric", db, "--by", "track_name", "--bootstrap", "50", "--plot", (dir / "plots").string()});
   if (plot.exit_code == 0) {
     EXPECT_GT(std::filesystem::file_size(dir / "plots" / "psychometric_one_finger.png"), 2000u);
     EXPECT_GT(std::filesystem::file_size(dir / "plots" / "psychometric_three_finger.png"), 2000u);
@@ -234,8 +237,8 @@ TEST(experiments_threshold_session, protocol_above_the_rigs_p_max_is_refused_bef
   doc["threshold"]["reference_kPa"] = 55;  // + 12 kPa > p_max 60 of the simulated rig
   const auto file = dir / "high.json";
   std::ofstream(file) << doc.dump(2);
-  const auto r = testing::run_palprig({"experiment", "run", "--protocol", file.string(), "--participant", "sim:1", "--db",
-                                       (dir / "x.db").string()});
+  const auto r = testing::run_palprig(
+      {"experiment", "run", "--protocol", file.string(), "--participant", "sim:1", "--db", (dir / "x.db").string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("p_max"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.db"));
@@ -251,10 +254,10 @@ TEST(experiments_threshold_session, a_person_answers_in_the_terminal_and_q_keeps
   ScratchDir dir;
   const std::string db = (dir / "person.db").string();
   // Enter starts; "2" and "1" answer two trials (the second and the first interval); q stops.
-  const auto r = testing::run_palprig({"experiment", "run", "--protocol",
-                                       (testing::protocols_dir() / "threshold_1up3down.json").string(), "--participant",
-                                       "P01", "--db", db},
-                                      "\n2\n1\nq\n");
+  const auto r = testing::run_palprig(
+      {"experiment", "run", "--protocol", (testing::protocols_dir() / "threshold_1up3down.json").string(),
+       "--participant", "P01", "--db", db},
+      "\n2\n1\nq\n");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.out.find("Which interval was stronger?"), std::string::npos) << r.out;
   EXPECT_NE(r.err.find("stopped after 2 trials"), std::string::npos) << r.err;

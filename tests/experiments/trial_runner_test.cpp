@@ -104,7 +104,7 @@ TEST(experiments_trial_runner, sequential_mode_presents_one_finger_at_a_time) {
   r.advance(0.5);
   EXPECT_EQ(r.active_fingers(), (FingerFlags{true, false, false}));
   EXPECT_EQ(held(), (ChannelPressures{0, 0, 0}));  // finger 1 of 0/30/0 carries 0 kPa
-  r.advance(1.2);  // gap
+  r.advance(1.2);                                  // gap
   EXPECT_EQ(r.active_fingers(), (FingerFlags{false, false, false}));
   r.advance(1.6);
   EXPECT_EQ(r.active_fingers(), (FingerFlags{false, true, false}));

@@ -66,7 +66,9 @@ TEST(AbsurdValues, AFunctionSceneTumorOffTheBodyIsRefused) {
   s["inclusions"][tumor]["shape"]["centre_mm"][0] = 6500;  // 6.5 m: within the shape bound (10 m), far off the body
   const auto f = dir.write("far.json", s.dump());
   const std::string why = refusal([&] { load_scene_file(f); });
-  EXPECT_EQ(why.rfind(f.string() + ": inclusions[" + std::to_string(tumor) + "].shape: a tumor centred on the body (x in 0..160 mm, y in 0..120 mm), got '", 0),
+  EXPECT_EQ(why.rfind(f.string() + ": inclusions[" + std::to_string(tumor) +
+                          "].shape: a tumor centred on the body (x in 0..160 mm, y in 0..120 mm), got '",
+                      0),
             0u)
       << why;
   EXPECT_NE(why.find("at (6500, "), std::string::npos) << why;
@@ -81,9 +83,10 @@ TEST(AbsurdValues, ActuatorLinesThatRenderNothingAreRefused) {
     return refusal([&] { load_calibration_file(p); });
   };
   const std::string f = (dir.path() / "c.json").string();
-  EXPECT_EQ(cal(R"({"actuator": {"slope": 0.25, "intercept_kPa": 100000}})"),
-            f + ": channels[2].actuator.intercept_kPa: the stress of the uninflated actuator in -1000..7.967 kPa (below "
-                "the stress model's hard_stress_kPa, or every target is 0 kPa), got 100000");
+  EXPECT_EQ(
+      cal(R"({"actuator": {"slope": 0.25, "intercept_kPa": 100000}})"),
+      f + ": channels[2].actuator.intercept_kPa: the stress of the uninflated actuator in -1000..7.967 kPa (below "
+          "the stress model's hard_stress_kPa, or every target is 0 kPa), got 100000");
   EXPECT_EQ(cal(R"({"actuator": {"slope": 0.25, "intercept_kPa": 9}})",
                 R"(, "stress_model": {"soft_stress_kPa": 5, "hard_stress_kPa": 10, "reference_force_N": 2})"),
             "accepted");
@@ -99,8 +102,9 @@ TEST(AbsurdValues, AFallingLineInTheFitTablesIsRefused) {
   c["fits"]["channels"][1]["regulator"]["inflation"]["slope"] = -0.98;
   const auto f = dir.write("neg.json", c.dump());
   EXPECT_EQ(refusal([&] { load_calibration_file(f); }),
-            f.string() + ": fits.channels[1].regulator.inflation.slope: a rising fit line: a slope in 1e-09..1000 (a flat "
-                         "or falling fit is degenerate), got -0.98");
+            f.string() +
+                ": fits.channels[1].regulator.inflation.slope: a rising fit line: a slope in 1e-09..1000 (a flat "
+                "or falling fit is degenerate), got -0.98");
   c = read_json(data("calibration/sim-default.json"));
   c["fits"]["channels"][0]["stress_line"]["r_squared"] = 3;
   const auto g = dir.write("r2.json", c.dump());

@@ -26,16 +26,14 @@ nlohmann::json sphere_union_scene(int n) {
   nlohmann::json parts = nlohmann::json::array();
   const int side = static_cast<int>(std::ceil(std::sqrt(double(n))));
   for (int i = 0; i < n; ++i)
-    parts.push_back({{"type", "sphere"},
-                     {"centre_mm", {10 + 2.5 * (i % side), 10 + 2.5 * (i / side), 5}},
-                     {"radius_mm", 1.0}});
+    parts.push_back(
+        {{"type", "sphere"}, {"centre_mm", {10 + 2.5 * (i % side), 10 + 2.5 * (i / side), 5}}, {"radius_mm", 1.0}});
   return {{"version", 1},
           {"kind", "function"},
           {"body", {{"centre_mm", {100, 100}}, {"half_size_mm", {100, 100}}}},
           {"layers", {{{"name", "skin"}, {"thickness_mm", 40}, {"stiffness_kPa", 10}}}},
           {"felt_range_kPa", {{"soft", 10}, {"hard", 100}}},
-          {"inclusions",
-           {{{"name", "many"}, {"stiffness_kPa", 100}, {"shape", {{"type", "union"}, {"of", parts}}}}}}};
+          {"inclusions", {{{"name", "many"}, {"stiffness_kPa", 100}, {"shape", {{"type", "union"}, {"of", parts}}}}}}};
 }
 
 std::string refusal(const std::filesystem::path& f) {
@@ -128,13 +126,20 @@ TEST(FunctionSceneBounds, AWaveformFileThatIsNotASmallRegularFileIsRefused) {
   const auto big = dir.write("big.csv", std::string(kMaxWaveformFileBytes + 1, '#'));
   std::filesystem::create_directory(dir.path() / "folder");
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"/dev/zero", "a device"}, {fifo.string(), "a FIFO"}, {(dir.path() / "folder").string(), "a directory"},
+      {"/dev/zero", "a device"},
+      {fifo.string(), "a FIFO"},
+      {(dir.path() / "folder").string(), "a directory"},
       {big.string(), std::to_string(kMaxWaveformFileBytes + 1) + " bytes"}};
   for (const auto& [file, kind] : cases) {
     SCOPED_TRACE(file);
     nlohmann::json scene = sphere_union_scene(1);
-    scene["arteries"] = {{{"name", "radial"}, {"path_mm", {{20, 0}, {20, 200}}}, {"radius_mm", 1.5}, {"depth_mm", 4},
-                          {"amplitude_kPa", 5}, {"rate_bpm", 72}, {"waveform", {{"shape", "table"}, {"file", file}}}}};
+    scene["arteries"] = {{{"name", "radial"},
+                          {"path_mm", {{20, 0}, {20, 200}}},
+                          {"radius_mm", 1.5},
+                          {"depth_mm", 4},
+                          {"amplitude_kPa", 5},
+                          {"rate_bpm", 72},
+                          {"waveform", {{"shape", "table"}, {"file", file}}}}};
     const auto f = dir.write("scene.json", scene.dump());
     const std::string why = refusal(f);
     EXPECT_EQ(why.rfind(f.string() + ": arteries[0].waveform.file: a regular file of at most 1024 KiB", 0), 0u) << why;
@@ -143,9 +148,14 @@ TEST(FunctionSceneBounds, AWaveformFileThatIsNotASmallRegularFileIsRefused) {
   }
   // The same scene with a real table loads: the refusals above are the file's doing.
   nlohmann::json scene = sphere_union_scene(1);
-  scene["arteries"] = {{{"name", "radial"}, {"path_mm", {{20, 0}, {20, 200}}}, {"radius_mm", 1.5}, {"depth_mm", 4},
-                        {"amplitude_kPa", 5}, {"rate_bpm", 72},
-                        {"waveform", {{"shape", "table"},
-                                      {"file", std::string(PALPRIG_SOURCE_DIR) + "/data/waveforms/brachial_pressure.csv"}}}}};
+  scene["arteries"] = {
+      {{"name", "radial"},
+       {"path_mm", {{20, 0}, {20, 200}}},
+       {"radius_mm", 1.5},
+       {"depth_mm", 4},
+       {"amplitude_kPa", 5},
+       {"rate_bpm", 72},
+       {"waveform",
+        {{"shape", "table"}, {"file", std::string(PALPRIG_SOURCE_DIR) + "/data/waveforms/brachial_pressure.csv"}}}}};
   EXPECT_EQ(refusal(dir.write("good.json", scene.dump())), "accepted");
 }

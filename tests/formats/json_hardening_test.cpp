@@ -39,9 +39,9 @@ TEST(JsonHardening, DeepNestingIsRefusedWhileParsingInEveryFile) {
   const std::string deep = "{\"version\": 1, \"id\": " + nested(100000) + "}";
   const auto f = dir.write("deep.json", deep).string();
   const std::string expected = f + ": id[0][0][0]";
-  for (auto load : {+[](const std::string& p) { load_rig_file(p); }, +[](const std::string& p) { load_scene_file(p); },
-                    +[](const std::string& p) { load_calibration_file(p); },
-                    +[](const std::string& p) { load_protocol(p); }}) {
+  for (auto load :
+       {+[](const std::string& p) { load_rig_file(p); }, +[](const std::string& p) { load_scene_file(p); },
+        +[](const std::string& p) { load_calibration_file(p); }, +[](const std::string& p) { load_protocol(p); }}) {
     const std::string why = refusal([&] { load(f); });
     EXPECT_NE(why.find("nested at most 64 deep"), std::string::npos) << why;
     EXPECT_EQ(why.rfind(f + ": id", 0), 0u) << why;
@@ -61,14 +61,16 @@ TEST(JsonHardening, OverflowingNumberNamesFileAndField) {
   TempDir dir;
   const auto f = dir.write("rig.json", R"({"version": 1, "id": "r", "backend": "simulated",
     "safety": {"p_max_kPa": 1e400}})");
-  EXPECT_EQ(refusal([&] { load_rig_file(f); }), f.string() + ": safety.p_max_kPa: a number within +-1.8e308, got 1e400");
+  EXPECT_EQ(refusal([&] { load_rig_file(f); }),
+            f.string() + ": safety.p_max_kPa: a number within +-1.8e308, got 1e400");
   const auto g = dir.write("arr.json", R"({"version": 1, "list": [1, 2, -1e999]})");
   EXPECT_EQ(refusal([&] { read_json_file(g); }), g.string() + ": list[2]: a number within +-1.8e308, got -1e999");
 }
 
 TEST(JsonHardening, OverflowingNumberExitsTwoFromTheCommandLine) {
   TempDir dir;
-  const auto scene = dir.write("s.json", R"({"version": 1, "map": {"file": "m.csv", "width_mm": 1e400, "height_mm": 10}})");
+  const auto scene =
+      dir.write("s.json", R"({"version": 1, "map": {"file": "m.csv", "width_mm": 1e400, "height_mm": 10}})");
   const auto r = test_support::run_process(test_support::palprig_bin() + " run --scene " + scene.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(r.err, "palprig: " + scene.string() + ": map.width_mm: a number within +-1.8e308, got 1e400\n");
@@ -89,7 +91,8 @@ TEST(JsonHardening, HugeValueInARefusalIsCut) {
 TEST(JsonHardening, ControlCharactersInRefusalsAreEscaped) {
   TempDir dir;
   // A key with an escape sequence and a newline: the refusal must stay one printable line.
-  const auto f = dir.write("rig.json", "{\"version\": 1, \"id\": \"r\", \"backend\": \"simulated\", \"\\u001b[2Jp_max\\n\": 1}");
+  const auto f =
+      dir.write("rig.json", "{\"version\": 1, \"id\": \"r\", \"backend\": \"simulated\", \"\\u001b[2Jp_max\\n\": 1}");
   const std::string why = refusal([&] { load_rig_file(f); });
   EXPECT_EQ(why, f.string() + ": \\x1b[2Jp_max\\n: no such field here (unknown field; check its spelling)");
   const auto g = dir.write("choice.json", "{\"version\": 1, \"kind\": \"map\\u0007\\t\"}");
@@ -108,6 +111,9 @@ TEST(JsonHardening, ExcerptCostsItsLimitNotTheValue) {
 TEST(InputErrorText, CutsEachPartAndKeepsUtf8Whole) {
   const InputError e("f.csv", "line 1", std::string(2'000'000, 'z'));
   EXPECT_LT(std::string(e.what()).size(), 400u);
-  EXPECT_EQ(printable_excerpt("a\xc3\xa9" "b", 2), "a\xc3\xa9...");  // never half of the two-byte é
+  EXPECT_EQ(printable_excerpt("a\xc3\xa9"
+                              "b",
+                              2),
+            "a\xc3\xa9...");  // never half of the two-byte é
   EXPECT_EQ(printable_excerpt("tab\there\r\n\x7f", 100), "tab\\there\\r\\n\\x7f");
 }

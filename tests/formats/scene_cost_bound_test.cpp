@@ -29,7 +29,8 @@ nlohmann::json overlapping_intersections(int n, int parts) {
     nlohmann::json of = nlohmann::json::array();
     for (int k = 0; k < parts; ++k)
       of.push_back({{"type", "sphere"}, {"centre_mm", {100 + 0.01 * k, 60, 0}}, {"radius_mm", 30}});
-    incs.push_back({{"name", "slow" + std::to_string(i)}, {"stiffness_kPa", 50},
+    incs.push_back({{"name", "slow" + std::to_string(i)},
+                    {"stiffness_kPa", 50},
                     {"shape", {{"type", "intersection"}, {"of", of}}}});
   }
   return {{"version", 1},
@@ -70,9 +71,9 @@ TEST(SceneCostBound, TheRunCommandRefusesItWithExitTwoBeforeAnythingMoves) {
   const auto f = dir.write("slow.json", overlapping_intersections(64, 500).dump());
   const auto telemetry = dir.path() / "t.csv";
   for (const char* mode : {"--replay", "--realtime --no-fifo"}) {
-    const auto r = palprig::test_support::run_process(
-        palprig::test_support::palprig_bin() + " run " + mode + " --scene " + f.string() + " --duration-s 2 --telemetry " +
-        telemetry.string());
+    const auto r =
+        palprig::test_support::run_process(palprig::test_support::palprig_bin() + " run " + mode + " --scene " +
+                                           f.string() + " --duration-s 2 --telemetry " + telemetry.string());
     EXPECT_EQ(r.exit_code, 2) << mode << ": " << r.err;
     EXPECT_NE(r.err.find(f.string() + ": inclusions: "), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("shape evaluations per tick"), std::string::npos) << r.err;

@@ -80,9 +80,11 @@ TEST(Files, BadRigFilesAreRefusedWithFieldAndReason) {
             f + ": safety.p_max_kPa: at most the regulators' max_kPa (100.000000)");
   EXPECT_EQ(rig(R"({"version": 1, "id": "r", "plant": {"min_kPa": 50, "max_kPa": 20}})"),
             f + ": plant.max_kPa: a value above min_kPa");
-  EXPECT_EQ(rig("{\"version\": 1,\n \"id\": }"), f + ": at line 2, column 8: valid JSON (syntax error while parsing value - unexpected '}'; expected '[', '{', or a literal)");
+  EXPECT_EQ(rig("{\"version\": 1,\n \"id\": }"), f + ": at line 2, column 8: valid JSON (syntax error while parsing "
+                                                     "value - unexpected '}'; expected '[', '{', or a literal)");
   EXPECT_EQ(refusal([&] { load_rig_file(dir.path() / "missing.json"); }),
-            (dir.path() / "missing.json").string() + ": file: a regular file of at most 16 MiB holding a JSON document, got no such file");
+            (dir.path() / "missing.json").string() +
+                ": file: a regular file of at most 16 MiB holding a JSON document, got no such file");
 }
 
 TEST(Files, BadScenesAreRefused) {
@@ -98,12 +100,17 @@ TEST(Files, BadScenesAreRefused) {
             f + ": map.width_mm: a number in 0.001..100000, got 0");
   EXPECT_EQ(scene(R"({"version": 1, "map": {"file": "m.csv", "width_mm": 10, "height_mm": 10, "sampling": "cubic"}})"),
             f + ": map.sampling: one of \"nearest\", \"bilinear\", got \"cubic\"");
-  EXPECT_EQ(scene(R"({"version": 1, "map": {"file": "m.csv", "width_mm": 10, "height_mm": 10, "outside": {"background": 2}}})"),
-            f + ": map.outside.background: a number in 0..1, got 2");
+  EXPECT_EQ(
+      scene(
+          R"({"version": 1, "map": {"file": "m.csv", "width_mm": 10, "height_mm": 10, "outside": {"background": 2}}})"),
+      f + ": map.outside.background: a number in 0..1, got 2");
   EXPECT_EQ(scene(R"({"version": 1, "map": {"file": "nope.csv", "width_mm": 10, "height_mm": 10}})"),
-            (dir.path() / "nope.csv").string() + ": file: a regular file of at most 256 MiB holding a stiffness map, got no such file");
-  EXPECT_EQ(scene(R"({"version": 1, "map": {"file": "m.csv", "width_mm": 10, "height_mm": 10}, "tumors": [{"name": "A", "x_mm": 1, "y_mm": 1, "radius_mm": -2}]})"),
-            f + ": tumors[0].radius_mm: a number in 0.001..10000, got -2");
+            (dir.path() / "nope.csv").string() +
+                ": file: a regular file of at most 256 MiB holding a stiffness map, got no such file");
+  EXPECT_EQ(
+      scene(
+          R"({"version": 1, "map": {"file": "m.csv", "width_mm": 10, "height_mm": 10}, "tumors": [{"name": "A", "x_mm": 1, "y_mm": 1, "radius_mm": -2}]})"),
+      f + ": tumors[0].radius_mm: a number in 0.001..10000, got -2");
   dir.write("bad.csv", "0,0.5\n1\n");
   EXPECT_EQ(scene(R"({"version": 1, "map": {"file": "bad.csv", "width_mm": 10, "height_mm": 10}})"),
             (dir.path() / "bad.csv").string() + ": line 2: 2 values like the first row, got 1");
@@ -119,13 +126,17 @@ TEST(Files, BadCalibrationIsRefused) {
   const std::string ch = R"({"actuator": {"slope": 0.5, "intercept_kPa": 1}})";
   EXPECT_EQ(cal(R"({"version": 1, "rig_id": "*", "channels": [)" + ch + "," + ch + "]}"),
             f + ": channels: exactly 3 channels, got 2");
-  EXPECT_EQ(cal(R"({"version": 1, "rig_id": "*", "channels": [)" + ch + "," + ch +
-                R"(, {"actuator": {"slope": 0, "intercept_kPa": 1}}]})"),
-            f + ": channels[2].actuator.slope: a positive stress-per-pressure slope (a flat or falling fit is degenerate)");
-  EXPECT_EQ(cal(R"({"version": 1, "rig_id": "*", "channels": [)" + ch + "," + ch +
-                R"(, {"actuator": {"slope": 1, "intercept_kPa": 1}, "hysteresis": {"linear_weight": 1, "thresholds_kPa": [1, 2], "weights": [0.1, -0.5]}}]})"),
-            f + ": channels[2].hysteresis.weights: an invertible model: linear_weight > 0, weights >= 0, thresholds > 0 and increasing");
-  const auto ok = dir.write("ok.json", R"({"version": 1, "rig_id": "bench-A", "channels": [)" + ch + "," + ch + "," + ch + "]}");
+  EXPECT_EQ(
+      cal(R"({"version": 1, "rig_id": "*", "channels": [)" + ch + "," + ch +
+          R"(, {"actuator": {"slope": 0, "intercept_kPa": 1}}]})"),
+      f + ": channels[2].actuator.slope: a positive stress-per-pressure slope (a flat or falling fit is degenerate)");
+  EXPECT_EQ(
+      cal(R"({"version": 1, "rig_id": "*", "channels": [)" + ch + "," + ch +
+          R"(, {"actuator": {"slope": 1, "intercept_kPa": 1}, "hysteresis": {"linear_weight": 1, "thresholds_kPa": [1, 2], "weights": [0.1, -0.5]}}]})"),
+      f + ": channels[2].hysteresis.weights: an invertible model: linear_weight > 0, weights >= 0, thresholds > 0 and "
+          "increasing");
+  const auto ok =
+      dir.write("ok.json", R"({"version": 1, "rig_id": "bench-A", "channels": [)" + ch + "," + ch + "," + ch + "]}");
   const CalibrationModels c = load_calibration_file(ok);
   EXPECT_EQ(refusal([&] { check_calibration_matches(c, "bench-B", "rig.json"); }),
             ok.string() + ": rig_id: the id of the rig in use (\"bench-B\" from rig.json), got \"bench-A\"");
@@ -141,8 +152,10 @@ TEST(Files, BadTracesAreRefusedWithTheLine) {
   const std::string f = (dir.path() / "t.csv").string();
   EXPECT_EQ(trace("t,x,y,f\n0,0,0,0\n"), f + ": line 1: the header 't_s,x_mm,y_mm,force_N', got 't,x,y,f'");
   EXPECT_EQ(trace("t_s,x_mm,y_mm,force_N\n0,0,0,1\n0.1,0,zero,1\n"), f + ": line 3, y_mm: a finite number, got 'zero'");
-  EXPECT_EQ(trace("t_s,x_mm,y_mm,force_N\n0,0,0,1\n0.1,0,0,-1\n"), f + ": line 3, force_N: a force >= 0 N, got -1.000000");
-  EXPECT_EQ(trace("t_s,x_mm,y_mm,force_N\n0,0,0,1\n0,0,0,1\n"), f + ": line 3, t_s: a time after the previous row's 0.000000 s");
+  EXPECT_EQ(trace("t_s,x_mm,y_mm,force_N\n0,0,0,1\n0.1,0,0,-1\n"),
+            f + ": line 3, force_N: a force >= 0 N, got -1.000000");
+  EXPECT_EQ(trace("t_s,x_mm,y_mm,force_N\n0,0,0,1\n0,0,0,1\n"),
+            f + ": line 3, t_s: a time after the previous row's 0.000000 s");
   EXPECT_EQ(trace("t_s,x_mm,y_mm,force_N\n0,0,0\n"), f + ": line 2: 4 values (t_s,x_mm,y_mm,force_N), got 3");
   EXPECT_EQ(trace("t_s,x_mm,y_mm,force_N\n0,0,0,1\n"), f + ": line 2: at least 2 samples");
   EXPECT_EQ(trace("t_s,x_mm,y_mm,force_N\n0,0,0,1\n0.1,inf,0,1\n"), f + ": line 3, x_mm: a finite number, got 'inf'");
@@ -165,9 +178,9 @@ TEST(RasterInput, CoversTheSceneRowByRow) {
   // Rows at y = 5, 15, 25, 35, 45, each 90 mm long.
   EXPECT_NEAR(sweep.duration_s(), (5 * 90 + 4 * 10) / 50.0, 1e-12);
   EXPECT_NEAR(sweep.latest(0).x_mm, 5, 1e-12);
-  EXPECT_NEAR(sweep.latest(1.8).x_mm, 95, 1e-12);   // end of the first row
-  EXPECT_NEAR(sweep.latest(2.0).y_mm, 15, 1e-12);   // stepped down
-  EXPECT_NEAR(sweep.latest(2.2).x_mm, 85, 1e-12);   // coming back
+  EXPECT_NEAR(sweep.latest(1.8).x_mm, 95, 1e-12);  // end of the first row
+  EXPECT_NEAR(sweep.latest(2.0).y_mm, 15, 1e-12);  // stepped down
+  EXPECT_NEAR(sweep.latest(2.2).x_mm, 85, 1e-12);  // coming back
   EXPECT_TRUE(sweep.latest(1.0).in_contact);
   EXPECT_FALSE(sweep.latest(sweep.duration_s() + 1).in_contact);
 }

@@ -113,7 +113,7 @@ TEST(FunctionSceneFile, ShippedWaveformTableLoads) {
   }
   EXPECT_NEAR(lo, 0, 1e-3);
   EXPECT_NEAR(hi, 1, 5e-3);  // the peak may fall between the probes
-  EXPECT_GT(peak_at, 0.1);  // systolic peak early in the beat
+  EXPECT_GT(peak_at, 0.1);   // systolic peak early in the beat
   EXPECT_LT(peak_at, 0.25);
 }
 
@@ -123,13 +123,15 @@ TEST(FunctionSceneFile, GeneratedCaseRoundTripsThroughTheFile) {
     const GeneratedCase c = generate_case(2024, d);
     const auto path = dir.path() / (std::string(to_string(d)) + ".json");
     write_scene_json(path, generated_case_json(c));
-    EXPECT_EQ(generated_case_json(generate_case(2024, d)).dump(), generated_case_json(c).dump());  // same seed, same file
+    EXPECT_EQ(generated_case_json(generate_case(2024, d)).dump(),
+              generated_case_json(c).dump());  // same seed, same file
     const SceneFile sf = load_scene_file(path);
     const FunctionScene direct(case_tissue(c), {});
     ASSERT_EQ(sf.tumors.size(), c.tumors.size());
     for (double x = 5; x < 160; x += 7)
       for (double y = 5; y < 120; y += 7)
-        for (double F : {0.5, 2.0}) ASSERT_EQ(sf.scene->sample({x, y}, F, 0).stiffness, direct.sample({x, y}, F, 0).stiffness);
+        for (double F : {0.5, 2.0})
+          ASSERT_EQ(sf.scene->sample({x, y}, F, 0).stiffness, direct.sample({x, y}, F, 0).stiffness);
   }
 }
 
@@ -149,7 +151,8 @@ TEST(FunctionSceneFile, BadScenesAreRefusedWithFileFieldAndReason) {
        "inclusions[0].shape.centre_mmm", "unknown field"},
       {"negative radius", [](auto& j) { j["inclusions"][3]["shape"]["of"][0]["radius_mm"] = -2; },
        "inclusions[3].shape.of[0].radius_mm", "positive"},
-      {"negative stiffness", [](auto& j) { j["layers"][2]["stiffness_kPa"] = -15; }, "layers[2].stiffness_kPa", "positive"},
+      {"negative stiffness", [](auto& j) { j["layers"][2]["stiffness_kPa"] = -15; }, "layers[2].stiffness_kPa",
+       "positive"},
       {"zero thickness", [](auto& j) { j["layers"][0]["thickness_mm"] = 0; }, "layers[0].thickness_mm", "positive"},
       {"negative body size", [](auto& j) { j["body"]["half_size_mm"][0] = -80; }, "body.half_size_mm[0]", "positive"},
       {"negative radii", [](auto& j) { j["inclusions"][0]["shape"]["radii_mm"][1] = -3; },
@@ -159,34 +162,58 @@ TEST(FunctionSceneFile, BadScenesAreRefusedWithFileFieldAndReason) {
       {"artery above the skin", [](auto& j) { j["arteries"][0]["depth_mm"] = 1; }, "arteries[0].depth_mm", "radius"},
       {"range that never reaches the skin", [](auto& j) { j["arteries"][0]["range_mm"] = 5; }, "arteries[0].range_mm",
        "larger than the depth"},
-      {"bad path point", [](auto& j) { j["arteries"][0]["path_mm"][1] = {1, 2, 3}; }, "arteries[0].path_mm[1]", "[x_mm, y_mm]"},
-      {"force window upside down", [](auto& j) { j["arteries"][0]["force_window_N"] = {3, 1}; }, "arteries[0].force_window_N",
-       "F_min < F_max"},
+      {"bad path point",
+       [](auto& j) {
+         j["arteries"][0]["path_mm"][1] = {1, 2, 3};
+       },
+       "arteries[0].path_mm[1]", "[x_mm, y_mm]"},
+      {"force window upside down",
+       [](auto& j) {
+         j["arteries"][0]["force_window_N"] = {3, 1};
+       },
+       "arteries[0].force_window_N", "F_min < F_max"},
       {"soft not below hard", [](auto& j) { j["felt_range_kPa"]["hard"] = 2; }, "felt_range_kPa.hard", "above soft"},
-      {"drag without d_lat_max", [](auto& j) { j["layers"][0]["drag"] = {{"f_stick_N", 1}}; }, "layers[0].drag.d_lat_max_mm",
-       "field is missing"},
-      {"negative f_stick", [](auto& j) { j["layers"][0]["drag"] = {{"f_stick_N", -1}, {"d_lat_max_mm", 20}}; },
+      {"drag without d_lat_max",
+       [](auto& j) {
+         j["layers"][0]["drag"] = {{"f_stick_N", 1}};
+       },
+       "layers[0].drag.d_lat_max_mm", "field is missing"},
+      {"negative f_stick",
+       [](auto& j) {
+         j["layers"][0]["drag"] = {{"f_stick_N", -1}, {"d_lat_max_mm", 20}};
+       },
        "layers[0].drag.f_stick_N", "0.01..100"},
-      {"stretch beyond 100 mm", [](auto& j) { j["layers"][1]["drag"] = {{"f_stick_N", 1}, {"d_lat_max_mm", 250}}; },
+      {"stretch beyond 100 mm",
+       [](auto& j) {
+         j["layers"][1]["drag"] = {{"f_stick_N", 1}, {"d_lat_max_mm", 250}};
+       },
        "layers[1].drag.d_lat_max_mm", "0..100"},
       {"misspelt drag key",
-       [](auto& j) { j["layers"][0]["drag"] = {{"f_stick_N", 1}, {"d_lat_max_mm", 20}, {"relax", 0.1}}; },
+       [](auto& j) {
+         j["layers"][0]["drag"] = {{"f_stick_N", 1}, {"d_lat_max_mm", 20}, {"relax", 0.1}};
+       },
        "layers[0].drag.relax", "unknown field"},
       {"unknown shape type", [](auto& j) { j["inclusions"][0]["shape"]["type"] = "cube"; }, "inclusions[0].shape.type",
        "\"sphere\""},
-      {"unknown inclusion kind", [](auto& j) { j["inclusions"][0]["kind"] = "gland"; }, "inclusions[0].kind", "\"tumor\""},
-      {"unknown waveform", [](auto& j) { j["arteries"][0]["waveform"] = {{"shape", "sine"}}; }, "arteries[0].waveform.shape",
-       "\"rectangular\""},
-      {"duty out of range", [](auto& j) { j["arteries"][0]["waveform"]["duty"] = 1.5; }, "arteries[0].waveform.duty", "0.01..0.99"},
+      {"unknown inclusion kind", [](auto& j) { j["inclusions"][0]["kind"] = "gland"; }, "inclusions[0].kind",
+       "\"tumor\""},
+      {"unknown waveform",
+       [](auto& j) {
+         j["arteries"][0]["waveform"] = {{"shape", "sine"}};
+       },
+       "arteries[0].waveform.shape", "\"rectangular\""},
+      {"duty out of range", [](auto& j) { j["arteries"][0]["waveform"]["duty"] = 1.5; }, "arteries[0].waveform.duty",
+       "0.01..0.99"},
       {"no layers", [](auto& j) { j["layers"] = nlohmann::json::array(); }, "layers", "at least one"},
       {"missing felt range", [](auto& j) { j.erase("felt_range_kPa"); }, "felt_range_kPa", "missing"},
       {"newer version", [](auto& j) { j["version"] = 99; }, "version", "older"},
       {"unknown kind", [](auto& j) { j["kind"] = "mesh"; }, "kind", "\"function\""},
       {"blob with both sizes",
        [](auto& j) {
-         j["inclusions"][0]["shape"] = {{"type", "blobs"}, {"threshold", 0.3},
-                                        {"blobs", {{{"centre_mm", {1, 2, 3}}, {"radii_mm", {1, 1, 1}},
-                                                    {"inverse_scale_per_mm2", {1, 1, 1}}}}}};
+         j["inclusions"][0]["shape"] = {
+             {"type", "blobs"},
+             {"threshold", 0.3},
+             {"blobs", {{{"centre_mm", {1, 2, 3}}, {"radii_mm", {1, 1, 1}}, {"inverse_scale_per_mm2", {1, 1, 1}}}}}};
        },
        "inclusions[0].shape.blobs[0].radii_mm", "exactly one"},
   };

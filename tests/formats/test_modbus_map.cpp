@@ -53,11 +53,11 @@ TEST(ModbusRegisterScale, TwelveBitUnsignedZeroToTenVolts) {
   // Moxa E1241 / ADAM AO: 0..4095 over 0..10 V; regulator 10 kPa/V.
   const RegisterScale s = scale(4095, false, 0, 10, 10);
   EXPECT_EQ(s.word_from_kPa(0), 0);
-  EXPECT_EQ(s.word_from_kPa(25), 1024);     // 2.5 V -> 1023.75 counts
-  EXPECT_EQ(s.word_from_kPa(12.5), 512);    // 1.25 V -> 511.875
-  EXPECT_EQ(s.word_from_kPa(60), 2457);     // 6 V -> 2457.0
+  EXPECT_EQ(s.word_from_kPa(25), 1024);   // 2.5 V -> 1023.75 counts
+  EXPECT_EQ(s.word_from_kPa(12.5), 512);  // 1.25 V -> 511.875
+  EXPECT_EQ(s.word_from_kPa(60), 2457);   // 6 V -> 2457.0
   EXPECT_EQ(s.word_from_kPa(100), 4095);
-  EXPECT_EQ(s.word_from_kPa(150), 4095);    // beyond the span: clamped, never wrapped
+  EXPECT_EQ(s.word_from_kPa(150), 4095);  // beyond the span: clamped, never wrapped
   EXPECT_NEAR(s.kPa_from_word(1024), 25.0061, 1e-4);
 }
 
@@ -73,8 +73,8 @@ TEST(ModbusRegisterScale, SignedTwosComplement) {
   // A +/-10 V module with int16 counts -32767..32767.
   const RegisterScale s = scale(32767, true, -10, 10, 10);
   EXPECT_EQ(s.word_from_kPa(0), 0);
-  EXPECT_EQ(s.word_from_kPa(25), 8192);                   // 2.5 V -> 8191.75
-  EXPECT_EQ(s.word_from_volts(-2.5), 0xE000);             // -8192 in two's complement
+  EXPECT_EQ(s.word_from_kPa(25), 8192);                     // 2.5 V -> 8191.75
+  EXPECT_EQ(s.word_from_volts(-2.5), 0xE000);               // -8192 in two's complement
   EXPECT_NEAR(s.volts_from_word(0xE000), -2.500076, 1e-6);  // -8192 / 32767 * 10 V
   EXPECT_EQ(s.word_from_volts(-20), std::uint16_t(-32767));
 }
@@ -82,15 +82,15 @@ TEST(ModbusRegisterScale, SignedTwosComplement) {
 TEST(ModbusRegisterScale, OffsetBinarySixteenBit) {
   // ADAM-6024 AI style: 0..65535 over -10..+10 V.
   const RegisterScale s = scale(65535, false, -10, 10, 10);
-  EXPECT_EQ(s.word_from_volts(0), 32768);   // 32767.5 rounds away from zero
-  EXPECT_EQ(s.word_from_kPa(25), 40959);    // 40959.375
+  EXPECT_EQ(s.word_from_volts(0), 32768);  // 32767.5 rounds away from zero
+  EXPECT_EQ(s.word_from_kPa(25), 40959);   // 40959.375
   EXPECT_NEAR(s.volts_from_word(0), -10.0, 1e-12);
 }
 
 TEST(ModbusRegisterScale, MonitorWithOffsetLikeSmcItv) {
   // ITV monitor: 1..5 V for 0..100 kPa = 25 kPa/V with 0 kPa at 1 V, read on a 0..10 V input.
   const RegisterScale s = scale(32767, false, 0, 10, 25, 1.0);
-  EXPECT_EQ(s.word_from_kPa(50), 9830);     // 3 V -> 9830.1
+  EXPECT_EQ(s.word_from_kPa(50), 9830);  // 3 V -> 9830.1
   EXPECT_NEAR(s.kPa_from_word(9830), 49.9992, 1e-4);
   EXPECT_NEAR(s.kPa_from_word(3277), 0.0, 0.01);  // 1 V
 }
@@ -102,10 +102,12 @@ TEST(ModbusRegisterScale, NonFiniteGoesToTheLowEdge) {
 }
 
 TEST(ModbusRegisterScale, RoundTripWithinHalfACount) {
-  for (const RegisterScale& s : {scale(4095, false, 0, 10, 10), scale(32767, true, -10, 10, 10), scale(65535, false, 0, 5, 20)})
+  for (const RegisterScale& s :
+       {scale(4095, false, 0, 10, 10), scale(32767, true, -10, 10, 10), scale(65535, false, 0, 5, 20)})
     for (double kPa = 0; kPa <= 60; kPa += 0.37)
-      EXPECT_NEAR(s.kPa_from_word(s.word_from_kPa(kPa)), kPa,
-                  0.5 * (s.volts_hi - s.volts_lo) / double(s.raw_full_scale - s.raw_lo()) * s.regulator.kPa_per_volt + 1e-9);
+      EXPECT_NEAR(
+          s.kPa_from_word(s.word_from_kPa(kPa)), kPa,
+          0.5 * (s.volts_hi - s.volts_lo) / double(s.raw_full_scale - s.raw_lo()) * s.regulator.kPa_per_volt + 1e-9);
 }
 
 TEST(ModbusLinkPlan, GroupsConsecutiveRegisters) {
@@ -132,7 +134,8 @@ TEST(ModbusRigFile, ShippedExamplesLoad) {
 }
 
 TEST(ModbusRigFile, WagoMapReadsAsWritten) {
-  const ModbusRigConfig map = load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/wago_750_559.json").modbus.value();
+  const ModbusRigConfig map =
+      load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/wago_750_559.json").modbus.value();
   ASSERT_EQ(map.links.size(), 1u);
   EXPECT_EQ(map.links[0].endpoint(), "tcp 127.0.0.1:1502");
   EXPECT_EQ(map.channels[2].output.address, 2);
@@ -225,8 +228,8 @@ TEST(ModbusRigFile, RunRefusesABadMapBeforeAnythingMoves) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("channels[1].output.register"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;  // one line
-  const auto s = palprig::test_support::run_process(palprig::test_support::palprig_bin() + " sim-rig --listen 127.0.0.1:0 --rig " +
-                                                    rig.string());
+  const auto s = palprig::test_support::run_process(palprig::test_support::palprig_bin() +
+                                                    " sim-rig --listen 127.0.0.1:0 --rig " + rig.string());
   EXPECT_EQ(s.exit_code, 2);
   EXPECT_NE(s.err.find("channels[1].output.register"), std::string::npos) << s.err;
 }

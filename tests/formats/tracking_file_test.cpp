@@ -84,41 +84,50 @@ TEST(TrackingFile, WrittenFilesReadBackTheSame) {
   EXPECT_EQ(back.registration.fiducials, 4);
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
-      EXPECT_DOUBLE_EQ(back.registration.tracker_to_scene.rotation[r][c], t.registration.tracker_to_scene.rotation[r][c]);
+      EXPECT_DOUBLE_EQ(back.registration.tracker_to_scene.rotation[r][c],
+                       t.registration.tracker_to_scene.rotation[r][c]);
 }
 
 TEST(TrackingFile, RefusesEachBadFieldInOneLine) {
   const std::string ok = R"({"version": 1, "placement": "per_finger", )" + kTools + "}";
   EXPECT_EQ(refusal(ok), "accepted");
-  EXPECT_EQ(refusal(R"({"placement": "per_finger", )" + kTools + "}"),
-            "t.json: version: a value (field is missing)");
+  EXPECT_EQ(refusal(R"({"placement": "per_finger", )" + kTools + "}"), "t.json: version: a value (field is missing)");
   EXPECT_EQ(refusal(R"({"version": 1, "placement": "hand", )" + kTools + "}"),
             "t.json: placement: one of \"triangle\", \"per_finger\", got \"hand\"");
   EXPECT_EQ(refusal(R"({"version": 1, "placement": "triangle", )" + kTools + "}"),
             "t.json: tools: one tool with placement \"triangle\" (the fingers stand around it), got 2");
   EXPECT_EQ(refusal(R"({"version": 1, "placement": "per_finger", "tools": []})"), "t.json: tools: 1 to 3 tools, got 0");
-  EXPECT_EQ(refusal(R"({"version": 1, "placement": "per_finger", "tools": [{"name": "A", "finger": 1}, {"name": "B", "finger": 1}]})"),
-            "t.json: tools[1].finger: a finger no other tool has, got 1 twice");
+  EXPECT_EQ(
+      refusal(
+          R"({"version": 1, "placement": "per_finger", "tools": [{"name": "A", "finger": 1}, {"name": "B", "finger": 1}]})"),
+      "t.json: tools[1].finger: a finger no other tool has, got 1 twice");
   EXPECT_EQ(refusal(R"({"version": 1, "placement": "per_finger", "tools": [{"name": "A", "finger": 4}]})"),
             "t.json: tools[0].finger: an integer in 1..3, got 4");
-  EXPECT_EQ(refusal(R"({"version": 1, "placement": "per_finger", "tools": [{"name": "A", "finger": 1}, {"name": "A", "finger": 2}]})"),
-            "t.json: tools[1].name: a name no other tool has, got 'A' twice");
-  EXPECT_EQ(refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "AVeryLongToolNameOver20"}]})"),
-            "t.json: tools[0].name: an OpenIGTLink device name of 1 to 20 characters, got 'AVeryLongToolNameOver20' (23)");
+  EXPECT_EQ(
+      refusal(
+          R"({"version": 1, "placement": "per_finger", "tools": [{"name": "A", "finger": 1}, {"name": "A", "finger": 2}]})"),
+      "t.json: tools[1].name: a name no other tool has, got 'A' twice");
+  EXPECT_EQ(
+      refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "AVeryLongToolNameOver20"}]})"),
+      "t.json: tools[0].name: an OpenIGTLink device name of 1 to 20 characters, got 'AVeryLongToolNameOver20' (23)");
   EXPECT_EQ(refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "a b"}]})"),
             "t.json: tools[0].name: printable ASCII without spaces, got 'a b'");
-  EXPECT_EQ(refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "S", "tip": {"offset_mm": [0, 0]}}]})"),
-            "t.json: tools[0].tip.offset_mm: 3 numbers [x, y, z] in mm, got 2");
-  EXPECT_EQ(refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "S", "tip": {"offset_mm": [0, 0, 1], "method": "guess"}}]})"),
-            "t.json: tools[0].tip.method: one of \"pivot\", \"digitized\", \"measured\", got \"guess\"");
+  EXPECT_EQ(
+      refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "S", "tip": {"offset_mm": [0, 0]}}]})"),
+      "t.json: tools[0].tip.offset_mm: 3 numbers [x, y, z] in mm, got 2");
+  EXPECT_EQ(
+      refusal(
+          R"({"version": 1, "placement": "triangle", "tools": [{"name": "S", "tip": {"offset_mm": [0, 0, 1], "method": "guess"}}]})"),
+      "t.json: tools[0].tip.method: one of \"pivot\", \"digitized\", \"measured\", got \"guess\"");
   EXPECT_EQ(refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "S"}],
                         "tracker_to_scene": {"rotation": [[1, 0, 0], [0, 1, 0], [0, 0, -1]], "translation_mm": [0, 0, 0]}})"),
             "t.json: tracker_to_scene.rotation: a rotation (orthonormal rows, determinant +1, to 0.001), got "
             "[[1, 0, 0], [0, 1, 0], [0, 0, -1]] (a scale or a mirror is not a rigid registration)");
-  EXPECT_EQ(refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "S"}],
+  EXPECT_EQ(
+      refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "S"}],
                         "tracker_to_scene": {"rotation": [[1, 0], [0, 1]], "translation_mm": [0, 0, 0]}})"),
-            "t.json: tracker_to_scene.rotation: a 3 x 3 rotation matrix [[r11, r12, r13], [r21, r22, r23], [r31, r32, r33]], "
-            "got [[1, 0], [0, 1]]");
+      "t.json: tracker_to_scene.rotation: a 3 x 3 rotation matrix [[r11, r12, r13], [r21, r22, r23], [r31, r32, r33]], "
+      "got [[1, 0], [0, 1]]");
   EXPECT_EQ(refusal(R"({"version": 1, "placement": "triangle", "tools": [{"name": "S", "colour": "red"}]})"),
             "t.json: tools[0].colour: no such field here (unknown field; check its spelling)");
 }
@@ -139,7 +148,8 @@ TEST(RigLoadCells, HardwareInputsAreCheckedAgainstTheRegulatorsOwn) {
       return w.substr(w.find("r.json"));
     }
   };
-  const std::string comedi = R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"channel": %, "volts_span": [0, 5]}}]})";
+  const std::string comedi =
+      R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"channel": %, "volts_span": [0, 5]}}]})";
   auto on = [&](int ch) {
     std::string c = comedi;
     c.replace(c.find('%'), 1, std::to_string(ch));
@@ -147,24 +157,29 @@ TEST(RigLoadCells, HardwareInputsAreCheckedAgainstTheRegulatorsOwn) {
   };
   EXPECT_EQ(on(4), "accepted 1");
   EXPECT_EQ(on(1), "r.json: load_cells.channels[0].input.channel: an analog input no regulator monitor uses, got 1");
-  EXPECT_EQ(with_cells("wago_750_559.json",
-                       R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"register": 3, "volts_span": [0, 10]}}]})"),
+  EXPECT_EQ(with_cells(
+                "wago_750_559.json",
+                R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"register": 3, "volts_span": [0, 10]}}]})"),
             "accepted 1");
-  EXPECT_EQ(with_cells("wago_750_559.json",
-                       R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"register": 2, "volts_span": [0, 10]}}]})"),
+  EXPECT_EQ(with_cells(
+                "wago_750_559.json",
+                R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"register": 2, "volts_span": [0, 10]}}]})"),
             "r.json: load_cells.channels[0].input.register: a register no regulator monitor reads, got 2");
-  EXPECT_EQ(with_cells("wago_750_559.json", R"({"fingers": "all", "channels": [{"N_per_V": 2}]})"),
-            "r.json: load_cells.channels[0].input: the register the cell is read on: {\"register\": N, \"volts_span\": [low, "
-            "high], ...}");
-  EXPECT_EQ(with_cells("wago_750_559.json",
-                       R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"register": 3, "volts_span": [0, 10]}}],
+  EXPECT_EQ(
+      with_cells("wago_750_559.json", R"({"fingers": "all", "channels": [{"N_per_V": 2}]})"),
+      "r.json: load_cells.channels[0].input: the register the cell is read on: {\"register\": N, \"volts_span\": [low, "
+      "high], ...}");
+  EXPECT_EQ(
+      with_cells("wago_750_559.json",
+                 R"({"fingers": "all", "channels": [{"N_per_V": 2, "input": {"register": 3, "volts_span": [0, 10]}}],
                            "simulated": {"stiffness_N_per_mm": 1}})"),
-            "r.json: load_cells.simulated: nothing on a \"modbus\" rig (its cells are real)");
+      "r.json: load_cells.simulated: nothing on a \"modbus\" rig (its cells are real)");
 }
 
 TEST(RigLoadCells, RefusesEachBadFieldInOneLine) {
   const std::string head = R"({"version": 1, "id": "r", "backend": "simulated", "load_cells": )";
-  EXPECT_EQ(rig_refusal(head + R"({"fingers": "each", "channels": [{"N_per_V": 2}, {"N_per_V": 2}, {"N_per_V": 2}]}})"), "accepted");
+  EXPECT_EQ(rig_refusal(head + R"({"fingers": "each", "channels": [{"N_per_V": 2}, {"N_per_V": 2}, {"N_per_V": 2}]}})"),
+            "accepted");
   EXPECT_EQ(rig_refusal(head + R"({"fingers": "each", "channels": [{"N_per_V": 2}]}})"),
             "r.json: load_cells.channels: 3 channels with \"fingers\": \"each\", got 1");
   EXPECT_EQ(rig_refusal(head + R"({"fingers": "all", "channels": [{"N_per_V": 0}]}})"),

@@ -109,7 +109,10 @@ TEST(UnboundedReads, EveryReaderRefusesASparseGiantAFifoADirectoryAndDevZero) {
     std::filesystem::remove(zero);
     std::filesystem::create_symlink("/dev/zero", zero);
     const std::vector<std::pair<std::filesystem::path, std::string>> cases = {
-        {sparse, std::to_string(r.sparse_bytes) + " bytes"}, {fifo, "a FIFO"}, {folder, "a directory"}, {zero, "a device"}};
+        {sparse, std::to_string(r.sparse_bytes) + " bytes"},
+        {fifo, "a FIFO"},
+        {folder, "a directory"},
+        {zero, "a device"}};
     for (const auto& [path, kind] : cases) {
       SCOPED_TRACE(path.string());
       const std::string why = refusal(r, path);
@@ -125,7 +128,8 @@ TEST(UnboundedReads, TheBoundIsNamedWithItsSize) {
   TempDir dir;
   const auto f = dir.write("t.csv", "a,b\n1,2\n");
   std::filesystem::resize_file(f, kMaxTableFileBytes + 1);
-  EXPECT_EQ(refusal(readers()[7], f), f.string() + ": file: a regular file of at most 64 MiB holding a CSV table, got " +
+  EXPECT_EQ(refusal(readers()[7], f), f.string() +
+                                          ": file: a regular file of at most 64 MiB holding a CSV table, got " +
                                           std::to_string(kMaxTableFileBytes + 1) + " bytes");
   EXPECT_EQ(file_size_text(16 * kMiB), "16 MiB");
   EXPECT_EQ(file_size_text(1024 * 1024 + 1024), "1025 KiB");

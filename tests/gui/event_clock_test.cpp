@@ -12,11 +12,13 @@
 namespace palprig::gui {
 namespace {
 
-using std::chrono::milliseconds;
 using std::chrono::microseconds;
+using std::chrono::milliseconds;
 using time_point = EventClock::time_point;
 
-time_point at_us(std::int64_t us) { return time_point(std::chrono::duration_cast<time_point::duration>(microseconds(us))); }
+time_point at_us(std::int64_t us) {
+  return time_point(std::chrono::duration_cast<time_point::duration>(microseconds(us)));
+}
 double ms_between(time_point a, time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
 
 TEST(gui_event_clock, a_monotonic_stamp_is_the_middle_of_its_millisecond_whatever_the_delivery_delay) {

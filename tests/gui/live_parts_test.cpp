@@ -42,8 +42,14 @@ TEST(TraceHistory, ColumnsKeepEveryPeakOfAWindow) {
   int spikes = 0, dips = 0;
   for (std::size_t c = 0; c < cols.size(); ++c) {
     ASSERT_FALSE(cols[c].empty) << c;  // 25 samples per column
-    if (cols[c].max == 40.0f) { ++spikes; EXPECT_EQ(c, 292u); }  // 7.32 s / 25 ms
-    if (cols[c].min == 0.0f) { ++dips; EXPECT_EQ(c, 100u); }
+    if (cols[c].max == 40.0f) {
+      ++spikes;
+      EXPECT_EQ(c, 292u);
+    }  // 7.32 s / 25 ms
+    if (cols[c].min == 0.0f) {
+      ++dips;
+      EXPECT_EQ(c, 100u);
+    }
   }
   EXPECT_EQ(spikes, 1);
   EXPECT_EQ(dips, 1);
@@ -81,7 +87,7 @@ TEST(TraceHistory, NonFiniteMonitorIsAGapNotAValue) {
 
 TEST(Indentation, DepthFromForceAndStiffness) {
   IndentationModel m;
-  EXPECT_NEAR(m.depth_mm(2.0, 0.0), 7.0, 1e-12);               // paper 002: 2 N, 7 mm in soft silicone
+  EXPECT_NEAR(m.depth_mm(2.0, 0.0), 7.0, 1e-12);                // paper 002: 2 N, 7 mm in soft silicone
   EXPECT_NEAR(m.depth_mm(2.0, 1.0), 7.0 * 14.7 / 21.9, 1e-12);  // a tumor gives less
   EXPECT_NEAR(m.depth_mm(1.0, 0.0), 3.5, 1e-12);
   EXPECT_EQ(m.depth_mm(0.0, 0.5), 0.0);

@@ -46,7 +46,9 @@ std::vector<std::uint8_t> transform_bytes(const char* name, float x, float y, fl
   return bytes_of(m.GetPointer());
 }
 
-void append(std::vector<std::uint8_t>& to, const std::vector<std::uint8_t>& more) { to.insert(to.end(), more.begin(), more.end()); }
+void append(std::vector<std::uint8_t>& to, const std::vector<std::uint8_t>& more) {
+  to.insert(to.end(), more.begin(), more.end());
+}
 
 // Waits for a condition with a deadline (no fixed sleeps).
 template <class F>
@@ -179,7 +181,8 @@ TEST(IgtlStream, SkipsBadCrcAndOtherHeaderVersionsAndRefusesGarbage) {
 TEST(PoseRecording, LoadsTheShippedPathsAndRefusesBadRows) {
   const auto dir = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "tracking";
   const auto pass = load_pose_recording(dir / "phantom_three_fingers_pass.csv");
-  EXPECT_EQ(recorded_tools(pass), (std::vector<std::string>{"Finger1ToTracker", "Finger2ToTracker", "Finger3ToTracker"}));
+  EXPECT_EQ(recorded_tools(pass),
+            (std::vector<std::string>{"Finger1ToTracker", "Finger2ToTracker", "Finger3ToTracker"}));
   EXPECT_NEAR(pass.back().t_s, 10.7, 0.05);
   TempDir t;
   auto refused = [&](const std::string& text) {
@@ -199,7 +202,8 @@ TEST(PoseRecording, LoadsTheShippedPathsAndRefusesBadRows) {
   EXPECT_EQ(refused(h + "0,A,1,2,3,0,0,0,0\n"), "p.csv: line 2, qx..qw: a non-zero quaternion (x, y, z, w)");
   EXPECT_EQ(refused(h + "1,A,1,2,3,0,0,0,1\n0.5,B,1,2,3,0,0,0,1\n"),
             "p.csv: line 3, t_s: a time no earlier than the previous row's, got 0.5");
-  EXPECT_EQ(refused(h + "1,A,1,2,3,0,0,0,1\n1,A,1,2,3,0,0,0,1\n"), "p.csv: line 3, t_s: a time after tool A's previous row, got 1");
+  EXPECT_EQ(refused(h + "1,A,1,2,3,0,0,0,1\n1,A,1,2,3,0,0,0,1\n"),
+            "p.csv: line 3, t_s: a time after tool A's previous row, got 1");
   EXPECT_EQ(refused(h + "0,ToolNameMuchTooLongForIGTL,1,2,3,0,0,0,1\n"),
             "p.csv: line 2, tool: an OpenIGTLink device name of 1 to 20 characters, got 'ToolNameMuchTooLongForIGTL'");
   EXPECT_EQ(refused(h), "p.csv: line 1: at least one pose");

@@ -16,9 +16,9 @@
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
-using palprig::test_support::TempDir;
 using palprig::test_support::palprig_bin;
 using palprig::test_support::run_process;
+using palprig::test_support::TempDir;
 
 namespace {
 
@@ -33,7 +33,9 @@ std::string refusal(F&& load) {
 }
 
 std::string data(const std::string& rel) { return std::string(PALPRIG_SOURCE_DIR) + "/data/" + rel; }
-std::string fixture(const std::string& name) { return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name; }
+std::string fixture(const std::string& name) {
+  return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name;
+}
 
 // The shipped stroke recording with its event lines passed through `edit`.
 std::string edited_recording(const std::function<std::string(const std::string&, int)>& edit) {
@@ -50,8 +52,9 @@ std::string run_scene_cmd() { return palprig_bin() + " run --scene " + data("sce
 
 TEST(TraceBounds, TimesAreRelativeToTheFirstRow) {
   TempDir dir;
-  const auto f = dir.write("epoch.csv", "t_s,x_mm,y_mm,force_N\n1763900000.000,10,10,1\n1763900000.010,11,10,1\n"
-                                        "1763900000.020,12,10,1\n");
+  const auto f = dir.write("epoch.csv",
+                           "t_s,x_mm,y_mm,force_N\n1763900000.000,10,10,1\n1763900000.010,11,10,1\n"
+                           "1763900000.020,12,10,1\n");
   const auto t = load_trace_csv(f);
   ASSERT_EQ(t.size(), 3u);
   EXPECT_EQ(t[0].t_s, 0.0);
@@ -62,8 +65,11 @@ TEST(TraceBounds, TimesAreRelativeToTheFirstRow) {
 TEST(TraceBounds, HugeTimesAndLongGapsAreRefused) {
   TempDir dir;
   const auto huge = dir.write("huge.csv", "t_s,x_mm,y_mm,force_N\n0,10,10,1\n0.01,11,10,1\n1e300,12,10,1\n");
-  EXPECT_EQ(refusal([&] { load_trace_csv(huge, 0.05, TraceLimits{3600, 1e308}); }),
-            huge.string() + ": line 4, t_s: a trace at most 3600 s long (times count from the first row, 0 s), got 1e+300 s");
+  EXPECT_EQ(
+      refusal([&] {
+        load_trace_csv(huge, 0.05, TraceLimits{3600, 1e308});
+      }),
+      huge.string() + ": line 4, t_s: a trace at most 3600 s long (times count from the first row, 0 s), got 1e+300 s");
   EXPECT_EQ(refusal([&] { load_trace_csv(huge); }),
             huge.string() + ": line 4, t_s: rows at most 0.1 s apart (the stale-input limit), got a gap of 1e+300 s");
   const auto gap = dir.write("gap.csv", "t_s,x_mm,y_mm,force_N\n0,10,10,1\n0.05,11,10,1\n5.05,12,10,1\n");
@@ -102,7 +108,8 @@ TEST(RecordingBounds, AMalformedEventLineIsRefusedWithItsLineNotEndedSilently) {
                            }));
   const std::string why = refusal([&] { read_pen_recording(f); });
   EXPECT_NE(why.find(f.string() + ": line "), std::string::npos) << why;
-  EXPECT_NE(why.find("an event line 'E: <sec>.<usec> <type hex> <code hex> <value>', got 'E: 0.2x0000"), std::string::npos)
+  EXPECT_NE(why.find("an event line 'E: <sec>.<usec> <type hex> <code hex> <value>', got 'E: 0.2x0000"),
+            std::string::npos)
       << why;
   // From the command line: exit 2 and exactly one line, palprig's own (libevemu prints nothing).
   const auto r = run_process(run_scene_cmd() + " --input tablet:" + f.string());

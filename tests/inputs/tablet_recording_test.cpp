@@ -17,7 +17,9 @@ using palprig::test_support::run_process;
 
 namespace {
 
-std::string fixture(const std::string& name) { return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name; }
+std::string fixture(const std::string& name) {
+  return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name;
+}
 
 std::string refusal(const std::string& file) {
   try {
@@ -40,9 +42,10 @@ void expect_one_line_exit_two(const std::string& file, const std::string& expect
 
 TEST(TabletRecordingRefusals, APressureAxisWithoutItsRangeLineIsRefused) {
   const std::string f = fixture("refused_pressure_without_range.evemu");
-  const std::string expected = f +
-                               ": device description: a range line for every pen axis ('A: 18 <min> <max> <fuzz> <flat> "
-                               "<resolution>'), got none for ABS_PRESSURE";
+  const std::string expected =
+      f +
+      ": device description: a range line for every pen axis ('A: 18 <min> <max> <fuzz> <flat> "
+      "<resolution>'), got none for ABS_PRESSURE";
   EXPECT_EQ(refusal(f), expected);
   expect_one_line_exit_two(f, expected);
 }

@@ -15,7 +15,9 @@ using namespace palprig;
 
 namespace {
 
-std::string fixture(const std::string& name) { return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name; }
+std::string fixture(const std::string& name) {
+  return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name;
+}
 
 const PenFrame& frame_at(const std::vector<PenFrame>& frames, double t_s) {
   for (const auto& f : frames)
@@ -72,7 +74,7 @@ TEST(TabletDecoder, StrokeInMillimetresAndNewtons) {
   const PenFrame& press = frame_at(frames, 0.4);
   EXPECT_TRUE(press.in_contact);
   EXPECT_NEAR(press.force_N, 3072.0 / 4095.0 * 4.0, 1e-12);
-  EXPECT_DOUBLE_EQ(press.x_mm, 74.0);  // 5000 + 4000 * 0.3/0.5 = 7400 units
+  EXPECT_DOUBLE_EQ(press.x_mm, 74.0);               // 5000 + 4000 * 0.3/0.5 = 7400 units
   EXPECT_TRUE(frame_at(frames, 0.105).in_contact);  // first report with BTN_TOUCH down
 }
 

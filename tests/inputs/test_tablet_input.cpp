@@ -23,7 +23,9 @@ using namespace std::chrono_literals;
 
 namespace {
 
-std::string fixture(const std::string& name) { return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name; }
+std::string fixture(const std::string& name) {
+  return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name;
+}
 
 MapScene uniform_scene(float stiffness) {
   return MapScene(StiffnessMap(11, 11, 200, 200, std::vector<float>(121, stiffness)), MapSampling::nearest);
@@ -98,8 +100,8 @@ TEST(TabletInput, RunReplaysARecordingThroughTheLiveReader) {
   rig.replace(rig.find(limit), limit.size(), "\"max_consecutive_overruns\": 1000000, \"max_lost_time_s\": 10");
   const auto rig_path = dir.write("rig.json", rig);
   const auto r = run_process(palprig::test_support::palprig_bin() + " run --no-fifo --rig " + rig_path.string() +
-                             " --scene " + PALPRIG_SOURCE_DIR + "/data/scenes/phantom_abc.json --input tablet:" +
-                             fixture("pen_stroke.evemu") + " --json");
+                             " --scene " + PALPRIG_SOURCE_DIR +
+                             "/data/scenes/phantom_abc.json --input tablet:" + fixture("pen_stroke.evemu") + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["mode"], "realtime");  // live input always runs on the wall clock

@@ -48,8 +48,7 @@ TEST(CheckedOutput, AWriterThatStopsBeforeCommitLeavesTheOldFileAndNoTemporary) 
     CheckedOutputFile out(path);
     out.write("{\"new\":");
     throw std::runtime_error("the input was bad half-way");
-  } catch (const std::runtime_error&) {
-  }
+  } catch (const std::runtime_error&) {}
   EXPECT_EQ(read_file(path), "{\"old\": true}\n");
   EXPECT_EQ(entries(dir.path()), 1);
 }

@@ -45,7 +45,7 @@ TEST(Frep, TubeAroundASegment) {
   s.tube({0, 0, 5}, {100, 0, 5}, 3);
   EXPECT_TRUE(s.contains({50, 2.9, 5}));
   EXPECT_FALSE(s.contains({50, 3.1, 5}));
-  EXPECT_TRUE(s.contains({101, 0, 6}));   // the rounded end cap
+  EXPECT_TRUE(s.contains({101, 0, 6}));  // the rounded end cap
   EXPECT_FALSE(s.contains({104, 0, 5}));
 }
 
@@ -115,8 +115,8 @@ TEST(Frep, BoundingBoxesHoldEveryInsidePoint) {
   // Random points over a wide box: every point inside the shape lies in its bounds.
   FrepShape s;
   const double s2 = 1.0 / 16;
-  const auto blob = s.blobs({{{0, 0, 10}, 1, {s2, s2, s2}}, {{7, 3, 12}, 0.8, {s2, 2 * s2, s2}}, {{-5, 6, 9}, 1.2, {s2, s2, 3 * s2}}},
-                            0.3);
+  const auto blob = s.blobs(
+      {{{0, 0, 10}, 1, {s2, s2, s2}}, {{7, 3, 12}, 0.8, {s2, 2 * s2, s2}}, {{-5, 6, 9}, 1.2, {s2, s2, 3 * s2}}}, 0.3);
   const auto ell = s.ellipsoid({20, -5, 15}, {8, 3, 4}, 35);
   const auto sup = s.superellipsoid({-15, 10, 12}, {6, 4, 3}, 6, 60);
   const auto tube = s.tube({-20, -20, 5}, {0, -10, 20}, 2.5);

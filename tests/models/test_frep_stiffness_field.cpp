@@ -19,7 +19,8 @@ TissueDefinition block(double modulus_kPa = 14.7) {
   return d;
 }
 
-Inclusion sphere(const char* name, Point3_mm c, double r, double modulus_kPa, InclusionKind kind = InclusionKind::tumor) {
+Inclusion sphere(const char* name, Point3_mm c, double r, double modulus_kPa,
+                 InclusionKind kind = InclusionKind::tumor) {
   Inclusion i;
   i.name = name;
   i.kind = kind;
@@ -51,7 +52,7 @@ TEST(StiffnessField, ModulusAtKnownPointsLayersAndInclusions) {
   EXPECT_EQ(f.modulus_kPa({50, 50, 20}, 0), 90);
   EXPECT_EQ(f.modulus_kPa({50, 56, 20}, 0), 30);
   EXPECT_EQ(f.modulus_kPa({50, 59, 20}, 0), 15);
-  EXPECT_EQ(f.modulus_kPa({-5, 60, 5}, 0), 0);      // off the body: air
+  EXPECT_EQ(f.modulus_kPa({-5, 60, 5}, 0), 0);  // off the body: air
   EXPECT_EQ(f.layer_at(1), 0);
   EXPECT_EQ(f.layer_at(9.9), 1);
   EXPECT_EQ(f.layer_at(100), 2);
@@ -77,7 +78,7 @@ TEST(StiffnessField, HomogeneousTissueFeelsItsOwnLevelAtAnyForce) {
 
 TEST(StiffnessField, PressModelMatchesPaper002AndHertzScaling) {
   const PressModel p;
-  EXPECT_NEAR(p.indentation_mm(2.0), 7.0, 1e-12);  // the FE study's 7 mm press
+  EXPECT_NEAR(p.indentation_mm(2.0), 7.0, 1e-12);        // the FE study's 7 mm press
   EXPECT_NEAR(p.indentation_mm(16.0), 7.0 * 4.0, 1e-9);  // (8)^(2/3) = 4
   EXPECT_NEAR(p.contact_radius_mm(2.0), std::sqrt(8.0 * 7.0), 1e-12);
   EXPECT_NEAR(p.reach_mm(2.0), 4 * std::sqrt(56.0), 1e-12);

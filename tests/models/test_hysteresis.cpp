@@ -48,7 +48,8 @@ TEST(PrandtlIshlinskii, InverseComposedWithModelIsIdentity) {
   model.reset(0);
   inverse.reset(0);
   double worst = 0;
-  for (double target : reversal_trajectory()) worst = std::max(worst, std::abs(model.apply(inverse.apply(target)) - target));
+  for (double target : reversal_trajectory())
+    worst = std::max(worst, std::abs(model.apply(inverse.apply(target)) - target));
   EXPECT_LT(worst, 1e-9);
 }
 

@@ -44,8 +44,7 @@ TEST(MapHardening, PgmHeaderPromisingMoreThanTheFileHoldsIsRefusedBeforeAllocati
 }
 
 TEST(MapHardening, MapDimensionsAreBounded) {
-  EXPECT_EQ(pgm_refusal("P5\n20000 20000\n65535\n"),
-            "m.pgm: header width: an integer in 2..16384, got '20000'");
+  EXPECT_EQ(pgm_refusal("P5\n20000 20000\n65535\n"), "m.pgm: header width: an integer in 2..16384, got '20000'");
   EXPECT_EQ(pgm_refusal("P5\n16384 16384\n255\n"),
             "m.pgm: header width x height: at most 16777216 pixels (a map of 4096x4096), got 16384x16384");
   EXPECT_EQ(pgm_refusal("P5\n65536 65536\n65535\n"), "m.pgm: header width: an integer in 2..16384, got '65536'");

@@ -57,7 +57,7 @@ TEST(PneumaticPlant, HysteresisSeparatesInflationAndDeflation) {
   PlantParams p = ideal_lag(0.0, 0.0);
   p.hysteresis_kPa = 3.0;
   PneumaticPlant plant(p);
-  const double up = plant.step(50.0, 0.01);   // rising: output lags the command by r
+  const double up = plant.step(50.0, 0.01);  // rising: output lags the command by r
   EXPECT_NEAR(up, 47.0, 1e-9);
   plant.step(80.0, 0.01);
   const double down = plant.step(50.0, 0.01);  // falling: output stays above by r

@@ -36,7 +36,8 @@ struct RenderResult {
 
 // A pulse of amplitude A riding on a base pressure, 1 kHz, rendered on a plant without play
 // or noise (the lag alone: what this compensator is for). Mirrors the tick's pulse stage.
-RenderResult render(const PulseWaveform& wave, double bpm, bool compensate, double base_kPa = 4.0, double amplitude_kPa = 8.0) {
+RenderResult render(const PulseWaveform& wave, double bpm, bool compensate, double base_kPa = 4.0,
+                    double amplitude_kPa = 8.0) {
   PlantParams pp;
   pp.hysteresis_kPa = 0;
   pp.noise_sd_kPa = 0;
@@ -53,8 +54,9 @@ RenderResult render(const PulseWaveform& wave, double bpm, bool compensate, doub
     const double t = k * dt;
     const double f = bpm / 60;
     const double now = amplitude_kPa * wave.value(clock.phase(t));
-    const double ahead = amplitude_kPa * wave.value_advanced(clock.phase(t + lag.dead_time_s + dt),
-                                                             comp.rise_anticipation_s() * f, comp.fall_anticipation_s() * f);
+    const double ahead =
+        amplitude_kPa * wave.value_advanced(clock.phase(t + lag.dead_time_s + dt), comp.rise_anticipation_s() * f,
+                                            comp.fall_anticipation_s() * f);
     double u = now;
     if (compensate) u = comp.command(lag, ahead, -base_kPa, p_max - base_kPa, slew * dt, k > 0 ? dt : 0);
     const double command = base_kPa + u;

@@ -62,9 +62,9 @@ TEST(PulseWaveform, TableIsResampledAndNormalised) {
 
 TEST(PulseWaveform, BadTablesAndParametersAreRefused) {
   EXPECT_THROW(PulseWaveform::table({}, {}), std::invalid_argument);
-  EXPECT_THROW(PulseWaveform::table({0, 1, 2}, {1, 2, 1}), std::invalid_argument);           // too short
-  EXPECT_THROW(PulseWaveform::table({0, 1, 1, 2}, {1, 2, 3, 1}), std::invalid_argument);     // time not increasing
-  EXPECT_THROW(PulseWaveform::table({0, 1, 2, 3}, {5, 5, 5, 5}), std::invalid_argument);     // flat
+  EXPECT_THROW(PulseWaveform::table({0, 1, 2}, {1, 2, 1}), std::invalid_argument);               // too short
+  EXPECT_THROW(PulseWaveform::table({0, 1, 1, 2}, {1, 2, 3, 1}), std::invalid_argument);         // time not increasing
+  EXPECT_THROW(PulseWaveform::table({0, 1, 2, 3}, {5, 5, 5, 5}), std::invalid_argument);         // flat
   EXPECT_THROW(PulseWaveform::table({0, 1, 2, 3}, {80, 120, 110, 100}), std::invalid_argument);  // does not close
   try {
     PulseWaveform::table({0, 1, 2, 3}, {80, 120, 110, 100});
@@ -97,16 +97,16 @@ TEST(PulseClock, RateIsExactOverALongRunWhateverTheLoopTiming) {
     }
     previous = v;
   }
-  EXPECT_EQ(onsets, 4320);              // 3600 s * 72 / 60, the first beat at t = 0 not counted
-  EXPECT_LT(worst_error_s, 0.0019);     // each onset seen at the first tick after it (1 ms + jitter)
+  EXPECT_EQ(onsets, 4320);           // 3600 s * 72 / 60, the first beat at t = 0 not counted
+  EXPECT_LT(worst_error_s, 0.0019);  // each onset seen at the first tick after it (1 ms + jitter)
 }
 
 TEST(PulseClock, RateChangeKeepsThePhaseContinuous) {
   PulseClock c{60.0, 0.0, 0.0};
   EXPECT_NEAR(c.phase(10.25), 10.25, 1e-12);
   c.change_rate(120.0, 10.25);
-  EXPECT_NEAR(c.phase(10.25), 10.25, 1e-12);   // no jump where the rate changes
-  EXPECT_NEAR(c.phase(11.25), 12.25, 1e-12);   // then two beats per second
+  EXPECT_NEAR(c.phase(10.25), 10.25, 1e-12);  // no jump where the rate changes
+  EXPECT_NEAR(c.phase(11.25), 12.25, 1e-12);  // then two beats per second
   c.change_rate(30.0, 11.25);
   EXPECT_NEAR(c.phase(13.25), 13.25, 1e-12);
 }

@@ -83,8 +83,10 @@ TEST(StiffnessMap, MalformedCsvIsRefusedWithLineAndReason) {
   EXPECT_EQ(error_of("0,0.5,1\n0.2,0.4\n"), "map.csv: line 2: 3 values like the first row, got 2");
   EXPECT_EQ(error_of("0,0.5\n0.2,abc\n"), "map.csv: line 2, column 2: a number, got 'abc'");
   EXPECT_EQ(error_of("0,0.5\n0.2,nan\n"), "map.csv: line 2, column 2: a finite stiffness, got 'nan'");
-  EXPECT_EQ(error_of("0,1.5\n0.2,0.1\n"), "map.csv: line 1, column 2: a stiffness in 0..1 (or give a value scale), got '1.5'");
-  EXPECT_EQ(error_of("0,-0.1\n0.2,0.1\n"), "map.csv: line 1, column 2: a stiffness in 0..1 (or give a value scale), got '-0.1'");
+  EXPECT_EQ(error_of("0,1.5\n0.2,0.1\n"),
+            "map.csv: line 1, column 2: a stiffness in 0..1 (or give a value scale), got '1.5'");
+  EXPECT_EQ(error_of("0,-0.1\n0.2,0.1\n"),
+            "map.csv: line 1, column 2: a stiffness in 0..1 (or give a value scale), got '-0.1'");
   EXPECT_EQ(error_of("0,0.5\n"), "map.csv: line 1: a grid of at least 2x2 values, got 2x1");
   EXPECT_EQ(error_of(""), "map.csv: line 0: a grid of at least 2x2 values, got 0x0");
   EXPECT_EQ(error_of("0,0.5,\n0,0,\n"), "map.csv: line 1: no trailing comma (empty last value)");

@@ -102,9 +102,9 @@ TEST(TissueDrag, ALayerWithoutItsOwnDragTakesTheOneAbove) {
   const FunctionScene scene(t, {});
   EXPECT_EQ(scene.drag(-1).d_lat_max_mm, kSkin.d_lat_max_mm);  // not yet pressed: the skin
   EXPECT_EQ(scene.drag(0).d_lat_max_mm, kSkin.d_lat_max_mm);
-  EXPECT_EQ(scene.drag(1).d_lat_max_mm, kSkin.d_lat_max_mm);   // fat: the skin's
-  EXPECT_FALSE(scene.drag(2).drags());                          // fascia: its own (held)
-  EXPECT_FALSE(scene.drag(3).drags());                          // muscle: the fascia's
+  EXPECT_EQ(scene.drag(1).d_lat_max_mm, kSkin.d_lat_max_mm);  // fat: the skin's
+  EXPECT_FALSE(scene.drag(2).drags());                        // fascia: its own (held)
+  EXPECT_FALSE(scene.drag(3).drags());                        // muscle: the fascia's
   EXPECT_FALSE(scene.drag(99).drags());
   // A map scene has no layers: nothing drags.
   const MapScene map(StiffnessMap(2, 2, 10, 10, std::vector<float>(4, 0.f)), MapSampling::nearest);

@@ -22,7 +22,8 @@ Rotation3 rot(double axis_x, double axis_y, double axis_z, double deg) {
   const double n = std::sqrt(axis_x * axis_x + axis_y * axis_y + axis_z * axis_z);
   const double h = deg * std::numbers::pi / 360.0;
   Rotation3 r;
-  EXPECT_TRUE(rotation_from_quaternion(std::sin(h) * axis_x / n, std::sin(h) * axis_y / n, std::sin(h) * axis_z / n, std::cos(h), r));
+  EXPECT_TRUE(rotation_from_quaternion(std::sin(h) * axis_x / n, std::sin(h) * axis_y / n, std::sin(h) * axis_z / n,
+                                       std::cos(h), r));
   return r;
 }
 
@@ -47,9 +48,9 @@ TEST(RigidTransform, ComposesInvertsAndChecksRotations) {
   const Vec3_mm q = b.after(a).apply({3, 4, 5}), r = b.apply(a.apply({3, 4, 5}));
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(q[i], r[i], 1e-12);
   EXPECT_TRUE(is_rotation(a.rotation));
-  EXPECT_FALSE(is_rotation(Rotation3{}));                                         // all zeros: a lost tool
-  EXPECT_FALSE(is_rotation(Rotation3{{{1, 0, 0}, {0, 1, 0}, {0, 0, -1}}}));       // a mirror
-  EXPECT_FALSE(is_rotation(Rotation3{{{2, 0, 0}, {0, 1, 0}, {0, 0, 1}}}));        // a scale
+  EXPECT_FALSE(is_rotation(Rotation3{}));                                    // all zeros: a lost tool
+  EXPECT_FALSE(is_rotation(Rotation3{{{1, 0, 0}, {0, 1, 0}, {0, 0, -1}}}));  // a mirror
+  EXPECT_FALSE(is_rotation(Rotation3{{{2, 0, 0}, {0, 1, 0}, {0, 0, 1}}}));   // a scale
   Rotation3 q0;
   EXPECT_FALSE(rotation_from_quaternion(0, 0, 0, 0, q0));
 }

@@ -46,8 +46,10 @@ std::string stats_json(const std::string& store) {
   return r.out;
 }
 
-std::vector<std::string> session_args(const std::string& participant, const std::string& db, const std::string& journal) {
-  return {"experiment", "run", "--protocol", protocol(), "--participant", participant, "--db", db, "--journal", journal};
+std::vector<std::string> session_args(const std::string& participant, const std::string& db,
+                                      const std::string& journal) {
+  return {"experiment", "run",  "--protocol", protocol(),  "--participant",
+          participant,  "--db", db,           "--journal", journal};
 }
 
 void wait_for_trials(ChildProcess& child, int n) {
@@ -82,7 +84,8 @@ TEST(postgres_lab_store, another_programs_database_is_refused) {
   const std::string uri = testing::fresh_database("foreign_test");
   PgConnection(parse_pg_target(uri)).exec("CREATE TABLE participants (name text)");
   EXPECT_THROW(PostgresTrialStore(parse_pg_target(uri), TrialStore::Access::read_write), InputError);
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM information_schema.tables WHERE table_name = 'palprig_schema'"), 0);
+  EXPECT_EQ(
+      testing::pg_scalar(uri, "SELECT count(*) FROM information_schema.tables WHERE table_name = 'palprig_schema'"), 0);
 }
 
 TEST(postgres_lab_store, same_seed_gives_the_same_statistics_in_sqlite_and_postgresql) {
@@ -91,8 +94,8 @@ TEST(postgres_lab_store, same_seed_gives_the_same_statistics_in_sqlite_and_postg
   const std::string uri = testing::fresh_database("same_stats");
   const std::string file = (dir / "bench.db").string();
   for (const std::string participant : {"sim:11", "sim:12"}) {
-    const auto to_file = testing::run_palprig({"experiment", "run", "--protocol", protocol(), "--participant", participant,
-                                               "--db", file, "--quiet"});
+    const auto to_file = testing::run_palprig(
+        {"experiment", "run", "--protocol", protocol(), "--participant", participant, "--db", file, "--quiet"});
     ASSERT_EQ(to_file.exit_code, 0) << to_file.err;
     const auto to_server =
         testing::run_palprig({"experiment", "run", "--protocol", protocol(), "--participant", participant, "--db", uri,
@@ -118,7 +121,8 @@ TEST(postgres_lab_store, three_rigs_at_once_all_land_complete) {
   const std::string uri = testing::fresh_database("three_rigs");
   std::vector<std::unique_ptr<ChildProcess>> rigs;
   for (int i = 1; i <= 3; ++i) {
-    auto args = session_args("sim:" + std::to_string(100 + i), uri, (dir / ("journal" + std::to_string(i) + ".db")).string());
+    auto args =
+        session_args("sim:" + std::to_string(100 + i), uri, (dir / ("journal" + std::to_string(i) + ".db")).string());
     args.push_back("--quiet");
     rigs.push_back(std::make_unique<ChildProcess>(args));
   }
@@ -128,7 +132,8 @@ TEST(postgres_lab_store, three_rigs_at_once_all_land_complete) {
   }
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM sessions WHERE status = 'completed'"), 3);
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), 3 * kTrialsPerSession);
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(DISTINCT (session_id, position)) FROM trials"), 3 * kTrialsPerSession);
+  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(DISTINCT (session_id, position)) FROM trials"),
+            3 * kTrialsPerSession);
   // Enrolment numbers were handed out one at a time: 1, 2, 3.
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(DISTINCT number) FROM participants WHERE number BETWEEN 1 AND 3"), 3);
 }
@@ -180,8 +185,7 @@ TEST(postgres_lab_store, kill_9_mid_session_and_resume_loses_and_duplicates_noth
     wait_for_trials(child, 6);
     ASSERT_EQ(::kill(child.pid(), SIGKILL), 0);
     EXPECT_EQ(child.wait(), 128 + SIGKILL);
-    while (child.pump(0)) {
-    }
+    while (child.pump(0)) {}
     reported = reported_trials(child.out());
   }
   ASSERT_LT(reported, kTrialsPerSession) << "the kill came too late to test anything";
@@ -214,8 +218,7 @@ TEST(postgres_lab_store, kill_9_while_the_server_is_down_then_resume_pushes_the_
     wait_for_trials(child, 9);  // these live only in the journal
     ASSERT_EQ(::kill(child.pid(), SIGKILL), 0);
     child.wait();
-    while (child.pump(0)) {
-    }
+    while (child.pump(0)) {}
     reported = reported_trials(child.out());
   }
   ASSERT_LT(reported, kTrialsPerSession) << "the kill came too late to test anything";
@@ -241,8 +244,8 @@ TEST(postgres_lab_store, copy_sqlite_to_postgresql_and_back_keeps_every_trial_on
   const std::string uri = testing::fresh_database("copy_both_ways");
   const std::string file = (dir / "bench.db").string(), back = (dir / "back.db").string();
   for (const std::string participant : {"sim:41", "sim:42"}) {
-    const auto r = testing::run_palprig({"experiment", "run", "--protocol", protocol(), "--participant", participant,
-                                         "--db", file, "--quiet"});
+    const auto r = testing::run_palprig(
+        {"experiment", "run", "--protocol", protocol(), "--participant", participant, "--db", file, "--quiet"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   const auto up = testing::run_palprig({"store", "copy", "--from", file, "--to", uri});

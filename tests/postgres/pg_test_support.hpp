@@ -17,9 +17,9 @@
 namespace palprig::testing {
 
 // Skips the test, with the reason, when no server could be started for it.
-#define PALPRIG_REQUIRE_PG_SERVER()                                                          \
-  do {                                                                                       \
-    if (const char* reason = std::getenv("PALPRIG_PG_SKIP")) GTEST_SKIP() << reason;         \
+#define PALPRIG_REQUIRE_PG_SERVER()                                                           \
+  do {                                                                                        \
+    if (const char* reason = std::getenv("PALPRIG_PG_SKIP")) GTEST_SKIP() << reason;          \
     if (!std::getenv("PGPORT")) GTEST_SKIP() << "PGPORT not set: run through with_server.sh"; \
   } while (0)
 

@@ -41,7 +41,8 @@ std::string digest(const std::string& uri, const std::string& codes) {
   return PgConnection(parse_pg_target(uri))
       .exec("SELECT md5(string_agg(ROW(t.id, t.session_id" + columns +
             ")::text, '|' ORDER BY t.id)) FROM trials t JOIN sessions s ON s.id = t.session_id "
-            "JOIN participants p ON p.id = s.participant_id WHERE p.code IN (" + codes + ")")
+            "JOIN participants p ON p.id = s.participant_id WHERE p.code IN (" +
+            codes + ")")
       .text(0, 0);
 }
 
@@ -57,8 +58,9 @@ TEST(PostgresRatingMigration, Version2ServerIsReadAsItIsThenMigratedAndRatingsTr
   // A server an older palprig made (schema 2), holding those trials.
   const std::string uri = testing::old_server_holding("rating_2_3", 2, file);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 2);
-  ASSERT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM information_schema.columns WHERE table_name = 'trials' "
-                                    "AND column_name IN ('confidence', 'stimulus_end_s')"),
+  ASSERT_EQ(testing::pg_scalar(uri,
+                               "SELECT count(*) FROM information_schema.columns WHERE table_name = 'trials' "
+                               "AND column_name IN ('confidence', 'stimulus_end_s')"),
             0);
   const std::string old_trials = digest(uri, "'sim:31', 'sim:32'");
   // A reader opens it as it is: the same statistics as the file's, nothing migrated. (The
@@ -85,16 +87,19 @@ TEST(PostgresRatingMigration, Version2ServerIsReadAsItIsThenMigratedAndRatingsTr
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), kPgSchemaVersion);
   EXPECT_EQ(digest(uri, "'sim:31', 'sim:32'"), old_trials);  // every older trial, value for value
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id "
-                                    "JOIN participants p ON p.id = s.participant_id WHERE p.code IN ('sim:31', 'sim:32') "
-                                    "AND (t.confidence IS NOT NULL OR t.stimulus_end_s IS NOT NULL)"),
+  EXPECT_EQ(testing::pg_scalar(uri,
+                               "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id "
+                               "JOIN participants p ON p.id = s.participant_id WHERE p.code IN ('sim:31', 'sim:32') "
+                               "AND (t.confidence IS NOT NULL OR t.stimulus_end_s IS NOT NULL)"),
             0);
-  const std::int64_t rated_trials = testing::pg_scalar(
-      uri, "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON "
-           "p.id = s.participant_id WHERE p.code = 'sim:33' AND t.answered = 1");
+  const std::int64_t rated_trials =
+      testing::pg_scalar(uri,
+                         "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p ON "
+                         "p.id = s.participant_id WHERE p.code = 'sim:33' AND t.answered = 1");
   ASSERT_GT(rated_trials, 0);
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials WHERE confidence BETWEEN 1 AND 4 AND "
-                                    "stimulus_end_s IS NOT NULL"),
+  EXPECT_EQ(testing::pg_scalar(uri,
+                               "SELECT count(*) FROM trials WHERE confidence BETWEEN 1 AND 4 AND "
+                               "stimulus_end_s IS NOT NULL"),
             rated_trials);
   // The journal (SQLite) holds the same ratings.
   SqliteTrialStore journal(dir / "journal.db", TrialStore::Access::read_only);

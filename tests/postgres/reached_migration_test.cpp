@@ -40,13 +40,16 @@ std::string digest(const std::string& uri, const std::string& codes) {
   return PgConnection(parse_pg_target(uri))
       .exec("SELECT md5(string_agg(ROW(t.id, t.session_id" + columns +
             ")::text, '|' ORDER BY t.id)) FROM trials t JOIN sessions s ON s.id = t.session_id "
-            "JOIN participants p ON p.id = s.participant_id WHERE p.code IN (" + codes + ")")
+            "JOIN participants p ON p.id = s.participant_id WHERE p.code IN (" +
+            codes + ")")
       .text(0, 0);
 }
 
 std::int64_t reached_count(const std::string& uri, const std::string& code) {
-  return testing::pg_scalar(uri, "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p "
-                                 "ON p.id = s.participant_id WHERE p.code = '" + code + "' AND t.stimulus_reached_s IS NOT NULL");
+  return testing::pg_scalar(uri,
+                            "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id JOIN participants p "
+                            "ON p.id = s.participant_id WHERE p.code = '" +
+                                code + "' AND t.stimulus_reached_s IS NOT NULL");
 }
 
 TEST(PostgresReachedMigration, Version4ServerIsReadAsItIsThenMigratedAndReachedTimesTravel) {
@@ -62,8 +65,9 @@ TEST(PostgresReachedMigration, Version4ServerIsReadAsItIsThenMigratedAndReachedT
   // leaves out the times it has no column for.
   const std::string uri = testing::old_server_holding("reached_4_5", 4, file);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 4);
-  ASSERT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM information_schema.columns WHERE table_name = 'trials' "
-                                    "AND column_name = 'stimulus_reached_s'"),
+  ASSERT_EQ(testing::pg_scalar(uri,
+                               "SELECT count(*) FROM information_schema.columns WHERE table_name = 'trials' "
+                               "AND column_name = 'stimulus_reached_s'"),
             0);
   const std::int64_t old_count = testing::pg_scalar(uri, "SELECT count(*) FROM trials");
   ASSERT_GT(old_count, 0);
@@ -84,12 +88,13 @@ TEST(PostgresReachedMigration, Version4ServerIsReadAsItIsThenMigratedAndReachedT
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 4) << "a reader never migrates";
 
   // A writer migrates it: a session through the bench journal.
-  const auto run = testing::run_palprig({"experiment", "run", "--protocol", protocol(), "--participant", "sim:43", "--db",
-                                         uri, "--journal", (dir / "journal.db").string(), "--quiet"});
+  const auto run = testing::run_palprig({"experiment", "run", "--protocol", protocol(), "--participant", "sim:43",
+                                         "--db", uri, "--journal", (dir / "journal.db").string(), "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), kPgSchemaVersion);
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id JOIN "
-                                    "participants p ON p.id = s.participant_id WHERE p.code IN ('sim:41', 'sim:42')"),
+  EXPECT_EQ(testing::pg_scalar(uri,
+                               "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id JOIN "
+                               "participants p ON p.id = s.participant_id WHERE p.code IN ('sim:41', 'sim:42')"),
             old_count);
   EXPECT_EQ(digest(uri, "'sim:41', 'sim:42'"), old_trials);  // every older trial, value for value
   EXPECT_EQ(reached_count(uri, "sim:41") + reached_count(uri, "sim:42"), 0);

@@ -38,8 +38,8 @@ std::string protocol_file() { return (testing::protocols_dir() / "discrimination
 
 std::vector<std::string> run_args(const std::string& participant, const std::string& uri, const std::string& journal,
                                   std::vector<std::string> extra = {}) {
-  std::vector<std::string> args{"experiment", "run", "--protocol", protocol_file(), "--participant", participant,
-                                "--db", uri, "--journal", journal};
+  std::vector<std::string> args{"experiment", "run",  "--protocol", protocol_file(), "--participant",
+                                participant,  "--db", uri,          "--journal",     journal};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
@@ -178,8 +178,8 @@ TEST(PostgresSchemaMigration, Version1ServerHoldingTrialsMigratesToVersion2AndKe
   const std::string uri = testing::old_server_holding("migrate_1_2", 1, file);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 1);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), 2 * kTrialsPerSession);
-  ASSERT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM information_schema.tables WHERE table_name = 'session_locks'"),
-            0);
+  ASSERT_EQ(
+      testing::pg_scalar(uri, "SELECT count(*) FROM information_schema.tables WHERE table_name = 'session_locks'"), 0);
   const auto stats = [](const std::string& store) {
     const auto r = testing::run_palprig({"stats", "trials", store, "--by", "participant,condition,finger", "--json"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -218,11 +218,12 @@ TEST(PostgresSchemaMigration, Version1ServerHoldingTrialsMigratesToVersion2AndKe
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), kPgSchemaVersion);
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM palprig_schema"), kPgSchemaVersion);
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), 3 * kTrialsPerSession);
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id "
-                                    "JOIN participants p ON p.id = s.participant_id WHERE p.code IN ('sim:21', 'sim:22')"),
+  EXPECT_EQ(testing::pg_scalar(uri,
+                               "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id "
+                               "JOIN participants p ON p.id = s.participant_id WHERE p.code IN ('sim:21', 'sim:22')"),
             2 * kTrialsPerSession);
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM session_locks"), 0);  // released at completion
-  EXPECT_EQ(digest(), old_trials);  // the older trials, value for value
+  EXPECT_EQ(digest(), old_trials);                                              // the older trials, value for value
 }
 
 }  // namespace

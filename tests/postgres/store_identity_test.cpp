@@ -41,7 +41,8 @@ int free_port() {
 
 // One session of `participant` on a fresh pg_virtualenv server at `port` (created for this
 // command and dropped after it), its trials committed through `journal`.
-test_support::ProcessResult session_on_a_new_server(int port, const std::string& participant, const std::string& journal) {
+test_support::ProcessResult session_on_a_new_server(int port, const std::string& participant,
+                                                    const std::string& journal) {
   const std::string protocol = (testing::protocols_dir() / "discrimination_002.json").string();
   const std::string inner = test_support::palprig_bin() + " experiment run --protocol " + protocol + " --participant " +
                             participant + " --quiet --journal " + journal +
@@ -50,11 +51,14 @@ test_support::ProcessResult session_on_a_new_server(int port, const std::string&
   // The lock with_server.sh takes while a cluster is created (pg_createcluster has none).
   return test_support::run_process("flock " + std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
                                    "/palprig-pg-virtualenv.lock pg_virtualenv -t -c '-p " + std::to_string(port) +
-                                   "' sh -c '" + [&] {
+                                   "' sh -c '" +
+                                   [&] {
                                      std::string quoted;
-                                     for (char c : inner) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+                                     for (char c : inner)
+                                       quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
                                      return quoted;
-                                   }() + "'");
+                                   }() +
+                                   "'");
 }
 
 TEST(postgres_store_identity, a_new_server_at_the_same_address_is_another_store) {
@@ -74,8 +78,8 @@ TEST(postgres_store_identity, a_new_server_at_the_same_address_is_another_store)
   ASSERT_NE(first.out.rfind("system="), std::string::npos) << first.out;
   ASSERT_NE(second.out.rfind("system="), std::string::npos) << second.out;
   EXPECT_NE(id(first.out), id(second.out));
-  const auto links = test_support::run_process(
-      "sqlite3 " + journal + " \"SELECT count(*), count(DISTINCT server) FROM lab_store_sessions\"");
+  const auto links = test_support::run_process("sqlite3 " + journal +
+                                               " \"SELECT count(*), count(DISTINCT server) FROM lab_store_sessions\"");
   if (links.exit_code == 0) EXPECT_EQ(links.out, "2|2\n");
 }
 
@@ -89,7 +93,7 @@ TEST(postgres_store_identity, the_identity_names_the_cluster_and_the_store) {
   const std::string system = ca.exec("SELECT system_identifier::text FROM pg_control_system()").text(0, 0);
   EXPECT_EQ(ia.rfind("postgresql system " + system + " store ", 0), 0u) << ia;
   EXPECT_EQ(ib.rfind("postgresql system " + system + " store ", 0), 0u) << ib;
-  EXPECT_NE(ia, ib);  // two stores on one cluster
+  EXPECT_NE(ia, ib);                     // two stores on one cluster
   EXPECT_EQ(pg_store_identity(ca), ia);  // and it stays what it is
 }
 

@@ -42,8 +42,8 @@ TEST(ModbusHost, SyntaxIsCheckedBeforeAnyLookup) {
   EXPECT_EQ(modbus_host_refusal("192.168.1.20"), "");
   EXPECT_EQ(modbus_host_refusal("fe80::1"), "");
   for (const std::string& bad : {std::string(""), std::string("a..b"), std::string(".a"), std::string("-a.b"),
-                                std::string("a-.b"), std::string("with space"), std::string("a/b"),
-                                std::string(64, 'x') + ".lab", std::string(254, 'a'), std::string("a\x1b[31mb")})
+                                 std::string("a-.b"), std::string("with space"), std::string("a/b"),
+                                 std::string(64, 'x') + ".lab", std::string(254, 'a'), std::string("a\x1b[31mb")})
     EXPECT_NE(modbus_host_refusal(bad), "") << bad;
 }
 
@@ -75,7 +75,8 @@ TEST(ModbusHost, ALongNameThatDoesNotResolveIsOneLineAndExitTwo) {
                              " --input sweep --duration-s 1");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(lines_in(r.err), 1u) << r.err;
-  EXPECT_EQ(r.err.rfind("palprig: " + rig_file + ": modbus.links[0].tcp.host: a host name that resolves", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.rfind("palprig: " + rig_file + ": modbus.links[0].tcp.host: a host name that resolves", 0), 0u)
+      << r.err;
   EXPECT_NE(r.err.find(host), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("truncated"), std::string::npos) << r.err;  // libmodbus's own line
   EXPECT_EQ(r.err.find("Invalid argument"), std::string::npos) << r.err;

@@ -36,8 +36,10 @@ std::array<PlantParams, kFingerCount> quiet_plants() {
 void hold(SimulatedRig& rig, const ChannelPressures& setpoint, double& t, double seconds) {
   for (double end = t + seconds; t < end; t += 0.001) {
     ChannelPressures monitor{};
-    if (rig.armed()) rig.write(setpoint, t);
-    else rig.vent();
+    if (rig.armed())
+      rig.write(setpoint, t);
+    else
+      rig.vent();
     rig.read_monitors(monitor, t);  // as the rig step does every period
   }
 }
@@ -83,7 +85,7 @@ TEST(BackendLifecycle, SimulatedRigGoesThroughEveryState) {
   EXPECT_EQ(rig.state(), BackendState::disarmed);
   EXPECT_EQ(rig.write({10, 20, 0}, t), BackendStatus::error);  // disarmed: refused, vented
   hold(rig, {10, 20, 0}, t, 0.3);
-  EXPECT_LT(rig.plant_output_kPa(1), 0.01);  // vented to 0 (the regulator exhausts at 0 kPa)
+  EXPECT_LT(rig.plant_output_kPa(1), 0.01);                     // vented to 0 (the regulator exhausts at 0 kPa)
   ASSERT_EQ(rig.read_monitors(monitor, t), BackendStatus::ok);  // still reading
   EXPECT_LT(monitor[1], 0.01);
 
@@ -119,15 +121,20 @@ TEST(BackendLifecycle, ModbusRigIsConnectedAndReadingBeforeItIsArmed) {
 
   ASSERT_EQ(rig.arm(), BackendStatus::ok);
   const std::array<std::uint16_t, kFingerCount> pressed{3850, 8192, 0};  // 11.75 and 25 kPa
-  EXPECT_TRUE(wait_for([&] {
-    rig.write({11.75, 25, 0}, 0);
-    return server.output_words() == pressed;
-  }, 3000ms));
+  EXPECT_TRUE(wait_for(
+      [&] {
+        rig.write({11.75, 25, 0}, 0);
+        return server.output_words() == pressed;
+      },
+      3000ms));
 
   ASSERT_EQ(rig.disarm(), BackendStatus::ok);
   EXPECT_EQ(rig.state(), BackendState::disarmed);
-  EXPECT_TRUE(wait_for([&] { return server.output_words() == std::array<std::uint16_t, kFingerCount>{0, 0, 0}; },
-                       2000ms));
+  EXPECT_TRUE(wait_for(
+      [&] {
+        return server.output_words() == std::array<std::uint16_t, kFingerCount>{0, 0, 0};
+      },
+      2000ms));
   EXPECT_EQ(rig.read_monitors(monitor, 0), BackendStatus::ok);  // disarmed: still reading
   rig.close();
   EXPECT_EQ(rig.state(), BackendState::closed);

@@ -44,10 +44,10 @@ nlohmann::json comedi_rig_doc() {
 
 TEST(ComediConversion, NominalLineMatchesHandComputedCounts) {
   const ComediConversion c = bipolar_16bit_output();
-  EXPECT_EQ(counts_from_kPa(c, 0), 32768u);   // 0 V: 32767.5, rounded to even
-  EXPECT_EQ(counts_from_kPa(c, 25), 40959u);  // 2.5 V: 40959.375
-  EXPECT_EQ(counts_from_kPa(c, 60), 52428u);  // 6 V: 52428.0
-  EXPECT_EQ(counts_from_kPa(c, 100), 65535u); // 10 V: the top of the range
+  EXPECT_EQ(counts_from_kPa(c, 0), 32768u);    // 0 V: 32767.5, rounded to even
+  EXPECT_EQ(counts_from_kPa(c, 25), 40959u);   // 2.5 V: 40959.375
+  EXPECT_EQ(counts_from_kPa(c, 60), 52428u);   // 6 V: 52428.0
+  EXPECT_EQ(counts_from_kPa(c, 100), 65535u);  // 10 V: the top of the range
   EXPECT_NEAR(kPa_from_counts(c, 40959), 25.0, 10.0 * 20.0 / 65535);
 }
 
@@ -98,8 +98,8 @@ TEST(ComediConversion, ClampsACalibrationThatReachesPastTheCountScale) {
 TEST(ComediConversion, MonitorWithAnOffsetReadsBackInKilopascals) {
   // SMC ITV monitor 1-5 V for 0-100 kPa on a 12-bit 0-10 V input.
   const ComediConversion c = make_comedi_conversion(linear_polynomial(0, 10, 4095, COMEDI_FROM_PHYSICAL),
-                                                    linear_polynomial(0, 10, 4095, COMEDI_TO_PHYSICAL), 4095, 0, 10, 0, 10,
-                                                    regulator(25, 1.0));
+                                                    linear_polynomial(0, 10, 4095, COMEDI_TO_PHYSICAL), 4095, 0, 10, 0,
+                                                    10, regulator(25, 1.0));
   EXPECT_NEAR(kPa_from_counts(c, 2048), (2048.0 / 4095 * 10 - 1) * 25, 1e-9);
   EXPECT_NEAR(kPa_from_counts(c, 410), 0.0, 0.1);  // about 1 V
 }
@@ -109,9 +109,10 @@ TEST(ComediConversion, RefusesAFallingPolynomialOrASpanOutsideTheRange) {
                                       linear_polynomial(-10, 10, 65535, COMEDI_TO_PHYSICAL), 65535, -10, 10, 0, 10,
                                       regulator(10)),
                std::invalid_argument);
-  EXPECT_THROW(make_comedi_conversion(linear_polynomial(0, 5, 4095, COMEDI_FROM_PHYSICAL),
-                                      linear_polynomial(0, 5, 4095, COMEDI_TO_PHYSICAL), 4095, 0, 5, 6, 10, regulator(10)),
-               std::invalid_argument);
+  EXPECT_THROW(
+      make_comedi_conversion(linear_polynomial(0, 5, 4095, COMEDI_FROM_PHYSICAL),
+                             linear_polynomial(0, 5, 4095, COMEDI_TO_PHYSICAL), 4095, 0, 5, 6, 10, regulator(10)),
+      std::invalid_argument);
 }
 
 TEST(ComediRigFile, ExampleLoadsAndBadSectionsAreRefused) {
@@ -125,7 +126,8 @@ TEST(ComediRigFile, ExampleLoadsAndBadSectionsAreRefused) {
     }
   };
   EXPECT_EQ(load(comedi_rig_doc()), "");
-  const ComediRigConfig cfg = load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/ni_pcie_6259_comedi.json").comedi.value();
+  const ComediRigConfig cfg =
+      load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/ni_pcie_6259_comedi.json").comedi.value();
   EXPECT_EQ(cfg.device, "/dev/comedi0");
   EXPECT_DOUBLE_EQ(cfg.monitors[1].regulator.volts_at_0_kPa, 1.0);
   auto doc = comedi_rig_doc();
@@ -148,8 +150,9 @@ TEST(ComediDevice, AMissingDeviceIsOneClearLineAndExitTwo) {
   auto doc = comedi_rig_doc();
   doc["comedi"]["device"] = (dir.path() / "comedi_absent").string();
   const auto rig = dir.write("rig.json", doc.dump());
-  const auto r = palprig::test_support::run_process(palprig::test_support::palprig_bin() + " run --rig " + rig.string() +
-                                                    " --scene " + PALPRIG_SOURCE_DIR + "/data/scenes/phantom_abc.json --duration-s 1");
+  const auto r = palprig::test_support::run_process(palprig::test_support::palprig_bin() + " run --rig " +
+                                                    rig.string() + " --scene " + PALPRIG_SOURCE_DIR +
+                                                    "/data/scenes/phantom_abc.json --duration-s 1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find((dir.path() / "comedi_absent").string()), std::string::npos) << r.err;

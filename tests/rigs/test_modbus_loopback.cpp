@@ -23,7 +23,9 @@ using palprig::test_support::TempDir;
 
 namespace {
 
-RigConfig shipped_rig(const std::string& name) { return load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/" + name); }
+RigConfig shipped_rig(const std::string& name) {
+  return load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/" + name);
+}
 
 std::array<PlantParams, kFingerCount> quiet_plants() {
   PlantParams p;
@@ -104,10 +106,13 @@ TEST(ModbusLoopback, WritesTheExactWordsOfTheMapAndReadsMonitorsBack) {
       << server.output_words()[0] << " " << server.output_words()[1] << " " << server.output_words()[2];
   // The plant follows and its monitor (ITV style, 25 kPa/V from 1 V) comes back over the bus.
   ChannelPressures monitors{};
-  EXPECT_TRUE(drive(rig, setpoint, 3000ms, [&] {
-    rig.read_monitors(monitors, 0);
-    return std::fabs(monitors[0] - 11.75) < 0.05 && std::fabs(monitors[1] - 25.0) < 0.05 && std::fabs(monitors[2]) < 0.05;
-  })) << monitors[0] << " " << monitors[1] << " " << monitors[2];
+  EXPECT_TRUE(drive(rig, setpoint, 3000ms,
+                    [&] {
+                      rig.read_monitors(monitors, 0);
+                      return std::fabs(monitors[0] - 11.75) < 0.05 && std::fabs(monitors[1] - 25.0) < 0.05 &&
+                             std::fabs(monitors[2]) < 0.05;
+                    }))
+      << monitors[0] << " " << monitors[1] << " " << monitors[2];
   rig.close();
   EXPECT_EQ(server.output_words(), (std::array<std::uint16_t, kFingerCount>{0, 0, 0}));  // close() vents
   EXPECT_TRUE(log.contains("bus cycles"));
@@ -127,10 +132,13 @@ TEST(ModbusLoopback, ServesSeveralClientsAtOnce) {
   ASSERT_EQ(modbus_connect(other), 0);
   const ChannelPressures setpoint{20.0, 20.0, 20.0};
   std::uint16_t outputs[3] = {}, monitors[3] = {};
-  EXPECT_TRUE(drive(rig, setpoint, 3000ms, [&] {
-    return modbus_read_registers(other, 0, 3, outputs) == 3 && modbus_read_input_registers(other, 0, 3, monitors) == 3 &&
-           outputs[0] == 6553 && monitors[0] > 3277;  // 2 V of 10 V; monitor above its 1 V zero
-  })) << outputs[0] << " " << monitors[0];
+  EXPECT_TRUE(drive(rig, setpoint, 3000ms,
+                    [&] {
+                      return modbus_read_registers(other, 0, 3, outputs) == 3 &&
+                             modbus_read_input_registers(other, 0, 3, monitors) == 3 && outputs[0] == 6553 &&
+                             monitors[0] > 3277;  // 2 V of 10 V; monitor above its 1 V zero
+                    }))
+      << outputs[0] << " " << monitors[0];
   EXPECT_EQ(server.clients(), 2);
   modbus_close(other);
   modbus_free(other);

@@ -33,7 +33,8 @@ ProbeRoots lab_pc(const TempDir& d, const std::string& uname_v) {
   put(proc / "sys/kernel/osrelease", "6.1.0-13-amd64\n");
   put(proc / "sys/kernel/version", uname_v + "\n");
   put(proc / "sys/kernel/sched_rt_runtime_us", "950000\n");
-  put(proc / "cpuinfo", "processor\t: 0\nflags\t\t: fpu vme de pse tsc msr\n\nprocessor\t: 1\nflags\t\t: fpu vme de pse tsc msr\n");
+  put(proc / "cpuinfo",
+      "processor\t: 0\nflags\t\t: fpu vme de pse tsc msr\n\nprocessor\t: 1\nflags\t\t: fpu vme de pse tsc msr\n");
   const auto cpu = sys / "devices/system/cpu";
   put(cpu / "online", "0-3\n");
   put(cpu / "isolated", "2-3\n");
@@ -66,7 +67,8 @@ LoopMeasurement measured(double p999_us, std::uint64_t overruns, std::uint64_t t
 }
 
 bool any_contains(const std::vector<std::string>& lines, const std::string& what) {
-  return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(what) != std::string::npos; });
+  return std::any_of(lines.begin(), lines.end(),
+                     [&](const std::string& l) { return l.find(what) != std::string::npos; });
 }
 
 }  // namespace
@@ -81,11 +83,13 @@ TEST(RtReadiness, PreemptionModelFromUname) {
 
 TEST(RtReadiness, PreemptionModelFromKernelConfig) {
   // This machine's /proc/config.gz: a dynamic kernel whose build-time default is none.
-  EXPECT_EQ(preempt_model_from_config("CONFIG_PREEMPT_BUILD=y\nCONFIG_PREEMPT_NONE=y\n# CONFIG_PREEMPT_VOLUNTARY is not set\n"
-                                      "# CONFIG_PREEMPT is not set\nCONFIG_PREEMPT_DYNAMIC=y\nCONFIG_PREEMPT_RCU=y\n"),
-            PreemptModel::dynamic);
+  EXPECT_EQ(
+      preempt_model_from_config("CONFIG_PREEMPT_BUILD=y\nCONFIG_PREEMPT_NONE=y\n# CONFIG_PREEMPT_VOLUNTARY is not set\n"
+                                "# CONFIG_PREEMPT is not set\nCONFIG_PREEMPT_DYNAMIC=y\nCONFIG_PREEMPT_RCU=y\n"),
+      PreemptModel::dynamic);
   EXPECT_EQ(preempt_model_from_config("# CONFIG_PREEMPT_NONE is not set\nCONFIG_PREEMPT_RT=y\n"), PreemptModel::rt);
-  EXPECT_EQ(preempt_model_from_config("# CONFIG_PREEMPT_RT is not set\nCONFIG_PREEMPT_VOLUNTARY=y\n"), PreemptModel::voluntary);
+  EXPECT_EQ(preempt_model_from_config("# CONFIG_PREEMPT_RT is not set\nCONFIG_PREEMPT_VOLUNTARY=y\n"),
+            PreemptModel::voluntary);
   EXPECT_EQ(preempt_model_from_config("CONFIG_PREEMPT=y\nCONFIG_PREEMPT_COUNT=y\n"), PreemptModel::full);
   EXPECT_EQ(preempt_model_from_config("CONFIG_PREEMPT_NONE=y\n"), PreemptModel::none);
   EXPECT_EQ(preempt_model_from_config("CONFIG_PREEMPT_COUNT=y\n"), PreemptModel::unknown);
@@ -164,15 +168,15 @@ TEST(RtReadiness, VerdictFollowsTheMeasuredLoop) {
   EXPECT_TRUE(r.ready);
   EXPECT_DOUBLE_EQ(r.budget_us, 1000);
   EXPECT_DOUBLE_EQ(r.needed_us, 308);
-  EXPECT_TRUE(assess(f, measured(300, 1)).ready);    // one in 10,000 is allowed
-  EXPECT_FALSE(assess(f, measured(300, 2)).ready);   // two are not
-  EXPECT_FALSE(assess(f, measured(995, 0)).ready);   // 995 + 8 us does not fit in 1 ms
+  EXPECT_TRUE(assess(f, measured(300, 1)).ready);      // one in 10,000 is allowed
+  EXPECT_FALSE(assess(f, measured(300, 2)).ready);     // two are not
+  EXPECT_FALSE(assess(f, measured(995, 0)).ready);     // 995 + 8 us does not fit in 1 ms
   EXPECT_FALSE(assess(f, measured(300, 0, 0)).ready);  // nothing measured
   const Readiness bad = assess(f, measured(2500, 40));
   EXPECT_TRUE(any_contains(bad.advice, "lower --rate-hz"));
   ASSERT_FALSE(bad.findings.empty());
   EXPECT_EQ(bad.findings.back().level == Finding::Level::info ? bad.findings[bad.findings.size() - 2].level
-                                                                : bad.findings.back().level,
+                                                              : bad.findings.back().level,
             Finding::Level::fail);
 }
 

@@ -33,7 +33,8 @@ std::vector<Tick> read_ticks(const std::filesystem::path& csv) {
     return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
   };
   const std::size_t t_col = column("t_s");
-  const std::array<std::size_t, kFingerCount> target_col{column("target_kPa_1"), column("target_kPa_2"), column("target_kPa_3")};
+  const std::array<std::size_t, kFingerCount> target_col{column("target_kPa_1"), column("target_kPa_2"),
+                                                         column("target_kPa_3")};
   std::vector<Tick> ticks;
   while (std::getline(in, line)) {
     std::vector<double> v;
@@ -78,7 +79,8 @@ TEST(experiments_session_telemetry, each_trials_stimulus_is_in_the_recording_at_
     const auto at = std::prev(after);
     EXPECT_NEAR(at->t_s, trial.onset_s, 1e-5);
     for (std::size_t f = 0; f < kFingerCount; ++f)
-      EXPECT_NEAR(at->target_kPa[f], trial.stimulus_kPa[f].value(), 1e-9) << "trial " << trial.position << " finger " << f;
+      EXPECT_NEAR(at->target_kPa[f], trial.stimulus_kPa[f].value(), 1e-9)
+          << "trial " << trial.position << " finger " << f;
     // The last tick before the onset commands nothing (the inter-trial interval is vented).
     const auto before = std::lower_bound(ticks.begin(), ticks.end(), trial.onset_s,
                                          [](const Tick& k, double t) { return k.t_s < t - 1e-9; });

@@ -20,7 +20,8 @@ std::string where_refused(const std::function<void()>& f) {
 }
 
 TEST(experiments_csv, quoted_fields_crlf_bom_and_blank_lines) {
-  const CsvTable t = CsvTable::parse("\xEF\xBB\xBFname,\"rt, s\"\r\n\"O'Neil, \"\"A\"\"\", 4.5 \r\n\r\nB,+3e0\n", "x.csv");
+  const CsvTable t =
+      CsvTable::parse("\xEF\xBB\xBFname,\"rt, s\"\r\n\"O'Neil, \"\"A\"\"\", 4.5 \r\n\r\nB,+3e0\n", "x.csv");
   ASSERT_EQ(t.header(), (std::vector<std::string>{"name", "rt, s"}));
   ASSERT_EQ(t.rows(), 2u);
   EXPECT_EQ(t.text(0, 0), "O'Neil, \"A\"");
@@ -48,7 +49,8 @@ TEST(experiments_csv, groups_in_order_of_appearance_and_only_used_rows_checked) 
   EXPECT_NE(where_refused([&] { group_numbers(t, "v", "g"); }).find("line 4"), std::string::npos);
   EXPECT_NE(where_refused([&] { two_groups(t, "v", "g", {"a", "z"}); }).find("group 'z'"), std::string::npos);
   const CsvTable missing = CsvTable::parse("g,v\n,1\n", "m.csv");
-  EXPECT_EQ(where_refused([&] { group_numbers(missing, "v", "g"); }), "line 2, column 'g' | a group label (the value is missing)");
+  EXPECT_EQ(where_refused([&] { group_numbers(missing, "v", "g"); }),
+            "line 2, column 'g' | a group label (the value is missing)");
 }
 
 }  // namespace

@@ -84,7 +84,8 @@ TEST(StatisticsOverflow, DescribeKeepsAFiniteSdOfHugeValues) {
                stats::StatisticsError);
 }
 
-void expect_one_line_refusal(const testing::CommandResult& r, const std::string& names, const std::string& not_named = "") {
+void expect_one_line_refusal(const testing::CommandResult& r, const std::string& names,
+                             const std::string& not_named = "") {
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
@@ -129,8 +130,7 @@ TEST(StatsCli, DescribeByOnAnEmptyTableIsRefused) {
   ScratchDir dir;
   const auto csv = dir / "empty.csv";
   std::ofstream(csv) << "g,v\n";
-  expect_one_line_refusal(run_palprig({"stats", "describe", csv.string(), "--column", "v", "--by", "g"}),
-                          csv.string());
+  expect_one_line_refusal(run_palprig({"stats", "describe", csv.string(), "--column", "v", "--by", "g"}), csv.string());
 }
 
 }  // namespace

@@ -84,7 +84,8 @@ TEST(PsychometricDegenerate, LevelsNearTheLargestDoubleAreFittedInScaleOrRefused
   EXPECT_NEAR(b.beta / 1e300, a.beta, 1e-6 * a.beta);
   // A level of 1e308 beside 1: refused with a line that says why, not "threshold inf".
   const std::string r = fit_or_refusal({{1, 10, 2}, {1e308, 10, 8}});
-  EXPECT_TRUE(r == "fitted" || r.find("a fit whose threshold, slope and scale are finite numbers") != std::string::npos) << r;
+  EXPECT_TRUE(r == "fitted" || r.find("a fit whose threshold, slope and scale are finite numbers") != std::string::npos)
+      << r;
   const std::string w = fit_or_refusal({{1e307, 10, 1}, {1.7e308, 10, 9}});
   EXPECT_TRUE(w == "fitted" || w.find("finite numbers") != std::string::npos) << w;
 }

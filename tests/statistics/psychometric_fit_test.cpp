@@ -43,8 +43,9 @@ nlohmann::json run_oracle(const std::vector<LevelCounts>& data, const ScratchDir
   out << "level,n,k\n";
   for (const auto& c : data) out << c.level << "," << c.n << "," << c.k << "\n";
   out.close();
-  const auto r = test_support::run_process("/usr/bin/python3 " + (testing::source_dir() / "tests" / "statistics" /
-                                                              "psychometric_oracle.py").string() + " " + csv.string());
+  const auto r = test_support::run_process(
+      "/usr/bin/python3 " + (testing::source_dir() / "tests" / "statistics" / "psychometric_oracle.py").string() + " " +
+      csv.string());
   EXPECT_EQ(r.exit_code, 0) << r.err << " (needs Debian's python3-statsmodels, tools/debian-packages.txt)";
   return nlohmann::json::parse(r.out);
 }
@@ -52,7 +53,8 @@ nlohmann::json run_oracle(const std::vector<LevelCounts>& data, const ScratchDir
 TEST(experiments_psychometric_fit, cumulative_gaussian_without_guess_and_lapse_is_the_probit_glm) {
   ScratchDir dir;
   for (std::uint64_t seed : {1u, 2u, 3u}) {
-    const auto data = simulate(Sigmoid::cumulative_gaussian, 2.5, 1.2, 0, 0, {0.5, 1.0, 1.5, 2, 2.5, 3, 3.5, 4.5}, 15, seed);
+    const auto data =
+        simulate(Sigmoid::cumulative_gaussian, 2.5, 1.2, 0, 0, {0.5, 1.0, 1.5, 2, 2.5, 3, 3.5, 4.5}, 15, seed);
     PsychometricOptions o;
     o.guess = 0.0;
     o.lapse = 0.0;
@@ -94,7 +96,8 @@ TEST(experiments_psychometric_fit, recovers_logistic_and_weibull_with_guess_and_
     EXPECT_NEAR(fit.alpha, 1.5, 0.1);
     EXPECT_NEAR(fit.beta, 2.5, 0.4);
     EXPECT_NEAR(fit.threshold_proportion, 0.75, 1e-12);
-    EXPECT_NEAR(stats::psychometric_value(Sigmoid::weibull, fit.alpha, fit.beta, fit.guess, fit.lapse, fit.threshold), 0.75, 1e-9);
+    EXPECT_NEAR(stats::psychometric_value(Sigmoid::weibull, fit.alpha, fit.beta, fit.guess, fit.lapse, fit.threshold),
+                0.75, 1e-9);
   }
 }
 
@@ -147,8 +150,9 @@ TEST(experiments_psychometric_cli, per_trial_and_per_level_csv_give_the_same_fit
   const auto a = testing::run_palprig({"stats", "psychometric", (dir / "trials.csv").string(), "--level", "stimulus",
                                        "--response", "yes", "--lapse", "0", "--bootstrap", "200", "--json"});
   ASSERT_EQ(a.exit_code, 0) << a.err;
-  const auto b = testing::run_palprig({"stats", "psychometric", (dir / "levels.csv").string(), "--level", "stimulus",
-                                       "--response", "yes", "--n", "n", "--lapse", "0", "--bootstrap", "200", "--json"});
+  const auto b =
+      testing::run_palprig({"stats", "psychometric", (dir / "levels.csv").string(), "--level", "stimulus", "--response",
+                            "yes", "--n", "n", "--lapse", "0", "--bootstrap", "200", "--json"});
   ASSERT_EQ(b.exit_code, 0) << b.err;
   const auto ja = nlohmann::json::parse(a.out)["groups"][0], jb = nlohmann::json::parse(b.out)["groups"][0];
   EXPECT_DOUBLE_EQ(ja["threshold"].get<double>(), jb["threshold"].get<double>());
@@ -160,12 +164,12 @@ TEST(experiments_psychometric_cli, per_trial_and_per_level_csv_give_the_same_fit
     std::ofstream bad(dir / "bad.csv");
     bad << "stimulus,yes\n1,0\n2,1\n3,yes\n";
   }
-  const auto c = testing::run_palprig({"stats", "psychometric", (dir / "bad.csv").string(), "--level", "stimulus",
-                                       "--response", "yes"});
+  const auto c = testing::run_palprig(
+      {"stats", "psychometric", (dir / "bad.csv").string(), "--level", "stimulus", "--response", "yes"});
   EXPECT_EQ(c.exit_code, 2);
   EXPECT_NE(c.err.find("line 4"), std::string::npos) << c.err;
-  const auto d = testing::run_palprig({"stats", "psychometric", (dir / "levels.csv").string(), "--level", "stimulus",
-                                       "--response", "yes"});
+  const auto d = testing::run_palprig(
+      {"stats", "psychometric", (dir / "levels.csv").string(), "--level", "stimulus", "--response", "yes"});
   EXPECT_EQ(d.exit_code, 2);
   EXPECT_NE(d.err.find("0 or 1"), std::string::npos) << d.err;
 }

@@ -74,7 +74,11 @@ TEST(experiments_pearson, matches_independent_values) {
 TEST(experiments_pearson, paper_000_table_4_p_values_from_rounded_r) {
   // Published r to 2 decimals and p to 3: the reported p must lie within our p for r +/- 0.005,
   // widened by the p rounding.
-  struct Row { double r; std::size_t n; double p; };
+  struct Row {
+    double r;
+    std::size_t n;
+    double p;
+  };
   const Row rows[] = {{-0.32, 40, .044}, {0.32, 38, .048}, {-0.37, 38, .021}, {0.32, 38, .047}, {0.48, 38, .002},
                       {0.34, 38, .037},  {0.37, 38, .023}, {0.45, 49, .001},  {0.36, 38, .026}};
   for (const Row& row : rows) {

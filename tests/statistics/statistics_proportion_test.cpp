@@ -14,7 +14,10 @@ TEST(experiments_wilson, z_for_95_percent_is_the_papers_1_959964) {
 }
 
 TEST(experiments_wilson, matches_independent_values) {
-  struct Case { std::int64_t k, n; double lower, upper; };
+  struct Case {
+    std::int64_t k, n;
+    double lower, upper;
+  };
   // From statistics_oracles.py (50-digit mpmath evaluation of eq. 9).
   const Case cases[] = {
       {488, 504, 0.949057614167, 0.980366307023}, {470, 504, 0.907209496316, 0.951326159699},

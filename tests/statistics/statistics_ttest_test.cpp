@@ -68,7 +68,9 @@ TEST(experiments_ttest, paper_000_paired_t_table_3) {
   // Published t (rounded to the digits shown: half_step is half its last digit) and two-sided p
   // to 3 decimals: the reported p must lie within our p over the t rounding interval, widened
   // by the p rounding.
-  struct Row { double t, half_step, df, p; };
+  struct Row {
+    double t, half_step, df, p;
+  };
   const Row rows[] = {{-2.615, 5e-4, 22, .016}, {-2.955, 5e-4, 22, .007}, {-1.779, 5e-4, 22, .089},
                       {-1.351, 5e-4, 22, .191}, {-3.7, 5e-2, 16, .002},   {-3.816, 5e-4, 16, .002},
                       {-0.347, 5e-4, 16, .733}, {-1.247, 5e-4, 16, .230}};

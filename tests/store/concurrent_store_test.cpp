@@ -25,8 +25,8 @@ std::string protocol_file() { return (testing::protocols_dir() / "discrimination
 
 std::vector<std::string> run_args(const std::string& participant, const std::string& db,
                                   const std::vector<std::string>& extra = {}, bool quiet = true) {
-  std::vector<std::string> args{"experiment", "run", "--protocol", protocol_file(), "--participant", participant,
-                                "--db", db};
+  std::vector<std::string> args{"experiment",    "run",       "--protocol", protocol_file(),
+                                "--participant", participant, "--db",       db};
   if (quiet) args.push_back("--quiet");
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
@@ -109,8 +109,8 @@ TEST(ConcurrentStore, TwoResumesAtOnceRunTheSessionOnce) {
   ASSERT_GE(kept, 3);
   ASSERT_LT(kept, 32);
 
-  auto results = run_together({run_args("sim:8", db, {"--resume", "--speed", "20"}),
-                               run_args("sim:8", db, {"--resume", "--speed", "20"})});
+  auto results = run_together(
+      {run_args("sim:8", db, {"--resume", "--speed", "20"}), run_args("sim:8", db, {"--resume", "--speed", "20"})});
   int completed = 0, refused = 0;
   for (const auto& r : results) {
     if (r.exit_code == 0) ++completed;
@@ -178,8 +178,9 @@ void expect_task_session_held_by_one_process(const std::string& protocol, const 
   ScratchDir dir;
   const std::string db = (dir / "held.db").string();
   auto args = [&](const std::vector<std::string>& extra) {
-    std::vector<std::string> a{"experiment", "run", "--protocol", (testing::protocols_dir() / protocol).string(),
-                               "--participant", "sim:9", "--db", db, "--quiet"};
+    std::vector<std::string> a{"experiment",    "run",   "--protocol", (testing::protocols_dir() / protocol).string(),
+                               "--participant", "sim:9", "--db",       db,
+                               "--quiet"};
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
   };

@@ -145,8 +145,9 @@ TEST(DamagedStore, UnreadableStoredProtocolIsRefusedNotRenamed) {
 TEST(DamagedStore, StoredProtocolWithBrokenFingerNamesIsRefusedNotRenamed) {
   ScratchDir dir;
   const std::string db = make_store(dir, 1);
-  exec_sql(db, "UPDATE sessions SET protocol_json = json_set(protocol_json, '$.fingers', json('[\"index\", 3]')) "
-               "WHERE id = 1");
+  exec_sql(db,
+           "UPDATE sessions SET protocol_json = json_set(protocol_json, '$.fingers', json('[\"index\", 3]')) "
+           "WHERE id = 1");
   const auto r = run_palprig({"export", db, "--out", (dir / "csv").string()});
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("fingers"), std::string::npos) << r.err;

@@ -35,8 +35,10 @@ class CacheHere {
     ::setenv("XDG_CACHE_HOME", dir.c_str(), 1);
   }
   ~CacheHere() {
-    if (had_) ::setenv("XDG_CACHE_HOME", old_.c_str(), 1);
-    else ::unsetenv("XDG_CACHE_HOME");
+    if (had_)
+      ::setenv("XDG_CACHE_HOME", old_.c_str(), 1);
+    else
+      ::unsetenv("XDG_CACHE_HOME");
   }
 
  private:

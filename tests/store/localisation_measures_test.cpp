@@ -16,9 +16,9 @@ using testing::ScratchDir;
 TEST(LocalisationMeasures, SpecificityAndAccuracyAreNotApplicable) {
   ScratchDir dir;
   const std::string db = (dir / "loc.db").string();
-  const auto run = run_palprig({"experiment", "run", "--protocol",
-                                (testing::protocols_dir() / "localisation_002.json").string(), "--participant", "sim:4",
-                                "--db", db, "--quiet"});
+  const auto run =
+      run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / "localisation_002.json").string(),
+                   "--participant", "sim:4", "--db", db, "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
 
   const auto json = run_palprig({"stats", "trials", db, "--json"});

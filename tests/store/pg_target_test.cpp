@@ -37,9 +37,9 @@ TEST(store_pg_target, malformed_uri_gives_libpqs_reason) {
 }
 
 TEST(store_pg_target, password_in_the_uri_is_refused_and_never_quoted) {
-  for (const std::string uri : {"postgresql://lab:Sup3rSecret@localhost:5432/trials",
-                                "postgresql://lab@localhost/trials?password=Sup3rSecret",
-                                "postgresql://lab:Sup3rSecret@localhost/trials?no_such_option=1"}) {
+  for (const std::string uri :
+       {"postgresql://lab:Sup3rSecret@localhost:5432/trials", "postgresql://lab@localhost/trials?password=Sup3rSecret",
+        "postgresql://lab:Sup3rSecret@localhost/trials?no_such_option=1"}) {
     const std::string message = refusal(uri);
     ASSERT_FALSE(message.empty()) << uri;
     EXPECT_EQ(message.find("Sup3rSecret"), std::string::npos) << message;
@@ -64,7 +64,8 @@ TEST(store_pg_target, cli_refuses_unreachable_server_and_password_with_exit_2) {
   EXPECT_NE(down.err.find("host 127.0.0.1 port 1 database labdb"), std::string::npos) << down.err;
   EXPECT_EQ(testing::count_lines(down.err), 1) << down.err;
 
-  const auto secret = testing::run_palprig({"export", "postgresql://lab:Sup3rSecret@127.0.0.1:1/labdb", "--out", "/tmp/x"});
+  const auto secret =
+      testing::run_palprig({"export", "postgresql://lab:Sup3rSecret@127.0.0.1:1/labdb", "--out", "/tmp/x"});
   EXPECT_EQ(secret.exit_code, 2);
   EXPECT_EQ(secret.err.find("Sup3rSecret"), std::string::npos) << secret.err;
   EXPECT_EQ(secret.out.find("Sup3rSecret"), std::string::npos) << secret.out;
@@ -77,7 +78,8 @@ TEST(store_pg_target, session_with_unreachable_server_is_refused_before_the_rig_
                                        "postgresql://lab@127.0.0.1:1/labdb", "--journal", journal, "--quiet"});
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("host 127.0.0.1 port 1 database labdb: connection: a reachable PostgreSQL server"),
-            std::string::npos) << r.err;
+            std::string::npos)
+      << r.err;
   EXPECT_EQ(testing::count_lines(r.err), 1) << r.err;
   EXPECT_EQ(r.out.find("trial "), std::string::npos) << "trials ran: " << r.out;
 }

@@ -32,9 +32,9 @@ bool has_wal_files(const std::filesystem::path& db) {
 TEST(ReadOnlyStore, StatsAndExportLeaveTheDatabaseAsTheyFoundIt) {
   ScratchDir dir;
   const std::filesystem::path db = dir / "trials.db";
-  const auto run = run_palprig({"experiment", "run", "--protocol",
-                                (testing::protocols_dir() / "discrimination_002.json").string(), "--participant",
-                                "sim:4", "--db", db.string(), "--quiet"});
+  const auto run =
+      run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / "discrimination_002.json").string(),
+                   "--participant", "sim:4", "--db", db.string(), "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   ASSERT_FALSE(has_wal_files(db)) << "the writer closed cleanly";
   const std::string before = file_bytes(db);
@@ -51,9 +51,9 @@ TEST(ReadOnlyStore, StatsAndExportLeaveTheDatabaseAsTheyFoundIt) {
 TEST(ReadOnlyStore, RefusesEveryWrite) {
   ScratchDir dir;
   const std::filesystem::path db = dir / "trials.db";
-  const auto run = run_palprig({"experiment", "run", "--protocol",
-                                (testing::protocols_dir() / "discrimination_002.json").string(), "--participant",
-                                "sim:5", "--db", db.string(), "--quiet"});
+  const auto run =
+      run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / "discrimination_002.json").string(),
+                   "--participant", "sim:5", "--db", db.string(), "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string before = file_bytes(db);
   {

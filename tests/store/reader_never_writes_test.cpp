@@ -40,9 +40,9 @@ std::filesystem::path shm_of(const std::filesystem::path& db) { return db.string
 std::string as_unprivileged() { return ::geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : ""; }
 
 void make_store(const std::filesystem::path& db) {
-  const auto run = run_palprig({"experiment", "run", "--protocol",
-                                (testing::protocols_dir() / "discrimination_002.json").string(), "--participant",
-                                "sim:4", "--db", db.string(), "--quiet"});
+  const auto run =
+      run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / "discrimination_002.json").string(),
+                   "--participant", "sim:4", "--db", db.string(), "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   ASSERT_FALSE(present(wal_of(db)) || present(shm_of(db))) << "the writer closed cleanly";
 }
@@ -121,8 +121,8 @@ TEST(ReaderNeverWrites, AStoreInAReadOnlyFolderIsRead) {
   ::chmod(out.c_str(), 0777);
   const std::string before = bytes_of(db);
 
-  const auto stats = test_support::run_process(as_unprivileged() + test_support::palprig_bin() + " stats trials " +
-                                               db.string());
+  const auto stats =
+      test_support::run_process(as_unprivileged() + test_support::palprig_bin() + " stats trials " + db.string());
   EXPECT_EQ(stats.exit_code, 0) << stats.err;
   EXPECT_EQ(stats.out, expected.out);
   const auto csv = test_support::run_process(as_unprivileged() + test_support::palprig_bin() + " export " +
@@ -144,8 +144,8 @@ TEST(ReaderNeverWrites, ACrashedWriterInAReadOnlyFolderIsReadWithItsWal) {
   ::chmod(folder.c_str(), 0555);
   const std::string db_before = bytes_of(db), wal_before = bytes_of(wal_of(db));
 
-  const auto stats = test_support::run_process(as_unprivileged() + test_support::palprig_bin() + " stats trials " +
-                                               db.string());
+  const auto stats =
+      test_support::run_process(as_unprivileged() + test_support::palprig_bin() + " stats trials " + db.string());
   EXPECT_EQ(stats.exit_code, 0) << stats.err;
   EXPECT_NE(stats.out.find("single-finger"), std::string::npos) << stats.out;
   EXPECT_EQ(stats.out.find("three-finger"), std::string::npos) << "the -wal's commit was not read: " << stats.out;

@@ -34,7 +34,8 @@ std::string protocol() { return std::string(PALPRIG_SOURCE_DIR) + "/data/protoco
 std::string as_unprivileged() { return ::geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : ""; }
 
 std::string session(const std::filesystem::path& db) {
-  return palprig_bin() + " experiment run --protocol " + protocol() + " --participant sim:3 --quiet --db " + db.string();
+  return palprig_bin() + " experiment run --protocol " + protocol() + " --participant sim:3 --quiet --db " +
+         db.string();
 }
 
 int line_count(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
@@ -46,7 +47,8 @@ struct Result {
 
 // palprig in a child whose files may not grow beyond `max_bytes` (SIGXFSZ ignored, so a write
 // past it fails with EFBIG as on a full disk).
-Result run_with_file_size_limit(const std::vector<std::string>& args, rlim_t max_bytes, const std::filesystem::path& dir) {
+Result run_with_file_size_limit(const std::vector<std::string>& args, rlim_t max_bytes,
+                                const std::filesystem::path& dir) {
   const auto err_file = dir / "stderr";
   const pid_t pid = ::fork();
   if (pid == 0) {
@@ -100,8 +102,9 @@ TEST(StoreEnvironment, AReadOnlyFileIsOneLineExitTwoAndKeptAsItWas) {
                              " --participant sim:4 --quiet --db " + db.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(line_count(r.err), 1) << r.err;
-  EXPECT_EQ(r.err, "palprig: " + db.string() +
-                       ": file: a trial database palprig can open and write (the file is read-only; nothing was written)\n");
+  EXPECT_EQ(r.err,
+            "palprig: " + db.string() +
+                ": file: a trial database palprig can open and write (the file is read-only; nothing was written)\n");
   EXPECT_EQ(read_file(db), before);
   // Readers still read it.
   EXPECT_EQ(run_process(as_unprivileged() + palprig_bin() + " stats trials " + db.string()).exit_code, 0);
@@ -109,8 +112,8 @@ TEST(StoreEnvironment, AReadOnlyFileIsOneLineExitTwoAndKeptAsItWas) {
 
 TEST(StoreEnvironment, AFullDiskIsOneLineOfPalprigsOwnAndKeepsWhatWasCommitted) {
   TempDir dir;
-  const std::vector<std::string> args = {"experiment", "run", "--protocol", protocol(), "--participant", "sim:5", "--quiet",
-                                         "--db"};
+  const std::vector<std::string> args = {"experiment",    "run",   "--protocol", protocol(),
+                                         "--participant", "sim:5", "--quiet",    "--db"};
   // Too small for the empty store: nothing was written, exit 2.
   {
     auto a = args;
@@ -135,6 +138,7 @@ TEST(StoreEnvironment, AFullDiskIsOneLineOfPalprigsOwnAndKeepsWhatWasCommitted) 
   EXPECT_EQ(r.err.find("database or disk is full\n"), std::string::npos) << r.err;  // not SQLite's text alone
   EXPECT_NE(r.err.find("palprig: " + db.string() + ": "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("the disk "), std::string::npos) << r.err;  // "is full" or "may be full", by SQLite's code
-  const auto check = run_process("sqlite3 " + db.string() + " 'PRAGMA integrity_check; SELECT count(*) > 0 FROM trials'");
+  const auto check =
+      run_process("sqlite3 " + db.string() + " 'PRAGMA integrity_check; SELECT count(*) > 0 FROM trials'");
   if (check.exit_code == 0) EXPECT_EQ(check.out, "ok\n1\n");
 }

@@ -21,9 +21,9 @@ TEST(TrialStatistics, TTestAndCombinedIntervalsEqualTheCommandLine) {
   ScratchDir dir;
   const std::string db = (dir / "trials.db").string();
   for (const char* who : {"sim:21", "sim:22"}) {
-    const auto run = run_palprig({"experiment", "run", "--protocol",
-                                  (testing::protocols_dir() / "discrimination_002.json").string(), "--participant", who,
-                                  "--db", db, "--quiet"});
+    const auto run =
+        run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / "discrimination_002.json").string(),
+                     "--participant", who, "--db", db, "--quiet"});
     ASSERT_EQ(run.exit_code, 0) << run.err;
   }
   const auto store = open_trial_store(db, TrialStore::Access::read_only);
@@ -77,9 +77,9 @@ TEST(TrialStatistics, TTestAndCombinedIntervalsEqualTheCommandLine) {
 TEST(TrialStatistics, OneConditionHasNothingToCompare) {
   ScratchDir dir;
   const std::string db = (dir / "loc.db").string();
-  const auto run = run_palprig({"experiment", "run", "--protocol",
-                                (testing::protocols_dir() / "localisation_002.json").string(), "--participant", "sim:5",
-                                "--db", db, "--quiet"});
+  const auto run =
+      run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / "localisation_002.json").string(),
+                   "--participant", "sim:5", "--db", db, "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto store = open_trial_store(db, TrialStore::Access::read_only);
   const TrialStatistics s = compute_trial_statistics(*store, SummaryOptions{});

@@ -165,8 +165,10 @@ TEST(store_rating_columns, confidence_and_stimulus_end_round_trip) {
   int rated = 0;
   reader.scan_scored_trials(TrialFamily::discrimination, true, [&](const ScoredTrial& t) {
     if (t.confidence) ++rated;
-    if (t.answered) EXPECT_DOUBLE_EQ(t.rt_after_stimulus_s, t.response_time_s - 4.0);
-    else EXPECT_TRUE(std::isnan(t.rt_after_stimulus_s));
+    if (t.answered)
+      EXPECT_DOUBLE_EQ(t.rt_after_stimulus_s, t.response_time_s - 4.0);
+    else
+      EXPECT_TRUE(std::isnan(t.rt_after_stimulus_s));
   });
   EXPECT_EQ(rated, static_cast<int>(plan.trials.size()) - 1);
   const TrialSummary s = summarise_trials(reader, {});
@@ -194,10 +196,11 @@ void make_version1_file(const std::filesystem::path& file, const Protocol& p, co
   sql += "INSERT INTO participants VALUES (1, 'P01', 1, 0, '2026-01-01T00:00:00Z');";
   sql += "INSERT INTO participants VALUES (2, 'P02', 2, 0, '2026-01-01T00:00:00Z');";
   for (int session = 1; session <= 2; ++session) {
-    sql += "INSERT INTO sessions (id, participant_id, protocol_name, task, bids_task, protocol_json, protocol_dir, seed, "
-           "condition_order, rig_id, rig_backend, calibration, status, started_utc) VALUES (" +
-           std::to_string(session) + ", " + std::to_string(session) + ", 'rated', 'discrimination', 'rated', '" +
-           p.snapshot.dump() + "', '.', 7, '[0,1]', 'rig', 'simulated', 'cal', 'completed', '2026-01-01T00:00:00Z');";
+    sql +=
+        "INSERT INTO sessions (id, participant_id, protocol_name, task, bids_task, protocol_json, protocol_dir, seed, "
+        "condition_order, rig_id, rig_backend, calibration, status, started_utc) VALUES (" +
+        std::to_string(session) + ", " + std::to_string(session) + ", 'rated', 'discrimination', 'rated', '" +
+        p.snapshot.dump() + "', '.', 7, '[0,1]', 'rig', 'simulated', 'cal', 'completed', '2026-01-01T00:00:00Z');";
     for (const PlannedTrial& t : plan.trials) {
       const TrialRecord r = trial_of(p, t);
       const auto flags = [](const FingerFlags& f) {
@@ -212,15 +215,17 @@ void make_version1_file(const std::filesystem::path& file, const Protocol& p, co
         const bool truth = r.truth[static_cast<std::size_t>(f)], said = answer[static_cast<std::size_t>(f)] == '1';
         o[f] = truth ? (said ? "TP" : "FN") : (said ? "FP" : "TN");
       }
-      sql += "INSERT INTO trials (session_id, position, block, condition, mode, practice, combination, "
-             "combination_label, stimulus1_kPa, stimulus2_kPa, stimulus3_kPa, truth, answered, answer, response_time_s, "
-             "onset_s, outcome1, outcome2, outcome3, completed_utc) VALUES (" +
-             std::to_string(session) + ", " + std::to_string(t.position) + ", " + std::to_string(t.block) + ", '" +
-             r.condition + "', '" + to_string(r.mode) + "', 0, " + std::to_string(t.combination) + ", '" +
-             r.combination_label + "', 0, 30, 0, '" + flags(r.truth) + "', " + (r.answered ? "1, '" + answer + "', " +
-             std::to_string(r.response_time_s) : std::string("0, NULL, NULL")) + ", " + std::to_string(r.onset_s) +
-             ", " + (r.answered ? "'" + o[0] + "', '" + o[1] + "', '" + o[2] + "'" : std::string("NULL, NULL, NULL")) +
-             ", '2026-01-01T00:00:00Z');";
+      sql +=
+          "INSERT INTO trials (session_id, position, block, condition, mode, practice, combination, "
+          "combination_label, stimulus1_kPa, stimulus2_kPa, stimulus3_kPa, truth, answered, answer, response_time_s, "
+          "onset_s, outcome1, outcome2, outcome3, completed_utc) VALUES (" +
+          std::to_string(session) + ", " + std::to_string(t.position) + ", " + std::to_string(t.block) + ", '" +
+          r.condition + "', '" + to_string(r.mode) + "', 0, " + std::to_string(t.combination) + ", '" +
+          r.combination_label + "', 0, 30, 0, '" + flags(r.truth) + "', " +
+          (r.answered ? "1, '" + answer + "', " + std::to_string(r.response_time_s) : std::string("0, NULL, NULL")) +
+          ", " + std::to_string(r.onset_s) + ", " +
+          (r.answered ? "'" + o[0] + "', '" + o[1] + "', '" + o[2] + "'" : std::string("NULL, NULL, NULL")) +
+          ", '2026-01-01T00:00:00Z');";
     }
   }
   raw_sql(file, sql);

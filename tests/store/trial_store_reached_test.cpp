@@ -44,7 +44,7 @@ Protocol protocol() {
 // where a finger carries a level (0/30/0), never for 0/0/0; position 2 times out.
 TrialRecord trial_of(const Protocol& p, const PlannedTrial& planned) {
   TrialRecord r = testing::discrimination_trial(p, planned, false);  // answered with the truth
-  if (planned.position == 2) {  // timed out
+  if (planned.position == 2) {                                       // timed out
     r.answered = false;
     r.answer = {};
     r.finger_outcomes = {};
@@ -111,7 +111,8 @@ TEST(store_reached_column, stimulus_reached_round_trips_through_reads_scans_and_
   EXPECT_NEAR(json["rows"][0]["rt_from_reached_mean_s"].get<double>(), sum / n, 1e-12);
   EXPECT_TRUE(json["rows"][0]["rt_from_reached_sd_s"].is_number());
   const std::string csv = summary_csv(s);
-  EXPECT_NE(csv.substr(0, csv.find('\n')).find(",rt_from_reached_mean_s,rt_from_reached_sd_s"), std::string::npos) << csv;
+  EXPECT_NE(csv.substr(0, csv.find('\n')).find(",rt_from_reached_mean_s,rt_from_reached_sd_s"), std::string::npos)
+      << csv;
 }
 
 TEST(store_reached_column, exports_carry_the_reached_time_and_the_response_time_from_it) {
@@ -124,7 +125,8 @@ TEST(store_reached_column, exports_carry_the_reached_time_and_the_response_time_
   std::ifstream in(dir / "out" / "trials_long.csv");
   std::string header;
   std::getline(in, header);
-  EXPECT_NE(header.find(",rt_after_stimulus_s,confidence,stimulus_reached_s,rt_from_reached_s"), std::string::npos) << header;
+  EXPECT_NE(header.find(",rt_after_stimulus_s,confidence,stimulus_reached_s,rt_from_reached_s"), std::string::npos)
+      << header;
   std::string line;
   int with_time = 0;
   while (std::getline(in, line)) {
@@ -167,11 +169,13 @@ TEST(store_reached_column, exports_carry_the_reached_time_and_the_response_time_
 std::string digest(const std::filesystem::path& file) {
   Database db(file, Database::Mode::read_only);
   std::string columns;
-  for (std::size_t i = 0; i < kTrialColumnsBeforeReached; ++i) columns += ", quote(" + std::string(kTrialColumns[i].name) + ")";
+  for (std::size_t i = 0; i < kTrialColumnsBeforeReached; ++i)
+    columns += ", quote(" + std::string(kTrialColumns[i].name) + ")";
   std::string all;
   auto rows = db.prepare("SELECT id" + columns + " FROM trials ORDER BY id");
   while (rows.step()) {
-    for (std::size_t c = 0; c <= kTrialColumnsBeforeReached; ++c) all += std::string(rows.text_view(static_cast<int>(c))) + ",";
+    for (std::size_t c = 0; c <= kTrialColumnsBeforeReached; ++c)
+      all += std::string(rows.text_view(static_cast<int>(c))) + ",";
     all += "\n";
   }
   return all;

@@ -78,7 +78,8 @@ TEST(experiments_trial_store, session_order_and_trials_round_trip) {
   EXPECT_EQ(opened.start_position, 0);
 
   for (int i = 0; i < 5; ++i) {
-    store.commit_trial(opened.session_id, discrimination_trial(p, opened.plan.trials[static_cast<std::size_t>(i)], i == 3));
+    store.commit_trial(opened.session_id,
+                       discrimination_trial(p, opened.plan.trials[static_cast<std::size_t>(i)], i == 3));
   }
   const StoredSession loaded = store.load_session(opened.session_id);
   EXPECT_EQ(loaded.completed_trials, 5);
@@ -94,7 +95,8 @@ TEST(experiments_trial_store, session_order_and_trials_round_trip) {
   EXPECT_EQ(loaded.protocol_snapshot, p.snapshot);
 
   // Per-finger outcomes are stored as the paper's TP/FN/TN/FP.
-  auto q = store.database().prepare("SELECT outcome1, outcome2, outcome3, truth, answer FROM trials WHERE position = 3");
+  auto q =
+      store.database().prepare("SELECT outcome1, outcome2, outcome3, truth, answer FROM trials WHERE position = 3");
   ASSERT_TRUE(q.step());
   const auto& c = p.combinations[static_cast<std::size_t>(opened.plan.trials[3].combination)];
   for (int f = 0; f < 3; ++f) EXPECT_EQ(q.text(f), c.tumor[static_cast<std::size_t>(f)] ? "TP" : "FP");

@@ -150,7 +150,7 @@ TEST(experiments_protocol, refuses_impossible_ordering_constraints) {
   auto doc = minimal();
   doc["repetitions"] = 4;
   doc["randomisation"] = {{"scheme", "full"}, {"min_distance", 3}};
-  EXPECT_EQ(refusal(doc), "");  // 3 kinds x 4: a b c a b c ... works
+  EXPECT_EQ(refusal(doc), "");               // 3 kinds x 4: a b c a b c ... works
   doc["randomisation"]["min_distance"] = 4;  // needs (4 - 1) * 4 + 3 = 15 > 12 positions
   EXPECT_EQ(refusal(doc), "randomisation");
 

@@ -17,7 +17,8 @@ TEST(experiments_scoring, each_finger_value_is_scored_on_its_own) {
   EXPECT_EQ(o[2], Outcome::fn);
   const auto none = score_discrimination({false, false, false}, {false, false, false});
   for (Outcome x : none) EXPECT_EQ(x, Outcome::tn);
-  for (Outcome x : {Outcome::tp, Outcome::fn, Outcome::tn, Outcome::fp}) EXPECT_EQ(outcome_from_string(to_string(x)), x);
+  for (Outcome x : {Outcome::tp, Outcome::fn, Outcome::tn, Outcome::fp})
+    EXPECT_EQ(outcome_from_string(to_string(x)), x);
   EXPECT_FALSE(outcome_from_string("XX").has_value());
 }
 

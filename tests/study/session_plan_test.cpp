@@ -31,8 +31,10 @@ TEST(experiments_session_plan, paper_002_session_layout) {
   for (std::size_t i = 0; i < first.trials.size(); ++i) {
     const PlannedTrial& t = first.trials[i];
     EXPECT_EQ(t.position, static_cast<int>(i));
-    if (t.practice) ++practice;
-    else ++per_condition[t.condition][t.combination];
+    if (t.practice)
+      ++practice;
+    else
+      ++per_condition[t.condition][t.combination];
     if (t.break_after) ++breaks;
   }
   EXPECT_EQ(practice, 4);
@@ -65,7 +67,8 @@ TEST(experiments_session_plan, latin_square_is_balanced_for_four_conditions) {
   for (int participant = 1; participant <= 4; ++participant) {
     const auto order = counterbalanced_order(Counterbalancing::latin_square, 4, participant, unused);
     for (int i = 0; i < 4; ++i) ++position_counts[{order[static_cast<std::size_t>(i)], i}];
-    for (int i = 0; i + 1 < 4; ++i) ++follows[{order[static_cast<std::size_t>(i)], order[static_cast<std::size_t>(i + 1)]}];
+    for (int i = 0; i + 1 < 4; ++i)
+      ++follows[{order[static_cast<std::size_t>(i)], order[static_cast<std::size_t>(i + 1)]}];
   }
   // Every condition once in every position, and every ordered pair exactly once (Williams).
   EXPECT_EQ(position_counts.size(), 16u);
@@ -97,7 +100,8 @@ TEST(experiments_session_plan, blocked_repetitions_and_breaks_inside_blocks) {
     }
     // Breaks after trials 2, 4 (block end), 6, 8 (block end), 10; none after the last.
     std::vector<int> breaks;
-    for (const auto& t : s.trials) if (t.break_after) breaks.push_back(t.position);
+    for (const auto& t : s.trials)
+      if (t.break_after) breaks.push_back(t.position);
     EXPECT_EQ(breaks, (std::vector<int>{1, 3, 5, 7, 9}));
   }
 }

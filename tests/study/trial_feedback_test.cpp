@@ -83,12 +83,13 @@ TEST(experiments_trial_feedback, the_terminal_prints_it_after_each_answer) {
     std::ofstream out(protocol);
     out << doc.dump();
   }
-  const auto run = testing::run_palprig({"experiment", "run", "--protocol", protocol.string(), "--participant", "P1",
-                                         "--db", (dir / "fb.db").string()},
-                                        "\n2\n1\n");
+  const auto run = testing::run_palprig(
+      {"experiment", "run", "--protocol", protocol.string(), "--participant", "P1", "--db", (dir / "fb.db").string()},
+      "\n2\n1\n");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("  Correct.\n"), std::string::npos) << run.out;
-  EXPECT_NE(run.out.find("  Not quite: the tumor was under middle; you answered index.\n"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("  Not quite: the tumor was under middle; you answered index.\n"), std::string::npos)
+      << run.out;
 }
 
 }  // namespace

@@ -83,7 +83,7 @@ TEST(experiments_trial_order, uneven_counts_with_runs) {
   ASSERT_TRUE(extend_constrained_order(order, counts, c, r));
   EXPECT_TRUE(order_satisfies(order, c));
   EXPECT_FALSE(order_infeasibility(counts, c, {}).has_value());
-  EXPECT_FALSE(order_infeasibility({8, 3}, c, {}).has_value());  // aa b aa b aa b aa
+  EXPECT_FALSE(order_infeasibility({8, 3}, c, {}).has_value());         // aa b aa b aa b aa
   EXPECT_TRUE(order_infeasibility({9, 3}, c, {"a", "b"}).has_value());  // five runs need four b
 }
 

@@ -31,8 +31,7 @@ class FullFilesystem {
     // Fill it: write until the file system says no.
     std::ofstream filler(folder_ / "filler", std::ios::binary);
     const std::vector<char> block(4096, 'x');
-    while (filler.write(block.data(), static_cast<std::streamsize>(block.size())) && filler.flush()) {
-    }
+    while (filler.write(block.data(), static_cast<std::streamsize>(block.size())) && filler.flush()) {}
   }
   ~FullFilesystem() {
     if (mounted_) ::umount2(folder_.c_str(), MNT_DETACH);

@@ -69,8 +69,7 @@ inline FinishedRun finish_palprig_run(ChildProcess& run, const TempDir& dir) {
   r.err = read_file(dir.path() / "run.err");
   try {
     run.wait_for_line(std::regex("^\\}$"), 5.0);
-  } catch (const std::exception&) {
-  }
+  } catch (const std::exception&) {}
   const std::string out = run.all_output();
   r.summary = nlohmann::json::parse(out, nullptr, false);
   return r;

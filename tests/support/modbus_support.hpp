@@ -70,7 +70,8 @@ class ChildProcess {
           return m;
         }
       }
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now()).count();
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now()).count();
       if (left <= 0) throw std::runtime_error("timed out waiting for output; got: " + all_output());
       pollfd p{out_fd_, POLLIN, 0};
       if (poll(&p, 1, int(left)) <= 0) continue;
@@ -107,8 +108,8 @@ class ChildProcess {
 inline int start_sim_rig(std::unique_ptr<ChildProcess>& child, const std::string& palprig, const std::string& rig,
                          int port, const std::string& write_log, const std::string& stderr_path,
                          const std::vector<std::string>& extra = {}) {
-  std::vector<std::string> argv = {palprig, "sim-rig", "--rig", rig, "--listen", "127.0.0.1:" + std::to_string(port),
-                                   "--write-log", write_log};
+  std::vector<std::string> argv = {
+      palprig, "sim-rig", "--rig", rig, "--listen", "127.0.0.1:" + std::to_string(port), "--write-log", write_log};
   argv.insert(argv.end(), extra.begin(), extra.end());
   child = std::make_unique<ChildProcess>(argv, stderr_path);
   const auto m = child->wait_for_line(std::regex("listening on 127\\.0\\.0\\.1:([0-9]+)"), 10.0);

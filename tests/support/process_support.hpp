@@ -71,7 +71,8 @@ class ChildProcess {
       if (fd >= 0 && (fds[i].revents & (POLLIN | POLLHUP))) {
         char buf[4096];
         const ssize_t n = ::read(fd, buf, sizeof buf);
-        if (n > 0) (i == 0 ? out_ : err_).append(buf, static_cast<std::size_t>(n));
+        if (n > 0)
+          (i == 0 ? out_ : err_).append(buf, static_cast<std::size_t>(n));
         else {
           ::close(fd);
           fd = -1;
@@ -89,8 +90,7 @@ class ChildProcess {
   }
 
   CommandResult finish() {
-    while (pump(1000)) {
-    }
+    while (pump(1000)) {}
     CommandResult r;
     r.exit_code = wait();
     r.out = out_;

@@ -53,7 +53,8 @@ struct Pass {
 // Ticks through `samples` (made beforehand: making them allocates) with the shipped simulated
 // rig and calibration, lag compensation on or off; counts the allocations the ticks made.
 Pass tick_through(const Scene& scene, const std::vector<TouchSample>& samples, bool lag_compensated) {
-  const TickConfig cfg = make_tick_config(load_rig_file(kData / "rigs" / "simulated.json"), calibration(lag_compensated));
+  const TickConfig cfg =
+      make_tick_config(load_rig_file(kData / "rigs" / "simulated.json"), calibration(lag_compensated));
   TickState st = make_tick_state(cfg);
   Pass pass;
   pass.setpoints_kPa.reserve(samples.size());  // within its capacity, push_back allocates nothing
@@ -82,7 +83,8 @@ int ticks_that_differ(const Pass& a, const Pass& b) {
 
 TEST(TickAllocations, TheDemoPassWithLagCompensationAllocatesNothing) {
   const SceneFile scene = load_scene_file(kData / "scenes" / "phantom_abc.json");
-  const double contact_force_N = make_tick_config(load_rig_file(kData / "rigs" / "simulated.json"), calibration(true)).contact_force_N;
+  const double contact_force_N =
+      make_tick_config(load_rig_file(kData / "rigs" / "simulated.json"), calibration(true)).contact_force_N;
   TraceInput trace(load_trace_csv(kData / "traces" / "phantom_abc_pass.csv", contact_force_N), "pass", contact_force_N);
   std::vector<TouchSample> samples(static_cast<std::size_t>(trace.duration_s() * 1000));
   for (std::size_t i = 0; i < samples.size(); ++i) samples[i] = trace.latest(double(i) * 1e-3);
@@ -90,7 +92,8 @@ TEST(TickAllocations, TheDemoPassWithLagCompensationAllocatesNothing) {
   const Pass off = tick_through(*scene.scene, samples, false);
   EXPECT_EQ(on.allocations, 0);
   EXPECT_EQ(off.allocations, 0);
-  EXPECT_GT(ticks_that_differ(on, off), 100) << "the pass crosses three tumors: the compensator should lead their edges";
+  EXPECT_GT(ticks_that_differ(on, off), 100)
+      << "the pass crosses three tumors: the compensator should lead their edges";
 }
 
 // Function scenes: a pulsing artery (the pulse stage) and a skin that drags (tissue drag), swept

@@ -50,7 +50,8 @@ struct Window {
 Window open_window() {
   Window w;
   w.files.data_dir = data_dir();
-  w.files.rig_path = w.rig_dir->write("bench_rig.json", test_support::read_file(data_dir() + "/rigs/simulated.json")).string();
+  w.files.rig_path =
+      w.rig_dir->write("bench_rig.json", test_support::read_file(data_dir() + "/rigs/simulated.json")).string();
   LiveRunOptions opt;
   w.window = std::make_unique<MainWindow>(std::make_unique<LiveRun>(load_live_run(w.files), opt), w.files, opt);
   w.window->show();
@@ -178,9 +179,7 @@ class CalibrationPageTest : public QObject {
 
   // Stop in the middle: the runner vents, the rows recorded so far are kept and can be read.
   void stopVentsAndKeepsWhatWasRecorded() {
-    stop_mid_sweep([](Window& w) {
-      QTest::mouseClick(child<QPushButton>(w.page, "cal_stop"), Qt::LeftButton);
-    });
+    stop_mid_sweep([](Window& w) { QTest::mouseClick(child<QPushButton>(w.page, "cal_stop"), Qt::LeftButton); });
   }
 
   // Esc (the window's VENT key) stops the sweep the same way, whatever has the focus.
@@ -211,7 +210,6 @@ class CalibrationPageTest : public QObject {
     QVERIFY(w.window->run().state() != RigLifecycle::stopped);
   }
 
-
  private slots:
   // The sweep's data and the fitted file go beside the rig file unless the user chooses, never
   // over an earlier file; a chosen file that exists is refused before the rig moves; a staircase
@@ -225,8 +223,9 @@ class CalibrationPageTest : public QObject {
     QCOMPARE(child<QProgressBar>(p, "cal_progress")->text(), QString("no sweep yet"));
     set_staircase(p, 10, 20, 10, 1);
     QVERIFY(shortfall->isVisibleTo(p));
-    QVERIFY2(shortfall->text().contains("too short to fit") && shortfall->text().contains("inflation staircase has 2 holds"),
-             qPrintable(shortfall->text()));
+    QVERIFY2(
+        shortfall->text().contains("too short to fit") && shortfall->text().contains("inflation staircase has 2 holds"),
+        qPrintable(shortfall->text()));
     set_staircase(p, 10, 30, 10, 1);
     QVERIFY(!shortfall->isVisibleTo(p));
 
@@ -236,7 +235,8 @@ class CalibrationPageTest : public QObject {
       QVERIFY(finished.wait(120000));
       QCOMPARE(p->data_path(), QString::fromStdString((folder / name).string()));
       QVERIFY(std::filesystem::file_size(folder / name) > 100);
-      QVERIFY2(child<QLabel>(p, "cal_status")->text().contains(p->data_path()), qPrintable(child<QLabel>(p, "cal_status")->text()));
+      QVERIFY2(child<QLabel>(p, "cal_status")->text().contains(p->data_path()),
+               qPrintable(child<QLabel>(p, "cal_status")->text()));
     }
     const auto first_size = std::filesystem::file_size(folder / "sim-default-sweep.csv");
     // A chosen file that exists: refused, nothing moves, nothing is replaced.
@@ -342,7 +342,8 @@ class CalibrationPageTest : public QObject {
     QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
     QVERIFY(!p->sweeping());
     const QString status = child<QLabel>(p, "cal_status")->text();
-    QVERIFY2(status.startsWith("palprig: ") && (status.contains("to_kPa") || status.contains("to-kPa")), qPrintable(status));
+    QVERIFY2(status.startsWith("palprig: ") && (status.contains("to_kPa") || status.contains("to-kPa")),
+             qPrintable(status));
     QVERIFY(w.window->run().state() != RigLifecycle::stopped);
   }
 };

@@ -47,7 +47,7 @@ std::string short_discrimination(const TempDir& dir, double inter_trial_s = 0.05
   auto doc = nlohmann::json::parse(test_support::read_file(data_dir() + "/protocols/discrimination_002.json"));
   doc["combinations"]["list_kPa"] = {{0, 30, 0}, {0, 0, 0}, {30, 10, 10}};
   doc["practice_trials"] = 0;
-  doc["timing"] = {{"max_present_s", 0.2}, {"sequential_step_s", 0.05}, {"sequential_gap_s", 0.02},
+  doc["timing"] = {{"max_present_s", 0.2},     {"sequential_step_s", 0.05},      {"sequential_gap_s", 0.02},
                    {"response_timeout_s", 60}, {"inter_trial_s", inter_trial_s}, {"break_s", 0}};
   return dir.write("short.json", doc.dump(2)).string();
 }
@@ -55,11 +55,12 @@ std::string short_discrimination(const TempDir& dir, double inter_trial_s = 0.05
 // The shipped confidence protocol (4 rating levels) cut like short_discrimination; the
 // stimulus is on for `present_s` (simultaneous) before the participant may answer.
 std::string short_confidence(const TempDir& dir, double present_s = 0.2) {
-  auto doc = nlohmann::json::parse(test_support::read_file(data_dir() + "/protocols/discrimination_002_confidence.json"));
+  auto doc =
+      nlohmann::json::parse(test_support::read_file(data_dir() + "/protocols/discrimination_002_confidence.json"));
   doc["combinations"]["list_kPa"] = {{0, 30, 0}, {0, 0, 0}, {30, 30, 0}};
   doc["practice_trials"] = 0;
-  doc["timing"] = {{"max_present_s", present_s}, {"sequential_step_s", 0.05}, {"sequential_gap_s", 0.02},
-                   {"response_timeout_s", 60}, {"inter_trial_s", 0.05}, {"break_s", 0},
+  doc["timing"] = {{"max_present_s", present_s},     {"sequential_step_s", 0.05}, {"sequential_gap_s", 0.02},
+                   {"response_timeout_s", 60},       {"inter_trial_s", 0.05},     {"break_s", 0},
                    {"answer_during_stimulus", false}};  // as the shipped file: a fixed-length stimulus
   return dir.write("rated.json", doc.dump(2)).string();
 }
@@ -76,9 +77,9 @@ std::vector<std::string> stored_rows(const std::string& db) {
   std::vector<std::string> rows;
   const auto store = open_trial_store(db, TrialStore::Access::read_only);
   for (const StoredTrial& t : store->read_trials(true)) {
-    rows.push_back(t.participant + "|" + std::to_string(t.simulated) + "|" + std::to_string(t.participant_number) + "|" +
-                   std::to_string(t.position) + "|" + std::to_string(t.block) + "|" + t.condition + "|" + t.mode + "|" +
-                   std::to_string(t.practice) + "|" + t.combination_label + "|" + t.truth + "|" + t.answer + "|" +
+    rows.push_back(t.participant + "|" + std::to_string(t.simulated) + "|" + std::to_string(t.participant_number) +
+                   "|" + std::to_string(t.position) + "|" + std::to_string(t.block) + "|" + t.condition + "|" + t.mode +
+                   "|" + std::to_string(t.practice) + "|" + t.combination_label + "|" + t.truth + "|" + t.answer + "|" +
                    std::to_string(t.answered) + "|" + t.outcome[0] + t.outcome[1] + t.outcome[2] + "|" +
                    (t.confidence ? std::to_string(*t.confidence) : std::string("-")));
   }
@@ -94,7 +95,9 @@ nlohmann::json stats_without_times(const std::string& db) {
     if (v.is_object()) {
       for (auto it = v.begin(); it != v.end();) {
         const std::string key = it.key();
-        if (key.find("rt") == 0 || key.find("response_time") != std::string::npos || key.find("time") != std::string::npos) it = v.erase(it);
+        if (key.find("rt") == 0 || key.find("response_time") != std::string::npos ||
+            key.find("time") != std::string::npos)
+          it = v.erase(it);
         else {
           strip(*it);
           ++it;
@@ -112,25 +115,34 @@ nlohmann::json stats_without_times(const std::string& db) {
 // and Enter, "2" by clicking the finger button and Answer.
 void answer_by_hand(ParticipantScreen& screen, const std::string& answer, int style) {
   if (answer == "0") {
-    if (style % 2 == 0) QTest::keyClick(&screen, Qt::Key_0);
-    else QTest::mouseClick(screen.findChild<QPushButton*>("none_button"), Qt::LeftButton);
+    if (style % 2 == 0)
+      QTest::keyClick(&screen, Qt::Key_0);
+    else
+      QTest::mouseClick(screen.findChild<QPushButton*>("none_button"), Qt::LeftButton);
     return;
   }
   for (char c : answer) {
-    if (style % 2 == 0) QTest::keyClick(&screen, Qt::Key(Qt::Key_0 + (c - '0')));
-    else QTest::mouseClick(screen.findChild<QPushButton*>(QString("finger_%1").arg(c)), Qt::LeftButton);
+    if (style % 2 == 0)
+      QTest::keyClick(&screen, Qt::Key(Qt::Key_0 + (c - '0')));
+    else
+      QTest::mouseClick(screen.findChild<QPushButton*>(QString("finger_%1").arg(c)), Qt::LeftButton);
   }
-  if (style % 2 == 0) QTest::keyClick(&screen, Qt::Key_Return);
-  else QTest::mouseClick(screen.findChild<QPushButton*>("answer_button"), Qt::LeftButton);
+  if (style % 2 == 0)
+    QTest::keyClick(&screen, Qt::Key_Return);
+  else
+    QTest::mouseClick(screen.findChild<QPushButton*>("answer_button"), Qt::LeftButton);
 }
 
 // The rating step after the finger answer: key `rating` (even styles) or its button.
 void rate_by_hand(MainWindow& w, ParticipantScreen& screen, int rating, int style) {
-  QVERIFY(wait_until(w, [&] { return screen.rating(); }, 30.0));
+  QVERIFY(wait_until(
+      w, [&] { return screen.rating(); }, 30.0));
   auto* button = screen.findChild<QPushButton*>(QString("confidence_%1").arg(rating));
   QVERIFY(button != nullptr && button->isVisible() && button->isEnabled());
-  if (style % 2 == 0) QTest::keyClick(&screen, Qt::Key(Qt::Key_0 + rating));
-  else QTest::mouseClick(button, Qt::LeftButton);
+  if (style % 2 == 0)
+    QTest::keyClick(&screen, Qt::Key(Qt::Key_0 + rating));
+  else
+    QTest::mouseClick(button, Qt::LeftButton);
 }
 
 }  // namespace
@@ -169,8 +181,8 @@ class ExperimentConsoleTest : public QObject {
     page.set_fields({protocol, "P01", gui_db, 0});
     EndSeen ended(page);
     // Where the plan has a break (between the condition blocks) the participant says Ready again.
-    const auto plan = test_support::run_process(test_support::palprig_bin() + " experiment plan --protocol " + protocol +
-                                                " --participant P01");
+    const auto plan = test_support::run_process(test_support::palprig_bin() + " experiment plan --protocol " +
+                                                protocol + " --participant P01");
     const QStringList plan_lines = QString::fromStdString(plan.out).trimmed().split('\n');
     QCOMPARE(plan_lines.size(), 7);
     QVERIFY2(page.begin(false), qPrintable(page.refusal_text()));
@@ -201,14 +213,17 @@ class ExperimentConsoleTest : public QObject {
 
     // The command line, the same participant code (same seed and order), the same answers typed.
     const auto input = dir.write("answers.txt", typed);
-    const auto r = test_support::run_process("(" + test_support::palprig_bin() + " experiment run --protocol " + protocol +
-                                             " --participant P01 --db " + cli_db + " < " + input.string() + ")");
+    const auto r =
+        test_support::run_process("(" + test_support::palprig_bin() + " experiment run --protocol " + protocol +
+                                  " --participant P01 --db " + cli_db + " < " + input.string() + ")");
     QVERIFY2(r.exit_code == 0, (r.out + r.err).c_str());
 
     const auto gui_rows = stored_rows(gui_db), cli_rows = stored_rows(cli_db);
     QCOMPARE(gui_rows.size(), std::size_t(6));
-    for (std::size_t i = 0; i < gui_rows.size(); ++i) QCOMPARE(QString::fromStdString(gui_rows[i]), QString::fromStdString(cli_rows[i]));
-    QCOMPARE(QString::fromStdString(stats_without_times(gui_db).dump()), QString::fromStdString(stats_without_times(cli_db).dump()));
+    for (std::size_t i = 0; i < gui_rows.size(); ++i)
+      QCOMPARE(QString::fromStdString(gui_rows[i]), QString::fromStdString(cli_rows[i]));
+    QCOMPARE(QString::fromStdString(stats_without_times(gui_db).dump()),
+             QString::fromStdString(stats_without_times(cli_db).dump()));
     // The console's list shows the same answers.
     QCOMPARE(page.files_written(), QStringList{QString::fromStdString(gui_db)});
   }
@@ -384,8 +399,8 @@ class ExperimentConsoleTest : public QObject {
     QVERIFY(kept.size() >= 2 && kept.size() < 6);
 
     const auto png = dir.path() / "resumed.png";
-    const auto r = test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --protocol " +
-                                             protocol + " --participant sim:11 --db " + db +
+    const auto r = test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() +
+                                             " gui --protocol " + protocol + " --participant sim:11 --db " + db +
                                              " --resume --screenshot " + png.string() + " --after-s 120");
     QVERIFY2(r.exit_code == 0, (r.out + r.err).c_str());
     QVERIFY2(r.out.find("resumed at trial " + std::to_string(kept.size() + 1)) != std::string::npos, r.out.c_str());
@@ -393,7 +408,8 @@ class ExperimentConsoleTest : public QObject {
     QVERIFY(std::filesystem::file_size(png) > 1000);
     const auto after = stored_rows(db);
     QCOMPARE(after.size(), std::size_t(6));  // none lost, none twice
-    for (std::size_t i = 0; i < kept.size(); ++i) QCOMPARE(QString::fromStdString(after[i]), QString::fromStdString(kept[i]));
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      QCOMPARE(QString::fromStdString(after[i]), QString::fromStdString(kept[i]));
     const auto store = open_trial_store(db, TrialStore::Access::read_only);
     const auto trials = store->read_trials(true);
     for (int p = 0; p < 6; ++p) QCOMPARE(trials[static_cast<std::size_t>(p)].position, p);
@@ -418,8 +434,8 @@ class ExperimentConsoleTest : public QObject {
     // The same seed through the command line gives the same trials.
     const std::string cli_db = (dir.path() / "cli.db").string();
     const auto c = test_support::run_process(test_support::palprig_bin() + " experiment run --protocol " + data_dir() +
-                                             "/protocols/discrimination_002.json --participant sim:3 --quiet --db " + cli_db +
-                                             " --telemetry " + (dir.path() / "cli.bin").string());
+                                             "/protocols/discrimination_002.json --participant sim:3 --quiet --db " +
+                                             cli_db + " --telemetry " + (dir.path() / "cli.bin").string());
     QVERIFY2(c.exit_code == 0, c.err.c_str());
     QCOMPARE(stored_rows(cli_db), rows);
     // The session's telemetry: the same ticks on simulated time (record for record in number; the
@@ -475,9 +491,10 @@ class ExperimentConsoleTest : public QObject {
   void refusedProtocolExitsTwoWithOneLine() {
     TempDir dir;
     const auto bad = dir.write("bad.json", R"({"version": 1, "name": "x", "task": "discrimination", "repetitons": 2})");
-    const auto r = test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --protocol " +
-                                             bad.string() + " --participant sim:1 --db " + (dir.path() / "x.db").string() +
-                                             " --screenshot " + (dir.path() / "x.png").string());
+    const auto r =
+        test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --protocol " +
+                                  bad.string() + " --participant sim:1 --db " + (dir.path() / "x.db").string() +
+                                  " --screenshot " + (dir.path() / "x.png").string());
     QCOMPARE(r.exit_code, 2);
     QVERIFY2(r.err.find("bad.json") != std::string::npos, r.err.c_str());
     QVERIFY(!std::filesystem::exists(dir.path() / "x.db"));
@@ -493,8 +510,8 @@ class ExperimentConsoleTest : public QObject {
     ExperimentPage& page = w.page();
     page.set_fields({protocol, "R01", gui_db, 0});
     EndSeen ended(page);
-    const auto plan = test_support::run_process(test_support::palprig_bin() + " experiment plan --protocol " + protocol +
-                                                " --participant R01");
+    const auto plan = test_support::run_process(test_support::palprig_bin() + " experiment plan --protocol " +
+                                                protocol + " --participant R01");
     const QStringList plan_lines = QString::fromStdString(plan.out).trimmed().split('\n');
     QCOMPARE(plan_lines.size(), 7);
     QVERIFY2(page.begin(false), qPrintable(page.refusal_text()));
@@ -519,7 +536,8 @@ class ExperimentConsoleTest : public QObject {
         QVERIFY(screen.rating());
       }
       rate_by_hand(*w.window, screen, ratings[static_cast<std::size_t>(k)], k + 1);
-      typed += answers[static_cast<std::size_t>(k)] + "\n" + std::to_string(ratings[static_cast<std::size_t>(k)]) + "\n";
+      typed +=
+          answers[static_cast<std::size_t>(k)] + "\n" + std::to_string(ratings[static_cast<std::size_t>(k)]) + "\n";
       QVERIFY(wait_until(*w.window, [&] { return committed_rows(*page.trial_table()) == k + 1; }));
       // The console's list shows the rating and the RT after the stimulus.
       QTableWidget& table = *page.trial_table();
@@ -534,12 +552,14 @@ class ExperimentConsoleTest : public QObject {
     QVERIFY(ended.end.completed);
 
     const auto input = dir.write("answers.txt", typed);
-    const auto r = test_support::run_process("(" + test_support::palprig_bin() + " experiment run --protocol " + protocol +
-                                             " --participant R01 --db " + cli_db + " < " + input.string() + ")");
+    const auto r =
+        test_support::run_process("(" + test_support::palprig_bin() + " experiment run --protocol " + protocol +
+                                  " --participant R01 --db " + cli_db + " < " + input.string() + ")");
     QVERIFY2(r.exit_code == 0, (r.out + r.err).c_str());
     const auto gui_rows = stored_rows(gui_db), cli_rows = stored_rows(cli_db);
     QCOMPARE(gui_rows.size(), std::size_t(6));
-    for (std::size_t i = 0; i < gui_rows.size(); ++i) QCOMPARE(QString::fromStdString(gui_rows[i]), QString::fromStdString(cli_rows[i]));
+    for (std::size_t i = 0; i < gui_rows.size(); ++i)
+      QCOMPARE(QString::fromStdString(gui_rows[i]), QString::fromStdString(cli_rows[i]));
     const auto gui_stats = stats_without_times(gui_db);
     QCOMPARE(QString::fromStdString(gui_stats.dump()), QString::fromStdString(stats_without_times(cli_db).dump()));
     QCOMPARE(gui_stats["rows"][0]["rated"].get<int>() + gui_stats["rows"][1]["rated"].get<int>(), 6);
@@ -627,7 +647,8 @@ class ExperimentConsoleTest : public QObject {
     QVERIFY(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }));
     QTest::keyClick(&screen, Qt::Key_Space);
     QVERIFY(wait_until(*w.window, [&] { return !states.empty() && states.back() == RunnerState::present; }));
-    QVERIFY(wait_until(*w.window, [&] { return screen.findChild<QLabel*>("participant_prompt")->text().startsWith("Trial 1"); }));
+    QVERIFY(wait_until(*w.window,
+                       [&] { return screen.findChild<QLabel*>("participant_prompt")->text().startsWith("Trial 1"); }));
     // Presenting: nothing can be answered, by click or key.
     for (const char* name : {"finger_1", "finger_2", "finger_3", "none_button", "answer_button"}) {
       QVERIFY2(!screen.findChild<QPushButton*>(name)->isEnabled(), name);
@@ -723,8 +744,12 @@ class ExperimentConsoleTest : public QObject {
       QCoreApplication::processEvents();
       const QSize hint = win.minimumSizeHint(), size = win.size();
       keep_screenshot(win, picture);
-      return QString("%1: window %2x%3, its minimum %4x%5").arg(state).arg(size.width()).arg(size.height())
-                 .arg(hint.width()).arg(hint.height());
+      return QString("%1: window %2x%3, its minimum %4x%5")
+          .arg(state)
+          .arg(size.width())
+          .arg(size.height())
+          .arg(hint.width())
+          .arg(hint.height());
     };
     // What holds the window up, when it does not fit: each widget whose minimum is large.
     std::function<void(QWidget*, int)> dump = [&](QWidget* wdg, int depth) {
@@ -781,7 +806,7 @@ class ExperimentConsoleTest : public QObject {
     ParticipantScreen& screen = *page.participant_screen();
     auto* ready = screen.findChild<QPushButton*>("ready_button");
     EndSeen ended(page);  // every session's end, counted
-    {  // 1. localisation, one trial, one mark
+    {                     // 1. localisation, one trial, one mark
       page.set_fields({short_localisation(dir), "L01", (dir.path() / "loc.db").string(), 0});
       QVERIFY2(page.begin(false), qPrintable(page.refusal_text()));
       QVERIFY2(wait_until(*w.window, [&] { return ready->isVisible() && ready->isEnabled(); }), "step 1");
@@ -818,7 +843,8 @@ class ExperimentConsoleTest : public QObject {
       // The experimenter sees the pressures the session delivers: the live page follows its ticks.
       LivePage& live = *w.window->live_page();
       const std::size_t seen = live.history().size();
-      QVERIFY2(wait_until(*w.window, [&] { return live.history().size() > seen + 20; }), "the live page got no session ticks");
+      QVERIFY2(wait_until(*w.window, [&] { return live.history().size() > seen + 20; }),
+               "the live page got no session ticks");
       QVERIFY(live.rig_panel()->findChild<QLabel*>("rig_state")->text().startsWith("study session"));
       QVERIFY(!live.rig_panel()->arm_button()->isEnabled());
       QVERIFY(live.rig_panel()->vent_button()->isEnabled());
@@ -868,14 +894,17 @@ class ExperimentConsoleTest : public QObject {
     QTest::keyClick(resume, Qt::Key_Space);
     for (int k = 2; k < 6; ++k) {  // the rest of the 6 trials, keys sent to whatever widget
       // A new block asks for Ready again: Space, wherever the focus is.
-      QVERIFY2(wait_until(*w.window, [&] {
-        if (ready->isVisible() && ready->isEnabled()) QTest::keyClick(abort_button, Qt::Key_Space);
-        return screen.answering_position() == k;
-      }), "step 17");
+      QVERIFY2(wait_until(*w.window,
+                          [&] {
+                            if (ready->isVisible() && ready->isEnabled()) QTest::keyClick(abort_button, Qt::Key_Space);
+                            return screen.answering_position() == k;
+                          }),
+               "step 17");
       QTest::keyClick(k % 2 ? static_cast<QWidget*>(page.trial_table()) : static_cast<QWidget*>(&screen), Qt::Key_0);
     }
     QVERIFY2(wait_until(*w.window, [&] { return ended.count == 3; }),
-             qPrintable(QString("step 18: %1 ends; status '%2'").arg(ended.count)
+             qPrintable(QString("step 18: %1 ends; status '%2'")
+                            .arg(ended.count)
                             .arg(page.findChild<QLabel*>("session_status")->text())));
     QVERIFY(ended.end.completed);
     const auto store = open_trial_store(db, TrialStore::Access::read_only);

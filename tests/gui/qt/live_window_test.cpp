@@ -45,7 +45,8 @@ std::string patient_rig(const TempDir& dir) {
   const std::string from = "\"max_input_age_s\": 0.1", to = "\"max_input_age_s\": 1.0";
   rig.replace(rig.find(from), from.size(), to);
   // Overruns are not the subject here either.
-  const std::string o_from = "\"max_consecutive_overruns\": 20", o_to = "\"max_consecutive_overruns\": 1000, \"max_lost_time_s\": 10";
+  const std::string o_from = "\"max_consecutive_overruns\": 20",
+                    o_to = "\"max_consecutive_overruns\": 1000, \"max_lost_time_s\": 10";
   rig.replace(rig.find(o_from), o_from.size(), o_to);
   return dir.write("rig.json", rig).string();
 }
@@ -206,9 +207,11 @@ class LiveWindowTest : public QObject {
     w.files.data_dir = data_dir();
     w.files.rig_path = dir.write("rig.json", rig).string();
     w.files.input_spec = "igtl:127.0.0.1:" + std::to_string(server.port());
-    w.files.tracking_path = dir.write("tracking.json", R"({"version": 1, "placement": "per_finger", "reader_fifo_priority": 0,
+    w.files.tracking_path =
+        dir.write("tracking.json", R"({"version": 1, "placement": "per_finger", "reader_fifo_priority": 0,
       "tools": [{"name": "Finger1ToTracker", "finger": 1}, {"name": "Finger2ToTracker", "finger": 2},
-                {"name": "Finger3ToTracker", "finger": 3}]})").string();
+                {"name": "Finger3ToTracker", "finger": 3}]})")
+            .string();
     LiveRunOptions opt;
     opt.want_fifo = false;
     w.window = std::make_unique<MainWindow>(std::make_unique<LiveRun>(load_live_run(w.files), opt), w.files, opt);
@@ -260,7 +263,8 @@ class LiveWindowTest : public QObject {
   void ventButtonDropsSetpointsWithinOneTick() {
     TempDir dir;
     Window w = open_window(dir);
-    vent_drops_setpoints(*w.window, [&] { QTest::mouseClick(w.window->live_page()->rig_panel()->vent_button(), Qt::LeftButton); });
+    vent_drops_setpoints(*w.window,
+                         [&] { QTest::mouseClick(w.window->live_page()->rig_panel()->vent_button(), Qt::LeftButton); });
   }
 
   void escapeVents() {
@@ -312,7 +316,8 @@ class LiveWindowTest : public QObject {
       "map": {"file": "phantom_abc.pgm", "width_mm": -5, "height_mm": 120}})");
     std::filesystem::copy_file(data_dir() + "/scenes/phantom_abc.pgm", dir.path() / "phantom_abc.pgm");
     // What the command line says about the same file.
-    const auto cli = test_support::run_process(test_support::palprig_bin() + " run --scene " + bad.string() + " --input sweep");
+    const auto cli =
+        test_support::run_process(test_support::palprig_bin() + " run --scene " + bad.string() + " --input sweep");
     QCOMPARE(cli.exit_code, 2);
     const QString cli_line = last_line(cli.err);
     QVERIFY(cli_line.startsWith("palprig: "));
@@ -350,7 +355,9 @@ class LiveWindowTest : public QObject {
     QVERIFY(wait_until(win, [&] { return win.run().feed().last_t_s() > 0.2; }));
     QCOMPARE(win.run().telemetry_file(), dir.path() / "T.csv");
     auto* status = win.findChild<QLabel*>("loop_status");
-    QVERIFY(wait_until(win, [&] { return status->text().contains("recording to " + QString::fromStdString((dir.path() / "T.csv").string())); }));
+    QVERIFY(wait_until(win, [&] {
+      return status->text().contains("recording to " + QString::fromStdString((dir.path() / "T.csv").string()));
+    }));
     LiveRunFiles other = files;
     other.scene_path = data_dir() + "/scenes/phantom_abc.json";
     QVERIFY(win.open_files(other));
@@ -358,7 +365,8 @@ class LiveWindowTest : public QObject {
     QVERIFY(first_size > 1000);  // the first recording, closed when its loop stopped
     QCOMPARE(win.run().telemetry_file(), dir.path() / "T-2.csv");
     QVERIFY(wait_until(win, [&] { return status->text().contains("T-2.csv"); }));
-    if (const char* shots = std::getenv("PALPRIG_SCREENSHOT_DIR")) win.grab().save(QString("%1/live_recording_to.png").arg(shots));
+    if (const char* shots = std::getenv("PALPRIG_SCREENSHOT_DIR"))
+      win.grab().save(QString("%1/live_recording_to.png").arg(shots));
     QVERIFY(wait_until(win, [&] { return win.run().feed().last_t_s() > 0.2; }));
     QCOMPARE(std::filesystem::file_size(dir.path() / "T.csv"), first_size);
   }
@@ -366,8 +374,9 @@ class LiveWindowTest : public QObject {
   void screenshotOptionWritesANonBlankPng() {
     TempDir dir;
     const auto png = dir.path() / "gui.png";
-    const auto r = test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() +
-                                             " gui --rig " + patient_rig(dir) + " --input sweep --screenshot " + png.string() + " --after-s 1.5");
+    const auto r =
+        test_support::run_process("QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --rig " +
+                                  patient_rig(dir) + " --input sweep --screenshot " + png.string() + " --after-s 1.5");
     QVERIFY2(r.exit_code == 0, r.err.c_str());
     QImage img(QString::fromStdString(png.string()));
     QVERIFY(!img.isNull());
@@ -378,7 +387,8 @@ class LiveWindowTest : public QObject {
         std::set<QRgb> colours;
         for (int y = qy * img.height() / 2; y < (qy + 1) * img.height() / 2; y += 3)
           for (int x = qx * img.width() / 2; x < (qx + 1) * img.width() / 2; x += 3) colours.insert(img.pixel(x, y));
-        QVERIFY2(colours.size() > 20, qPrintable(QString("quarter %1,%2 has %3 colours").arg(qx).arg(qy).arg(colours.size())));
+        QVERIFY2(colours.size() > 20,
+                 qPrintable(QString("quarter %1,%2 has %3 colours").arg(qx).arg(qy).arg(colours.size())));
       }
   }
 
@@ -387,11 +397,13 @@ class LiveWindowTest : public QObject {
     const auto csv = dir.path() / "telemetry.csv";
     // Start the window, wait (polling the file, up to 30 s) until the loop has recorded a
     // while, then SIGTERM it as a session manager or an operator's kill would.
-    const std::string script =
-        "QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --rig " + patient_rig(dir) + " --input sweep --telemetry " + csv.string() +
-        " & pid=$!; i=0; while [ \"$(stat -c %s " + csv.string() + " 2>/dev/null || echo 0)\" -lt 60000 ] && [ $i -lt 300 ];"
-        " do sleep 0.1; i=$((i+1)); done; kill -TERM $pid; wait $pid; echo exit=$?";
-    const auto r = test_support::run_process("sh -c '" + QString::fromStdString(script).replace("'", "'\\''").toStdString() + "'");
+    const std::string script = "QT_QPA_PLATFORM=offscreen " + test_support::palprig_bin() + " gui --rig " +
+                               patient_rig(dir) + " --input sweep --telemetry " + csv.string() +
+                               " & pid=$!; i=0; while [ \"$(stat -c %s " + csv.string() +
+                               " 2>/dev/null || echo 0)\" -lt 60000 ] && [ $i -lt 300 ];"
+                               " do sleep 0.1; i=$((i+1)); done; kill -TERM $pid; wait $pid; echo exit=$?";
+    const auto r =
+        test_support::run_process("sh -c '" + QString::fromStdString(script).replace("'", "'\\''").toStdString() + "'");
     QVERIFY2(r.out.find("exit=1") != std::string::npos, (r.out + r.err).c_str());
     QVERIFY2(r.err.find("stopped by signal") != std::string::npos, r.err.c_str());
     // The last record: fault 6 (signal), every setpoint 0 kPa, flag 8 (vented).
@@ -407,7 +419,8 @@ class LiveWindowTest : public QObject {
       return last[i];
     };
     QCOMPARE(field("fault").toInt(), int(FaultCode::signal));
-    for (const char* setpoint : {"setpoint_kPa_1", "setpoint_kPa_2", "setpoint_kPa_3"}) QCOMPARE(field(setpoint).toDouble(), 0.0);
+    for (const char* setpoint : {"setpoint_kPa_1", "setpoint_kPa_2", "setpoint_kPa_3"})
+      QCOMPARE(field(setpoint).toDouble(), 0.0);
     QVERIFY(field("flags").toInt() & kVented);
   }
 
@@ -416,8 +429,8 @@ class LiveWindowTest : public QObject {
     TempDir dir;
     const auto png = dir.path() / "xcb.png";
     const auto r = test_support::run_process("xvfb-run -a -s '-screen 0 1400x1000x24' env QT_QPA_PLATFORM=xcb " +
-                                             test_support::palprig_bin() + " gui --rig " + patient_rig(dir) + " --input sweep --json --screenshot " +
-                                             png.string() + " --after-s 1.5");
+                                             test_support::palprig_bin() + " gui --rig " + patient_rig(dir) +
+                                             " --input sweep --json --screenshot " + png.string() + " --after-s 1.5");
     if (r.exit_code != 0 && (r.err.find("xvfb-run: error") != std::string::npos ||
                              r.err.find("could not connect to display") != std::string::npos))
       QSKIP(qPrintable("Xvfb could not start here: " + QString::fromStdString(r.err).left(200)));

@@ -55,8 +55,8 @@ std::string short_discrimination(const TempDir& dir) {
   auto doc = nlohmann::json::parse(test_support::read_file(data_dir() + "/protocols/discrimination_002.json"));
   doc["combinations"]["list_kPa"] = {{0, 30, 0}, {0, 0, 0}, {30, 10, 10}};
   doc["practice_trials"] = 0;
-  doc["timing"] = {{"max_present_s", 30}, {"sequential_step_s", 0.1}, {"sequential_gap_s", 0.05},
-                   {"response_timeout_s", 60}, {"inter_trial_s", 0.1}, {"break_s", 0}};
+  doc["timing"] = {{"max_present_s", 30},      {"sequential_step_s", 0.1}, {"sequential_gap_s", 0.05},
+                   {"response_timeout_s", 60}, {"inter_trial_s", 0.1},     {"break_s", 0}};
   return dir.write("short.json", doc.dump(2)).string();
 }
 
@@ -88,7 +88,8 @@ struct KeySeen : QObject {
   explicit KeySeen(int k) : key(k) { QCoreApplication::instance()->installEventFilter(this); }
   ~KeySeen() override { QCoreApplication::instance()->removeEventFilter(this); }
   bool eventFilter(QObject* o, QEvent* e) override {
-    if (e->type() == QEvent::KeyPress && static_cast<QKeyEvent*>(e)->key() == key && !static_cast<QKeyEvent*>(e)->isAutoRepeat()) {
+    if (e->type() == QEvent::KeyPress && static_cast<QKeyEvent*>(e)->key() == key &&
+        !static_cast<QKeyEvent*>(e)->isAutoRepeat()) {
       // Once per key press: the same event reaches the filter for each widget it propagates to.
       if (seen_ != e) ++count;
       seen_ = e;
@@ -110,11 +111,14 @@ class ParticipantXTestTest : public QObject {
 
   // A left click on `widget`'s centre; it must be on show and enabled.
   steady::time_point click(const QWidget& widget, int button = 1) {
-    if (!widget.isVisible() || !widget.isEnabled()) qFatal("clicking %s, which is hidden or disabled", qPrintable(widget.objectName()));
+    if (!widget.isVisible() || !widget.isEnabled())
+      qFatal("clicking %s, which is hidden or disabled", qPrintable(widget.objectName()));
     const QPoint p = centre(widget);
     return x_->click(p.x(), p.y(), button);
   }
-  bool until(const std::function<bool()>& cond, double timeout_s = 60.0) { return wait_until(*w_.window, cond, timeout_s); }
+  bool until(const std::function<bool()>& cond, double timeout_s = 60.0) {
+    return wait_until(*w_.window, cond, timeout_s);
+  }
   ExperimentPage& page() { return w_.page(); }
   ParticipantScreen& screen() { return *page().participant_screen(); }
   QPushButton& button(QObject& in, const char* name) {
@@ -183,7 +187,9 @@ class ParticipantXTestTest : public QObject {
       QVERIFY(say_ready());
       QVERIFY(until([&] { return screen().answering_position() == 0; }));
       SceneView& view = *screen().marking()->scene_view();
-      const auto at_mm = [&](double x_mm, double y_mm) { return view.mapToGlobal(view.pixel_of(x_mm, y_mm).toPoint()); };
+      const auto at_mm = [&](double x_mm, double y_mm) {
+        return view.mapToGlobal(view.pixel_of(x_mm, y_mm).toPoint());
+      };
       // Palpate: press on tumor B and drag across it (the pen of the session follows the mouse).
       const QPoint b0 = at_mm(95, 50), b1 = at_mm(125, 50);
       x_->move(b0.x(), b0.y());
@@ -220,7 +226,8 @@ class ParticipantXTestTest : public QObject {
       QCOMPARE(t.marks.size(), std::size_t(2));
       QVERIFY(t.marks[0].tumor && *t.marks[0].tumor == "A");
       QVERIFY(t.marks[1].tumor && *t.marks[1].tumor == "C");
-      QVERIFY2(std::hypot(t.marks[0].x_mm - 40, t.marks[0].y_mm - 40) < 2.0, qPrintable(QString::number(t.marks[0].x_mm)));
+      QVERIFY2(std::hypot(t.marks[0].x_mm - 40, t.marks[0].y_mm - 40) < 2.0,
+               qPrintable(QString::number(t.marks[0].x_mm)));
       QCOMPARE(t.false_marks.value_or(-1), std::int64_t(0));
       QVERIFY(t.felt_kPa[0] && *t.felt_kPa[0] > 0.0);  // the drag pressed the rig's fingers
       // The answer's time is the Enter key's own (the console's clock and the session's agree).
@@ -351,8 +358,8 @@ class ParticipantXTestTest : public QObject {
       qInfo("trial %d (%s): stored answer time - press %.3f ms", t.position + 1, t.combination_label.c_str(), error_ms);
       // Within the X server's millisecond and its scheduling on a busy machine; the 300 ms the
       // GUI thread was kept busy in trial 2 are not in it.
-      QVERIFY2(std::abs(error_ms) < 50.0, qPrintable(QString("trial %1: stored answer %2 ms from the press")
-                                                         .arg(t.position + 1).arg(error_ms)));
+      QVERIFY2(std::abs(error_ms) < 50.0,
+               qPrintable(QString("trial %1: stored answer %2 ms from the press").arg(t.position + 1).arg(error_ms)));
       // When the stimulus reached the fingers: never for 0/0/0; otherwise unless the answer came
       // first (a key pressed within the regulators' lag).
       if (t.combination_label == "0/0/0") QVERIFY(!t.stimulus_reached_s);

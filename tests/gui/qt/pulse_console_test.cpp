@@ -42,7 +42,8 @@ namespace {
 // short inter-trial interval so a person's session (real time) takes seconds.
 std::string short_pulse(const TempDir& dir, int repetitions) {
   auto doc = nlohmann::json::parse(test_support::read_file(data_dir() + "/protocols/pulse_localisation_000.json"));
-  for (auto& c : doc["conditions"]) c["scene"] = data_dir() + "/scenes/" + std::filesystem::path(c["scene"].get<std::string>()).filename().string();
+  for (auto& c : doc["conditions"])
+    c["scene"] = data_dir() + "/scenes/" + std::filesystem::path(c["scene"].get<std::string>()).filename().string();
   doc["repetitions"] = repetitions;
   doc["pulse"]["inter_trial_s"] = 0.05;
   return dir.write("pulse.json", doc.dump(2)).string();
@@ -70,7 +71,8 @@ std::string row_text(const PulseTrialRecord& t) {
 // The participant presses on the scene at `target` (palpating), marks a wrong spot first, marks
 // again at `target` (the one mark moves), undoes (and, with `empty_done`, says Done without a
 // mark, which hands nothing over), and marks again. Done is the caller's.
-void palpate_and_mark(ParticipantScreen& screen, const Point2_mm& target, const Point2_mm& wrong, bool empty_done = true) {
+void palpate_and_mark(ParticipantScreen& screen, const Point2_mm& target, const Point2_mm& wrong,
+                      bool empty_done = true) {
   LocalisationMarking& marking = *screen.marking();
   SceneView& view = *marking.scene_view();
   const QPoint at = view.pixel_of(target.x_mm, target.y_mm).toPoint();
@@ -140,7 +142,8 @@ class PulseConsoleTest : public QObject {
       if (k == 0 && std::getenv("PALPRIG_SCREENSHOT_DIR")) {
         // The README's picture: the participant screen on its own (full-screen) window.
         screen.show_full_screen_on(QGuiApplication::screens().back());
-        QVERIFY(wait_until(*w.window, [&] { return screen.isWindow() && screen.marking()->scene_view()->height() > 250; }));
+        QVERIFY(
+            wait_until(*w.window, [&] { return screen.isWindow() && screen.marking()->scene_view()->height() > 250; }));
         // Only for the picture (no assertion waits on time): the offscreen platform lays the new
         // top-level window out over a few more event-loop passes than the wait above sees.
         QTest::qWait(300);
@@ -167,8 +170,8 @@ class PulseConsoleTest : public QObject {
         if (cond.name == t.condition) c = &cond;
       QVERIFY(c != nullptr);
       const SceneFile scene = load_scene_file(c->scene_file);
-      const PulseMarkScore score =
-          score_pulse_mark(*scene.scene->pulse(), Point2_mm{t.mark_x_mm, t.mark_y_mm}, protocol.hit_radius_mm, c->artery);
+      const PulseMarkScore score = score_pulse_mark(*scene.scene->pulse(), Point2_mm{t.mark_x_mm, t.mark_y_mm},
+                                                    protocol.hit_radius_mm, c->artery);
       QCOMPARE(t.distance_mm, score.distance_mm);
       QCOMPARE(t.hit, score.hit);
       QCOMPARE(t.hit, k == 0);
@@ -205,7 +208,8 @@ class PulseConsoleTest : public QObject {
     }
     // The Statistics JSON export is byte for byte `stats trials --json`.
     QSignalSpy exported(&view, &StatisticsView::exported);
-    view.export_to(StatisticsView::ExportKind::statistics_json, QString::fromStdString((dir.path() / "exports").string()));
+    view.export_to(StatisticsView::ExportKind::statistics_json,
+                   QString::fromStdString((dir.path() / "exports").string()));
     QVERIFY(exported.wait(30000));
     QCOMPARE(QString::fromStdString(test_support::read_file(dir.path() / "exports" / "statistics.json")),
              QString::fromStdString(r.out));
@@ -299,11 +303,12 @@ class PulseConsoleTest : public QObject {
     for (int r = 0; r < 10; ++r) planned << page.trial_table()->item(r, 1)->text();
     EndSeen ended(page);
     QVERIFY(page.begin(false));
-    QVERIFY(wait_until(*w.window, [&] { return ended.count == 1 && !page.session_running(); }, 240));
+    QVERIFY(wait_until(
+        *w.window, [&] { return ended.count == 1 && !page.session_running(); }, 240));
     QVERIFY2(ended.end.completed, ended.end.fault.c_str());
     QCOMPARE(committed_rows(*page.trial_table()), 10);
-    const auto c = test_support::run_process(test_support::palprig_bin() + " experiment run --protocol " + protocol_file +
-                                             " --participant sim:5 --quiet --db " + cli_db);
+    const auto c = test_support::run_process(test_support::palprig_bin() + " experiment run --protocol " +
+                                             protocol_file + " --participant sim:5 --quiet --db " + cli_db);
     QVERIFY2(c.exit_code == 0, c.err.c_str());
     const auto gui_rows = stored_pulse_trials(db), cli_rows = stored_pulse_trials(cli_db);
     QCOMPARE(gui_rows.size(), std::size_t(10));
@@ -327,20 +332,22 @@ class PulseConsoleTest : public QObject {
     const QMetaObject::Connection abort_at_first =
         connect(&page, &ExperimentPage::trialCommitted, &page, [&page](int) { page.abort(); });
     QVERIFY(page.begin(false));
-    QVERIFY(wait_until(*w.window, [&] { return stopped.count == 1 && !page.session_running(); }, 120));
+    QVERIFY(wait_until(
+        *w.window, [&] { return stopped.count == 1 && !page.session_running(); }, 120));
     disconnect(abort_at_first);
     const auto kept = stored_pulse_trials(resumed_db);
     QVERIFY(!kept.empty() && kept.size() < 10);
     QVERIFY(page.resume_offered());
     QCOMPARE(page.offered_start_position(), static_cast<int>(kept.size()));
-    const auto r = test_support::run_process(test_support::palprig_bin() + " experiment run --protocol " + protocol_file +
-                                             " --participant sim:6 --resume --db " + resumed_db);
+    const auto r = test_support::run_process(test_support::palprig_bin() + " experiment run --protocol " +
+                                             protocol_file + " --participant sim:6 --resume --db " + resumed_db);
     QVERIFY2(r.exit_code == 0, (r.out + r.err).c_str());
     QVERIFY2(r.out.find("resumed at trial " + std::to_string(kept.size() + 1)) != std::string::npos, r.out.c_str());
     const auto after = stored_pulse_trials(resumed_db);
     QCOMPARE(after.size(), std::size_t(10));
     for (std::size_t i = 0; i < after.size(); ++i) QCOMPARE(after[i].position, static_cast<int>(i));
-    for (std::size_t i = 0; i < kept.size(); ++i) QCOMPARE(QString::fromStdString(row_text(after[i])), QString::fromStdString(row_text(kept[i])));
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      QCOMPARE(QString::fromStdString(row_text(after[i])), QString::fromStdString(row_text(kept[i])));
   }
 };
 

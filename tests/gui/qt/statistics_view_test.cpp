@@ -103,7 +103,8 @@ void StatisticsViewTest::numbersEqualStatsTrialsJson() {
   const fs::path db = dir.path() / "trials.db";
   run_participant(db, "discrimination_002.json", "sim:7");
   run_participant(db, "discrimination_002.json", "sim:8");
-  const auto cli = nlohmann::ordered_json::parse(run_cli({"stats", "trials", QString::fromStdString(db.string()), "--json"}));
+  const auto cli =
+      nlohmann::ordered_json::parse(run_cli({"stats", "trials", QString::fromStdString(db.string()), "--json"}));
 
   StatisticsView view;
   view.resize(1400, 900);
@@ -123,11 +124,11 @@ void StatisticsViewTest::numbersEqualStatsTrialsJson() {
     const int r = row_of(measures, "condition " + QString::fromStdString(row["condition"].get<std::string>()));
     QVERIFY(r >= 0);
     const auto& se = row["Se"];
-    const QString expected = QStringLiteral("%1 [%2, %3] n=%4")
-                                 .arg(QString::number(se["value"].get<double>(), 'f', 3),
-                                      QString::number(se["lower"].get<double>(), 'f', 3),
-                                      QString::number(se["upper"].get<double>(), 'f', 3))
-                                 .arg(se["n"].get<long long>());
+    const QString expected =
+        QStringLiteral("%1 [%2, %3] n=%4")
+            .arg(QString::number(se["value"].get<double>(), 'f', 3), QString::number(se["lower"].get<double>(), 'f', 3),
+                 QString::number(se["upper"].get<double>(), 'f', 3))
+            .arg(se["n"].get<long long>());
     QCOMPARE(measures->item(r, se_column)->text(), expected);
     QCOMPARE(measures->item(r, tp_column)->text(), QString::number(row["TP"].get<long long>()));
   }
@@ -158,7 +159,8 @@ void StatisticsViewTest::ratingAndRtAfterStimulusEqualStatsTrialsJson() {
   const fs::path db = dir.path() / "rated.db";
   run_participant(db, "discrimination_002_confidence.json", "sim:7");
   run_participant(db, "discrimination_002_confidence.json", "sim:8");
-  const auto cli = nlohmann::ordered_json::parse(run_cli({"stats", "trials", QString::fromStdString(db.string()), "--json"}));
+  const auto cli =
+      nlohmann::ordered_json::parse(run_cli({"stats", "trials", QString::fromStdString(db.string()), "--json"}));
   StatisticsView view;
   view.resize(1400, 900);
   view.show();
@@ -182,7 +184,8 @@ void StatisticsViewTest::ratingAndRtAfterStimulusEqualStatsTrialsJson() {
                  QString::number(row["rt_from_reached_sd_s"].get<double>(), 'f', 2));
     QVERIFY(row["rated"].get<int>() > 0);
     QCOMPARE(measures->item(r, confidence_column)->text(),
-             QString::number(row["confidence_mean"].get<double>(), 'f', 2) + QStringLiteral(" (n=%1)").arg(row["rated"].get<int>()));
+             QString::number(row["confidence_mean"].get<double>(), 'f', 2) +
+                 QStringLiteral(" (n=%1)").arg(row["rated"].get<int>()));
   }
 }
 
@@ -191,7 +194,8 @@ void StatisticsViewTest::measureWithNoCasesShowsNa() {
   const fs::path db = dir.path() / "localisation.db";
   run_participant(db, "localisation_002.json", "sim:3");
   run_participant(db, "localisation_002.json", "sim:4");
-  const auto cli = nlohmann::ordered_json::parse(run_cli({"stats", "trials", QString::fromStdString(db.string()), "--json"}));
+  const auto cli =
+      nlohmann::ordered_json::parse(run_cli({"stats", "trials", QString::fromStdString(db.string()), "--json"}));
   QVERIFY(cli["rows"][0]["Sp"].is_null());
 
   StatisticsView view;
@@ -199,8 +203,9 @@ void StatisticsViewTest::measureWithNoCasesShowsNa() {
   QSignalSpy refreshed(&view, &StatisticsView::refreshed);
   view.set_store(QString::fromStdString(db.string()));
   wait_idle(view, refreshed);
-  QCOMPARE(QString::fromStdString(summary_json(TrialSummary{{SummaryKey::condition}, view.condition_rows()}, 0.95).dump()),
-           QString::fromStdString(cli.dump()));
+  QCOMPARE(
+      QString::fromStdString(summary_json(TrialSummary{{SummaryKey::condition}, view.condition_rows()}, 0.95).dump()),
+      QString::fromStdString(cli.dump()));
 
   // Localisation has no true negatives: Sp and ACC are n/a in the table and on the chart, not 0.
   auto* measures = table(view, "measuresTable");
@@ -254,7 +259,8 @@ void StatisticsViewTest::exportsEqualPalprigExport() {
     QVERIFY(b && b->isEnabled());
     const auto before = exported.count();
     QTest::mouseClick(b, Qt::LeftButton);
-    QVERIFY2(exported.count() > before || exported.wait(60000), failed.isEmpty() ? "" : qPrintable(failed.last()[0].toString()));
+    QVERIFY2(exported.count() > before || exported.wait(60000),
+             failed.isEmpty() ? "" : qPrintable(failed.last()[0].toString()));
   };
   click("exportLongCsv", "csv");
   click("exportBids", "bids");
@@ -323,7 +329,8 @@ void StatisticsViewTest::unreadableStoreIsNamedAndOldNumbersStay() {
   const std::string missing = (dir.path() / "no-such.db").string();
   view.set_store(QString::fromStdString(missing));
   QVERIFY(failed.wait(60000));
-  QVERIFY2(failed.last()[0].toString().contains(QString::fromStdString(missing)), qPrintable(failed.last()[0].toString()));
+  QVERIFY2(failed.last()[0].toString().contains(QString::fromStdString(missing)),
+           qPrintable(failed.last()[0].toString()));
   QVERIFY(view.condition_rows().empty());
   QVERIFY(!view.findChild<QPushButton*>("exportLongCsv")->isEnabled());
   QVERIFY(view.findChild<QLabel*>("statisticsStatus")->text().contains("no-such.db"));
