@@ -20,12 +20,14 @@
 #include <string>
 #include <string_view>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
-class OutputError : public std::runtime_error {
+class OutputError : public Error {
  public:
   OutputError(const std::filesystem::path& file, const std::string& reason)
-      : std::runtime_error(file.string() + ": cannot write: " + reason), file_(file) {}
+      : Error(file.string() + ": cannot write: " + reason), file_(file) {}
   const std::filesystem::path& file() const noexcept { return file_; }
 
  private:

@@ -1,5 +1,5 @@
 #pragma once
-// The one exception type for refused input: it carries the file, the place in it (a line or a
+// The BadInput (core/error.hpp) of refused files and arguments: it carries the file, the place in it (a line or a
 // field path) and what was expected, so the command line can print one clear line and exit 2.
 //
 // Bad files put their own bytes into these messages (a value, a line, a key). So that a refusal
@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+
+#include "core/error.hpp"
 
 namespace palprig {
 
@@ -48,7 +50,7 @@ inline std::string printable_excerpt(std::string_view text, std::size_t max_char
   return out;
 }
 
-class InputError : public std::runtime_error {
+class InputError : public BadInput {
  public:
   InputError(const std::string& file, const std::string& where, const std::string& expected)
       : InputError(Parts{printable_excerpt(file, kMaxFileChars), printable_excerpt(where, kMaxWhereChars),
@@ -62,7 +64,7 @@ class InputError : public std::runtime_error {
     std::string file, where, expected;
   };
   explicit InputError(Parts p)
-      : std::runtime_error(p.file + ": " + p.where + ": " + p.expected),
+      : BadInput(p.file + ": " + p.where + ": " + p.expected),
         file_(std::move(p.file)),
         where_(std::move(p.where)),
         expected_(std::move(p.expected)) {}

@@ -13,7 +13,7 @@
 #include "experiments/simulated_participant.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "tests/support/process_support.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "store/sqlite_trial_store.hpp"
 #include "tests/support/process_support.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

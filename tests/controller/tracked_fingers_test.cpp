@@ -28,7 +28,7 @@
 #include "runtime/worker_fault.hpp"
 #include "tests/support/process_support.hpp"
 #include "tests/support/temp_dir.hpp"
-#include "tests/support/test_rigs.hpp"
+#include "tests/support/rigs_for_tests.hpp"
 
 using namespace palprig;
 using namespace palprig::test_rigs;

@@ -13,7 +13,7 @@
 #include "experiments/pulse_session.hpp"
 #include "experiments/rig_stimulus.hpp"
 #include "formats/rig_file.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

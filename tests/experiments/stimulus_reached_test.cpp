@@ -10,7 +10,7 @@
 #include "experiments/trial_runner.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "tests/support/process_support.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

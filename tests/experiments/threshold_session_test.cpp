@@ -18,7 +18,7 @@
 #include "formats/rig_file.hpp"
 #include "store/threshold_store.hpp"
 #include "tests/support/process_support.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

@@ -18,7 +18,7 @@
 #include "store/postgres_schema.hpp"
 #include "store/postgres_trial_store.hpp"
 #include "tests/support/process_support.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 #include "tests/postgres/pg_test_support.hpp"
 
 namespace palprig {

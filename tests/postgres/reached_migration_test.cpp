@@ -17,7 +17,7 @@
 #include "store/sqlite_session_rows.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "tests/support/process_support.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 #include "tests/postgres/pg_test_support.hpp"
 
 namespace palprig {

@@ -14,7 +14,7 @@
 
 #include "store/postgres_schema.hpp"
 #include "tests/support/process_support.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 #include "tests/postgres/pg_test_support.hpp"
 #include "tests/support/run_process.hpp"
 

@@ -12,7 +12,7 @@
 #include "models/parse_error.hpp"
 #include "sessions/study_session.hpp"
 #include "store/trial_store.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

@@ -14,7 +14,7 @@
 #include "statistics/statistics_error.hpp"
 #include "statistics/statistics_ttest.hpp"
 #include "tests/support/process_support.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

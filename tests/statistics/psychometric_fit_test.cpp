@@ -13,7 +13,7 @@
 #include "statistics/statistics_error.hpp"
 #include "tests/support/process_support.hpp"
 #include "tests/support/run_process.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

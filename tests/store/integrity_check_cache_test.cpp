@@ -18,7 +18,7 @@
 #include "store/integrity_check_cache.hpp"
 #include "store/sqlite_db.hpp"
 #include "store/sqlite_trial_store.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

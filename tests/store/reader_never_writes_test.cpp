@@ -17,7 +17,7 @@
 #include "store/trial_store.hpp"
 #include "tests/support/process_support.hpp"
 #include "tests/support/run_process.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

@@ -5,7 +5,7 @@
 #include "models/parse_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "store/trial_store.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

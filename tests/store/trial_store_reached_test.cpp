@@ -16,7 +16,7 @@
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
 #include "tests/support/discrimination_trials.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

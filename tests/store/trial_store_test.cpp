@@ -8,7 +8,7 @@
 #include "store/sqlite_trial_store.hpp"
 #include "models/parse_error.hpp"
 #include "tests/support/discrimination_trials.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

@@ -11,7 +11,7 @@
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
 #include "models/parse_error.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

@@ -11,7 +11,7 @@
 #include "study/random_source.hpp"
 #include "study/threshold_protocol.hpp"
 #include "models/parse_error.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

@@ -9,7 +9,7 @@
 #include "study/trial_feedback.hpp"
 #include "models/parse_error.hpp"
 #include "tests/support/process_support.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig {
 namespace {

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "experiments/stimulus_output.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/support.hpp"
 
 namespace palprig::testing {
 

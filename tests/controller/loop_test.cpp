@@ -9,7 +9,7 @@
 #include "rigs/simulated_rig.hpp"
 #include "controller/telemetry_writer.hpp"
 #include "models/parse_error.hpp"
-#include "tests/support/test_rigs.hpp"
+#include "tests/support/rigs_for_tests.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;

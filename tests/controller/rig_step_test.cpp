@@ -10,7 +10,7 @@
 #include "controller/loop_runner.hpp"
 #include "controller/rig_step.hpp"
 #include "rigs/simulated_rig.hpp"
-#include "tests/support/test_rigs.hpp"
+#include "tests/support/rigs_for_tests.hpp"
 
 using namespace palprig;
 

@@ -9,7 +9,7 @@
 
 #include "controller/loop_runner.hpp"
 #include "models/tissue_scene.hpp"
-#include "tests/support/test_rigs.hpp"
+#include "tests/support/rigs_for_tests.hpp"
 
 using namespace palprig;
 using test_rigs::RecordingRig;

@@ -234,7 +234,7 @@ TEST(ModbusEndToEnd, KilledServerVentsReportsAndReconnectsWithoutSpike) {
           << "at t=" << tel.rows[i][t];
   // ... nor in what the returning module received: 0 kPa first, then a ramp up to the setpoint
   // (arrival times on the simulator's side: two bus periods and 10 ms of scheduling slack, as
-  // in tests/rigs/test_modbus_loopback.cpp).
+  // in tests/rigs/modbus_loopback_test.cpp).
   const auto writes = read_csv(writes2.string());
   ASSERT_GT(writes.rows.size(), 10u);
   const std::size_t wt = writes.col("t_s"), wc = writes.col("channel"), wk = writes.col("kPa");
