@@ -39,6 +39,7 @@
 #include "inputs/tablet_input.hpp"
 #include "inputs/tablet_source.hpp"
 #include "runtime/latency_histogram.hpp"
+#include "controller/rig_lease.hpp"
 
 extern char** environ;
 using namespace palprig;
@@ -157,14 +158,15 @@ int main(int argc, char** argv) {
   auto source = std::make_unique<EvemuPenSource>(recording);
   EvemuPenSource* replay = source.get();
   TabletInput pen(std::move(source), rig.tablet);
-  auto backend = make_backend(rig);
-  backend->open();
+  std::unique_ptr<Rig> opened = open_rig(rig);
+  RigLease lease = opened->lease("the pen-to-Modbus benchmark");
   RunOptions opt;
   opt.mode = LoopMode::realtime;
   opt.rate_hz = 1000;
   opt.duration_s = seconds;
-  const RunSummary s = run_loop(config, *scene.scene, pen, *backend, opt);
-  backend->close();
+  const RunSummary s = run_loop(config, *scene.scene, pen, lease, opt);
+  lease.release();
+  opened.reset();
   kill(sim.pid, SIGTERM);
   waitpid(sim.pid, nullptr, 0);
   fclose(sim.out);

@@ -41,6 +41,7 @@
 #include "inputs/igtl_input.hpp"
 #include "inputs/igtl_pose_server.hpp"
 #include "runtime/monotonic_clock.hpp"
+#include "controller/rig_lease.hpp"
 
 extern char** environ;
 using namespace palprig;
@@ -165,17 +166,18 @@ int main(int argc, char** argv) {
   tracking.tools = {TrackedTool{"Finger1ToTracker", 0, {}}};
   auto input =
       std::make_unique<IgtlInput>(IgtlEndpoint{"127.0.0.1", server.port()}, tracking, rig.safety.max_input_age_s);
-  auto backend = make_backend(rig);
-  backend->open();
+  std::unique_ptr<Rig> opened = open_rig(rig);
+  RigLease lease = opened->lease("the pose-to-Modbus benchmark");
   RunOptions opt;
   opt.mode = LoopMode::realtime;
   opt.rate_hz = 1000;
   opt.duration_s = seconds;
   // Moves sent while the loop ran (not before it armed, nor after it ended) are the ones timed.
   const std::int64_t loop_start_ns = mono_ns();
-  const RunSummary s = run_loop(config, *scene.scene, *input, *backend, opt);
+  const RunSummary s = run_loop(config, *scene.scene, *input, lease, opt);
   const std::int64_t loop_end_ns = mono_ns();
-  backend->close();
+  lease.release();
+  opened.reset();
   input.reset();  // the client leaves before the server stops
   server.stop();
   kill(sim.pid, SIGTERM);
@@ -233,7 +235,7 @@ int main(int argc, char** argv) {
       all.size(), pct(all, .5), pct(all, .99), unmatched, outside);
   std::printf("  loop: %llu ticks, %llu overruns, wake-up p50/p99 %.0f/%.0f us; fault: %s %s\n",
               static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
-              s.wake_latency.p50_us, s.wake_latency.p99_us, to_string(s.fault), s.fault_detail.c_str());
+              s.wake_latency.p50_us, s.wake_latency.p99_us, to_string(s.fault), s.fault.detail().c_str());
   std::filesystem::remove_all(dir);
   return unmatched == 0 && s.fault == FaultCode::none ? 0 : 1;
 }

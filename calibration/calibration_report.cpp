@@ -184,8 +184,11 @@ void print_evaluation_report(std::ostream& out, const EvaluationResult& r,
     if (channels[c]) out << " channel " << c + 1 << " " << std::setprecision(1) << r.improvement[c] << "x";
   out << "; worst " << r.worst_improvement << "x\n";
   for (const EvaluationRun* run : {&r.uncompensated, &r.compensated}) {
-    if (run->stopped) out << "  note: stopped by a signal; channels vented; figures cover what was driven\n";
-    if (run->faulted) out << "  note: fault (" << run->fault << "); channels vented\n";
+    if (run->stopped)
+      out << "  note: stopped (a signal or the operator); channels vented; figures cover what was driven\n";
+    if (run->faulted)
+      out << "  note: fault (" << run->fault << "); channels vented"
+          << (run->fault_record.empty() ? "" : "; " + run->fault_record) << "\n";
   }
   out.unsetf(std::ios::fixed);
 }

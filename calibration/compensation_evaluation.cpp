@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "calibration/pacer.hpp"
+#include "controller/fault_recorder.hpp"
 #include "controller/rig_step.hpp"
 #include "models/parse_error.hpp"
 
@@ -115,12 +116,12 @@ EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Traject
   std::array<Accumulator, kFingerCount> acc{};
   if (rig.arm() != BackendStatus::ok) {
     run.faulted = true;
-    run.fault = rig.fault_detail();
+    run.fault = rig.fault().detail();
     return run;
   }
   for (std::uint64_t i = 0; i < ticks; ++i) {
     const double t = pacer.wait_for_tick(k++);
-    if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+    if (o.control && o.control->stop_requested()) {
       run.stopped = true;
       break;
     }
@@ -131,7 +132,7 @@ EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Traject
     const StepResult& r = rig.step_direct(want, t);
     if (rig.faulted()) {
       run.faulted = true;
-      run.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
+      run.fault = rig.fault() == FaultCode::backend_error ? rig.fault().detail()
                                                           : std::string("tick fault: ") + to_string(rig.fault());
       break;
     }
@@ -141,13 +142,17 @@ EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Traject
     if (i % record_every == 0) run.trace.push_back({t, target, r.tick.setpoint_kPa, r.monitor_kPa});
   }
   rig.disarm();
+  if (rig.faulted())
+    run.fault_record =
+        save_fault_record(rig.recorder(), rig.fault(), "the compensation evaluation", {},
+                          o.fault_record_folder.empty() ? std::filesystem::current_path() : o.fault_record_folder);
   for (std::size_t c = 0; c < kFingerCount; ++c) run.channels[c] = acc[c].metrics();
   return run;
 }
 
 }  // namespace
 
-EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig, const CalibrationModels& cal,
+EvaluationResult evaluate_compensation(RigLease& lease, const RigConfig& rig, const CalibrationModels& cal,
                                        const EvaluationOptions& o) {
   const double p_max = rig.safety.p_max_kPa;
   const double hi = o.to_kPa > 0 ? o.to_kPa : 0.8 * p_max;
@@ -187,6 +192,7 @@ EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig
   result.reversals = tr.reversals;
   Pacer pacer(o.rate_hz, o.realtime);
   std::uint64_t k = 0;
+  RigBackend& backend = lease.backend();
   result.uncompensated = drive(backend, plain, tr, o, pacer, k);
   if (!result.uncompensated.stopped && !result.uncompensated.faulted)
     result.compensated = drive(backend, compensated, tr, o, pacer, k);

@@ -12,12 +12,14 @@
 // hysteresis and the regulator's lag would otherwise dominate the error. The first approach
 // from vented to the bottom of the range is not scored.
 #include <array>
-#include <atomic>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "formats/calibration_file.hpp"
+#include "controller/rig_lease.hpp"
 #include "rigs/rig_backend.hpp"
+#include "runtime/run_control.hpp"
 #include "formats/rig_file.hpp"
 
 namespace palprig {
@@ -33,7 +35,10 @@ struct EvaluationOptions {
   unsigned seed = 7;
   bool realtime = true;
   std::array<bool, kFingerCount> channels{true, true, true};
-  const std::atomic<int>* stop_signal = nullptr;
+  const RunControl* control = nullptr;  // the operator's handle: a stop request vents and ends the run
+  // Where the ticks before a rig fault are written (controller/fault_recorder.hpp); empty: the
+  // working folder.
+  std::filesystem::path fault_record_folder;
 };
 
 struct TrackingMetrics {
@@ -54,6 +59,7 @@ struct EvaluationRun {
   std::vector<EvaluationTraceRow> trace;
   double scored_from_t_s = 0;  // trace rows before this (rest, first approach) are not scored
   bool stopped = false, faulted = false;
+  std::string fault_record;  // after a rig fault: "the last N ticks before it: FILE"
   std::string fault;
 };
 
@@ -70,7 +76,7 @@ struct EvaluationResult {
 
 // Throws InputError for a range outside 0..p_max, or a calibration without any hysteresis model
 // on an evaluated channel (nothing to compare).
-EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig, const CalibrationModels& cal,
+EvaluationResult evaluate_compensation(RigLease& lease, const RigConfig& rig, const CalibrationModels& cal,
                                        const EvaluationOptions& options);
 
 }  // namespace palprig

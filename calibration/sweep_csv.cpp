@@ -88,7 +88,10 @@ void SweepCsvWriter::on_hold(std::size_t index, const SweepHold& hold, std::span
 void SweepCsvWriter::finish(const SweepOutcome& o) {
   out_ << "# holds: " << o.holds_done << " of " << o.holds_planned << " (" << o.holds_unsettled << " not settled)\n";
   if (o.holds_redone) out_ << "# redone: " << o.holds_redone << " hold(s) started again after a link outage\n";
-  if (o.stopped) out_ << "# stopped: signal " << o.stop_signal << "; channels vented; the rows above were kept\n";
+  if (o.stopped)
+    out_ << "# stopped: "
+         << (o.stop_signal ? "signal " + std::to_string(o.stop_signal) : std::string("by the operator"))
+         << "; channels vented; the rows above were kept\n";
   if (o.faulted) out_ << "# fault: " << o.fault << "; channels vented\n";
   if (!out_.flush()) fail_writing(out_, path_, rows_ > 0);
   out_.close();

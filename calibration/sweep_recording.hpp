@@ -20,7 +20,7 @@ struct SweepRecording {
 };
 
 // Throws std::runtime_error when `out` cannot be written (before anything moves).
-SweepRecording record_calibration_sweep(RigBackend& backend, const RigConfig& rig, const SweepSchedule& schedule,
+SweepRecording record_calibration_sweep(RigLease& lease, const RigConfig& rig, const SweepSchedule& schedule,
                                         const SweepRunOptions& options, const std::filesystem::path& out,
                                         const SweepProgress& progress = {});
 

@@ -1,5 +1,7 @@
 #include "calibration/sweep_runner.hpp"
 
+#include "controller/fault_recorder.hpp"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -32,7 +34,7 @@ constexpr int kMaxHoldAttempts = 3;
 
 }  // namespace
 
-SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& schedule, const SweepRunOptions& o,
+SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedule, const SweepRunOptions& o,
                                    SweepSink& sink, const SweepProgress& progress) {
   if (!(o.settle_window_s > 0) || !(o.settle_band_kPa > 0) || !(o.average_s > 0) || !(o.min_hold_s >= 0) ||
       !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s + o.average_s) || !(o.max_hold_s <= 3600) ||
@@ -51,6 +53,7 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
   // of 10 kPa at 100 Hz passes in one tick at the default 2000 kPa/s; larger steps ramp at the
   // rate the regulators slew at anyway, and the settle test waits the ramp out.
   TickConfig direct;
+  RigBackend& backend = lease.backend();
   direct.safety.p_max_kPa = backend.p_max_kPa();
   direct.safety.slew_kPa_per_s = o.slew_kPa_per_s;
   RigStep rig(direct, backend, RigStepOptions{o.rate_hz, true});
@@ -67,7 +70,7 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
   double t_s = 0;
   if (rig.arm() != BackendStatus::ok) {
     out.faulted = true;
-    out.fault = rig.fault_detail();
+    out.fault = rig.fault().detail();
     return out;
   }
   // A step is usable only when its setpoints reached the regulators and every selected monitor
@@ -98,9 +101,9 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
     for (std::uint64_t j = 0; j < n; ++j) {
       const double t = t0 + fast.wait_for_tick(j);
       t_s = t;
-      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+      if (o.control && o.control->stop_requested()) {
         out.stopped = true;
-        out.stop_signal = o.stop_signal->load();
+        out.stop_signal = o.control->stop_signal();
         end = HoldEnd::ended;
         break;
       }
@@ -110,7 +113,7 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
       const StepResult& step = rig.step_direct(target, t);
       if (rig.faulted()) {
         out.faulted = true;
-        out.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
+        out.fault = rig.fault() == FaultCode::backend_error ? rig.fault().detail()
                                                             : std::string("safety stage: ") + to_string(rig.fault());
         end = HoldEnd::ended;
         break;
@@ -141,15 +144,15 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
     const double hold_start_s = pacer.period_s() * double(k);
     for (;;) {
       t_s = pacer.wait_for_tick(k++);
-      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+      if (o.control && o.control->stop_requested()) {
         out.stopped = true;
-        out.stop_signal = o.stop_signal->load();
+        out.stop_signal = o.control->stop_signal();
         return HoldEnd::ended;
       }
       const StepResult& step = rig.step_direct(target, t_s);
       if (rig.faulted()) {
         out.faulted = true;
-        out.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
+        out.fault = rig.fault() == FaultCode::backend_error ? rig.fault().detail()
                                                             : std::string("safety stage: ") + to_string(rig.fault());
         return HoldEnd::ended;
       }
@@ -184,15 +187,15 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
     const ChannelPressures vented{};
     for (;;) {
       t_s = pacer.wait_for_tick(k++);
-      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+      if (o.control && o.control->stop_requested()) {
         out.stopped = true;
-        out.stop_signal = o.stop_signal->load();
+        out.stop_signal = o.control->stop_signal();
         return false;
       }
       const StepResult& step = rig.step_direct(vented, t_s);
       if (rig.faulted()) {
         out.faulted = true;
-        out.fault = std::string(rig.fault_detail());
+        out.fault = rig.fault().detail();
         return false;
       }
       if (usable(step)) return true;
@@ -256,6 +259,10 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
   }
   rig.disarm();
   out.duration_s = t_s;
+  if (rig.faulted())
+    out.fault_record =
+        save_fault_record(rig.recorder(), rig.fault(), "the calibration sweep", {},
+                          o.fault_record_folder.empty() ? std::filesystem::current_path() : o.fault_record_folder);
   return out;
 }
 

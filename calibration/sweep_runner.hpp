@@ -16,14 +16,16 @@
 // stop flag), a backend error, an exception from the sink or the end all vent every channel.
 // Setpoints go through the controller's rig step and safety stage like every other path.
 #include <array>
-#include <atomic>
+#include <filesystem>
 #include <functional>
 #include <span>
 #include <string>
 
 #include "calibration/sweep_plan.hpp"
 #include "models/safety_limits.hpp"
+#include "controller/rig_lease.hpp"
 #include "rigs/rig_backend.hpp"
+#include "runtime/run_control.hpp"
 
 namespace palprig {
 
@@ -57,7 +59,10 @@ struct SweepRunOptions {
   double min_hold_s = 0.2;
   double max_hold_s = 10.0;
   std::array<bool, kFingerCount> channels{true, true, true};
-  const std::atomic<int>* stop_signal = nullptr;
+  const RunControl* control = nullptr;  // the operator's handle: a stop request vents and ends the sweep
+  // Where the ticks before a rig fault are written (controller/fault_recorder.hpp); empty: the
+  // working folder.
+  std::filesystem::path fault_record_folder;
   // The rig file's safety.slew_kPa_per_s: every setpoint passes the tick's safety stage, so a
   // step between holds rises at most this fast (p_max is the backend's).
   double slew_kPa_per_s = SafetyLimits{}.slew_kPa_per_s;
@@ -69,17 +74,18 @@ struct SweepRunOptions {
 struct SweepOutcome {
   std::size_t holds_planned = 0, holds_done = 0, holds_unsettled = 0;
   std::size_t holds_redone = 0;  // holds started again after a link outage spoiled them
-  bool stopped = false;          // by the stop flag (the signal number is in stop_signal)
-  int stop_signal = 0;
-  bool faulted = false;  // a backend error; `fault` says which
+  bool stopped = false;          // by a stop request (RunControl)
+  int stop_signal = 0;           // the signal that asked, 0 for an operator's stop
+  bool faulted = false;          // a backend error; `fault` says which
   std::string fault;
-  double duration_s = 0;  // rig time
+  std::string fault_record;  // after a rig fault: "the last N ticks before it: FILE"
+  double duration_s = 0;     // rig time
 };
 
 using SweepProgress = std::function<void(std::size_t done, std::size_t total, const SweepHold&, const HoldOutcome&)>;
 
 // Throws std::invalid_argument for options that make no sweep (before anything is written).
-SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& schedule, const SweepRunOptions& options,
+SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedule, const SweepRunOptions& options,
                                    SweepSink& sink, const SweepProgress& progress = {});
 
 }  // namespace palprig

@@ -10,10 +10,11 @@
 #include "calibration/compensation_evaluation.hpp"
 #include "cli/calibrate_arguments.hpp"
 #include "cli/commands.hpp"
-#include "controller/backend_factory.hpp"
+#include "controller/rig_lease.hpp"
 #include "formats/calibration_file.hpp"
 #include "models/parse_error.hpp"
 #include "charts/calibration_charts.hpp"
+#include "runtime/run_control.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;
@@ -34,17 +35,21 @@ void run_evaluate(const EvaluateArgs& a) {
   EvaluationOptions o = a.options;
   o.channels = parse_channels(a.channels);
   o.realtime = use_realtime(rig, a.realtime, a.fast);
-  auto backend = make_backend(rig);
-  backend->open();
-  cli::install_stop_signals();
-  o.stop_signal = &cli::stop_signal();
-  const EvaluationResult r = evaluate_compensation(*backend, rig, cal, o);
-  backend->close();
+  std::unique_ptr<Rig> opened = open_rig(rig);
+  const std::string described = opened->backend().describe();
+  install_stop_signals();
+  o.control = &process_run_control();
+  EvaluationResult r;
+  {
+    RigLease lease = opened->lease("palprig calibrate evaluate");
+    r = evaluate_compensation(lease, rig, cal, o);
+  }
+  opened.reset();  // vented and closed
   if (a.json) {
     std::cout << evaluation_json(r, o.channels).dump(2) << "\n";
   } else {
-    std::cout << "palprig calibrate evaluate: rig " << rig.id << " (" << backend->describe() << "), calibration "
-              << a.cal_path << ", " << (o.realtime ? "real time" : "simulated time") << " at " << o.rate_hz << " Hz\n";
+    std::cout << "palprig calibrate evaluate: rig " << rig.id << " (" << described << "), calibration " << a.cal_path
+              << ", " << (o.realtime ? "real time" : "simulated time") << " at " << o.rate_hz << " Hz\n";
     print_evaluation_report(std::cout, r, o.channels);
   }
   if (!a.out.empty()) write_evaluation_trace_csv(a.out, r);

@@ -14,8 +14,9 @@
 #include "calibration/sweep_runner.hpp"
 #include "cli/calibrate_arguments.hpp"
 #include "cli/commands.hpp"
-#include "controller/backend_factory.hpp"
+#include "controller/rig_lease.hpp"
 #include "models/parse_error.hpp"
+#include "runtime/run_control.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;
@@ -62,24 +63,27 @@ void run_sweep(const SweepArgs& a) {
                      "windows, at most 3600 s");
   for (const auto& n : plan.notes) std::cerr << "palprig: note: " << n << "\n";
 
-  auto backend = make_backend(rig);
+  std::unique_ptr<Rig> opened = make_rig(rig);
+  const RigBackend& backend = opened->backend();
   SweepFileInfo info;
   info.rig_id = rig.id;
-  info.backend = backend->describe();
+  info.backend = backend.describe();
   info.date = utc_timestamp_now();
   info.p_max_kPa = rig.safety.p_max_kPa;
   info.rate_hz = run.rate_hz;
-  info.sensor_name = backend->sensor_name();
+  info.sensor_name = backend.sensor_name();
   info.notes = plan.notes;
   SweepCsvWriter writer(a.out, info, run.channels);  // a path that cannot be written fails here, before open
   // Said before anything moves (and after a refusal of the file, which is the one line then);
   // the sweep still runs (a short check of the link is a use).
   if (const std::string shortfall = sweep_fit_shortfall(plan); !shortfall.empty())
     std::cerr << "palprig: warning: this sweep is " << shortfall << "\n";
-  backend->open();
+  opened->open();
+  RigLease lease = opened->lease("palprig calibrate sweep");
 
-  cli::install_stop_signals();
-  run.stop_signal = &cli::stop_signal();
+  install_stop_signals();
+  run.control = &process_run_control();
+  run.fault_record_folder = std::filesystem::absolute(a.out).parent_path();  // beside the sweep data
   SweepSegment last_segment = SweepSegment::vent;
   int last_repeat = -1;
   const bool quiet = a.quiet;
@@ -97,9 +101,10 @@ void run_sweep(const SweepArgs& a) {
       last_repeat = hold.repeat;
     }
   };
-  const SweepOutcome outcome = run_calibration_sweep(*backend, plan, run, writer, progress);
+  const SweepOutcome outcome = run_calibration_sweep(lease, plan, run, writer, progress);
   writer.finish(outcome);
-  backend->close();
+  lease.release();
+  opened.reset();  // vented and closed
   std::cout << "palprig calibrate sweep: rig " << rig.id << " (" << info.backend << "), channels "
             << channels_text(run.channels) << ", " << (run.realtime ? "real time" : "simulated time") << "\n"
             << "  " << outcome.holds_done << " of " << outcome.holds_planned << " holds (" << outcome.holds_unsettled
@@ -108,10 +113,12 @@ void run_sweep(const SweepArgs& a) {
             << ") in " << outcome.duration_s << " s of rig time; " << writer.rows() << " rows -> " << a.out << "\n";
   if (outcome.stopped || outcome.faulted) {
     std::cerr << "palprig: sweep "
-              << (outcome.stopped ? "stopped by signal " + std::to_string(outcome.stop_signal)
+              << (outcome.stopped ? (outcome.stop_signal ? "stopped by signal " + std::to_string(outcome.stop_signal)
+                                                         : std::string("stopped"))
                                   : "faulted: " + outcome.fault)
               << " after " << outcome.holds_done << " of " << outcome.holds_planned
-              << " holds; all channels vented; what was recorded is in " << a.out << "\n";
+              << " holds; all channels vented; what was recorded is in " << a.out
+              << (outcome.fault_record.empty() ? "" : "; " + outcome.fault_record) << "\n";
     cli::finish(cli::kExitFault);
   }
 }

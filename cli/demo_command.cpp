@@ -10,6 +10,7 @@
 #include "controller/region_table.hpp"
 #include "controller/run_report.hpp"
 #include "controller/run_setup.hpp"
+#include "runtime/run_control.hpp"
 
 using namespace palprig;
 
@@ -49,8 +50,8 @@ void register_demo_command(CLI::App& app) {
     opt.mode = LoopMode::replay;
     opt.telemetry_path = std::filesystem::path(*out_dir) / "telemetry.csv";
     opt.observer = &table;
-    cli::install_stop_signals();
-    opt.stop_signal = &cli::stop_signal();
+    install_stop_signals();
+    opt.control = &process_run_control();
     const RunSummary s = execute_run(run, opt);
 
     const bool all_higher = table.tumors_feel_harder();

@@ -26,6 +26,7 @@
 #include "sessions/session_setup.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "sessions/study_session.hpp"
+#include "runtime/run_control.hpp"
 
 using namespace palprig;
 
@@ -121,11 +122,11 @@ void run_experiment(const RunArgs& a) {
     return;
   }
   TerminalReport report(request.store_location, a.quiet);
-  cli::install_stop_signals();
+  install_stop_signals();
   const PersonFactory terminal = [](const Protocol& protocol) {
-    return std::make_unique<TerminalParticipant>(protocol, std::cout, cli::stop_signal(), STDIN_FILENO);
+    return std::make_unique<TerminalParticipant>(protocol, std::cout, process_run_control(), STDIN_FILENO);
   };
-  const SessionEnd end = run_study_session(request, terminal, report, &cli::stop_signal());
+  const SessionEnd end = run_study_session(request, terminal, report, process_run_control());
   if (const std::string telemetry = telemetry_summary(end); !telemetry.empty()) std::cout << telemetry << "\n";
   if (end.unpushed_trials > 0) {
     std::cerr << "palprig: the lab server has not confirmed every trial yet; they are kept in the journal "
@@ -140,7 +141,8 @@ void run_experiment(const RunArgs& a) {
   }
   if (!end.fault.empty()) {
     std::cerr << "palprig: rig fault: " << end.fault << "; " << end.committed_trials << " of " << end.total_trials
-              << " trials kept, continue with --resume\n";
+              << " trials kept, continue with --resume" << (end.fault_record.empty() ? "" : "; " + end.fault_record)
+              << "\n";
   } else {
     std::cerr << "palprig: session " << report.session_id() << " stopped after " << end.committed_trials << " of "
               << end.total_trials << " trials (all kept); continue with --resume\n";

@@ -10,6 +10,7 @@
 #include "rigs/modbus_sim_server.hpp"
 #include "formats/rig_file.hpp"
 #include "models/parse_error.hpp"
+#include "runtime/run_control.hpp"
 
 using namespace palprig;
 
@@ -82,7 +83,7 @@ void register_sim_rig_command(CLI::App& app) {
       server.set_load_cells(*rig.load_cells, *load_N);
     else if (*load_N > 0)
       throw InputError(rig.source, "load_cells", "a \"load_cells\" section (--load-N loads the rig's load cells)");
-    cli::install_stop_signals();
+    install_stop_signals();
     try {
       server.start(addresses);
     } catch (const std::runtime_error& e) {
@@ -101,7 +102,7 @@ void register_sim_rig_command(CLI::App& app) {
     }
     std::cout << "palprig sim-rig: serving " << kFingerCount << " channels; stop with Ctrl-C" << std::endl;
     const auto start = std::chrono::steady_clock::now();
-    while (cli::stop_signal().load() == 0) {
+    while (!process_run_control().stop_requested()) {
       if (*duration_s > 0 && std::chrono::steady_clock::now() - start >= std::chrono::duration<double>(*duration_s))
         break;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -122,9 +122,14 @@ void CalibrationPage::evaluate() {
   evaluation_charts_.clear();
   const std::filesystem::path dir = work_dir_.filePath("evaluation").toStdString();
   std::filesystem::remove_all(dir);
-  RigBackend& backend = host_.take_backend();
+  try {
+    job_ = std::make_unique<CalibrationJob>(host_.opened_rig().lease("the compensation evaluation"), control(), rig,
+                                            std::move(cal), options, dir);
+  } catch (const std::exception& e) {  // RigBusy: something else holds the rig
+    say(QString("palprig: ") + e.what(), true);
+    return;
+  }
   set_busy(true);
-  job_ = std::make_unique<CalibrationJob>(backend, rig, std::move(cal), options, dir);
   stop_->setEnabled(true);
   say(QString("Evaluating %1 on rig %2 (%3): the test trajectory without, then with compensation...")
           .arg(cal_path, QString::fromStdString(rig.id), options.realtime ? "real time" : "simulated time"));

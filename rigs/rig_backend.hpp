@@ -32,7 +32,33 @@
 
 namespace palprig {
 
-enum class BackendStatus { ok, error };
+// What a backend call did: ok, or failed with the backend's own words. The words live in the
+// backend's fixed buffer (no allocation on the loop's path) until its next failure, so a caller
+// that keeps them longer copies them (RigStep's Fault does). `status == BackendStatus::ok` and
+// `== BackendStatus::error` compare the outcome.
+class BackendStatus {
+ public:
+  struct Ok {};
+  struct Failed {};
+  static constexpr Ok ok{};
+  static constexpr Failed error{};
+  constexpr BackendStatus(Ok = {}) noexcept {}  // NOLINT(google-explicit-constructor): `return BackendStatus::ok;`
+  constexpr BackendStatus(Failed) noexcept : failed_(true) {}  // NOLINT(google-explicit-constructor)
+  static constexpr BackendStatus failure(const char* reason) noexcept {
+    BackendStatus s{Failed{}};
+    s.reason_ = reason;
+    return s;
+  }
+  constexpr bool succeeded() const noexcept { return !failed_; }
+  // Why it failed, in the backend's words; "" when it succeeded (or a backend gave none).
+  constexpr const char* reason() const noexcept { return reason_ ? reason_ : ""; }
+  friend constexpr bool operator==(const BackendStatus& s, Ok) noexcept { return !s.failed_; }
+  friend constexpr bool operator==(const BackendStatus& s, Failed) noexcept { return s.failed_; }
+
+ private:
+  bool failed_ = false;
+  const char* reason_ = nullptr;
+};
 
 enum class BackendState { closed, connected, armed, disarmed };
 const char* to_string(BackendState state) noexcept;
@@ -125,9 +151,15 @@ class RigBackend {
   const std::optional<LoadCellConfig>& load_cells() const noexcept { return load_cells_; }
   // capabilities() of a backend with load cells: fills the load-cell fields.
   void describe_load_cells(BackendCapabilities& c) const noexcept;
-  // Record why the last call failed (copied into a fixed buffer: no allocation).
-  void set_error(const char* message) noexcept;
+  // Record why the last call failed (copied into a fixed buffer: no allocation) and return the
+  // failure carrying those words: `return set_error("...");`.
+  BackendStatus set_error(const char* message) noexcept;
 
+ private:
+  // A failed hook's status with the backend's words attached when it gave none.
+  BackendStatus with_reason(BackendStatus status) const noexcept;
+
+ protected:
  private:
   double p_max_kPa_;
   std::optional<LoadCellConfig> load_cells_;

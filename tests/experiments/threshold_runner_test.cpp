@@ -96,13 +96,13 @@ TEST(experiments_threshold_runner, unanswered_trials_leave_the_track_and_a_stop_
   testing::RecordingOutput output;
   ScriptedParticipant silent(true);
   SimulatedClock clock;
-  std::atomic<int> stop{0};
+  RunControl stop;
   ThresholdSessionOptions o;
-  o.stop = &stop;
+  o.control = &stop;
   std::vector<ThresholdTrialRecord> records;
   o.on_trial = [&](const ThresholdTrialRecord& r) {
     records.push_back(r);
-    if (records.size() == 5) stop = 1;
+    if (records.size() == 5) stop.request_stop();
   };
   const auto result = run_threshold_session(p, tracks, output, silent, clock, o);
   EXPECT_TRUE(result.stopped);

@@ -26,10 +26,11 @@ ArterySpec straight(const char* name = "a", double depth = 5, double radius = 2)
 }
 
 // Felt pulse at the top of a beat (phase 0.1 of a rectangular D = 0.2 wave).
-double peak(const PulseField& f, Point2_mm at, double force_N, PulseActivation& act) {
+double peak(const PulseField& f, Point2_mm at, double force_N, PulseActivation& act,
+            const PulseSettings& settings = {}) {
   PulseClocks clocks;
-  f.update_clocks(clocks, 0);
-  return f.felt({at, force_N, true}, clocks, act, 0.1, {}).now_kPa;
+  f.update_clocks(clocks, 0, settings);
+  return f.felt({at, force_N, true}, clocks, act, 0.1, {}, nullptr, settings).now_kPa;
 }
 
 }  // namespace
@@ -144,22 +145,25 @@ TEST(Artery, EveryFingerOverAnArteryFeelsItAndAmplitudesDifferPerArtery) {
   EXPECT_EQ(f.find("carotid"), -1);
 }
 
-TEST(Artery, RateRequestsFromAnotherThreadApplyAtTheNextTickWithThePhaseKept) {
+TEST(Artery, AnOperatorsRateAppliesFromTheTickItArrivesWithThePhaseKept) {
   const PulseField f({straight()}, 8);
   PulseClocks clocks;
   f.update_clocks(clocks, 0.0);
   EXPECT_EQ(clocks.clock[0].bpm, 60);
-  std::thread gui([&] { EXPECT_TRUE(f.request_rate_bpm(0, 120)); });
-  gui.join();
+  PulseSettings settings;
+  settings.rate_bpm[0] = 120;
   const double before = clocks.clock[0].phase(5.3);
-  f.update_clocks(clocks, 5.3);
+  f.update_clocks(clocks, 5.3, settings);
   EXPECT_EQ(clocks.clock[0].bpm, 120);
   EXPECT_NEAR(clocks.clock[0].phase(5.3), before, 1e-12);
   EXPECT_NEAR(clocks.clock[0].phase(6.3), before + 2, 1e-12);
-  EXPECT_FALSE(f.request_rate_bpm(0, 19));
-  EXPECT_FALSE(f.request_rate_bpm(0, 251));
-  EXPECT_FALSE(f.request_rate_bpm(3, 80));
-  EXPECT_EQ(f.requested_rate_bpm(0), 120);
+  EXPECT_EQ(f.rate_bpm(0, settings), 120);
+  EXPECT_EQ(f.rate_bpm(0, {}), 60) << "NaN: the scene's own rate";
+  EXPECT_FALSE(PulseField::valid_rate_bpm(19));
+  EXPECT_FALSE(PulseField::valid_rate_bpm(251));
+  EXPECT_FALSE(PulseField::valid_rate_bpm(std::nan("")));
+  settings.rate_bpm[0] = 251;  // out of range: the scene's rate stands
+  EXPECT_EQ(f.rate_bpm(0, settings), 60);
 }
 
 TEST(Artery, BroadPhaseRegionHoldsEveryPlaceThePulseIsFelt) {
@@ -219,19 +223,18 @@ TEST(PulseLocalisation, MarkScoredByDistanceToTheCentreline) {
   EXPECT_FALSE(score_pulse_mark(none, {0, 0}, 4.0).hit);
 }
 
-TEST(Artery, AmplitudeRequestsFromAnotherThreadScaleThePulseFromTheNextTick) {
+TEST(Artery, AnOperatorsAmplitudeScalesThePulse) {
   const PulseField f({straight()}, 8);
   PulseActivation act{};
   const double full = peak(f, {50, 50}, 2, act);
   EXPECT_GT(full, 0);
-  EXPECT_EQ(f.requested_amplitude_kPa(0), 10);
-  std::thread gui([&] { EXPECT_TRUE(f.request_amplitude_kPa(0, 2.5)); });
-  gui.join();
+  EXPECT_EQ(f.amplitude_kPa(0, {}), 10);
+  PulseSettings settings;
+  settings.amplitude_kPa[0] = 2.5;
   PulseActivation act2{};
-  EXPECT_NEAR(peak(f, {50, 50}, 2, act2), full * 0.25, 1e-12);
-  EXPECT_FALSE(f.request_amplitude_kPa(0, -1));
-  EXPECT_FALSE(f.request_amplitude_kPa(0, 51));
-  EXPECT_FALSE(f.request_amplitude_kPa(0, std::nan("")));
-  EXPECT_FALSE(f.request_amplitude_kPa(1, 5));
-  EXPECT_EQ(f.requested_amplitude_kPa(0), 2.5);
+  EXPECT_NEAR(peak(f, {50, 50}, 2, act2, settings), full * 0.25, 1e-12);
+  EXPECT_FALSE(PulseField::valid_amplitude_kPa(-1));
+  EXPECT_FALSE(PulseField::valid_amplitude_kPa(51));
+  EXPECT_FALSE(PulseField::valid_amplitude_kPa(std::nan("")));
+  EXPECT_EQ(f.amplitude_kPa(1, settings), 0) << "no such artery";
 }
