@@ -53,7 +53,7 @@ void register_igtl_replay_command(CLI::App& app) {
     cli::install_stop_signals();
     try {
       server.start();
-    } catch (const std::runtime_error& e) {
+    } catch (const Error& e) {  // the port cannot be served: the argument's fault
       std::cerr << "palprig igtl-replay: " << e.what() << "\n";
       cli::finish(cli::kExitBadInput);
     }

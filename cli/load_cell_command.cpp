@@ -66,7 +66,7 @@ Reading read_cells(const std::string& rig_path, double seconds, double load_N) {
     if (backend->read_load_cells(reading, t_s) != BackendStatus::ok) {
       const std::string why = backend->last_error();
       backend->close();
-      throw std::runtime_error("load cells: " + why);
+      throw Error("load cells: " + why);
     }
     for (std::size_t i = 0; i < reading.count; ++i) r.cells[i].add(reading.volts[i], reading.force_N[i]);
   }

@@ -70,7 +70,7 @@ void register_sim_rig_command(CLI::App& app) {
       for (const auto& text : *listen) {
         try {
           addresses.push_back(parse_listen_address(text));
-        } catch (const std::invalid_argument& e) {
+        } catch (const BadInput& e) {
           throw InputError("--listen", text, e.what());
         }
       }
@@ -85,7 +85,7 @@ void register_sim_rig_command(CLI::App& app) {
     cli::install_stop_signals();
     try {
       server.start(addresses);
-    } catch (const std::runtime_error& e) {
+    } catch (const Error& e) {  // an address that cannot be served: the argument's fault
       std::cerr << "palprig sim-rig: " << e.what() << "\n";
       cli::finish(cli::kExitBadInput);
     }

@@ -7,7 +7,7 @@
 
 namespace palprig {
 
-// Throws std::invalid_argument for a rate or length run_loop refuses.
+// Throws BadInput for a rate or length run_loop refuses.
 LoopMeasurement measure_loop(double rate_hz, double seconds, const RealtimeOptions& options);
 
 }  // namespace palprig

@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/error.hpp"
 #include "runtime/monotonic_clock.hpp"
 #include "runtime/realtime.hpp"
 #include "controller/rig_step.hpp"
@@ -39,8 +40,8 @@ constexpr std::uint32_t kCpuMarkTicks = 64;
 
 RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& input, RigBackend& backend,
                     const RunOptions& opt) {
-  if (!(opt.rate_hz > 0) || opt.rate_hz > 100000) throw std::invalid_argument("rate must be in (0, 100000] Hz");
-  if (!(opt.duration_s > 0) || !std::isfinite(opt.duration_s)) throw std::invalid_argument("duration must be > 0 s");
+  if (!(opt.rate_hz > 0) || opt.rate_hz > 100000) throw BadInput("rate must be in (0, 100000] Hz");
+  if (!(opt.duration_s > 0) || !std::isfinite(opt.duration_s)) throw BadInput("duration must be > 0 s");
 
   RunSummary sum;
   std::unique_ptr<TelemetryWriter> telemetry;

@@ -34,7 +34,7 @@ void ChartView::paintEvent(QPaintEvent*) {
     try {
       charts::paint_chart(p, sized);
       return;
-    } catch (const std::invalid_argument&) {
+    } catch (const BadInput&) {
       // Too narrow for the legend, say: fall through to the text.
     }
     p.fillRect(rect(), Qt::white);

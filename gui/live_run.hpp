@@ -69,7 +69,7 @@ LiveRunSetup load_live_run(const LiveRunFiles& files);
 
 class LiveRun {
  public:
-  // Opens the backend (std::runtime_error with one line when it cannot) and starts the loop.
+  // Opens the backend (an Error of core/error.hpp, one line, when it cannot) and starts the loop.
   LiveRun(LiveRunSetup setup, const LiveRunOptions& options);
   ~LiveRun();  // stops the loop (vents) and closes the backend
   LiveRun(const LiveRun&) = delete;

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 namespace {
@@ -14,7 +16,7 @@ namespace {
 constexpr double kOutside = -1.0;  // value reported for points outside a node's box
 
 void need(bool ok, const char* what) {
-  if (!ok) throw std::invalid_argument(std::string("FrepShape: ") + what);
+  if (!ok) throw BadInput(std::string("FrepShape: ") + what);
 }
 
 bool finite(const Point3_mm& p) { return std::isfinite(p.x_mm) && std::isfinite(p.y_mm) && std::isfinite(p.z_mm); }

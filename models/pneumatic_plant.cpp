@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 namespace {
@@ -13,7 +15,7 @@ constexpr std::size_t kDelayCapacity = 8192;  // enough for 8 s of dead time at 
 
 PneumaticPlant::PneumaticPlant(const PlantParams& p) : params_(p), delay_(kDelayCapacity), rng_(p.seed) {
   auto need = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("PneumaticPlant: ") + what);
+    if (!ok) throw BadInput(std::string("PneumaticPlant: ") + what);
   };
   need(std::isfinite(p.dead_time_s) && p.dead_time_s >= 0, "dead_time_s must be >= 0");
   need(std::isfinite(p.time_constant_s) && p.time_constant_s >= 0, "time_constant_s must be >= 0");

@@ -32,7 +32,7 @@ NumericHost resolve_modbus_host(const std::string& host);
 
 class ModbusLink {
  public:
-  // Creates the libmodbus context (no I/O yet). Throws std::runtime_error on bad parameters.
+  // Creates the libmodbus context (no I/O yet). Throws Error when libmodbus refuses the parameters.
   ModbusLink(const ModbusRigConfig& rig, std::size_t link_index);
   ~ModbusLink();
   ModbusLink(const ModbusLink&) = delete;

@@ -65,7 +65,7 @@ class RigBackend {
   RigBackend& operator=(const RigBackend&) = delete;
 
   // closed (or any state: closes first) -> connected: connect, vent, ready to read. Throws
-  // std::runtime_error (InputError for configuration) with one clear line on failure; the
+  // Error (InputError for configuration) with one clear line on failure; the
   // backend is then closed.
   void open();
   // any -> closed: vent and disconnect. Safe to call repeatedly.

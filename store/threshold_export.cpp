@@ -57,7 +57,7 @@ std::vector<ThresholdExportRow> threshold_export_rows(SqliteTrialStore& store,
         row.estimate_kPa = track.estimate().threshold_kPa;
         out.push_back(std::move(row));
       });
-    } catch (const std::invalid_argument& e) {
+    } catch (const BadInput& e) {  // the study's replay refused a stored trial
       throw InputError(store.location(), "threshold_trials of " + where,
                        std::string("trials the stored protocol's tracks can replay (") + e.what() + ")");
     }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
 #include "models/pneumatic_plant.hpp"
 
 using namespace palprig;
@@ -83,11 +84,11 @@ TEST(PneumaticPlant, NoiseIsSeededAndOnlyOnTheMonitor) {
 TEST(PneumaticPlant, RefusesImpossibleParameters) {
   PlantParams p;
   p.time_constant_s = -1;
-  EXPECT_THROW(PneumaticPlant{p}, std::invalid_argument);
+  EXPECT_THROW(PneumaticPlant{p}, palprig::BadInput);
   p = {};
   p.min_kPa = 50;
   p.max_kPa = 10;
-  EXPECT_THROW(PneumaticPlant{p}, std::invalid_argument);
+  EXPECT_THROW(PneumaticPlant{p}, palprig::BadInput);
 }
 
 // Issue 10: the default plant (2 kPa play) read about 2 kPa after a vent, so a 0 kPa stimulus

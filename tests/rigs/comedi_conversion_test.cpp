@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.hpp"
 #include "formats/comedi_config.hpp"
 #include "rigs/comedi_conversion.hpp"
 #include "rigs/comedi_rig.hpp"
@@ -108,11 +109,11 @@ TEST(ComediConversion, RefusesAFallingPolynomialOrASpanOutsideTheRange) {
   EXPECT_THROW(make_comedi_conversion(linear_polynomial(10, -10, 65535, COMEDI_FROM_PHYSICAL),
                                       linear_polynomial(-10, 10, 65535, COMEDI_TO_PHYSICAL), 65535, -10, 10, 0, 10,
                                       regulator(10)),
-               std::invalid_argument);
+               palprig::BadInput);
   EXPECT_THROW(
       make_comedi_conversion(linear_polynomial(0, 5, 4095, COMEDI_FROM_PHYSICAL),
                              linear_polynomial(0, 5, 4095, COMEDI_TO_PHYSICAL), 4095, 0, 5, 6, 10, regulator(10)),
-      std::invalid_argument);
+      palprig::BadInput);
 }
 
 TEST(ComediRigFile, ExampleLoadsAndBadSectionsAreRefused) {

@@ -10,6 +10,7 @@
 #include <functional>
 #include <thread>
 
+#include "core/error.hpp"
 #include "rigs/modbus_rig.hpp"
 #include "rigs/modbus_sim_server.hpp"
 #include "formats/rig_file.hpp"
@@ -357,7 +358,7 @@ TEST(ModbusLoopback, RtuOnAPseudoTerminalCarriesTheSameMap) {
   pty.pty = true;
   try {
     server.start({pty});
-  } catch (const std::runtime_error& e) {
+  } catch (const palprig::Error& e) {
     GTEST_SKIP() << "this machine gives no pseudo-terminals (" << e.what() << "); the RTU path needs one to run";
   }
   ASSERT_EQ(server.pty_path(0).rfind("/dev/pts/", 0), 0u) << server.pty_path(0);
