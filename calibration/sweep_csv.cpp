@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/regular_file.hpp"
 
 namespace palprig {

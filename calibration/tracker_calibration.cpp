@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "models/decimal_number.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/pose_hold.hpp"
 #include "models/regular_file.hpp"
 

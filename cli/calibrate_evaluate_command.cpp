@@ -12,7 +12,7 @@
 #include "cli/commands.hpp"
 #include "controller/backend_factory.hpp"
 #include "formats/calibration_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "charts/calibration_charts.hpp"
 
 using namespace palprig;

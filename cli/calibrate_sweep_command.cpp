@@ -15,7 +15,7 @@
 #include "cli/calibrate_arguments.hpp"
 #include "cli/commands.hpp"
 #include "controller/backend_factory.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;

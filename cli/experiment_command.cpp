@@ -19,7 +19,7 @@
 #include "experiments/pulse_session.hpp"
 #include "study/threshold_protocol.hpp"
 #include "formats/json_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "study/protocol.hpp"
 #include "experiments/terminal_participant.hpp"
 #include "study/session_plan.hpp"

@@ -3,7 +3,7 @@
 
 #include "cli/commands.hpp"
 #include "gui/gui_app.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 

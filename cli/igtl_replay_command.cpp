@@ -11,7 +11,7 @@
 #include "cli/commands.hpp"
 #include "inputs/igtl_pose_server.hpp"
 #include "inputs/pose_recording.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 

@@ -13,7 +13,7 @@
 #include "controller/backend_factory.hpp"
 #include "formats/rig_file.hpp"
 #include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/regular_file.hpp"
 #include "rigs/simulated_rig.hpp"
 

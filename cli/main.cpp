@@ -4,7 +4,7 @@
 #include "cli/commands.hpp"
 #include "cli/field_flags.hpp"
 #include "core/error.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"palprig: drive a pneumatic multi-finger palpation rig and run the studies done on it"};

@@ -11,7 +11,7 @@
 
 #include "cli/commands.hpp"
 #include "controller/loop_probe.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "runtime/rt_readiness.hpp"
 
 using namespace palprig;

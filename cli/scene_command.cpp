@@ -15,7 +15,7 @@
 #include "models/artery.hpp"
 #include "models/case_generator.hpp"
 #include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/stiffness_map.hpp"
 #include "models/tissue_scene.hpp"
 

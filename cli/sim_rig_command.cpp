@@ -9,7 +9,7 @@
 #include "rigs/modbus_link.hpp"
 #include "rigs/modbus_sim_server.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 

@@ -9,7 +9,7 @@
 #include "cli/commands.hpp"
 #include "formats/tracking_file.hpp"
 #include "inputs/igtl_input.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/regular_file.hpp"
 
 namespace palprig {

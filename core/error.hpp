@@ -6,7 +6,7 @@
 //              (OutputError of a file that cannot be written, the store's SqliteError and
 //              PgError are Errors)
 //   BadInput   a file, a field or an argument was refused before anything moved: exit 2
-//              (InputError in models/parse_error.hpp is the BadInput that names file, place and
+//              (InputError in core/input_error.hpp is the BadInput that names file, place and
 //              what was expected; statistics' StatisticsError and the models' own checks of
 //              what they are built from are BadInputs too)
 //   RigFault   the rig faulted while running: every channel vented, exit 1

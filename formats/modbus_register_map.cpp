@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "formats/json_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "formats/rig_file.hpp"
 
 namespace palprig {

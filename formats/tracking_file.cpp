@@ -6,7 +6,7 @@
 
 #include "formats/json_file.hpp"
 #include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

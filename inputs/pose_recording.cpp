@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "models/decimal_number.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/regular_file.hpp"
 
 namespace palprig {

@@ -9,7 +9,7 @@
 
 #include "runtime/realtime.hpp"
 #include "runtime/worker_fault.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -20,7 +20,7 @@
 #include <memory>
 #include <set>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/regular_file.hpp"
 
 namespace palprig {

@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -8,7 +8,7 @@
 
 #include "core/error.hpp"
 #include "models/decimal_number.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

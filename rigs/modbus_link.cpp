@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 
 namespace palprig {

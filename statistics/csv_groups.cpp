@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/regular_file.hpp"
 
 namespace palprig {

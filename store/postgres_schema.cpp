@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/session_rows.hpp"
 
 namespace palprig {

@@ -12,7 +12,7 @@
 #include <iterator>
 #include <string>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/host_identity.hpp"
 #include "store/utc_time.hpp"
 

@@ -3,7 +3,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/export_file.hpp"
 #include "store/export_text.hpp"
 #include "store/threshold_store.hpp"

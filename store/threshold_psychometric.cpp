@@ -3,7 +3,7 @@
 #include <fstream>
 #include <limits>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/regular_file.hpp"
 
 namespace palprig {

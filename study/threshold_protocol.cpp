@@ -5,7 +5,7 @@
 
 #include "formats/json_file.hpp"
 #include "models/finger_layout.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "study/session_bounds.hpp"
 
 namespace palprig {

@@ -14,7 +14,7 @@
 #include "calibration/sweep_plan.hpp"
 #include "calibration/sweep_runner.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;

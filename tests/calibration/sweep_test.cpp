@@ -14,7 +14,7 @@
 #include "calibration/sweep_runner.hpp"
 #include "formats/rig_file.hpp"
 #include "rigs/simulated_rig.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -14,7 +14,7 @@
 
 #include "core/error.hpp"
 #include "controller/telemetry_writer.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -7,7 +7,7 @@
 
 #include "formats/rig_file.hpp"
 #include "formats/tracking_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;

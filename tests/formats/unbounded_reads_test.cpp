@@ -27,7 +27,7 @@
 #include "formats/scene_file.hpp"
 #include "inputs/input_source.hpp"
 #include "inputs/tablet_source.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/regular_file.hpp"
 #include "statistics/csv_table.hpp"
 #include "tests/support/run_process.hpp"

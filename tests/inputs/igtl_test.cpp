@@ -18,7 +18,7 @@
 #include "inputs/igtl_pose_server.hpp"
 #include "inputs/igtl_stream.hpp"
 #include "inputs/pose_recording.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "runtime/worker_fault.hpp"
 #include "tests/support/temp_dir.hpp"
 

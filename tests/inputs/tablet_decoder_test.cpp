@@ -9,7 +9,7 @@
 #include "formats/json_file.hpp"
 #include "inputs/tablet_decoder.hpp"
 #include "inputs/tablet_source.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;

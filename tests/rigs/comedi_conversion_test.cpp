@@ -13,7 +13,7 @@
 #include "rigs/comedi_conversion.hpp"
 #include "rigs/comedi_rig.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "formats/modbus_register_map.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "rigs/modbus_link.hpp"
 #include "tests/support/modbus_process_support.hpp"
 

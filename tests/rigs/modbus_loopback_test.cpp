@@ -14,7 +14,7 @@
 #include "rigs/modbus_rig.hpp"
 #include "rigs/modbus_sim_server.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/modbus_support.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -2,7 +2,7 @@
 // implementation, and what one trial commits is what the readers get back.
 #include <gtest/gtest.h>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "store/trial_store.hpp"
 #include "tests/support/support.hpp"

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
