@@ -7,7 +7,7 @@
 
 #include "models/finger_layout.hpp"
 #include "core/input_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

@@ -12,7 +12,7 @@
 #include "models/decimal_number.hpp"
 #include "core/input_error.hpp"
 #include "models/pose_hold.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

@@ -16,7 +16,7 @@
 #include <stdexcept>
 
 #include "core/error.hpp"
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig::charts {
 

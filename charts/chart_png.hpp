@@ -36,7 +36,7 @@ struct Chart {
 };
 
 // Throws BadInput for a chart with nothing to draw or series of mismatched sizes,
-// OutputError (models/checked_output.hpp: the file and the system's reason; no file is left)
+// OutputError (io/checked_output.hpp: the file and the system's reason; no file is left)
 // when the file cannot be written whole.
 void write_chart_png(const Chart& chart, const std::filesystem::path& path);
 

@@ -12,9 +12,9 @@
 #include "cli/commands.hpp"
 #include "controller/backend_factory.hpp"
 #include "formats/rig_file.hpp"
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 #include "core/input_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 #include "rigs/simulated_rig.hpp"
 
 using namespace palprig;
@@ -161,7 +161,7 @@ void register_load_cell_command(CLI::App& app) {
     double force = 0;
     for (const auto& c : r.cells) force += c.mean_f();
     force /= double(r.cells.size());
-    // Appended by rewriting it whole (models/checked_output.hpp): a full disk never leaves half a file.
+    // Appended by rewriting it whole (io/checked_output.hpp): a full disk never leaves half a file.
     std::string before;
     if (std::filesystem::exists(p->presses)) {
       std::ifstream in = open_regular_file(p->presses, kMaxTableFileBytes, "a presses CSV", std::ios::in);

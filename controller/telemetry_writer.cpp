@@ -12,9 +12,9 @@
 #include <sstream>
 #include <string>
 
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 #include "core/input_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

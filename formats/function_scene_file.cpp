@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "models/decimal_number.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 #include "models/tissue_scene.hpp"
 
 namespace palprig {

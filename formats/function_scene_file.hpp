@@ -50,7 +50,7 @@ inline constexpr std::uintmax_t kMaxWaveformFileBytes = 1024 * 1024;
 std::string waveform_file_refusal(const std::filesystem::path& path);
 
 // A generated rehearsal case as a function scene file (with its generator provenance), and the
-// writer that puts it on disk (models/checked_output: whole or not at all; OutputError naming the
+// writer that puts it on disk (io/checked_output: whole or not at all; OutputError naming the
 // file and the system's reason when it cannot be written).
 nlohmann::json generated_case_json(const GeneratedCase& c);
 void write_scene_json(const std::filesystem::path& path, const nlohmann::json& scene);

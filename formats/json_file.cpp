@@ -5,7 +5,7 @@
 #include <sstream>
 #include <vector>
 
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "formats/json_file.hpp"
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 #include "core/input_error.hpp"
 
 namespace palprig {

@@ -23,7 +23,7 @@
 #include "gui/chart_view.hpp"
 #include "charts/measures_chart.hpp"
 #include "gui/pulse_statistics.hpp"
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 #include "gui/statistics_tables.hpp"
 #include "store/trial_export.hpp"
 #include "store/trial_summary_report.hpp"

@@ -7,7 +7,7 @@
 
 #include "models/decimal_number.hpp"
 #include "core/input_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

@@ -21,7 +21,7 @@
 #include <set>
 
 #include "core/input_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

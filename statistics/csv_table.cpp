@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "core/input_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "core/input_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

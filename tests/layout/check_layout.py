@@ -12,14 +12,15 @@ import re
 import sys
 
 # What each folder may include besides itself (docs/developing.md, "Layout"; keep the two in step).
-DATA = {"models", "formats", "statistics", "study"}
-RIG_BASE = {"models", "runtime", "formats"}
+DATA = {"io", "models", "formats", "statistics", "study"}
+RIG_BASE = {"io", "models", "runtime", "formats"}
 ALLOWED = {
     "core": set(),  # the error root: every folder may include it
+    "io": set(),    # the doors to files: floor 1, every folder above may include it
     "models": set(),
     "runtime": set(),
-    "formats": {"models"},
-    "statistics": {"models"},
+    "formats": {"io", "models"},
+    "statistics": {"io", "models"},
     "study": {"models", "formats", "statistics"},
     "store": DATA,
     "charts": DATA | {"store"},
@@ -29,6 +30,7 @@ ALLOWED = {
     "calibration": RIG_BASE | {"rigs", "inputs", "controller", "statistics"},
     "experiments": RIG_BASE | {"rigs", "inputs", "controller", "statistics", "study"},
     "sessions": RIG_BASE | DATA | {"rigs", "inputs", "controller", "calibration", "experiments", "store"},
+    "diagnostics": RIG_BASE | {"rigs", "inputs", "controller"},
     "gui": RIG_BASE | DATA | {"rigs", "inputs", "controller", "calibration", "experiments", "store", "sessions", "charts"},
     "cli": None,    # the top: anything but bench
     "bench": None,

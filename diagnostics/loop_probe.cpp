@@ -1,4 +1,4 @@
-#include "controller/loop_probe.hpp"
+#include "diagnostics/loop_probe.hpp"
 
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include "runtime/rt_readiness.hpp"
+#include "diagnostics/rt_readiness.hpp"
 
 #include <pthread.h>
 #include <sched.h>

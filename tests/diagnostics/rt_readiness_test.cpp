@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
-#include "runtime/rt_readiness.hpp"
+#include "diagnostics/rt_readiness.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;

@@ -3,7 +3,7 @@
 // runs) against the default simulated rig with a pen pressing still: what `palprig rt-check`
 // and the real-time benchmarks report as the machine's wake-up latency at a rate.
 #include "runtime/realtime.hpp"
-#include "runtime/rt_readiness.hpp"
+#include "diagnostics/rt_readiness.hpp"
 
 namespace palprig {
 
