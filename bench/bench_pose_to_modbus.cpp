@@ -1,9 +1,9 @@
-// End-to-end latency, tracker pose to regulator register (issue 26): from the moment a
+// End-to-end latency, tracker pose to regulator register: from the moment a
 // tracker's OpenIGTLink server sends a pose (a TRANSFORM message, stamped on CLOCK_MONOTONIC
 // by the server just after its send() returns) to the arrival of the Modbus write that carries
 // the resulting setpoint at a `palprig sim-rig` process on loopback (its --write-log stamps
 // each write on the same clock). The pen's figure (bench_pen_to_modbus) is beside it in
-// docs/developing.md.
+// docs/benchmarks.md.
 //
 // The path measured is the one a lab's rig runs: TCP (loopback) -> tracker reader thread
 // (FIFO 60: poll, decode, fingertip p = o + R p_local, registration) -> LatestValue -> loop

@@ -1,5 +1,5 @@
 #pragma once
-// Calibrating a tracker to the rig (issue 26), from poses a live OpenIGTLink server streams:
+// Calibrating a tracker to the rig, from poses a live OpenIGTLink server streams:
 //
 //   registration: fiducials on the phantom with known scene coordinates (a CSV) are touched in
 //     turn with a tracked tip; each touch is taken when the tip rests (models/pose_hold.hpp);

@@ -1,4 +1,4 @@
-// palprig load-cell read|press: the rig's load cells (issue 26) read at rest, for their
+// palprig load-cell read|press: the rig's load cells read at rest, for their
 // calibration (tare, gain) and paper 003's reference presses at 60 and 120 mmHg, which
 // `calibrate fit --force-presses` turns into the pulse's force window.
 #include <chrono>

@@ -1,4 +1,4 @@
-// palprig tracking register|pivot|digitize: calibrating a tracker to the rig (issue 26), from a
+// palprig tracking register|pivot|digitize: calibrating a tracker to the rig, from a
 // live OpenIGTLink server (calibration/tracker_calibration.hpp); each writes the tracking file.
 #include <cmath>
 #include <iomanip>

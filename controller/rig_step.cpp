@@ -44,7 +44,7 @@ BackendStatus RigStep::arm() noexcept {
     backend_.vent();
     return BackendStatus::error;
   }
-  // Issue 10: pressure rises from the vented state under the slew limit after every arm.
+  // Pressure rises from the vented state under the slew limit after every arm.
   state_.restart_from_vented();
   return BackendStatus::ok;
 }

@@ -17,8 +17,8 @@
 namespace palprig {
 
 // The binary telemetry file's version (its header). 2: the per-finger position, force and vent
-// reason (issue 26) after the flags; 3: then how far tissue dragging carries the tissue under
-// each finger (drag_x_mm, drag_y_mm; issue 25).
+// reason after the flags; 3: then how far tissue dragging carries the tissue under
+// each finger (drag_x_mm, drag_y_mm).
 inline constexpr std::uint32_t kTelemetryFileVersion = 3;
 
 enum class TelemetryFormat { binary, csv };

@@ -167,7 +167,7 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   } else if (t_s - sample.t_s > config.safety.max_input_age_s) {
     state.enter_fault(FaultCode::input_stale);
   } else {
-    // The triangle around the pen, or each finger at its own tracked position (issue 26); a
+    // The triangle around the pen, or each finger at its own tracked position; a
     // finger whose tool is out of view is vented (target 0 kPa) and says why in the record.
     const PlacedFingers placed = place_fingers(config.layout, sample, config.contact_force_N);
     fingers.centres = placed.centres;

@@ -1,5 +1,5 @@
 #pragma once
-// The tick: one pass from pen sample to three setpoints (DESIGN.md "One tick"). A plain
+// The tick: one pass from pen sample to three setpoints (docs/architecture.md, "The tick"). A plain
 // function of (state, configuration, scene, sample, time): no threads, clocks, allocation or
 // exceptions, so tests and replays run it directly.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The tracking file (JSON, versioned): how a tracker's tools become fingers (issue 26). Which
+// The tracking file (JSON, versioned): how a tracker's tools become fingers. Which
 // OpenIGTLink device names (PLUS's "StylusToTracker", "Finger1ToTracker") are which finger,
 // where each fingertip sits in its tool's frame (static digitization or pivot calibration,
 // paper 003), and the rigid transform from tracker space to scene space (point-based

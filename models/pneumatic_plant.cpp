@@ -39,8 +39,8 @@ double PneumaticPlant::step(double command_kPa, double dt_s) noexcept {
   const double x = std::clamp(command_kPa, params_.min_kPa, params_.max_kPa);
   // Play operator (backlash of +/- r). Near the bottom of the range the band above the
   // command narrows to the distance from the bottom: a regulator's exhaust valve opens fully at
-  // a 0 kPa command, so venting empties the actuator instead of leaving it at +r (issue 10:
-  // a vented plant read about 2 kPa, and a 0 kPa stimulus was felt at 2 kPa). Above 2 r the
+  // a 0 kPa command, so venting empties the actuator instead of leaving it at +r (before
+  // this, a vented plant read about 2 kPa, and a 0 kPa stimulus was felt at 2 kPa). Above 2 r the
   // band is the full +/- r, continuous in between.
   const double r = params_.hysteresis_kPa;
   const double r_above = std::min(r, x - params_.min_kPa);

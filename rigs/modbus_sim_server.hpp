@@ -57,7 +57,7 @@ class ModbusSimServer {
   // so end-to-end latency can be measured across processes on one machine).
   void set_write_log(const std::filesystem::path& path);
   void set_watchdog_s(double seconds) { watchdog_s_ = seconds; }
-  // The rig's load cells on Modbus registers (issue 26): each is simulated from its channel's
+  // The rig's load cells on Modbus registers: each is simulated from its channel's
   // tare and gain, with `load_N` resting on it (a calibration weight; 0: nothing), and its
   // register kept up to date by the plant thread. Before start().
   void set_load_cells(const LoadCellConfig& cells, double load_N);

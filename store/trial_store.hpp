@@ -1,5 +1,5 @@
 #pragma once
-// TrialStore: where a study's participants, sessions and trials live (DESIGN.md "Data"), as an
+// TrialStore: where a study's participants, sessions and trials live (docs/architecture.md, "Data"), as an
 // interface, so the session code, stats and export do not care whether the store is an SQLite
 // file (SqliteTrialStore, store/sqlite_trial_store.hpp) or a lab server.
 //

@@ -263,7 +263,7 @@ TEST(SweepRunner, HoldsSettleOnTheSimulatedRigAndShowItsHysteresis) {
   EXPECT_GE(rig.vents, 1);  // the sweep ends vented
 }
 
-// Issue 9: the sweep wrote its levels straight to the backend, past the tick's safety stage.
+// The sweep once wrote its levels straight to the backend, past the tick's safety stage.
 // Now every setpoint goes through it: with the rig's slew limit at 500 kPa/s and 100 steps a
 // second, no write rises by more than 5 kPa, though the staircase steps by 10 kPa and each
 // repeat starts from vented; the levels are still reached and recorded.

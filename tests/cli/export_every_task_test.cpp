@@ -1,4 +1,4 @@
-// `palprig export` of a store holding every task kind (issue 23): each shipped protocol run by
+// `palprig export` of a store holding every task kind: each shipped protocol run by
 // simulated participants, exported as long CSV and BIDS with every trial, plotted per kind;
 // an empty store, a full disk (/dev/full and a full tmpfs) and an unwritable folder are errors
 // that leave no file looking complete. The official bids-validator checks the BIDS tree when

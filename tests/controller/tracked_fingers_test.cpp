@@ -1,4 +1,4 @@
-// Tracked fingers in the tick and the rig step (issue 26), and end to end against a real
+// Tracked fingers in the tick and the rig step, and end to end against a real
 // OpenIGTLink server on loopback: fingers each at their own tracked position, per-finger load
 // cells, a finger whose tool is out of view vented with its reason, the fingers following a
 // known path within the registration error, pressure over a tumor, the pulse over an artery,

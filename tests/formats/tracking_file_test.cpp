@@ -1,4 +1,4 @@
-// The tracking file and the rig file's load cells (issue 26): what they hold, and every bad
+// The tracking file and the rig file's load cells: what they hold, and every bad
 // field refused with one line naming the file, the field and what was expected.
 #include <gtest/gtest.h>
 

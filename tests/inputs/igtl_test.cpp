@@ -1,4 +1,4 @@
-// Tracked fingers over OpenIGTLink (issue 26), against a real server on loopback: the stream
+// Tracked fingers over OpenIGTLink, against a real server on loopback: the stream
 // decoder on messages packed by libopenigtlink itself, the pose recording file, the replay
 // server, and the loop's input following the tools, venting a finger whose tool stops and
 // reporting a server that goes away.

@@ -91,7 +91,7 @@ TEST(PneumaticPlant, RefusesImpossibleParameters) {
   EXPECT_THROW(PneumaticPlant{p}, palprig::BadInput);
 }
 
-// Issue 10: the default plant (2 kPa play) read about 2 kPa after a vent, so a 0 kPa stimulus
+// The default plant (2 kPa play) once read about 2 kPa after a vent, so a 0 kPa stimulus
 // was felt at 2 kPa. A regulator commanded to 0 exhausts to 0; above 2 r the play is unchanged.
 TEST(PneumaticPlant, ACommandOfZeroExhaustsToZero) {
   PlantParams p = ideal_lag(0.0, 0.0);

@@ -1,4 +1,4 @@
-// The maths of tracked fingers (issue 26): rigid transforms and quaternions, point-based
+// The maths of tracked fingers: rigid transforms and quaternions, point-based
 // registration (Umeyama) with its FRE, pivot calibration and static digitization (paper 003
 // eqs. 1 and 2), the rest detector, finger placement, the load cell and its simulation.
 #include <gtest/gtest.h>

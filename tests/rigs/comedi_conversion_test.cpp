@@ -53,7 +53,7 @@ TEST(ComediConversion, NominalLineMatchesHandComputedCounts) {
 }
 
 TEST(ComediConversion, ALoadCellInputReadsVolts) {
-  // A load cell's amplifier on an AI channel (issue 26): counts -> volts, comedilib's nominal line.
+  // A load cell's amplifier on an AI channel: counts -> volts, comedilib's nominal line.
   const ComediConversion c = bipolar_16bit_output();
   comedi_range range{-10.0, 10.0, UNIT_volt};
   // (comedi_to_phys says NaN at 0 and maxdata, its out-of-range marks: interior counts only.)

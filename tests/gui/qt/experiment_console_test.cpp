@@ -722,7 +722,7 @@ class ExperimentConsoleTest : public QObject {
     QCOMPARE(QString::fromStdString(outcome["C"]), QString("FN"));
   }
 
-  // The flow of the crash report (issue 22): a person's localisation session to its end, then a
+  // The flow of the crash report: a person's localisation session to its end, then a
   // discrimination session with a new participant and database in the same window; the
   // participant's keys reach the participant whatever has the focus (the Live rig tab shown and
   // back, a key sent to the Abort button); Space after Pause does not abort; Abort asks first;
