@@ -4,7 +4,8 @@
 // substitute a recording fake. Calls come from the session thread, never the real-time loop.
 #include <string>
 
-#include "core/error.hpp"
+#include "core/error.hpp"  // RigFault: the rig faulted (backend error, safety fault), every channel vented
+
 #include "inputs/input_source.hpp"
 #include "rigs/rig_backend.hpp"
 #include "controller/telemetry.hpp"
