@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/error.hpp"
 #include "models/decimal_number.hpp"
 #include "io/regular_file.hpp"
 #include "models/tissue_scene.hpp"

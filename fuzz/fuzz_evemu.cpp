@@ -1,6 +1,7 @@
 // evemu pen recordings, then decoded the way the tablet reader decodes them.
 #include <stdexcept>
 
+#include "core/error.hpp"
 #include "fuzz/fuzz_input.hpp"
 #include "inputs/tablet_decoder.hpp"
 #include "inputs/tablet_source.hpp"

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace palprig::gui {
 
 ChartView::ChartView(QWidget* parent) : QWidget(parent) {

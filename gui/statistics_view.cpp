@@ -1,4 +1,5 @@
 #include "gui/statistics_view.hpp"
+#include "core/error.hpp"
 #include "gui/counted_text.hpp"
 
 #include <QDateTime>
