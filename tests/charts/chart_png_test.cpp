@@ -4,6 +4,7 @@
 
 #include <QtGui/QImage>
 
+#include "io/checked_output.hpp"
 #include "core/error.hpp"
 #include "charts/chart_png.hpp"
 #include "tests/support/temp_dir.hpp"
