@@ -6,7 +6,7 @@
 //   - a heavier plant: hysteresis x1.7, dead time and lag x1.4, calibrated here by the documented
 //     recipe (palprig calibrate sweep --excitation staircase,random,sine,step,chirp, then
 //     calibrate fit; the palprig command itself, as a user types it).
-// Goals (issue "haptic fidelity"): RMS <= 0.5 kPa on both, monitor/target over tumors >= 0.97,
+// Goals: RMS <= 0.5 kPa on both, monitor/target over tumors >= 0.97,
 // no setpoint above p_max, no overshoot over soft tissue above 0.5 kPa.
 //
 //   build/bin/bench_fidelity                        the table (Markdown), runs in a few seconds
@@ -25,6 +25,8 @@
 //            tumor, as the demo's table), and the same less the monitor's noise (3 sd)
 //   setpoint the largest setpoint sent, against p_max
 // The simulated plant is seeded, so the figures do not depend on the machine.
+// Over 400 lines: the pass, its meter, the heavier plant's calibration recipe and the Modbus run
+// are one measurement, printed as one table.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -293,8 +295,10 @@ void write_figure(const fs::path& png, const Case& off, const Case& on, const st
   chart.title = "Finger 1 crossing tumor " + b->name + " (demo pass, " + off.rig_name + ")";
   chart.x_label = "time (s)";
   chart.y_label = "pressure (kPa)";
-  charts::ChartSeries target{"target (the model)"}, plain{"monitor, no lag compensation"},
-      comp{"monitor, lag compensation"};
+  charts::ChartSeries target, plain, comp;
+  target.label = "target (the model)";
+  plain.label = "monitor, no lag compensation";
+  comp.label = "monitor, lag compensation";
   target.color_rgb = 0x202020;
   plain.color_rgb = 0xd62728;
   comp.color_rgb = 0x1f77b4;

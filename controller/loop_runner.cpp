@@ -123,7 +123,7 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       wall_mark = mono_ns();
       ticks_since_mark = 0;
     }
-    const std::int64_t wall_start = realtime ? 0 : mono_ns();
+    const std::int64_t tick_start_ns = realtime ? 0 : mono_ns();
     const StepResult& step = rig.step(scene, input.latest(t_s), t_s);
     if (!realtime) {
       // A replay has no deadlines, but a tick that costs more than its period could not run
@@ -135,9 +135,9 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       ++ticks_since_mark;
       const std::int64_t wall_end = mono_ns();
       std::uint64_t lost = 0;
-      if (wall_end - wall_start > period_ns) {
+      if (wall_end - tick_start_ns > period_ns) {
         const std::int64_t cpu_now = thread_cpu_ns();
-        const std::int64_t cpu = (cpu_now - cpu_mark) - (wall_start - wall_mark);
+        const std::int64_t cpu = (cpu_now - cpu_mark) - (tick_start_ns - wall_mark);
         if (cpu > period_ns) lost = static_cast<std::uint64_t>((cpu - 1) / period_ns);
         cpu_mark = cpu_now;
         wall_mark = mono_ns();

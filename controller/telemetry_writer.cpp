@@ -87,7 +87,6 @@ std::string size_text(std::uint64_t bytes) {
 }  // namespace
 
 void TelemetryWriter::check_room(std::uint64_t more) {
-  constexpr std::uint64_t kMiB = 1 << 20;
   if (bytes_ + more > limits_.max_bytes)
     throw Error("telemetry stopped at " + size_text(bytes_) + " in " + path_.string() + ": the budget of " +
                 size_text(limits_.max_bytes) + " per file is reached");

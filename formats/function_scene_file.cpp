@@ -1,3 +1,5 @@
+// Over 400 lines: every key of a function scene (layers, inclusions and their shapes, arteries,
+// waveforms, respiration) is validated here in the file's order, so each refusal names its field.
 #include "formats/function_scene_file.hpp"
 
 #include <cmath>

@@ -45,7 +45,7 @@ PulseWaveform load_waveform_csv(const std::filesystem::path& path);
 
 // A waveform table is a few hundred rows; anything that is not a regular file (a FIFO blocks,
 // /dev/zero never ends) or is larger than this is refused before it is opened.
-inline constexpr std::uintmax_t kMaxWaveformFileBytes = 1024 * 1024;
+inline constexpr std::uintmax_t kMaxWaveformFileBytes = std::uintmax_t(1) << 20;  // 1 MiB
 // Why `path` cannot be a waveform table (empty: it may be read).
 std::string waveform_file_refusal(const std::filesystem::path& path);
 

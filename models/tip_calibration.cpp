@@ -60,7 +60,7 @@ PivotCalibration pivot_calibrate(const std::vector<RigidTransform>& poses, doubl
     }
   }
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::VectorXd s = svd.singularValues();
+  const Eigen::VectorXd& s = svd.singularValues();
   // Turning about one axis only leaves the tip along that axis free: A loses rank.
   if (s(5) < 1e-3 * s(0))
     throw BadInput("poses that turn about more than one axis (pivot the tool in a cone, not in one plane)");

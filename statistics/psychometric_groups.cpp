@@ -54,6 +54,7 @@ std::vector<PsychometricGroup> psychometric_groups(const CsvTable& table, const 
     }
   }
   std::vector<PsychometricGroup> out;
+  out.reserve(order.size());
   for (const auto& label : order) {
     PsychometricGroup g{label, {}};
     for (const auto& [x, c] : grouped[label]) g.counts.push_back(c);

@@ -39,8 +39,8 @@ struct ParticipantRecord {
 
 struct SessionSetup {
   std::string rig_id, rig_backend, calibration;
-  nlohmann::json participant_model;  // the simulated participant's parameters; null for people
-  std::string protocol_dir;          // folder of the protocol file (resolves a scene path)
+  nlohmann::json participant_model = nullptr;  // the simulated participant's parameters; null for people
+  std::string protocol_dir = {};               // folder of the protocol file (resolves a scene path)
 };
 
 struct StoredSession {

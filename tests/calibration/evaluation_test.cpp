@@ -1,5 +1,5 @@
 // Hysteresis compensation on the default simulated plant, end to end in process: sweep,
-// fit, then the controller's tick with and without the fitted inverse. The bar: the
+// fit, then the controller's tick with and without the fitted inverse. The bar: the
 // compensated tracking error at least 5x lower.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,5 @@
+// Over 400 lines: the schedule, the runner and the data file are one sweep's three sides and
+// share its fixtures.
 // Calibration sweeps: the schedule (paper 002's staircase, p_max clamp, identification
 // excitations), the runner on the simulated rig (settling, stop, backend faults, a sensor
 // channel) and the data file (round trip, hand-typed tables, malformed rows).
@@ -281,9 +283,11 @@ TEST(SweepRunner, EverySetpointPassesTheSafetyStage) {
   EXPECT_EQ(out.holds_unsettled, 0u);
   EXPECT_GT(rig.largest_rise_kPa, 4.9);
   EXPECT_LE(rig.largest_rise_kPa, 5.0 + 1e-9);
-  for (const auto& h : sink.holds)
-    if (h.hold.segment == SweepSegment::staircase && h.hold.branch == SweepBranch::inflation)
+  for (const auto& h : sink.holds) {
+    if (h.hold.segment == SweepSegment::staircase && h.hold.branch == SweepBranch::inflation) {
       EXPECT_NEAR(settled_mean(h, 0), h.hold.level_kPa - 2.0, 0.06) << h.hold.level_kPa;
+    }
+  }
   EXPECT_EQ(rig.state(), BackendState::disarmed);  // vented and disarmed at the end
 }
 

@@ -1,3 +1,4 @@
+// Over 400 lines: every case drives the same in-process Modbus server fixture.
 // ModbusRig against the simulated rig served as a real Modbus TCP server on 127.0.0.1, in
 // process: exact register words, several clients, a lost and returning peer, a device that
 // refuses the map, a silent loop, and multi-module maps.
@@ -10,7 +11,6 @@
 #include <functional>
 #include <thread>
 
-#include "core/error.hpp"
 #include "rigs/modbus_rig.hpp"
 #include "rigs/modbus_sim_server.hpp"
 #include "formats/rig_file.hpp"

@@ -1,3 +1,5 @@
+// Over 400 lines: one Qt Test class (QTest runs a class's slots as its cases), whose flows share
+// the store, the simulated rig and the participant screen of its fixtures.
 // Qt Test suite for the experiment console and the participant screens (gui/experiment_page,
 // gui/participant_screen, gui/localisation_marking), offscreen (ctest gui.ExperimentConsole.*).
 // Sessions run for real: run_study_session on its own thread against the default simulated rig
