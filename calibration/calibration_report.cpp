@@ -8,7 +8,7 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig {
 

@@ -10,7 +10,7 @@
 #include "calibration/pacer.hpp"
 #include "controller/fault_recorder.hpp"
 #include "controller/rig_step.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

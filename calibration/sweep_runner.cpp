@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/error.hpp"
 #include "calibration/pacer.hpp"
 #include "controller/rig_step.hpp"
 
@@ -40,12 +41,12 @@ SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedul
       !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s + o.average_s) || !(o.max_hold_s <= 3600) ||
       !(o.rate_hz > 0) || !(o.rate_hz <= 10000) || !(o.slew_kPa_per_s > 0) || !(o.dynamics_rate_hz > 0) ||
       !(o.dynamics_rate_hz <= 10000))
-    throw std::invalid_argument(
+    throw BadInput(
         "sweep: need settle window, band and averaging window > 0, a max hold above min hold and both windows (at "
         "most an hour), rates in (0, 10000] Hz and a slew rate > 0");
   bool any = false;
   for (bool on : o.channels) any = any || on;
-  if (!any) throw std::invalid_argument("sweep: no channel selected");
+  if (!any) throw BadInput("sweep: no channel selected");
 
   // Every setpoint passes the controller's safety stage through a rig step (tick_direct without
   // a hysteresis inverse): clamped to the rig's p_max, slew-limited at the rig's own rate

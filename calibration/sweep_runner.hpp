@@ -84,7 +84,7 @@ struct SweepOutcome {
 
 using SweepProgress = std::function<void(std::size_t done, std::size_t total, const SweepHold&, const HoldOutcome&)>;
 
-// Throws std::invalid_argument for options that make no sweep (before anything is written).
+// Throws BadInput for options that make no sweep (before anything is written).
 SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedule, const SweepRunOptions& options,
                                    SweepSink& sink, const SweepProgress& progress = {});
 

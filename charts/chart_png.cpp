@@ -15,7 +15,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "models/checked_output.hpp"
+#include "core/error.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig::charts {
 
@@ -81,12 +82,11 @@ void paint_chart(QPainter& p, const Chart& chart) {
   bool bars = false;
   std::size_t bar_series = 0;
   for (const auto& s : chart.series) {
-    if (s.x.size() != s.y.size())
-      throw std::invalid_argument("chart series \"" + s.label + "\": x and y differ in size");
+    if (s.x.size() != s.y.size()) throw BadInput("chart series \"" + s.label + "\": x and y differ in size");
     if ((!s.y_low.empty() && s.y_low.size() != s.y.size()) || (!s.y_high.empty() && s.y_high.size() != s.y.size()))
-      throw std::invalid_argument("chart series \"" + s.label + "\": error bars and y differ in size");
+      throw BadInput("chart series \"" + s.label + "\": error bars and y differ in size");
     if (!s.bar_labels.empty() && s.bar_labels.size() != s.y.size())
-      throw std::invalid_argument("chart series \"" + s.label + "\": bar labels and y differ in size");
+      throw BadInput("chart series \"" + s.label + "\": bar labels and y differ in size");
     for (std::size_t i = 0; i < s.x.size(); ++i) {
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
       xr.add(s.x[i]);
@@ -99,7 +99,7 @@ void paint_chart(QPainter& p, const Chart& chart) {
       ++bar_series;
     }
   }
-  if (!xr.valid() || !yr.valid()) throw std::invalid_argument("chart \"" + chart.title + "\": no finite point to draw");
+  if (!xr.valid() || !yr.valid()) throw BadInput("chart \"" + chart.title + "\": no finite point to draw");
   if (bars) {
     yr.add(0.0);  // bars stand on zero
     xr.add(xr.lo - 0.5);
@@ -121,8 +121,7 @@ void paint_chart(QPainter& p, const Chart& chart) {
   if (chart.x_max) xr.hi = *chart.x_max;
   if (chart.y_min) yr.lo = *chart.y_min;
   if (chart.y_max) yr.hi = *chart.y_max;
-  if (!(xr.hi > xr.lo) || !(yr.hi > yr.lo))
-    throw std::invalid_argument("chart \"" + chart.title + "\": empty axis range");
+  if (!(xr.hi > xr.lo) || !(yr.hi > yr.lo)) throw BadInput("chart \"" + chart.title + "\": empty axis range");
 
   p.fillRect(QRectF(0, 0, chart.width_px, chart.height_px), Qt::white);
   p.setRenderHint(QPainter::Antialiasing, true);
@@ -143,8 +142,8 @@ void paint_chart(QPainter& p, const Chart& chart) {
   const int left = 80, right = has_legend ? 24 + legend_width + 12 : 24, top = chart.title.empty() ? 20 : 46,
             bottom = 64;
   if (chart.width_px - left - right < 200) {
-    throw std::invalid_argument("chart \"" + chart.title + "\": legend labels too long for a " +
-                                std::to_string(chart.width_px) + " px wide chart");
+    throw BadInput("chart \"" + chart.title + "\": legend labels too long for a " + std::to_string(chart.width_px) +
+                   " px wide chart");
   }
   const QRectF plot(left, top, chart.width_px - left - right, chart.height_px - top - bottom);
   auto px = [&](double x) { return plot.left() + (x - xr.lo) / (xr.hi - xr.lo) * plot.width(); };

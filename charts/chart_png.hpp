@@ -35,13 +35,13 @@ struct Chart {
   int width_px = 1000, height_px = 650;
 };
 
-// Throws std::invalid_argument for a chart with nothing to draw or series of mismatched sizes,
-// OutputError (models/checked_output.hpp: the file and the system's reason; no file is left)
+// Throws BadInput for a chart with nothing to draw or series of mismatched sizes,
+// OutputError (io/checked_output.hpp: the file and the system's reason; no file is left)
 // when the file cannot be written whole.
 void write_chart_png(const Chart& chart, const std::filesystem::path& path);
 
 // The same drawing on any paint device (a widget, an SVG generator) of chart.width_px x
-// chart.height_px. Throws std::invalid_argument as write_chart_png, before painting anything.
+// chart.height_px. Throws BadInput as write_chart_png, before painting anything.
 void paint_chart(QPainter& painter, const Chart& chart);
 QImage render_chart(const Chart& chart);
 // Makes the offscreen application the fonts need when none exists (see write_chart_png).

@@ -7,7 +7,7 @@
 
 #include <stdexcept>
 
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig::charts {
 

@@ -7,7 +7,7 @@
 
 namespace palprig::charts {
 
-// Throws std::invalid_argument as write_chart_png, OutputError as write_chart_png when the file
+// Throws BadInput as write_chart_png, OutputError as write_chart_png when the file
 // cannot be written whole.
 void write_chart_svg(const Chart& chart, const std::filesystem::path& path);
 

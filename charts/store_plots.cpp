@@ -7,7 +7,7 @@
 #include "charts/chart_svg.hpp"
 #include "charts/measures_chart.hpp"
 #include "charts/psychometric_charts.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "statistics/statistics_error.hpp"
 #include "store/pulse_store.hpp"
 #include "store/sqlite_trial_store.hpp"

@@ -2,7 +2,7 @@
 
 #include "charts/chart_png.hpp"
 #include "charts/measures_chart.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/trial_summary.hpp"
 
 namespace palprig::charts {

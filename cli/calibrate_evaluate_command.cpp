@@ -12,7 +12,7 @@
 #include "cli/commands.hpp"
 #include "controller/rig_lease.hpp"
 #include "formats/calibration_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "charts/calibration_charts.hpp"
 #include "runtime/run_control.hpp"
 

@@ -14,7 +14,7 @@
 #include "cli/calibrate_arguments.hpp"
 #include "cli/commands.hpp"
 #include "formats/calibration_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "charts/calibration_charts.hpp"
 
 using namespace palprig;

@@ -15,8 +15,8 @@
 #include "cli/calibrate_arguments.hpp"
 #include "cli/commands.hpp"
 #include "controller/rig_lease.hpp"
-#include "models/parse_error.hpp"
 #include "runtime/run_control.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;

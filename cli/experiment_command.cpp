@@ -19,7 +19,7 @@
 #include "experiments/pulse_session.hpp"
 #include "study/threshold_protocol.hpp"
 #include "formats/json_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "study/protocol.hpp"
 #include "experiments/terminal_participant.hpp"
 #include "study/session_plan.hpp"
@@ -35,7 +35,7 @@ namespace {
 struct RunArgs {
   StudySessionRequest request;
   bool quiet = false;
-  double sim_threshold_noise_kPa = 0.8, sim_threshold_criterion_kPa = 0.5;  // threshold protocols (issue 13)
+  double sim_threshold_noise_kPa = 0.8, sim_threshold_criterion_kPa = 0.5;  // threshold protocols
 };
 
 std::string trial_line(const TrialRecord& t, int total) {
@@ -108,7 +108,7 @@ class TerminalReport final : public SessionListener {
 void run_experiment(const RunArgs& a) {
   StudySessionRequest request = a.request;
   if (request.rig_file.empty()) request.rig_file = cli::data_dir() / "rigs" / "simulated.json";
-  // Threshold protocols (staircases, QUEST) and the pulse task run in their own files (issue 13).
+  // Threshold protocols (staircases, QUEST) and the pulse task run in their own files.
   const nlohmann::json document = read_json_file(request.protocol_file);
   if (is_threshold_protocol(document)) {
     ThresholdStudyRequest threshold{request, {}};
@@ -208,7 +208,7 @@ void register_run(CLI::App* experiment) {
   sub->add_option("--sim-rt-sd-sequential", a->request.model.sequential.sd_s, "Simulated: response time sd in s")
       ->default_val(a->request.model.sequential.sd_s)
       ->check(CLI::Range(0.0, 600.0));
-  // issue 13: the simulated threshold observer (experiments/threshold_observer.hpp)
+  // The simulated threshold observer (experiments/threshold_observer.hpp)
   sub->add_option("--sim-threshold-noise-kPa", a->sim_threshold_noise_kPa,
                   "Simulated, threshold protocols: sd of each finger's perceived pressure per interval")
       ->default_val(a->sim_threshold_noise_kPa)

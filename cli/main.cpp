@@ -3,7 +3,8 @@
 
 #include "cli/commands.hpp"
 #include "cli/field_flags.hpp"
-#include "models/parse_error.hpp"
+#include "core/error.hpp"
+#include "core/input_error.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"palprig: drive a pneumatic multi-finger palpation rig and run the studies done on it"};
@@ -29,7 +30,13 @@ int main(int argc, char** argv) {
   } catch (const palprig::InputError& e) {
     std::cerr << "palprig: " << palprig::cli::input_error_line(e) << "\n";
     return palprig::cli::kExitBadInput;
+  } catch (const palprig::Error& e) {
+    // The project's exception root (core/error.hpp): its class says the exit code (BadInput 2,
+    // RigFault and any other Error 1).
+    std::cerr << "palprig: " << e.what() << "\n";
+    return e.exit_code();
   } catch (const std::exception& e) {
+    // Not palprig's own (std::bad_alloc, a library's exception): a failure, not an answer.
     std::cerr << "palprig: " << e.what() << "\n";
     return palprig::cli::kExitFault;
   }

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "statistics/csv_table.hpp"
 #include "statistics/psychometric_fit.hpp"
 #include "statistics/statistics_error.hpp"

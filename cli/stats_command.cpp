@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "cli/psychometric_command.hpp"  // issue 13
+#include "cli/psychometric_command.hpp"
 #include "cli/stats_printing.hpp"
 #include "statistics/csv_groups.hpp"
 #include "statistics/csv_table.hpp"
@@ -18,7 +18,7 @@
 #include "statistics/statistics_report.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;
@@ -148,5 +148,5 @@ void register_stats_command(CLI::App& app) {
   register_ttest(stats_app);
   register_stats_rank_tests(stats_app);
   register_stats_trials(stats_app);
-  register_psychometric_command(*stats_app);  // issue 13
+  register_psychometric_command(*stats_app);  // stats psychometric
 }

@@ -13,7 +13,7 @@
 #include "statistics/statistics_report.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;

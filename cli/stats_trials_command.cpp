@@ -46,7 +46,7 @@ void register_stats_trials(CLI::App* stats_app) {
     options.include_practice = a->include_practice;
     options.confidence = a->confidence;
     const auto store = open_trial_store(a->db, TrialStore::Access::read_only);
-    // Pulse-localisation trials (issue 13) first, then the rest: one library call, which the
+    // Pulse-localisation trials first, then the rest: one library call, which the
     // GUI's statistics.json export makes too.
     std::cout << stats_trials_text(*store, options, a->json ? "json" : a->format);
   });

@@ -9,6 +9,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <cmath>
 
+#include "core/error.hpp"
 #include "calibration/calibration_report.hpp"
 #include "calibration/calibration_writer.hpp"
 #include "formats/calibration_file.hpp"
@@ -112,7 +113,7 @@ void CalibrationPage::evaluate() {
     check_calibration_matches(cal, rig.id, rig.source);
     bool any = false;
     for (std::size_t c = 0; c < kFingerCount; ++c) any |= (options.channels[c] = !cal.hysteresis[c].is_identity());
-    if (!any) throw std::invalid_argument("calibration: a hysteresis model on at least one channel to evaluate");
+    if (!any) throw BadInput("calibration: a hysteresis model on at least one channel to evaluate");
   } catch (const std::exception& e) {
     say(QString("palprig: ") + e.what(), true);
     return;

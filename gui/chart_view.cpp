@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace palprig::gui {
 
 ChartView::ChartView(QWidget* parent) : QWidget(parent) {
@@ -34,7 +36,7 @@ void ChartView::paintEvent(QPaintEvent*) {
     try {
       charts::paint_chart(p, sized);
       return;
-    } catch (const std::invalid_argument&) {
+    } catch (const BadInput&) {
       // Too narrow for the legend, say: fall through to the text.
     }
     p.fillRect(rect(), Qt::white);

@@ -1,4 +1,5 @@
 #include "gui/statistics_view.hpp"
+#include "core/error.hpp"
 #include "gui/counted_text.hpp"
 
 #include <QDateTime>
@@ -18,12 +19,12 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 
 #include "charts/chart_svg.hpp"
 #include "gui/chart_view.hpp"
 #include "charts/measures_chart.hpp"
 #include "gui/pulse_statistics.hpp"
+#include "io/checked_output.hpp"
 #include "gui/statistics_tables.hpp"
 #include "store/trial_export.hpp"
 #include "store/trial_summary_report.hpp"
@@ -88,9 +89,9 @@ StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& 
       if (kind == Kind::statistics_json) {
         const SummaryOptions options = view_options();
         const auto path = dir / "statistics.json";
-        std::ofstream file(path);
-        file << stats_trials_text(*store, options, "json");  // byte for byte `stats trials --json`
-        if (!file.flush()) throw std::runtime_error("cannot write " + path.string());
+        CheckedOutputFile file(path);
+        file.write(stats_trials_text(*store, options, "json"));  // byte for byte `stats trials --json`
+        file.commit();
         files.push_back(path);
       } else {
         const ExportResult r = kind == Kind::bids ? export_bids(*store, dir, ExportOptions{})
@@ -99,7 +100,7 @@ StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& 
       }
     } else {
       // The charts as the view shows them (the numbers of the last refresh).
-      if (!shown) throw std::runtime_error("no statistics shown yet: refresh first");
+      if (!shown) throw BadInput("no statistics shown yet: refresh first");
       const char* ext = kind == Kind::chart_png ? ".png" : ".svg";
       auto write = [&](const charts::Chart& chart, const std::string& name) {
         const auto path = dir / (name + ext);

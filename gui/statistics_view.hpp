@@ -1,5 +1,5 @@
 #pragma once
-// The live statistics of a trial store (issue 15): Se, Sp, PPV, ACC per condition and per finger
+// The live statistics of a trial store: Se, Sp, PPV, ACC per condition and per finger
 // value with Wilson intervals as asymmetric error bars (n above each bar, "n/a" where a measure
 // has no cases), per-tumor sensitivity for localisation, response time mean/sd per condition
 // with paper 002's t-test, and paper 002's combined-interval comparison (eq. 10).
@@ -14,7 +14,7 @@
 // same library functions as `palprig export` (long CSV, BIDS) and `palprig stats trials --json`
 // (statistics.json); the charts are written as PNG and SVG from the same drawing as the screen.
 //
-// Pulse-localisation trials (issue 15): hit rate per condition with its Wilson interval and n,
+// Pulse-localisation trials: hit rate per condition with its Wilson interval and n,
 // distance to the artery mean / median / IQR, from PulseStore::summarise (the same call as
 // `palprig stats trials`), in their own table and, when the store has only pulse trials, in the
 // two charts (gui/pulse_statistics).

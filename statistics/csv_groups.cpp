@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -12,6 +12,7 @@ std::vector<NumericGroup> group_numbers(const CsvTable& table, std::string_view 
   const std::size_t value_index = table.column(value_column);
   const std::size_t group_index = table.column(group_column);
   std::vector<NumericGroup> groups;
+  groups.reserve(selected_groups.size());
   for (const auto& label : selected_groups) groups.push_back({label, {}});
 
   for (std::size_t row = 0; row < table.rows(); ++row) {

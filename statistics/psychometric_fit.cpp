@@ -51,6 +51,7 @@ std::vector<LevelCounts> counts_per_level(const std::vector<double>& levels, con
       c.k += responses[i] != 0 ? 1 : 0;
     }
     std::vector<LevelCounts> out;
+    out.reserve(by_level.size());
     for (auto& [level, c] : by_level) out.push_back(c);
     return out;
   }
@@ -445,6 +446,7 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
 
   const auto boot_started = std::chrono::steady_clock::now();
   std::vector<double> predicted;
+  predicted.reserve(used.size());
   for (const LevelCounts& c : used)
     predicted.push_back(psychometric_value(fit.sigmoid, fit.alpha, fit.beta, fit.guess, fit.lapse, c.level));
   SplitMix random{o.seed};

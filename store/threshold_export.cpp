@@ -3,7 +3,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/export_file.hpp"
 #include "store/export_text.hpp"
 #include "store/threshold_store.hpp"
@@ -57,7 +57,7 @@ std::vector<ThresholdExportRow> threshold_export_rows(SqliteTrialStore& store,
         row.estimate_kPa = track.estimate().threshold_kPa;
         out.push_back(std::move(row));
       });
-    } catch (const std::invalid_argument& e) {
+    } catch (const BadInput& e) {  // the study's replay refused a stored trial
       throw InputError(store.location(), "threshold_trials of " + where,
                        std::string("trials the stored protocol's tracks can replay (") + e.what() + ")");
     }

@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/export_file.hpp"
 #include "store/export_text.hpp"
 #include "store/pulse_export.hpp"

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -11,7 +11,7 @@
 #include "calibration/calibration_fit.hpp"
 #include "calibration/calibration_writer.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"
 

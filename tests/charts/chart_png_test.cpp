@@ -4,6 +4,8 @@
 
 #include <QtGui/QImage>
 
+#include "io/checked_output.hpp"
+#include "core/error.hpp"
 #include "charts/chart_png.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -85,19 +87,19 @@ TEST(ChartPng, LinesAndPointsOnNumericAxes) {
 TEST(ChartPng, RefusesChartsWithNothingToDrawAndUnwritablePaths) {
   TempDir dir;
   Chart empty;
-  EXPECT_THROW(write_chart_png(empty, dir.path() / "e.png"), std::invalid_argument);
+  EXPECT_THROW(write_chart_png(empty, dir.path() / "e.png"), palprig::BadInput);
   Chart mismatched;
   ChartSeries s;
   s.x = {1, 2};
   s.y = {1};
   mismatched.series.push_back(s);
-  EXPECT_THROW(write_chart_png(mismatched, dir.path() / "m.png"), std::invalid_argument);
+  EXPECT_THROW(write_chart_png(mismatched, dir.path() / "m.png"), palprig::BadInput);
   Chart ok;
   ChartSeries p;
   p.x = {1, 2};
   p.y = {1, 2};
   ok.series.push_back(p);
-  EXPECT_THROW(write_chart_png(ok, dir.path() / "no-such-dir" / "x.png"), std::runtime_error);
+  EXPECT_THROW(write_chart_png(ok, dir.path() / "no-such-dir" / "x.png"), palprig::OutputError);
 }
 
 TEST(ChartPng, LegendSitsBesideThePlotNeverOverTheData) {

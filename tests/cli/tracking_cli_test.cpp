@@ -1,4 +1,4 @@
-// The command line of tracked fingers (issue 26), as a user runs it: `palprig igtl-replay` as a
+// The command line of tracked fingers, as a user runs it: `palprig igtl-replay` as a
 // real server process and `palprig run --input igtl:...` against it with the per-region table;
 // the tracking commands; the load-cell commands; and the refusals, each one line, exit 2.
 #include <gtest/gtest.h>
