@@ -101,7 +101,7 @@ TEST(RigStep, ABackendErrorVentsDisarmsAndKeepsTheBackendsWords) {
   EXPECT_EQ(r.tick.record.fault, FaultCode::backend_error);
   EXPECT_TRUE(r.tick.record.flags & kVented);
   EXPECT_EQ(step.fault(), FaultCode::backend_error);
-  EXPECT_STREQ(step.fault().detail(), "valve driver overheated on channel 3");
+  EXPECT_EQ(step.fault().detail(), "valve driver overheated on channel 3");
   EXPECT_GT(rig.vents, vents_before);
   EXPECT_EQ(rig.state(), BackendState::disarmed);
   // Latched: a faulted step never moves air again, even when asked to arm.
