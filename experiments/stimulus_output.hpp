@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.hpp"
 #include "inputs/input_source.hpp"
 #include "rigs/rig_backend.hpp"
 #include "controller/telemetry.hpp"
@@ -12,11 +13,8 @@
 
 namespace palprig {
 
-// The rig faulted (backend error, safety fault): every channel has been vented.
-class RigFault : public std::runtime_error {
- public:
-  explicit RigFault(const std::string& what) : std::runtime_error(what) {}
-};
+// A rig fault (backend error, safety fault) is core/error.hpp's RigFault: every channel has
+// been vented.
 
 class StimulusOutput {
  public:
