@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "calibration/excursions.hpp"
+#include "calibration/progress_meter.hpp"
 #include "formats/calibration_file.hpp"
 #include "rigs/rig_backend.hpp"
 #include "formats/rig_file.hpp"
@@ -34,6 +36,12 @@ struct EvaluationOptions {
   bool realtime = true;
   std::array<bool, kFingerCount> channels{true, true, true};
   const std::atomic<int>* stop_signal = nullptr;
+  // A monitor further than this from the target is an excursion, reported with its time
+  // (calibration/excursions.hpp).
+  double tolerance_kPa = kDefaultRegulatorTolerance_kPa;
+  // Progress of the two runs (phase "uncompensated run", "compensated run"; share of rig time),
+  // at least every 5 s of wall time.
+  ProgressSink progress;
 };
 
 struct TrackingMetrics {
@@ -53,12 +61,16 @@ struct EvaluationRun {
   std::array<TrackingMetrics, kFingerCount> channels{};
   std::vector<EvaluationTraceRow> trace;
   double scored_from_t_s = 0;  // trace rows before this (rest, first approach) are not scored
+  // Stretches of the scored part where a monitor was further from the target than the
+  // tolerance, times from the run's start.
+  std::vector<Excursion> excursions;
   bool stopped = false, faulted = false;
   std::string fault;
 };
 
 struct EvaluationResult {
   double from_kPa = 0, to_kPa = 0, ramp_kPa_per_s = 0, duration_s = 0;
+  double tolerance_kPa = kDefaultRegulatorTolerance_kPa;  // of the excursions
   std::size_t reversals = 0;
   EvaluationRun uncompensated, compensated;
   std::array<double, kFingerCount> improvement{};  // uncompensated RMS / compensated RMS

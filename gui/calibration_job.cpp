@@ -23,19 +23,19 @@ CalibrationJob::CalibrationJob(RigBackend& backend, RigConfig rig, SweepSchedule
 
 CalibrationJob::CalibrationJob(RigBackend& backend, RigConfig rig, CalibrationModels cal, EvaluationOptions options,
                                std::filesystem::path chart_dir)
-    : evaluation_channels_(options.channels) {
+    : evaluation_channels_(options.channels), chart_dir_(std::move(chart_dir)) {
   options.stop_signal = &stop_flag_;
-  worker_ = std::thread(
-      [this, &backend, rig = std::move(rig), cal = std::move(cal), options, chart_dir = std::move(chart_dir)] {
-        try {
-          evaluation_ = evaluate_compensation(backend, rig, cal, options);
-          charts_ = charts::plot_evaluation(chart_dir, *evaluation_, options.channels);
-        } catch (const std::exception& e) {
-          error_ = e.what();
-          backend.vent();
-        }
-        finished_.store(true, std::memory_order_release);
-      });
+  worker_ = std::thread([this, &backend, rig = std::move(rig), cal = std::move(cal), options] {
+    try {
+      evaluation_ = evaluate_compensation(backend, rig, cal, options);
+      // As data only: QCustomPlot draws on the GUI thread (CalibrationPage::evaluation_done).
+      charts_ = charts::evaluation_charts(*evaluation_, options.channels);
+    } catch (const std::exception& e) {
+      error_ = e.what();
+      backend.vent();
+    }
+    finished_.store(true, std::memory_order_release);
+  });
 }
 
 CalibrationJob::~CalibrationJob() {

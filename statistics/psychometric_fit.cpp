@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -75,6 +76,8 @@ constexpr double kSqrt2 = 1.41421356237309504880;
 // 10^6 standard deviations from the levels, or a log scale or logit beyond 700 (e^700 is near
 // the largest double), is no fit but a step whose derivatives overflow.
 constexpr double kLocationBound = 1e6, kLogBound = 700;
+// The largest level may be at most this many of the smallest step between two levels.
+constexpr double kMaxLevelSteps = 1e12;
 
 // (x - alpha) / beta for a plain level x. Doubles are divided as written. For Ceres' Jets the
 // division is Ceres' own (the value times 1 / beta.a, the derivative likewise), with that
@@ -387,6 +390,25 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
     if (c.n > 0) used.push_back(c);
   }
   if (used.size() < 2) throw StatisticsError("trials at 2 or more different levels");
+  // Levels a double can hold but a fit cannot resolve: one level 12 orders of magnitude beyond
+  // the steps between the others (a level of 1e308 beside steps of 0.1 fitted to a threshold of
+  // -2.2e306 before). A fit's location and slope are read on the scale of the steps.
+  {
+    std::vector<double> levels;
+    for (const LevelCounts& c : used) levels.push_back(c.level);
+    std::sort(levels.begin(), levels.end());
+    double smallest_step = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 1; i < levels.size(); ++i)
+      if (levels[i] > levels[i - 1]) smallest_step = std::min(smallest_step, levels[i] - levels[i - 1]);
+    if (std::isfinite(smallest_step) && largest > kMaxLevelSteps * smallest_step) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "levels within 1e12 times their smallest step (%.3g) of 0: a level of %.3g is beyond what the fit "
+                    "can resolve beside that step",
+                    smallest_step, largest);
+      throw StatisticsError(text);
+    }
+  }
 
   Parameterisation param;
   param.sigmoid = o.sigmoid;
