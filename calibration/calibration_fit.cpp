@@ -71,7 +71,9 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
   int swept_channels = 0, fitted = 0;
   for (int c = 1; c <= int(kFingerCount); ++c)
     swept_channels += !data.channel_points(c).empty() || !data.channel_dynamics(c).empty() ? 1 : 0;
-  ProgressMeter meter("fit", o.progress);
+  // Silent for the first 2 s: most fits are over by then (the Ceres stages take longer on long
+  // recordings with step and chirp rows).
+  ProgressMeter meter("fit", o.progress, 5.0, 2.0);
   for (int c = 1; c <= int(kFingerCount); ++c) {
     ChannelCalibration& ch = out.channels[std::size_t(c - 1)];
     ch.channel = c;

@@ -46,7 +46,8 @@ struct CalibrationFitOptions {
   // the lead bound and the R^2 a channel's fit needs.
   DynamicsFitOptions dynamics;
   LagCompensationChoice lag_compensation;
-  // Progress: a line per channel fitted (phase "channel 2 of 3"; share: channels done).
+  // Progress: a line per channel fitted (phase "channel 2 of 3"; share: channels done), once
+  // the fit has run 2 s.
   ProgressSink progress;
 };
 

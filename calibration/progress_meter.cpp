@@ -31,8 +31,12 @@ std::string progress_line(const ProgressReport& r) {
          (std::isfinite(r.left_s) ? ", about " + duration_text(r.left_s) + " left" : ", time left not known yet");
 }
 
-ProgressMeter::ProgressMeter(std::string step, ProgressSink sink, double every_s)
-    : sink_(std::move(sink)), every_s_(every_s), started_(std::chrono::steady_clock::now()), last_report_(started_) {
+ProgressMeter::ProgressMeter(std::string step, ProgressSink sink, double every_s, double quiet_s)
+    : sink_(std::move(sink)),
+      every_s_(every_s),
+      quiet_s_(quiet_s),
+      started_(std::chrono::steady_clock::now()),
+      last_report_(started_) {
   current_.step = std::move(step);
 }
 
@@ -55,8 +59,10 @@ void ProgressMeter::finish() {
 void ProgressMeter::report(double done) {
   if (!sink_) return;
   const auto now = std::chrono::steady_clock::now();
+  const double elapsed_s = std::chrono::duration<double>(now - started_).count();
+  if (elapsed_s < quiet_s_) return;
   current_.done = std::clamp(done, 0.0, 1.0);
-  current_.elapsed_s = std::chrono::duration<double>(now - started_).count();
+  current_.elapsed_s = elapsed_s;
   current_.left_s = current_.done > 0.005 ? current_.elapsed_s * (1.0 - current_.done) / current_.done
                                           : std::numeric_limits<double>::quiet_NaN();
   last_report_ = now;

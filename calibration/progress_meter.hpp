@@ -33,8 +33,9 @@ std::string progress_line(const ProgressReport& report);
 class ProgressMeter {
  public:
   // Reports go to `sink` (none: the meter is silent) at most every `every_s` of wall time
-  // between phase changes.
-  ProgressMeter(std::string step, ProgressSink sink, double every_s = 5.0);
+  // between phase changes; none before `quiet_s` (a step that is over in a second, such as a
+  // fit, says nothing).
+  ProgressMeter(std::string step, ProgressSink sink, double every_s = 5.0, double quiet_s = 0.0);
 
   // A new phase is reported at once (with the share done so far).
   void phase(const std::string& name, double done);
@@ -48,7 +49,7 @@ class ProgressMeter {
 
   ProgressReport current_;
   ProgressSink sink_;
-  double every_s_;
+  double every_s_, quiet_s_;
   std::chrono::steady_clock::time_point started_, last_report_;
   std::uint32_t calls_ = 0;
   bool reported_ = false;

@@ -171,6 +171,8 @@ class ChartBuilder {
       a->setBasePen(QPen(Qt::black, 1));
       a->setTickPen(QPen(Qt::black, 1));
       a->setSubTickPen(QPen(Qt::black, 1));
+      a->setTickLength(0, 5);  // ticks outside the frame: the plot area is the data's
+      a->setSubTickLength(0, 3);
       a->grid()->setPen(QPen(QColor(225, 225, 225), 1));
       a->grid()->setZeroLinePen(Qt::NoPen);
     }
@@ -216,7 +218,10 @@ class ChartBuilder {
         auto* curve = new QCPCurve(plot_.xAxis, plot_.yAxis);
         curve->setData(xs, ys);
         curve->setPen(pen);
-        if (m != Marker::none) curve->setScatterStyle(marker_style(m, col, s.marker_px));
+        if (m != Marker::none) {
+          curve->setScatterStyle(marker_style(m, col, s.marker_px));
+          largest_marker_px_ = std::max(largest_marker_px_, s.marker_px);
+        }
         name(curve, first ? s.label : std::string());
         first = false;
       }
@@ -231,6 +236,7 @@ class ChartBuilder {
     for (std::size_t i = 0; i < s.x.size(); ++i) {
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
       track(s.x[i] + offset, s.y[i]);
+      largest_marker_px_ = std::max(largest_marker_px_, sized ? s.marker_sizes_px[i] : s.marker_px);
       if (sized || !all) {
         all = plot_.addGraph();
         all->setLineStyle(QCPGraph::lsNone);
@@ -409,8 +415,15 @@ class ChartBuilder {
     if (!(xr.hi > xr.lo) || !(yr.hi > yr.lo))
       throw std::invalid_argument("chart \"" + c_.title + "\": empty axis range");
     const double tick_lo = yr.lo, tick_hi = c_.y_max ? *c_.y_max : std::max(data_y_hi, yr.lo);
+    const double plot_px = plot_height_px(c_, legend_rows_);
+    // Room for the largest marker's half and a whisker's cap beyond the highest and lowest
+    // point, also where the chart's own ends sit on them (a proportion of 1 on an axis to 1).
+    if (plot_px > 2 * largest_marker_px_) {
+      const double edge_px = 0.5 * largest_marker_px_ + 3;
+      yr.hi = std::max(yr.hi, (yr_.hi * plot_px - edge_px * yr.lo) / (plot_px - edge_px));
+      yr.lo = std::min(yr.lo, (yr_.lo * plot_px - edge_px * yr.hi) / (plot_px - edge_px));
+    }
     if (label_lines_ > 0) {
-      const double plot_px = plot_height_px(c_, legend_rows_);
       const double need_px = label_lines_ * 14.0 + 10;
       // The top T with need_px between the label's anchor L and T: (T - L) / (T - lo) = need / plot.
       if (plot_px > need_px) yr.hi = std::max(yr.hi, (labelled_top_ * plot_px - need_px * yr.lo) / (plot_px - need_px));
@@ -424,6 +437,7 @@ class ChartBuilder {
   QCustomPlot& plot_;
   const Chart& c_;
   int dodged_count_ = 0, columns_ = 1, legend_rows_ = 0, label_lines_ = 0;
+  double largest_marker_px_ = 6;  // of the points drawn, for the room at the axis' ends
   double labelled_top_ = -std::numeric_limits<double>::infinity();
   Range xr_, yr_;
   std::vector<std::pair<double, std::string>> missing_;

@@ -64,6 +64,19 @@ std::vector<std::filesystem::path> plot_store(TrialStore& store, const std::file
   by_condition.include_practice = false;
   const Chart measures = measures_chart(summarise_trials(store, by_condition));
   if (!measures.series.empty()) write(measures, dir, "measures_by_condition", options, written);
+  // Per finger value (discrimination) and per tumor (localisation), as the window shows them.
+  for (SummaryKey key : {SummaryKey::finger, SummaryKey::tumor}) {
+    SummaryOptions by = by_condition;
+    by.by = {key};
+    TrialSummary summary = summarise_trials(store, by);
+    std::erase_if(summary.rows, [](const SummaryRow& r) { return r.key.empty() || r.key[0] == "-"; });
+    if (summary.rows.empty()) continue;
+    if (key == SummaryKey::finger)
+      write(measures_chart(summary, "Se, Sp, PPV and ACC per finger value", "finger "), dir, "measures_by_finger",
+            options, written);
+    else
+      write(tumor_sensitivity_chart(summary), dir, "sensitivity_by_tumor", options, written);
+  }
 
   if (auto* sqlite = dynamic_cast<SqliteTrialStore*>(&store)) {
     ThresholdStore threshold(*sqlite, false);
@@ -94,6 +107,7 @@ std::vector<std::filesystem::path> plot_store(TrialStore& store, const std::file
       const auto summary = pulse.summarise();
       if (!summary.empty())
         write(pulse_hit_rate_chart(summary, 0.95), dir, "pulse_hits_by_condition", options, written);
+      if (!summary.empty()) write(pulse_distance_chart(summary), dir, "pulse_distance_by_condition", options, written);
     }
   }
   if (written.empty()) throw InputError(store.location(), "trials", "at least one scored trial to plot");

@@ -42,21 +42,25 @@ double mean_x(const QImage& img, QColor want) {
   return n ? sum / n : -1;
 }
 
+// A square at (1, value) with a whisker from `low` to `high`, beside a labelled point at 0.6, on
+// an axis whose data end at 1.
 Chart proportion_points(double value, double low, double high) {
   Chart c;
   c.x_categories = {"Se", "Sp"};
   c.y_label = "proportion";
+  c.y_min = 0.0;
+  c.y_max = 1.0;
   ChartSeries s;
   s.style = ChartSeries::Style::points;
   s.marker = Marker::square;
+  s.marker_px = 12;
   s.color_rgb = 0x00c000;
   s.x = {0, 1};
   s.y = {0.6, value};
   s.y_low = {0.5, low};
   s.y_high = {0.7, high};
-  s.point_labels = {"0.600\nn=10", "1.000\nn=26"};
+  s.point_labels = {"0.600\nn=10", ""};
   c.series.push_back(s);
-  c.y_max = 1.0;
   return c;
 }
 
@@ -110,13 +114,32 @@ TEST(Charts, RefusesChartsWithNothingToDrawAndUnwritablePaths) {
 }
 
 TEST(Charts, APointAndItsWhiskerAtOneAreNotClipped) {
-  // The same square drawn at 1.0 (its whisker and label above it) and at 0.8: as many of its
-  // pixels either way. The old chart cut error bars at its frame at 1.0.
-  const QImage top = render_chart(proportion_points(1.0, 0.87, 1.0), 2.0);
-  const QImage mid = render_chart(proportion_points(0.8, 0.67, 0.8), 2.0);
-  const int at_top = count_colour(top, QColor(0x00, 0xc0, 0x00)), at_mid = count_colour(mid, QColor(0x00, 0xc0, 0x00));
-  EXPECT_GT(at_top, 100);
-  EXPECT_NEAR(at_top, at_mid, 0.05 * at_mid) << "pixels of the point and whisker at 1.0 were cut";
+  // The same square drawn at 1.0, the axis' end (its whisker up to 1.0 too), and at 0.8 without a
+  // whisker: as many of the square's pixels either way. The old chart cut points and error bars
+  // at its frame at 1.0.
+  const QColor green(0x00, 0xc0, 0x00);
+  Chart top = proportion_points(1.0, 1.0, 1.0), mid = proportion_points(0.8, 0.8, 0.8);
+  for (Chart* c : {&top, &mid}) c->series[0].y_low[1] = c->series[0].y_high[1] = std::nan("");
+  const QImage at_top = render_chart(top, 2.0), at_mid = render_chart(mid, 2.0);
+  const int on_top = count_colour(at_top, green), in_mid = count_colour(at_mid, green);
+  EXPECT_GT(on_top, 400);
+  EXPECT_NEAR(on_top, in_mid, 0.03 * in_mid) << "pixels of the point at 1.0 were cut";
+  // The whisker's cap at 1.0 whole: its topmost green row is a bar of the cap's full width.
+  const QImage whisker = render_chart(proportion_points(0.95, 0.87, 1.0), 2.0);
+  int top_row = -1;
+  for (int y = 0; y < whisker.height() && top_row < 0; ++y)
+    for (int x = whisker.width() / 2; x < whisker.width(); ++x)
+      if (near_colour(whisker.pixelColor(x, y), green)) {
+        top_row = y;
+        break;
+      }
+  ASSERT_GE(top_row, 0);
+  int run = 0, longest = 0;
+  for (int x = 0; x < whisker.width(); ++x) {
+    run = near_colour(whisker.pixelColor(x, top_row + 1), green, 60) ? run + 1 : 0;
+    longest = std::max(longest, run);
+  }
+  EXPECT_GE(longest, 16) << "the cap of the whisker at 1.0 (10 px wide, at scale 2)";
 }
 
 TEST(Charts, SeriesSitSideBySideWithinACategoryAndTheLegendUnderThePlot) {

@@ -125,13 +125,7 @@ TEST(AbsurdValues, AbsurdFiguresInTheFitTablesAreRefusedWithTheRangeExpected) {
   const auto f = dir.write("xmax.json", c.dump());
   EXPECT_EQ(
       refusal([&] { load_calibration_file(f); }),
-      f.string() + ": fits.channels[0].regulator.inflation.x_max_kPa: a figure within -1e+09..1e+09, got 1.8e+19");
-  c = read_json(data("calibration/sim-default.json"));
-  c["fits"]["channels"][0]["regulator"]["inflation"]["x_max_kPa"] = 5e4;
-  const auto g = dir.write("range.json", c.dump());
-  EXPECT_EQ(
-      refusal([&] { load_calibration_file(g); }),
-      g.string() + ": fits.channels[0].regulator.inflation.x_max_kPa: a pressure in -1e+04..1e+04 kPa, got 50000.0");
+      f.string() + ": fits.channels[0].regulator.inflation.x_max_kPa: a pressure in -1e+04..1e+04 kPa, got 1.8e+19");
   c = read_json(data("calibration/sim-default.json"));
   c["fits"]["channels"][0]["regulator"]["inflation"]["x_min_kPa"] = 90;
   c["fits"]["channels"][0]["regulator"]["inflation"]["x_max_kPa"] = 10;

@@ -60,7 +60,8 @@ TEST(ConditionComparisons, TheResponseTimeTTestEqualsScipysOnTheScoredTrials) {
   for (const char* test : {"student", "welch"}) {
     const auto r = run_palprig({"stats", "trials", db, "--json", "--rt-test", test});
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const nlohmann::json& rt = rt_comparison(nlohmann::json::parse(r.out));
+    const nlohmann::json stats = nlohmann::json::parse(r.out);
+    const nlohmann::json& rt = rt_comparison(stats);
     const nlohmann::json& want = oracle[test];
     EXPECT_EQ(rt["first"], oracle["conditions"][0]);
     EXPECT_EQ(rt["second"], oracle["conditions"][1]);
@@ -114,9 +115,12 @@ TEST(ConditionComparisons, TheTableSaysWhichTestAndTheTestsFollowTheGrouping) {
   const auto by = run_palprig({"stats", "trials", db, "--by", "condition,participant", "--json"});
   ASSERT_EQ(by.exit_code, 0) << by.err;
   int rt = 0;
-  for (const auto& c : nlohmann::json::parse(by.out)["comparisons"]) {
+  const nlohmann::json per_participant = nlohmann::json::parse(by.out);
+  for (const auto& c : per_participant["comparisons"]) {
     EXPECT_TRUE(c.contains("participant")) << c.dump();
-    if (c["measure"] == "RT") ++rt, EXPECT_EQ(c["n_first"].get<int>(), 14) << c.dump();
+    if (c["measure"] != "RT") continue;
+    ++rt;
+    EXPECT_EQ(c["n_first"].get<int>(), 14) << c.dump();
   }
   EXPECT_EQ(rt, 2);
   // No condition in the grouping: nothing compared, and no empty section printed.
