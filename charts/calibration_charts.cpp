@@ -156,7 +156,7 @@ std::vector<NamedChart> evaluation_charts(const EvaluationResult& r, const std::
     identity.label = "monitor = target";
     identity.color_rgb = kBothRgb;
     identity.dash = Dash::dotted;
-    identity.width_px = 1;
+    identity.width_px = 1.5;
     identity.x = identity.y = {r.from_kPa, r.to_kPa};
     loops.series.push_back(identity);
     out.push_back({"evaluate_channel_" + n + "_error", std::move(error)});

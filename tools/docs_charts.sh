@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The chart figures of docs/analysing.md ("Figures") and docs/rig.md, remade with palprig's own
 # --plot from simulated sessions and a simulated calibration (seeded: the same pictures on any
-# machine), into docs/figures/. Each is what palprig writes (PNG at print size, 2100 x 1320 at
-# 300 dpi), scaled to half for the pages when ImageMagick's `convert` is on the PATH.
+# machine), into docs/figures/, as palprig writes them (PNG at print size, 2100 x 1320 at 300
+# dpi; a page shows them scaled to its width).
 #   tools/docs_charts.sh [BUILD]   (default build; about a minute)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -37,10 +37,6 @@ for f in plots_disc/measures_by_condition.png plots_disc/measures_by_finger.png 
          plots_pulse/pulse_hits_by_condition.png plots_pulse/pulse_distance_by_condition.png \
          plots_cal/channel_1_regulator.png plots_cal/channel_1_hysteresis.png \
          plots_cal/evaluate_channel_1_error.png plots_cal/evaluate_channel_1_loops.png; do
-  if command -v convert >/dev/null; then
-    convert "$f" -resize 50% -strip "$out/$(basename "$f")"
-  else
-    cp "$f" "$out/"
-  fi
+  cp "$f" "$out/"
   echo "$out/$(basename "$f")"
 done
