@@ -40,13 +40,13 @@ void add_measure_point(ChartSeries& points, const Measure& m) {
 }
 
 Chart measures_chart(const TrialSummary& summary) {
-  return measures_chart(summary, "Se, Sp, PPV and ACC per condition", "");
+  return measures_chart(summary, "Se, Sp, PPV and ACC per condition (Wilson 95 % intervals)", "");
 }
 
 Chart measures_chart(const TrialSummary& summary, const std::string& title, const std::string& series_prefix) {
   Chart chart;
   chart.title = title;
-  chart.y_label = "proportion (Wilson 95 % interval)";
+  chart.y_label = "proportion";
   chart.x_categories = {"sensitivity Se", "specificity Sp", "PPV", "accuracy ACC"};
   for (const SummaryRow& row : summary.rows) {
     ChartSeries points;
@@ -63,9 +63,9 @@ Chart measures_chart(const TrialSummary& summary, const std::string& title, cons
 
 Chart tumor_sensitivity_chart(const TrialSummary& by_tumor) {
   Chart chart;
-  chart.title = "Sensitivity per tumor";
+  chart.title = "Sensitivity per tumor (Wilson 95 % intervals)";
   chart.x_label = "tumor";
-  chart.y_label = "sensitivity (Wilson 95 % interval)";
+  chart.y_label = "sensitivity";
   ChartSeries points;
   points.style = ChartSeries::Style::points;
   for (const SummaryRow& row : by_tumor.rows) {
@@ -80,9 +80,9 @@ Chart tumor_sensitivity_chart(const TrialSummary& by_tumor) {
 
 Chart pulse_hit_rate_chart(const std::vector<PulseConditionSummary>& rows, double confidence) {
   Chart chart;
-  chart.title = "Pulse localisation: hit rate per condition";
+  chart.title = "Pulse localisation: hit rate (Wilson " + percent(confidence) + " % intervals)";
   chart.x_label = "condition";
-  chart.y_label = "hit rate (Wilson " + percent(confidence) + " % interval)";
+  chart.y_label = "hit rate";
   ChartSeries points;
   points.style = ChartSeries::Style::points;
   for (const PulseConditionSummary& r : rows) {
@@ -97,9 +97,9 @@ Chart pulse_hit_rate_chart(const std::vector<PulseConditionSummary>& rows, doubl
 
 Chart pulse_distance_chart(const std::vector<PulseConditionSummary>& rows) {
   Chart chart;
-  chart.title = "Pulse localisation: distance from the mark to the artery";
+  chart.title = "Distance from the mark to the artery (median, quartiles)";
   chart.x_label = "condition";
-  chart.y_label = "distance (mm; median and quartiles)";
+  chart.y_label = "distance (mm)";
   chart.y_min = 0.0;
   ChartSeries points;
   points.style = ChartSeries::Style::points;

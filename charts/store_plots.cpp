@@ -72,8 +72,8 @@ std::vector<std::filesystem::path> plot_store(TrialStore& store, const std::file
     std::erase_if(summary.rows, [](const SummaryRow& r) { return r.key.empty() || r.key[0] == "-"; });
     if (summary.rows.empty()) continue;
     if (key == SummaryKey::finger)
-      write(measures_chart(summary, "Se, Sp, PPV and ACC per finger value", "finger "), dir, "measures_by_finger",
-            options, written);
+      write(measures_chart(summary, "Se, Sp, PPV and ACC per finger value (Wilson 95 % intervals)", "finger "), dir,
+            "measures_by_finger", options, written);
     else
       write(tumor_sensitivity_chart(summary), dir, "sensitivity_by_tumor", options, written);
   }

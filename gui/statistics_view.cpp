@@ -61,7 +61,7 @@ charts::Chart condition_chart(const TrialStatistics& s) {
 charts::Chart detail_chart(const TrialStatistics& s) {
   if (pulse_only(s)) return charts::pulse_distance_chart(s.pulse);
   if (!s.by_tumor.rows.empty() && s.by_finger.rows.empty()) return charts::tumor_sensitivity_chart(s.by_tumor);
-  return charts::measures_chart(s.by_finger, "Se, Sp, PPV and ACC per finger value", "finger ");
+  return charts::measures_chart(s.by_finger, "Se, Sp, PPV and ACC per finger value (Wilson 95 % intervals)", "finger ");
 }
 
 std::string detail_chart_name(const TrialStatistics& s) {

@@ -39,7 +39,8 @@ TEST(MeasuresChart, TheAxisZoomsToTheProportionsAndUndefinedMeasuresAreLabelledG
   // The lowest Wilson bound here is about 0.83: the axis starts at a round 0.8, not at 0.
   EXPECT_GT(*chart.y_min, 0.7);
   EXPECT_LT(*chart.y_min, 0.83);
-  EXPECT_NE(chart.y_label.find("Wilson 95 % interval"), std::string::npos);
+  EXPECT_NE(chart.title.find("Wilson 95 % intervals"), std::string::npos);
+  EXPECT_EQ(chart.y_label, "proportion");
   ASSERT_EQ(chart.series.size(), 2u);
   EXPECT_EQ(chart.series[0].label, "three-finger");
   EXPECT_EQ(chart.series[0].style, charts::ChartSeries::Style::points);
@@ -80,7 +81,8 @@ TEST(PsychometricChart, AxesInWordsPointsInsideTheFrameAndTheThresholdOnTheChart
                                       [](const charts::ChartSeries& s) { return s.marker == charts::Marker::diamond; });
   ASSERT_NE(threshold, c.series.end());
   EXPECT_EQ(threshold->x_low, std::vector<double>{0.43});  // the interval is the threshold's whisker
-  EXPECT_NE(threshold->label.find("0.5 kPa, 95 % bootstrap interval 0.43 to 0.58"), std::string::npos) << threshold->label;
+  EXPECT_NE(threshold->label.find("0.5 kPa, 95 % bootstrap interval 0.43 to 0.58"), std::string::npos)
+      << threshold->label;
   ASSERT_EQ(c.annotations.size(), 1u);
   EXPECT_EQ(c.annotations[0].text, "0.5 kPa\nat 75.0 %");
 }
