@@ -3,10 +3,13 @@
 
 #include "cli/commands.hpp"
 #include "cli/field_flags.hpp"
+#include "cli/standard_output.hpp"
 #include "core/error.hpp"
 #include "core/input_error.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_command(int argc, char** argv) {
   CLI::App app{"palprig: drive a pneumatic multi-finger palpation rig and run the studies done on it"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "palprig " PALPRIG_VERSION);
@@ -41,4 +44,12 @@ int main(int argc, char** argv) {
     return palprig::cli::kExitFault;
   }
   return 0;
+}
+
+}  // namespace
+
+// Standard output is checked to its last byte for every command (cli/standard_output.hpp).
+int main(int argc, char** argv) {
+  palprig::cli::check_standard_output();
+  return palprig::cli::finish_standard_output(run_command(argc, argv));
 }

@@ -54,7 +54,9 @@ std::vector<ThresholdExportRow> threshold_export_rows(SqliteTrialStore& store,
         const AdaptiveTrack& track = after[static_cast<std::size_t>(r.track)];
         row.procedure = track.spec().procedure == AdaptiveProcedure::quest ? "quest" : "staircase";
         row.trial = r;
-        row.estimate_kPa = track.estimate().threshold_kPa;
+        row.estimate = track.estimate();
+        row.estimate_kPa = row.estimate.threshold_kPa;
+        row.track_finished = track.finished();
         out.push_back(std::move(row));
       });
     } catch (const BadInput& e) {  // the study's replay refused a stored trial

@@ -188,6 +188,27 @@ TEST(CalibrationFit, ChannelsWithoutStressPairsKeepTheBaseLine) {
             "pairs.csv: stress line of channel 3: at least 3 points for a line, got 2");
 }
 
+// Without --stress pairs the note said "actuator stress lines from (built-in paper 002 defaults)
+// (no --stress pairs)": it now says in words where the lines come from, and a file given with
+// --base by its name.
+TEST(CalibrationFit, TheNoteSaysWhereTheActuatorLinesComeFrom) {
+  SyntheticRig rig;
+  const CalibrationResult built_in = fit_calibration(rig.sweep({1}), options());
+  bool noted = false;
+  for (const auto& n : built_in.notes) {
+    EXPECT_EQ(n.find("(built-in"), std::string::npos) << n;
+    noted = noted || n == "actuator stress lines kept from paper 002's regression (no --stress pairs given)";
+  }
+  EXPECT_TRUE(noted);
+  CalibrationFitOptions o = options();
+  o.base.source = "lab_rig.json";
+  const CalibrationResult based = fit_calibration(rig.sweep({1}), o);
+  noted = false;
+  for (const auto& n : based.notes)
+    noted = noted || n == "actuator stress lines kept from lab_rig.json (--base; no --stress pairs given)";
+  EXPECT_TRUE(noted);
+}
+
 TEST(CalibrationFit, SensorTablesAndHysteresisFromTheSensor) {
   SyntheticRig rig;
   rig.sensor = true;
