@@ -88,8 +88,8 @@ struct SweepOutcome {
   int stop_signal = 0;           // the signal that asked, 0 for an operator's stop
   bool faulted = false;          // a backend error; `fault` says which
   std::string fault;
-  std::string fault_record;  // after a rig fault: "the last N ticks before it: FILE"
-  double duration_s = 0;     // rig time
+  std::string fault_record;           // after a rig fault: "the last N ticks before it: FILE"
+  double duration_s = 0;              // rig time
   std::vector<Excursion> excursions;  // settled readings beyond the tolerance, rig time
 };
 

@@ -413,8 +413,7 @@ class ChartBuilder {
     if (c_.x_max) xr.hi = *c_.x_max;
     if (c_.y_min) yr.lo = *c_.y_min;
     if (c_.y_max) yr.hi = *c_.y_max;
-    if (!(xr.hi > xr.lo) || !(yr.hi > yr.lo))
-      throw BadInput("chart \"" + c_.title + "\": empty axis range");
+    if (!(xr.hi > xr.lo) || !(yr.hi > yr.lo)) throw BadInput("chart \"" + c_.title + "\": empty axis range");
     const double tick_lo = yr.lo, tick_hi = c_.y_max ? *c_.y_max : std::max(data_y_hi, yr.lo);
     const double plot_px = plot_height_px(c_, legend_rows_);
     // Room for the largest marker's half and a whisker's cap beyond the highest and lowest
@@ -456,8 +455,7 @@ void draw(QCPPainter& painter, const Chart& chart) {
 void validate_chart(const Chart& chart) {
   bool any = false;
   for (const auto& s : chart.series) {
-    if (s.x.size() != s.y.size())
-      throw BadInput("chart series \"" + s.label + "\": x and y differ in size");
+    if (s.x.size() != s.y.size()) throw BadInput("chart series \"" + s.label + "\": x and y differ in size");
     for (const auto* v : {&s.y_low, &s.y_high, &s.x_low, &s.x_high})
       if (!v->empty() && v->size() != s.y.size())
         throw BadInput("chart series \"" + s.label + "\": error bars and y differ in size");

@@ -24,7 +24,10 @@ CalibrationJob::CalibrationJob(RigLease lease, RunControl& control, RigConfig ri
 
 CalibrationJob::CalibrationJob(RigLease lease, RunControl& control, RigConfig rig, CalibrationModels cal,
                                EvaluationOptions options, std::filesystem::path chart_dir)
-    : lease_(std::move(lease)), control_(control), evaluation_channels_(options.channels), chart_dir_(std::move(chart_dir)) {
+    : lease_(std::move(lease)),
+      control_(control),
+      evaluation_channels_(options.channels),
+      chart_dir_(std::move(chart_dir)) {
   control_.restart();
   options.control = &control_;
   worker_ = std::thread([this, rig = std::move(rig), cal = std::move(cal), options] {

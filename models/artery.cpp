@@ -190,8 +190,7 @@ PulseFelt PulseField::felt(const FingerContact& finger, const PulseClocks& clock
     ++out.arteries_on;
     const ForceWindow& window =
         !a.spec().own_force_window && measured_window ? *measured_window : a.spec().force_window;
-    const double amp =
-        amplitude_kPa(i, settings) * a.distance_factor(at) * window.factor(force_N);
+    const double amp = amplitude_kPa(i, settings) * a.distance_factor(at) * window.factor(force_N);
     if (amp <= 0) continue;
     const PulseClock& c = clocks.clock[i];
     out.now_kPa += amp * a.spec().waveform.value(c.phase(t_s));
