@@ -36,6 +36,13 @@ import time
 HERE = pathlib.Path(__file__).resolve().parent.parent
 # Folders of the tree that hold no C++ of palprig's (build folders are found by their CMakeCache).
 NOT_CODE = {".git", "data", "docs", "tools"}
+# The folders whose translation units `tidy` checks by default (make test's style.ClangTidy):
+# the floors that drive the rig, where a bug moves air (the tick, the loop, the backends, the
+# inputs, the models and the files they read). A cold run over all of the build's units (over
+# 400, most of them Qt-, Eigen- or GoogleTest-heavy) costs more than make test's whole budget on
+# a 2-core CI machine (docs/benchmarks.md, "The style gate"); `--folders all` checks the whole
+# tree (docs/developing.md, "Style").
+RIG_FLOORS = ("core", "io", "models", "runtime", "formats", "rigs", "inputs", "controller", "diagnostics")
 
 
 def source_folders(repo: pathlib.Path) -> list[str]:
@@ -185,7 +192,7 @@ def unit_key(entry: dict, salt: bytes) -> str:
     return h.hexdigest()
 
 
-def check_tidy(repo: pathlib.Path, build: pathlib.Path, jobs: int, only: list[str]) -> int:
+def check_tidy(repo: pathlib.Path, build: pathlib.Path, jobs: int, only: list[str], folders: str) -> int:
     clang_tidy = need("clang-tidy")
     if not (build / "compile_commands.json").exists():
         print(f"style: no {build}/compile_commands.json (configure the build first)")
@@ -195,6 +202,9 @@ def check_tidy(repo: pathlib.Path, build: pathlib.Path, jobs: int, only: list[st
     if only:
         wanted = {pathlib.Path(f).resolve() for f in only}
         entries = {f: e for f, e in entries.items() if f in wanted}
+    elif folders != "all":
+        chosen = tuple(str(repo / f) + os.sep for f in folders.split(","))
+        entries = {f: e for f, e in entries.items() if str(f).startswith(chosen)}
     if not entries:
         print("style: no translation unit of palprig's in the compile commands")
         return 1
@@ -244,13 +254,15 @@ def main() -> int:
     ap.add_argument("--repo", type=pathlib.Path, default=HERE)
     ap.add_argument("--build", type=pathlib.Path, default=None, help="the build folder (tidy; default REPO/build)")
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--folders", default=",".join(RIG_FLOORS),
+                    help="tidy: comma-separated top folders to check, or 'all' (default: the rig floors)")
     ap.add_argument("--fix", action="store_true", help="format: rewrite the files instead of checking")
     ap.add_argument("files", nargs="*", help="tidy: only these .cpp files")
-    a = ap.parse_args()
+    a = ap.parse_intermixed_args()
     repo = a.repo.resolve()
     if a.what == "format":
         return check_format(repo, a.fix)
-    return check_tidy(repo, (a.build or repo / "build").resolve(), a.jobs, a.files)
+    return check_tidy(repo, (a.build or repo / "build").resolve(), a.jobs, a.files, a.folders)
 
 
 if __name__ == "__main__":
