@@ -87,7 +87,7 @@ void register_run_command(CLI::App& app) {
     } else {
       print_run_summary(std::cout, s, run, opt);
       if (o->regions)
-        table.print(std::cout, s.fault == FaultCode::none ? "" : std::string(to_string(s.fault)), s.fault_t_s);
+        table.print(std::cout, s.fault == FaultCode::none ? "" : std::string(to_string(s.fault.code)), s.fault.t_s);
     }
     if (s.fault != FaultCode::none) {
       std::cerr << "palprig: fault at t=" << s.fault.t_s << " s: " << to_string(s.fault)
