@@ -12,14 +12,11 @@ LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompen
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     // The identified model where calibration has one that fits, else the rig file's plant.
     plan.model[i] = setting.identified[i] ? setting.regulator[i] : pulse_lag[i];
-    if (!on)
-      plan.part[i] = CompensatedPart::none;
-    else if (setting.whole(i))
+    plan.part[i] = CompensatedPart::none;  // switched off, or nothing to compensate
+    if (on && setting.whole(i))
       plan.part[i] = CompensatedPart::total;
-    else if (has_pulse && pulse_compensation)
+    else if (on && has_pulse && pulse_compensation)
       plan.part[i] = CompensatedPart::pulse;
-    else
-      plan.part[i] = CompensatedPart::none;
     if (plan.part[i] == CompensatedPart::none) continue;
     // A command issued now reaches the regulator one tick later and acts a dead time after that.
     plan.lead_s[i] = plan.model[i].dead_time_s + period_s;

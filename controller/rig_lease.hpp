@@ -64,6 +64,9 @@ class Rig {
 
   bool leased() const;
   std::string holder() const;  // "" when free
+  // Asks a yielding holder to give way (its loop ends vented at its next tick and gives the
+  // lease back from its own thread). Any thread, lock-free; nothing when none is out.
+  void request_release() noexcept { release_requested_.store(true, std::memory_order_release); }
   const std::string& name() const noexcept { return name_; }
   // Reading what the rig is (describe, capabilities, state, linked) is allowed without a lease;
   // moving air is not: write through a lease.

@@ -119,13 +119,17 @@ void LiveRun::start_loop() {
       loop_summary_ = RunSummary{};
       loop_summary_.fault.latch(FaultCode::thread_exception, 0, e.what());
     }
+    // Given back here, on the loop's own thread, not at the GUI thread's join: a session or a
+    // sweep that asked for the rig waits for it on the GUI thread (Rig::lease), which then
+    // cannot get to the join.
+    lease_->release();
     loop_done_.store(true, std::memory_order_release);
   });
 }
 
 void LiveRun::join_loop() {
   if (loop_.joinable()) loop_.join();
-  lease_.reset();  // vented; the rig is free for whoever asked for it
+  lease_.reset();  // already given back by the loop's thread (vented)
   if (loop_running_) {
     last_summary_ = loop_summary_;
     loop_running_ = false;
@@ -177,7 +181,7 @@ void LiveRun::acknowledge_fault() {
 }
 
 void LiveRun::stop() {
-  if (lease_) lease_->request_release();  // the loop ends at its next tick, vented
+  if (loop_running_) rig_->request_release();  // the loop ends at its next tick, vented
   join_loop();
   stopped_ = true;
 }

@@ -284,7 +284,8 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
       }
       if (!line.empty() && line[0] != '#') {
         if (const std::string problem = description_problem(line, format_minor, last_tag); !problem.empty())
-          throw InputError(file, "line " + std::to_string(line_no), problem + ", got '" + line + "'");
+          throw InputError(file, "line " + std::to_string(line_no),
+                           std::string(problem).append(", got '").append(line).append("'"));
         if (line[0] == 'A') ranged_axes.insert(std::stoul(line.substr(2), nullptr, 16));  // checked hex above
       }
       description += line + "\n";

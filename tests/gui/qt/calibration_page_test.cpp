@@ -95,7 +95,7 @@ class CalibrationPageTest : public QObject {
     child<QCheckBox>(p, "cal_channel_3")->setChecked(false);
     QSignalSpy finished(p, &CalibrationPage::sweep_finished);
     QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
-    QVERIFY(p->sweeping());
+    QVERIFY2(p->sweeping(), qPrintable(child<QLabel>(p, "cal_status")->text()));
     QCOMPARE(w.window->run().state(), RigLifecycle::stopped);  // the live loop gave the rig up
     QVERIFY(!w.window->live_page()->isEnabled());
     QVERIFY(finished.wait(120000));
