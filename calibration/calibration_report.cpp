@@ -78,14 +78,17 @@ void print_fit_report(std::ostream& out, const CalibrationResult& r, const std::
     }
     const HysteresisFit& h = *ch.hysteresis;
     out << "from " << to_string(ch.hysteresis_source) << ", " << h.samples << " holds; w0 " << std::setprecision(3)
-        << h.model.linear_weight << ", plays";
-    for (std::size_t i = 0; i < h.model.operator_count; ++i)
-      out << " " << std::setprecision(2) << h.model.thresholds_kPa[i] << ":" << std::setprecision(3)
-          << h.model.weights[i];
-    out << " (kPa:weight); RMS " << std::setprecision(3) << h.rms_error_kPa << " kPa, max " << h.max_abs_error_kPa
-        << " kPa, R^2 " << std::setprecision(5) << h.r_squared << "; " << h.iterations << " iterations, "
-        << std::setprecision(3) << h.solve_seconds << " s, thresholds "
+        << h.model.linear_weight << ", " << (h.model.asymmetric ? "asymmetric plays" : "plays");
+    for (std::size_t i = 0; i < h.model.operator_count; ++i) {
+      out << " " << std::setprecision(2) << h.model.thresholds_kPa[i];
+      if (h.model.asymmetric) out << "/" << h.model.falling_thresholds_kPa[i];
+      out << ":" << std::setprecision(3) << h.model.weights[i];
+    }
+    out << (h.model.asymmetric ? " (rising/falling kPa:weight); RMS " : " (kPa:weight); RMS ") << std::setprecision(3)
+        << h.rms_error_kPa << " kPa, max " << h.max_abs_error_kPa << " kPa, R^2 " << std::setprecision(5) << h.r_squared
+        << "; " << h.iterations << " iterations, " << std::setprecision(3) << h.solve_seconds << " s, thresholds "
         << (h.thresholds_refined ? "refined" : "on the grid") << "\n";
+    if (ch.hysteresis_selection) out << "    model chosen: " << ch.hysteresis_selection->reason << "\n";
   }
   bool any_dynamics = false;
   for (const auto& ch : r.channels) any_dynamics = any_dynamics || ch.dynamics.has_value();

@@ -54,8 +54,15 @@ TickConfig make_tick_config(const RigConfig& rig, const CalibrationModels& cal) 
   cfg.contact_force_N = rig.contact_force_N;
   cfg.stress = cal.stress;
   cfg.actuators = cal.actuators;
-  for (std::size_t i = 0; i < kFingerCount; ++i)
-    cfg.hysteresis_inverse[i] = cal.hysteresis[i].is_identity() ? PrandtlIshlinskii{} : cal.hysteresis[i].inverse();
+  // A symmetric model goes through its analytic inverse and back, as the tick always took it (the
+  // stored study figures were made so, to the last bit); an asymmetric one has no PI inverse and
+  // is taken as fitted.
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const PrandtlIshlinskii& h = cal.hysteresis[i];
+    cfg.hysteresis_model[i] = h.is_identity() ? PrandtlIshlinskii{}
+                              : h.asymmetric  ? h
+                                              : h.inverse().forward_of_inverse();
+  }
   // The pulse stage pre-compensates each regulator's lag as the rig file's plant describes it,
   // or as calibration identified it where the fit is good.
   for (std::size_t i = 0; i < kFingerCount; ++i)
