@@ -100,7 +100,11 @@ void print_fit_report(std::ostream& out, const CalibrationResult& r, const std::
       if (!ch.dynamics) continue;
       const DynamicsFit& d = *ch.dynamics;
       out << "  channel " << ch.channel << ": dead time " << std::setprecision(1) << d.dead_time_s * 1000 << " ms, lag "
-          << d.time_constant_s * 1000 << " ms; R^2 " << std::setprecision(5) << d.r_squared;
+          << d.time_constant_s * 1000 << " ms";
+      if (d.directional)
+        out << " filling, " << d.exhaust_time_constant_s * 1000 << " ms exhausting (one lag left "
+            << std::setprecision(3) << d.one_lag_rms_residual_kPa << " kPa RMS)";
+      out << "; R^2 " << std::setprecision(5) << d.r_squared;
       for (std::size_t k = 0; k < d.segments.size(); ++k)
         out << (k == 0 ? " (" : ", ") << to_string(d.segments[k].segment) << " " << d.segments[k].r_squared
             << (k + 1 == d.segments.size() ? ")" : "");

@@ -110,6 +110,10 @@ json calibration_json(const CalibrationResult& r) {
                        {"samples", d.samples},
                        {"rate_hz", d.rate_hz},
                        {"segments", segments}};
+      if (d.directional) {
+        c["dynamics"]["exhaust_time_constant_s"] = d.exhaust_time_constant_s;
+        c["dynamics"]["one_lag_rms_residual_kPa"] = d.one_lag_rms_residual_kPa;
+      }
       f["dynamics_fit"] = {{"grid_rms_residual_kPa", d.grid_rms_residual_kPa},
                            {"converged", d.converged},
                            {"iterations", d.iterations},

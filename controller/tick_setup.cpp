@@ -35,7 +35,10 @@ std::vector<std::string> describe_lag_compensation(const CalibrationModels& cal)
     if (why.empty()) {
       const RegulatorDynamics& d = *cal.dynamics[i];
       on += (on.empty() ? "" : ", ") + std::to_string(i + 1) + " (dead time " + fixed(d.dead_time_s * 1000, 1) +
-            " ms, lag " + fixed(d.time_constant_s * 1000, 1) + " ms)";
+            " ms, lag " + fixed(d.time_constant_s * 1000, 1) +
+            (d.exhaust_time_constant_s > 0
+                 ? " ms filling, " + fixed(d.exhaust_time_constant_s * 1000, 1) + " ms exhausting)"
+                 : " ms)");
       ++channels_on;
     } else {
       out.push_back("lag compensation stays off on channel " + std::to_string(i + 1) + ": " + why);
@@ -76,7 +79,8 @@ TickConfig make_tick_config(const RigConfig& rig, const CalibrationModels& cal) 
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     if (!lag_compensation_refusal(cal, i).empty()) continue;
     lag.identified[i] = true;
-    lag.regulator[i] = {cal.dynamics[i]->dead_time_s, cal.dynamics[i]->time_constant_s, rig.plants[i].slew_kPa_per_s};
+    lag.regulator[i] = {cal.dynamics[i]->dead_time_s, cal.dynamics[i]->time_constant_s, rig.plants[i].slew_kPa_per_s,
+                        cal.dynamics[i]->exhaust_time_constant_s};
   }
   // Arteries whose scene gives no force window use the one measured on this rig (paper 003).
   if (cal.force_window) {

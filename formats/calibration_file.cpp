@@ -144,7 +144,11 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
       dyn.max_residual_kPa = d.number_or("max_residual_kPa", 0, 0, 1e6);
       dyn.samples = static_cast<std::size_t>(d.integer_or("samples", 0, 0, 1000000000));
       dyn.rate_hz = d.number_or("rate_hz", 0, 0, 100000);
+      // Separate fill and exhaust lags (absent: one lag, as every earlier file).
+      if (d.has("exhaust_time_constant_s"))
+        dyn.exhaust_time_constant_s = d.number("exhaust_time_constant_s", 0.0005, 2);
       if (d.has("segments")) (void)d.raw("segments");  // per-segment R^2 and residuals, for people
+      if (d.has("one_lag_rms_residual_kPa")) (void)d.number("one_lag_rms_residual_kPa", 0, 1e6);
       d.refuse_unknown();
       cal.dynamics[i] = dyn;
     }
