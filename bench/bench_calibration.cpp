@@ -1,4 +1,4 @@
-// Calibration speed: the issue asks that fitting 10k samples with Ceres takes under a second.
+// Calibration speed: the goal is that fitting 10k samples with Ceres takes under a second.
 //   BM_FitHysteresis/N           the full identification (exact grid stage + Ceres threshold
 //                                refinement) on N quasi-static samples, 8 operators
 //   BM_FitHysteresisGridOnly/N   stage 1 alone (thresholds fixed on the grid)

@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "controller/backend_factory.hpp"
 #include "controller/loop_runner.hpp"
 #include "controller/tick_setup.hpp"
@@ -96,7 +97,7 @@ struct Child {
 
 Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   int fds[2];
-  if (pipe(fds) != 0) throw std::runtime_error("pipe");
+  if (pipe(fds) != 0) throw palprig::Error("pipe");
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
@@ -107,7 +108,7 @@ Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   Child c;
-  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw std::runtime_error("spawn sim-rig");
+  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw palprig::Error("spawn sim-rig");
   close(fds[1]);
   c.out = fdopen(fds[0], "r");
   return c;

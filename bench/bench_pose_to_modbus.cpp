@@ -1,9 +1,9 @@
-// End-to-end latency, tracker pose to regulator register (issue 26): from the moment a
+// End-to-end latency, tracker pose to regulator register: from the moment a
 // tracker's OpenIGTLink server sends a pose (a TRANSFORM message, stamped on CLOCK_MONOTONIC
 // by the server just after its send() returns) to the arrival of the Modbus write that carries
 // the resulting setpoint at a `palprig sim-rig` process on loopback (its --write-log stamps
 // each write on the same clock). The pen's figure (bench_pen_to_modbus) is beside it in
-// docs/developing.md.
+// docs/benchmarks.md.
 //
 // The path measured is the one a lab's rig runs: TCP (loopback) -> tracker reader thread
 // (FIFO 60: poll, decode, fingertip p = o + R p_local, registration) -> LatestValue -> loop
@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "controller/backend_factory.hpp"
 #include "controller/loop_runner.hpp"
 #include "controller/tick_setup.hpp"
@@ -89,7 +90,7 @@ struct Child {
 
 Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   int fds[2];
-  if (pipe(fds) != 0) throw std::runtime_error("pipe");
+  if (pipe(fds) != 0) throw palprig::Error("pipe");
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
@@ -100,7 +101,7 @@ Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   Child c;
-  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw std::runtime_error("spawn sim-rig");
+  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw palprig::Error("spawn sim-rig");
   close(fds[1]);
   c.out = fdopen(fds[0], "r");
   return c;

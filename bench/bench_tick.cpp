@@ -1,4 +1,4 @@
-// Tick cost and replay throughput (issue 2 goals: tick p99 <= 2 us with 3 fingers on a
+// Tick cost and replay throughput (goal: tick p99 <= 2 us with 3 fingers on a
 // 4096 x 4096 map; replay >= 1000x real time at 1 kHz).
 //   build/bin/bench_tick                      all benchmarks
 // Per-tick percentiles are reported as counters (p50_ns, p99_ns, p999_ns), each tick timed on

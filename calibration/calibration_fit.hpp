@@ -14,6 +14,7 @@
 #include "calibration/hysteresis_fit.hpp"
 #include "calibration/hysteresis_selection.hpp"
 #include "calibration/stress_fit.hpp"
+#include "calibration/progress_meter.hpp"
 #include "calibration/sweep_csv.hpp"
 #include "formats/calibration_file.hpp"
 
@@ -52,6 +53,9 @@ struct CalibrationFitOptions {
   // the lead bound and the R^2 a channel's fit needs.
   DynamicsFitOptions dynamics;
   LagCompensationChoice lag_compensation;
+  // Progress: a line per channel fitted (phase "channel 2 of 3"; share: channels done), once
+  // the fit has run 2 s.
+  ProgressSink progress;
 };
 
 struct ChannelCalibration {

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "calibration/excursions.hpp"
+#include "calibration/progress_meter.hpp"
 #include "formats/calibration_file.hpp"
 #include "controller/rig_lease.hpp"
 #include "rigs/rig_backend.hpp"
@@ -39,6 +41,12 @@ struct EvaluationOptions {
   // Where the ticks before a rig fault are written (controller/fault_recorder.hpp); empty: the
   // working folder.
   std::filesystem::path fault_record_folder;
+  // A monitor further than this from the target is an excursion, reported with its time
+  // (calibration/excursions.hpp).
+  double tolerance_kPa = kDefaultRegulatorTolerance_kPa;
+  // Progress of the two runs (phase "uncompensated run", "compensated run"; share of rig time),
+  // at least every 5 s of wall time.
+  ProgressSink progress;
 };
 
 struct TrackingMetrics {
@@ -58,6 +66,9 @@ struct EvaluationRun {
   std::array<TrackingMetrics, kFingerCount> channels{};
   std::vector<EvaluationTraceRow> trace;
   double scored_from_t_s = 0;  // trace rows before this (rest, first approach) are not scored
+  // Stretches of the scored part where a monitor was further from the target than the
+  // tolerance, times from the run's start.
+  std::vector<Excursion> excursions;
   bool stopped = false, faulted = false;
   std::string fault_record;  // after a rig fault: "the last N ticks before it: FILE"
   std::string fault;
@@ -65,6 +76,7 @@ struct EvaluationRun {
 
 struct EvaluationResult {
   double from_kPa = 0, to_kPa = 0, ramp_kPa_per_s = 0, duration_s = 0;
+  double tolerance_kPa = kDefaultRegulatorTolerance_kPa;  // of the excursions
   std::size_t reversals = 0;
   EvaluationRun uncompensated, compensated;
   std::array<double, kFingerCount> improvement{};  // uncompensated RMS / compensated RMS

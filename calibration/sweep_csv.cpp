@@ -9,16 +9,16 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/checked_output.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 
 namespace {
 
 // The sweep file is streamed, hold by hold, so that a stopped sweep keeps every finished hold;
-// each flush and the close are checked, and a failure is models/checked_output's one line. A
+// each flush and the close are checked, and a failure is io/checked_output's one line. A
 // file that failed cannot be left looking like a whole sweep: without holds it is removed; with
 // some it is renamed NAME.partial (a rename needs no room on the disk), which the line names.
 // Only a regular file is removed or renamed: never a device (/dev/full) or a FIFO given as --out.

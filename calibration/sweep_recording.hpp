@@ -19,7 +19,7 @@ struct SweepRecording {
   std::size_t rows = 0;
 };
 
-// Throws std::runtime_error when `out` cannot be written (before anything moves).
+// Throws OutputError when `out` cannot be written (before anything moves).
 SweepRecording record_calibration_sweep(RigLease& lease, const RigConfig& rig, const SweepSchedule& schedule,
                                         const SweepRunOptions& options, const std::filesystem::path& out,
                                         const SweepProgress& progress = {});

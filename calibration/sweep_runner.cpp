@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/error.hpp"
 #include "calibration/pacer.hpp"
 #include "controller/rig_step.hpp"
 
@@ -40,12 +41,12 @@ SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedul
       !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s + o.average_s) || !(o.max_hold_s <= 3600) ||
       !(o.rate_hz > 0) || !(o.rate_hz <= 10000) || !(o.slew_kPa_per_s > 0) || !(o.dynamics_rate_hz > 0) ||
       !(o.dynamics_rate_hz <= 10000))
-    throw std::invalid_argument(
+    throw BadInput(
         "sweep: need settle window, band and averaging window > 0, a max hold above min hold and both windows (at "
         "most an hour), rates in (0, 10000] Hz and a slew rate > 0");
   bool any = false;
   for (bool on : o.channels) any = any || on;
-  if (!any) throw std::invalid_argument("sweep: no channel selected");
+  if (!any) throw BadInput("sweep: no channel selected");
 
   // Every setpoint passes the controller's safety stage through a rig step (tick_direct without
   // a hysteresis inverse): clamped to the rig's p_max, slew-limited at the rig's own rate
@@ -68,6 +69,23 @@ SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedul
   out.holds_planned = schedule.holds.size();
   std::uint64_t k = 0;
   double t_s = 0;
+  ExcursionWatch excursions(o.tolerance_kPa);
+  // Progress by the holds' expected rig time: a timed hold its duration, a held level about the
+  // settle test and the averaging window.
+  std::vector<double> expected_s(schedule.holds.size());
+  double total_s = 0;
+  int repeats = 0;
+  for (std::size_t h = 0; h < schedule.holds.size(); ++h) {
+    const SweepHold& hold = schedule.holds[h];
+    expected_s[h] = hold.duration_s > 0 ? hold.duration_s : o.settle_window_s + o.average_s;
+    total_s += expected_s[h];
+    repeats = std::max(repeats, hold.repeat);
+  }
+  double done_s = 0, current_expected_s = 0, current_start_s = 0;
+  ProgressMeter meter("sweep", o.progress_report);
+  auto tick_progress = [&] {
+    meter.update((done_s + std::min(t_s - current_start_s, current_expected_s)) / std::max(total_s, 1e-9));
+  };
   if (rig.arm() != BackendStatus::ok) {
     out.faulted = true;
     out.fault = rig.fault().detail();
@@ -101,6 +119,7 @@ SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedul
     for (std::uint64_t j = 0; j < n; ++j) {
       const double t = t0 + fast.wait_for_tick(j);
       t_s = t;
+      tick_progress();
       if (o.control && o.control->stop_requested()) {
         out.stopped = true;
         out.stop_signal = o.control->stop_signal();
@@ -144,6 +163,7 @@ SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedul
     const double hold_start_s = pacer.period_s() * double(k);
     for (;;) {
       t_s = pacer.wait_for_tick(k++);
+      tick_progress();
       if (o.control && o.control->stop_requested()) {
         out.stopped = true;
         out.stop_signal = o.control->stop_signal();
@@ -172,7 +192,11 @@ SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedul
         }
         averaging = true;
         averaging_from = hold_samples.size();
-      } else if (averaging && hold_samples.size() - averaging_from >= average) {
+      } else if (averaging) {
+        for (std::size_t c = 0; c < kFingerCount; ++c)
+          if (o.channels[c]) excursions.add(c, t_s, level, step.monitor_kPa[c]);
+      }
+      if (averaging && hold_samples.size() - averaging_from >= average) {
         result.settled = true;
         for (std::size_t j = averaging_from; j < hold_samples.size(); ++j) hold_samples[j].settled = true;
         return HoldEnd::settled;
@@ -187,6 +211,7 @@ SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedul
     const ChannelPressures vented{};
     for (;;) {
       t_s = pacer.wait_for_tick(k++);
+      tick_progress();
       if (o.control && o.control->stop_requested()) {
         out.stopped = true;
         out.stop_signal = o.control->stop_signal();
@@ -211,6 +236,14 @@ SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedul
   try {
     for (std::size_t h = 0; h < schedule.holds.size() && !out.stopped && !out.faulted; ++h) {
       const SweepHold& hold = schedule.holds[h];
+      current_start_s = t_s;
+      current_expected_s = expected_s[h];
+      if (hold.segment != SweepSegment::vent)
+        meter.phase(std::string(to_string(hold.segment)) +
+                        (hold.segment == SweepSegment::staircase && repeats > 0
+                             ? " repeat " + std::to_string(hold.repeat) + "/" + std::to_string(repeats)
+                             : std::string()),
+                    done_s / std::max(total_s, 1e-9));
       HoldOutcome result;
       bool history_lost = false;  // the plant was vented by an outage since the last vent hold
       HoldEnd end = HoldEnd::interrupted;
@@ -251,6 +284,8 @@ SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedul
         ++out.holds_done;
         if (!result.settled && !result.timed) ++out.holds_unsettled;
       }
+      done_s += expected_s[h];
+      excursions.close();  // an excursion does not run on into the next hold
       if (progress && !out.stopped && !out.faulted) progress(h + 1, schedule.holds.size(), hold, result);
     }
   } catch (...) {
@@ -263,6 +298,9 @@ SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedul
     out.fault_record =
         save_fault_record(rig.recorder(), rig.fault(), "the calibration sweep", {},
                           o.fault_record_folder.empty() ? std::filesystem::current_path() : o.fault_record_folder);
+  excursions.close();
+  out.excursions = excursions.excursions();
+  if (!out.stopped && !out.faulted) meter.finish();
   return out;
 }
 

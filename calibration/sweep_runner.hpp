@@ -20,7 +20,10 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <vector>
 
+#include "calibration/excursions.hpp"
+#include "calibration/progress_meter.hpp"
 #include "calibration/sweep_plan.hpp"
 #include "models/safety_limits.hpp"
 #include "controller/rig_lease.hpp"
@@ -69,6 +72,13 @@ struct SweepRunOptions {
   // Step and chirp holds (the dynamics fit's excitations) run and record at this rate: the
   // loop's, so the identified dead time and lag are what the tick sees.
   double dynamics_rate_hz = 1000.0;
+  // A settled reading further than this from the hold's command is an excursion (reported in
+  // SweepOutcome::excursions with its time; steps and chirps are not watched: they are meant to
+  // be away from their command while the regulator follows).
+  double tolerance_kPa = kDefaultRegulatorTolerance_kPa;
+  // Progress (phase: the segment, "staircase repeat 2/5"; share: the holds' expected rig time),
+  // at each segment and at least every 5 s of wall time.
+  ProgressSink progress_report;
 };
 
 struct SweepOutcome {
@@ -78,13 +88,14 @@ struct SweepOutcome {
   int stop_signal = 0;           // the signal that asked, 0 for an operator's stop
   bool faulted = false;          // a backend error; `fault` says which
   std::string fault;
-  std::string fault_record;  // after a rig fault: "the last N ticks before it: FILE"
-  double duration_s = 0;     // rig time
+  std::string fault_record;           // after a rig fault: "the last N ticks before it: FILE"
+  double duration_s = 0;              // rig time
+  std::vector<Excursion> excursions;  // settled readings beyond the tolerance, rig time
 };
 
 using SweepProgress = std::function<void(std::size_t done, std::size_t total, const SweepHold&, const HoldOutcome&)>;
 
-// Throws std::invalid_argument for options that make no sweep (before anything is written).
+// Throws BadInput for options that make no sweep (before anything is written).
 SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedule, const SweepRunOptions& options,
                                    SweepSink& sink, const SweepProgress& progress = {});
 

@@ -44,7 +44,7 @@ void register_rt_check_command(CLI::App& app);
 void register_store_command(CLI::App& app);
 // palprig check: load files through their readers (check_command.cpp; needs inputs/, so a rig command).
 void register_check_command(CLI::App& app);
-// Tracked fingers (issue 26): the OpenIGTLink replay server, the tracker's calibration, the load cells.
+// Tracked fingers: the OpenIGTLink replay server, the tracker's calibration, the load cells.
 void register_igtl_replay_command(CLI::App& app);
 void register_tracking_command(CLI::App& app);
 void register_load_cell_command(CLI::App& app);

@@ -62,7 +62,7 @@ void register_demo_command(CLI::App& app) {
       std::cout << j.dump(2) << "\n";
     } else {
       print_run_summary(std::cout, s, run, opt);
-      table.print(std::cout);
+      table.print(std::cout, s.fault == FaultCode::none ? "" : std::string(to_string(s.fault.code)), s.fault.t_s);
     }
     if (s.fault != FaultCode::none) cli::finish(cli::kExitFault);
     if (!all_higher) cli::finish(cli::kExitFault);

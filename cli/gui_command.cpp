@@ -3,8 +3,8 @@
 
 #include "cli/commands.hpp"
 #include "gui/gui_app.hpp"
-#include "models/parse_error.hpp"
 #include "runtime/run_control.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 

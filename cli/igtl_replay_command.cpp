@@ -11,8 +11,8 @@
 #include "cli/commands.hpp"
 #include "inputs/igtl_pose_server.hpp"
 #include "inputs/pose_recording.hpp"
-#include "models/parse_error.hpp"
 #include "runtime/run_control.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 
@@ -54,7 +54,7 @@ void register_igtl_replay_command(CLI::App& app) {
     install_stop_signals();
     try {
       server.start();
-    } catch (const std::runtime_error& e) {
+    } catch (const Error& e) {  // the port cannot be served: the argument's fault
       std::cerr << "palprig igtl-replay: " << e.what() << "\n";
       cli::finish(cli::kExitBadInput);
     }

@@ -1,4 +1,4 @@
-// palprig load-cell read|press: the rig's load cells (issue 26) read at rest, for their
+// palprig load-cell read|press: the rig's load cells read at rest, for their
 // calibration (tare, gain) and paper 003's reference presses at 60 and 120 mmHg, which
 // `calibrate fit --force-presses` turns into the pulse's force window.
 #include <chrono>
@@ -12,9 +12,9 @@
 #include "cli/commands.hpp"
 #include "controller/rig_lease.hpp"
 #include "formats/rig_file.hpp"
-#include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/checked_output.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 #include "rigs/simulated_rig.hpp"
 #include "runtime/run_control.hpp"
 
@@ -66,7 +66,8 @@ Reading read_cells(const std::string& rig_path, double seconds, double load_N) {
     if (real_time) std::this_thread::sleep_until(start + std::chrono::duration<double>(t_s));
     LoadCellReading reading;
     if (backend->read_load_cells(reading, t_s) != BackendStatus::ok) {
-      throw std::runtime_error(std::string("load cells: ") + backend->last_error());
+      const std::string why = backend->last_error();
+      throw Error("load cells: " + why);
     }
     for (std::size_t i = 0; i < reading.count; ++i) r.cells[i].add(reading.volts[i], reading.force_N[i]);
   }
@@ -160,7 +161,7 @@ void register_load_cell_command(CLI::App& app) {
     double force = 0;
     for (const auto& c : r.cells) force += c.mean_f();
     force /= double(r.cells.size());
-    // Appended by rewriting it whole (models/checked_output.hpp): a full disk never leaves half a file.
+    // Appended by rewriting it whole (io/checked_output.hpp): a full disk never leaves half a file.
     std::string before;
     if (std::filesystem::exists(p->presses)) {
       std::ifstream in = open_regular_file(p->presses, kMaxTableFileBytes, "a presses CSV", std::ios::in);

@@ -86,7 +86,8 @@ void register_run_command(CLI::App& app) {
       std::cout << j.dump(2) << "\n";
     } else {
       print_run_summary(std::cout, s, run, opt);
-      if (o->regions) table.print(std::cout);
+      if (o->regions)
+        table.print(std::cout, s.fault == FaultCode::none ? "" : std::string(to_string(s.fault.code)), s.fault.t_s);
     }
     if (s.fault != FaultCode::none) {
       std::cerr << "palprig: fault at t=" << s.fault.t_s << " s: " << to_string(s.fault)

@@ -9,8 +9,8 @@
 #include "rigs/modbus_link.hpp"
 #include "rigs/modbus_sim_server.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
 #include "runtime/run_control.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 
@@ -71,7 +71,7 @@ void register_sim_rig_command(CLI::App& app) {
       for (const auto& text : *listen) {
         try {
           addresses.push_back(parse_listen_address(text));
-        } catch (const std::invalid_argument& e) {
+        } catch (const BadInput& e) {
           throw InputError("--listen", text, e.what());
         }
       }
@@ -86,7 +86,7 @@ void register_sim_rig_command(CLI::App& app) {
     install_stop_signals();
     try {
       server.start(addresses);
-    } catch (const std::runtime_error& e) {
+    } catch (const Error& e) {  // an address that cannot be served: the argument's fault
       std::cerr << "palprig sim-rig: " << e.what() << "\n";
       cli::finish(cli::kExitBadInput);
     }

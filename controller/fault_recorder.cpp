@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "controller/telemetry_writer.hpp"
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig {
 

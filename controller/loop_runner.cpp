@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/error.hpp"
 #include "runtime/monotonic_clock.hpp"
 #include "runtime/realtime.hpp"
 #include "controller/fault_recorder.hpp"
@@ -40,8 +41,8 @@ constexpr std::uint32_t kCpuMarkTicks = 64;
 
 RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& input, RigLease& lease,
                     const RunOptions& opt) {
-  if (!(opt.rate_hz > 0) || opt.rate_hz > 100000) throw std::invalid_argument("rate must be in (0, 100000] Hz");
-  if (!(opt.duration_s > 0) || !std::isfinite(opt.duration_s)) throw std::invalid_argument("duration must be > 0 s");
+  if (!(opt.rate_hz > 0) || opt.rate_hz > 100000) throw BadInput("rate must be in (0, 100000] Hz");
+  if (!(opt.duration_s > 0) || !std::isfinite(opt.duration_s)) throw BadInput("duration must be > 0 s");
 
   RunSummary sum;
   std::unique_ptr<TelemetryWriter> telemetry;
@@ -133,7 +134,7 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       wall_mark = mono_ns();
       ticks_since_mark = 0;
     }
-    const std::int64_t wall_start = realtime ? 0 : mono_ns();
+    const std::int64_t tick_start_ns = realtime ? 0 : mono_ns();
     const TickInputs inputs = opt.switches ? opt.switches->read() : TickInputs{};
     const StepResult& step = rig.step(scene, input.latest(t_s), t_s, inputs);
     if (!realtime) {
@@ -146,9 +147,9 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       ++ticks_since_mark;
       const std::int64_t wall_end = mono_ns();
       std::uint64_t lost = 0;
-      if (wall_end - wall_start > period_ns) {
+      if (wall_end - tick_start_ns > period_ns) {
         const std::int64_t cpu_now = thread_cpu_ns();
-        const std::int64_t cpu = (cpu_now - cpu_mark) - (wall_start - wall_mark);
+        const std::int64_t cpu = (cpu_now - cpu_mark) - (tick_start_ns - wall_mark);
         if (cpu > period_ns) lost = static_cast<std::uint64_t>((cpu - 1) / period_ns);
         cpu_mark = cpu_now;
         wall_mark = mono_ns();

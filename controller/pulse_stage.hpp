@@ -28,7 +28,7 @@ struct FingersOnSkin {
   bool pressed = false;
   std::array<Point2_mm, kFingerCount> centres{};
   double force_N = 0;
-  // Per finger (issue 26: tracked fingers each with their own load cell, a vented finger): its
+  // Per finger (tracked fingers each with their own load cell, a vented finger): its
   // force and whether it presses. The pen gives every finger force_N and pressed.
   std::array<double, kFingerCount> finger_force_N{};
   std::array<bool, kFingerCount> finger_pressed{};

@@ -60,7 +60,7 @@ class RigStep {
   void enter_fault(FaultCode why, const char* detail = nullptr) noexcept;
 
   // One step with the pen on a scene. A sample whose force comes from the rig's load cells
-  // (tracked fingers, issue 26: TouchSample::force_from_load_cells) gets it here, read before
+  // (tracked fingers: TouchSample::force_from_load_cells) gets it here, read before
   // the tick: the fingertips' press is handed to the backend (a simulated rig's cells feel it),
   // the cells are read, and their forces (clipped at 0 N: below the tare is noise) go in.
   // `inputs`: the operator's switches this tick (controller/operator_switches.hpp).

@@ -8,7 +8,7 @@
 #include "formats/function_scene_file.hpp"
 #include "inputs/igtl_input.hpp"
 #include "models/tissue_scene.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "runtime/realtime.hpp"
 
 namespace palprig {

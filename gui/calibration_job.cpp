@@ -24,13 +24,17 @@ CalibrationJob::CalibrationJob(RigLease lease, RunControl& control, RigConfig ri
 
 CalibrationJob::CalibrationJob(RigLease lease, RunControl& control, RigConfig rig, CalibrationModels cal,
                                EvaluationOptions options, std::filesystem::path chart_dir)
-    : lease_(std::move(lease)), control_(control), evaluation_channels_(options.channels) {
+    : lease_(std::move(lease)),
+      control_(control),
+      evaluation_channels_(options.channels),
+      chart_dir_(std::move(chart_dir)) {
   control_.restart();
   options.control = &control_;
-  worker_ = std::thread([this, rig = std::move(rig), cal = std::move(cal), options, chart_dir = std::move(chart_dir)] {
+  worker_ = std::thread([this, rig = std::move(rig), cal = std::move(cal), options] {
     try {
       evaluation_ = evaluate_compensation(lease_, rig, cal, options);
-      charts_ = charts::plot_evaluation(chart_dir, *evaluation_, options.channels);
+      // As data only: QCustomPlot draws on the GUI thread (CalibrationPage::evaluation_done).
+      charts_ = charts::evaluation_charts(*evaluation_, options.channels);
     } catch (const std::exception& e) {
       error_ = e.what();
       lease_.backend().vent();

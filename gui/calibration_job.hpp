@@ -17,6 +17,7 @@
 
 #include "calibration/compensation_evaluation.hpp"
 #include "calibration/sweep_recording.hpp"
+#include "charts/calibration_charts.hpp"
 
 namespace palprig::gui {
 
@@ -42,7 +43,9 @@ class CalibrationJob {
   // the library refused the evaluation.
   const SweepRecording& recording() const noexcept { return recording_; }
   const std::optional<EvaluationResult>& evaluation() const noexcept { return evaluation_; }
-  const std::vector<std::filesystem::path>& evaluation_charts() const noexcept { return charts_; }
+  // The evaluation's charts as data (made on the worker), for the GUI thread to draw into chart_dir().
+  const std::vector<charts::NamedChart>& evaluation_charts() const noexcept { return charts_; }
+  const std::filesystem::path& chart_dir() const noexcept { return chart_dir_; }
   const std::array<bool, kFingerCount>& evaluated_channels() const noexcept { return *evaluation_channels_; }
   const std::string& error() const noexcept { return error_; }
   const std::filesystem::path& data_path() const noexcept { return data_path_; }
@@ -58,7 +61,8 @@ class CalibrationJob {
   SweepRecording recording_;
   std::optional<EvaluationResult> evaluation_;
   std::optional<std::array<bool, kFingerCount>> evaluation_channels_;
-  std::vector<std::filesystem::path> charts_;
+  std::vector<charts::NamedChart> charts_;
+  std::filesystem::path chart_dir_;
   std::string error_;
   std::thread worker_;
 };

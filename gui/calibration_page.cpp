@@ -22,6 +22,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <cmath>
 
+#include "core/error.hpp"
 #include "calibration/calibration_report.hpp"
 #include "calibration/calibration_writer.hpp"
 #include "formats/calibration_file.hpp"
@@ -258,7 +259,7 @@ void CalibrationPage::start_sweep() {
   run.slew_kPa_per_s = rig.safety.slew_kPa_per_s;  // steps pass the safety stage at the rig's slew, as the CLI's
   SweepSchedule schedule;
   try {
-    if (!any) throw std::invalid_argument("channels: at least one channel to sweep");
+    if (!any) throw BadInput("channels: at least one channel to sweep");
     schedule = plan_calibration_sweep(plan_options, rig.safety.p_max_kPa);  // refused before anything moves
   } catch (const std::exception& e) {
     say(QString("palprig: ") + e.what(), true);

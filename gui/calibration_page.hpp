@@ -40,12 +40,13 @@ class QGridLayout;
 
 namespace palprig::gui {
 
-// One fit, made on a worker: the data read, the library's result and the charts drawn, or the
-// library's refusal.
+// One fit, made on a worker: the data read, the library's result and its charts as data (drawn
+// on the GUI thread: QCustomPlot is a widget), or the library's refusal.
 struct CalibrationFitOutcome {
   std::optional<SweepData> data;
   std::optional<CalibrationResult> result;
-  std::vector<std::filesystem::path> charts;
+  std::vector<charts::NamedChart> charts;
+  std::filesystem::path chart_dir;
   std::string error;
 };
 

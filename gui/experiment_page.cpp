@@ -24,7 +24,7 @@
 #include "sessions/session_preview.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "gui/statistics_view.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "store/trial_store.hpp"
 

@@ -50,8 +50,8 @@ struct ExperimentHost {
 
 struct ExperimentFields {
   std::string protocol, participant, store;
-  double speed = 0;       // simulated participant only (0: as fast as the simulated rig allows)
-  std::string telemetry;  // the session's rig ticks to this new file (.bin or .csv); empty: none
+  double speed = 0;            // simulated participant only (0: as fast as the simulated rig allows)
+  std::string telemetry = {};  // the session's rig ticks to this new file (.bin or .csv); empty: none
 };
 
 class ParticipantKeys;

@@ -17,7 +17,7 @@
 #include "gui/statistics_view.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "experiments/simulated_participant.hpp"
-#include "models/parse_error.hpp"
+#include "core/error.hpp"
 
 namespace palprig::gui {
 
@@ -73,8 +73,8 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
   std::unique_ptr<LiveRun> run;
   try {
     run = std::make_unique<LiveRun>(load_live_run(o.files), o.run);
-  } catch (const InputError& e) {
-    return refuse(e.what(), 2, interactive);
+  } catch (const Error& e) {  // core/error.hpp: BadInput (InputError) 2, anything else of palprig's 1
+    return refuse(e.what(), e.exit_code(), interactive);
   } catch (const std::exception& e) {
     return refuse(e.what(), 1, interactive);
   }

@@ -9,7 +9,7 @@
 #include "controller/tick_setup.hpp"
 #include "formats/calibration_file.hpp"
 #include "inputs/tablet_input.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig::gui {
 

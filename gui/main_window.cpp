@@ -18,7 +18,7 @@
 #include "gui/experiment_page.hpp"
 #include "gui/live_page.hpp"
 #include "gui/rig_panel.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig::gui {
 

@@ -3,7 +3,7 @@
 #include <QMetaObject>
 #include <csignal>
 
-#include "models/parse_error.hpp"
+#include "core/error.hpp"
 
 namespace palprig::gui {
 
@@ -107,9 +107,9 @@ void SessionRun::launch(std::function<void()> session) {
     int code = 0;
     try {
       session();
-    } catch (const InputError& e) {
+    } catch (const Error& e) {  // core/error.hpp: BadInput (InputError) 2, anything else of palprig's 1
       refusal = QString::fromStdString(e.what());
-      code = 2;
+      code = e.exit_code();
     } catch (const std::exception& e) {
       refusal = QString::fromStdString(e.what());
       code = 1;

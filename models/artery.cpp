@@ -6,12 +6,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 namespace {
 
 void need(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument(what);
+  if (!ok) throw BadInput(what);
 }
 
 double segment_distance(const Point2_mm& p, const Point2_mm& a, const Point2_mm& b) noexcept {
@@ -115,10 +117,10 @@ double Artery::distance_factor(const Point2_mm& p) const noexcept {
 
 PulseField::PulseField(std::vector<ArterySpec> arteries, double pad_radius_mm) {
   if (arteries.size() > kMaxArteries)
-    throw std::invalid_argument("at most " + std::to_string(kMaxArteries) + " arteries per scene, got " +
-                                std::to_string(arteries.size()));
+    throw BadInput("at most " + std::to_string(kMaxArteries) + " arteries per scene, got " +
+                   std::to_string(arteries.size()));
   for (ArterySpec& a : arteries) {
-    if (find(a.name) >= 0) throw std::invalid_argument("two arteries are named '" + a.name + "'");
+    if (find(a.name) >= 0) throw BadInput("two arteries are named '" + a.name + "'");
     arteries_.emplace_back(std::move(a), pad_radius_mm);
   }
 }
@@ -188,8 +190,7 @@ PulseFelt PulseField::felt(const FingerContact& finger, const PulseClocks& clock
     ++out.arteries_on;
     const ForceWindow& window =
         !a.spec().own_force_window && measured_window ? *measured_window : a.spec().force_window;
-    const double amp =
-        amplitude_kPa(i, settings) * a.distance_factor(at) * window.factor(force_N);
+    const double amp = amplitude_kPa(i, settings) * a.distance_factor(at) * window.factor(force_N);
     if (amp <= 0) continue;
     const PulseClock& c = clocks.clock[i];
     out.now_kPa += amp * a.spec().waveform.value(c.phase(t_s));

@@ -73,7 +73,7 @@ struct ArterySpec {
 
 class Artery {
  public:
-  // Validates (std::invalid_argument naming the problem) and places the sources.
+  // Validates (BadInput naming the problem) and places the sources.
   Artery(ArterySpec spec, double finger_pad_radius_mm);
 
   const ArterySpec& spec() const noexcept { return spec_; }

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -150,7 +150,7 @@ void ComediRig::do_open() {
     try {
       conv = make_comedi_conversion(to_counts, to_volts, maxdata, r->min, r->max, spec.volts_lo, spec.volts_hi,
                                     spec.regulator);
-    } catch (const std::invalid_argument& e) {
+    } catch (const BadInput& e) {
       refuse(field, std::string("a usable conversion (") + e.what() + ")");
     }
     insn = comedi_insn{};

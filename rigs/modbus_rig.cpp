@@ -14,7 +14,7 @@
 #include "runtime/monotonic_clock.hpp"
 #include "runtime/realtime.hpp"
 #include "runtime/worker_fault.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 const char* to_string(BackendState state) noexcept {
@@ -19,7 +21,7 @@ const char* to_string(BackendState state) noexcept {
 
 RigBackend::RigBackend(double p_max_kPa) : p_max_kPa_(p_max_kPa) {
   if (!(p_max_kPa > 0) || !std::isfinite(p_max_kPa))
-    throw std::invalid_argument("RigBackend: p_max_kPa must be positive and finite");
+    throw BadInput("RigBackend: p_max_kPa must be positive and finite");
 }
 
 void RigBackend::open() {

@@ -72,7 +72,7 @@ struct BackendCapabilities {
   std::string sensor_unit;             // e.g. "mm"
   std::string link_kind;               // "in-process", "modbus-tcp", "modbus-rtu", "comedi"
   std::string endpoint;                // e.g. "127.0.0.1:1502", "/dev/ttyUSB0 9600 8N1", "/dev/comedi0"
-  std::size_t load_cells = 0;          // load cells measuring the pressing force (issue 26): 0, 1 or 3
+  std::size_t load_cells = 0;          // load cells measuring the pressing force: 0, 1 or 3
   bool load_cells_per_finger = false;  // 3 cells, one under each finger; else 1 shared
 };
 
@@ -91,7 +91,7 @@ class RigBackend {
   RigBackend& operator=(const RigBackend&) = delete;
 
   // closed (or any state: closes first) -> connected: connect, vent, ready to read. Throws
-  // std::runtime_error (InputError for configuration) with one clear line on failure; the
+  // Error (InputError for configuration) with one clear line on failure; the
   // backend is then closed.
   void open();
   // any -> closed: vent and disconnect. Safe to call repeatedly.
@@ -116,7 +116,7 @@ class RigBackend {
   // All channels to 0 kPa, in any state. Safe to call repeatedly and after errors.
   BackendStatus vent() noexcept;
 
-  // The rig file's load cells (issue 26), given before open(); the backend reads them on its
+  // The rig file's load cells, given before open(); the backend reads them on its
   // analog inputs. read_load_cells: any state but closed; error without load cells. The
   // force is the cell's calibration applied to its voltage (negative below the tare: noise).
   void attach_load_cells(const LoadCellConfig& config);

@@ -3,7 +3,7 @@
 #include "experiments/rig_stimulus.hpp"
 #include "experiments/simulated_pulse_observer.hpp"
 #include "formats/scene_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/pulse_setup.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "sessions/session_setup.hpp"

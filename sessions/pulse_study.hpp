@@ -1,5 +1,5 @@
 #pragma once
-// A pulse-localisation session (issue 13, paper 000) end to end, as `palprig experiment run`
+// A pulse-localisation session (paper 000) end to end, as `palprig experiment run`
 // starts it for a protocol with "task": "pulse": the simulated participant (sim:SEED) palpates
 // each condition's scene through the rig and marks the pulse; each trial is committed as it
 // completes; resume continues the stored order; one process per session. A person palpates with

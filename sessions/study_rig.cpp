@@ -3,7 +3,7 @@
 #include "controller/tick_setup.hpp"
 #include "experiments/simulated_participant.hpp"
 #include "formats/calibration_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -12,7 +12,7 @@
 #include "formats/calibration_file.hpp"
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "store/journaled_trial_store.hpp"

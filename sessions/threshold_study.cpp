@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "experiments/rig_stimulus.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "sessions/study_rig.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// A threshold session (staircases, QUEST; issue 13) end to end, as `palprig experiment run`
+// A threshold session (staircases, QUEST) end to end, as `palprig experiment run`
 // starts it for a protocol with "task": "threshold": files checked, the rig opened, the session
 // started or resumed (and held: one process per session) in the trial store, each trial
 // committed with every track's state, the rig vented and closed. A person answers through the

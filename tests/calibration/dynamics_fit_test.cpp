@@ -17,7 +17,7 @@
 #include "controller/tick_setup.hpp"
 #include "formats/calibration_file.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "rigs/simulated_rig.hpp"
 #include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"

@@ -1,5 +1,5 @@
 // Hysteresis compensation on the default simulated plant, end to end in process: sweep,
-// fit, then the controller's tick with and without the fitted inverse. The bar: the
+// fit, then the controller's tick with and without the fitted inverse. The bar: the
 // compensated tracking error at least 5x lower.
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include "calibration/sweep_plan.hpp"
 #include "calibration/sweep_runner.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/leased_run.hpp"
 

@@ -1,4 +1,4 @@
-// Issue 24, part A, 2: a calibration sweep over a real fieldbus that loses its link mid-hold.
+// A calibration sweep over a real fieldbus that loses its link mid-hold.
 // `palprig sim-rig` serves the WAGO map on loopback; the sweep runs in this process on the
 // Modbus backend in real time; the simulator is SIGSTOPped mid-sweep and continued 0.1 s after
 // the link is reported lost. The interrupted hold is redone from the right hysteresis branch,

@@ -1,3 +1,5 @@
+// Over 400 lines: the schedule, the runner and the data file are one sweep's three sides and
+// share its fixtures.
 // Calibration sweeps: the schedule (paper 002's staircase, p_max clamp, identification
 // excitations), the runner on the simulated rig (settling, stop, backend faults, a sensor
 // channel) and the data file (round trip, hand-typed tables, malformed rows).
@@ -14,7 +16,7 @@
 #include "calibration/sweep_runner.hpp"
 #include "formats/rig_file.hpp"
 #include "rigs/simulated_rig.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/leased_run.hpp"
@@ -265,7 +267,7 @@ TEST(SweepRunner, HoldsSettleOnTheSimulatedRigAndShowItsHysteresis) {
   EXPECT_GE(rig.vents, 1);  // the sweep ends vented
 }
 
-// Issue 9: the sweep wrote its levels straight to the backend, past the tick's safety stage.
+// The sweep once wrote its levels straight to the backend, past the tick's safety stage.
 // Now every setpoint goes through it: with the rig's slew limit at 500 kPa/s and 100 steps a
 // second, no write rises by more than 5 kPa, though the staircase steps by 10 kPa and each
 // repeat starts from vented; the levels are still reached and recorded.
@@ -284,9 +286,11 @@ TEST(SweepRunner, EverySetpointPassesTheSafetyStage) {
   EXPECT_EQ(out.holds_unsettled, 0u);
   EXPECT_GT(rig.largest_rise_kPa, 4.9);
   EXPECT_LE(rig.largest_rise_kPa, 5.0 + 1e-9);
-  for (const auto& h : sink.holds)
-    if (h.hold.segment == SweepSegment::staircase && h.hold.branch == SweepBranch::inflation)
+  for (const auto& h : sink.holds) {
+    if (h.hold.segment == SweepSegment::staircase && h.hold.branch == SweepBranch::inflation) {
       EXPECT_NEAR(settled_mean(h, 0), h.hold.level_kPa - 2.0, 0.06) << h.hold.level_kPa;
+    }
+  }
   EXPECT_EQ(rig.state(), BackendState::disarmed);  // vented and disarmed at the end
 }
 

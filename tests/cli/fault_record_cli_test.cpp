@@ -90,10 +90,10 @@ TEST(FaultRecordCli, WithoutTelemetryTheRecordGoesToTheWorkingFolder) {
                                  (dir.path() / "sim.err").string());
   const std::string rig = short_outage_rig(dir, port);
   // The peer is killed 3 s into the run, from beside it, as a crash would take it.
-  const ProcessResult r = run_process("cd " + dir.path().string() + " && (sleep 3; kill -KILL " +
-                                      std::to_string(sim->pid()) + ") & cd " + dir.path().string() + " && " +
-                                      palprig_bin() + " run --realtime --no-fifo --rig " + rig + " --scene " +
-                                      kPhantom + " --input sweep --duration-s 60");
+  const ProcessResult r =
+      run_process("cd " + dir.path().string() + " && (sleep 3; kill -KILL " + std::to_string(sim->pid()) + ") & cd " +
+                  dir.path().string() + " && " + palprig_bin() + " run --realtime --no-fifo --rig " + rig +
+                  " --scene " + kPhantom + " --input sweep --duration-s 60");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   std::filesystem::path record;
   for (const auto& e : std::filesystem::directory_iterator(dir.path()))

@@ -8,7 +8,7 @@
 #include "controller/loop_runner.hpp"
 #include "rigs/simulated_rig.hpp"
 #include "controller/telemetry_writer.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/rigs_for_tests.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/leased_run.hpp"

@@ -1,4 +1,4 @@
-// Issue 24, part A, 1: a loop that cannot hold its rate faults and vents within
+// A loop that cannot hold its rate faults and vents within
 // safety.max_lost_time_s of lost periods, whether its overruns come in a row or not, in real time
 // and in a replay (judged there by the tick's CPU time, so a replay cannot run for hours).
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // RigStep: the one path from targets to the regulators (tick, write, monitors, faults, vent),
 // and what it means for the loop and the other callers: pressure rises from the vented state on
-// the first tick and after every re-arm (issue 10), a disarmed backend is vented and read, a
+// the first tick and after every re-arm, a disarmed backend is vented and read, a
 // backend error vents with the backend's words, a closed backend moves nothing.
 #include <gtest/gtest.h>
 
@@ -30,7 +30,7 @@ class Recorder final : public TickObserver {
 
 }  // namespace
 
-// Issue 10: a pen already pressed on a tumor when a run starts sent the full target (11.75 kPa)
+// A pen already pressed on a tumor when a run started once sent the full target (11.75 kPa)
 // in one tick to vented regulators. Now the first tick rises by one slew step (2000 kPa/s over
 // 1 ms = 2 kPa) and the setpoint ramps from there.
 TEST(RigStep, APenAlreadyPressedWhenTheRunStartsRampsFromVented) {
@@ -101,7 +101,7 @@ TEST(RigStep, ABackendErrorVentsDisarmsAndKeepsTheBackendsWords) {
   EXPECT_EQ(r.tick.record.fault, FaultCode::backend_error);
   EXPECT_TRUE(r.tick.record.flags & kVented);
   EXPECT_EQ(step.fault(), FaultCode::backend_error);
-  EXPECT_STREQ(step.fault().detail(), "valve driver overheated on channel 3");
+  EXPECT_EQ(step.fault().detail(), "valve driver overheated on channel 3");
   EXPECT_GT(rig.vents, vents_before);
   EXPECT_EQ(rig.state(), BackendState::disarmed);
   // Latched: a faulted step never moves air again, even when asked to arm.

@@ -1,4 +1,6 @@
-// Tracked fingers in the tick and the rig step (issue 26), and end to end against a real
+// Over 400 lines: the tick, the rig step and the end-to-end runs share one set of tracked-finger
+// fixtures (a tracking file, a loopback OpenIGTLink server).
+// Tracked fingers in the tick and the rig step, and end to end against a real
 // OpenIGTLink server on loopback: fingers each at their own tracked position, per-finger load
 // cells, a finger whose tool is out of view vented with its reason, the fingers following a
 // known path within the registration error, pressure over a tumor, the pulse over an artery,

@@ -1,4 +1,4 @@
-// Pause and Ready in a pulse-localisation session (issue 15): run_pulse_session on a real
+// Pause and Ready in a pulse-localisation session: run_pulse_session on a real
 // RigStimulus over the simulated rig's backend, on a scripted simulated clock that asks for the
 // pause and lifts it at given times. A pause vents at once (the regulators' monitors fall to 0),
 // holds the trial in progress and presents it again from its start once the participant is

@@ -14,7 +14,7 @@
 #include "rigs/simulated_rig.hpp"
 #include "inputs/tablet_input.hpp"
 #include "runtime/worker_fault.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/leased_run.hpp"

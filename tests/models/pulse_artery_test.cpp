@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.hpp"
 #include "models/artery.hpp"
 #include "models/pulse_localisation.hpp"
 
@@ -179,23 +180,23 @@ TEST(Artery, BroadPhaseRegionHoldsEveryPlaceThePulseIsFelt) {
 TEST(Artery, ImpossibleArteriesAreRefused) {
   ArterySpec s = straight();
   s.depth_mm = 1;  // shallower than its radius
-  EXPECT_THROW(Artery(s, 8), std::invalid_argument);
+  EXPECT_THROW(Artery(s, 8), palprig::BadInput);
   s = straight();
   s.range_mm = 4;  // never reaches the skin from 5 mm down
-  EXPECT_THROW(Artery(s, 8), std::invalid_argument);
+  EXPECT_THROW(Artery(s, 8), palprig::BadInput);
   s = straight();
   s.rate_bpm = 300;
-  EXPECT_THROW(Artery(s, 8), std::invalid_argument);
+  EXPECT_THROW(Artery(s, 8), palprig::BadInput);
   s = straight();
   s.path = {{0, 0}};
-  EXPECT_THROW(Artery(s, 8), std::invalid_argument);
+  EXPECT_THROW(Artery(s, 8), palprig::BadInput);
   s = straight();
   s.force_window = {3, 1, 1};
-  EXPECT_THROW(Artery(s, 8), std::invalid_argument);
-  EXPECT_THROW(PulseField({straight("x"), straight("x")}, 8), std::invalid_argument);
+  EXPECT_THROW(Artery(s, 8), palprig::BadInput);
+  EXPECT_THROW(PulseField({straight("x"), straight("x")}, 8), palprig::BadInput);
   std::vector<ArterySpec> many(kMaxArteries + 1, straight());
   for (std::size_t i = 0; i < many.size(); ++i) many[i].name = "a" + std::to_string(i);
-  EXPECT_THROW(PulseField(many, 8), std::invalid_argument);
+  EXPECT_THROW(PulseField(many, 8), palprig::BadInput);
 }
 
 TEST(PulseLocalisation, MarkScoredByDistanceToTheCentreline) {

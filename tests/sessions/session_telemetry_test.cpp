@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/study_session.hpp"
 #include "store/trial_store.hpp"
 #include "tests/support/support.hpp"

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "experiments/terminal_participant.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/study_session.hpp"
 #include "store/trial_store.hpp"
 #include "tests/support/support.hpp"

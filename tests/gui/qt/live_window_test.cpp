@@ -1,3 +1,5 @@
+// Over 400 lines: one Qt Test class (QTest runs a class's slots as its cases), every case on the
+// same window and loop thread.
 // Qt Test suite for the live rig console (`palprig gui`), run under QT_QPA_PLATFORM=offscreen
 // (registered with ctest as gui.LiveWindow.*; the Xvfb case uses the xcb platform through
 // xvfb-run). The window runs the real loop thread on the default simulated rig; tests wait on

@@ -1,4 +1,4 @@
-#include "controller/loop_probe.hpp"
+#include "diagnostics/loop_probe.hpp"
 #include "controller/rig_lease.hpp"
 
 #include <vector>
