@@ -210,11 +210,11 @@ TEST(PneumaticPlant, SaturatingGainSettlesOnItsTanh) {
 TEST(PneumaticPlant, RefusesImpossibleAsymmetricParameters) {
   PlantParams p;
   p.hysteresis_rising_kPa = -1;
-  EXPECT_THROW(PneumaticPlant{p}, std::invalid_argument);
+  EXPECT_THROW(PneumaticPlant{p}, palprig::BadInput);
   p = {};
   p.exhaust_lag_factor_at_0 = 0.5;
-  EXPECT_THROW(PneumaticPlant{p}, std::invalid_argument);
+  EXPECT_THROW(PneumaticPlant{p}, palprig::BadInput);
   p = {};
   p.exhaust_time_constant_s = NAN;
-  EXPECT_THROW(PneumaticPlant{p}, std::invalid_argument);
+  EXPECT_THROW(PneumaticPlant{p}, palprig::BadInput);
 }
