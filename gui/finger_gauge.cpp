@@ -55,7 +55,7 @@ void FingerGauge::paintEvent(QPaintEvent*) {
   const double rms = error_.rms_kPa();
   const QString err = std::isfinite(rms) ? QString::number(rms, 'f', 2) : QString("--");
   p.drawText(QRectF(0, height() - text_h, width(), text_h), Qt::AlignCenter,
-             QString("target %1\nsetpoint %2\nmonitor %3 kPa\nerror %4 RMS 5 s")
+             QString("target %1\nsetpoint %2\nmonitor %3 kPa\nRMS err %4 kPa")
                  .arg(target_, 0, 'f', 1)
                  .arg(setpoint_, 0, 'f', 1)
                  .arg(mon)
