@@ -189,7 +189,7 @@ EvaluationResult evaluate_compensation(RigLease& lease, const RigConfig& rig, co
 
   TickConfig compensated = make_tick_config(rig, cal);
   TickConfig plain = compensated;
-  plain.hysteresis_inverse = {};  // identity: setpoint = target
+  plain.hysteresis_model = {};  // identity: setpoint = target
 
   EvaluationResult result;
   result.from_kPa = o.from_kPa;
