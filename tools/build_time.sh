@@ -19,14 +19,17 @@ case "$mode" in
     t=$(mktemp)
     status=0
     /usr/bin/time -f "%U %S %e" -o "$t" "$@" || status=$?
-    read -r user sys wall <"$t" || true
+    read -r user sys wall < <(tail -n 1 "$t") || true
     rm -f "$t"
     echo "$(awk -v u="${user:-0}" -v s="${sys:-0}" 'BEGIN{printf "%.2f", u+s}') ${wall:-0} $PWD/$out" >>"$log"
     exit $status
     ;;
   report)
     log=$2; n=${3:-15}
+    # A step run again (an interrupted build resumed) counts once, its last run.
     awk -v n="$n" '
+      { last[$3]=$0 }
+      END { for (o in last) print last[o] }' "$log" | awk -v n="$n" '
       { cpu=$1; wall=$2; out=$3
         t=out
         if (match(out, /CMakeFiles\/[^\/]+\.dir\//)) { t=substr(out, RSTART+11, RLENGTH-16) }
@@ -35,7 +38,7 @@ case "$mode" in
       END {
         printf "%d steps, %.0f s CPU in all (%.1f min)\n", steps, total, total/60
         for (t in cpu_t) printf "%8.1f s %5d  %s\n", cpu_t[t], n_t[t], t | "sort -rn"
-      }' "$log"
+      }'
     echo "costliest steps:"
     sort -rn "$log" | head -n "$n" | awk '{ printf "%8.1f s  %s\n", $1, $3 }'
     ;;
