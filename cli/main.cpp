@@ -2,13 +2,16 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cli/data_files.hpp"
 #include "cli/field_flags.hpp"
 #include "models/parse_error.hpp"
+#include "palprig_git_commit.hpp"  // written at build time (packaging/git_commit.cmake)
 
 int main(int argc, char** argv) {
   CLI::App app{"palprig: drive a pneumatic multi-finger palpation rig and run the studies done on it"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "palprig " PALPRIG_VERSION);
+  // One version, project(palprig VERSION ...) in CMakeLists.txt, and the commit built from.
+  app.set_version_flag("--version", "palprig " PALPRIG_VERSION " (commit " PALPRIG_GIT_COMMIT ")");
   // The rig's commands (run, demo, experiment, calibrate, ...) come from rig_commands.cpp, or in an
   // analyst-only build from rig_commands_absent.cpp, which names them and refuses them.
   register_rig_commands(app);
@@ -17,6 +20,9 @@ int main(int argc, char** argv) {
   register_export_command(app);
   register_scene_command(app);
   register_store_command(app);
+  register_data_command(app);
+  // Last: every registered option that takes a shipped file also takes its name (data_files.hpp).
+  palprig::cli::resolve_data_names(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "cli/commands.hpp"
+#include "cli/data_files.hpp"
 
 namespace palprig::cli {
 
@@ -20,9 +21,6 @@ void install_stop_signals() {
   std::signal(SIGTERM, palprig_on_stop_signal);
 }
 
-std::filesystem::path data_dir() {
-  if (const char* env = std::getenv("PALPRIG_DATA")) return env;
-  return PALPRIG_SOURCE_DATA_DIR;
-}
+std::filesystem::path data_dir() { return shipped_data_place().dir; }
 
 }  // namespace palprig::cli
