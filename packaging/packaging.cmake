@@ -12,6 +12,9 @@
 # The package's postinst creates the group (systemd-sysusers, else addgroup) and reloads udev.
 include(GNUInstallDirs)
 
+# The maintainer a lab names when it builds the package for its PCs (lintian wants a real address).
+set(PALPRIG_PACKAGE_MAINTAINER "The palprig developers <palprig@example.org>" CACHE STRING
+  "Maintainer field of the Debian package: who to write to about this build of it")
 set(PALPRIG_GIT_COMMIT "" CACHE STRING "The commit palprig --version names when the source is not a git clone")
 # `make package` and `cmake --install` do not build everything first (the suites, benchmarks and
 # fuzz targets are not installed); the Makefile builds the installed targets before CPack.
@@ -50,8 +53,20 @@ file(WRITE ${_docs}/copyright
 add_custom_command(OUTPUT ${_docs}/changelog.gz
   COMMAND gzip -9nc ${PROJECT_SOURCE_DIR}/CHANGELOG.md > ${_docs}/changelog.gz
   DEPENDS ${PROJECT_SOURCE_DIR}/CHANGELOG.md)
-add_custom_target(palprig_changelog ALL DEPENDS ${_docs}/changelog.gz)
-install(FILES ${_docs}/copyright ${_docs}/changelog.gz ${PROJECT_SOURCE_DIR}/README.md
+# The package's own changelog in Debian's format (the package revision is 1: the upstream
+# changelog above is CHANGELOG.md); dated when the build was configured, or SOURCE_DATE_EPOCH.
+set(PALPRIG_DEBIAN_REVISION 1)
+string(TIMESTAMP _debian_date "%a, %d %b %Y %H:%M:%S +0000" UTC)
+file(WRITE ${_docs}/changelog.Debian
+  "palprig (${PROJECT_VERSION}-${PALPRIG_DEBIAN_REVISION}) unstable; urgency=medium\n\n"
+  "  * Built with CPack from the palprig sources (make package); what changed is in\n"
+  "    /usr/share/doc/palprig/changelog.gz (CHANGELOG.md).\n\n"
+  " -- ${PALPRIG_PACKAGE_MAINTAINER}  ${_debian_date}\n")
+add_custom_command(OUTPUT ${_docs}/changelog.Debian.gz
+  COMMAND gzip -9nc ${_docs}/changelog.Debian > ${_docs}/changelog.Debian.gz
+  DEPENDS ${_docs}/changelog.Debian)
+add_custom_target(palprig_changelog ALL DEPENDS ${_docs}/changelog.gz ${_docs}/changelog.Debian.gz)
+install(FILES ${_docs}/copyright ${_docs}/changelog.gz ${_docs}/changelog.Debian.gz ${PROJECT_SOURCE_DIR}/README.md
   ${PROJECT_SOURCE_DIR}/CITATION.cff DESTINATION ${_doc_dir})
 
 # Running as a lab user, not root (docs/rig-pc.md).
@@ -65,20 +80,18 @@ install(FILES ${PROJECT_SOURCE_DIR}/packaging/palprig-limits.conf DESTINATION /e
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME palprig)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
-# The maintainer a lab names when it builds the package for its PCs (lintian wants a real address).
-set(PALPRIG_PACKAGE_MAINTAINER "The palprig developers <palprig@example.org>" CACHE STRING
-  "Maintainer field of the Debian package: who to write to about this build of it")
 set(CPACK_PACKAGE_CONTACT "${PALPRIG_PACKAGE_MAINTAINER}")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "pneumatic multi-finger palpation rig and its studies")
-set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "pneumatic multi-finger palpation rig and its studies
- palprig drives a pneumatic multi-finger palpation rig (three finger actuators
- fed by proportional pressure regulators over Modbus TCP or a comedi DAQ card)
- from a pen tablet or a tracker, renders stiffness maps, function-based tissue
- and arterial pulses under the fingers, and runs stiffness-discrimination,
- tumor-localisation, threshold and pulse-localisation studies with their
- statistics and exports. Everything also runs on a simulated rig.")
+# The long description (CPack puts the summary above it and indents each line).
+set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "palprig drives a pneumatic multi-finger palpation rig (three finger actuators
+fed by proportional pressure regulators over Modbus TCP or a comedi DAQ card)
+from a pen tablet or a tracker, renders stiffness maps, function-based tissue
+and arterial pulses under the fingers, and runs stiffness-discrimination,
+tumor-localisation, threshold and pulse-localisation studies with their
+statistics and exports. Everything also runs on a simulated rig.")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
-set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_RELEASE ${PALPRIG_DEBIAN_REVISION})
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # palprig_VERSION-REVISION_ARCH.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 # Dependencies from the binary's own libraries (dpkg-shlibdeps), plus what postinst calls.
