@@ -26,6 +26,10 @@ inline std::string counted(long long n, const std::string& one, const std::strin
   return std::to_string(n) + ' ' + (n == 1 ? one : many);
 }
 
+// The git commit the program was built from ("1a2b3c4d5e6f", "-dirty" added for uncommitted
+// changes, "unknown" outside a clone): build/generated/palprig_git_commit.cpp, written at build time.
+const char* git_commit() noexcept;
+
 // Where the shipped data (scenes, rigs, traces) is taken from: the first existing place of
 // cli/data_files.hpp's data_places() ($PALPRIG_DATA_DIR, the installed share/palprig, the source tree).
 std::filesystem::path data_dir();

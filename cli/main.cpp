@@ -5,13 +5,13 @@
 #include "cli/data_files.hpp"
 #include "cli/field_flags.hpp"
 #include "models/parse_error.hpp"
-#include "palprig_git_commit.hpp"  // written at build time (packaging/git_commit.cmake)
 
 int main(int argc, char** argv) {
   CLI::App app{"palprig: drive a pneumatic multi-finger palpation rig and run the studies done on it"};
   app.require_subcommand(1);
   // One version, project(palprig VERSION ...) in CMakeLists.txt, and the commit built from.
-  app.set_version_flag("--version", "palprig " PALPRIG_VERSION " (commit " PALPRIG_GIT_COMMIT ")");
+  app.set_version_flag("--version",
+                       std::string("palprig " PALPRIG_VERSION " (commit ") + palprig::cli::git_commit() + ")");
   // The rig's commands (run, demo, experiment, calibrate, ...) come from rig_commands.cpp, or in an
   // analyst-only build from rig_commands_absent.cpp, which names them and refuses them.
   register_rig_commands(app);

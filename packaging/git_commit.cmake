@@ -1,8 +1,8 @@
-# Run at every build (cmake -P, from the palprig_git_commit target): writes OUT, a header with the
-# git commit the program is built from, only when it changed, so that a rebuild without a new
-# commit recompiles nothing. "-dirty" marks uncommitted changes to tracked files. Without git or
+# Run at every build (cmake -P, from the palprig_git_commit target): writes OUT, a one-function
+# source file with the git commit the program is built from, only when it changed, so that a
+# rebuild without a new commit recompiles nothing and a new commit recompiles only this file. "-dirty" marks uncommitted changes to tracked files. Without git or
 # outside a clone (a source tarball) it is PALPRIG_GIT_COMMIT when given, else "unknown".
-#   cmake -DSOURCE_DIR=... -DOUT=.../palprig_git_commit.hpp [-DPALPRIG_GIT_COMMIT=...] -P git_commit.cmake
+#   cmake -DSOURCE_DIR=... -DOUT=.../palprig_git_commit.cpp [-DPALPRIG_GIT_COMMIT=...] -P git_commit.cmake
 set(commit "unknown")
 if(PALPRIG_GIT_COMMIT)
   set(commit "${PALPRIG_GIT_COMMIT}")
@@ -21,7 +21,8 @@ else()
     endif()
   endif()
 endif()
-set(text "#pragma once\n// Written by packaging/git_commit.cmake at build time; not in the repository.\n#define PALPRIG_GIT_COMMIT \"${commit}\"\n")
+# No include: this file compiles in a moment (cli/commands.hpp declares the function).
+set(text "// Written by packaging/git_commit.cmake at build time; not in the repository.\nnamespace palprig::cli {\nconst char* git_commit() noexcept { return \"${commit}\"; }\n}  // namespace palprig::cli\n")
 if(EXISTS "${OUT}")
   file(READ "${OUT}" old)
 endif()
