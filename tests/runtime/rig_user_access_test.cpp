@@ -104,7 +104,6 @@ TEST(RigUserAccess, ComediCardAndTabletOpenOnlyThroughTheGroup) {
   put(p.dev_dir / "comedi0", "", 0660);        // root:root 0660, as the udev rule makes it for palprig
   put(p.dev_dir / "comedi0_subd1", "", 0660);  // a subdevice: not a card of its own
   put(p.dev_dir / "input" / "event3", "", 0660);
-  put(p.dev_dir / "input" / "event4", "", 0600);  // not a tablet: not looked at
   struct stat st {};
   ASSERT_EQ(::stat((p.dev_dir / "input" / "event3").c_str(), &st), 0);
   put(p.udev_data_dir / ("c" + std::to_string(major(st.st_rdev)) + ":" + std::to_string(minor(st.st_rdev))),
@@ -129,9 +128,15 @@ TEST(RigUserAccess, ComediCardAndTabletOpenOnlyThroughTheGroup) {
   EXPECT_FALSE(advises(a, "udev rules"));
 }
 
-TEST(RigUserAccess, NoDeviceIsNotAProblem) {
+TEST(RigUserAccess, NoDeviceIsNotAProblemAndAKeyboardIsNoTablet) {
   TempDir dir;
-  const RigUserAccess a = check_rig_user_access(probe(dir));
+  const RigUserProbe p = probe(dir);
+  put(p.dev_dir / "input" / "event0", "", 0600);  // a keyboard udev knows as one: not looked at
+  struct stat st {};
+  ASSERT_EQ(::stat((p.dev_dir / "input" / "event0").c_str(), &st), 0);
+  put(p.udev_data_dir / ("c" + std::to_string(major(st.st_rdev)) + ":" + std::to_string(minor(st.st_rdev))),
+      "E:ID_INPUT=1\nE:ID_INPUT_KEYBOARD=1\n", 0644);
+  const RigUserAccess a = check_rig_user_access(p);
   ASSERT_NE(topic(a, "devices"), nullptr);
   EXPECT_EQ(topic(a, "devices")->level, Finding::Level::info);
   EXPECT_NE(topic(a, "devices")->text.find("a Modbus rig needs neither"), std::string::npos);
