@@ -16,7 +16,7 @@ step() { echo "system package test: $*"; }
 dpkg-query -W palprig >/dev/null 2>&1 && fail "palprig is installed already; this test installs and purges its own"
 
 files=$(dpkg-deb -c "$deb" | awk '{print $6}' | sed 's|^\.||' | grep -v '/$')
-DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$deb" >/dev/null || fail "apt install $deb"
+DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$deb" >/dev/null 2>&1 || fail "apt install $deb"
 cleanup() {
   userdel -r "$user" >/dev/null 2>&1 || true
   dpkg-query -W palprig >/dev/null 2>&1 && DEBIAN_FRONTEND=noninteractive apt-get purge -y -qq palprig >/dev/null 2>&1
@@ -38,19 +38,27 @@ grep -q "Every tumor got higher pressure than soft tissue." <<<"$out" || fail "d
 out=$(as_user "palprig experiment run --protocol discrimination_002 --participant sim:1 --db s.db --quiet && palprig stats trials s.db") ||
   fail "session and stats: $out"
 grep -q "^three-finger " <<<"$out" || fail "stats trials: $out"
-out=$(as_user "MANWIDTH=80 man palprig | col -b | head -n 5") || fail "man palprig: $out"
+out=$(as_user "MANWIDTH=80 man palprig | col -bx | tr -s ' ' | head -n 5") || fail "man palprig: $out"
 grep -q "palprig - drive a pneumatic" <<<"$out" || fail "man palprig: $out"
 step "as $user: version, data list, demo, session by name, stats, man palprig"
-out=$(as_user "ulimit -r; ulimit -l")
-step "limits in $user's login: rtprio $(sed -n 1p <<<"$out"), memlock $(sed -n 2p <<<"$out")"
-[[ $(sed -n 1p <<<"$out") == 90 ]] || fail "the limits.d file did not give rtprio 90: $out"
 out=$(as_user "palprig rt-check --seconds 0.2" || true)
 grep -q "$user is in the palprig group" <<<"$out" || fail "rt-check's user part: $out"
-out=$(as_user "palprig run --scene phantom_abc --input trace:phantom_abc_pass --realtime --duration-s 1" || true)
-if grep -q "SCHED_FIFO 80" <<<"$out" && ! grep -q "refused" <<<"$out"; then
-  step "run --realtime as $user: SCHED_FIFO 80 held without root"
+# pam_limits raises the login's hard limits with CAP_SYS_RESOURCE; a sandbox without it (root
+# itself may not raise RLIMIT_RTPRIO) cannot show the limits.d file at work: said, not failed.
+limits_checked=yes
+if ! bash -c 'ulimit -Hr 90' 2>/dev/null; then
+  limits_checked=no
+  step "NOT CHECKED here: this machine lets no process raise RLIMIT_RTPRIO (root lacks CAP_SYS_RESOURCE), so pam_limits cannot apply limits.d; rtprio and run --realtime as $user need a real rig PC"
 else
-  fail "run --realtime as $user did not hold SCHED_FIFO: $(grep -i 'fifo\|real' <<<"$out" | head -n 3)"
+  out=$(as_user "ulimit -r; ulimit -l")
+  step "limits in $user's login: rtprio $(sed -n 1p <<<"$out"), memlock $(sed -n 2p <<<"$out")"
+  [[ $(sed -n 1p <<<"$out") == 90 ]] || fail "the limits.d file did not give rtprio 90: $out"
+  out=$(as_user "palprig run --scene phantom_abc --input trace:phantom_abc_pass --realtime --duration-s 1" || true)
+  if grep -q "SCHED_FIFO 80" <<<"$out" && ! grep -q "refused" <<<"$out"; then
+    step "run --realtime as $user: SCHED_FIFO 80 held without root"
+  else
+    fail "run --realtime as $user did not hold SCHED_FIFO: $(grep -i 'fifo\|real' <<<"$out" | head -n 3)"
+  fi
 fi
 
 userdel -r "$user" >/dev/null 2>&1 || true
@@ -59,4 +67,4 @@ left=""
 for f in $files; do [[ -e $f ]] && left="$left $f"; done
 [[ -z $left ]] || fail "left after purge:$left"
 step "purged: none of the package's $(wc -w <<<"$files") files is left; the palprig group stays (delgroup palprig removes it)"
-step "passed"
+step "passed$([[ $limits_checked == yes ]] || echo ", but for the real-time limits (not checkable on this machine)")"
