@@ -11,10 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
-#include "controller/loop_probe.hpp"
-#include "models/parse_error.hpp"
-#include "runtime/rig_user_access.hpp"
-#include "runtime/rt_readiness.hpp"
+#include "diagnostics/loop_probe.hpp"
+#include "core/input_error.hpp"
+#include "diagnostics/rig_user_access.hpp"
+#include "diagnostics/rt_readiness.hpp"
 
 using namespace palprig;
 

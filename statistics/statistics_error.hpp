@@ -1,17 +1,18 @@
 #pragma once
 // StatisticsError: a test cannot be computed from the data it was given (too few values, a
-// constant sample, an empty group). The command line turns it into one line naming the file
-// and the column, exit code 2; library callers can catch it like any invalid_argument.
+// constant sample, an empty group). It is a BadInput (core/error.hpp): the command line turns it
+// into one line naming the file and the column, exit code 2.
 #include <cmath>
 #include <span>
-#include <stdexcept>
 #include <string>
+
+#include "core/error.hpp"
 
 namespace palprig::stats {
 
-class StatisticsError : public std::invalid_argument {
+class StatisticsError : public BadInput {
  public:
-  explicit StatisticsError(const std::string& what) : std::invalid_argument(what) {}
+  explicit StatisticsError(const std::string& what) : BadInput(what) {}
 };
 
 // The tests' first check: every value a finite number.

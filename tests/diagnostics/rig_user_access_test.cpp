@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <fstream>
 
-#include "runtime/rig_user_access.hpp"
+#include "diagnostics/rig_user_access.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;

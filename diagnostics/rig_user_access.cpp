@@ -1,4 +1,4 @@
-#include "runtime/rig_user_access.hpp"
+#include "diagnostics/rig_user_access.hpp"
 
 #include <grp.h>
 #include <pwd.h>

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/rt_readiness.hpp"
+#include "diagnostics/rt_readiness.hpp"
 
 namespace palprig {
 
