@@ -13,6 +13,7 @@
 
 #include "charts/chart_png.hpp"
 #include "charts/chart_svg.hpp"
+#include "core/error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig::charts;
