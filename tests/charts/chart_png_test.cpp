@@ -97,8 +97,8 @@ TEST(Charts, PngAndSvgAtPrintSize) {
 TEST(Charts, RefusesChartsWithNothingToDrawAndUnwritablePaths) {
   TempDir dir;
   Chart empty;
-  EXPECT_THROW(write_chart_png(empty, dir.path() / "e.png"), std::invalid_argument);
-  EXPECT_THROW(write_chart_svg(empty, dir.path() / "e.svg"), std::invalid_argument);
+  EXPECT_THROW(write_chart_png(empty, dir.path() / "e.png"), palprig::BadInput);
+  EXPECT_THROW(write_chart_svg(empty, dir.path() / "e.svg"), palprig::BadInput);
   Chart mismatched;
   ChartSeries s;
   s.x = {1, 2};
