@@ -99,8 +99,10 @@ void resolve_data_names(CLI::App& app) {
         opt->transform(CLI::Validator(
             [k = kind->second](std::string& value) -> std::string {
               const auto found = find_data_file(value, k);
-              if (!found) return not_found(value, k);
-              value = found->string();
+              // A bare name found nowhere is refused with the places searched; a file name (with
+              // an extension) is left to its reader, which names the missing file as for a path.
+              if (!found && value.find('.') == std::string::npos) return not_found(value, k);
+              value = found ? found->string() : value;
               return {};
             },
             "", "data file"));
@@ -110,8 +112,8 @@ void resolve_data_names(CLI::App& app) {
               if (value.rfind(kTracePrefix, 0) != 0) return {};
               const std::string rest = value.substr(std::string(kTracePrefix).size());
               const auto found = find_data_file(rest, "traces");
-              if (!found) return not_found(rest, "traces");
-              value = kTracePrefix + found->string();
+              if (!found && rest.find('.') == std::string::npos) return not_found(rest, "traces");
+              value = kTracePrefix + (found ? found->string() : rest);
               return {};
             },
             "", "data file"));

@@ -34,7 +34,9 @@ DataPlace shipped_data_place();
 // The file for a value given to an option of this kind ("protocols", "scenes", "rigs",
 // "calibration", "traces", "tracking", "waveforms"): the value itself when it names a file or
 // has a '/' in it (a path; its reader reports a missing file), else the first KIND/NAME,
-// KIND/NAME.json or KIND/NAME.csv of data_places(); nullopt when a bare name is found nowhere.
+// KIND/NAME.json or KIND/NAME.csv of data_places(); nullopt when a bare name is found nowhere
+// (the options then refuse a name without an extension in one line naming the places searched,
+// and leave a file name such as x.json to its reader, which says the file is missing).
 std::optional<std::filesystem::path> find_data_file(const std::string& given, const std::string& kind);
 
 // The names (file stems) of the shipped files of one kind in a folder, sorted.

@@ -81,6 +81,13 @@ TEST(DataFiles, APathIsTakenAsGivenAndAnUnknownNameIsOneLine) {
   EXPECT_EQ(path.exit_code, 2);
   EXPECT_NE(path.err.find("./discrimination_002.json"), std::string::npos) << path.err;
 
+  // A file name found nowhere is left to its reader, which names the missing file.
+  const ProcessResult file =
+      palprig_in(dir.path(), "experiment run --protocol my_study.json --participant sim:1 --db s.db");
+  EXPECT_EQ(file.exit_code, 2);
+  EXPECT_NE(file.err.find("my_study.json: file:"), std::string::npos) << file.err;
+  EXPECT_EQ(file.err.find("neither a file"), std::string::npos) << file.err;
+
   // A file of that name in the folder is the file meant, not the shipped one.
   std::ofstream(dir.path() / "discrimination_002") << "{}";
   const ProcessResult local =
