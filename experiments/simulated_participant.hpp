@@ -62,6 +62,10 @@ int confidence_from_margin(double margin_in_noise_units, int levels) noexcept;
 
 // "sim:SEED" -> true and the seed; anything else -> false.
 bool parse_simulated_participant(const std::string& spec, std::uint64_t& seed);
+inline bool is_simulated_participant(const std::string& spec) {
+  std::uint64_t seed = 0;
+  return parse_simulated_participant(spec, seed);
+}
 
 class SimulatedParticipant final : public Participant {
  public:

@@ -47,11 +47,6 @@ QString stored_flags_text(const std::string& bits) {
   return s.isEmpty() ? "none" : s;
 }
 
-bool is_simulated_code(const std::string& code) {
-  std::uint64_t seed = 0;
-  return parse_simulated_participant(code, seed);
-}
-
 }  // namespace
 
 ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent)
@@ -183,7 +178,7 @@ void ExperimentPage::update_plan() {
   if (!refusal_text().isEmpty()) status_->setText("No session.");
   status_->setStyleSheet("");
   status_->setProperty("refusal", QString());
-  speed_->setEnabled(is_simulated_code(f.participant));
+  speed_->setEnabled(is_simulated_participant(f.participant));
   table_->setRowCount(0);
   set_table_columns(false);
   if (f.protocol.empty()) {

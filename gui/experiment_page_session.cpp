@@ -37,15 +37,6 @@
 
 namespace palprig::gui {
 
-namespace {
-
-bool is_simulated_code(const std::string& code) {
-  std::uint64_t seed = 0;
-  return parse_simulated_participant(code, seed);
-}
-
-}  // namespace
-
 bool ExperimentPage::begin(bool resume) {
   if (run_.running()) return false;
   update_plan();
@@ -68,7 +59,7 @@ bool ExperimentPage::begin(bool resume) {
   request.telemetry_file = f.telemetry;
   request.tick_observer = host_.tick_observer ? host_.tick_observer() : nullptr;
   request.rig = host_.opened_rig ? &host_.opened_rig() : nullptr;
-  simulated_ = is_simulated_code(f.participant);
+  simulated_ = is_simulated_participant(f.participant);
   request.speed = simulated_ ? f.speed : 0;
   request.person_palpates = true;  // the window gives a person a pen
   channel_ = simulated_ ? nullptr : std::make_shared<ParticipantChannel>();
@@ -244,7 +235,7 @@ void ExperimentPage::set_buttons() {
   abort_->setEnabled(running);
   for (QWidget* w : std::initializer_list<QWidget*>{protocol_edit_, participant_edit_, store_edit_, telemetry_edit_})
     w->setEnabled(!running);
-  speed_->setEnabled(!running && is_simulated_code(participant_edit_->text().trimmed().toStdString()));
+  speed_->setEnabled(!running && is_simulated_participant(participant_edit_->text().trimmed().toStdString()));
   full_screen_->setEnabled(QGuiApplication::screens().size() > 1 || full_screen_->isChecked());
 }
 

@@ -19,7 +19,7 @@ PgParam param_of(const SqlValue& v) {
   return std::nullopt;
 }
 
-SqlValue read_value(const PgResult& r, int row, int column, char type) {
+SqlValue pg_read_value(const PgResult& r, int row, int column, char type) {
   if (r.is_null(row, column)) return std::monostate{};
   switch (type) {
     case 'i': return r.integer(row, column);
@@ -29,16 +29,16 @@ SqlValue read_value(const PgResult& r, int row, int column, char type) {
 }
 
 template <std::size_t N>
-SqlRow read_row(const PgResult& r, int row, int first_column, const std::array<SqlColumn, N>& columns) {
+SqlRow pg_read_row(const PgResult& r, int row, int first_column, const std::array<SqlColumn, N>& columns) {
   SqlRow out;
   out.reserve(N);
   for (std::size_t i = 0; i < N; ++i)
-    out.push_back(read_value(r, row, first_column + static_cast<int>(i), columns[i].type));
+    out.push_back(pg_read_value(r, row, first_column + static_cast<int>(i), columns[i].type));
   return out;
 }
 
 template <std::size_t N>
-std::string placeholders(std::size_t first) {
+std::string pg_placeholders(std::size_t first) {
   std::string s;
   for (std::size_t i = 0; i < N; ++i) s += (i ? ", $" : "$") + std::to_string(first + i);
   return s;
@@ -116,7 +116,7 @@ std::int64_t pg_push_session(PgConnection& db, const SessionRows& in, bool* adde
     PgResult ins =
         db.exec("INSERT INTO sessions (participant_id, session_uid, host_name, origin, " +
                     column_list(kSessionColumns) + ") VALUES ($1, $2, $3, $4, " +
-                    placeholders<kSessionColumns.size()>(5) + ") ON CONFLICT (session_uid) DO NOTHING RETURNING id",
+                    pg_placeholders<kSessionColumns.size()>(5) + ") ON CONFLICT (session_uid) DO NOTHING RETURNING id",
                 params);
     if (ins.rows() == 0) {
       id = db.exec("SELECT id FROM sessions WHERE session_uid = $1", {in.session_uid}).integer(0, 0);
@@ -203,11 +203,11 @@ std::vector<ServerSession> read_sessions_where(PgConnection& db, const std::stri
     s.rows.session_uid = r.text(i, 4);
     s.rows.host_name = r.text(i, 5);
     s.rows.origin = r.text(i, 6);
-    s.rows.session = read_row(r, i, 7, kSessionColumns);
+    s.rows.session = pg_read_row(r, i, 7, kSessionColumns);
     const PgResult p = db.exec(
         "SELECT " + column_list(kPlannedColumns) + " FROM planned_trials WHERE session_id = $1 ORDER BY position",
         {pg_text(s.id)});
-    for (int j = 0; j < p.rows(); ++j) s.rows.planned.push_back(read_row(p, j, 0, kPlannedColumns));
+    for (int j = 0; j < p.rows(); ++j) s.rows.planned.push_back(pg_read_row(p, j, 0, kPlannedColumns));
     sessions.push_back(std::move(s));
   }
   return sessions;
@@ -234,7 +234,7 @@ std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id,
   std::map<std::int64_t, std::size_t> index;
   for (int i = 0; i < r.rows(); ++i) {
     index[r.integer(i, 0)] = trials.size();
-    trials.push_back(TrialRows{read_row(r, i, 1, kTrialColumns), {}, {}});
+    trials.push_back(TrialRows{pg_read_row(r, i, 1, kTrialColumns), {}, {}});
   }
   const std::vector<PgParam> p{pg_text(session_id), pg_text(from_position)};
   const PgResult ts =
@@ -243,14 +243,14 @@ std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id,
                   "WHERE t.session_id = $1 AND t.position >= $2 ORDER BY ts.trial_id, ts.tumor COLLATE \"C\"",
               p);
   for (int i = 0; i < ts.rows(); ++i) {
-    trials[index.at(ts.integer(i, 0))].tumor_scores.push_back(read_row(ts, i, 1, kTumorScoreColumns));
+    trials[index.at(ts.integer(i, 0))].tumor_scores.push_back(pg_read_row(ts, i, 1, kTumorScoreColumns));
   }
   const PgResult mk = db.exec("SELECT m.trial_id, " + column_list(kMarkColumns, "m.") +
                                   " FROM marks m JOIN trials t ON t.id = m.trial_id "
                                   "WHERE t.session_id = $1 AND t.position >= $2 ORDER BY m.trial_id, m.mark",
                               p);
   for (int i = 0; i < mk.rows(); ++i)
-    trials[index.at(mk.integer(i, 0))].marks.push_back(read_row(mk, i, 1, kMarkColumns));
+    trials[index.at(mk.integer(i, 0))].marks.push_back(pg_read_row(mk, i, 1, kMarkColumns));
   return trials;
 }
 

@@ -20,7 +20,7 @@ namespace palprig {
 
 namespace {
 
-SqlValue finite_or_null(double x) {
+SqlValue finite_or_sql_null(double x) {
   if (std::isfinite(x)) return x;
   return std::monostate{};
 }
@@ -76,8 +76,8 @@ TrialRows trial_rows_of(const TrialRecord& r) {
   t[11] = std::int64_t{r.answered ? 1 : 0};
   t[14] = r.onset_s;
   t[22] = utc_now_text();
-  t[kTrialStimulusEnd] = finite_or_null(r.stimulus_end_s);
-  t[kTrialStimulusReached] = finite_or_null(r.stimulus_reached_s);
+  t[kTrialStimulusEnd] = finite_or_sql_null(r.stimulus_end_s);
+  t[kTrialStimulusReached] = finite_or_sql_null(r.stimulus_reached_s);
   if (r.answered && r.confidence) t[kTrialConfidence] = std::int64_t{*r.confidence};
   if (discrimination) {
     t[6] = r.combination_label;
@@ -86,7 +86,7 @@ TrialRows trial_rows_of(const TrialRecord& r) {
     t[10] = trial_rows::flags_text(r.truth);
   }
   for (int f = 0; f < kFingerCount; ++f) {
-    t[static_cast<std::size_t>(15 + f)] = finite_or_null(r.felt_kPa[static_cast<std::size_t>(f)]);
+    t[static_cast<std::size_t>(15 + f)] = finite_or_sql_null(r.felt_kPa[static_cast<std::size_t>(f)]);
   }
   if (r.answered) {
     t[13] = r.response_time_s;

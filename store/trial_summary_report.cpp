@@ -1,6 +1,7 @@
 #include "store/trial_summary_report.hpp"
 
 #include "core/input_error.hpp"
+#include "store/export_text.hpp"
 #include "store/pulse_store.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "store/threshold_summary.hpp"
@@ -28,13 +29,6 @@ std::string fixed(double x, int decimals) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
   return buf;
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 nlohmann::ordered_json number_or_null(double x) {
@@ -102,7 +96,7 @@ std::string summary_csv(const TrialSummary& s) {
   out << ",rt_from_reached_mean_s,rt_from_reached_sd_s";  // last: the earlier columns keep their places
   out << "\n";
   for (const SummaryRow& r : s.rows) {
-    for (const auto& k : r.key) out << csv_field(k) << ",";
+    for (const auto& k : r.key) out << export_text::csv_field(k) << ",";
     out << r.trials << "," << r.unanswered << "," << r.counts.tp << "," << r.counts.fn << ","
         << (r.negatives_counted ? std::to_string(r.counts.tn) : std::string("NA")) << "," << r.counts.fp;
     for (const auto& nm : measures_of(r)) {
