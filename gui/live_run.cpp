@@ -189,7 +189,10 @@ void LiveRun::stop() {
 RigLifecycle LiveRun::state() const noexcept {
   if (fault_pending_) return RigLifecycle::fault;
   if (stopped_) return RigLifecycle::stopped;
-  if (!loop_running_) return rig_->leased() ? RigLifecycle::lent : RigLifecycle::stopped;
+  // A loop that gave way has ended (and given the rig back from its thread) before the GUI
+  // thread's poll joins it: it no longer drives the rig.
+  if (!loop_running_ || loop_done_.load(std::memory_order_acquire))
+    return rig_->leased() ? RigLifecycle::lent : RigLifecycle::stopped;
   if (!control_->vent_held()) return RigLifecycle::armed;
   return vented_by_operator_ ? RigLifecycle::vented : RigLifecycle::connected;
 }
