@@ -18,7 +18,7 @@ double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 }  // namespace
 
 nlohmann::json to_json(const SimulatedObserverModel& m) {
-  return {
+  nlohmann::json j = {
       {"kind", "model observer"},
       {"seed", m.seed},
       {"noise_kPa", m.noise_kPa},
@@ -30,6 +30,12 @@ nlohmann::json to_json(const SimulatedObserverModel& m) {
       {"detection_noise_kPa", m.detection_noise_kPa},
       {"mark_noise_mm", m.mark_noise_mm},
   };
+  if (m.skill.learns()) {
+    j["learning"] = {{"initial_skill", m.skill.pilot.initial_skill},
+                     {"learning_rate_per_case", m.skill.pilot.learning_rate_per_case},
+                     {"cases_practised_before", m.skill.cases_practised}};
+  }
+  return j;
 }
 
 int confidence_from_margin(double margin_in_noise_units, int levels) noexcept {
@@ -53,8 +59,9 @@ SimulatedParticipant::SimulatedParticipant(const SimulatedObserverModel& model, 
                                            const Scene* scene, FingerLayout layout)
     : model_(model), protocol_(protocol), scene_(scene), layout_(layout), random_(model.seed) {}
 
-void SimulatedParticipant::trial_started(const PlannedTrial&, const Condition& condition, double t_s) {
+void SimulatedParticipant::trial_started(const PlannedTrial& trial, const Condition& condition, double t_s) {
   mode_ = condition.mode;
+  position_ = trial.position;
   answered_ = false;
   felt_sum_.fill(0.0);
   felt_count_.fill(0);
@@ -154,8 +161,10 @@ Response SimulatedParticipant::discrimination_answer() {
 
 Response SimulatedParticipant::localisation_answer() {
   Response r;
+  // A learning trainee reports what it felt with the probability of its skill at this case.
+  const double skill = model_.skill.learns() ? model_.skill.at(position_) : 1.0;
   for (const Candidate& c : candidates_) {
-    const double p = normal_cdf((c.peak_kPa - model_.detection_threshold_kPa) / model_.detection_noise_kPa);
+    const double p = skill * normal_cdf((c.peak_kPa - model_.detection_threshold_kPa) / model_.detection_noise_kPa);
     if (random_.uniform() < p) {
       r.marks.push_back(
           {c.x_mm + model_.mark_noise_mm * random_.normal(), c.y_mm + model_.mark_noise_mm * random_.normal()});

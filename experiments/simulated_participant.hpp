@@ -26,6 +26,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiments/observer_skill.hpp"
 #include "experiments/participant.hpp"
 #include "study/random_source.hpp"
 #include "experiments/shifted_input.hpp"
@@ -53,6 +54,7 @@ struct SimulatedObserverModel {
   double raster_speed_mm_per_s = 40.0;
   double raster_row_step_mm = 20.0;  // fingers pass 16 mm apart: paths 4 and 16 mm apart
   double press_force_N = 2.0;
+  ObserverSkill skill;  // a learning pilot trainee (experiments/observer_skill.hpp); default: skilled
 };
 
 nlohmann::json to_json(const SimulatedObserverModel& m);
@@ -70,10 +72,11 @@ class SimulatedParticipant final : public Participant {
                        FingerLayout layout = {});
 
   bool ready(double) override { return true; }
+  void scene_presented(const Scene& scene) override { scene_ = &scene; }
   void trial_started(const PlannedTrial& trial, const Condition& condition, double t_s) override;
   void feel(const FeltSample& sample) override;
   std::optional<Response> answer(double t_s) override;
-  InputSource* pen() override { return scene_ ? &pen_ : nullptr; }
+  InputSource* pen() override { return protocol_.task == TaskKind::localisation ? &pen_ : nullptr; }
 
  private:
   struct Candidate {
@@ -91,6 +94,7 @@ class SimulatedParticipant final : public Participant {
   ShiftedInput pen_;
 
   PresentationMode mode_ = PresentationMode::simultaneous;
+  int position_ = 0;  // the trial's position: the learner's case index
   double answer_at_s_ = 0;
   bool answered_ = false;
   std::array<double, kFingerCount> felt_sum_{};

@@ -114,6 +114,7 @@ bool ExperimentPage::begin(bool resume) {
 }
 
 void ExperimentPage::on_started(const SessionStart& s) {
+  screen_->set_session_seed(s.seed);
   resume_note_->clear();
   offered_session_.reset();
   // The order being run, as stored (a new participant's number is known only now).

@@ -140,7 +140,8 @@ void MainWindow::build_live_page() {
     tabs_->removeTab(index);
     delete live_page_;
   }
-  live_page_ = new LivePage(*run_);
+  // The bundled phantom is the demo (its tumors shown); any other scene is a case to palpate.
+  live_page_ = new LivePage(*run_, files_.scene_path.empty());
   // VENT during a session vents the session's rig: the session pauses (it vents and holds the
   // trial, as Esc does).
   connect(live_page_->rig_panel(), &RigPanel::vented, this, [this] {
