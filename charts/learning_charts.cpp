@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cstdio>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -154,6 +155,9 @@ Chart cusum_chart(const TrainingCurves& curves, stats::CusumChart which, const s
   chart.x_min = 0.0;
   chart.x_max = last;
   chart.y_min = 0.0;
+  double top = limit.limit;
+  for (const auto& p : points) top = std::max(top, p.value);
+  chart.y_max = 1.12 * top;  // the limit below the frame, not on it
   return chart;
 }
 

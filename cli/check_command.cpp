@@ -119,10 +119,11 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
     // What the pilot section predicts for a simulated trainee (train next --participant sim:SEED).
     const auto first = predict_pilot_sessions(c, 200);
     std::string at;
-    for (std::size_t i = 1; i < first.size(); ++i)
-      at += (at.empty() ? "" : ", ") + (first[i] ? std::to_string(*first[i]) : std::string("not within 200"));
-    if (!at.empty()) out += "; a pilot trainee is expected to reach levels 2.." + std::to_string(first.size()) +
-                            " at sessions " + at;
+    for (std::size_t i = 1; i < first.size(); ++i) {
+      at += (at.empty() ? "" : ", ") + std::string("level ") + std::to_string(i + 1) + " at " +
+            (first[i] ? "session " + std::to_string(*first[i]) : std::string("none of 200 sessions"));
+    }
+    if (!at.empty()) out += "; a pilot trainee who would find every tumor once skilled reaches " + at;
     return out;
   }
   if (kind == "trace") {

@@ -177,14 +177,18 @@ void register_next(CLI::App* train) {
       for (const auto& s : out.benchmark.shortfalls) why += (why.empty() ? "" : "; ") + s;
       std::cout << "  benchmark not met: " << why;
     }
-    if (out.after.level > out.plan.level) {
+    if (out.before.level != out.plan.level) {
+      // A level other than the trainee's own (--level): their standing does not move.
+      std::cout << "; a session at another level than theirs (" << level_text(curriculum, out.after.level) << ")\n";
+    } else if (out.after.level > out.plan.level) {
       std::cout << "; level '" << level.name << "' passed after session " << out.after.sessions << "\n";
-      std::cout << "  next: level " << level_text(curriculum, out.after.level) << "\n";
-    } else if (out.after.level == out.plan.level) {
+      if (out.after.finished)
+        std::cout << "  every level of '" << curriculum.name << "' passed\n";
+      else
+        std::cout << "  next: level " << level_text(curriculum, out.after.level) << "\n";
+    } else {
       std::cout << " (" << out.after.consecutive_met << " of " << level.benchmark.consecutive_sessions
                 << " sessions in a row at level '" << level.name << "')\n";
-    } else {
-      std::cout << "\n";
     }
   });
 }

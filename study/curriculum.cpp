@@ -49,7 +49,11 @@ void read_cases(const JsonObject& level, const std::filesystem::path& base_dir, 
       const std::filesystem::path p = list[i].get<std::string>();
       const std::filesystem::path file = p.is_absolute() ? p : base_dir / p;
       // Loaded now, so a missing or bad scene is refused with the curriculum, not at a session.
-      (void)load_scene_file(file);
+      try {
+        (void)load_scene_file(file);
+      } catch (const InputError& e) {
+        throw InputError(cases.file(), at, std::string("a scene file palprig reads (") + e.what() + ")");
+      }
       out.scenes.push_back(file);
     }
   }

@@ -272,8 +272,8 @@ PlannedTrainingSession plan_training_session(const Curriculum& curriculum, int l
     p["repetitions"] = 1;
     p["randomisation"] = {{"scheme", "fixed"}};
     p["timing"] = {{"max_present_s", level.time_limit_s}, {"response_timeout_s", 5.0}, {"inter_trial_s", 2.0}};
+    p["feedback"] = feedback_word(level.feedback);  // pulse protocols tell nothing (they have no feedback)
   }
-  p["feedback"] = feedback_word(level.feedback);
   return plan;
 }
 
@@ -282,7 +282,8 @@ double pilot_skill(const CurriculumPilot& pilot, int cases_practised) {
   return 1.0 - (1.0 - pilot.initial_skill) * std::exp(-pilot.learning_rate_per_case * n);
 }
 
-std::vector<std::optional<int>> predict_pilot_sessions(const Curriculum& curriculum, int max_sessions) {
+std::vector<std::optional<int>> predict_pilot_sessions(const Curriculum& curriculum, int max_sessions,
+                                                       const std::vector<double>& expert_found) {
   std::vector<std::optional<int>> first(curriculum.levels.size());
   if (first.empty()) return first;
   first[0] = 1;
@@ -292,6 +293,7 @@ std::vector<std::optional<int>> predict_pilot_sessions(const Curriculum& curricu
     double expected = 0;
     for (int i = 0; i < l.cases_per_session; ++i) expected += pilot_skill(curriculum.pilot, practised + i);
     expected /= l.cases_per_session;
+    if (static_cast<std::size_t>(level) < expert_found.size()) expected *= expert_found[static_cast<std::size_t>(level)];
     practised += l.cases_per_session;
     const bool met = !l.benchmark.found_min || expected >= *l.benchmark.found_min;
     run = met ? run + 1 : 0;

@@ -104,8 +104,10 @@ std::string training_protocol_name(const Curriculum& curriculum, int level);
 double pilot_skill(const CurriculumPilot& pilot, int cases_practised);
 // The sessions a pilot trainee of the curriculum is expected to need: the 1-based session at
 // which it first trains at each level (none: not within `max_sessions`), from its expected
-// tumors found per session (its skill averaged over the session's cases, against found_min; the
-// other measures taken as met).
-std::vector<std::optional<int>> predict_pilot_sessions(const Curriculum& curriculum, int max_sessions);
+// tumors found per session: its skill averaged over the session's cases times what a fully
+// skilled trainee finds at the level (`expert_found`, per level; 1 where not given: every
+// tumor), against found_min; the other measures taken as met.
+std::vector<std::optional<int>> predict_pilot_sessions(const Curriculum& curriculum, int max_sessions,
+                                                       const std::vector<double>& expert_found = {});
 
 }  // namespace palprig
