@@ -23,9 +23,10 @@ std::string fixed(std::optional<double> x, int decimals) {
   return buf;
 }
 
+// "level 2 of 3 'medium tumors'", or "every level passed".
 std::string level_text(const Curriculum& c, int level) {
   if (level >= static_cast<int>(c.levels.size())) return "every level passed";
-  return std::to_string(level + 1) + " of " + std::to_string(c.levels.size()) + " '" +
+  return "level " + std::to_string(level + 1) + " of " + std::to_string(c.levels.size()) + " '" +
          c.levels[static_cast<std::size_t>(level)].name + "'";
 }
 
@@ -129,6 +130,9 @@ void register_next(CLI::App* train) {
                   "sim:SEED: a simulated trainee answers, learning as the curriculum's pilot section says (a pilot "
                   "of the curriculum); default: the trainee themself, who palpates in the window (palprig gui)");
   sub->add_option("--level", a->level, "Run this level instead of the present one (an expert's session for a benchmark)");
+  sub->add_option("--sim-skill", a->request.simulated_skill,
+                  "With sim:SEED: a simulated trainee of this fixed skill 0..1 instead of the pilot's (1: a simulated "
+                  "expert)");
   sub->add_option("--journal", a->request.journal_file, "With a postgresql:// store: the bench's local journal");
   sub->add_option("--rig", a->request.rig_file, "Rig file (JSON); default: the simulated rig data/rigs/simulated.json");
   sub->add_option("--cal", a->request.calibration_file, "Calibration file (JSON); default: paper 002's models");
@@ -185,7 +189,7 @@ void register_next(CLI::App* train) {
       if (out.after.finished)
         std::cout << "  every level of '" << curriculum.name << "' passed\n";
       else
-        std::cout << "  next: level " << level_text(curriculum, out.after.level) << "\n";
+        std::cout << "  next: " << level_text(curriculum, out.after.level) << "\n";
     } else {
       std::cout << " (" << out.after.consecutive_met << " of " << level.benchmark.consecutive_sessions
                 << " sessions in a row at level '" << level.name << "')\n";
@@ -223,7 +227,7 @@ void register_status(CLI::App* train) {
         std::cout << j.dump(2) << "\n";
         return;
       }
-      std::cout << "trainee " << t.trainee << ", '" << c.name << "': level " << level_text(c, t.standing.level)
+      std::cout << "trainee " << t.trainee << ", '" << c.name << "': " << level_text(c, t.standing.level)
                 << ", " << cli::counted(t.standing.sessions, "session", "sessions") << "\n";
       std::printf("  %-8s %-20s %-6s %-12s %-10s %-8s %-10s %s\n", "session", "level", "cases", "found", "marks/case",
                   "s/case", "normal", "benchmark");
@@ -260,11 +264,11 @@ void register_status(CLI::App* train) {
     }
     std::cout << "curriculum '" << c.name << "': " << cli::counted(static_cast<long long>(all.size()), "trainee", "trainees")
               << "\n";
-    std::printf("  %-12s %-28s %-9s %-9s %s\n", "trainee", "level", "sessions", "at level", "in a row");
+    std::printf("  %-12s %-34s %-9s %-9s %s\n", "trainee", "standing", "sessions", "at level", "in a row");
     for (const auto& t : all) {
       const std::string run = t.standing.finished ? "-" : std::to_string(t.standing.consecutive_met) + " of " +
           std::to_string(c.levels[static_cast<std::size_t>(t.standing.level)].benchmark.consecutive_sessions);
-      std::printf("  %-12s %-28s %-9d %-9d %s\n", t.trainee.c_str(), level_text(c, t.standing.level).c_str(),
+      std::printf("  %-12s %-34s %-9d %-9d %s\n", t.trainee.c_str(), level_text(c, t.standing.level).c_str(),
                   t.standing.sessions, t.standing.sessions_at_level, run.c_str());
     }
   });

@@ -104,6 +104,9 @@ TrainingOutcome run_training_session(const TrainingRequest& r, const TrainingFro
                                      const std::atomic<int>* stop, const std::atomic<bool>* pause) {
   const Curriculum curriculum = load_curriculum(r.curriculum_file);
   std::optional<std::uint64_t> sim_seed;
+  if (r.simulated_skill && (r.participant.empty() || !(*r.simulated_skill >= 0 && *r.simulated_skill <= 1))) {
+    throw InputError("command line", "sim_skill", "a skill 0..1 for a simulated trainee (with participant sim:SEED)");
+  }
   if (!r.participant.empty()) {
     std::uint64_t seed = 0;
     if (!parse_simulated_participant(r.participant, seed)) {
@@ -211,7 +214,8 @@ TrainingOutcome run_training_session(const TrainingRequest& r, const TrainingFro
   request.resume = unfinished.has_value();
   request.speed = r.speed;
   request.simulated_seed = sim_seed;
-  request.model.skill = ObserverSkill{curriculum.pilot, cases_practised};
+  request.model.skill = r.simulated_skill ? ObserverSkill{CurriculumPilot{*r.simulated_skill, 0.0}, 0}
+                                          : ObserverSkill{curriculum.pilot, cases_practised};
   request.person_palpates = r.person_palpates;
   request.tick_observer = r.tick_observer;
 

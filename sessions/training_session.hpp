@@ -42,6 +42,9 @@ struct TrainingRequest {
   // "sim:SEED": a simulated trainee answers (a pilot), learning as the curriculum's pilot says;
   // empty: the trainee themself (a person, through the front end's person factory).
   std::string participant;
+  // With sim:SEED: a fixed skill instead of the pilot's rising one (1: fully skilled, a simulated
+  // expert for a benchmark).
+  std::optional<double> simulated_skill;
   std::optional<std::string> level;  // run this level instead of the present one (experts, a benchmark)
   std::filesystem::path rig_file, calibration_file, telemetry_file;
   double speed = 0;  // simulated trainee: 0 as fast as simulated time allows, else times real time

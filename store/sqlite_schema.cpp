@@ -161,8 +161,12 @@ void migrate_to_5(Database& db) {
     column.reset();
     if (!present) db.exec(std::string("ALTER TABLE trials ADD COLUMN ") + spec);
   }
-  const std::string schema = kSchema;
-  db.exec(schema.substr(schema.find("CREATE TABLE trainees")));
+  // The training tables as a new file has them (a file that already has them, e.g. set back to an
+  // older version number by hand, keeps them).
+  std::string tables = std::string(kSchema).substr(std::string(kSchema).find("CREATE TABLE trainees"));
+  for (std::size_t at = tables.find("CREATE TABLE "); at != std::string::npos; at = tables.find("CREATE TABLE ", at + 1))
+    tables.replace(at, 13, "CREATE TABLE IF NOT EXISTS ");
+  db.exec(tables);
   db.exec("PRAGMA user_version = 5");
 }
 

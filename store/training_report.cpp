@@ -31,12 +31,13 @@ nlohmann::ordered_json optional_json(const std::optional<double>& x) {
   return x ? nlohmann::ordered_json(*x) : nlohmann::ordered_json(nullptr);
 }
 
-std::string signals_text(const std::vector<stats::CusumPoint>& points) {
+// "at case 14, 30", or `none`.
+std::string signals_text(const std::vector<stats::CusumPoint>& points, const std::string& none) {
   std::string s;
   for (const auto& p : points) {
     if (p.signal) s += (s.empty() ? "" : ", ") + std::to_string(p.case_number);
   }
-  return s.empty() ? "none" : "case " + s;
+  return s.empty() ? none : "at case " + s;
 }
 
 nlohmann::ordered_json limit_json(const stats::CusumLimit& l) {
@@ -85,8 +86,8 @@ std::string learning_report_text(const Curriculum& curriculum, const std::vector
       limits_said = true;
     }
     out << "trainee " << t.trainee << ": " << c.level.size() << " sessions, " << c.case_failures.size()
-        << " cases; LC-CUSUM competence declared at " << signals_text(c.lc_cusum) << "; CUSUM alarms at "
-        << signals_text(c.cusum) << "\n";
+        << " cases; LC-CUSUM: competence declared " << signals_text(c.lc_cusum, "not yet") << "; CUSUM: alarm "
+        << signals_text(c.cusum, "none") << "\n";
     char head[256];
     std::snprintf(head, sizeof head, "  %-8s %-6s %-22s %-12s %-10s %-14s %s\n", "session", "level",
                   "found [95% CI]", "marks/case", "s/case", "normal called", "benchmark");

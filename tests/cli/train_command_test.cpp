@@ -50,7 +50,7 @@ TEST(TrainCommand, APilotTraineeTrainsAndTheTrainerReadsTheirCurves) {
   EXPECT_NE(r.out.find("level 'first' passed after session 1"), std::string::npos) << r.out;
   r = run_palprig({"train", "status", "--curriculum", c, "--db", db});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("P1           2 of 2 'second'"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("P1           level 2 of 2 'second'"), std::string::npos) << r.out;
   r = run_palprig({"train", "status", "--curriculum", c, "--db", db, "--trainee", "P1", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto status = nlohmann::json::parse(r.out);

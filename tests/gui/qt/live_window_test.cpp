@@ -441,6 +441,8 @@ class LiveWindowTest : public QObject {
     w.window->resize(1280, 800);
     w.window->show();
     MainWindow& win = *w.window;
+    win.activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(&win));  // a window-wide shortcut needs the active window
     SceneView* view = win.live_page()->scene_view();
     QVERIFY(!win.live_page()->tumor_outlines()->isChecked());
     QVERIFY(!view->tumors_visible());
@@ -455,14 +457,16 @@ class LiveWindowTest : public QObject {
       if (QLineF(f, QPointF(at)).length() < 60) QSKIP("a finger is drawn over the tumor");
     }
     QCOMPARE(colour_at(), QColor(222, 184, 160));
-    // Ctrl+T, window-wide: outlines and stiffness colours for the debriefing.
-    QTest::keyClick(&win, Qt::Key_T, Qt::ControlModifier);
+    // Ctrl+T, window-wide (pressed here on the checkbox, as the Esc test presses Esc on it):
+    // outlines and stiffness colours for the debriefing.
+    win.live_page()->tumor_outlines()->setFocus();
+    QTest::keyClick(win.live_page()->tumor_outlines(), Qt::Key_T, Qt::ControlModifier);
     QVERIFY(win.live_page()->tumor_outlines()->isChecked());
     QVERIFY(view->tumors_visible());
     QVERIFY(view->map_visible());
     QVERIFY(colour_at() != QColor(222, 184, 160));
     // And hidden again.
-    QTest::keyClick(&win, Qt::Key_T, Qt::ControlModifier);
+    QTest::keyClick(win.live_page()->tumor_outlines(), Qt::Key_T, Qt::ControlModifier);
     QVERIFY(!view->map_visible());
     // The bundled demo phantom (no --scene) is the experimenter's view: shown from the start.
     Window demo = open_window(dir);
