@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.hpp"  // RigFault: the rig faulted (backend error, safety fault), every channel vented
+
 #include "inputs/input_source.hpp"
 #include "rigs/rig_backend.hpp"
 #include "controller/telemetry.hpp"
