@@ -118,11 +118,12 @@ Chart cusum_chart(const TrainingCurves& curves, stats::CusumChart which, const s
   const auto& points = learning ? curves.lc_cusum : curves.cusum;
   const stats::CusumLimit& limit = learning ? curves.lc_cusum_limit : curves.cusum_limit;
   Chart chart;
-  chart.title = std::string(learning ? "LC-CUSUM (competence declared at the limit): "
-                                     : "CUSUM (an alarm at the limit): ") +
-                trainee;
+  chart.title =
+      std::string(learning ? "LC-CUSUM (competence declared at the limit): " : "CUSUM (an alarm at the limit): ") +
+      trainee;
   chart.x_label = "case";
-  chart.y_label = learning ? "S (log likelihood, competent vs not)" : "C (log likelihood, unacceptable vs acceptable)";
+  // Short enough for the Training tab's chart at 1280 x 800; the title says which hypotheses.
+  chart.y_label = learning ? "S (log likelihood ratio)" : "C (log likelihood ratio)";
   ChartSeries value;
   value.label = learning ? "LC-CUSUM" : "CUSUM";
   value.color_rgb = kCurveRgb;

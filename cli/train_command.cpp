@@ -35,8 +35,8 @@ std::string scores_line(const SessionScores& s) {
                      std::to_string(s.targets()) + "), false marks per case " + fixed(s.false_marks_per_case(), 2) +
                      ", " + fixed(s.time_per_case_s(), 1) + " s per case";
   if (s.normal_cases() > 0) {
-    line += ", normal cases called normal " + std::to_string(s.normal_called()) + " of " +
-            std::to_string(s.normal_cases());
+    line +=
+        ", normal cases called normal " + std::to_string(s.normal_called()) + " of " + std::to_string(s.normal_cases());
   }
   return line;
 }
@@ -65,7 +65,8 @@ class TrainReport final : public SessionListener {
     session_ = s.session_id;
   }
   void trial_committed(const TrialRecord& t, int total) override {
-    if (simulated_ && !quiet_) std::cout << case_line(case_result(t), t.planned.position + 1, total) << "\n" << std::flush;
+    if (simulated_ && !quiet_)
+      std::cout << case_line(case_result(t), t.planned.position + 1, total) << "\n" << std::flush;
   }
   void trial_committed(const PulseTrialRecord& t, int total) {
     if (simulated_ && !quiet_) std::cout << case_line(case_result(t), t.position + 1, total) << "\n" << std::flush;
@@ -123,13 +124,15 @@ void register_next(CLI::App* train) {
   auto* sub = train->add_subcommand(
       "next", "Run a trainee's next session at their present level (or continue the one they left unfinished)");
   sub->add_option("--curriculum", a->request.curriculum_file, "Curriculum file (JSON)")->required();
-  sub->add_option("--trainee", a->request.trainee, "The trainee's code (enrolled with palprig train enrol)")->required();
+  sub->add_option("--trainee", a->request.trainee, "The trainee's code (enrolled with palprig train enrol)")
+      ->required();
   sub->add_option("--db", a->request.store_location, "Trial store: an SQLite file or postgresql://user@host/db")
       ->required();
   sub->add_option("--participant", a->request.participant,
                   "sim:SEED: a simulated trainee answers, learning as the curriculum's pilot section says (a pilot "
                   "of the curriculum); default: the trainee themself, who palpates in the window (palprig gui)");
-  sub->add_option("--level", a->level, "Run this level instead of the present one (an expert's session for a benchmark)");
+  sub->add_option("--level", a->level,
+                  "Run this level instead of the present one (an expert's session for a benchmark)");
   sub->add_option("--sim-skill", a->request.simulated_skill,
                   "With sim:SEED: a simulated trainee of this fixed skill 0..1 instead of the pilot's (1: a simulated "
                   "expert)");
@@ -143,6 +146,14 @@ void register_next(CLI::App* train) {
   sub->add_flag("--quiet", a->quiet, "Simulated trainee: no line per case");
   sub->callback([a] {
     TrainingRequest request = a->request;
+    if (request.participant.empty()) {
+      // A trainee palpates with the pen, which only the window reads: refused before anything.
+      throw InputError("command line", "participant",
+                       "sim:SEED at the terminal (a simulated trainee); the trainee themself palpates in the window: "
+                       "palprig gui --curriculum " +
+                           request.curriculum_file.string() + " --db " + request.store_location + " --participant " +
+                           request.trainee);
+    }
     if (!a->level.empty()) request.level = a->level;
     if (request.rig_file.empty()) request.rig_file = cli::data_dir() / "rigs" / "simulated.json";
     TrainReport report(a->quiet);
@@ -153,10 +164,9 @@ void register_next(CLI::App* train) {
     front.planned = [&](const TrainingPlanView& p) {
       std::string cases;
       for (const auto& c : p.cases) cases += (cases.empty() ? "" : ", ") + c;
-      std::cout << "palprig train: " << p.trainee << ", '" << p.curriculum << "' level "
-                << (p.level + 1) << " '" << p.level_name << "', session " << p.session_number
-                << (p.resumed ? " (continued)" : "") << ", " << cli::counted(static_cast<long long>(p.cases.size()), "case", "cases")
-                << ": " << cases << "\n"
+      std::cout << "palprig train: " << p.trainee << ", '" << p.curriculum << "' level " << (p.level + 1) << " '"
+                << p.level_name << "', session " << p.session_number << (p.resumed ? " (continued)" : "") << ", "
+                << cli::counted(static_cast<long long>(p.cases.size()), "case", "cases") << ": " << cases << "\n"
                 << std::flush;
     };
     cli::install_stop_signals();
@@ -213,8 +223,11 @@ void register_status(CLI::App* train) {
     if (!a->trainee.empty()) {
       const TraineeStanding t = trainee_standing(a->db, c, a->trainee);
       if (a->json) {
-        nlohmann::ordered_json j{{"trainee", t.trainee}, {"curriculum", c.name}, {"level", t.standing.level},
-                                 {"finished", t.standing.finished}, {"sessions", nlohmann::ordered_json::array()}};
+        nlohmann::ordered_json j{{"trainee", t.trainee},
+                                 {"curriculum", c.name},
+                                 {"level", t.standing.level},
+                                 {"finished", t.standing.finished},
+                                 {"sessions", nlohmann::ordered_json::array()}};
         for (std::size_t i = 0; i < t.sessions.size(); ++i) {
           const auto& r = t.sessions[i];
           j["sessions"].push_back({{"session", i + 1},
@@ -227,8 +240,8 @@ void register_status(CLI::App* train) {
         std::cout << j.dump(2) << "\n";
         return;
       }
-      std::cout << "trainee " << t.trainee << ", '" << c.name << "': " << level_text(c, t.standing.level)
-                << ", " << cli::counted(t.standing.sessions, "session", "sessions") << "\n";
+      std::cout << "trainee " << t.trainee << ", '" << c.name << "': " << level_text(c, t.standing.level) << ", "
+                << cli::counted(t.standing.sessions, "session", "sessions") << "\n";
       std::printf("  %-8s %-20s %-6s %-12s %-10s %-8s %-10s %s\n", "session", "level", "cases", "found", "marks/case",
                   "s/case", "normal", "benchmark");
       for (std::size_t i = 0; i < t.sessions.size(); ++i) {
@@ -252,22 +265,26 @@ void register_status(CLI::App* train) {
     if (a->json) {
       nlohmann::ordered_json j = nlohmann::ordered_json::array();
       for (const auto& t : all) {
-        j.push_back({{"trainee", t.trainee},
-                     {"level", t.standing.level},
-                     {"level_name", t.standing.finished ? "" : c.levels[static_cast<std::size_t>(t.standing.level)].name},
-                     {"finished", t.standing.finished},
-                     {"sessions", t.standing.sessions},
-                     {"consecutive_met", t.standing.consecutive_met}});
+        j.push_back(
+            {{"trainee", t.trainee},
+             {"level", t.standing.level},
+             {"level_name", t.standing.finished ? "" : c.levels[static_cast<std::size_t>(t.standing.level)].name},
+             {"finished", t.standing.finished},
+             {"sessions", t.standing.sessions},
+             {"consecutive_met", t.standing.consecutive_met}});
       }
       std::cout << j.dump(2) << "\n";
       return;
     }
-    std::cout << "curriculum '" << c.name << "': " << cli::counted(static_cast<long long>(all.size()), "trainee", "trainees")
-              << "\n";
+    std::cout << "curriculum '" << c.name
+              << "': " << cli::counted(static_cast<long long>(all.size()), "trainee", "trainees") << "\n";
     std::printf("  %-12s %-34s %-9s %-9s %s\n", "trainee", "standing", "sessions", "at level", "in a row");
     for (const auto& t : all) {
-      const std::string run = t.standing.finished ? "-" : std::to_string(t.standing.consecutive_met) + " of " +
-          std::to_string(c.levels[static_cast<std::size_t>(t.standing.level)].benchmark.consecutive_sessions);
+      const std::string run =
+          t.standing.finished
+              ? "-"
+              : std::to_string(t.standing.consecutive_met) + " of " +
+                    std::to_string(c.levels[static_cast<std::size_t>(t.standing.level)].benchmark.consecutive_sessions);
       std::printf("  %-12s %-34s %-9d %-9d %s\n", t.trainee.c_str(), level_text(c, t.standing.level).c_str(),
                   t.standing.sessions, t.standing.sessions_at_level, run.c_str());
     }
@@ -282,7 +299,8 @@ void register_benchmark(CLI::App* train) {
   };
   auto a = std::make_shared<Args>();
   auto* sub = train->add_subcommand(
-      "benchmark", "A level's proficiency benchmark from experts' completed sessions at that level (mean or percentile)");
+      "benchmark",
+      "A level's proficiency benchmark from experts' completed sessions at that level (mean or percentile)");
   sub->add_option("--curriculum", a->curriculum, "Curriculum file (JSON)")->required();
   sub->add_option("--db", a->db, "Trial store holding the experts' sessions")->required();
   sub->add_option("--level", a->level, "The level's name")->required();
@@ -301,8 +319,10 @@ void register_benchmark(CLI::App* train) {
     if (b.benchmark.found_min) j["found_min"] = std::round(*b.benchmark.found_min * 1000) / 1000;
     if (b.benchmark.false_marks_per_case_max)
       j["false_marks_per_case_max"] = std::round(*b.benchmark.false_marks_per_case_max * 1000) / 1000;
-    if (b.benchmark.time_per_case_max_s) j["time_per_case_max_s"] = std::round(*b.benchmark.time_per_case_max_s * 10) / 10;
-    if (b.benchmark.normal_called_min) j["normal_called_min"] = std::round(*b.benchmark.normal_called_min * 1000) / 1000;
+    if (b.benchmark.time_per_case_max_s)
+      j["time_per_case_max_s"] = std::round(*b.benchmark.time_per_case_max_s * 10) / 10;
+    if (b.benchmark.normal_called_min)
+      j["normal_called_min"] = std::round(*b.benchmark.normal_called_min * 1000) / 1000;
     j["consecutive_sessions"] = b.benchmark.consecutive_sessions;
     std::cout << "palprig train benchmark: level '" << a->level << "' from "
               << cli::counted(b.sessions, "expert session", "expert sessions") << " ("

@@ -48,6 +48,7 @@ bool is_simulated_code(const std::string& code) {
 
 bool ExperimentPage::begin(bool resume) {
   if (run_.running()) return false;
+  training_ = false;
   update_plan();
   const ExperimentFields f = fields();
   if (!protocol_ && !pulse_protocol_) {

@@ -94,25 +94,27 @@ std::vector<std::string> case_keys_of(const nlohmann::json& protocol, const std:
     }
     return keys;
   }
-  for (const LocalisationCase& c : parse_protocol(protocol, source, base).localisation.cases) keys.push_back(case_key(c));
+  for (const LocalisationCase& c : parse_protocol(protocol, source, base).localisation.cases)
+    keys.push_back(case_key(c));
   return keys;
 }
 
 }  // namespace
 
-TrainingOutcome run_training_session(const TrainingRequest& r, const TrainingFrontEnd& front,
-                                     const std::atomic<int>* stop, const std::atomic<bool>* pause) {
-  const Curriculum curriculum = load_curriculum(r.curriculum_file);
-  std::optional<std::uint64_t> sim_seed;
+PreparedTraining prepare_training_session(const TrainingRequest& r) {
+  PreparedTraining p;
+  p.curriculum = load_curriculum(r.curriculum_file);
+  const Curriculum& curriculum = p.curriculum;
+  std::optional<std::uint64_t>& sim_seed = p.simulated_seed;
   if (r.simulated_skill && (r.participant.empty() || !(*r.simulated_skill >= 0 && *r.simulated_skill <= 1))) {
     throw InputError("command line", "sim_skill", "a skill 0..1 for a simulated trainee (with participant sim:SEED)");
   }
   if (!r.participant.empty()) {
     std::uint64_t seed = 0;
     if (!parse_simulated_participant(r.participant, seed)) {
-      throw InputError("command line", "participant",
-                       "sim:SEED (a simulated trainee for a pilot), or none for the trainee themself; got '" +
-                           r.participant + "'");
+      throw InputError(
+          "command line", "participant",
+          "sim:SEED (a simulated trainee for a pilot), or none for the trainee themself; got '" + r.participant + "'");
     }
     sim_seed = seed;
   }
@@ -121,20 +123,20 @@ TrainingOutcome run_training_session(const TrainingRequest& r, const TrainingFro
   std::vector<TrainingSessionRecord> history = store->training_sessions(r.trainee);
   complete_left_behind(*store, curriculum, history);
 
-  TrainingOutcome out;
   const std::vector<TrainingSessionRecord> mine = of_curriculum(history, curriculum.name);
-  out.before = training_standing(curriculum, mine);
-  out.plan.trainee = r.trainee;
-  out.plan.curriculum = curriculum.name;
+  const TrainingStanding before = training_standing(curriculum, mine);
+  TrainingPlanView& plan_view = p.plan;
+  plan_view.trainee = r.trainee;
+  plan_view.curriculum = curriculum.name;
 
   std::map<std::int64_t, std::string> status;
   for (const SessionOverview& s : store->list_sessions()) status[s.id] = s.status;
   // The trainee's unfinished session is continued before any new one.
-  std::optional<TrainingSessionRecord> unfinished;
+  std::optional<TrainingSessionRecord>& unfinished = p.unfinished;
   for (const auto& h : mine) {
     if (!h.completed() && status[h.session_id] == "running") unfinished = h;
   }
-  int cases_practised = 0;
+  int& cases_practised = p.cases_practised;
   std::set<std::string> given;
   for (const auto& h : history) {
     given.insert(h.cases.begin(), h.cases.end());
@@ -142,11 +144,13 @@ TrainingOutcome run_training_session(const TrainingRequest& r, const TrainingFro
       cases_practised += static_cast<int>(h.cases.size());
   }
 
-  const std::filesystem::path curriculum_file = std::filesystem::absolute(r.curriculum_file);
+  p.curriculum_file = std::filesystem::absolute(r.curriculum_file);
+  const std::filesystem::path& curriculum_file = p.curriculum_file;
   if (!unfinished) {
     // A session of the trainee's level started without its training row (the process ended
     // between the two): adopted and continued.
-    const int level = r.level ? level_index(curriculum, *r.level) : std::min<int>(out.before.level, static_cast<int>(curriculum.levels.size()) - 1);
+    const int level = r.level ? level_index(curriculum, *r.level)
+                              : std::min<int>(before.level, static_cast<int>(curriculum.levels.size()) - 1);
     if (const auto who = store->find_participant(r.trainee)) {
       if (const auto id = store->find_unfinished_session(*who, training_protocol_name(curriculum, level))) {
         TrainingSessionRecord adopted;
@@ -162,44 +166,66 @@ TrainingOutcome run_training_session(const TrainingRequest& r, const TrainingFro
     }
   }
 
-  nlohmann::json protocol;
-  std::vector<std::string> keys;
+  nlohmann::json& protocol = p.protocol;
+  std::vector<std::string>& keys = p.keys;
   if (unfinished) {
     const CurriculumLevel* level = level_named(curriculum, unfinished->level_name);
-    out.plan.level = level ? static_cast<int>(level - curriculum.levels.data()) : unfinished->level;
-    out.plan.level_name = unfinished->level_name;
-    out.plan.resumed = true;
+    plan_view.level = level ? static_cast<int>(level - curriculum.levels.data()) : unfinished->level;
+    plan_view.level_name = unfinished->level_name;
+    plan_view.resumed = true;
     protocol = store->protocol_snapshot(unfinished->session_id);
     keys = unfinished->cases;
-    out.plan.session_number = static_cast<int>(mine.size());
+    plan_view.session_number = static_cast<int>(mine.size());
   } else {
-    if (!r.level && out.before.finished) {
+    if (!r.level && before.finished) {
       throw InputError(store->location(), "trainee '" + r.trainee + "'",
                        "a trainee with a level left in '" + curriculum.name + "' (they passed every level after " +
-                           std::to_string(out.before.sessions) + " sessions; --level NAME runs a level again)");
+                           std::to_string(before.sessions) + " sessions; --level NAME runs a level again)");
     }
-    out.plan.level = r.level ? level_index(curriculum, *r.level) : out.before.level;
-    out.plan.level_name = curriculum.levels.at(static_cast<std::size_t>(out.plan.level)).name;
-    out.plan.session_number = static_cast<int>(mine.size()) + 1;
+    plan_view.level = r.level ? level_index(curriculum, *r.level) : before.level;
+    plan_view.level_name = curriculum.levels.at(static_cast<std::size_t>(plan_view.level)).name;
+    plan_view.session_number = static_cast<int>(mine.size()) + 1;
     const PlannedTrainingSession plan =
-        plan_training_session(curriculum, out.plan.level, r.trainee, given, out.plan.session_number);
+        plan_training_session(curriculum, plan_view.level, r.trainee, given, plan_view.session_number);
     protocol = plan.protocol;
     for (const auto& c : plan.cases) keys.push_back(c.key);
   }
-  const CurriculumLevel& level = curriculum.levels.at(static_cast<std::size_t>(out.plan.level));
-  out.plan.pulse = level.cases == LevelCases::generated_pulse;
-  if (out.plan.pulse && is_server_store_location(r.store_location)) {
+  const CurriculumLevel& level = curriculum.levels.at(static_cast<std::size_t>(plan_view.level));
+  plan_view.pulse = level.cases == LevelCases::generated_pulse;
+  if (plan_view.pulse && is_server_store_location(r.store_location)) {
     throw InputError(r.store_location, "`store`",
                      "an SQLite file for curriculum '" + curriculum.name + "': level '" + level.name +
                          "' has pulse cases, whose trials are not stored on the PostgreSQL lab server");
   }
   if (!unfinished) keys = case_keys_of(protocol, curriculum_file.parent_path(), curriculum.source);
-  if (out.plan.pulse) {
-    for (const auto& c : protocol.at("conditions")) out.plan.cases.push_back(c.value("name", std::string()));
+  if (plan_view.pulse) {
+    for (const auto& c : protocol.at("conditions")) plan_view.cases.push_back(c.value("name", std::string()));
   } else {
     for (const auto& c : parse_protocol(protocol, curriculum.source, curriculum_file.parent_path()).localisation.cases)
-      out.plan.cases.push_back(c.name);
+      plan_view.cases.push_back(c.name);
   }
+  return p;
+}
+
+TrainingOutcome run_training_session(const TrainingRequest& r, const TrainingFrontEnd& front,
+                                     const std::atomic<int>* stop, const std::atomic<bool>* pause) {
+  return run_training_session(r, prepare_training_session(r), front, stop, pause);
+}
+
+TrainingOutcome run_training_session(const TrainingRequest& r, const PreparedTraining& p, const TrainingFrontEnd& front,
+                                     const std::atomic<int>* stop, const std::atomic<bool>* pause) {
+  const Curriculum& curriculum = p.curriculum;
+  const std::filesystem::path& curriculum_file = p.curriculum_file;
+  const std::optional<TrainingSessionRecord>& unfinished = p.unfinished;
+  const std::vector<std::string>& keys = p.keys;
+  const nlohmann::json& protocol = p.protocol;
+  const std::optional<std::uint64_t>& sim_seed = p.simulated_seed;
+  const int cases_practised = p.cases_practised;
+  const auto store = open_training_store(r.store_location, TrialStore::Access::read_write);
+  TrainingOutcome out;
+  out.plan = p.plan;
+  out.before = training_standing(curriculum, of_curriculum(store->training_sessions(r.trainee), curriculum.name));
+  const CurriculumLevel& level = curriculum.levels.at(static_cast<std::size_t>(out.plan.level));
   if (front.planned) front.planned(out.plan);
 
   StudySessionRequest request;
@@ -245,9 +271,9 @@ TrainingOutcome run_training_session(const TrainingRequest& r, const TrainingFro
     start = listener.start_;
   }
   if (out.end.completed) {
-    out.scores.cases = start.start_position > 0 ? stored_cases(*store, start.session_id, out.plan.pulse,
-                                                               start.start_position)
-                                                : std::vector<CaseResult>{};
+    out.scores.cases = start.start_position > 0
+                           ? stored_cases(*store, start.session_id, out.plan.pulse, start.start_position)
+                           : std::vector<CaseResult>{};
     out.scores.cases.insert(out.scores.cases.end(), cases.begin(), cases.end());
     out.benchmark = check_benchmark(level.benchmark, out.scores);
     store->complete_training_session(start.session_id, to_json(out.scores), out.benchmark.met);
