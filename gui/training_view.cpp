@@ -17,6 +17,7 @@
 
 #include "charts/learning_charts.hpp"
 #include "gui/chart_view.hpp"
+#include "gui/counted_text.hpp"
 
 namespace palprig::gui {
 
@@ -216,9 +217,9 @@ void TrainingView::reload() {
     curriculum_ = load_curriculum(curriculum_file);
     QStringList levels;
     for (const auto& l : curriculum_->levels) levels << QString::fromStdString(l.name);
-    course_->setText(QString("'%1': %2 levels (%3)")
+    course_->setText(QString("'%1': %2 (%3)")
                          .arg(QString::fromStdString(curriculum_->name))
-                         .arg(curriculum_->levels.size())
+                         .arg(counted(static_cast<int>(curriculum_->levels.size()), "level", "levels"))
                          .arg(levels.join(", ")));
     // A store not made yet has no trainees: enrolling the first one creates it.
     if (!store.empty() && (store.rfind("postgresql:", 0) == 0 || std::filesystem::exists(store)))

@@ -99,7 +99,11 @@ void TrainingView::show_charts() {
   const auto kind = static_cast<stats::CusumChart>(chart_kind_->currentData().toInt());
   curve_->set_chart(charts::learning_curve_chart(*curves_, measure, code),
                     "No completed session with this measure yet.");
-  cusum_->set_chart(charts::cusum_chart(*curves_, kind, code), "No case completed yet.");
+  // Without a case the chart would be its limit line alone over an empty axis.
+  if (curves_->case_failures.empty())
+    cusum_->set_chart({}, "No case completed yet: the chart starts with the trainee's first case.");
+  else
+    cusum_->set_chart(charts::cusum_chart(*curves_, kind, code), "No case completed yet.");
 }
 
 void TrainingView::show_outcome(const TrainingOutcome& out) {

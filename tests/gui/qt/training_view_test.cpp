@@ -86,6 +86,7 @@ class TrainingViewTest : public QObject {
     QVERIFY(view(w).select_trainee("P1"));
     QVERIFY(view(w).start_button()->isEnabled());
     QVERIFY(!view(w).curve_view()->has_data());
+    QVERIFY(!view(w).cusum_view()->has_data());  // no case yet: no chart of a limit alone
     view(w).participant_edit()->setText("sim:5");
 
     int sessions = 0;
