@@ -222,7 +222,7 @@ void TrainingView::reload() {
                          .arg(counted(static_cast<int>(curriculum_->levels.size()), "level", "levels"))
                          .arg(levels.join(", ")));
     // A store not made yet has no trainees: enrolling the first one creates it.
-    if (!store.empty() && (store.rfind("postgresql:", 0) == 0 || std::filesystem::exists(store)))
+    if (!store.empty() && (is_server_store_location(store) || std::filesystem::exists(store)))
       standings_ = curriculum_standings(store, *curriculum_);
   } catch (const std::exception& e) {
     refuse(e.what());
