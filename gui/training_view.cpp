@@ -297,25 +297,27 @@ bool TrainingView::start_next() {
   r.trainee = code.toStdString();
   r.store_location = store_edit_->text().trimmed().toStdString();
   r.participant = participant_->text().trimmed().toStdString();
-  PreparedTraining prepared;
+  QString refusal, started;
   try {
-    prepared = prepare_training_session(r);  // refused here: nothing stored, nothing moved
+    // Refused here: nothing stored, nothing moved. (Held where it is made, never moved: the
+    // console copies what it needs into the session thread.)
+    const PreparedTraining prepared = prepare_training_session(r);
+    if (!host_.start || !host_.start(r, prepared, refusal)) {
+      refuse(refusal.isEmpty() ? "the experiment console could not start the session" : refusal);
+      return false;
+    }
+    started = QString("%1's session %2 at %3 runs on the Experiment tab (%4 cases).")
+                  .arg(code)
+                  .arg(prepared.plan.session_number)
+                  .arg(training_level_text(*curriculum_, prepared.plan.level))
+                  .arg(prepared.plan.cases.size());
   } catch (const std::exception& e) {
     refuse(e.what());
     return false;
   }
-  QString refusal;
-  if (!host_.start || !host_.start(r, prepared, refusal)) {
-    refuse(refusal.isEmpty() ? "the experiment console could not start the session" : refusal);
-    return false;
-  }
   status_->setProperty("refusal", QString());
   status_->setStyleSheet("");
-  status_->setText(QString("%1's session %2 at %3 runs on the Experiment tab (%4 cases).")
-                       .arg(code)
-                       .arg(prepared.plan.session_number)
-                       .arg(training_level_text(*curriculum_, prepared.plan.level))
-                       .arg(prepared.plan.cases.size()));
+  status_->setText(started);
   set_buttons();
   emit sessionStarted();
   return true;
