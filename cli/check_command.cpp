@@ -28,7 +28,7 @@
 #include "inputs/pose_recording.hpp"
 #include "inputs/input_source.hpp"
 #include "inputs/tablet_source.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/stiffness_map.hpp"
 #include "study/curriculum.hpp"
 #include "study/protocol.hpp"
@@ -40,8 +40,8 @@ using namespace palprig;
 
 namespace {
 
-const std::vector<std::string> kKinds = {"rig",      "scene", "calibration", "protocol",  "trace",     "map",
-                                         "waveform", "evemu", "tracking",    "poses",     "fiducials", "curriculum"};
+const std::vector<std::string> kKinds = {"rig",      "scene", "calibration", "protocol", "trace",     "map",
+                                         "waveform", "evemu", "tracking",    "poses",    "fiducials", "curriculum"};
 
 std::string count(std::size_t n, const std::string& noun) {
   return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");

@@ -8,7 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "formats/json_file.hpp"
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "sessions/training_session.hpp"
 
@@ -169,8 +169,8 @@ void register_next(CLI::App* train) {
                 << cli::counted(static_cast<long long>(p.cases.size()), "case", "cases") << ": " << cases << "\n"
                 << std::flush;
     };
-    cli::install_stop_signals();
-    const TrainingOutcome out = run_training_session(request, front, &cli::stop_signal());
+    install_stop_signals();
+    const TrainingOutcome out = run_training_session(request, front, process_run_control());
     const Curriculum curriculum = load_curriculum(request.curriculum_file);
     if (const std::string telemetry = telemetry_summary(out.end); !telemetry.empty()) std::cout << telemetry << "\n";
     if (!out.scored) {

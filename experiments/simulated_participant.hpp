@@ -113,7 +113,7 @@ class SimulatedParticipant final : public Participant {
   std::array<double, kFingerCount> baseline_kPa_{};
   double contact_since_s_ = -1;
   std::vector<Candidate> candidates_;
-  bool deep_pass_ = false;  // palpating again, pressing harder
+  bool deep_pass_ = false;                                                  // palpating again, pressing harder
   std::array<std::deque<std::pair<double, double>>, kFingerCount> recent_;  // deep pass: (t, kPa), rising
   double threshold_kPa_ = 0;
 };

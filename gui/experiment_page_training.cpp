@@ -73,7 +73,8 @@ bool ExperimentPage::begin_training(const TrainingRequest& r, const PreparedTrai
   if (request.rig_file.empty() && host_.rig_file) request.rig_file = host_.rig_file();
   if (request.calibration_file.empty() && host_.calibration_file) request.calibration_file = host_.calibration_file();
   request.tick_observer = host_.tick_observer ? host_.tick_observer() : nullptr;
-  request.person_palpates = true;  // the window gives a person a pen
+  request.rig = host_.opened_rig ? &host_.opened_rig() : nullptr;  // leased for the session
+  request.person_palpates = true;                                  // the window gives a person a pen
   simulated_ = !request.participant.empty();
   if (!simulated_) request.speed = 0;
   channel_ = simulated_ ? nullptr : std::make_shared<ParticipantChannel>();
@@ -101,8 +102,6 @@ bool ExperimentPage::begin_training(const TrainingRequest& r, const PreparedTrai
   last_completed_ = false;
   training_ = true;
   status_->setText(p.plan.resumed ? "Continuing the trainee's unfinished session..." : "Starting...");
-  if (host_.take_rig) host_.take_rig();
-  rig_taken_ = true;
   run_.start_training(request, p, person, pulse_person);
   if (!simulated_) participant_keys_->install();
   // As begin(): the participant never sees the answer key.

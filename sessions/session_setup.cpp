@@ -1,12 +1,11 @@
 #include "sessions/session_setup.hpp"
 
 #include "study/random_source.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
-std::uint64_t default_session_seed(const std::string& participant_code, const std::string& protocol_name,
-                                   int ordinal) {
+std::uint64_t default_session_seed(const std::string& participant_code, const std::string& protocol_name, int ordinal) {
   const std::uint64_t first = stable_hash(participant_code + '\n' + protocol_name);
   if (ordinal <= 1) return first;
   return stable_hash(std::to_string(first) + '\n' + std::to_string(ordinal));

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <map>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/pg_target.hpp"
 #include "store/postgres_trial_store.hpp"
 #include "store/sqlite_trial_store.hpp"
@@ -208,12 +208,12 @@ PreparedTraining prepare_training_session(const TrainingRequest& r) {
 }
 
 TrainingOutcome run_training_session(const TrainingRequest& r, const TrainingFrontEnd& front,
-                                     const std::atomic<int>* stop, const std::atomic<bool>* pause) {
-  return run_training_session(r, prepare_training_session(r), front, stop, pause);
+                                     const RunControl& control) {
+  return run_training_session(r, prepare_training_session(r), front, control);
 }
 
 TrainingOutcome run_training_session(const TrainingRequest& r, const PreparedTraining& p, const TrainingFrontEnd& front,
-                                     const std::atomic<int>* stop, const std::atomic<bool>* pause) {
+                                     const RunControl& control) {
   const Curriculum& curriculum = p.curriculum;
   const std::filesystem::path& curriculum_file = p.curriculum_file;
   const std::optional<TrainingSessionRecord>& unfinished = p.unfinished;
@@ -244,6 +244,7 @@ TrainingOutcome run_training_session(const TrainingRequest& r, const PreparedTra
                                           : ObserverSkill{curriculum.pilot, cases_practised};
   request.person_palpates = r.person_palpates;
   request.tick_observer = r.tick_observer;
+  request.rig = r.rig;
 
   // Noted as the trainee's before its first trial: its cases are theirs from now on.
   const auto begin = [&](const SessionStart& s) {
@@ -261,12 +262,12 @@ TrainingOutcome run_training_session(const TrainingRequest& r, const PreparedTra
   SessionStart start;
   if (out.plan.pulse) {
     TrainingPulseListener listener(front.pulse_listener, begin);
-    out.end = run_pulse_study(request, front.pulse_person, listener, stop, pause);
+    out.end = run_pulse_study(request, front.pulse_person, listener, control);
     cases = listener.cases;
     start = listener.start_;
   } else {
     TrainingStudyListener listener(front.listener, begin);
-    out.end = run_study_session(request, front.person, listener, stop, pause);
+    out.end = run_study_session(request, front.person, listener, control);
     cases = listener.cases;
     start = listener.start_;
   }

@@ -8,7 +8,6 @@
 // the one session call (run_study_session / run_pulse_study) and stored like any session; its
 // training row (level, cases, scores, benchmark met) is kept beside it in the same store
 // (store/trial_store.hpp), so `store copy` and the lab server carry a trainee's history to any rig.
-#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -50,6 +49,8 @@ struct TrainingRequest {
   double speed = 0;              // simulated trainee: 0 as fast as simulated time allows, else times real time
   bool person_palpates = false;  // the front end gives a person a pen (the window)
   TickObserver* tick_observer = nullptr;
+  // The front end's opened rig (the window's), leased for the session (StudySessionRequest::rig).
+  Rig* rig = nullptr;
 };
 
 // The front end's part: who answers when the trainee is a person, what it is told.
@@ -91,13 +92,12 @@ PreparedTraining prepare_training_session(const TrainingRequest& request);
 
 // Runs a prepared session: the front end's `planned` is told, the session runs through
 // run_study_session / run_pulse_study (a person without a front end that can ask them is refused
-// there), and a completed session is scored against its level's benchmark. `stop` and `pause` as
-// run_study_session's.
+// there), and a completed session is scored against its level's benchmark. `control`: the
+// operator's stop and pause, as run_study_session's.
 TrainingOutcome run_training_session(const TrainingRequest& request, const PreparedTraining& prepared,
-                                     const TrainingFrontEnd& front, const std::atomic<int>* stop,
-                                     const std::atomic<bool>* pause = nullptr);
+                                     const TrainingFrontEnd& front, const RunControl& control);
 // Both in one call (`palprig train next`).
 TrainingOutcome run_training_session(const TrainingRequest& request, const TrainingFrontEnd& front,
-                                     const std::atomic<int>* stop, const std::atomic<bool>* pause = nullptr);
+                                     const RunControl& control);
 
 }  // namespace palprig

@@ -45,8 +45,8 @@ std::vector<LearningPoint> mean_curve(const std::vector<std::vector<double>>& va
         for (double x : v) ss += (x - mean) * (x - mean);
         const double sd = std::sqrt(ss / static_cast<double>(v.size() - 1));
         const boost::math::students_t_distribution<double> t(static_cast<double>(v.size() - 1));
-        const double half = boost::math::quantile(t, 1.0 - (1.0 - confidence) / 2.0) * sd /
-                            std::sqrt(static_cast<double>(v.size()));
+        const double half =
+            boost::math::quantile(t, 1.0 - (1.0 - confidence) / 2.0) * sd / std::sqrt(static_cast<double>(v.size()));
         p.lower = mean - half;
         p.upper = mean + half;
       }

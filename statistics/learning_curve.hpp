@@ -12,7 +12,7 @@
 namespace palprig::stats {
 
 struct LearningPoint {
-  int session = 0;     // 1-based, the trainee's session number
+  int session = 0;       // 1-based, the trainee's session number
   bool defined = false;  // the session had cases for this measure
   double value = 0, lower = 0, upper = 0;
   std::int64_t n = 0;  // cases (or targets) behind the value

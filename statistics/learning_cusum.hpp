@@ -47,8 +47,8 @@ struct CusumRates {
 };
 
 struct CusumErrors {
-  double alpha = 0.05;     // a false signal within the horizon
-  double beta = 0.2;       // no true signal within the horizon
+  double alpha = 0.05;      // a false signal within the horizon
+  double beta = 0.2;        // no true signal within the horizon
   int horizon_cases = 100;  // N
 };
 
@@ -81,10 +81,10 @@ struct CusumLimit {
   CusumChart chart = CusumChart::learning;
   CusumRates rates;
   CusumErrors errors;
-  double limit = 0;                   // h
-  double wald_limit = 0;              // ln((1 - beta) / alpha), for comparison
-  double false_signal_within = 0;     // P(false signal within N): <= alpha
-  double true_signal_within = 0;      // P(true signal within N): the power, 1 - beta achieved
+  double limit = 0;                // h
+  double wald_limit = 0;           // ln((1 - beta) / alpha), for comparison
+  double false_signal_within = 0;  // P(false signal within N): <= alpha
+  double true_signal_within = 0;   // P(true signal within N): the power, 1 - beta achieved
   std::optional<double> mean_cases_to_true_signal;
   std::optional<int> cases_for_power;  // a true signal within this many cases with probability 1 - beta
 };

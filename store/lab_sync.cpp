@@ -4,7 +4,7 @@
 #include <functional>
 #include <map>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/pg_target.hpp"
 #include "store/postgres_schema.hpp"
 #include "store/postgres_session_rows.hpp"
@@ -123,8 +123,8 @@ CopyReport copy_study(const std::string& from, const std::string& to, const std:
   }
   // Trainees enrolled in the source go with their sessions (their training rows go with each
   // session's rows).
-  const std::vector<SqlRow> trainees = from_server ? pg_read_trainees(server_source->connection())
-                                                   : read_sqlite_trainees(sqlite_source->database());
+  const std::vector<SqlRow> trainees =
+      from_server ? pg_read_trainees(server_source->connection()) : read_sqlite_trainees(sqlite_source->database());
   if (to_server) {
     PostgresTrialStore target(*to_target, TrialStore::Access::read_write);
     if (!trainees.empty()) {

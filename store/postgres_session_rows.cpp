@@ -1,6 +1,6 @@
 #include "store/postgres_session_rows.hpp"
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/postgres_schema.hpp"
 #include "store/training_rows.hpp"
 
@@ -263,8 +263,9 @@ bool pg_has_training_tables(PgConnection& db) {
 }
 
 std::optional<SqlRow> pg_read_training_row(PgConnection& db, std::int64_t session_id) {
-  const PgResult r = db.exec("SELECT " + column_list(kTrainingColumns) + " FROM training_sessions WHERE session_id = $1",
-                             {pg_text(session_id)});
+  const PgResult r =
+      db.exec("SELECT " + column_list(kTrainingColumns) + " FROM training_sessions WHERE session_id = $1",
+              {pg_text(session_id)});
   if (r.rows() == 0) return std::nullopt;
   return read_row(r, 0, 0, kTrainingColumns);
 }

@@ -26,10 +26,9 @@ std::vector<TraineeRecord> PostgresTrialStore::trainees() {
 std::vector<TrainingSessionRecord> PostgresTrialStore::training_sessions(const std::string& trainee) {
   std::vector<TrainingSessionRecord> out;
   if (!pg_has_training_tables(db_)) return out;
-  const PgResult r =
-      db_.exec("SELECT session_id, " + column_list(kTrainingColumns) +
-                   " FROM training_sessions WHERE trainee = $1 ORDER BY started_utc, session_id",
-               {trainee});
+  const PgResult r = db_.exec("SELECT session_id, " + column_list(kTrainingColumns) +
+                                  " FROM training_sessions WHERE trainee = $1 ORDER BY started_utc, session_id",
+                              {trainee});
   for (int i = 0; i < r.rows(); ++i) {
     SqlRow row;
     for (std::size_t c = 0; c < kTrainingColumns.size(); ++c) {

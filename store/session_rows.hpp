@@ -82,8 +82,7 @@ inline constexpr std::array<SqlColumn, 30> kTrialColumns{{{"position", 'i'},
                                                           {"case_difficulty", 't'},
                                                           {"case_tumors", 'i'}}};
 inline constexpr std::size_t kTrialConfidence = 23, kTrialStimulusEnd = 24, kTrialStimulusReached = 25,
-                             kTrialCaseName = 26, kTrialCaseSeed = 27, kTrialCaseDifficulty = 28,
-                             kTrialCaseTumors = 29;
+                             kTrialCaseName = 26, kTrialCaseSeed = 27, kTrialCaseDifficulty = 28, kTrialCaseTumors = 29;
 // How many of kTrialColumns a store of each generation has.
 inline constexpr std::size_t kTrialColumnsBeforeRating = kTrialConfidence,
                              kTrialColumnsBeforeReached = kTrialStimulusReached,
@@ -103,8 +102,7 @@ inline constexpr std::array<SqlColumn, 10> kTrainingColumns{{{"trainee", 't'},
                                                              {"finished_utc", 't'}}};
 inline constexpr std::size_t kTrainingCases = 4, kTrainingStatus = 5;
 // A trainee's enrolment in a curriculum (trainees).
-inline constexpr std::array<SqlColumn, 3> kTraineeColumns{
-    {{"code", 't'}, {"curriculum", 't'}, {"enrolled_utc", 't'}}};
+inline constexpr std::array<SqlColumn, 3> kTraineeColumns{{{"code", 't'}, {"curriculum", 't'}, {"enrolled_utc", 't'}}};
 
 inline constexpr std::array<SqlColumn, 3> kTumorScoreColumns{
     {{"tumor", 't'}, {"outcome", 't'}, {"nearest_mark_mm", 'r'}}};
@@ -124,7 +122,7 @@ struct SessionRows {
   bool simulated = false;
   SqlRow session;  // kSessionColumns
   std::vector<SqlRow> planned;
-  std::vector<TrialRows> trials;  // by position; may start after 0 (a partial push)
+  std::vector<TrialRows> trials;   // by position; may start after 0 (a partial push)
   std::optional<SqlRow> training;  // kTrainingColumns, when the session is a trainee's
 
   const std::string& text(std::size_t column) const { return std::get<std::string>(session.at(column)); }

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -96,7 +96,7 @@ CREATE TABLE marks (
   PRIMARY KEY (trial_id, mark)
 ) WITHOUT ROWID;
 )sql"
-                                  R"sql(
+                                R"sql(
 CREATE TABLE trainees (                        -- a trainee enrolled in a curriculum
   code         TEXT NOT NULL,                  -- the participant code they train under
   curriculum   TEXT NOT NULL,                  -- the curriculum's name
@@ -164,7 +164,8 @@ void migrate_to_5(Database& db) {
   // The training tables as a new file has them (a file that already has them, e.g. set back to an
   // older version number by hand, keeps them).
   std::string tables = std::string(kSchema).substr(std::string(kSchema).find("CREATE TABLE trainees"));
-  for (std::size_t at = tables.find("CREATE TABLE "); at != std::string::npos; at = tables.find("CREATE TABLE ", at + 1))
+  for (std::size_t at = tables.find("CREATE TABLE "); at != std::string::npos;
+       at = tables.find("CREATE TABLE ", at + 1))
     tables.replace(at, 13, "CREATE TABLE IF NOT EXISTS ");
   db.exec(tables);
   db.exec("PRAGMA user_version = 5");

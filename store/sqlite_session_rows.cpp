@@ -2,7 +2,7 @@
 
 #include <sqlite3.h>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/training_rows.hpp"
 
 namespace palprig {
@@ -255,11 +255,12 @@ void write_sqlite_training_row(Database& db, std::int64_t session_id, const SqlR
     reserve.bind(1, trainee).bind(2, key).bind(3, session_id).run();
   }
   // Added, or brought forward: a completed row replaces a running one, never the other way.
-  auto upsert = db.prepare("INSERT INTO training_sessions (session_id, " + column_list(kTrainingColumns) +
-                           ") VALUES (?1, " + placeholders<kTrainingColumns.size()>(2) +
-                           ") ON CONFLICT (session_id) DO UPDATE SET status = excluded.status, scores = excluded.scores, "
-                           "met_benchmark = excluded.met_benchmark, finished_utc = excluded.finished_utc "
-                           "WHERE training_sessions.status <> 'completed'");
+  auto upsert =
+      db.prepare("INSERT INTO training_sessions (session_id, " + column_list(kTrainingColumns) + ") VALUES (?1, " +
+                 placeholders<kTrainingColumns.size()>(2) +
+                 ") ON CONFLICT (session_id) DO UPDATE SET status = excluded.status, scores = excluded.scores, "
+                 "met_benchmark = excluded.met_benchmark, finished_utc = excluded.finished_utc "
+                 "WHERE training_sessions.status <> 'completed'");
   upsert.bind(1, session_id);
   for (std::size_t i = 0; i < row.size(); ++i) bind_value(upsert, static_cast<int>(i + 2), row[i]);
   upsert.run();

@@ -6,7 +6,7 @@
 #include <limits>
 #include <map>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "statistics/statistics_describe.hpp"
 #include "store/pg_target.hpp"
 #include "store/postgres_trial_store.hpp"
@@ -35,7 +35,8 @@ CaseResult stored_case_result(const StoredTrial& t) {
 std::unique_ptr<TrialStore> open_training_store(const std::string& location, TrialStore::Access access) {
   // A lab server directly (enrolments, history and the cases given are the server's, so every
   // rig sees them); the session itself writes its trials through the bench journal as always.
-  if (is_server_store_location(location)) return std::make_unique<PostgresTrialStore>(parse_pg_target(location), access);
+  if (is_server_store_location(location))
+    return std::make_unique<PostgresTrialStore>(parse_pg_target(location), access);
   if (access == TrialStore::Access::read_only) return open_trial_store(location, access);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(location, ec)) {
@@ -113,7 +114,8 @@ void enrol_trainee(const std::string& store_location, const Curriculum& curricul
   if (trainee.rfind("sim:", 0) == 0) {
     throw InputError("command line", "trainee",
                      "a trainee's own code (a simulated pilot trainee is any code run with --participant sim:SEED), "
-                     "got '" + trainee + "'");
+                     "got '" +
+                         trainee + "'");
   }
   const auto store = is_server_store_location(store_location)
                          ? std::unique_ptr<TrialStore>(std::make_unique<PostgresTrialStore>(

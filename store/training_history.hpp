@@ -44,8 +44,8 @@ struct TrainingCurves {
   std::vector<stats::LearningPoint> normal_called;  // normal cases left unmarked / normal cases
   // Per session, its level's benchmark for each measure (none: not required).
   std::vector<std::optional<double>> found_min, false_marks_max, time_max_s, normal_called_min;
-  std::vector<bool> met;                     // per session: met its benchmark
-  std::vector<bool> case_failures;           // per case, every session's cases in order
+  std::vector<bool> met;            // per session: met its benchmark
+  std::vector<bool> case_failures;  // per case, every session's cases in order
   stats::CusumLimit cusum_limit, lc_cusum_limit;
   std::vector<stats::CusumPoint> cusum, lc_cusum;
 };

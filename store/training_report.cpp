@@ -52,8 +52,8 @@ nlohmann::ordered_json limit_json(const stats::CusumLimit& l) {
           {"false_signal_within_horizon", l.false_signal_within},
           {"true_signal_within_horizon", l.true_signal_within},
           {"mean_cases_to_true_signal", optional_json(l.mean_cases_to_true_signal)},
-          {"cases_for_power", l.cases_for_power ? nlohmann::ordered_json(*l.cases_for_power)
-                                                : nlohmann::ordered_json(nullptr)}};
+          {"cases_for_power",
+           l.cases_for_power ? nlohmann::ordered_json(*l.cases_for_power) : nlohmann::ordered_json(nullptr)}};
 }
 
 }  // namespace
@@ -62,9 +62,9 @@ std::string cusum_limits_text(const stats::CusumLimit& cusum, const stats::Cusum
   std::ostringstream out;
   const auto line = [&](const stats::CusumLimit& l, const char* false_what, const char* true_what) {
     out << "  " << stats::to_string(l.chart) << ": h = " << fixed(l.limit, 2) << " (Wald " << fixed(l.wald_limit, 2)
-        << "); within " << l.errors.horizon_cases << " cases " << false_what << " "
-        << fixed(l.false_signal_within, 3) << " (alpha " << fixed(l.errors.alpha, 3) << "), " << true_what << " "
-        << fixed(l.true_signal_within, 3) << " (1 - beta " << fixed(1 - l.errors.beta, 3) << "); mean "
+        << "); within " << l.errors.horizon_cases << " cases " << false_what << " " << fixed(l.false_signal_within, 3)
+        << " (alpha " << fixed(l.errors.alpha, 3) << "), " << true_what << " " << fixed(l.true_signal_within, 3)
+        << " (1 - beta " << fixed(1 - l.errors.beta, 3) << "); mean "
         << (l.mean_cases_to_true_signal ? fixed(*l.mean_cases_to_true_signal, 1) : std::string("n/a"))
         << " cases to a true signal, " << (l.cases_for_power ? std::to_string(*l.cases_for_power) : "n/a")
         << " for probability 1 - beta\n";
@@ -89,8 +89,8 @@ std::string learning_report_text(const Curriculum& curriculum, const std::vector
         << " cases; LC-CUSUM: competence declared " << signals_text(c.lc_cusum, "not yet") << "; CUSUM: alarm "
         << signals_text(c.cusum, "none") << "\n";
     char head[256];
-    std::snprintf(head, sizeof head, "  %-8s %-6s %-22s %-12s %-10s %-14s %s\n", "session", "level",
-                  "found [95% CI]", "marks/case", "s/case", "normal called", "benchmark");
+    std::snprintf(head, sizeof head, "  %-8s %-6s %-22s %-12s %-10s %-14s %s\n", "session", "level", "found [95% CI]",
+                  "marks/case", "s/case", "normal called", "benchmark");
     out << head;
     for (std::size_t i = 0; i < c.level.size(); ++i) {
       char row[256];
@@ -105,7 +105,8 @@ std::string learning_report_text(const Curriculum& curriculum, const std::vector
   return out.str();
 }
 
-nlohmann::ordered_json learning_report_json(const Curriculum& curriculum, const std::vector<TraineeStanding>& trainees) {
+nlohmann::ordered_json learning_report_json(const Curriculum& curriculum,
+                                            const std::vector<TraineeStanding>& trainees) {
   nlohmann::ordered_json j;
   j["curriculum"] = curriculum.name;
   j["convention"] =

@@ -56,8 +56,6 @@ inline TrainingSessionRecord training_record_of(std::int64_t session_id, const S
 }
 
 // The case keys of a training row (its `cases` JSON), for training_cases.
-inline std::vector<std::string> training_row_cases(const SqlRow& row) {
-  return training_record_of(0, row).cases;
-}
+inline std::vector<std::string> training_row_cases(const SqlRow& row) { return training_record_of(0, row).cases; }
 
 }  // namespace palprig

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -69,8 +69,8 @@ struct Accumulator {
   RunningMoments rt_reached;    // from when the stimulus reached the fingers
   std::int64_t rated = 0;
   double confidence_sum = 0;
-  std::int64_t last_trial = -1;  // a trial adds its response time once per group
-  bool localisation = false;     // holds localisation values
+  std::int64_t last_trial = -1;   // a trial adds its response time once per group
+  bool localisation = false;      // holds localisation values
   std::int64_t normal_cases = 0;  // localisation: answered normal cases (TN: those left unmarked)
 
   void add_trial(const ScoredTrial& t) {
@@ -308,14 +308,15 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
       // tumors to cases: n/a.
       row.negatives_counted = a.normal_cases > 0;
       row.normal_cases = a.normal_cases;
-      row.measures.sp = a.normal_cases > 0 ? proportion_measure(a.counts.tn, a.normal_cases, options.confidence)
-                                           : Measure{};
+      row.measures.sp =
+          a.normal_cases > 0 ? proportion_measure(a.counts.tn, a.normal_cases, options.confidence) : Measure{};
       row.measures.acc = Measure{};
     }
     row.trials = a.trials;
     row.unanswered = a.unanswered;
     row.mean_rt_s = a.rt.mean_or_nan();
     row.sd_rt_s = a.rt.sd_or_nan();
+    row.rt_count = a.rt.n;
     row.mean_rt_after_stimulus_s = a.rt_after.mean_or_nan();
     row.sd_rt_after_stimulus_s = a.rt_after.sd_or_nan();
     row.mean_rt_from_reached_s = a.rt_reached.mean_or_nan();

@@ -6,10 +6,10 @@
 // every tumor of a localisation trial's case (TP detected / FN missed; grouped by tumor, keyed
 // "case/tumor": tumors of different cases are never pooled), one FP per false mark, and one TN
 // per normal case (no tumor) answered without a mark; Sp = TN / normal cases. False marks and a
-// normal case's answer are the row "case/elsewhere" when grouping by tumor. Unanswered (timed-out) trials are counted, not scored. Practice trials are left
-// out unless asked for. Response times: mean and sd over answered trials, each trial counted
-// once per group it contributes to, from onset (paper 002's measure) and from the stimulus end;
-// the mean confidence rating and the count rated when any trial has one.
+// normal case's answer are the row "case/elsewhere" when grouping by tumor. Unanswered (timed-out) trials are counted,
+// not scored. Practice trials are left out unless asked for. Response times: mean and sd over answered trials, each
+// trial counted once per group it contributes to, from onset (paper 002's measure) and from the stimulus end; the mean
+// confidence rating and the count rated when any trial has one.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -41,6 +41,7 @@ struct SummaryRow {
   std::int64_t trials = 0;            // trials that contributed (answered or not)
   std::int64_t unanswered = 0;        // of which timed out
   double mean_rt_s = 0, sd_rt_s = 0;  // from onset (paper 002); NaN when fewer than 1 (mean) or 2 (sd) answered trials
+  std::int64_t rt_count = 0;          // the response times behind them: answered trials with a stored time
   // From the end of the stimulus (0 for an answer during it); NaN likewise, and for trials
   // stored before the stimulus end was.
   double mean_rt_after_stimulus_s = 0, sd_rt_after_stimulus_s = 0;

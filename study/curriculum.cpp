@@ -4,7 +4,7 @@
 
 #include "formats/json_file.hpp"
 #include "formats/scene_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -129,8 +129,8 @@ Curriculum parse_curriculum(const nlohmann::json& document, const std::string& s
     k.acceptable_failure_rate = o.number_or("acceptable_failure_rate", k.acceptable_failure_rate, 0.001, 0.998);
     k.unacceptable_failure_rate = o.number_or("unacceptable_failure_rate", k.unacceptable_failure_rate, 0.002, 0.999);
     if (!(k.unacceptable_failure_rate > k.acceptable_failure_rate)) {
-      o.fail("unacceptable_failure_rate", "a rate above acceptable_failure_rate (" +
-                                              std::to_string(k.acceptable_failure_rate) + ")");
+      o.fail("unacceptable_failure_rate",
+             "a rate above acceptable_failure_rate (" + std::to_string(k.acceptable_failure_rate) + ")");
     }
     k.alpha = o.number_or("alpha", k.alpha, 0.001, 0.5);
     k.beta = o.number_or("beta", k.beta, 0.001, 0.5);

@@ -50,7 +50,8 @@ std::uint64_t generated_case_seed(std::uint64_t session_seed, int position) noex
 
 LocalisationCase trial_case(const Protocol& protocol, const PlannedTrial& trial, std::uint64_t session_seed) {
   const LocalisationTask& task = protocol.localisation;
-  if (task.generate) return generated_localisation_case(generated_case_seed(session_seed, trial.position), *task.generate);
+  if (task.generate)
+    return generated_localisation_case(generated_case_seed(session_seed, trial.position), *task.generate);
   const std::size_t index = trial.combination >= 0 ? static_cast<std::size_t>(trial.combination) : 0;
   return task.cases.at(index);
 }

@@ -9,7 +9,7 @@
 #include "formats/json_file.hpp"
 #include "study/localisation_case.hpp"
 #include "study/trial_order.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "study/session_bounds.hpp"
 
 namespace palprig {
@@ -196,10 +196,13 @@ void read_localisation(const JsonObject& root, const std::filesystem::path& base
   p.localisation.tolerance_mm = loc.number_or("tolerance_mm", 5.0, 0.0, 1000.0);
   const int given = (loc.has("scene") ? 1 : 0) + (loc.has("cases") ? 1 : 0) + (loc.has("generate") ? 1 : 0);
   if (given != 1) {
-    loc.fail("scene", "exactly one of `scene` (a scene file), `cases` (a list of cases) or `generate` "
-                      "({\"difficulty\": ...}: a new generated case per trial)");
+    loc.fail("scene",
+             "exactly one of `scene` (a scene file), `cases` (a list of cases) or `generate` "
+             "({\"difficulty\": ...}: a new generated case per trial)");
   }
-  const auto resolve = [&](const std::filesystem::path& scene) { return scene.is_absolute() ? scene : base_dir / scene; };
+  const auto resolve = [&](const std::filesystem::path& scene) {
+    return scene.is_absolute() ? scene : base_dir / scene;
+  };
   const auto difficulty_of = [&](const JsonObject& o) {
     return parse_difficulty(o.choice("difficulty", {"easy", "medium", "hard"}));
   };

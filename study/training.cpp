@@ -74,9 +74,8 @@ int SessionScores::normal_cases() const {
   return static_cast<int>(std::count_if(cases.begin(), cases.end(), [](const CaseResult& c) { return c.normal(); }));
 }
 int SessionScores::normal_called() const {
-  return static_cast<int>(std::count_if(cases.begin(), cases.end(), [](const CaseResult& c) {
-    return c.normal() && c.answered && c.false_marks == 0;
-  }));
+  return static_cast<int>(std::count_if(
+      cases.begin(), cases.end(), [](const CaseResult& c) { return c.normal() && c.answered && c.false_marks == 0; }));
 }
 int SessionScores::false_marks() const {
   int n = 0;
@@ -150,8 +149,8 @@ BenchmarkResult check_benchmark(const LevelBenchmark& b, const SessionScores& s)
   };
   if (b.found_min) {
     const auto got = s.found_fraction();
-    if (!got || *got < *b.found_min) shortfall(s.cases.empty() || !s.cases[0].pulse ? "tumors found" : "pulses found",
-                                               got, ">=", *b.found_min);
+    if (!got || *got < *b.found_min)
+      shortfall(s.cases.empty() || !s.cases[0].pulse ? "tumors found" : "pulses found", got, ">=", *b.found_min);
   }
   if (b.false_marks_per_case_max) {
     const auto got = s.false_marks_per_case();
@@ -209,9 +208,8 @@ std::string training_protocol_name(const Curriculum& curriculum, int level) {
   return curriculum.name + " / " + curriculum.levels.at(static_cast<std::size_t>(level)).name;
 }
 
-PlannedTrainingSession plan_training_session(const Curriculum& curriculum, int level_index,
-                                             const std::string& trainee, const std::set<std::string>& given,
-                                             int session_number) {
+PlannedTrainingSession plan_training_session(const Curriculum& curriculum, int level_index, const std::string& trainee,
+                                             const std::set<std::string>& given, int session_number) {
   const CurriculumLevel& level = curriculum.levels.at(static_cast<std::size_t>(level_index));
   PlannedTrainingSession plan;
   plan.level = level_index;
@@ -230,15 +228,15 @@ PlannedTrainingSession plan_training_session(const Curriculum& curriculum, int l
     const std::size_t n = std::min(fresh.size(), static_cast<std::size_t>(level.cases_per_session));
     plan.cases.assign(fresh.begin(), fresh.begin() + static_cast<std::ptrdiff_t>(n));
   } else {
-    RandomSource random(stable_hash(trainee + '\n' + curriculum.name + '\n' + level.name + '\n' +
-                                    std::to_string(session_number)));
+    RandomSource random(
+        stable_hash(trainee + '\n' + curriculum.name + '\n' + level.name + '\n' + std::to_string(session_number)));
     while (static_cast<int>(plan.cases.size()) < level.cases_per_session) {
       const std::uint64_t seed = random.below(1000000000ULL);  // a seed a person can type again
-      const std::string key = plan.pulse ? pulse_case_key(level.difficulty, seed)
-                                         : generated_case_key(level.difficulty, seed);
+      const std::string key =
+          plan.pulse ? pulse_case_key(level.difficulty, seed) : generated_case_key(level.difficulty, seed);
       if (!taken.insert(key).second) continue;  // never the same case twice
-      const std::string name = std::string(plan.pulse ? "pulse-" : "case-") + to_string(level.difficulty) + "-" +
-                               std::to_string(seed);
+      const std::string name =
+          std::string(plan.pulse ? "pulse-" : "case-") + to_string(level.difficulty) + "-" + std::to_string(seed);
       plan.cases.push_back({key, name, seed, {}});
     }
   }
@@ -255,7 +253,8 @@ PlannedTrainingSession plan_training_session(const Curriculum& curriculum, int l
                   {"inter_trial_s", 2.0}};
     nlohmann::json conditions = nlohmann::json::array();
     for (const TrainingCase& c : plan.cases) {
-      conditions.push_back({{"name", c.name}, {"generate", {{"difficulty", to_string(level.difficulty)}, {"seed", *c.seed}}}});
+      conditions.push_back(
+          {{"name", c.name}, {"generate", {{"difficulty", to_string(level.difficulty)}, {"seed", *c.seed}}}});
     }
     p["conditions"] = conditions;
   } else {
@@ -293,7 +292,8 @@ std::vector<std::optional<int>> predict_pilot_sessions(const Curriculum& curricu
     double expected = 0;
     for (int i = 0; i < l.cases_per_session; ++i) expected += pilot_skill(curriculum.pilot, practised + i);
     expected /= l.cases_per_session;
-    if (static_cast<std::size_t>(level) < expert_found.size()) expected *= expert_found[static_cast<std::size_t>(level)];
+    if (static_cast<std::size_t>(level) < expert_found.size())
+      expected *= expert_found[static_cast<std::size_t>(level)];
     practised += l.cases_per_session;
     const bool met = !l.benchmark.found_min || expected >= *l.benchmark.found_min;
     run = met ? run + 1 : 0;

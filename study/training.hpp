@@ -69,12 +69,12 @@ BenchmarkResult check_benchmark(const LevelBenchmark& benchmark, const SessionSc
 bool case_failed(const CaseResult& c, const LevelBenchmark& benchmark);
 
 struct TrainingStanding {
-  int level = 0;            // the present level (levels.size() once every level is passed)
-  bool finished = false;    // every level passed
-  int sessions = 0;         // completed sessions in this curriculum
+  int level = 0;          // the present level (levels.size() once every level is passed)
+  bool finished = false;  // every level passed
+  int sessions = 0;       // completed sessions in this curriculum
   int sessions_at_level = 0;
-  int consecutive_met = 0;  // the present run at the present level
-  std::vector<int> passed_after;  // per level passed, the trainee's session number that passed it
+  int consecutive_met = 0;                      // the present run at the present level
+  std::vector<int> passed_after;                // per level passed, the trainee's session number that passed it
   std::optional<std::int64_t> running_session;  // a started session not completed (to resume)
 };
 // `history`: the trainee's training sessions (any curriculum; others are ignored), in order.
@@ -85,8 +85,8 @@ TrainingStanding training_standing(const Curriculum& curriculum, const std::vect
 // scenes only once all were given). `session_number` (1-based) varies the draw.
 struct TrainingCase {
   std::string key, name;
-  std::optional<std::uint64_t> seed;   // generated
-  std::filesystem::path scene_file;    // scene set
+  std::optional<std::uint64_t> seed;  // generated
+  std::filesystem::path scene_file;   // scene set
 };
 struct PlannedTrainingSession {
   int level = 0;

@@ -43,9 +43,9 @@ struct TrialRecord {
   // Localisation: the case palpated (study/localisation_case.hpp). A normal case (no tumor)
   // answered without a mark is a true negative; every mark on it a false mark.
   std::string case_name;
-  std::optional<std::uint64_t> case_seed;            // a generated case's seed
-  std::optional<CaseDifficulty> case_difficulty;     // a generated case's difficulty
-  int case_tumors = 0;                               // tumors in the case; 0: a normal case
+  std::optional<std::uint64_t> case_seed;         // a generated case's seed
+  std::optional<CaseDifficulty> case_difficulty;  // a generated case's difficulty
+  int case_tumors = 0;                            // tumors in the case; 0: a normal case
 };
 
 // The response time measured from the end of the stimulus (what the experimenter's console

@@ -112,9 +112,10 @@ TEST(TrainCommand, CheckLoadsTheShippedCurriculumAndSaysWhatThePilotIsExpectedTo
   const auto r =
       run_palprig({"check", (testing::source_dir() / "data" / "curricula" / "palpation_basics.json").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("curriculum 'palpation-basics', 5 levels; a pilot trainee who would find every tumor once skilled "
-                       "reaches level 2 at session "),
-            std::string::npos)
+  EXPECT_NE(
+      r.out.find("curriculum 'palpation-basics', 5 levels; a pilot trainee who would find every tumor once skilled "
+                 "reaches level 2 at session "),
+      std::string::npos)
       << r.out;
 }
 

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <set>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/training_session.hpp"
 #include "store/lab_sync.hpp"
 #include "store/postgres_trial_store.hpp"
@@ -32,17 +32,19 @@ std::filesystem::path write_course(const ScratchDir& dir, bool pulse_second = fa
                            {"cases", {{"generate", "easy"}}},
                            {"cases_per_session", 2},
                            {"benchmark", {{"found_min", 0.5}, {"consecutive_sessions", 2}}}});
-  doc["levels"].push_back({{"name", "second"},
-                           {"cases", pulse_second ? nlohmann::json{{"pulse", "easy"}} : nlohmann::json{{"generate", "easy"}}},
-                           {"cases_per_session", 2},
-                           {"benchmark", {{"found_min", 0.5}, {"consecutive_sessions", 1}}}});
+  doc["levels"].push_back(
+      {{"name", "second"},
+       {"cases", pulse_second ? nlohmann::json{{"pulse", "easy"}} : nlohmann::json{{"generate", "easy"}}},
+       {"cases_per_session", 2},
+       {"benchmark", {{"found_min", 0.5}, {"consecutive_sessions", 1}}}});
   doc["pilot"] = {{"initial_skill", 1.0}, {"learning_rate_per_case", 0.0}};
   const auto path = dir / "course.json";
   std::ofstream(path) << doc.dump(2);
   return path;
 }
 
-TrainingRequest on(const std::filesystem::path& course, const std::string& store, const std::filesystem::path& journal) {
+TrainingRequest on(const std::filesystem::path& course, const std::string& store,
+                   const std::filesystem::path& journal) {
   TrainingRequest r;
   r.curriculum_file = course;
   r.trainee = "T7";
@@ -68,18 +70,18 @@ TEST(PostgresTraining, ATraineesHistoryMovesBetweenRigsThroughTheLabServer) {
   const Curriculum c = load_curriculum(course);
   enrol_trainee(uri, c, "T7");
   // Rig A: the first session of level one.
-  const TrainingOutcome a = run_training_session(on(course, uri, dir / "bench_a.sqlite"), {}, nullptr);
+  const TrainingOutcome a = run_training_session(on(course, uri, dir / "bench_a.sqlite"), {}, RunControl{});
   ASSERT_TRUE(a.scored);
   EXPECT_EQ(a.plan.level, 0);
   EXPECT_EQ(a.end.unpushed_trials, 0);
   // Rig B, another bench with its own journal: the trainee continues where rig A left them.
-  const TrainingOutcome b = run_training_session(on(course, uri, dir / "bench_b.sqlite"), {}, nullptr);
+  const TrainingOutcome b = run_training_session(on(course, uri, dir / "bench_b.sqlite"), {}, RunControl{});
   ASSERT_TRUE(b.scored);
   EXPECT_EQ(b.before.sessions, 1) << "rig B sees the session rig A ran";
   EXPECT_EQ(b.plan.session_number, 2);
   EXPECT_EQ(b.after.level, 1) << "two sessions in a row met level one's benchmark, across two rigs";
   // Rig A again: level two.
-  const TrainingOutcome a2 = run_training_session(on(course, uri, dir / "bench_a.sqlite"), {}, nullptr);
+  const TrainingOutcome a2 = run_training_session(on(course, uri, dir / "bench_a.sqlite"), {}, RunControl{});
   EXPECT_EQ(a2.plan.level, 1);
   const TraineeStanding t = trainee_standing(uri, c, "T7");
   EXPECT_TRUE(t.standing.finished);
@@ -99,14 +101,14 @@ TEST(PostgresTraining, AnOfflineRigsHistoryIsCarriedToTheServerByStoreCopy) {
   const Curriculum c = load_curriculum(course);
   const auto file = (dir / "offline.db").string();
   enrol_trainee(file, c, "T7");
-  ASSERT_TRUE(run_training_session(on(course, file, {}), {}, nullptr).scored);
+  ASSERT_TRUE(run_training_session(on(course, file, {}), {}, RunControl{}).scored);
   copy_study(file, uri, std::nullopt);
   copy_study(file, uri, std::nullopt);  // twice: stored once
   const TraineeStanding there = trainee_standing(uri, c, "T7");
   ASSERT_EQ(there.sessions.size(), 1u);
   EXPECT_EQ(there.standing.sessions, 1);
   // The next session on a lab rig continues that history, with new cases.
-  const TrainingOutcome next = run_training_session(on(course, uri, dir / "bench.sqlite"), {}, nullptr);
+  const TrainingOutcome next = run_training_session(on(course, uri, dir / "bench.sqlite"), {}, RunControl{});
   ASSERT_TRUE(next.scored);
   EXPECT_EQ(next.plan.session_number, 2);
   EXPECT_EQ(next.after.level, 1);
@@ -118,8 +120,8 @@ TEST(PostgresTraining, Version5ServerIsMigratedWithEveryTrialKept) {
   ScratchDir dir;
   const std::string file = (dir / "bench.db").string();
   const auto run = testing::run_palprig({"experiment", "run", "--protocol",
-                                         (testing::protocols_dir() / "localisation_002.json").string(),
-                                         "--participant", "sim:3", "--db", file, "--quiet"});
+                                         (testing::protocols_dir() / "localisation_002.json").string(), "--participant",
+                                         "sim:3", "--db", file, "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string uri = testing::old_server_holding("training_5_6", 5, file);
   const std::int64_t trials = testing::pg_scalar(uri, "SELECT count(*) FROM trials");
@@ -150,7 +152,7 @@ TEST(PostgresTraining, APulseLevelIsRefusedOnTheServerWithNothingStored) {
   TrainingRequest r = on(course, uri, dir / "bench.sqlite");
   r.level = "second";
   try {
-    run_training_session(r, {}, nullptr);
+    run_training_session(r, {}, RunControl{});
     FAIL() << "a pulse level on the lab server was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("pulse"), std::string::npos) << e.what();

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <set>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "tests/support/support.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -54,13 +54,13 @@ TrainingRequest request_for(const std::filesystem::path& course, const std::file
 // Runs sessions until the trainee first trains at `level` (returns that session number) or
 // `max_sessions` have run (returns none); every case a trainee got is checked new to them.
 std::optional<int> sessions_until_level(const std::filesystem::path& course, const std::filesystem::path& db,
-                                        const std::string& trainee, const std::string& sim, int level,
-                                        int max_sessions, std::set<std::string>& cases) {
+                                        const std::string& trainee, const std::string& sim, int level, int max_sessions,
+                                        std::set<std::string>& cases) {
   const Curriculum c = load_curriculum(course);
   enrol_trainee(db.string(), c, trainee);
   std::optional<int> reached;
   for (int session = 1; session <= max_sessions && !reached; ++session) {
-    const TrainingOutcome out = run_training_session(request_for(course, db, trainee, sim), {}, nullptr);
+    const TrainingOutcome out = run_training_session(request_for(course, db, trainee, sim), {}, RunControl{});
     EXPECT_TRUE(out.scored) << "session " << session;
     if (out.plan.level >= level) reached = session;
   }
@@ -79,7 +79,7 @@ double expert_found(const ScratchDir& dir) {
   for (const char* expert : {"E1", "E2"}) {
     enrol_trainee((dir / "experts.db").string(), c, expert);
     const TrainingOutcome out = run_training_session(
-        request_for(course, dir / "experts.db", expert, expert[1] == '1' ? "sim:21" : "sim:22"), {}, nullptr);
+        request_for(course, dir / "experts.db", expert, expert[1] == '1' ? "sim:21" : "sim:22"), {}, RunControl{});
     EXPECT_TRUE(out.scored);
     found += out.scores.found();
     tumors += out.scores.targets();
@@ -118,8 +118,8 @@ TEST(TrainingSession, ATraineeWhoDoesNotLearnNeverLeavesTheFirstLevel) {
   std::set<std::string> cases;
   for (int seed : {5, 6}) {
     const std::string trainee = "stuck" + std::to_string(seed);
-    EXPECT_FALSE(
-        sessions_until_level(course, dir / "train.db", trainee, "sim:" + std::to_string(seed), 1, 6, cases).has_value());
+    EXPECT_FALSE(sessions_until_level(course, dir / "train.db", trainee, "sim:" + std::to_string(seed), 1, 6, cases)
+                     .has_value());
     const auto standing = trainee_standing((dir / "train.db").string(), load_curriculum(course), trainee);
     EXPECT_EQ(standing.standing.level, 0);
     EXPECT_EQ(standing.standing.sessions, 6);
@@ -132,22 +132,22 @@ TEST(TrainingSession, AnUnfinishedSessionIsContinuedWithItsOwnCases) {
   const auto db = dir / "train.db";
   const Curriculum c = load_curriculum(course);
   enrol_trainee(db.string(), c, "T");
-  std::atomic<int> stop{0};
+  RunControl stop;
   // Stopped after the first committed case.
   class StopAfterFirst final : public SessionListener {
    public:
-    explicit StopAfterFirst(std::atomic<int>& stop) : stop_(stop) {}
-    void trial_committed(const TrialRecord&, int) override { stop_ = 1; }
+    explicit StopAfterFirst(RunControl& stop) : stop_(stop) {}
+    void trial_committed(const TrialRecord&, int) override { stop_.request_stop(); }
 
    private:
-    std::atomic<int>& stop_;
+    RunControl& stop_;
   } stopper(stop);
   TrainingFrontEnd front;
   front.listener = &stopper;
-  const TrainingOutcome first = run_training_session(request_for(course, db, "T", "sim:9"), front, &stop);
+  const TrainingOutcome first = run_training_session(request_for(course, db, "T", "sim:9"), front, stop);
   EXPECT_FALSE(first.scored);
   EXPECT_EQ(first.end.committed_trials, 1);
-  const TrainingOutcome second = run_training_session(request_for(course, db, "T", "sim:9"), {}, nullptr);
+  const TrainingOutcome second = run_training_session(request_for(course, db, "T", "sim:9"), {}, RunControl{});
   EXPECT_TRUE(second.plan.resumed);
   EXPECT_EQ(second.plan.cases, first.plan.cases);
   ASSERT_TRUE(second.scored);
@@ -163,7 +163,7 @@ TEST(TrainingSession, RefusalsAreOneLineAndLoseNothingStored) {
   const auto db = dir / "train.db";
   const Curriculum c = load_curriculum(course);
   enrol_trainee(db.string(), c, "T");
-  ASSERT_TRUE(run_training_session(request_for(course, db, "T", "sim:1"), {}, nullptr).scored);
+  ASSERT_TRUE(run_training_session(request_for(course, db, "T", "sim:1"), {}, RunControl{}).scored);
   const auto trials_before = [&] {
     SqliteTrialStore store(db, TrialStore::Access::read_only);
     return store.read_trials(true).size();
@@ -179,26 +179,31 @@ TEST(TrainingSession, RefusalsAreOneLineAndLoseNothingStored) {
     return std::string("accepted");
   };
   // An unknown trainee.
-  EXPECT_NE(one_line([&] { run_training_session(request_for(course, db, "nobody", "sim:1"), {}, nullptr); })
-                .find("trainee 'nobody'"),
+  EXPECT_NE(one_line([&] {
+              run_training_session(request_for(course, db, "nobody", "sim:1"), {}, RunControl{});
+            }).find("trainee 'nobody'"),
             std::string::npos);
   // A bad curriculum file.
   const auto bad = dir / "bad.json";
   std::ofstream(bad) << R"({"version": 1, "kind": "curriculum", "name": "x", "levels": [{"name": "a",
       "cases": {"generate": "easy"}, "benchmark": {"found_min": 2}}]})";
-  EXPECT_NE(one_line([&] { run_training_session(request_for(bad, db, "T", "sim:1"), {}, nullptr); })
-                .find("levels[0].benchmark.found_min"),
+  EXPECT_NE(one_line([&] {
+              run_training_session(request_for(bad, db, "T", "sim:1"), {}, RunControl{});
+            }).find("levels[0].benchmark.found_min"),
             std::string::npos);
   // A person at a front end that cannot ask one (the terminal has no pen).
-  EXPECT_NE(one_line([&] { run_training_session(request_for(course, db, "T", ""), {}, nullptr); }).find("participant"),
-            std::string::npos);
+  EXPECT_NE(
+      one_line([&] { run_training_session(request_for(course, db, "T", ""), {}, RunControl{}); }).find("participant"),
+      std::string::npos);
   // A benchmark from experts who have no session at the level.
-  EXPECT_NE(one_line([&] { expert_benchmark(db.string(), c, 1, {"T", "expert2"}, std::nullopt); }).find("experts"),
+  EXPECT_NE(one_line([&] {
+              expert_benchmark(db.string(), c, 1, {"T", "expert2"}, std::nullopt);
+            }).find("experts"),
             std::string::npos);
   // An unknown level.
   TrainingRequest r = request_for(course, db, "T", "sim:1");
   r.level = "four";
-  EXPECT_NE(one_line([&] { run_training_session(r, {}, nullptr); }).find("'four'"), std::string::npos);
+  EXPECT_NE(one_line([&] { run_training_session(r, {}, RunControl{}); }).find("'four'"), std::string::npos);
   // Nothing stored was lost, nothing was added, and the next session runs as it would have.
   SqliteTrialStore store(db, TrialStore::Access::read_only);
   EXPECT_EQ(store.read_trials(true).size(), trials_before);
@@ -214,14 +219,14 @@ TEST(TrainingSession, ExpertBenchmarkIsTheMeanOrAPercentileOfTheirSessionsAtTheL
     enrol_trainee(db.string(), c, expert);
     TrainingRequest r = request_for(course, db, expert, std::string("sim:") + (expert[1] == '1' ? "11" : "12"));
     r.level = "two";
-    ASSERT_TRUE(run_training_session(r, {}, nullptr).scored);
+    ASSERT_TRUE(run_training_session(r, {}, RunControl{}).scored);
   }
   const ExpertBenchmark mean = expert_benchmark(db.string(), c, 1, {"E1", "E2"}, std::nullopt);
   EXPECT_EQ(mean.sessions, 2);
   ASSERT_TRUE(mean.benchmark.found_min.has_value());
   ASSERT_TRUE(mean.benchmark.time_per_case_max_s.has_value());
   const ExpertBenchmark p0 = expert_benchmark(db.string(), c, 1, {"E1", "E2"}, 0.0);
-  EXPECT_LE(*p0.benchmark.found_min, *mean.benchmark.found_min);        // the lowest expert session
+  EXPECT_LE(*p0.benchmark.found_min, *mean.benchmark.found_min);                      // the lowest expert session
   EXPECT_GE(*p0.benchmark.time_per_case_max_s, *mean.benchmark.time_per_case_max_s);  // the slowest
   // Sessions at level two did not move the experts off level one.
   EXPECT_EQ(trainee_standing(db.string(), c, "E1").standing.level, 0);

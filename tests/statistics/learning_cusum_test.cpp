@@ -95,7 +95,8 @@ void check_limit_by_simulation(CusumChart chart, double good_rate, double bad_ra
   int false_within = 0, true_within = 0, by_power = 0;
   double sum = 0, sum2 = 0;
   for (int i = 0; i < kRuns; ++i) {
-    false_within += simulated_run_length(chart, limit.limit, bad_rate, errors.horizon_cases, rng) <= errors.horizon_cases;
+    false_within +=
+        simulated_run_length(chart, limit.limit, bad_rate, errors.horizon_cases, rng) <= errors.horizon_cases;
     const int rl = simulated_run_length(chart, limit.limit, good_rate, 1500, rng);
     ASSERT_LE(rl, 1500);
     true_within += rl <= errors.horizon_cases;

@@ -68,10 +68,11 @@ TEST(LocalisationCases, AListOfCasesIsTheItemsOfTheOrder) {
   for (const PlannedTrial& t : plan.trials) seen.insert(trial_case(p, t, plan.seed).name);
   EXPECT_EQ(seen.size(), 3u);  // each case once
   // The same case twice in a list is refused.
-  EXPECT_THROW(parse_protocol(localisation({{"cases", {{{"difficulty", "easy"}, {"seed", 7}},
-                                                        {{"difficulty", "easy"}, {"seed", 7}}}}}),
-                              "p.json", scenes),
-               InputError);
+  EXPECT_THROW(
+      parse_protocol(
+          localisation({{"cases", {{{"difficulty", "easy"}, {"seed", 7}}, {{"difficulty", "easy"}, {"seed", 7}}}}}),
+          "p.json", scenes),
+      InputError);
 }
 
 TEST(LocalisationCases, GenerateMakesANewCasePerTrialFromTheSessionSeed) {
@@ -98,8 +99,9 @@ TEST(LocalisationCases, GenerateMakesANewCasePerTrialFromTheSessionSeed) {
 
 TEST(LocalisationCases, ExactlyOneWayOfNamingTheCasesIsRequired) {
   EXPECT_THROW(parse_protocol(localisation({{"tolerance_mm", 5}}), "p.json", "."), InputError);
-  EXPECT_THROW(parse_protocol(localisation({{"scene", "a.json"}, {"generate", {{"difficulty", "easy"}}}}), "p.json", "."),
-               InputError);
+  EXPECT_THROW(
+      parse_protocol(localisation({{"scene", "a.json"}, {"generate", {{"difficulty", "easy"}}}}), "p.json", "."),
+      InputError);
   EXPECT_THROW(parse_protocol(localisation({{"generate", {{"difficulty", "tricky"}}}}), "p.json", "."), InputError);
 }
 

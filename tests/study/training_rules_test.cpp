@@ -128,8 +128,7 @@ TEST(TrainingRules, ASceneSetGivesTheScenesNotHadFirst) {
   const PlannedTrainingSession second = plan_training_session(c, 2, "T1", {first.cases[0].key}, 2);
   EXPECT_NE(second.cases[0].key, first.cases[0].key);
   // Every scene had: the set again (a fixed set repeats; generated cases never do).
-  const PlannedTrainingSession third =
-      plan_training_session(c, 2, "T1", {first.cases[0].key, second.cases[0].key}, 3);
+  const PlannedTrainingSession third = plan_training_session(c, 2, "T1", {first.cases[0].key, second.cases[0].key}, 3);
   EXPECT_EQ(third.cases.size(), 1u);
 }
 
@@ -172,7 +171,7 @@ TEST(TrainingRules, ACaseFailsUnlessEveryTumorIsFoundWithinTheFalseMarkAllowance
   EXPECT_TRUE(case_failed(localisation_case(2, 2, 1, 10), b));
   b.false_marks_per_case_max = 1.5;  // a whole false mark allowed per case
   EXPECT_FALSE(case_failed(localisation_case(2, 2, 1, 10), b));
-  EXPECT_TRUE(case_failed(localisation_case(0, 0, 1, 10), b));  // a normal case marked
+  EXPECT_TRUE(case_failed(localisation_case(0, 0, 1, 10), b));   // a normal case marked
   EXPECT_FALSE(case_failed(localisation_case(0, 0, 0, 10), b));  // "nothing there": right
   CaseResult unanswered;
   unanswered.tumors = 1;
