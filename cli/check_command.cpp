@@ -30,7 +30,9 @@
 #include "inputs/tablet_source.hpp"
 #include "core/input_error.hpp"
 #include "models/stiffness_map.hpp"
+#include "study/curriculum.hpp"
 #include "study/protocol.hpp"
+#include "study/training.hpp"
 #include "study/pulse_protocol.hpp"
 #include "study/threshold_protocol.hpp"
 
@@ -38,8 +40,8 @@ using namespace palprig;
 
 namespace {
 
-const std::vector<std::string> kKinds = {"rig",      "scene", "calibration", "protocol", "trace",    "map",
-                                         "waveform", "evemu", "tracking",    "poses",    "fiducials"};
+const std::vector<std::string> kKinds = {"rig",      "scene", "calibration", "protocol", "trace",     "map",
+                                         "waveform", "evemu", "tracking",    "poses",    "fiducials", "curriculum"};
 
 std::string count(std::size_t n, const std::string& noun) {
   return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
@@ -72,6 +74,7 @@ std::string detect_kind(const std::filesystem::path& path) {
   }
   const nlohmann::json doc = read_json_file(path);
   if (!doc.is_object()) throw InputError(path.string(), "(root)", "a JSON object");
+  if (is_curriculum(doc)) return "curriculum";
   if (doc.contains("kind")) return "scene";
   if (doc.contains("task")) return "protocol";
   if (doc.contains("stress_model") || doc.contains("rig_id")) return "calibration";
@@ -110,6 +113,19 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
     return "calibration for rig '" + cal.rig_id + "'";
   }
   if (kind == "protocol") return check_protocol(path);
+  if (kind == "curriculum") {
+    const Curriculum c = load_curriculum(path);
+    std::string out = "curriculum '" + c.name + "', " + count(c.levels.size(), "level");
+    // What the pilot section predicts for a simulated trainee (train next --participant sim:SEED).
+    const auto first = predict_pilot_sessions(c, 200);
+    std::string at;
+    for (std::size_t i = 1; i < first.size(); ++i) {
+      at += (at.empty() ? "" : ", ") + std::string("level ") + std::to_string(i + 1) + " at " +
+            (first[i] ? "session " + std::to_string(*first[i]) : std::string("none of 200 sessions"));
+    }
+    if (!at.empty()) out += "; a pilot trainee who would find every tumor once skilled reaches " + at;
+    return out;
+  }
   if (kind == "trace") {
     const auto samples = load_trace_csv(path);
     return "pen trace, " + count(samples.size(), "row");
@@ -155,7 +171,7 @@ void register_check_command(CLI::App& app) {
   auto a = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
       "check",
-      "Load files through palprig's readers and say what each is (rig, scene, calibration, protocol, "
+      "Load files through palprig's readers and say what each is (rig, scene, calibration, protocol, curriculum, "
       "trace, map, waveform, evemu, tracking, poses, fiducials); a refused file is one line, exit 2");
   sub->add_option("files", a->files, "files to check")->required();
   sub->add_option("--kind", a->kind, "the kind, instead of reading it from the file")->check(CLI::IsMember(kKinds));

@@ -55,6 +55,8 @@ void register_tracking_command(CLI::App& app);
 void register_load_cell_command(CLI::App& app);
 // palprig data list / data dir: the shipped files found by name (data_command.cpp, data_files.cpp).
 void register_data_command(CLI::App& app);
+// Training programmes (train_command.cpp): enrol, next, status, benchmark.
+void register_train_command(CLI::App& app);
 // Every command that needs the rig stack: rig_commands.cpp, or rig_commands_absent.cpp in the
 // analyst-only build (-DPALPRIG_RIG=OFF).
 void register_rig_commands(CLI::App& app);

@@ -128,7 +128,7 @@ void ExperimentPage::connect_session() {
     apply_answer_key();
     // A session that stopped or faulted is resumable: offer it at once (the list keeps its
     // ticks, read back from the store). A completed one stays on show as it ended.
-    if (!last_completed_ && refusal_text().isEmpty()) {
+    if (!last_completed_ && refusal_text().isEmpty() && !training_) {
       const QStringList files = files_written_;
       const QString status = status_->text();
       update_plan();
@@ -137,6 +137,10 @@ void ExperimentPage::connect_session() {
       status_->setText(status);
     }
     set_buttons();
+    if (training_) {
+      training_ = false;  // `train next` (or the Training view) continues a stopped one
+      emit trainingFinished();
+    }
   });
 }
 

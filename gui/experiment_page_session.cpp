@@ -39,6 +39,7 @@ namespace palprig::gui {
 
 bool ExperimentPage::begin(bool resume) {
   if (run_.running()) return false;
+  training_ = false;
   update_plan();
   const ExperimentFields f = fields();
   if (!protocol_ && !pulse_protocol_) {
@@ -104,6 +105,7 @@ bool ExperimentPage::begin(bool resume) {
 }
 
 void ExperimentPage::on_started(const SessionStart& s) {
+  screen_->set_session_seed(s.seed);
   resume_note_->clear();
   offered_session_.reset();
   // The order being run, as stored (a new participant's number is known only now).

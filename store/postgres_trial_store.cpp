@@ -79,6 +79,12 @@ TrialRows trial_rows_of(const TrialRecord& r) {
   t[kTrialStimulusEnd] = finite_or_sql_null(r.stimulus_end_s);
   t[kTrialStimulusReached] = finite_or_sql_null(r.stimulus_reached_s);
   if (r.answered && r.confidence) t[kTrialConfidence] = std::int64_t{*r.confidence};
+  if (!discrimination && !r.case_name.empty()) {  // a case named by the runner (not a hand-made record)
+    t[kTrialCaseName] = r.case_name;
+    if (r.case_seed) t[kTrialCaseSeed] = static_cast<std::int64_t>(*r.case_seed);
+    if (r.case_difficulty) t[kTrialCaseDifficulty] = std::string(to_string(*r.case_difficulty));
+    t[kTrialCaseTumors] = std::int64_t{r.case_tumors};
+  }
   if (discrimination) {
     t[6] = r.combination_label;
     for (int f = 0; f < kFingerCount; ++f)

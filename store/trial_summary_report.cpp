@@ -15,6 +15,8 @@ namespace palprig {
 
 namespace {
 
+constexpr const char* kTableNotAvailable = "n/a";
+
 struct NamedMeasure {
   const char* name;
   const Measure& m;
@@ -24,8 +26,10 @@ std::array<NamedMeasure, 4> measures_of(const SummaryRow& r) {
   return {{{"Se", r.measures.se}, {"Sp", r.measures.sp}, {"PPV", r.measures.ppv}, {"ACC", r.measures.acc}}};
 }
 
-std::string fixed(double x, int decimals) {
-  if (!std::isfinite(x)) return "NA";
+// Not available: "n/a" in the table (one spelling for the reader), "NA" in the CSV (R's
+// read.csv and pandas read it as missing).
+std::string fixed(double x, int decimals, const char* not_available = "NA") {
+  if (!std::isfinite(x)) return not_available;
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
   return buf;
@@ -56,19 +60,19 @@ std::string summary_table(const TrialSummary& s) {
     for (std::int64_t v : {r.trials, r.unanswered, r.counts.tp, r.counts.fn, r.counts.tn, r.counts.fp}) {
       line.push_back(std::to_string(v));
     }
-    if (!r.negatives_counted) line[line.size() - 2] = "n/a";  // TN
+    if (!r.negatives_counted) line[line.size() - 2] = kTableNotAvailable;  // TN
     for (const auto& nm : measures_of(r)) {
       line.push_back(nm.m.defined
                          ? fixed(nm.m.value, 3) + " [" + fixed(nm.m.lower, 3) + ", " + fixed(nm.m.upper, 3) + "]"
-                         : std::string("n/a"));
+                         : std::string(kTableNotAvailable));
     }
-    line.push_back(fixed(r.mean_rt_s, 2));
-    line.push_back(fixed(r.sd_rt_s, 2));
-    line.push_back(fixed(r.mean_rt_after_stimulus_s, 2));
-    line.push_back(fixed(r.sd_rt_after_stimulus_s, 2));
+    line.push_back(fixed(r.mean_rt_s, 2, kTableNotAvailable));
+    line.push_back(fixed(r.sd_rt_s, 2, kTableNotAvailable));
+    line.push_back(fixed(r.mean_rt_after_stimulus_s, 2, kTableNotAvailable));
+    line.push_back(fixed(r.sd_rt_after_stimulus_s, 2, kTableNotAvailable));
     if (s.any_rated) {
       line.push_back(std::to_string(r.rated));
-      line.push_back(fixed(r.mean_confidence, 2));
+      line.push_back(fixed(r.mean_confidence, 2, kTableNotAvailable));
     }
     cells.push_back(line);
   }
@@ -119,7 +123,8 @@ nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence, Re
   j["task"] = "discrimination/localisation";
   j["convention"] =
       "per finger value (discrimination) or per tumor (localisation): Se = TP/(TP+FN), "
-      "Sp = TN/(TN+FP), PPV = TP/(TP+FP), ACC = (TP+TN)/all (paper 002 eq. 5-8); Wilson score "
+      "Sp = TN/(TN+FP), PPV = TP/(TP+FP), ACC = (TP+TN)/all (paper 002 eq. 5-8); localisation: FP per false "
+      "mark, TN per normal case left unmarked, Sp = TN/normal cases, ACC n/a; Wilson score "
       "intervals without continuity correction";
   j["confidence"] = confidence;
   j["by"] = nlohmann::ordered_json::array();
