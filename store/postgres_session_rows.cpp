@@ -288,7 +288,7 @@ void pg_write_training_row(PgConnection& db, std::int64_t session_id, const SqlR
   std::vector<PgParam> params{pg_text(session_id)};
   append_params(params, row);
   db.exec("INSERT INTO training_sessions (session_id, " + column_list(kTrainingColumns) + ") VALUES ($1, " +
-              placeholders<kTrainingColumns.size()>(2) +
+              pg_placeholders<kTrainingColumns.size()>(2) +
               ") ON CONFLICT (session_id) DO UPDATE SET status = excluded.status, scores = excluded.scores, "
               "met_benchmark = excluded.met_benchmark, finished_utc = excluded.finished_utc "
               "WHERE training_sessions.status <> 'completed'",
