@@ -98,7 +98,9 @@ TEST(AnalystCommands, RigCommandsAreRefusedWithOneLine) {
 TEST(AnalystCommands, TheCommandLinksNoRigLibrary) {
   const auto r = run_process("ldd " + palprig_bin());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* lib : {"libmodbus", "libcomedi", "libevdev", "libevemu", "libQt6Widgets"}) {
+  // Qt6 Widgets is linked, on purpose: QCustomPlot, which draws the charts, is a QWidget
+  // (charts/README.md). The rig's libraries are not.
+  for (const char* lib : {"libmodbus", "libcomedi", "libevdev", "libevemu", "libOpenIGTLink"}) {
     EXPECT_EQ(r.out.find(lib), std::string::npos) << lib << " in\n" << r.out;
   }
 }
