@@ -151,6 +151,9 @@ class ExperimentPage final : public QWidget {
   void connect_pulse();
   std::vector<int> answer_key_columns() const;  // of the table's current task (experiment_page_pulse.cpp)
   void apply_answer_key();                      // hides or shows those columns for the state above
+  // A session has just started (begin() or a trainee's session): the participant's keys on a
+  // person's session, the key hidden from them (their own display when there is a second one).
+  void session_started_for_participant();
 
   ExperimentHost host_;
   SessionRun run_;

@@ -89,6 +89,11 @@ bool ExperimentPage::begin(bool resume) {
     start_pulse_run(request);
   else
     run_.start(request, person);
+  session_started_for_participant();
+  return true;
+}
+
+void ExperimentPage::session_started_for_participant() {
   if (!simulated_) participant_keys_->install();
   // The participant never sees the answer key: on its own display when there is a second one
   // (as PsychoPy opens its window there), else the key columns are hidden in this window.
@@ -101,7 +106,6 @@ bool ExperimentPage::begin(bool resume) {
   }
   apply_answer_key();
   set_buttons();
-  return true;
 }
 
 void ExperimentPage::on_started(const SessionStart& s) {

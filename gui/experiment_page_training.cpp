@@ -4,11 +4,9 @@
 // session thread starts), run on SessionRun's thread by run_training_session, which scores it
 // against the level's benchmark at its end. The rest of the console (participant screen, keys,
 // pause, abort, trial list with the answer key hidden from a person) is the one begin() uses.
-#include <QGuiApplication>
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
-#include <QSignalBlocker>
 #include <QTableWidget>
 
 #include "gui/experiment_page.hpp"
@@ -103,17 +101,7 @@ bool ExperimentPage::begin_training(const TrainingRequest& r, const PreparedTrai
   training_ = true;
   status_->setText(p.plan.resumed ? "Continuing the trainee's unfinished session..." : "Starting...");
   run_.start_training(request, p, person, pulse_person);
-  if (!simulated_) participant_keys_->install();
-  // As begin(): the participant never sees the answer key.
-  person_session_ = !simulated_;
-  if (person_session_ && QGuiApplication::screens().size() > 1 && !full_screen_->isChecked())
-    full_screen_->setChecked(true);
-  {
-    const QSignalBlocker quiet(show_key_);
-    show_key_->setChecked(false);
-  }
-  apply_answer_key();
-  set_buttons();
+  session_started_for_participant();  // as begin(): the participant never sees the answer key
   return true;
 }
 
