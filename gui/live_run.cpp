@@ -82,7 +82,11 @@ LiveRun::~LiveRun() {
 void LiveRun::start_loop() {
   // The rig may be lent (a session, a sweep): the loop starts when it comes back.
   if (rig_->leased()) return;
-  lease_.emplace(rig_->lease("the window's live loop", LeaseKind::yielding));
+  try {
+    lease_.emplace(rig_->lease("the window's live loop", LeaseKind::yielding));
+  } catch (const RigBusy&) {
+    return;  // a session or a sweep took it (or waits for it) since: the loop starts when it comes back
+  }
   // As on opening: hardware starts connected and vented, and the operator arms it; the
   // in-process simulation needs no such care and starts ready to press.
   control_->restart();
