@@ -193,6 +193,13 @@ class ChartBuilder {
       plot_.xAxis->setTicker(ticker);
       plot_.xAxis->setSubTicks(false);
       plot_.xAxis->grid()->setVisible(false);
+    } else if (c_.x_whole_numbers) {
+      // Steps of 1, 2, 5, 10, ... cases: QCustomPlot's fixed ticker scaled by whole multiples.
+      QSharedPointer<QCPAxisTickerFixed> ticker(new QCPAxisTickerFixed);
+      ticker->setTickStep(1.0);
+      ticker->setScaleStrategy(QCPAxisTickerFixed::ssMultiples);
+      plot_.xAxis->setTicker(ticker);
+      plot_.xAxis->setSubTicks(false);
     }
   }
 

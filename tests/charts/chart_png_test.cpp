@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "charts/chart_png.hpp"
@@ -217,4 +218,33 @@ TEST(Charts, ALegendNeverLiesOverTheData) {
       legend_text += p.red() < 80 && p.green() < 80 && p.blue() < 80;
     }
   EXPECT_GT(legend_text, 100) << "the legend's text under the plot";
+}
+
+// A chart whose x counts cases (a CUSUM over 10 cases) has ticks at whole numbers only; left to
+// itself QCustomPlot puts them at 0, 2.5, 5, 7.5, 10.
+TEST(Charts, CountedAxesTickAtWholeNumbersOnly) {
+  auto tick_labels_of = [](bool whole) {
+    Chart c;
+    c.x_label = "case";
+    c.y_label = "S";
+    c.x_min = 0.0;
+    c.x_max = 10.0;
+    c.x_whole_numbers = whole;
+    ChartSeries s;
+    for (int i = 0; i <= 10; ++i) {
+      s.x.push_back(i);
+      s.y.push_back(0.1 * i);
+    }
+    c.series.push_back(s);
+    TempDir dir;
+    write_chart_svg(c, dir.path() / "c.svg");
+    std::ifstream in(dir.path() / "c.svg");
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string free_ticks = tick_labels_of(false);
+  ASSERT_NE(free_ticks.find(">2.5<"), std::string::npos) << "the default ticker's half-case tick (the test's premise)";
+  const std::string whole = tick_labels_of(true);
+  EXPECT_EQ(whole.find(">2.5<"), std::string::npos);
+  EXPECT_EQ(whole.find(">7.5<"), std::string::npos);
+  EXPECT_NE(whole.find(">4<"), std::string::npos);
 }
