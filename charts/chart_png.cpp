@@ -163,7 +163,9 @@ class ChartBuilder {
 
  private:
   double slot() const { return 0.8 / double(std::max(dodged_count_, 1)); }
-  double dodge_offset(int i) const { return dodged_count_ > 1 ? -0.4 + slot() * (i + 0.5) : 0.0; }
+  double dodge_offset(std::size_t i) const {
+    return dodged_count_ > 1 ? -0.4 + slot() * (static_cast<double>(i) + 0.5) : 0.0;
+  }
 
   void axes() {
     for (QCPAxis* a : {plot_.xAxis, plot_.yAxis}) {

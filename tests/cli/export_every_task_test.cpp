@@ -112,10 +112,10 @@ class ExportEveryTask : public ::testing::Test {
         for (const std::string& protocol : kProtocols) {
           const auto r = run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / protocol).string(),
                                       "--participant", participant, "--db", making.string()});
-          if (r.exit_code != 0)
-            throw std::runtime_error(protocol + " " + participant + ": exit " + std::to_string(r.exit_code) + ": " +
-                                     r.err);
-          printed[protocol + " " + participant] = r.out;
+          std::string run = protocol;
+          run.append(" ").append(participant);
+          if (r.exit_code != 0) throw std::runtime_error(run + ": exit " + std::to_string(r.exit_code) + ": " + r.err);
+          printed[run] = r.out;
         }
       }
       fs::rename(making, cached_db);

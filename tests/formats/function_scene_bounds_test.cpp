@@ -25,9 +25,10 @@ namespace {
 nlohmann::json sphere_union_scene(int n) {
   nlohmann::json parts = nlohmann::json::array();
   const int side = static_cast<int>(std::ceil(std::sqrt(double(n))));
-  for (int i = 0; i < n; ++i)
-    parts.push_back(
-        {{"type", "sphere"}, {"centre_mm", {10 + 2.5 * (i % side), 10 + 2.5 * (i / side), 5}}, {"radius_mm", 1.0}});
+  for (int i = 0; i < n; ++i) {
+    const int column = i % side, row = i / side;
+    parts.push_back({{"type", "sphere"}, {"centre_mm", {10 + 2.5 * column, 10 + 2.5 * row, 5}}, {"radius_mm", 1.0}});
+  }
   return {{"version", 1},
           {"kind", "function"},
           {"body", {{"centre_mm", {100, 100}}, {"half_size_mm", {100, 100}}}},
@@ -143,7 +144,9 @@ TEST(FunctionSceneBounds, AWaveformFileThatIsNotASmallRegularFileIsRefused) {
     const auto f = dir.write("scene.json", scene.dump());
     const std::string why = refusal(f);
     EXPECT_EQ(why.rfind(f.string() + ": arteries[0].waveform.file: a regular file of at most 1024 KiB", 0), 0u) << why;
-    EXPECT_NE(why.find(file + " (" + kind + ")"), std::string::npos) << why;
+    std::string named = file;  // the table file and what it holds, as the refusal names them
+    named.append(" (").append(kind).append(")");
+    EXPECT_NE(why.find(named), std::string::npos) << why;
     EXPECT_EQ(why.find('\n'), std::string::npos) << why;
   }
   // The same scene with a real table loads: the refusals above are the file's doing.

@@ -109,11 +109,16 @@ TEST(SceneCostBound, TheBoundCountsTheFullestGridCellOfAUnionNotAllItsParts) {
   // few spheres per point through the union's grid.
   FrepShape shape;
   std::vector<FrepShape::Node> parts;
-  for (int i = 0; i < 4000; ++i) parts.push_back(shape.sphere({10 + 2.5 * (i % 64), 10 + 2.5 * (i / 64), 5}, 1.0));
+  parts.reserve(4000);
+  for (int i = 0; i < 4000; ++i) {
+    const int column = i % 64, row = i / 64;
+    parts.push_back(shape.sphere({10 + 2.5 * column, 10 + 2.5 * row, 5}, 1.0));
+  }
   shape.unite(parts);
   EXPECT_LT(shape.worst_case_cost(), 20.0);
   FrepShape scan;
   std::vector<FrepShape::Node> all;
+  all.reserve(100);
   for (int i = 0; i < 100; ++i) all.push_back(scan.sphere({100, 60, 0}, 30));
   scan.intersect(all);
   EXPECT_EQ(scan.worst_case_cost(), 101.0);

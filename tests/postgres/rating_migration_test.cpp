@@ -66,7 +66,7 @@ TEST(PostgresRatingMigration, Version2ServerIsReadAsItIsThenMigratedAndRatingsTr
   // A reader opens it as it is: the same statistics as the file's, nothing migrated. (The
   // file has stimulus ends and reached times the version-2 server could not take, so only the onset figures and
   // the measures are compared.)
-  const auto without_after = [](std::string json) {
+  const auto without_after = [](const std::string& json) {
     auto j = nlohmann::json::parse(json);
     for (auto& row : j["rows"]) {
       row.erase("rt_after_stimulus_mean_s");

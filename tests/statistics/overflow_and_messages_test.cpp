@@ -25,6 +25,7 @@ using testing::ScratchDir;
 
 std::vector<double> times(const std::vector<double>& v, double k) {
   std::vector<double> out;
+  out.reserve(v.size());
   for (double x : v) out.push_back(x * k);
   return out;
 }

@@ -41,8 +41,10 @@ std::int64_t scalar(const std::string& db, const std::string& sql) {
 // Starts all children before waiting on any, so they race for real.
 std::vector<CommandResult> run_together(const std::vector<std::vector<std::string>>& commands) {
   std::vector<std::unique_ptr<ChildProcess>> children;
+  children.reserve(commands.size());
   for (const auto& args : commands) children.push_back(std::make_unique<ChildProcess>(args));
   std::vector<CommandResult> results;
+  results.reserve(children.size());
   for (auto& child : children) results.push_back(child->finish());
   return results;
 }

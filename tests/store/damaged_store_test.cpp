@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -25,7 +26,7 @@ std::string protocol_file() { return (testing::protocols_dir() / "discrimination
 
 // A real database of `sessions` completed simulated sessions (32 trials each).
 std::string make_store(const ScratchDir& dir, int sessions) {
-  const std::string db = (dir / "study.db").string();
+  std::string db = (dir / "study.db").string();
   for (int i = 1; i <= sessions; ++i) {
     const auto r = run_palprig({"experiment", "run", "--protocol", protocol_file(), "--participant",
                                 "sim:" + std::to_string(i), "--db", db, "--quiet"});
@@ -98,7 +99,7 @@ TEST(DamagedStore, TruncatedMidPageIsRefusedNotHalfCounted) {
 TEST(DamagedStore, TruncatedByWholePagesIsRefused) {
   ScratchDir dir;
   const std::string db = make_store(dir, 4);
-  std::filesystem::resize_file(db, std::filesystem::file_size(db) - 2 * 4096);
+  std::filesystem::resize_file(db, std::filesystem::file_size(db) - std::uintmax_t{2} * 4096);
   expect_every_command_refuses(dir, db);
 }
 

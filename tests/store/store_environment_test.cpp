@@ -133,7 +133,7 @@ TEST(StoreEnvironment, AFullDiskIsOneLineOfPalprigsOwnAndKeepsWhatWasCommitted) 
   auto a = args;
   const auto db = dir.path() / "full.db";
   a.push_back(db.string());
-  const Result r = run_with_file_size_limit(a, 160 * 1024, dir.path());
+  const Result r = run_with_file_size_limit(a, rlim_t{160} * 1024, dir.path());
   EXPECT_NE(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("database or disk is full\n"), std::string::npos) << r.err;  // not SQLite's text alone
   EXPECT_NE(r.err.find("palprig: " + db.string() + ": "), std::string::npos) << r.err;

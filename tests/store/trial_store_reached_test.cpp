@@ -56,7 +56,7 @@ TrialRecord trial_of(const Protocol& p, const PlannedTrial& planned) {
 }
 
 std::filesystem::path store_with_one_session(const ScratchDir& dir, const Protocol& p, const SessionPlan& plan) {
-  const auto file = dir / "t.db";
+  auto file = dir / "t.db";
   SqliteTrialStore store(file, TrialStore::Access::read_write);
   const auto session = store.create_session(store.enrol("P01", false), p, plan, {});
   for (const PlannedTrial& t : plan.trials) store.commit_trial(session, trial_of(p, t));

@@ -37,6 +37,7 @@ class ChildProcess {
       ::close(out[0]);
       ::close(out[1]);
       std::vector<char*> args;
+      args.reserve(argv.size() + 1);
       for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
       args.push_back(nullptr);
       execv(args[0], args.data());
