@@ -3,20 +3,22 @@
 (.clang-tidy) clean on every .cpp the build compiles. Python 3 from Debian, no other package.
 
     python3 tools/check_style.py format [--repo ROOT] [--fix]
-    python3 tools/check_style.py tidy   [--repo ROOT] --build BUILD [--jobs N] [FILE.cpp ...]
+    python3 tools/check_style.py tidy   [--repo ROOT] --build BUILD [--jobs N] [--folders A,B] [FILE.cpp ...]
 
 ctest runs them as style.ClangFormat and style.ClangTidy (tests/CMakeLists.txt); `make format`
 runs `format --fix`. Each prints one line per offending file (clang-format's or clang-tidy's own
 words below it) and exits 1 when there is any; 0 when the tree is clean.
 
 clang-tidy parses each translation unit as a compiler does (several seconds each with Qt, Eigen
-or Ceres), so `tidy` runs the build's own compile commands (BUILD/compile_commands.json), `--jobs`
-at a time, reports only palprig's own files (the header filter is the source folders), and
-remembers a clean result per translation unit in BUILD/style-cache/: the key is a hash of
-everything its preprocessed text depends on (its compile command, the source, every header the
-compiler read for it, from the build's dependency file), of .clang-tidy and of clang-tidy's
-version. A second run after a one-file change re-checks only the translation units that include
-that file. Findings are never cached: a unit with findings is checked again on the next run.
+or Ceres), so `tidy` runs the build's own compile commands (BUILD/compile_commands.json) for every
+.cpp of the repository the build compiles (libraries, programs, suites and benchmarks; `--folders`
+for a subset of the top folders, FILE.cpp for single files), `--jobs` at a time, reports only
+palprig's own files (the header filter is the source folders), and remembers a clean result per
+translation unit in BUILD/style-cache/: the key is a hash of everything its preprocessed text
+depends on (its compile command, the source, every header the compiler read for it, from the
+build's dependency file), of .clang-tidy and of clang-tidy's version. A second run after a
+one-file change re-checks only the translation units that include that file. Findings are never
+cached: a unit with findings is checked again on the next run.
 """
 from __future__ import annotations
 
@@ -36,13 +38,6 @@ import time
 HERE = pathlib.Path(__file__).resolve().parent.parent
 # Folders of the tree that hold no C++ of palprig's (build folders are found by their CMakeCache).
 NOT_CODE = {".git", "data", "docs", "tools"}
-# The folders whose translation units `tidy` checks by default (make test's style.ClangTidy):
-# the floors that drive the rig, where a bug moves air (the tick, the loop, the backends, the
-# inputs, the models and the files they read). A cold run over all of the build's units (over
-# 400, most of them Qt-, Eigen- or GoogleTest-heavy) costs more than make test's whole budget on
-# a 2-core CI machine (docs/benchmarks.md, "The style gate"); `--folders all` checks the whole
-# tree (docs/developing.md, "Style").
-RIG_FLOORS = ("core", "io", "models", "runtime", "formats", "rigs", "inputs", "controller", "diagnostics")
 
 
 def source_folders(repo: pathlib.Path) -> list[str]:
@@ -254,8 +249,8 @@ def main() -> int:
     ap.add_argument("--repo", type=pathlib.Path, default=HERE)
     ap.add_argument("--build", type=pathlib.Path, default=None, help="the build folder (tidy; default REPO/build)")
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--folders", default=",".join(RIG_FLOORS),
-                    help="tidy: comma-separated top folders to check, or 'all' (default: the rig floors)")
+    ap.add_argument("--folders", default="all",
+                    help="tidy: comma-separated top folders to check (default 'all': every unit of the tree)")
     ap.add_argument("--fix", action="store_true", help="format: rewrite the files instead of checking")
     ap.add_argument("files", nargs="*", help="tidy: only these .cpp files")
     a = ap.parse_intermixed_args()
