@@ -26,6 +26,7 @@
 #include "tests/support/process_support.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -50,14 +51,6 @@ std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> out;
   std::stringstream s(text);
   for (std::string line; std::getline(s, line);) out.push_back(line);
-  return out;
-}
-
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::stringstream s(line);
-  for (std::string cell; std::getline(s, cell, sep);) out.push_back(cell);
-  if (!line.empty() && line.back() == sep) out.emplace_back();
   return out;
 }
 
@@ -154,7 +147,7 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
 
   const auto threshold_lines = lines_of(read_text(out / "threshold_trials.csv"));
   ASSERT_EQ(static_cast<std::int64_t>(threshold_lines.size()), threshold + 1);
-  const auto header = split(threshold_lines[0], ',');
+  const auto header = palprig::testing::split_cells(threshold_lines[0], ',');
   const auto column = [&](const std::string& name) {
     const auto it = std::find(header.begin(), header.end(), name);
     EXPECT_NE(it, header.end()) << name;
@@ -163,7 +156,7 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
   // The track's estimate after its last trial is the threshold the session printed at its end.
   std::map<std::string, std::string> last_estimate;  // "participant track_name" -> estimate
   for (std::size_t i = 1; i < threshold_lines.size(); ++i) {
-    const auto cells = split(threshold_lines[i], ',');
+    const auto cells = palprig::testing::split_cells(threshold_lines[i], ',');
     ASSERT_EQ(cells.size(), header.size()) << threshold_lines[i];
     if (cells[column("protocol")].rfind("threshold_1up3down", 0) != 0) continue;
     last_estimate[cells[column("participant")] + " " + cells[column("track_name")]] = cells[column("estimate_kPa")];
@@ -184,12 +177,12 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
 
   const auto pulse_lines = lines_of(read_text(out / "pulse_trials.csv"));
   ASSERT_EQ(static_cast<std::int64_t>(pulse_lines.size()), pulse + 1);
-  const auto pulse_header = split(pulse_lines[0], ',');
+  const auto pulse_header = palprig::testing::split_cells(pulse_lines[0], ',');
   for (const char* name : {"mark_x_mm", "distance_mm", "hit", "hit_radius_mm", "artery"}) {
     EXPECT_NE(std::find(pulse_header.begin(), pulse_header.end(), name), pulse_header.end()) << name;
   }
   for (std::size_t i = 1; i < pulse_lines.size(); ++i)
-    EXPECT_EQ(split(pulse_lines[i], ',').size(), pulse_header.size());
+    EXPECT_EQ(palprig::testing::split_cells(pulse_lines[i], ',').size(), pulse_header.size());
   EXPECT_TRUE(fs::exists(out / "trials_long.csv"));
   EXPECT_TRUE(fs::exists(out / "marks.csv"));
   for (const auto& e : fs::recursive_directory_iterator(out)) {
@@ -214,8 +207,9 @@ TEST_F(ExportEveryTask, BidsHasARunPerSessionWithEveryTrialAndEveryColumnDescrib
     const auto lines = lines_of(read_text(e.path()));
     ASSERT_GE(lines.size(), 2u) << e.path();
     rows += static_cast<std::int64_t>(lines.size()) - 1;
-    const auto header = split(lines[0], '\t');
-    for (const auto& line : lines) EXPECT_EQ(split(line, '\t').size(), header.size()) << e.path() << ": " << line;
+    const auto header = palprig::testing::split_cells(lines[0], '\t');
+    for (const auto& line : lines)
+      EXPECT_EQ(palprig::testing::split_cells(line, '\t').size(), header.size()) << e.path() << ": " << line;
     fs::path sidecar = e.path();
     sidecar.replace_extension(".json");
     const auto side = nlohmann::json::parse(read_text(sidecar));

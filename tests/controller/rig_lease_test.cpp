@@ -17,7 +17,7 @@
 namespace palprig {
 namespace {
 
-class StillPen final : public InputSource {
+class PressingPen final : public InputSource {
  public:
   TouchSample latest(double t_s) noexcept override { return TouchSample{t_s, 50, 50, 4.0, true}; }
   double duration_s() const noexcept override { return 0; }
@@ -71,7 +71,7 @@ TEST(RigLease, AYieldingLoopGivesWayToASecondTakerAndEndsVentedWithoutAFault) {
   backend.open();
   Rig rig(backend, "rig");
   const MapScene scene = stiff_scene();
-  StillPen pen;
+  PressingPen pen;
   RunControl control;
   RunOptions opt;
   opt.mode = LoopMode::realtime;

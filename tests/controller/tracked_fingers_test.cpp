@@ -62,9 +62,9 @@ LoadCellConfig quiet_cells(bool per_finger) {
 }
 
 // Records every tick of a run (preallocated: the observer runs on the loop thread).
-class Recorder final : public TickObserver {
+class FirstRecords final : public TickObserver {
  public:
-  explicit Recorder(std::size_t capacity) { records.reserve(capacity); }
+  explicit FirstRecords(std::size_t capacity) { records.reserve(capacity); }
   void on_tick(const TelemetryRecord& r) noexcept override {
     if (records.size() < records.capacity()) records.push_back(r);
   }
@@ -291,7 +291,7 @@ TEST(TrackedEndToEnd, FingersFollowAKnownPathAndTumorBGetsThePressure) {
   rig.open();
   IgtlInput input({"127.0.0.1", server.port()}, three_finger_tracking(reg.from_to), rig_cfg.safety.max_input_age_s);
   ASSERT_TRUE(eventually([&] { return input.latest(0).fingers[1].vent == FingerVent::none; }));
-  Recorder rec(4000);
+  FirstRecords rec(4000);
   const RunSummary s =
       palprig::testing::run_loop_leased(patient(rig_cfg), *scene.scene, input, rig, realtime(2.0, &rec));
   EXPECT_EQ(s.fault, FaultCode::none) << s.fault.detail();
@@ -358,7 +358,7 @@ TEST(TrackedEndToEnd, LagCompensationFollowsEachTrackedFingerOverTheStream) {
       cfg.lag_compensation.identified[i] = true;
       cfg.lag_compensation.regulator[i] = {0.004, 0.050, 2000};
     }
-    Recorder rec(4000);
+    FirstRecords rec(4000);
     const RunSummary s = palprig::testing::run_loop_leased(cfg, *scene.scene, input, rig, realtime(2.0, &rec));
     EXPECT_EQ(s.fault, FaultCode::none) << s.fault.detail();
     double sq = 0, mon = 0, tgt = 0;
@@ -416,7 +416,7 @@ TEST(TrackedEndToEnd, ThePulseIsFeltOverTheBrachialArtery) {
   rig.open();
   IgtlInput input({"127.0.0.1", server.port()}, three_finger_tracking(scene_to_tracker().inverse()), 0.1);
   ASSERT_TRUE(eventually([&] { return input.latest(0).fingers[1].vent == FingerVent::none; }));
-  Recorder rec(4000);
+  FirstRecords rec(4000);
   const RunSummary s =
       palprig::testing::run_loop_leased(patient(rig_cfg), *scene.scene, input, rig, realtime(2.5, &rec));
   EXPECT_EQ(s.fault, FaultCode::none) << s.fault.detail();
@@ -470,7 +470,7 @@ TEST(TrackedEndToEnd, ATrackerProcessKilledForRealVentsEveryFinger) {
   rig.open();
   IgtlInput input({"127.0.0.1", port}, three_finger_tracking(scene_to_tracker().inverse()), 0.1);
   ASSERT_TRUE(eventually([&] { return input.latest(0).fingers[1].vent == FingerVent::none; }));
-  Recorder rec(20000);
+  FirstRecords rec(20000);
   std::atomic<bool> pressing{false};
   // Kill the tracker once finger 2 presses tumor B: the loop must vent on its own.
   std::thread killer([&] {
@@ -478,9 +478,9 @@ TEST(TrackedEndToEnd, ATrackerProcessKilledForRealVentsEveryFinger) {
     ::kill(tracker.pid(), SIGKILL);
   });
   struct Watch final : TickObserver {
-    Recorder& rec;
+    FirstRecords& rec;
     std::atomic<bool>& pressing;
-    Watch(Recorder& r, std::atomic<bool>& p) : rec(r), pressing(p) {}
+    Watch(FirstRecords& r, std::atomic<bool>& p) : rec(r), pressing(p) {}
     void on_tick(const TelemetryRecord& r) noexcept override {
       rec.on_tick(r);
       if (r.setpoint_kPa[1] > 5) pressing.store(true);

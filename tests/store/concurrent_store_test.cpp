@@ -12,6 +12,7 @@
 #include "store/sqlite_trial_store.hpp"
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -21,12 +22,11 @@ using testing::CommandResult;
 using testing::count_lines;
 using testing::ScratchDir;
 
-std::string protocol_file() { return (testing::protocols_dir() / "discrimination_002.json").string(); }
-
 std::vector<std::string> run_args(const std::string& participant, const std::string& db,
                                   const std::vector<std::string>& extra = {}, bool quiet = true) {
-  std::vector<std::string> args{"experiment",    "run",       "--protocol", protocol_file(),
-                                "--participant", participant, "--db",       db};
+  std::vector<std::string> args{
+      "experiment",    "run",       "--protocol", palprig::testing::discrimination_protocol_file(),
+      "--participant", participant, "--db",       db};
   if (quiet) args.push_back("--quiet");
   args.insert(args.end(), extra.begin(), extra.end());
   return args;

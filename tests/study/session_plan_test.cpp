@@ -12,10 +12,10 @@
 namespace palprig {
 namespace {
 
-const std::filesystem::path kProtocols = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "protocols";
+const std::filesystem::path kPlanProtocols = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "protocols";
 
 TEST(experiments_session_plan, paper_002_session_layout) {
-  const Protocol p = load_protocol(kProtocols / "discrimination_002.json");
+  const Protocol p = load_protocol(kPlanProtocols / "discrimination_002.json");
   const SessionPlan first = make_session_plan(p, 1, 99);
   const SessionPlan second = make_session_plan(p, 2, 99);
   // 2 conditions x (2 practice + 14 trials).
@@ -50,7 +50,7 @@ TEST(experiments_session_plan, paper_002_session_layout) {
 }
 
 TEST(experiments_session_plan, same_seed_same_plan_other_seed_other_order) {
-  const Protocol p = load_protocol(kProtocols / "discrimination_002.json");
+  const Protocol p = load_protocol(kPlanProtocols / "discrimination_002.json");
   auto combos = [](const SessionPlan& s) {
     std::vector<int> v;
     for (const auto& t : s.trials) v.push_back(t.combination);
