@@ -40,7 +40,7 @@ const std::vector<std::string> kProtocols = {
     "threshold_quest.json",    "pulse_localisation_000.json",        "pulse_generated.json"};
 const std::vector<std::string> kParticipants = {"sim:1", "sim:2"};
 
-std::string read_text(const fs::path& p) {
+std::string file_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
@@ -54,7 +54,7 @@ std::vector<std::string> lines_of(const std::string& text) {
   return out;
 }
 
-std::int64_t scalar(const fs::path& db, const std::string& sql) {
+std::int64_t store_scalar(const fs::path& db, const std::string& sql) {
   SqliteTrialStore store = open_sqlite_trial_store_for_reading(db);
   auto q = store.database().prepare(sql);
   return q.step() ? q.integer(0) : -1;
@@ -117,7 +117,7 @@ class ExportEveryTask : public ::testing::Test {
       if (!out.flush()) throw std::runtime_error("cannot write " + cached_runs.string());
     }
     fs::copy_file(cached_db, db_);
-    const nlohmann::json printed = nlohmann::json::parse(read_text(cached_runs));
+    const nlohmann::json printed = nlohmann::json::parse(file_text(cached_runs));
     for (auto it = printed.begin(); it != printed.end(); ++it) runs_[it.key()] = it.value().get<std::string>();
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
@@ -134,9 +134,9 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
   const fs::path out = dir_ / "csv";
   const auto r = run_palprig({"export", db_.string(), "--format", "csv", "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::int64_t threshold = scalar(db_, "SELECT count(*) FROM threshold_trials");
-  const std::int64_t pulse = scalar(db_, "SELECT count(*) FROM pulse_trials");
-  const std::int64_t other = scalar(db_, "SELECT count(*) FROM trials");
+  const std::int64_t threshold = store_scalar(db_, "SELECT count(*) FROM threshold_trials");
+  const std::int64_t pulse = store_scalar(db_, "SELECT count(*) FROM pulse_trials");
+  const std::int64_t other = store_scalar(db_, "SELECT count(*) FROM trials");
   ASSERT_GT(threshold, 0);
   ASSERT_GT(pulse, 0);
   EXPECT_NE(r.out.find(std::to_string(threshold + pulse + other) + " trials (" + std::to_string(other) +
@@ -145,7 +145,7 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
             std::string::npos)
       << r.out;
 
-  const auto threshold_lines = lines_of(read_text(out / "threshold_trials.csv"));
+  const auto threshold_lines = lines_of(file_text(out / "threshold_trials.csv"));
   ASSERT_EQ(static_cast<std::int64_t>(threshold_lines.size()), threshold + 1);
   const auto header = palprig::testing::split_cells(threshold_lines[0], ',');
   const auto column = [&](const std::string& name) {
@@ -175,7 +175,7 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
     EXPECT_EQ(matched, 2) << printed;
   }
 
-  const auto pulse_lines = lines_of(read_text(out / "pulse_trials.csv"));
+  const auto pulse_lines = lines_of(file_text(out / "pulse_trials.csv"));
   ASSERT_EQ(static_cast<std::int64_t>(pulse_lines.size()), pulse + 1);
   const auto pulse_header = palprig::testing::split_cells(pulse_lines[0], ',');
   for (const char* name : {"mark_x_mm", "distance_mm", "hit", "hit_radius_mm", "artery"}) {
@@ -195,7 +195,7 @@ TEST_F(ExportEveryTask, BidsHasARunPerSessionWithEveryTrialAndEveryColumnDescrib
   const auto r =
       run_palprig({"export", db_.string(), "--format", "bids", "--out", out.string(), "--author", "A. Tester"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto description = nlohmann::json::parse(read_text(out / "dataset_description.json"));
+  const auto description = nlohmann::json::parse(file_text(out / "dataset_description.json"));
   EXPECT_EQ(description["Authors"], nlohmann::json::array({"A. Tester"}));
   EXPECT_TRUE(fs::exists(out / "README"));
   std::int64_t rows = 0;
@@ -204,7 +204,7 @@ TEST_F(ExportEveryTask, BidsHasARunPerSessionWithEveryTrialAndEveryColumnDescrib
     const std::string name = e.path().filename().string();
     if (name.size() < 8 || name.substr(name.size() - 8) != "_beh.tsv") continue;
     ++runs;
-    const auto lines = lines_of(read_text(e.path()));
+    const auto lines = lines_of(file_text(e.path()));
     ASSERT_GE(lines.size(), 2u) << e.path();
     rows += static_cast<std::int64_t>(lines.size()) - 1;
     const auto header = palprig::testing::split_cells(lines[0], '\t');
@@ -212,14 +212,14 @@ TEST_F(ExportEveryTask, BidsHasARunPerSessionWithEveryTrialAndEveryColumnDescrib
       EXPECT_EQ(palprig::testing::split_cells(line, '\t').size(), header.size()) << e.path() << ": " << line;
     fs::path sidecar = e.path();
     sidecar.replace_extension(".json");
-    const auto side = nlohmann::json::parse(read_text(sidecar));
+    const auto side = nlohmann::json::parse(file_text(sidecar));
     for (const std::string& column : header) EXPECT_TRUE(side.contains(column)) << sidecar << " describes " << column;
   }
-  EXPECT_EQ(runs, scalar(db_, "SELECT count(*) FROM sessions"));
-  EXPECT_EQ(rows, scalar(db_,
-                         "SELECT (SELECT count(*) FROM trials) + (SELECT count(*) FROM threshold_trials) + "
-                         "(SELECT count(*) FROM pulse_trials)"));
-  const std::string participants = read_text(out / "participants.tsv");
+  EXPECT_EQ(runs, store_scalar(db_, "SELECT count(*) FROM sessions"));
+  EXPECT_EQ(rows, store_scalar(db_,
+                               "SELECT (SELECT count(*) FROM trials) + (SELECT count(*) FROM threshold_trials) + "
+                               "(SELECT count(*) FROM pulse_trials)"));
+  const std::string participants = file_text(out / "participants.tsv");
   EXPECT_EQ(lines_of(participants).size(), kParticipants.size() + 1) << participants;
 }
 
@@ -255,7 +255,7 @@ TEST_F(ExportEveryTask, PlotDrawsEveryKindAsPngAndSvg) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* stem : {"measures_by_condition", "pulse_hits_by_condition", "psychometric_one_finger"}) {
     EXPECT_GT(fs::file_size(plots / (std::string(stem) + ".png")), 2000u) << stem;
-    EXPECT_NE(read_text(plots / (std::string(stem) + ".svg")).find("<svg"), std::string::npos) << stem;
+    EXPECT_NE(file_text(plots / (std::string(stem) + ".svg")).find("<svg"), std::string::npos) << stem;
   }
   int tracks = 0;
   for (const auto& e : fs::directory_iterator(plots))
