@@ -17,6 +17,12 @@ BUILD_TSAN ?= build-tsan
 BUILD_ANALYST ?= build-analyst
 FUZZ_SECONDS ?= 60
 JOBS       ?= 2
+# Tests at a time: twice the compile jobs. Most of the suites' time is waiting, not computing (a
+# throwaway PostgreSQL server starting, a rig served over Modbus in real time, sessions paced in
+# real time, processes killed and restarted): measured one test at a time, the longest tests used
+# 2-25 % of a core over their wall time (docs/benchmarks.md, "Build time"). The tests that do
+# compute hard say so with ctest's PROCESSORS, so two of them never share the two cores with more.
+TEST_JOBS  ?= $(shell echo $$(( $(JOBS) * 2 )))
 CMAKE_ARGS ?=
 
 # Debian 12 packages the build needs (one per line in tools/debian-packages.txt).
@@ -65,8 +71,11 @@ test-package: package
 test-package-system: package
 	tests/package/apt_install_as_lab_user.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
 
-test: build bids-validator
-	cd $(BUILD) && ctest --output-on-failure -j$(JOBS) --timeout 600
+# The BIDS validator's npm download (about a minute, mostly waiting on the network) runs beside
+# the compile: make's -j2 starts both.
+test: configure
+	$(MAKE) --no-print-directory -j2 build bids-validator
+	cd $(BUILD) && ctest --output-on-failure -j$(TEST_JOBS) --timeout 600
 	$(MAKE) --no-print-directory fuzz-smoke
 
 # The official BIDS validator (npm package, pinned), for the export test that checks a BIDS
@@ -118,7 +127,7 @@ test-asan: deps
 	cmake --build $(BUILD_ASAN) -j$(JOBS)
 	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan-suppressions.txt:print_suppressions=0 \
-	  ctest --output-on-failure -j$(JOBS) --timeout 900
+	  ctest --output-on-failure -j$(TEST_JOBS) --timeout 900
 
 # The analyst-only build: the study-data floor and the palprig command without any rig library
 # (no libmodbus, comedilib or libevdev linked); its suites, the layout check and the refusal of
@@ -127,7 +136,7 @@ test-analyst: deps
 	@[ -f $(BUILD_ANALYST)/CMakeCache.txt ] || cmake -S . -B $(BUILD_ANALYST) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DPALPRIG_RIG=OFF -DPALPRIG_GUI=OFF -DPALPRIG_BENCH=OFF
 	cmake --build $(BUILD_ANALYST) -j$(JOBS)
-	cd $(BUILD_ANALYST) && ctest --output-on-failure -j$(JOBS) --timeout 600
+	cd $(BUILD_ANALYST) && ctest --output-on-failure -j$(TEST_JOBS) --timeout 600
 
 # Every C++ file formatted as .clang-format says (style.ClangFormat in make test checks it).
 format:

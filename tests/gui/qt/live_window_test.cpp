@@ -213,10 +213,17 @@ class LiveWindowTest : public QObject {
     QVERIFY2(wait_until(win, [&] { return setpoint(win, 0) > 11.0; }), "finger 1 never reached the tumor's pressure");
     QVERIFY(win.live_page()->rig_panel()->gauge(0)->target_kPa() > 11.0);
     // The gauge shows the rendering error over the last seconds: the regulator's monitor against
-    // the target, a few kPa at most on the simulated rig while it follows the drag (the lag).
-    const double error_rms = win.live_page()->rig_panel()->gauge(0)->rendering_error_rms_kPa();
-    QVERIFY2(std::isfinite(error_rms) && error_rms > 0.0 && error_rms < 6.0,
-             qPrintable(QString("rendering error %1 kPa RMS").arg(error_rms)));
+    // the target. Just after the jump it is mostly the step's transient, weighed against however
+    // few settled samples the window held before (fewer on a loaded machine: 8.2 kPa was seen under
+    // the sanitizers at a load of 10); as the regulator settles on the tumor's pressure it comes
+    // down to a few kPa at most on the simulated rig.
+    const auto error_rms = [&] { return win.live_page()->rig_panel()->gauge(0)->rendering_error_rms_kPa(); };
+    QVERIFY2(wait_until(win,
+                        [&] {
+                          const double e = error_rms();
+                          return std::isfinite(e) && e > 0.0 && e < 6.0;
+                        }),
+             qPrintable(QString("rendering error %1 kPa RMS").arg(error_rms())));
     // Its circle is coloured by that pressure, unlike the soft-tissue fingers.
     QVERIFY(view->finger_colours()[0] != view->finger_colours()[2] || setpoint(win, 2) > 11.0);
     QTest::mouseRelease(view, Qt::LeftButton, {}, tumor);
