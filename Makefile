@@ -1,6 +1,6 @@
 # palprig: the two set-up commands of the README.
-#   make demo   install missing Debian packages, configure, build the palprig program only, run the demo
-#   make test   same set-up, then build everything (suites, benchmarks, fuzz targets) and run the whole test suite
+#   make demo   install missing Debian packages (the build's only), configure, build the palprig program only, run the demo
+#   make test   same set-up plus the test tools' packages, then build everything (suites, benchmarks, fuzz targets) and run the whole test suite
 #   make package       the Debian package palprig_VERSION_ARCH.deb in build/ (CPack; docs/rig-pc.md)
 #   make test-package  build it, install it into a scratch root and run the installed program from there
 #   make test-package-system  install it with apt on this machine, run it as a lab user, purge it (root)
@@ -25,16 +25,20 @@ JOBS       ?= 2
 TEST_JOBS  ?= $(shell echo $$(( $(JOBS) * 2 )))
 CMAKE_ARGS ?=
 
-# Debian 12 packages the build needs (one per line in tools/debian-packages.txt).
+# Debian 12 packages, one per line: tools/debian-packages.txt what the program's build needs (make
+# demo installs only these), tools/debian-packages-test.txt what the suites, the style gate, the
+# fuzz targets and the package checks add (make test and the other test targets).
 PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages.txt | tr '\n' ' ')
+TEST_PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages-test.txt | tr '\n' ' ')
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build demo package test-package test-package-system test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
+.PHONY: all deps deps-test configure build demo package test-package test-package-system test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
 
 all: build
 
-deps:
-	@missing=""; for p in $(PACKAGES); do \
+# install_missing PACKAGES: apt-get install those not installed yet (nothing when all are).
+define install_missing
+	@missing=""; for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
@@ -42,6 +46,13 @@ deps:
 	  $(SUDO) apt-get update -qq && \
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
+endef
+
+deps:
+	$(call install_missing,$(PACKAGES))
+
+deps-test:
+	$(call install_missing,$(PACKAGES) $(TEST_PACKAGES))
 
 $(BUILD)/CMakeCache.txt: | deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_ARGS)
@@ -63,17 +74,17 @@ package: configure
 	cd $(BUILD) && cpack -G DEB
 
 # The package installed into a scratch root (dpkg -x) and run from a folder far from the clone.
-test-package: package
+test-package: deps-test package
 	tests/package/install_and_run.sh $(BUILD) "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
 
 # For real, on this machine (root; it installs, adds a lab user, runs as that user, purges):
 # not part of make test, since it changes the system.
-test-package-system: package
+test-package-system: deps-test package
 	tests/package/apt_install_as_lab_user.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
 
 # The BIDS validator's npm download (about a minute, mostly waiting on the network) runs beside
 # the compile: make's -j2 starts both.
-test: configure
+test: deps-test configure
 	$(MAKE) --no-print-directory -j2 build bids-validator
 	cd $(BUILD) && ctest --output-on-failure -j$(TEST_JOBS) --timeout 600
 	$(MAKE) --no-print-directory fuzz-smoke
@@ -90,7 +101,7 @@ bids-validator: configure
 	  else echo "palprig: npm not found; the BIDS validation test will skip"; fi; }
 
 # The fuzz targets of fuzz/ (libFuzzer, clang): only the reader libraries, in their own build dir.
-fuzz-build: deps
+fuzz-build: deps-test
 	@[ -f $(BUILD_FUZZ)/CMakeCache.txt ] || CXX=clang++ cmake -S . -B $(BUILD_FUZZ) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DPALPRIG_FUZZ=ON
 	cmake --build $(BUILD_FUZZ) -j$(JOBS)
@@ -106,7 +117,7 @@ fuzz: fuzz-build
 # The threaded suites (loop, Modbus bus thread, tablet reader, telemetry writer) under
 # ThreadSanitizer; a reported race fails the run.
 TSAN_TESTS := \.(LoopRunner|ModbusLoopback|ModbusEndToEnd|TabletInput|RealtimeSafety|TelemetryHardening)\.
-test-tsan: deps
+test-tsan: deps-test
 	@[ -f $(BUILD_TSAN)/CMakeCache.txt ] || cmake -S . -B $(BUILD_TSAN) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DPALPRIG_TSAN=ON -DPALPRIG_BENCH=OFF -DPALPRIG_GUI=OFF
 	cmake --build $(BUILD_TSAN) -j$(JOBS) --target palprig palprig_tests_controller
@@ -121,7 +132,7 @@ test-tsan: deps
 # -O0, tests/CMakeLists.txt): at -O0 Eigen's code ran the simulated
 # sessions over ten times slower than the release build (14 sessions took over 300 s), and line
 # tables are all a sanitizer report needs.
-test-asan: deps
+test-asan: deps-test
 	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DPALPRIG_SANITIZE=ON \
 	  -DPALPRIG_BENCH=OFF -DPALPRIG_GUI=ON
 	cmake --build $(BUILD_ASAN) -j$(JOBS)
@@ -132,14 +143,14 @@ test-asan: deps
 # The analyst-only build: the study-data floor and the palprig command without any rig library
 # (no libmodbus, comedilib or libevdev linked); its suites, the layout check and the refusal of
 # the rig's commands. CI builds it once.
-test-analyst: deps
+test-analyst: deps-test
 	@[ -f $(BUILD_ANALYST)/CMakeCache.txt ] || cmake -S . -B $(BUILD_ANALYST) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DPALPRIG_RIG=OFF -DPALPRIG_GUI=OFF -DPALPRIG_BENCH=OFF
 	cmake --build $(BUILD_ANALYST) -j$(JOBS)
 	cd $(BUILD_ANALYST) && ctest --output-on-failure -j$(TEST_JOBS) --timeout 600
 
 # Every C++ file formatted as .clang-format says (style.ClangFormat in make test checks it).
-format:
+format: deps-test
 	python3 tools/check_style.py format --fix
 
 bench: build

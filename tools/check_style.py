@@ -69,7 +69,7 @@ def cxx_files(repo: pathlib.Path, suffixes=(".cpp", ".hpp")) -> list[pathlib.Pat
 def need(tool: str) -> str:
     path = shutil.which(tool)
     if not path:
-        sys.exit(f"style: {tool} is not installed (tools/debian-packages.txt lists it; `make deps` installs it)")
+        sys.exit(f"style: {tool} is not installed (tools/debian-packages-test.txt lists it; `make deps-test` installs it)")
     return path
 
 

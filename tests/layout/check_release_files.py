@@ -11,7 +11,7 @@ import pathlib
 import re
 import sys
 
-import yaml  # python3-yaml (tools/debian-packages.txt)
+import yaml  # python3-yaml (tools/debian-packages-test.txt)
 
 
 def main() -> int:

@@ -46,7 +46,7 @@ nlohmann::json run_oracle(const std::vector<LevelCounts>& data, const ScratchDir
   const auto r = test_support::run_process(
       "/usr/bin/python3 " + (testing::source_dir() / "tests" / "statistics" / "psychometric_oracle.py").string() + " " +
       csv.string());
-  EXPECT_EQ(r.exit_code, 0) << r.err << " (needs Debian's python3-statsmodels, tools/debian-packages.txt)";
+  EXPECT_EQ(r.exit_code, 0) << r.err << " (needs Debian's python3-statsmodels, tools/debian-packages-test.txt)";
   return nlohmann::json::parse(r.out);
 }
 

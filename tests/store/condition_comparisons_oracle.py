@@ -8,7 +8,7 @@ and Welch's (equal_var=False). Prints one JSON object:
   {"conditions": [A, B], "n": [nA, nB], "mean": [...],
    "student": {"t": ..., "p": ..., "df": ...}, "welch": {"t": ..., "p": ..., "df": ...}}
 with A < B (palprig compares conditions in sorted order: t is mean(A) - mean(B) over its error).
-Needs Debian's python3-scipy (tools/debian-packages.txt).
+Needs Debian's python3-scipy (tools/debian-packages-test.txt).
 """
 import json
 import sqlite3

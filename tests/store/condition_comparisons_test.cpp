@@ -41,7 +41,7 @@ nlohmann::json scipy_oracle(const std::string& db) {
   const auto r = test_support::run_process(
       "/usr/bin/python3 " + (testing::source_dir() / "tests/store/condition_comparisons_oracle.py").string() + " " +
       db);
-  EXPECT_EQ(r.exit_code, 0) << r.err << " (needs Debian's python3-scipy, tools/debian-packages.txt)";
+  EXPECT_EQ(r.exit_code, 0) << r.err << " (needs Debian's python3-scipy, tools/debian-packages-test.txt)";
   return nlohmann::json::parse(r.out);
 }
 
