@@ -35,6 +35,10 @@ class Scene {
   // first sample: the top layer): paper 000's stick/slip. Scenes without layers do not drag.
   // Called per finger per tick: must not allocate, lock or throw.
   virtual DragSetting drag(int /*layer*/) const noexcept { return {0, 0, 0}; }
+  // A hint: the tick will sample here soon. A scene that reads a table too large for the cache
+  // starts fetching it (the tick asks for every sample of a tick first); the others ignore it.
+  // Called per finger per tick: must not allocate, lock or throw.
+  virtual void prefetch(const Point2_mm& /*at*/) const noexcept {}
 };
 
 class MapScene final : public Scene {
@@ -44,6 +48,7 @@ class MapScene final : public Scene {
     return {map_.sample(at.x_mm, at.y_mm, sampling_), -1};
   }
   SceneBounds bounds() const noexcept override { return {0, 0, map_.width_mm(), map_.height_mm()}; }
+  void prefetch(const Point2_mm& at) const noexcept override { map_.prefetch(at.x_mm, at.y_mm, sampling_); }
   const StiffnessMap& map() const noexcept { return map_; }
   MapSampling sampling() const noexcept { return sampling_; }
 
