@@ -132,7 +132,8 @@ void tissue_drag_stage(TickState& state, const Scene& scene, FingersOnSkin& fing
 // Per pressing finger: the scene's stiffness, the stress model and the channel's actuator line.
 // Asks the scene for every sample the tick will take (each pressed finger now; each channel
 // compensating its total at its lead, and at its window when that is sampled afresh), so that a
-// large map's cache misses overlap; changes nothing the tick computes.
+// large map's cache misses overlap; changes nothing the tick computes. Only on scenes where that
+// pays (Scene::prefetch_pays: maps larger than the cache).
 void scene_prefetch_stage(const TickState& state, const TickConfig& config, const Scene& scene,
                           const FingersOnSkin& fingers, const LagPlan& plan, double t_s) noexcept;
 ChannelPressures stiffness_target_stage(TickState& state, const TickConfig& config, const Scene& scene,

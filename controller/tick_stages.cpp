@@ -119,6 +119,7 @@ struct Ahead {
 
 void scene_prefetch_stage(const TickState& state, const TickConfig& config, const Scene& scene,
                           const FingersOnSkin& fingers, const LagPlan& plan, double t_s) noexcept {
+  if (!scene.prefetch_pays()) return;
   for (std::size_t i = 0; i < kFingerCount; ++i)
     if (fingers.pressed && fingers.finger_pressed[i]) scene.prefetch(fingers.centres[i]);
   if (!plan.any_total() || state.fault != FaultCode::none) return;
