@@ -1,12 +1,15 @@
 // The compensator's model of an exhaust that slows near 0 kPa against the simulated plant's: the
 // lag at a pressure is the plant's, and the closed-form time of a free exhaust
-// (RegulatorLag::exhaust_time_s) is the time the plant takes to empty from one level to another.
+// (RegulatorLag::exhaust_time_s) is the time the plant takes to empty from one level to another;
+// and the tick's scene prefetch is asked only of maps too large for the cache.
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "models/lag_compensator.hpp"
 #include "models/pneumatic_plant.hpp"
+#include "models/scene.hpp"
 
 using namespace palprig;
 
@@ -54,4 +57,19 @@ TEST(ExhaustLag, AFreeExhaustTakesTheClosedFormsTime) {
   EXPECT_NEAR(flat.exhaust_time_s(12.0, 3.0), 0.070 * std::log(4.0), 1e-15);
   EXPECT_EQ(lag.exhaust_time_s(3.0, 12.0), 0.0);  // not a fall
   EXPECT_EQ(lag.exhaust_time_s(3.0, 0.0), 0.0);   // never reaches 0
+}
+
+TEST(ScenePrefetch, OnlyMapsLargerThanTheCacheAskForIt) {
+  // The tick asks a scene for its samples ahead only where that pays: a map over 4 MiB. A hint
+  // anywhere (inside, on the edges, outside, non-finite) reads nothing and changes nothing.
+  const MapScene small(StiffnessMap(161, 121, 160.0, 120.0, std::vector<float>(161 * 121, 0.5f)), MapSampling::nearest);
+  const MapScene large(StiffnessMap(2048, 1024, 400.0, 200.0, std::vector<float>(2048 * 1024, 0.25f)),
+                       MapSampling::bilinear);
+  EXPECT_FALSE(small.prefetch_pays());
+  EXPECT_TRUE(large.prefetch_pays());
+  for (const Point2_mm p : {Point2_mm{0, 0}, Point2_mm{400, 200}, Point2_mm{-5, 300}, Point2_mm{NAN, 1}}) {
+    large.prefetch(p);
+    small.prefetch(p);
+  }
+  EXPECT_EQ(large.sample({400, 200}, 2.0, 0).stiffness, 0.25);
 }
