@@ -62,8 +62,9 @@ TEST(ExhaustLag, AFreeExhaustTakesTheClosedFormsTime) {
 TEST(ScenePrefetch, OnlyMapsLargerThanTheCacheAskForIt) {
   // The tick asks a scene for its samples ahead only where that pays: a map over 4 MiB. A hint
   // anywhere (inside, on the edges, outside, non-finite) reads nothing and changes nothing.
-  const MapScene small(StiffnessMap(161, 121, 160.0, 120.0, std::vector<float>(161 * 121, 0.5f)), MapSampling::nearest);
-  const MapScene large(StiffnessMap(2048, 1024, 400.0, 200.0, std::vector<float>(2048 * 1024, 0.25f)),
+  const MapScene small(StiffnessMap(161, 121, 160.0, 120.0, std::vector<float>(std::size_t{161} * 121, 0.5f)),
+                       MapSampling::nearest);
+  const MapScene large(StiffnessMap(2048, 1024, 400.0, 200.0, std::vector<float>(std::size_t{2048} * 1024, 0.25f)),
                        MapSampling::bilinear);
   EXPECT_FALSE(small.prefetch_pays());
   EXPECT_TRUE(large.prefetch_pays());
