@@ -64,8 +64,10 @@ void report_percentiles(benchmark::State& state, std::vector<std::int64_t>& ns) 
 // With asymmetric, the regulator is the shipped asymmetric one as calibration identifies it
 // (data/rigs/simulated_asymmetric.json: 3.7 ms dead time, 40 ms fill and 86 ms exhaust lag, five
 // asymmetric plays whose inverse the tick solves at the actuator's state).
+// With exhaust_near_0, its exhaust lag also grows near 0 kPa as calibration now identifies it on
+// that regulator (55.4 ms far from 0 kPa, 2.10 times slower at 0, scale 33.4 kPa; fill 39.5 ms).
 void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering, bool lag_compensated = false,
-               bool asymmetric = false) {
+               bool asymmetric = false, bool exhaust_near_0 = false) {
   const MapScene& scene = big_scene(sampling);
   TickConfig cfg;
   if (lag_compensated) {
@@ -74,6 +76,7 @@ void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering, bo
       cfg.lag_compensation.identified[i] = true;
       cfg.lag_compensation.regulator[i] = {0.004, 0.050, 2000.0};
       if (asymmetric) cfg.lag_compensation.regulator[i] = {0.0037, 0.040, 2000.0, 0.086};
+      if (exhaust_near_0) cfg.lag_compensation.regulator[i] = {0.0041, 0.0395, 2000.0, 0.0554, 2.10, 33.4};
     }
   }
   if (asymmetric) {
@@ -125,6 +128,12 @@ void BM_TickNearestWanderingAsymmetricRegulator(benchmark::State& s) {
 void BM_TickNearestHandSpeedAsymmetricRegulator(benchmark::State& s) {
   tick_cost(s, MapSampling::nearest, false, true, true);
 }
+void BM_TickNearestWanderingAsymmetricExhaustNear0(benchmark::State& s) {
+  tick_cost(s, MapSampling::nearest, true, true, true, true);
+}
+void BM_TickNearestHandSpeedAsymmetricExhaustNear0(benchmark::State& s) {
+  tick_cost(s, MapSampling::nearest, false, true, true, true);
+}
 BENCHMARK(BM_TickNearestWandering);
 BENCHMARK(BM_TickBilinearWandering);
 BENCHMARK(BM_TickNearestHandSpeed);
@@ -132,6 +141,8 @@ BENCHMARK(BM_TickNearestWanderingLagCompensated);
 BENCHMARK(BM_TickNearestHandSpeedLagCompensated);
 BENCHMARK(BM_TickNearestWanderingAsymmetricRegulator);
 BENCHMARK(BM_TickNearestHandSpeedAsymmetricRegulator);
+BENCHMARK(BM_TickNearestWanderingAsymmetricExhaustNear0);
+BENCHMARK(BM_TickNearestHandSpeedAsymmetricExhaustNear0);
 
 // The bundled phantom (paper 002's tumors A, B, C: a 161 x 121 map) under the demo's recorded
 // pen pass at 1 kHz, with the shipped simulated rig's calibration (its identified regulator

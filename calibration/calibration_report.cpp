@@ -105,6 +105,15 @@ void print_fit_report(std::ostream& out, const CalibrationResult& r, const std::
       if (d.directional)
         out << " filling, " << d.exhaust_time_constant_s * 1000 << " ms exhausting (one lag left "
             << std::setprecision(3) << d.one_lag_rms_residual_kPa << " kPa RMS)";
+      if (d.pressure_dependent)
+        out << ", the exhaust " << std::setprecision(2) << d.exhaust_lag_factor_at_0 << "x slower at 0 kPa (scale "
+            << std::setprecision(1) << d.exhaust_lag_scale_kPa << " kPa; held-out RMS " << std::setprecision(3)
+            << d.pressure_held_out_rms_kPa << " kPa against " << d.directional_held_out_rms_kPa
+            << " with one exhaust lag)";
+      else if (d.exhaust_lag_tried)
+        out << ", the exhaust the same at every pressure (growing near 0 kPa predicted held-out rows "
+            << std::setprecision(3) << d.pressure_held_out_rms_kPa << " kPa against " << d.directional_held_out_rms_kPa
+            << ": not kept)";
       out << "; R^2 " << std::setprecision(5) << d.r_squared;
       for (std::size_t k = 0; k < d.segments.size(); ++k)
         out << (k == 0 ? " (" : ", ") << to_string(d.segments[k].segment) << " " << d.segments[k].r_squared

@@ -114,12 +114,23 @@ json calibration_json(const CalibrationResult& r) {
         c["dynamics"]["exhaust_time_constant_s"] = d.exhaust_time_constant_s;
         c["dynamics"]["one_lag_rms_residual_kPa"] = d.one_lag_rms_residual_kPa;
       }
+      if (d.pressure_dependent) {
+        c["dynamics"]["exhaust_lag_factor_at_0"] = d.exhaust_lag_factor_at_0;
+        c["dynamics"]["exhaust_lag_scale_kPa"] = d.exhaust_lag_scale_kPa;
+      }
       f["dynamics_fit"] = {{"grid_rms_residual_kPa", d.grid_rms_residual_kPa},
                            {"converged", d.converged},
                            {"iterations", d.iterations},
                            {"solve_seconds", d.solve_seconds},
                            {"usable", ch.dynamics_usable()},
                            {"solver", d.solver_report}};
+      if (d.exhaust_lag_tried)
+        f["dynamics_fit"]["exhaust_lag_near_0"] = {
+            {"kept", d.pressure_dependent},
+            {"factor_at_0", d.exhaust_lag_fitted_factor_at_0},
+            {"scale_kPa", d.exhaust_lag_fitted_scale_kPa},
+            {"held_out_rms_kPa", d.pressure_held_out_rms_kPa},
+            {"one_exhaust_lag_held_out_rms_kPa", d.directional_held_out_rms_kPa}};
     }
     if (ch.regulator) f["regulator"] = branch_fits_json(*ch.regulator);
     if (ch.regulator_check)

@@ -7,68 +7,16 @@
 
 #include <ceres/ceres.h>
 
+#include "calibration/dynamics_runs.hpp"
+#include "calibration/exhaust_lag_fit.hpp"
 #include "core/input_error.hpp"
 
 namespace palprig {
 
 namespace {
 
-// Evenly spaced runs of samples: the model restarts at each run's first sample.
-struct Run {
-  std::vector<double> x;  // the hysteresis model's output for the commands
-  std::vector<double> m;  // monitor
-  std::vector<SweepSegment> segment;
-};
-
-struct Prepared {
-  double period_s = 0;
-  std::vector<Run> runs;
-  std::size_t residuals = 0;
-};
-
-Prepared prepare(std::span<const DynamicsSample> s, const PrandtlIshlinskii* hysteresis, const std::string& file,
-                 const std::string& what) {
-  Prepared p;
-  std::vector<double> gaps;
-  for (std::size_t k = 1; k < s.size(); ++k)
-    if (s[k].t_s > s[k - 1].t_s) gaps.push_back(s[k].t_s - s[k - 1].t_s);
-  if (gaps.empty()) throw InputError(file, what, "step and chirp rows over time (at least 200 samples)");
-  const auto middle = gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2);
-  std::nth_element(gaps.begin(), middle, gaps.end());
-  p.period_s = *middle;
-  PrandtlIshlinskii h = hysteresis ? *hysteresis : PrandtlIshlinskii{};
-  for (std::size_t k = 0; k < s.size(); ++k) {
-    if (!std::isfinite(s[k].monitor_kPa) || !std::isfinite(s[k].command_kPa))
-      throw InputError(file, "line " + std::to_string(s[k].line), "a monitor reading for the dynamics fit of " + what);
-    const bool new_run = k == 0 || std::abs((s[k].t_s - s[k - 1].t_s) - p.period_s) > 0.25 * p.period_s;
-    if (new_run) {
-      if (!p.runs.empty() && p.runs.back().x.size() < 2) p.runs.pop_back();
-      p.runs.emplace_back();
-      h.reset(s[k].command_kPa);
-    }
-    Run& r = p.runs.back();
-    r.x.push_back(h.is_identity() ? s[k].command_kPa : h.apply(s[k].command_kPa));
-    r.m.push_back(s[k].monitor_kPa);
-    r.segment.push_back(s[k].segment);
-  }
-  if (!p.runs.empty() && p.runs.back().x.size() < 2) p.runs.pop_back();
-  double cmin = 1e300, cmax = -1e300, mmin = 1e300, mmax = -1e300;
-  for (const Run& r : p.runs) {
-    p.residuals += r.x.size() - 1;
-    for (std::size_t k = 0; k < r.x.size(); ++k) {
-      cmin = std::min(cmin, r.x[k]), cmax = std::max(cmax, r.x[k]);
-      mmin = std::min(mmin, r.m[k]), mmax = std::max(mmax, r.m[k]);
-    }
-  }
-  if (p.residuals < 200)
-    throw InputError(file, what,
-                     "at least 200 evenly spaced step and chirp samples to identify the regulator's dynamics, got " +
-                         std::to_string(p.residuals) + " (calibrate sweep --excitation ...,step,chirp)");
-  if (!(cmax - cmin >= 1.0)) throw InputError(file, what, "step and chirp commands that move by at least 1 kPa");
-  if (!(mmax - mmin >= 0.5))
-    throw InputError(file, what, "a monitor that answers the step and chirp commands (it moved less than 0.5 kPa)");
-  return p;
-}
+using dynamics_runs::Prepared;
+using dynamics_runs::Run;
 
 // The discretised FOPDT over every run; with sensitivities when jac is given (rows of 2:
 // d/dL, d/dtau). Residuals model - monitor, each run's first sample left out.
@@ -218,10 +166,14 @@ double best_tau(const Prepared& p, double dead_time_s, const DynamicsFitOptions&
 }  // namespace
 
 std::vector<double> simulate_dynamics(std::span<const DynamicsSample> samples, const PrandtlIshlinskii* hysteresis,
-                                      double dead_time_s, double time_constant_s, double exhaust_time_constant_s) {
-  const Prepared p = prepare(samples, hysteresis, "(simulation)", "samples");
+                                      double dead_time_s, double time_constant_s, double exhaust_time_constant_s,
+                                      double exhaust_lag_factor_at_0, double exhaust_lag_scale_kPa) {
+  const Prepared p = dynamics_runs::prepare_runs(samples, hysteresis, "(simulation)", "samples");
   std::vector<double> r(p.residuals);
-  if (exhaust_time_constant_s > 0)
+  if (exhaust_time_constant_s > 0 && exhaust_lag_factor_at_0 != 1.0)
+    dynamics_runs::exhaust_lag_residuals(
+        p, {dead_time_s, time_constant_s, exhaust_time_constant_s, exhaust_lag_factor_at_0, exhaust_lag_scale_kPa}, r);
+  else if (exhaust_time_constant_s > 0)
     evaluate_directional(p, dead_time_s, time_constant_s, exhaust_time_constant_s, r.data(), nullptr);
   else
     evaluate(p, dead_time_s, time_constant_s, r.data(), nullptr);
@@ -238,7 +190,7 @@ std::vector<double> simulate_dynamics(std::span<const DynamicsSample> samples, c
 DynamicsFit fit_dynamics(std::span<const DynamicsSample> samples, const PrandtlIshlinskii* hysteresis,
                          const DynamicsFitOptions& o, const std::string& file, const std::string& what) {
   const auto started = std::chrono::steady_clock::now();
-  const Prepared p = prepare(samples, hysteresis, file, what);
+  const Prepared p = dynamics_runs::prepare_runs(samples, hysteresis, file, what);
   DynamicsFit fit;
   fit.rate_hz = 1.0 / p.period_s;
   fit.samples = p.residuals;
@@ -309,9 +261,41 @@ DynamicsFit fit_dynamics(std::span<const DynamicsSample> samples, const PrandtlI
     }
   }
 
+  // Stage 4: an exhaust lag growing near 0 kPa, kept when it predicts held-out blocks better.
+  if (fit.directional && o.pressure_dependent_exhaust) {
+    ExhaustLagOptions eo;
+    eo.max_dead_time_s = o.max_dead_time_s;
+    eo.min_time_constant_s = o.min_time_constant_s;
+    eo.max_time_constant_s = o.max_time_constant_s;
+    eo.max_iterations = o.max_iterations;
+    eo.min_held_out_gain = o.min_exhaust_lag_gain;
+    const ExhaustLagFit e = dynamics_runs::fit_exhaust_lag(
+        p, {fit.dead_time_s, fit.time_constant_s, fit.exhaust_time_constant_s, 1.0, 10.0}, eo);
+    fit.iterations += e.iterations;
+    fit.exhaust_lag_tried = e.converged;
+    fit.directional_held_out_rms_kPa = e.baseline_held_out_rms_kPa;
+    fit.pressure_held_out_rms_kPa = e.held_out_rms_kPa;
+    fit.exhaust_lag_fitted_factor_at_0 = e.model.factor_at_0;
+    fit.exhaust_lag_fitted_scale_kPa = e.model.scale_kPa;
+    if (e.kept) {
+      fit.pressure_dependent = true;
+      fit.dead_time_s = e.model.dead_time_s;
+      fit.time_constant_s = e.model.fill_time_constant_s;
+      fit.exhaust_time_constant_s = e.model.exhaust_time_constant_s;
+      fit.exhaust_lag_factor_at_0 = e.model.factor_at_0;
+      fit.exhaust_lag_scale_kPa = e.model.scale_kPa;
+      fit.solver_report = e.solver_report;
+    }
+  }
+
   // Quality: R^2 of the monitor overall and per segment, residual RMS and maximum.
   std::vector<double> r(p.residuals);
-  if (fit.directional)
+  if (fit.pressure_dependent)
+    dynamics_runs::exhaust_lag_residuals(p,
+                                         {fit.dead_time_s, fit.time_constant_s, fit.exhaust_time_constant_s,
+                                          fit.exhaust_lag_factor_at_0, fit.exhaust_lag_scale_kPa},
+                                         r);
+  else if (fit.directional)
     evaluate_directional(p, fit.dead_time_s, fit.time_constant_s, fit.exhaust_time_constant_s, r.data(), nullptr);
   else
     evaluate(p, fit.dead_time_s, fit.time_constant_s, r.data(), nullptr);

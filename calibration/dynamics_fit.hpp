@@ -25,6 +25,10 @@
 // above the output (filling), tau_e below it (exhausting), from stage 2's point; it is kept when
 // its residual RMS is at least min_directional_gain (10 %) lower than the one-lag model's, so a
 // symmetric regulator keeps its one lag (and the figures it always had).
+//
+// Stage 4 (calibration/exhaust_lag_fit.hpp), after a kept stage 3: an exhaust lag that grows near
+// 0 kPa, tau_e (1 + (F - 1) s / (y + s)), kept when it predicts held-out blocks of the rows better
+// by min_exhaust_lag_gain (5 %) than stage 3's model refitted without them.
 #include <span>
 #include <string>
 #include <vector>
@@ -38,8 +42,10 @@ struct DynamicsFitOptions {
   double max_dead_time_s = 0.3;
   double min_time_constant_s = 0.0005, max_time_constant_s = 2.0;
   int max_iterations = 100;
-  bool directional = true;             // try separate fill and exhaust lags (stage 3)
-  double min_directional_gain = 0.10;  // ... and keep them when the residual RMS drops by this much
+  bool directional = true;                 // try separate fill and exhaust lags (stage 3)
+  double min_directional_gain = 0.10;      // ... and keep them when the residual RMS drops by this much
+  bool pressure_dependent_exhaust = true;  // try an exhaust lag growing near 0 kPa (stage 4)
+  double min_exhaust_lag_gain = 0.05;      // ... and keep it when the held-out RMS drops by this much
 };
 
 struct DynamicsSegmentFit {
@@ -54,6 +60,14 @@ struct DynamicsFit {
   bool directional = false;
   double exhaust_time_constant_s = 0;
   double one_lag_rms_residual_kPa = 0;  // stage 2's, for the report: what the second lag gained
+  // The exhaust lag at output p is exhaust_time_constant_s (1 + (F - 1) s / (p + s)) with
+  // F = exhaust_lag_factor_at_0, s = exhaust_lag_scale_kPa (pressure_dependent only; else F = 1).
+  bool pressure_dependent = false;
+  double exhaust_lag_factor_at_0 = 1.0, exhaust_lag_scale_kPa = 10.0;
+  // Stage 4's cross-validation (tried: it ran): held-out RMS of stage 3's model and of stage 4's.
+  bool exhaust_lag_tried = false;
+  double directional_held_out_rms_kPa = 0, pressure_held_out_rms_kPa = 0;
+  double exhaust_lag_fitted_factor_at_0 = 1.0, exhaust_lag_fitted_scale_kPa = 10.0;  // stage 4's, kept or not
   double r_squared = 0, rms_residual_kPa = 0, max_residual_kPa = 0;
   std::size_t samples = 0;  // residuals (every sample but each run's first)
   double rate_hz = 0;
@@ -67,9 +81,11 @@ struct DynamicsFit {
 
 // The model's monitor for the samples (runs of evenly spaced samples each start at their first
 // monitor reading and the hysteresis model relaxed at their first command): for tests, charts.
-// exhaust_time_constant_s > 0: the directional model (time_constant_s while filling).
+// exhaust_time_constant_s > 0: the directional model (time_constant_s while filling);
+// exhaust_lag_factor_at_0 > 1 with it: the exhaust lag growing near 0 kPa (stage 4's model).
 std::vector<double> simulate_dynamics(std::span<const DynamicsSample> samples, const PrandtlIshlinskii* hysteresis,
-                                      double dead_time_s, double time_constant_s, double exhaust_time_constant_s = 0);
+                                      double dead_time_s, double time_constant_s, double exhaust_time_constant_s = 0,
+                                      double exhaust_lag_factor_at_0 = 1.0, double exhaust_lag_scale_kPa = 10.0);
 
 // samples: one channel's step and chirp rows in time order. hysteresis: the channel's forward
 // model fitted on the monitor (nullptr: identity). Throws InputError(file, what, ...) for data

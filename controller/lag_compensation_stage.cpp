@@ -30,6 +30,16 @@ LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompen
   return plan;
 }
 
+double look_ahead_window_s(const RegulatorLag& model, double y_kPa) noexcept {
+  constexpr double kLn2 = 0.6931471805599453;
+  const double y = std::max(y_kPa, 0.0);
+  // The half-life: a whole fall's half-way time (the slower lag's, so both edges are seen); an
+  // exhaust that slows near 0 kPa takes longer to halve a low pressure than a high one.
+  const double fall_half_life_s =
+      model.exhaust_depends_on_pressure() && y > 0 ? model.exhaust_time_s(y, 0.5 * y) : model.exhaust_tau_s() * kLn2;
+  return std::max(model.time_constant_s * kLn2, fall_half_life_s);
+}
+
 double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
                               double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
                               const void* context, const WindowCache& window) noexcept {
@@ -41,8 +51,8 @@ double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y
       !std::isfinite(y_kPa))
     return at_lead;
   constexpr double kEdge_kPa = 0.25;  // smaller changes are followed as they come
-  // The half-life: a whole fall's half-way time (the slower lag's, so both edges are seen).
-  const double window_s = std::max(tau, tau_fall) * 0.6931471805599453;
+  const double y = std::max(y_kPa, 0.0);
+  const double window_s = look_ahead_window_s(model, y);
   double later;
   if (window.target_kPa && window.sampled && *window.sampled && !window.fresh) {
     later = *window.target_kPa;
@@ -51,10 +61,9 @@ double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y
     if (window.target_kPa && window.sampled) *window.target_kPa = later, *window.sampled = true;
   }
   if (!std::isfinite(later)) return at_lead;
-  const double y = std::max(y_kPa, 0.0);
   if (later < at_lead - kEdge_kPa && later < y) {
     const double b = std::max(later, 0.0);
-    const double half_way_s = y > 0 ? std::clamp(tau_fall * std::log(2 * y / (y + b)), 0.0, window_s) : 0.0;
+    const double half_way_s = y > 0 ? std::clamp(model.exhaust_time_s(y, 0.5 * (y + b)), 0.0, window_s) : 0.0;
     const double there = samples_ahead >= 3 ? sample(context, lead_s + half_way_s) : later;
     return std::isfinite(there) ? std::min(at_lead, there) : at_lead;
   }

@@ -96,8 +96,9 @@ LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompen
 // s seconds from now (the scene where the fingers will be); y the compensator's model output
 // (where the regulator is heading one dead time ahead). A fall can only let the output decay
 // (0 kPa commanded): its half-way time from y to the level B it falls to is tau ln(2y / (y + B))
-// (tau: the exhausting lag for a fall, the filling one for a rise, where they differ),
-// at most the half-life tau ln 2, the window looked into for B; a rise is pushed with the command
+// (tau: the exhausting lag for a fall, the filling one for a rise, where they differ; an
+// exhausting lag that grows near 0 kPa integrated over the way down: RegulatorLag::exhaust_time_s),
+// at most the half-life (a whole fall's from y), the window looked into for B; a rise is pushed with the command
 // at its bound hi (at most max_lead_kPa above B, and at most twice B): tau ln((hi - y) / (hi -
 // (y + B) / 2)). With an edge in the window, what is asked for is the target that half-way time
 // ahead (a single step is then half-way at its edge, and along a staircase the time looked at
@@ -112,6 +113,9 @@ struct WindowCache {
   bool* sampled = nullptr;
   bool fresh = true;
 };
+// The window anticipated_target_kPa looks into beyond the lead: the half-life of a whole fall
+// from y_kPa (or of a rise, if the filling lag is the slower).
+double look_ahead_window_s(const RegulatorLag& model, double y_kPa) noexcept;
 double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
                               double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
                               const void* context, const WindowCache& window = {}) noexcept;

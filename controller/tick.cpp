@@ -37,7 +37,6 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
 
   FingersOnSkin fingers = finger_placement_stage(state, config, sample, t_s, rec);
   tissue_drag_stage(state, scene, fingers, dt_s, rec);
-  ChannelPressures target = stiffness_target_stage(state, config, scene, fingers, t_s, rec);
 
   // What each channel compensates this tick, and the targets it compensates toward: the scene
   // where the fingers will be (channels compensating the whole target), the pulse now and ahead.
@@ -46,15 +45,18 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   const LagPlan plan =
       plan_lag_compensation(state.lag, config.lag_compensation, config.pulse.lag, config.pulse.compensate_lag,
                             inputs.compensate_lag, arteries != nullptr, period_s);
-  LagTargets lag_targets;
-  lag_targets.base_now_kPa = target;
-  lag_targets.base_ahead_kPa = target;
   if (state.fault == FaultCode::none) state.lag.pen.observe(sample, config.lag_compensation.prediction);
   ++state.lag.ticks;
   // A lifted pen, or a run that restarts: the window's cached targets are stale. A finger that
   // is not pressing (a tracked one vented, or lifted by its own load cell) too.
   for (std::size_t i = 0; i < kFingerCount; ++i)
     if (!fingers.pressed || !fingers.finger_pressed[i]) state.lag.window_sampled[i] = false;
+  // Every scene sample this tick will take, asked for at once (their cache misses overlap).
+  scene_prefetch_stage(state, config, scene, fingers, plan, t_s);
+  ChannelPressures target = stiffness_target_stage(state, config, scene, fingers, t_s, rec);
+  LagTargets lag_targets;
+  lag_targets.base_now_kPa = target;
+  lag_targets.base_ahead_kPa = target;
   look_ahead_stage(state, config, scene, plan, target, t_s, lag_targets, rec);
 
   // Scenes without arteries (maps) skip the pulse stage entirely.

@@ -8,6 +8,8 @@
 //                            each tracked finger at its own position with its own force)
 //   tissue_drag_stage        what lies under a sticking finger moves with it (scenes whose
 //                            layers drag; models/tissue_drag.hpp)
+//   scene_prefetch_stage     every scene sample of the tick asked for at once (a large map's
+//                            cache misses overlap); computes nothing
 //   stiffness_target_stage   Scene::sample -> StressModel -> ActuatorModel, per finger
 //   look_ahead_stage         with the regulators' dynamics identified: the targets where the
 //                            fingers will be (controller/lag_compensation_stage.hpp plans it)
@@ -128,6 +130,12 @@ FingersOnSkin finger_placement_stage(TickState& state, const TickConfig& config,
 void tissue_drag_stage(TickState& state, const Scene& scene, FingersOnSkin& fingers, double dt_s,
                        TelemetryRecord& rec) noexcept;
 // Per pressing finger: the scene's stiffness, the stress model and the channel's actuator line.
+// Asks the scene for every sample the tick will take (each pressed finger now; each channel
+// compensating its total at its lead, and at its window when that is sampled afresh), so that a
+// large map's cache misses overlap; changes nothing the tick computes. Only on scenes where that
+// pays (Scene::prefetch_pays: maps larger than the cache).
+void scene_prefetch_stage(const TickState& state, const TickConfig& config, const Scene& scene,
+                          const FingersOnSkin& fingers, const LagPlan& plan, double t_s) noexcept;
 ChannelPressures stiffness_target_stage(TickState& state, const TickConfig& config, const Scene& scene,
                                         const FingersOnSkin& fingers, double t_s, TelemetryRecord& rec) noexcept;
 // Channels that compensate their whole target: the target where the fingers will be, from the

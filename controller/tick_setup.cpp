@@ -37,7 +37,9 @@ std::vector<std::string> describe_lag_compensation(const CalibrationModels& cal)
       on += (on.empty() ? "" : ", ") + std::to_string(i + 1) + " (dead time " + fixed(d.dead_time_s * 1000, 1) +
             " ms, lag " + fixed(d.time_constant_s * 1000, 1) +
             (d.exhaust_time_constant_s > 0
-                 ? " ms filling, " + fixed(d.exhaust_time_constant_s * 1000, 1) + " ms exhausting)"
+                 ? " ms filling, " + fixed(d.exhaust_time_constant_s * 1000, 1) + " ms exhausting" +
+                       (d.exhaust_lag_factor_at_0 != 1.0 ? ", " + fixed(d.exhaust_lag_factor_at_0, 2) + "x at 0 kPa)"
+                                                         : ")")
                  : " ms)");
       ++channels_on;
     } else {
@@ -79,8 +81,13 @@ TickConfig make_tick_config(const RigConfig& rig, const CalibrationModels& cal) 
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     if (!lag_compensation_refusal(cal, i).empty()) continue;
     lag.identified[i] = true;
-    lag.regulator[i] = {cal.dynamics[i]->dead_time_s, cal.dynamics[i]->time_constant_s, rig.plants[i].slew_kPa_per_s,
-                        cal.dynamics[i]->exhaust_time_constant_s};
+    const RegulatorDynamics& d = *cal.dynamics[i];
+    lag.regulator[i] = {d.dead_time_s,
+                        d.time_constant_s,
+                        rig.plants[i].slew_kPa_per_s,
+                        d.exhaust_time_constant_s,
+                        d.exhaust_lag_factor_at_0,
+                        d.exhaust_lag_scale_kPa};
   }
   // Arteries whose scene gives no force window use the one measured on this rig (paper 003).
   if (cal.force_window) {

@@ -74,16 +74,25 @@ double finger_target_kPa(const TickConfig& config, const Scene& scene, std::size
 
 // Where the fingers will be `lead_s` from now (the pen extrapolated from its past samples),
 // which tissue they will press then (the drag stepped along), and the target there.
-double predicted_target_kPa(const TickState& state, const TickConfig& config, const Scene& scene, std::size_t i,
-                            double t_s, double lead_s) noexcept {
-  const PredictedFinger pen = state.lag.pen.predict_finger(t_s + lead_s, config.lag_compensation.prediction, i);
-  if (!pen.in_contact || !(pen.pen_force_N >= config.contact_force_N)) return 0.0;  // a lift coming
+// Where finger i will press at t_s (the pen extrapolated from its past samples) and how hard;
+// false when it will not press (a lift coming, vented, or lifting).
+bool predicted_press(const TickState& state, const TickConfig& config, std::size_t i, double t_s, Point2_mm& centre,
+                     double& force_N) noexcept {
+  const PredictedFinger pen = state.lag.pen.predict_finger(t_s, config.lag_compensation.prediction, i);
+  if (!pen.in_contact || !(pen.pen_force_N >= config.contact_force_N)) return false;  // a lift coming
   // The pen's triangle, or (tracked fingers) this finger's own extrapolated position and force,
   // as place_fingers places them now.
-  const double force_N = pen.own_force ? pen.force_N : pen.pen_force_N;
-  if (!(force_N >= config.contact_force_N) || pen.vent != FingerVent::none) return 0.0;  // vented, or lifting
-  const Point2_mm centre =
-      pen.own_position ? Point2_mm{pen.x_mm, pen.y_mm} : config.layout.centres(pen.pen_x_mm, pen.pen_y_mm)[i];
+  force_N = pen.own_force ? pen.force_N : pen.pen_force_N;
+  if (!(force_N >= config.contact_force_N) || pen.vent != FingerVent::none) return false;  // vented, or lifting
+  centre = pen.own_position ? Point2_mm{pen.x_mm, pen.y_mm} : config.layout.centres(pen.pen_x_mm, pen.pen_y_mm)[i];
+  return true;
+}
+
+double predicted_target_kPa(const TickState& state, const TickConfig& config, const Scene& scene, std::size_t i,
+                            double t_s, double lead_s) noexcept {
+  Point2_mm centre;
+  double force_N = 0;
+  if (!predicted_press(state, config, i, t_s + lead_s, centre, force_N)) return 0.0;
   const DragSetting setting = scene.drag(state.drag_layer[i]);
   if (!setting.drags() && state.drag[i].phase == DragPhase::free && state.drag[i].offset.x_mm == 0 &&
       state.drag[i].offset.y_mm == 0)
@@ -107,6 +116,29 @@ struct Ahead {
 };
 
 }  // namespace
+
+void scene_prefetch_stage(const TickState& state, const TickConfig& config, const Scene& scene,
+                          const FingersOnSkin& fingers, const LagPlan& plan, double t_s) noexcept {
+  if (!scene.prefetch_pays()) return;
+  for (std::size_t i = 0; i < kFingerCount; ++i)
+    if (fingers.pressed && fingers.finger_pressed[i]) scene.prefetch(fingers.centres[i]);
+  if (!plan.any_total() || state.fault != FaultCode::none) return;
+  const LagCompensationSetting& lag = config.lag_compensation;
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    if (plan.part[i] != CompensatedPart::total || lag.samples_ahead < 1) continue;
+    Point2_mm centre;
+    double force_N = 0;
+    // The sample at the lead, and the window's when this tick takes it afresh (the drag's offset,
+    // which moves the felt point a little, is left out of the hint).
+    if (predicted_press(state, config, i, t_s + plan.lead_s[i], centre, force_N)) scene.prefetch(centre);
+    const bool window_due = !state.lag.window_sampled[i] || state.lag.ticks % kWindowStride == i % kWindowStride;
+    if (lag.samples_ahead >= 2 && lag.anticipate_edges && window_due) {
+      const double window_s = look_ahead_window_s(plan.model[i], state.lag.compensator[i].predicted_kPa());
+      if (window_s > 0 && predicted_press(state, config, i, t_s + plan.lead_s[i] + window_s, centre, force_N))
+        scene.prefetch(centre);
+    }
+  }
+}
 
 ChannelPressures stiffness_target_stage(TickState& state, const TickConfig& config, const Scene& scene,
                                         const FingersOnSkin& fingers, double t_s, TelemetryRecord& rec) noexcept {

@@ -163,6 +163,14 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
       // Separate fill and exhaust lags (absent: one lag, as every earlier file).
       if (d.has("exhaust_time_constant_s"))
         dyn.exhaust_time_constant_s = d.number("exhaust_time_constant_s", 0.0005, 2);
+      // An exhaust lag growing near 0 kPa (absent: the same at every pressure, as every earlier
+      // file); only with an exhaust lag of its own.
+      if (d.has("exhaust_lag_factor_at_0") || d.has("exhaust_lag_scale_kPa")) {
+        if (!d.has("exhaust_time_constant_s"))
+          d.fail("exhaust_lag_factor_at_0", "exhaust_time_constant_s beside it (the exhaust lag it scales)");
+        dyn.exhaust_lag_factor_at_0 = d.number("exhaust_lag_factor_at_0", 1, 20);
+        dyn.exhaust_lag_scale_kPa = d.number("exhaust_lag_scale_kPa", 0.01, 1000);
+      }
       if (d.has("segments")) (void)d.raw("segments");  // per-segment R^2 and residuals, for people
       if (d.has("one_lag_rms_residual_kPa")) (void)d.number("one_lag_rms_residual_kPa", 0, 1e6);
       d.refuse_unknown();

@@ -35,6 +35,10 @@ struct RegulatorDynamics {
   double rate_hz = 0;  // the rate the samples were taken at
   // A lag of its own while exhausting (time_constant_s is then the filling one); 0: one lag.
   double exhaust_time_constant_s = 0;
+  // The exhaust lag growing near 0 kPa: at output p it is exhaust_time_constant_s (1 + (F - 1) s /
+  // (p + s)), F = exhaust_lag_factor_at_0 (1: none, as every earlier file), s = exhaust_lag_scale_kPa.
+  double exhaust_lag_factor_at_0 = 1.0;
+  double exhaust_lag_scale_kPa = 10.0;
 };
 
 // Below this R^2 a channel's identified dynamics are not trusted: its lag compensation stays off

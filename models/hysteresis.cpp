@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cmath>
+#include <limits>
 
 namespace palprig {
 
@@ -95,26 +96,29 @@ double PrandtlIshlinskii::input_for(double y_kPa, double bottom_kPa) const noexc
     return y;
   };
   // The kinks: where a play's lower edge (x - r+) or upper edge (x + r-, or 2x - bottom near the
-  // bottom) meets its state, and where the upper edge's slope changes (x = bottom + r-).
-  std::array<double, 3 * kMaxPlayOperators + 1> kink{};
-  std::size_t n = 0;
-  kink[n++] = bottom_kPa;
-  for (std::size_t i = 0; i < operator_count; ++i) {
-    const double r_up = thresholds_kPa[i], r_down = falling_threshold_kPa(i), z = state_kPa[i];
-    kink[n++] = z + r_up;
-    kink[n++] = bottom_kPa + r_down;
-    kink[n++] = z - r_down >= bottom_kPa + r_down ? z - r_down : 0.5 * (z + bottom_kPa);
-  }
-  std::sort(kink.begin(), kink.begin() + std::ptrdiff_t(n));
+  // bottom) meets its state, and where the upper edge's slope changes (x = bottom + r-). Between
+  // two neighbouring kinks the output is linear; it increases with x, so the segment holding
+  // y_kPa lies between the highest kink whose output is below it and the lowest whose output is
+  // not, found without sorting the kinks (the tick runs this per channel: a sort of 3n + 1 kinks
+  // and a walk along them cost more than evaluating only the kinks that narrow the bracket).
   double x0 = bottom_kPa, y0 = output(bottom_kPa);
   if (!(y_kPa > y0)) return bottom_kPa;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!(kink[k] > x0)) continue;
-    const double y1 = output(kink[k]);
-    if (y1 >= y_kPa) return y1 > y0 ? x0 + (kink[k] - x0) * (y_kPa - y0) / (y1 - y0) : kink[k];
-    x0 = kink[k];
-    y0 = y1;
+  double x1 = std::numeric_limits<double>::infinity(), y1 = 0;
+  auto narrow = [&](double kink) {
+    if (!(kink > x0) || !(kink < x1)) return;  // outside the bracket: cannot narrow it
+    const double y = output(kink);
+    if (y >= y_kPa)
+      x1 = kink, y1 = y;
+    else
+      x0 = kink, y0 = y;
+  };
+  for (std::size_t i = 0; i < operator_count; ++i) {
+    const double r_up = thresholds_kPa[i], r_down = falling_threshold_kPa(i), z = state_kPa[i];
+    narrow(z + r_up);
+    narrow(bottom_kPa + r_down);
+    narrow(z - r_down >= bottom_kPa + r_down ? z - r_down : 0.5 * (z + bottom_kPa));
   }
+  if (x1 < std::numeric_limits<double>::infinity()) return y1 > y0 ? x0 + (x1 - x0) * (y_kPa - y0) / (y1 - y0) : x1;
   // Past every kink every play follows its lower edge: slope w0 + sum of the weights.
   double slope = linear_weight;
   for (std::size_t i = 0; i < operator_count; ++i) slope += weights[i];

@@ -84,6 +84,14 @@ double continuous_push(double Y0, double tolerance, double c) noexcept {
 
 }  // namespace
 
+double RegulatorLag::exhaust_time_s(double from_kPa, double to_kPa) const noexcept {
+  if (!(to_kPa > 0) || !(from_kPa > to_kPa)) return 0.0;
+  const double ratio = std::log(from_kPa / to_kPa);
+  if (!exhaust_depends_on_pressure()) return exhaust_tau_s() * ratio;
+  const double f = exhaust_lag_factor_at_0, sc = exhaust_lag_scale_kPa;
+  return exhaust_tau_s() * (f * ratio - (f - 1.0) * std::log((from_kPa + sc) / (to_kPa + sc)));
+}
+
 double LagCompensator::command(const RegulatorLag& lag, double want_ahead_kPa, double lo_kPa, double hi_kPa,
                                double max_step_kPa, double dt_s) noexcept {
   if (!std::isfinite(want_ahead_kPa)) return want_ahead_kPa;  // the safety stage faults on it
@@ -93,7 +101,12 @@ double LagCompensator::command(const RegulatorLag& lag, double want_ahead_kPa, d
     last_command_kPa_ = u;
     return u;
   }
-  const double tau = lag.time_constant_s, tau_exhaust = lag.exhaust_tau_s();
+  const double y = predicted_kPa_;
+  // The exhausting lag the output meets at its present pressure (the same at every pressure for
+  // most regulators; one that slows near 0 kPa is stepped with its lag where it now is, which the
+  // next tick re-reads: its checks ahead take that lag as constant, and a lag that only grows as
+  // the output falls makes them err toward the gentler push).
+  const double tau = lag.time_constant_s, tau_exhaust = lag.exhaust_tau_at(y);
   LagStep s;
   s.alpha_fill = tau > 0 ? -std::expm1(-dt_s / tau) : 1.0;
   s.alpha_exhaust = tau_exhaust > 0 ? -std::expm1(-dt_s / tau_exhaust) : 1.0;
@@ -103,7 +116,6 @@ double LagCompensator::command(const RegulatorLag& lag, double want_ahead_kPa, d
   s.lo = lo_kPa;
   s.hi = hi_kPa;
   const double want = std::clamp(want_ahead_kPa, lo_kPa, hi_kPa);
-  const double y = predicted_kPa_;
   // A fall is pushed by the exhaust, a rise by the supply: the lag of the way the output goes.
   if (want < y) s.alpha = s.alpha_exhaust;
 

@@ -4,10 +4,11 @@
 // controller/lag_compensation_stage.hpp).
 //
 // A proportional regulator answers in about 50 ms (paper 002): a dead time, then a first-order
-// lag, then its own output slew. The compensator keeps a model y of the regulator's output one
-// dead time ahead, and each tick chooses the command u that brings y toward the wanted value
-// one tick and one dead time from now (what is wanted then is known ahead: the pulse waveform,
-// or the scene where the fingers will be). The fastest move is
+// lag, then its own output slew (the lag may differ filling and exhausting, and the exhausting
+// one may grow near 0 kPa: the model steps with the lag at its present output). The compensator keeps a model y of the
+// regulator's output one dead time ahead, and each tick chooses the command u that brings y toward the wanted value one
+// tick and one dead time from now (what is wanted then is known ahead: the pulse waveform, or the scene where the
+// fingers will be). The fastest move is
 //     u = y + (want - y) / alpha,     alpha = 1 - exp(-dt / tau),
 // but u is limited to what the rig can do (lo..hi: 0..p_max for a total, and a bound on the lead
 // above the target; the command's slew limit, the safety stage's; the regulator's own output
@@ -31,9 +32,25 @@ struct RegulatorLag {
   // A regulator that exhausts at another rate than it fills: time_constant_s is then the
   // filling lag and this the exhausting one; 0: one lag both ways.
   double exhaust_time_constant_s = 0.0;
+  // An exhaust that slows near 0 kPa (least pressure to push with): the exhausting lag at output
+  // p is exhaust_tau_s() (1 + (F - 1) s / (p + s)), F = exhaust_lag_factor_at_0 (1: the same at
+  // every pressure), s = exhaust_lag_scale_kPa.
+  double exhaust_lag_factor_at_0 = 1.0;
+  double exhaust_lag_scale_kPa = 10.0;
   double exhaust_tau_s() const noexcept {
     return exhaust_time_constant_s > 0 ? exhaust_time_constant_s : time_constant_s;
   }
+  bool exhaust_depends_on_pressure() const noexcept { return exhaust_lag_factor_at_0 != 1.0; }
+  // The exhausting lag at output pressure p_kPa.
+  double exhaust_tau_at(double p_kPa) const noexcept {
+    const double tau = exhaust_tau_s();
+    if (!exhaust_depends_on_pressure()) return tau;
+    const double s = exhaust_lag_scale_kPa;
+    return tau * (1.0 + (exhaust_lag_factor_at_0 - 1.0) * s / ((p_kPa > 0 ? p_kPa : 0.0) + s));
+  }
+  // How long a free exhaust (command 0 kPa) takes from from_kPa down to to_kPa (0 < to <= from):
+  // the integral of tau(p) dp / p, tau_e (F ln(from / to) - (F - 1) ln((from + s) / (to + s))).
+  double exhaust_time_s(double from_kPa, double to_kPa) const noexcept;
 };
 
 class LagCompensator {

@@ -35,6 +35,13 @@ class Scene {
   // first sample: the top layer): paper 000's stick/slip. Scenes without layers do not drag.
   // Called per finger per tick: must not allocate, lock or throw.
   virtual DragSetting drag(int /*layer*/) const noexcept { return {0, 0, 0}; }
+  // A hint: the tick will sample here soon. A scene that reads a table too large for the cache
+  // starts fetching it (the tick asks for every sample of a tick first); the others ignore it.
+  // Called per finger per tick: must not allocate, lock or throw.
+  virtual void prefetch(const Point2_mm& /*at*/) const noexcept {}
+  // Whether prefetch pays: the tick computes where its samples will be twice when it does, which
+  // costs more than it saves on a scene that fits in the cache.
+  virtual bool prefetch_pays() const noexcept { return false; }
 };
 
 class MapScene final : public Scene {
@@ -44,6 +51,10 @@ class MapScene final : public Scene {
     return {map_.sample(at.x_mm, at.y_mm, sampling_), -1};
   }
   SceneBounds bounds() const noexcept override { return {0, 0, map_.width_mm(), map_.height_mm()}; }
+  void prefetch(const Point2_mm& at) const noexcept override { map_.prefetch(at.x_mm, at.y_mm, sampling_); }
+  // A map beyond a typical last-level cache share (4 MiB; the 4096 x 4096 map is 64 MiB, the
+  // bundled phantom 76 KiB).
+  bool prefetch_pays() const noexcept override { return map_.values().size() * sizeof(float) > (std::size_t{4} << 20); }
   const StiffnessMap& map() const noexcept { return map_; }
   MapSampling sampling() const noexcept { return sampling_; }
 

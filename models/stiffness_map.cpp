@@ -50,6 +50,21 @@ double StiffnessMap::sample_nearest(double x_mm, double y_mm) const noexcept {
   return at(std::min(c, cols_ - 1), std::min(r, rows_ - 1));
 }
 
+void StiffnessMap::prefetch(double x_mm, double y_mm, MapSampling how) const noexcept {
+  double gx, gy;
+  if (values_.empty() || !to_grid(x_mm, y_mm, gx, gy)) return;
+  std::size_t c, r;
+  if (how == MapSampling::nearest) {
+    c = std::min(static_cast<std::size_t>(std::lround(gx)), cols_ - 1);
+    r = std::min(static_cast<std::size_t>(std::lround(gy)), rows_ - 1);
+  } else {
+    c = std::min(static_cast<std::size_t>(gx), cols_ - 2);
+    r = std::min(static_cast<std::size_t>(gy), rows_ - 2);
+    __builtin_prefetch(&values_[(r + 1) * cols_ + c]);
+  }
+  __builtin_prefetch(&values_[r * cols_ + c]);
+}
+
 double StiffnessMap::sample_bilinear(double x_mm, double y_mm) const noexcept {
   double gx, gy;
   if (!to_grid(x_mm, y_mm, gx, gy)) return outside_.background_stiffness;

@@ -39,6 +39,11 @@ class StiffnessMap {
   double sample(double x_mm, double y_mm, MapSampling how) const noexcept {
     return how == MapSampling::nearest ? sample_nearest(x_mm, y_mm) : sample_bilinear(x_mm, y_mm);
   }
+  // Start fetching the cells sample(x_mm, y_mm, how) will read, without waiting for them: on a
+  // map much larger than the cache each sample is a cache and TLB miss, and the tick's samples of
+  // one tick (every finger, now and ahead) are independent, so asking for all of them first lets
+  // their misses overlap instead of queueing one behind the other.
+  void prefetch(double x_mm, double y_mm, MapSampling how) const noexcept;
 
  private:
   // Grid coordinates of a point, or false when outside and the policy is background.

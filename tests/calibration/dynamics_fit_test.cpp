@@ -2,13 +2,17 @@
 // loop's rate with the setpoint actually sent, the fit recovers a simulated plant's dead time and
 // lag (with its play through the hysteresis model), reports R^2 and residuals per excitation, a
 // poorly fitting channel is marked and keeps lag compensation off, and the calibration file
-// carries the dynamics and the lag_compensation section (and refuses them when impossible).
+// carries the dynamics and the lag_compensation section (and refuses them when impossible); an
+// exhaust lag growing near 0 kPa is recovered from a synthetic sweep and kept by held-out error;
+// a badly fitting channel of an asymmetric regulator keeps compensation off and says why.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
+#include <sstream>
 
 #include "calibration/calibration_fit.hpp"
+#include "calibration/calibration_report.hpp"
 #include "calibration/calibration_writer.hpp"
 #include "calibration/dynamics_fit.hpp"
 #include "calibration/sweep_csv.hpp"
@@ -31,8 +35,8 @@ namespace {
 
 // A sweep of the documented recipe on a simulated rig with the given plant, written to a file
 // and read back as `calibrate fit` reads it.
-SweepData recorded_sweep(const TempDir& dir, const PlantParams& plant, const std::string& excitation = "all") {
-  std::array<PlantParams, kFingerCount> plants{plant, plant, plant};
+SweepData recorded_sweep_of(const TempDir& dir, const std::array<PlantParams, kFingerCount>& plants,
+                            const std::string& excitation = "all") {
   SimulatedRig rig(plants, 60);
   rig.open();
   SweepPlanOptions plan;
@@ -53,6 +57,10 @@ SweepData recorded_sweep(const TempDir& dir, const PlantParams& plant, const std
   EXPECT_FALSE(out.faulted) << out.fault;
   EXPECT_EQ(out.holds_unsettled, 0u);  // timed holds are not "unsettled"
   return read_sweep_csv(path);
+}
+
+SweepData recorded_sweep(const TempDir& dir, const PlantParams& plant, const std::string& excitation = "all") {
+  return recorded_sweep_of(dir, {plant, plant, plant}, excitation);
 }
 
 }  // namespace
@@ -246,4 +254,106 @@ TEST(DynamicsFit, SeparateFillAndExhaustLagsAreIdentified) {
       make_tick_config(load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/simulated.json"), cal);
   EXPECT_EQ(cfg.lag_compensation.regulator[1].exhaust_time_constant_s, cal.dynamics[1]->exhaust_time_constant_s);
   EXPECT_EQ(cfg.lag_compensation.regulator[1].time_constant_s, cal.dynamics[1]->time_constant_s);
+}
+
+TEST(DynamicsFit, AnExhaustLagGrowingNear0IsIdentifiedAndKeptByHeldOutError) {
+  // The shipped asymmetric regulator's dynamics: 40 ms filling, 70 ms exhausting far from 0 kPa,
+  // 2.5 times slower at 0 kPa (scale 5 kPa). The sweep's steps go no lower than 10 kPa, so the
+  // slowdown is seen from 10 kPa up (1.5 times there) and extrapolated.
+  TempDir dir;
+  PlantParams plant;
+  plant.time_constant_s = 0.040;
+  plant.exhaust_time_constant_s = 0.070;
+  plant.exhaust_lag_factor_at_0 = 2.5;
+  plant.exhaust_lag_scale_kPa = 5;
+  const SweepData data = recorded_sweep(dir, plant);
+  CalibrationFitOptions o;
+  o.date = "2026-11-27";
+  const CalibrationResult r = fit_calibration(data, o);
+  const RegulatorLag truth{0.004, 0.040, 2000, 0.070, 2.5, 5};
+  for (const ChannelCalibration& ch : r.channels) {
+    ASSERT_TRUE(ch.dynamics.has_value()) << ch.channel;
+    const DynamicsFit& d = *ch.dynamics;
+    ASSERT_TRUE(d.directional) << ch.channel;
+    ASSERT_TRUE(d.pressure_dependent) << ch.channel;
+    EXPECT_TRUE(d.exhaust_lag_tried);
+    EXPECT_LT(d.pressure_held_out_rms_kPa, 0.95 * d.directional_held_out_rms_kPa);
+    EXPECT_NEAR(d.time_constant_s, 0.040, 0.03 * 0.040) << ch.channel;
+    EXPECT_NEAR(d.dead_time_s, plant.dead_time_s - 0.001, 0.0005) << ch.channel;
+    // The exhaust lag where the steps exhausted (10 kPa and up) is the plant's; below the lowest
+    // step it is extrapolated: slower near 0 kPa than far from it, but not the plant's figure
+    // (the sweep never exhausts below its lowest staircase level).
+    const RegulatorLag fitted{
+        d.dead_time_s,          d.time_constant_s, 2000, d.exhaust_time_constant_s, d.exhaust_lag_factor_at_0,
+        d.exhaust_lag_scale_kPa};
+    for (double kPa : {10.0, 30.0, 60.0})
+      EXPECT_NEAR(fitted.exhaust_tau_at(kPa), truth.exhaust_tau_at(kPa), 0.15 * truth.exhaust_tau_at(kPa))
+          << ch.channel << " at " << kPa << " kPa";
+    EXPECT_GT(fitted.exhaust_tau_at(0.7), 1.5 * fitted.exhaust_tau_at(60)) << ch.channel;
+    EXPECT_NEAR(d.rms_residual_kPa, plant.noise_sd_kPa, 0.03);  // what is left is the monitor's noise
+  }
+  // The file carries both keys; the tick's compensator gets them; a file with them but without
+  // the exhaust lag they scale is refused.
+  const CalibrationModels cal = write_calibration_file(dir.path() / "cal.json", calibration_json(r));
+  ASSERT_TRUE(cal.dynamics[2].has_value());
+  EXPECT_EQ(cal.dynamics[2]->exhaust_lag_factor_at_0, r.channels[2].dynamics->exhaust_lag_factor_at_0);
+  EXPECT_EQ(cal.dynamics[2]->exhaust_lag_scale_kPa, r.channels[2].dynamics->exhaust_lag_scale_kPa);
+  const TickConfig cfg =
+      make_tick_config(load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/simulated_asymmetric.json"), cal);
+  EXPECT_EQ(cfg.lag_compensation.regulator[2].exhaust_lag_factor_at_0, cal.dynamics[2]->exhaust_lag_factor_at_0);
+  EXPECT_EQ(cfg.lag_compensation.regulator[2].exhaust_lag_scale_kPa, cal.dynamics[2]->exhaust_lag_scale_kPa);
+  const std::string ch = R"({"actuator": {"slope": 0.25, "intercept_kPa": 5}})";
+  const auto bad = dir.write("bad.json", R"({"version": 1, "rig_id": "r", "channels": [)" + ch + "," + ch + "," +
+                                             R"({"actuator": {"slope": 0.25, "intercept_kPa": 5}, "dynamics": )" +
+                                             R"({"dead_time_s": 0.004, "time_constant_s": 0.05, "r_squared": 0.999, )" +
+                                             R"("exhaust_lag_factor_at_0": 2, "exhaust_lag_scale_kPa": 5}}]})");
+  EXPECT_EQ(refusal([&] { load_calibration_file(bad); }),
+            (dir.path() / "bad.json").string() +
+                ": channels[2].dynamics.exhaust_lag_factor_at_0: exhaust_time_constant_s beside it (the exhaust lag "
+                "it scales)");
+}
+
+TEST(DynamicsFit, ABadlyFittingAsymmetricChannelKeepsCompensationOffAndSaysWhy) {
+  // Two channels of the shipped asymmetric regulator's dynamics (fill and exhaust lags, an exhaust
+  // slowing near 0 kPa, a saturating gain; its play left out) and a third whose regulator slews at only
+  // 40 kPa/s: its steps are ramps, which no lag with dead time (one lag, two, or one growing near
+  // 0 kPa) describes. Compensation is asked for; that channel keeps it off and the fit, the file's
+  // loader and the run each say why, while the other two are compensated.
+  TempDir dir;
+  const RigConfig rig = load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/simulated_asymmetric.json");
+  std::array<PlantParams, kFingerCount> plants = rig.plants;
+  for (PlantParams& p : plants) p.hysteresis_rising_kPa = p.hysteresis_falling_kPa = 0.0;  // the dynamics alone
+  plants[2].slew_kPa_per_s = 40;
+  const SweepData data = recorded_sweep_of(dir, plants, "dynamics");
+  CalibrationFitOptions o;
+  o.date = "2026-11-27";
+  o.hysteresis_from = HysteresisSource::none;
+  o.lag_compensation.enabled = true;
+  const CalibrationResult r = fit_calibration(data, o);
+  for (std::size_t i = 0; i < 2; ++i) {
+    ASSERT_TRUE(r.channels[i].dynamics.has_value());
+    EXPECT_TRUE(r.channels[i].dynamics->directional) << i;
+    EXPECT_TRUE(r.channels[i].dynamics_usable()) << i;
+  }
+  ASSERT_TRUE(r.channels[2].dynamics.has_value());
+  EXPECT_LT(r.channels[2].dynamics->r_squared, 0.98);
+  EXPECT_FALSE(r.channels[2].dynamics_usable());
+  bool said = false;
+  for (const auto& n : r.notes) said = said || n.find("channel 3: its dynamics fit with R^2") != std::string::npos;
+  EXPECT_TRUE(said);
+  std::ostringstream report;
+  print_fit_report(report, r, "asym.json");
+  EXPECT_NE(report.str().find("POOR FIT: compensation stays off"), std::string::npos) << report.str();
+  const CalibrationModels cal = write_calibration_file(dir.path() / "asym.json", calibration_json(r));
+  const TickConfig cfg = make_tick_config(rig, cal);
+  EXPECT_TRUE(cfg.lag_compensation.whole(0));
+  EXPECT_TRUE(cfg.lag_compensation.whole(1));
+  EXPECT_FALSE(cfg.lag_compensation.whole(2));
+  const auto notes = describe_lag_compensation(cal);
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_NE(notes[0].find("lag compensation on for channels 1"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("ms exhausting"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[1].find("lag compensation stays off on channel 3: its identified dynamics fit with R^2 0."),
+            std::string::npos)
+      << notes[1];
 }

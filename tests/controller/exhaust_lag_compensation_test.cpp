@@ -1,0 +1,130 @@
+// Lag compensation on a regulator whose exhaust slows near 0 kPa (least pressure to push with):
+// the stage leads a fall toward a light target with the lag the output meets there, so the fall
+// lands on time without undershoot, where a compensator that knows one exhaust lag only (what a
+// fit without the pressure dependence identifies) releases too early and leaves the output
+// dragging above the target.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "controller/lag_compensation_stage.hpp"
+#include "models/pneumatic_plant.hpp"
+
+using namespace palprig;
+
+namespace {
+
+// The shipped asymmetric regulator's dynamics (data/rigs/simulated_asymmetric.json) without its
+// play or noise: what the stage sees once the hysteresis inverse has done its work.
+PlantParams exhaust_slowing_plant() {
+  PlantParams p;
+  p.hysteresis_kPa = 0;
+  p.noise_sd_kPa = 0;
+  p.time_constant_s = 0.040;
+  p.exhaust_time_constant_s = 0.070;
+  p.exhaust_lag_factor_at_0 = 2.5;
+  p.exhaust_lag_scale_kPa = 5;
+  return p;
+}
+
+struct ExhaustDrive {
+  std::vector<double> target, output, command;
+};
+
+// The stage alone on channel 0 at 1 kHz, the target known ahead, the plant stepped under each
+// command a tick later.
+template <typename Target>
+ExhaustDrive drive_exhaust(Target base_at, const RegulatorLag& model, double seconds) {
+  PneumaticPlant plant(exhaust_slowing_plant());
+  LagCompensationState st;
+  LagPlan plan;
+  plan.part[0] = CompensatedPart::total;
+  plan.model[0] = model;
+  const double dt = 0.001;
+  plan.lead_s[0] = model.dead_time_s + dt;
+  const LagLimits limits{60, 2000, 10};
+  ExhaustDrive d;
+  double previous = 0;
+  for (int k = 0; k * dt < seconds; ++k) {
+    const double t = k * dt;
+    LagTargets in;
+    in.base_now_kPa[0] = base_at(t);
+    in.base_ahead_kPa[0] = base_at(t + plan.lead_s[0]);
+    const ChannelPressures u = lag_compensation_stage(st, plan, in, limits, k > 0 ? dt : 0.0);
+    if (k > 0) plant.step(previous, dt);
+    previous = u[0];
+    d.target.push_back(in.base_now_kPa[0]);
+    d.output.push_back(plant.output_kPa());
+    d.command.push_back(u[0]);
+  }
+  return d;
+}
+
+double exhaust_rms(const ExhaustDrive& d, std::size_t from, std::size_t to) {
+  double s = 0;
+  for (std::size_t k = from; k < to; ++k) s += std::pow(d.output[k] - d.target[k], 2);
+  return std::sqrt(s / double(to - from));
+}
+
+}  // namespace
+
+TEST(ExhaustLagCompensation, AFallTowardZeroIsLedWithTheLagItMeetsThere) {
+  // 10 kPa, then at 0.3 s a fall to 0.7 kPa (a soft tissue's target after a tumor).
+  auto fall = [](double t) { return t < 0.3 ? 10.0 : 0.7; };
+  const RegulatorLag exact{0.004, 0.040, 2000, 0.070, 2.5, 5};
+  // One exhaust lag: the plant's far from 0 kPa, and the one a fit without the pressure
+  // dependence found on this plant's steps (86 ms).
+  const RegulatorLag far{0.004, 0.040, 2000, 0.070}, averaged{0.004, 0.040, 2000, 0.086};
+  const ExhaustDrive d = drive_exhaust(fall, exact, 1.0);
+  const ExhaustDrive f = drive_exhaust(fall, far, 1.0);
+  const ExhaustDrive a = drive_exhaust(fall, averaged, 1.0);
+  // Within [0, p_max]; the fall is pushed with the command at 0 kPa, then released to the target.
+  for (double u : d.command) ASSERT_TRUE(u >= 0 && u <= 60) << u;
+  EXPECT_EQ(*std::min_element(d.command.begin() + 300, d.command.end()), 0.0);
+  // No undershoot below the light target.
+  double under = 0;
+  for (std::size_t k = 300; k < d.output.size(); ++k) under = std::max(under, 0.7 - d.output[k]);
+  EXPECT_LT(under, 0.05);
+  // Landed as soon as the exhaust allows (a free exhaust from 10 to 0.7 kPa, after the dead time
+  // and the tick the command takes), and held there.
+  const auto landed = static_cast<std::size_t>(300 + 1000 * (exact.exhaust_time_s(10.0, 0.7) + 0.006)) + 5;
+  EXPECT_NEAR(landed, 675u, 10u);
+  for (std::size_t k = landed; k < d.output.size(); ++k) ASSERT_LT(std::abs(d.output[k] - 0.7), 0.02) << k;
+  // The one-lag compensators released too early (about 0.2 s): the output drags above the target.
+  EXPECT_GT(f.output[700] - 0.7, 0.3);
+  EXPECT_GT(a.output[700] - 0.7, 0.25);
+  EXPECT_EQ(f.command[520], 0.7);
+  EXPECT_EQ(d.command[520], 0.0);
+  // After the one-lag compensators released (0.5 s on): what the right lag saves.
+  const double rms_exact = exhaust_rms(d, 500, 1000), rms_far = exhaust_rms(f, 500, 1000),
+               rms_averaged = exhaust_rms(a, 500, 1000);
+  EXPECT_LT(rms_exact, 0.85 * std::min(rms_far, rms_averaged)) << rms_exact << " " << rms_far << " " << rms_averaged;
+}
+
+TEST(ExhaustLagCompensation, TheFallIsAskedForEarlierByTheTimeTheSlowExhaustTakes) {
+  // A fall edge known ahead: with the exhaust slowing near 0 kPa, half-way from 10 to 0.7 kPa
+  // takes longer than one exhaust lag says, and the anticipation looks that much further ahead
+  // (RegulatorLag::exhaust_time_s, the integral of the lag over the way down).
+  const RegulatorLag exact{0.004, 0.040, 2000, 0.070, 2.5, 5}, flat{0.004, 0.040, 2000, 0.070};
+  const double half_exact = exact.exhaust_time_s(10.0, 0.5 * (10.0 + 0.7));
+  const double half_flat = flat.exhaust_time_s(10.0, 0.5 * (10.0 + 0.7));
+  EXPECT_NEAR(half_flat, 0.070 * std::log(10.0 / 5.35), 1e-12);
+  EXPECT_GT(half_exact, 1.3 * half_flat);
+  struct Edge {
+    double at_s;
+  };
+  const Edge edge{0.100};
+  auto target = [](const void* context, double ahead_s) {
+    return ahead_s >= static_cast<const Edge*>(context)->at_s ? 0.7 : 10.0;
+  };
+  // Where the anticipation switches to the fall: the lead plus the half-way time before the edge.
+  auto switch_lead = [&](const RegulatorLag& m) {
+    for (double lead = 0.0; lead < 0.1; lead += 0.0005)
+      if (anticipated_target_kPa(m, lead, 10.0, 10, 60, 3, true, target, &edge) < 5) return lead;
+    return 1.0;
+  };
+  EXPECT_NEAR(switch_lead(exact), edge.at_s - half_exact, 0.001);
+  EXPECT_NEAR(switch_lead(flat), edge.at_s - half_flat, 0.001);
+}
