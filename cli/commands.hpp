@@ -52,6 +52,8 @@ void register_check_command(CLI::App& app);
 void register_igtl_replay_command(CLI::App& app);
 void register_tracking_command(CLI::App& app);
 void register_load_cell_command(CLI::App& app);
+// The fingertip finite-element model (fe_command.cpp and fe_*_command.cpp; needs GetFEM, so a rig command).
+void register_fe_command(CLI::App& app);
 // Every command that needs the rig stack: rig_commands.cpp, or rig_commands_absent.cpp in the
 // analyst-only build (-DPALPRIG_RIG=OFF).
 void register_rig_commands(CLI::App& app);

@@ -14,4 +14,5 @@ void register_rig_commands(CLI::App& app) {
   register_igtl_replay_command(app);
   register_tracking_command(app);
   register_load_cell_command(app);
+  register_fe_command(app);
 }
