@@ -2,8 +2,9 @@
 // StimulusOutput: what the trial runner drives. RigStimulus puts it on a rig through the
 // controller's tick (direct per-finger pressures, or a scene felt through pen input); tests
 // substitute a recording fake. Calls come from the session thread, never the real-time loop.
-#include <stdexcept>
 #include <string>
+
+#include "core/error.hpp"  // RigFault: the rig faulted (backend error, safety fault), every channel vented
 
 #include "inputs/input_source.hpp"
 #include "rigs/rig_backend.hpp"
@@ -11,12 +12,6 @@
 #include "models/scene.hpp"
 
 namespace palprig {
-
-// The rig faulted (backend error, safety fault): every channel has been vented.
-class RigFault : public std::runtime_error {
- public:
-  explicit RigFault(const std::string& what) : std::runtime_error(what) {}
-};
 
 class StimulusOutput {
  public:
