@@ -46,11 +46,12 @@ TwoBodies fingertip_with(const FingertipBody& finger, double element_mm, const Q
 
 // The contact parameters: the augmentation about the softer body's modulus per element, the
 // release distance a few elements (GetFEM's advice: less than the bodies' thickness).
-ContactPair contact_between(const std::string& master, double softest_kPa, double element_mm) {
+ContactPair contact_between(const std::string& master, double softest_kPa, const SolveOptions& o) {
+  const double element_mm = o.element_mm;
   ContactPair c;
   c.slave = "fingertip_contact";
   c.master = master;
-  c.augmentation_kPa_per_mm = softest_kPa / element_mm;
+  c.augmentation_kPa_per_mm = o.augmentation_factor * softest_kPa / element_mm;
   c.release_distance_mm = std::max(1.5, 3 * element_mm);
   return c;
 }
@@ -88,6 +89,8 @@ void step_through(ContactSolver& solver, ContactRun& run, const std::vector<doub
       p.what = fixed(target, 2) + " " + unit;
       p.elapsed_s = seconds_since(t0);
       p.remaining_s = p.elapsed_s / p.step * (p.steps - p.step);
+      p.cuts = run.cuts;
+      p.newton_iterations = iterations;
       progress(p);
     }
   }
@@ -153,7 +156,7 @@ ContactRun run_indentation(const FingertipBody& finger, const TissueBlock& block
   if (block.sides == BlockSides::rollers) spec.rollers = {{"block_left"}, {"block_right"}};
   double softest = block.tissue.initial_youngs_kPa();
   softest = std::min(softest, finger.skin.initial_youngs_kPa());
-  spec.contact = contact_between("block_top", softest, o.solve.element_mm);
+  spec.contact = contact_between("block_top", softest, o.solve);
   ContactSolver solver(spec);
 
   ContactRun run;
@@ -200,7 +203,7 @@ ContactRun run_actuator(const FingertipBody& finger, const ActuatorBody& actuato
   spec.held = {{"bone"}, {"bonded"}};
   spec.pressures = {{"chamber"}};
   const double softest = std::min(actuator.layer.initial_youngs_kPa(), finger.skin.initial_youngs_kPa());
-  spec.contact = contact_between("actuator_top", softest, o.solve.element_mm);
+  spec.contact = contact_between("actuator_top", softest, o.solve);
   ContactSolver solver(spec);
 
   ContactRun run;

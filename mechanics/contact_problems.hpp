@@ -21,13 +21,16 @@ struct SolveOptions {
   double element_mm = 1.0;  // where the contact is (body_meshes.hpp)
   int max_cuts = 6;
   int max_newton_iterations = 40;
+  double augmentation_factor = 1.0;  // times the default contact augmentation (softest modulus / element)
 };
 
 struct StepProgress {
   int step = 0, steps = 0;  // done, of
   std::string what;         // "depth 3.5 mm", "air 40 kPa"
   double elapsed_s = 0;
-  double remaining_s = 0;  // estimated from the steps so far
+  double remaining_s = 0;     // estimated from the steps so far
+  int cuts = 0;               // steps halved so far
+  int newton_iterations = 0;  // of the step just done
 };
 using ProgressFn = std::function<void(const StepProgress&)>;
 

@@ -56,13 +56,13 @@ TEST(FeTableScene, DeeperTumorRendersWeaker) {
   // top depth and diameter, its modulus over the silicone's, at 2 N's 7 mm indentation.
   const InclusionOutline o = scene->outlines(InclusionKind::tumor).at(0);
   EXPECT_NEAR(o.top_depth_mm, 5.0, 0.5);
-  const double expected =
-      scene->fe_table()->rise_kPa(7.0, o.top_depth_mm, 2 * o.radius_mm, 100 / 14.7, std::hypot(50 - o.x_mm, 40 - o.y_mm));
+  const double expected = scene->fe_table()->rise_kPa(7.0, o.top_depth_mm, 2 * o.radius_mm, 100 / 14.7,
+                                                      std::hypot(50 - o.x_mm, 40 - o.y_mm));
   EXPECT_NEAR(scene->fe_stress_rise_kPa({50, 40}, 2.0), expected, 1e-9);
 }
 
 TEST(FeTableScene, WithoutTheKeyTheStiffnessRuleApplies) {
-  testing::ScratchDir dir;
+  palprig::testing::ScratchDir dir;
   nlohmann::json doc;
   std::ifstream(kData / "scenes" / "fe_depths.json") >> doc;
   doc.erase("fe_stress_table");
