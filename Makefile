@@ -4,6 +4,7 @@
 #   make fuzz   run every fuzz target for a minute (make test runs each for a second)
 #   make test-tsan  the threaded suites under ThreadSanitizer
 #   make test-analyst  the analyst-only build (-DPALPRIG_RIG=OFF: stats, export, store) and its suites
+#   make format the style of .clang-format applied to every C++ file (make test fails on one that differs)
 # Both are idempotent: packages already present are not touched and the build is incremental.
 
 BUILD      ?= build
@@ -19,7 +20,7 @@ CMAKE_ARGS ?=
 PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages.txt | tr '\n' ' ')
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build demo test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator
+.PHONY: all deps configure build demo test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
 
 all: build
 
@@ -107,6 +108,10 @@ test-analyst: deps
 	  -DPALPRIG_RIG=OFF -DPALPRIG_GUI=OFF -DPALPRIG_BENCH=OFF
 	cmake --build $(BUILD_ANALYST) -j$(JOBS)
 	cd $(BUILD_ANALYST) && ctest --output-on-failure -j$(JOBS) --timeout 600
+
+# Every C++ file formatted as .clang-format says (style.ClangFormat in make test checks it).
+format:
+	python3 tools/check_style.py format --fix
 
 bench: build
 	bench/run_all.sh $(BUILD)

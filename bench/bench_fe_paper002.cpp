@@ -89,9 +89,10 @@ int main(int argc, char** argv) {
   const StressLine line = fit_stress_line(x, y);
   std::printf("| actuator line R^2 | >= 0.99 | 0.9969 / 0.9998 | %.5f (stress = %.5f x air + %.3f kPa) |\n",
               line.r_squared, line.slope, line.intercept_kPa);
-  std::printf("| air for the nodule's stress | within 10 %% of 11.75 kPa | 11.75 kPa | %.2f kPa for %.3f kPa "
-              "(%.2f kPa for the paper's 7.967) |\n",
-              (p.nodule - line.intercept_kPa) / line.slope, p.nodule, (7.967 - line.intercept_kPa) / line.slope);
+  std::printf(
+      "| air for the nodule's stress | within 10 %% of 11.75 kPa | 11.75 kPa | %.2f kPa for %.3f kPa "
+      "(%.2f kPa for the paper's 7.967) |\n",
+      (p.nodule - line.intercept_kPa) / line.slope, p.nodule, (7.967 - line.intercept_kPa) / line.slope);
   std::printf("| one indentation solve (healthy, 7 steps) | < 30 s | | %.1f s wall, %.1f s CPU |\n", wall, cpu);
   std::fflush(stdout);
   SolveOptions fine = solve;

@@ -6,7 +6,7 @@
 //   - a heavier plant: hysteresis x1.7, dead time and lag x1.4, calibrated here by the documented
 //     recipe (palprig calibrate sweep --excitation staircase,random,sine,step,chirp, then
 //     calibrate fit; the palprig command itself, as a user types it).
-// Goals (issue "haptic fidelity"): RMS <= 0.5 kPa on both, monitor/target over tumors >= 0.97,
+// Goals: RMS <= 0.5 kPa on both, monitor/target over tumors >= 0.97,
 // no setpoint above p_max, no overshoot over soft tissue above 0.5 kPa.
 //
 //   build/bin/bench_fidelity                        the table (Markdown), runs in a few seconds
@@ -25,6 +25,8 @@
 //            tumor, as the demo's table), and the same less the monitor's noise (3 sd)
 //   setpoint the largest setpoint sent, against p_max
 // The simulated plant is seeded, so the figures do not depend on the machine.
+// Over 400 lines: the pass, its meter, the heavier plant's calibration recipe and the Modbus run
+// are one measurement, printed as one table.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -42,6 +44,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.hpp"
 #include "controller/run_setup.hpp"
 #include "formats/scene_file.hpp"
 
@@ -158,7 +161,7 @@ Case run_pass(const std::string& name, const fs::path& rig, const fs::path& cal,
   opt.mode = LoopMode::replay;
   opt.observer = &rec;
   const RunSummary s = execute_run(run, opt);
-  if (s.fault != FaultCode::none) throw std::runtime_error(name + ": the run faulted: " + to_string(s.fault));
+  if (s.fault != FaultCode::none) throw palprig::Error(name + ": the run faulted: " + to_string(s.fault));
   Meter meter(run.scene.tumors, run.config.layout);
   for (const Tick& t : rec.ticks) meter.add(t);
   Case c;
@@ -179,7 +182,7 @@ Case run_pass(const std::string& name, const fs::path& rig, const fs::path& cal,
 void run_command(const std::string& command) {
   const int status = std::system(command.c_str());
   if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error("failed (" + std::to_string(status) + "): " + command);
+    throw palprig::Error("failed (" + std::to_string(status) + "): " + command);
 }
 
 // The heavier plant, calibrated by the documented recipe with the palprig command.
@@ -211,7 +214,7 @@ Metrics metrics_of_telemetry(const fs::path& csv, const fs::path& scene_file, co
   const RigConfig rig = load_rig_file(rig_file);
   Meter meter(scene.tumors, rig.layout);
   std::ifstream in(csv);
-  if (!in) throw std::runtime_error("cannot read " + csv.string());
+  if (!in) throw palprig::Error("cannot read " + csv.string());
   std::string line;
   std::getline(in, line);
   std::map<std::string, std::size_t> col;
@@ -221,7 +224,7 @@ Metrics metrics_of_telemetry(const fs::path& csv, const fs::path& scene_file, co
     for (std::size_t i = 0; std::getline(h, name, ','); ++i) col[name] = i;
   }
   for (const char* need : {"t_s", "x_mm", "y_mm", "flags", "target_kPa_1", "setpoint_kPa_1", "monitor_kPa_1"})
-    if (!col.count(need)) throw std::runtime_error(csv.string() + ": no column " + need);
+    if (!col.count(need)) throw palprig::Error(csv.string() + ": no column " + need);
   std::vector<double> cells;
   while (std::getline(in, line)) {
     cells.clear();
@@ -286,14 +289,16 @@ void write_figure(const fs::path& png, const Case& off, const Case& on, const st
       break;
     }
   }
-  if (enter < 0 || leave < 0) throw std::runtime_error("finger 1 never crosses tumor " + b->name);
+  if (enter < 0 || leave < 0) throw palprig::Error("finger 1 never crosses tumor " + b->name);
   const double from = enter - 0.15, to = leave + 0.3;
   charts::Chart chart;
   chart.title = "Finger 1 crossing tumor " + b->name + " (demo pass, " + off.rig_name + ")";
   chart.x_label = "time (s)";
   chart.y_label = "pressure (kPa)";
-  charts::ChartSeries target{"target (the model)"}, plain{"monitor, no lag compensation"},
-      comp{"monitor, lag compensation"};
+  charts::ChartSeries target, plain, comp;
+  target.label = "target (the model)";
+  plain.label = "monitor, no lag compensation";
+  comp.label = "monitor, lag compensation";
   target.color_rgb = 0x202020;
   plain.color_rgb = 0xd62728;
   comp.color_rgb = 0x1f77b4;
@@ -322,7 +327,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+        if (i + 1 >= argc) throw palprig::Error(a + " needs a value");
         return argv[++i];
       };
       if (a == "--json")
@@ -340,7 +345,7 @@ int main(int argc, char** argv) {
       else if (a.rfind("--benchmark", 0) == 0)
         continue;  // bench/run_all.sh passes Google Benchmark's flags
       else
-        throw std::runtime_error("unknown argument " + a);
+        throw palprig::Error("unknown argument " + a);
     }
     const fs::path data = fs::path(PALPRIG_SOURCE_DIR) / "data";
     if (!telemetry.empty()) {

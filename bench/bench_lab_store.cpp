@@ -1,4 +1,4 @@
-// The lab store (issue 12): trial commit latency p50/p99 to the bench's journal (SQLite, WAL,
+// The lab store: trial commit latency p50/p99 to the bench's journal (SQLite, WAL,
 // synchronous FULL) and to the PostgreSQL server on loopback, and `stats trials` over a million
 // trials read from PostgreSQL, beside the same scan of the SQLite file.
 //

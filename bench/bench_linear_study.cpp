@@ -1,4 +1,4 @@
-// Issue 23: a study's cost grows linearly with its trials.
+// A study's cost grows linearly with its trials.
 //   ThresholdStoreGrowth  a 20,000-trial QUEST track (the session bound) committed trial by
 //                         trial into a fresh SQLite store, as a session commits them: bytes
 //                         of the database per trial over the first and the last 1,000 trials

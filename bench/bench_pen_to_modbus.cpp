@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "controller/backend_factory.hpp"
 #include "controller/loop_runner.hpp"
 #include "controller/tick_setup.hpp"
@@ -39,6 +40,7 @@
 #include "inputs/tablet_input.hpp"
 #include "inputs/tablet_source.hpp"
 #include "runtime/latency_histogram.hpp"
+#include "controller/rig_lease.hpp"
 
 extern char** environ;
 using namespace palprig;
@@ -95,7 +97,7 @@ struct Child {
 
 Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   int fds[2];
-  if (pipe(fds) != 0) throw std::runtime_error("pipe");
+  if (pipe(fds) != 0) throw palprig::Error("pipe");
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
@@ -106,7 +108,7 @@ Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   Child c;
-  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw std::runtime_error("spawn sim-rig");
+  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw palprig::Error("spawn sim-rig");
   close(fds[1]);
   c.out = fdopen(fds[0], "r");
   return c;
@@ -157,14 +159,15 @@ int main(int argc, char** argv) {
   auto source = std::make_unique<EvemuPenSource>(recording);
   EvemuPenSource* replay = source.get();
   TabletInput pen(std::move(source), rig.tablet);
-  auto backend = make_backend(rig);
-  backend->open();
+  std::unique_ptr<Rig> opened = open_rig(rig);
+  RigLease lease = opened->lease("the pen-to-Modbus benchmark");
   RunOptions opt;
   opt.mode = LoopMode::realtime;
   opt.rate_hz = 1000;
   opt.duration_s = seconds;
-  const RunSummary s = run_loop(config, *scene.scene, pen, *backend, opt);
-  backend->close();
+  const RunSummary s = run_loop(config, *scene.scene, pen, lease, opt);
+  lease.release();
+  opened.reset();
   kill(sim.pid, SIGTERM);
   waitpid(sim.pid, nullptr, 0);
   fclose(sim.out);

@@ -1,9 +1,9 @@
-// End-to-end latency, tracker pose to regulator register (issue 26): from the moment a
+// End-to-end latency, tracker pose to regulator register: from the moment a
 // tracker's OpenIGTLink server sends a pose (a TRANSFORM message, stamped on CLOCK_MONOTONIC
 // by the server just after its send() returns) to the arrival of the Modbus write that carries
 // the resulting setpoint at a `palprig sim-rig` process on loopback (its --write-log stamps
 // each write on the same clock). The pen's figure (bench_pen_to_modbus) is beside it in
-// docs/developing.md.
+// docs/benchmarks.md.
 //
 // The path measured is the one a lab's rig runs: TCP (loopback) -> tracker reader thread
 // (FIFO 60: poll, decode, fingertip p = o + R p_local, registration) -> LatestValue -> loop
@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "controller/backend_factory.hpp"
 #include "controller/loop_runner.hpp"
 #include "controller/tick_setup.hpp"
@@ -41,6 +42,7 @@
 #include "inputs/igtl_input.hpp"
 #include "inputs/igtl_pose_server.hpp"
 #include "runtime/monotonic_clock.hpp"
+#include "controller/rig_lease.hpp"
 
 extern char** environ;
 using namespace palprig;
@@ -88,7 +90,7 @@ struct Child {
 
 Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   int fds[2];
-  if (pipe(fds) != 0) throw std::runtime_error("pipe");
+  if (pipe(fds) != 0) throw palprig::Error("pipe");
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
@@ -99,7 +101,7 @@ Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   Child c;
-  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw std::runtime_error("spawn sim-rig");
+  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw palprig::Error("spawn sim-rig");
   close(fds[1]);
   c.out = fdopen(fds[0], "r");
   return c;
@@ -165,17 +167,18 @@ int main(int argc, char** argv) {
   tracking.tools = {TrackedTool{"Finger1ToTracker", 0, {}}};
   auto input =
       std::make_unique<IgtlInput>(IgtlEndpoint{"127.0.0.1", server.port()}, tracking, rig.safety.max_input_age_s);
-  auto backend = make_backend(rig);
-  backend->open();
+  std::unique_ptr<Rig> opened = open_rig(rig);
+  RigLease lease = opened->lease("the pose-to-Modbus benchmark");
   RunOptions opt;
   opt.mode = LoopMode::realtime;
   opt.rate_hz = 1000;
   opt.duration_s = seconds;
   // Moves sent while the loop ran (not before it armed, nor after it ended) are the ones timed.
   const std::int64_t loop_start_ns = mono_ns();
-  const RunSummary s = run_loop(config, *scene.scene, *input, *backend, opt);
+  const RunSummary s = run_loop(config, *scene.scene, *input, lease, opt);
   const std::int64_t loop_end_ns = mono_ns();
-  backend->close();
+  lease.release();
+  opened.reset();
   input.reset();  // the client leaves before the server stops
   server.stop();
   kill(sim.pid, SIGTERM);
@@ -233,7 +236,7 @@ int main(int argc, char** argv) {
       all.size(), pct(all, .5), pct(all, .99), unmatched, outside);
   std::printf("  loop: %llu ticks, %llu overruns, wake-up p50/p99 %.0f/%.0f us; fault: %s %s\n",
               static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
-              s.wake_latency.p50_us, s.wake_latency.p99_us, to_string(s.fault), s.fault_detail.c_str());
+              s.wake_latency.p50_us, s.wake_latency.p99_us, to_string(s.fault), s.fault.detail().c_str());
   std::filesystem::remove_all(dir);
   return unmatched == 0 && s.fault == FaultCode::none ? 0 : 1;
 }

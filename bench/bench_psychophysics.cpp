@@ -1,4 +1,4 @@
-// Psychophysics (issue 13): psychometric fit time for 10,000 trials, parametric-bootstrap time
+// Psychophysics: psychometric fit time for 10,000 trials, parametric-bootstrap time
 // for 1,000 resamples, and how well the shipped staircase and QUEST protocols recover the
 // simulated observer's analytic threshold over 20 seeded participants on the simulated rig
 // (counters: bias and spread in % of the analytic threshold, trials per track).

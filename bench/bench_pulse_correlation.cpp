@@ -1,6 +1,6 @@
 // How well the rig renders the pulse: the correlation between the pulse a finger should feel
 // and the pressure the simulated regulator actually delivers, with and without the lag
-// pre-compensation, at 60, 100 and 160 BPM (issue 6; goal >= 0.95 up to 100 BPM).
+// pre-compensation, at 60, 100 and 160 BPM (goal >= 0.95 up to 100 BPM).
 //
 //   build/bin/bench_pulse_correlation            the table (Markdown) for README.md
 //   build/bin/bench_pulse_correlation --json     the same numbers as JSON
@@ -67,7 +67,7 @@ std::unique_ptr<FunctionScene> scene_with(const FunctionScene& shipped, const Pu
 
 // How the plant's 2 kPa play is handled: left alone (the default calibration has no hysteresis
 // model), cancelled by the calibration fitted on this rig (data/calibration/sim-default.json,
-// issue 4's hysteresis inverse in the tick), or absent (the lag alone).
+// the tick's hysteresis inverse), or absent (the lag alone).
 // With the calibration, the lag compensator works on the pulse alone (the default) or, with lag
 // compensation switched on (whole_target: calibration identified the regulators' dynamics), on
 // the whole target, stiffness and pulse together: the same compensator either way.

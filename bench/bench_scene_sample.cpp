@@ -1,6 +1,6 @@
 // Cost of function scenes on the 1 kHz path: one finger's felt stiffness on each shipped scene,
 // a whole tick with the pulse stage (three fingers, lag compensation; with the number of heap
-// allocations it made, which must be 0), and one compensator step. Tracked fingers (issue 26):
+// allocations it made, which must be 0), and one compensator step. Tracked fingers:
 // a rig step with each finger at its own position and its own simulated load cell, and the
 // tracker input's latest() while a real OpenIGTLink server streams to its reader thread (the
 // allocations counted on the loop's own thread: the reader and the server allocate on theirs).

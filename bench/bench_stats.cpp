@@ -1,4 +1,4 @@
-// `palprig stats trials` on a million trials (issue 5 goal: under 1 s), and the rank-test and
+// `palprig stats trials` on a million trials (goal: under 1 s), and the rank-test and
 // Wilson kernels. The trial database is built once (about a minute) in the temporary folder and
 // reused: $TMPDIR/palprig_bench_1M_trials.db (delete it to rebuild).
 //

@@ -20,6 +20,7 @@
 #include "controller/loop_runner.hpp"
 #include "formats/rig_file.hpp"
 #include "rigs/simulated_rig.hpp"
+#include "controller/rig_lease.hpp"
 
 using namespace palprig;
 
@@ -79,7 +80,9 @@ void BM_LoopWakeup1kHz(benchmark::State& state) {
     CpuLoad load(loaded);
     TickConfig config;
     config.safety.max_lost_time_s = 1e9;  // a measurement: the lost-time fault must not end it
-    s = run_loop(config, scene, pen, backend, opt);
+    Rig rig(backend, "the benchmark's simulated rig");
+    RigLease lease = rig.lease("the wake-up benchmark");
+    s = run_loop(config, scene, pen, lease, opt);
   }
   // Back to ordinary scheduling, every CPU and the default slack for the next case.
   sched_param sp{};

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # bench/run_all.sh [BUILD_DIR]: run every benchmark program BUILD_DIR/bin/bench_* (make bench)
-# and print the tables the performance figures of docs/developing.md come from, headed by the machine and its
+# and print the tables the figures of docs/benchmarks.md come from, headed by the machine and its
 # load, since on a shared machine the load decides the tails.
 #
 # Google Benchmark programs run with --benchmark_min_time (default 0.5 s per case, set

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # bench/stats_command.sh [BUILD_DIR] [RUNS]: `palprig stats trials` on the 1,000,000-trial store,
-# timed as the user waits for it: the whole process, from exec to exit (issue 23 goal: < 1 s).
+# timed as the user waits for it: the whole process, from exec to exit (goal: < 1 s).
 #
 # The store is bench_stats' ($TMPDIR/palprig_bench_1M_trials.db; BUILD_DIR/bin/bench_stats makes
 # it, about a minute, when it is missing). Two figures, each the median (and min, max) of RUNS

@@ -5,6 +5,8 @@
 
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace palprig::bench {
 
 namespace {
@@ -15,11 +17,11 @@ Display* dpy(void* d) { return static_cast<Display*>(d); }
 
 XTestInput::XTestInput(const char* display) {
   Display* d = XOpenDisplay(display);
-  if (d == nullptr) throw std::runtime_error(std::string("cannot open X display ") + (display ? display : "$DISPLAY"));
+  if (d == nullptr) throw palprig::Error(std::string("cannot open X display ") + (display ? display : "$DISPLAY"));
   int event_base = 0, error_base = 0, major = 0, minor = 0;
   if (!XTestQueryExtension(d, &event_base, &error_base, &major, &minor)) {
     XCloseDisplay(d);
-    throw std::runtime_error("the X server has no XTEST extension");
+    throw palprig::Error("the X server has no XTEST extension");
   }
   display_ = d;
 }
@@ -30,9 +32,9 @@ XTestInput::~XTestInput() {
 
 unsigned XTestInput::keycode(const std::string& keysym) {
   const KeySym sym = XStringToKeysym(keysym.c_str());
-  if (sym == NoSymbol) throw std::runtime_error("no keysym " + keysym);
+  if (sym == NoSymbol) throw palprig::Error("no keysym " + keysym);
   const KeyCode code = XKeysymToKeycode(dpy(display_), sym);
-  if (code == 0) throw std::runtime_error("no key gives " + keysym + " in the server's keymap");
+  if (code == 0) throw palprig::Error("no key gives " + keysym + " in the server's keymap");
   return code;
 }
 

@@ -17,7 +17,7 @@ namespace palprig::bench {
 class XTestInput {
  public:
   using time_point = std::chrono::steady_clock::time_point;
-  // Opens $DISPLAY (or `display`); throws std::runtime_error naming what is missing (no display,
+  // Opens $DISPLAY (or `display`); throws palprig::Error naming what is missing (no display,
   // no XTEST extension).
   explicit XTestInput(const char* display = nullptr);
   ~XTestInput();

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <vector>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

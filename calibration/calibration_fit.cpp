@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -68,6 +68,12 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
   out.lag_compensation = o.lag_compensation;
   bool any_dynamics = false;
   std::vector<HoldPoint> pooled;
+  int swept_channels = 0, fitted = 0;
+  for (int c = 1; c <= int(kFingerCount); ++c)
+    swept_channels += !data.channel_points(c).empty() || !data.channel_dynamics(c).empty() ? 1 : 0;
+  // Silent for the first 2 s: most fits are over by then (the Ceres stages take longer on long
+  // recordings with step and chirp rows).
+  ProgressMeter meter("fit", o.progress, 5.0, 2.0);
   for (int c = 1; c <= int(kFingerCount); ++c) {
     ChannelCalibration& ch = out.channels[std::size_t(c - 1)];
     ch.channel = c;
@@ -91,6 +97,10 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
       continue;
     }
     const std::string name = "channel " + std::to_string(c);
+    ++fitted;
+    meter.phase(name + " (" + std::to_string(fitted) + " of " + std::to_string(swept_channels) +
+                    "): branch lines, hysteresis model, dynamics",
+                double(fitted - 1) / double(std::max(swept_channels, 1)));
     // The regulator's dynamics, through the hysteresis model fitted on the monitor (so the lag
     // is fitted on what the play leaves of the command), once that model exists.
     auto fit_channel_dynamics = [&] {
@@ -215,8 +225,14 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
         out.pooled_response = fit_branches(pooled, MeasuredSignal::sensor, file, "all channels sensor");
     }
   }
-  if (o.stress_pairs.empty())
-    out.notes.push_back("actuator stress lines from " + o.base.source + " (no --stress pairs)");
+  if (o.stress_pairs.empty()) {
+    // The base is paper 002's built-in models unless --base named a file.
+    const bool built_in = o.base.source == CalibrationModels{}.source;
+    out.notes.push_back(built_in ? "actuator stress lines kept from paper 002's regression (no --stress pairs given)"
+                                 : "actuator stress lines kept from " + o.base.source +
+                                       " (--base; no --stress pairs given)");
+  }
+  meter.finish();
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include "calibration/force_window.hpp"
 #include "calibration/hysteresis_fit.hpp"
 #include "calibration/stress_fit.hpp"
+#include "calibration/progress_meter.hpp"
 #include "calibration/sweep_csv.hpp"
 #include "formats/calibration_file.hpp"
 
@@ -45,6 +46,9 @@ struct CalibrationFitOptions {
   // the lead bound and the R^2 a channel's fit needs.
   DynamicsFitOptions dynamics;
   LagCompensationChoice lag_compensation;
+  // Progress: a line per channel fitted (phase "channel 2 of 3"; share: channels done), once
+  // the fit has run 2 s.
+  ProgressSink progress;
 };
 
 struct ChannelCalibration {

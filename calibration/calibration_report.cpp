@@ -1,5 +1,6 @@
 #include "calibration/calibration_report.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -8,7 +9,7 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig {
 
@@ -148,8 +149,15 @@ nlohmann::json evaluation_json(const EvaluationResult& r, const std::array<bool,
                   {"compensated", metrics(r.compensated.channels[c])},
                   {"improvement", r.improvement[c]}});
   }
-  auto run_state = [](const EvaluationRun& run) {
-    return json{{"stopped", run.stopped}, {"faulted", run.faulted}, {"fault", run.fault}};
+  auto run_state = [&](const EvaluationRun& run) {
+    json excursions = json::array();
+    for (const Excursion& e : run.excursions)
+      excursions.push_back({{"channel", e.channel},
+                            {"start_s", e.start_s},
+                            {"duration_s", e.duration_s},
+                            {"worst_kPa", e.worst_kPa},
+                            {"worst_at_s", e.worst_at_s}});
+    return json{{"stopped", run.stopped}, {"faulted", run.faulted}, {"fault", run.fault}, {"excursions", excursions}};
   };
   return json{{"trajectory",
                {{"from_kPa", r.from_kPa},
@@ -159,6 +167,7 @@ nlohmann::json evaluation_json(const EvaluationResult& r, const std::array<bool,
                 {"reversals", r.reversals}}},
               {"channels", ch},
               {"worst_improvement", r.worst_improvement},
+              {"tolerance_kPa", r.tolerance_kPa},
               {"complete", r.complete()},
               {"uncompensated_run", run_state(r.uncompensated)},
               {"compensated_run", run_state(r.compensated)}};
@@ -169,23 +178,54 @@ void print_evaluation_report(std::ostream& out, const EvaluationResult& r,
   out << std::fixed << std::setprecision(1) << "  trajectory: " << r.from_kPa << " .. " << r.to_kPa << " kPa at "
       << r.ramp_kPa_per_s << " kPa/s, " << std::setprecision(0) << r.duration_s << " s scored, " << r.reversals
       << " reversals\n";
+  // A run that did not start (the first one stopped or faulted) has no figures: it is said, not
+  // printed as zeros.
+  const bool compensated_ran = !r.uncompensated.stopped && !r.uncompensated.faulted;
   out << "  channel  compensation   RMS kPa   max kPa   gap kPa        R^2\n";
   for (std::size_t c = 0; c < kFingerCount; ++c) {
     if (!channels[c]) continue;
     for (int with = 0; with < 2; ++with) {
       const TrackingMetrics& m = with ? r.compensated.channels[c] : r.uncompensated.channels[c];
-      out << "  " << std::left << std::setw(9) << c + 1 << std::setw(13) << (with ? "on" : "off") << std::right
-          << std::setprecision(3) << std::setw(10) << m.rms_error_kPa << std::setw(10) << m.max_abs_error_kPa
+      out << "  " << std::left << std::setw(9) << c + 1 << std::setw(13) << (with ? "on" : "off") << std::right;
+      if (m.samples == 0) {
+        out << "  not run" << (with && !compensated_ran ? " (the run without compensation did not finish)" : "")
+            << "\n";
+        continue;
+      }
+      out << std::setprecision(3) << std::setw(10) << m.rms_error_kPa << std::setw(10) << m.max_abs_error_kPa
           << std::setw(10) << m.gap_kPa << std::setprecision(5) << std::setw(11) << m.r_squared << "\n";
     }
   }
-  out << "  improvement (RMS off / on):";
-  for (std::size_t c = 0; c < kFingerCount; ++c)
-    if (channels[c]) out << " channel " << c + 1 << " " << std::setprecision(1) << r.improvement[c] << "x";
-  out << "; worst " << r.worst_improvement << "x\n";
+  if (r.complete()) {
+    out << "  improvement (RMS off / on):";
+    for (std::size_t c = 0; c < kFingerCount; ++c)
+      if (channels[c]) out << " channel " << c + 1 << " " << std::setprecision(1) << r.improvement[c] << "x";
+    out << "; worst " << r.worst_improvement << "x\n";
+  }
+  // Excursions: the plant away from the target by more than the tolerance, with their times.
+  std::size_t excursions = 0;
+  for (const EvaluationRun* run : {&r.uncompensated, &r.compensated}) excursions += run->excursions.size();
+  out << std::setprecision(0) << "  excursions beyond " << r.tolerance_kPa << " kPa of the target: ";
+  if (excursions == 0)
+    out << "none\n";
+  else
+    out << excursions << "\n";
+  for (int with = 0; with < 2; ++with) {
+    const EvaluationRun& run = with ? r.compensated : r.uncompensated;
+    const std::size_t shown = std::min<std::size_t>(run.excursions.size(), 10);
+    for (std::size_t i = 0; i < shown; ++i)
+      out << "    " << (with ? "compensated" : "uncompensated") << " run, "
+          << excursion_text(run.excursions[i], r.tolerance_kPa) << "\n";
+    if (run.excursions.size() > shown)
+      out << "    " << (with ? "compensated" : "uncompensated") << " run: " << run.excursions.size() - shown
+          << " more (--json lists them all)\n";
+  }
   for (const EvaluationRun* run : {&r.uncompensated, &r.compensated}) {
-    if (run->stopped) out << "  note: stopped by a signal; channels vented; figures cover what was driven\n";
-    if (run->faulted) out << "  note: fault (" << run->fault << "); channels vented\n";
+    if (run->stopped)
+      out << "  note: stopped (a signal or the operator); channels vented; figures cover what was driven\n";
+    if (run->faulted)
+      out << "  note: fault (" << run->fault << "); channels vented; figures cover what was driven"
+          << (run->fault_record.empty() ? "" : "; " + run->fault_record) << "\n";
   }
   out.unsetf(std::ios::fixed);
 }

@@ -17,7 +17,7 @@ nlohmann::json evaluation_json(const EvaluationResult& result, const std::array<
 void print_evaluation_report(std::ostream& out, const EvaluationResult& result,
                              const std::array<bool, kFingerCount>& channels);
 // t_s,compensation,target_kPa,setpoint_1..3_kPa,monitor_1..3_kPa (both runs). Throws
-// std::runtime_error when the file cannot be written.
+// OutputError when the file cannot be written.
 void write_evaluation_trace_csv(const std::filesystem::path& path, const EvaluationResult& result);
 
 // Now as ISO 8601 UTC ("2026-11-22T12:00:00Z"), for the calibration file's date.

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig {
 

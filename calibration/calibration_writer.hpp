@@ -16,7 +16,7 @@ namespace palprig {
 nlohmann::json calibration_json(const CalibrationResult& result);
 nlohmann::json branch_fits_json(const BranchFits& fits);
 
-// Returns the models as the controller loaded them back. Throws std::runtime_error when the
+// Returns the models as the controller loaded them back. Throws OutputError when the
 // file cannot be written.
 CalibrationModels write_calibration_file(const std::filesystem::path& path, const nlohmann::json& document);
 

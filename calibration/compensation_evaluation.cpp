@@ -8,8 +8,9 @@
 #include <sstream>
 
 #include "calibration/pacer.hpp"
+#include "controller/fault_recorder.hpp"
 #include "controller/rig_step.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -104,8 +105,9 @@ struct Accumulator {
 // One run on the shared time base (the backend's clock only moves forward), through the
 // controller's rig step: tick_direct (hysteresis inverse, safety stage), write, monitors.
 EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Trajectory& tr, const EvaluationOptions& o,
-                    Pacer& pacer, std::uint64_t& k) {
+                    Pacer& pacer, std::uint64_t& k, ProgressMeter& meter, double done_before, double share) {
   EvaluationRun run;
+  ExcursionWatch watch(o.tolerance_kPa);
   const double t0 = pacer.period_s() * double(k);
   const auto ticks = static_cast<std::uint64_t>(std::ceil(tr.end_s() * o.rate_hz));
   const auto record_every = std::max<std::uint64_t>(1, std::uint64_t(std::llround(o.rate_hz / o.record_hz)));
@@ -115,12 +117,13 @@ EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Traject
   std::array<Accumulator, kFingerCount> acc{};
   if (rig.arm() != BackendStatus::ok) {
     run.faulted = true;
-    run.fault = rig.fault_detail();
+    run.fault = rig.fault().detail();
     return run;
   }
   for (std::uint64_t i = 0; i < ticks; ++i) {
+    meter.update(done_before + share * double(i) / double(ticks));
     const double t = pacer.wait_for_tick(k++);
-    if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+    if (o.control && o.control->stop_requested()) {
       run.stopped = true;
       break;
     }
@@ -131,23 +134,32 @@ EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Traject
     const StepResult& r = rig.step_direct(want, t);
     if (rig.faulted()) {
       run.faulted = true;
-      run.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
+      run.fault = rig.fault() == FaultCode::backend_error ? rig.fault().detail()
                                                           : std::string("tick fault: ") + to_string(rig.fault());
       break;
     }
     if (t - t0 >= tr.scored_from_s)
       for (std::size_t c = 0; c < kFingerCount; ++c)
-        if (o.channels[c]) acc[c].add(target, r.monitor_kPa[c], slope);
+        if (o.channels[c]) {
+          acc[c].add(target, r.monitor_kPa[c], slope);
+          watch.add(c, t - t0, target, r.monitor_kPa[c]);
+        }
     if (i % record_every == 0) run.trace.push_back({t, target, r.tick.setpoint_kPa, r.monitor_kPa});
   }
   rig.disarm();
+  if (rig.faulted())
+    run.fault_record =
+        save_fault_record(rig.recorder(), rig.fault(), "the compensation evaluation", {},
+                          o.fault_record_folder.empty() ? std::filesystem::current_path() : o.fault_record_folder);
+  watch.close();
+  run.excursions = watch.excursions();
   for (std::size_t c = 0; c < kFingerCount; ++c) run.channels[c] = acc[c].metrics();
   return run;
 }
 
 }  // namespace
 
-EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig, const CalibrationModels& cal,
+EvaluationResult evaluate_compensation(RigLease& lease, const RigConfig& rig, const CalibrationModels& cal,
                                        const EvaluationOptions& o) {
   const double p_max = rig.safety.p_max_kPa;
   const double hi = o.to_kPa > 0 ? o.to_kPa : 0.8 * p_max;
@@ -163,6 +175,7 @@ EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig
   need(o.duration_s > 0 && o.duration_s <= 86400, "duration_s", "a duration in (0, 86400] s");
   need(o.rest_s >= 0 && o.rest_s <= 600, "rest_s", "a rest of 0 to 600 s");
   need(o.record_hz > 0 && o.record_hz <= o.rate_hz, "record_hz", "a trace rate in (0, `rate_hz`]");
+  need(o.tolerance_kPa > 0 && o.tolerance_kPa <= 1000, "tolerance_kPa", "a tolerance in (0, 1000] kPa");
   bool any = false;
   for (std::size_t c = 0; c < kFingerCount; ++c) {
     if (!o.channels[c]) continue;
@@ -183,13 +196,20 @@ EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig
   result.to_kPa = hi;
   result.ramp_kPa_per_s = o.ramp_kPa_per_s;
   result.duration_s = o.duration_s;
+  result.tolerance_kPa = o.tolerance_kPa;
   const Trajectory tr = make_trajectory(o, o.from_kPa, hi);
   result.reversals = tr.reversals;
   Pacer pacer(o.rate_hz, o.realtime);
   std::uint64_t k = 0;
-  result.uncompensated = drive(backend, plain, tr, o, pacer, k);
-  if (!result.uncompensated.stopped && !result.uncompensated.faulted)
-    result.compensated = drive(backend, compensated, tr, o, pacer, k);
+  RigBackend& backend = lease.backend();
+  ProgressMeter meter("evaluate", o.progress);
+  meter.phase("uncompensated run", 0.0);
+  result.uncompensated = drive(backend, plain, tr, o, pacer, k, meter, 0.0, 0.5);
+  if (!result.uncompensated.stopped && !result.uncompensated.faulted) {
+    meter.phase("compensated run", 0.5);
+    result.compensated = drive(backend, compensated, tr, o, pacer, k, meter, 0.5, 0.5);
+    if (!result.compensated.stopped && !result.compensated.faulted) meter.finish();
+  }
   result.worst_improvement = 0;
   bool first = true;
   for (std::size_t c = 0; c < kFingerCount; ++c) {

@@ -12,12 +12,16 @@
 // hysteresis and the regulator's lag would otherwise dominate the error. The first approach
 // from vented to the bottom of the range is not scored.
 #include <array>
-#include <atomic>
+#include <filesystem>
 #include <string>
 #include <vector>
 
+#include "calibration/excursions.hpp"
+#include "calibration/progress_meter.hpp"
 #include "formats/calibration_file.hpp"
+#include "controller/rig_lease.hpp"
 #include "rigs/rig_backend.hpp"
+#include "runtime/run_control.hpp"
 #include "formats/rig_file.hpp"
 
 namespace palprig {
@@ -33,7 +37,16 @@ struct EvaluationOptions {
   unsigned seed = 7;
   bool realtime = true;
   std::array<bool, kFingerCount> channels{true, true, true};
-  const std::atomic<int>* stop_signal = nullptr;
+  const RunControl* control = nullptr;  // the operator's handle: a stop request vents and ends the run
+  // Where the ticks before a rig fault are written (controller/fault_recorder.hpp); empty: the
+  // working folder.
+  std::filesystem::path fault_record_folder;
+  // A monitor further than this from the target is an excursion, reported with its time
+  // (calibration/excursions.hpp).
+  double tolerance_kPa = kDefaultRegulatorTolerance_kPa;
+  // Progress of the two runs (phase "uncompensated run", "compensated run"; share of rig time),
+  // at least every 5 s of wall time.
+  ProgressSink progress;
 };
 
 struct TrackingMetrics {
@@ -53,12 +66,17 @@ struct EvaluationRun {
   std::array<TrackingMetrics, kFingerCount> channels{};
   std::vector<EvaluationTraceRow> trace;
   double scored_from_t_s = 0;  // trace rows before this (rest, first approach) are not scored
+  // Stretches of the scored part where a monitor was further from the target than the
+  // tolerance, times from the run's start.
+  std::vector<Excursion> excursions;
   bool stopped = false, faulted = false;
+  std::string fault_record;  // after a rig fault: "the last N ticks before it: FILE"
   std::string fault;
 };
 
 struct EvaluationResult {
   double from_kPa = 0, to_kPa = 0, ramp_kPa_per_s = 0, duration_s = 0;
+  double tolerance_kPa = kDefaultRegulatorTolerance_kPa;  // of the excursions
   std::size_t reversals = 0;
   EvaluationRun uncompensated, compensated;
   std::array<double, kFingerCount> improvement{};  // uncompensated RMS / compensated RMS
@@ -70,7 +88,7 @@ struct EvaluationResult {
 
 // Throws InputError for a range outside 0..p_max, or a calibration without any hysteresis model
 // on an evaluated channel (nothing to compare).
-EvaluationResult evaluate_compensation(RigBackend& backend, const RigConfig& rig, const CalibrationModels& cal,
+EvaluationResult evaluate_compensation(RigLease& lease, const RigConfig& rig, const CalibrationModels& cal,
                                        const EvaluationOptions& options);
 
 }  // namespace palprig

@@ -7,7 +7,7 @@
 
 #include <ceres/ceres.h>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

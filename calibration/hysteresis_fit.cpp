@@ -11,7 +11,7 @@
 
 #include "calibration/line_fit.hpp"
 #include "calibration/nonnegative_least_squares.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -3,13 +3,14 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/error.hpp"
 #include "runtime/monotonic_clock.hpp"
 
 namespace palprig {
 
 Pacer::Pacer(double rate_hz, bool realtime)
     : period_s_(1.0 / rate_hz), period_ns_(std::llround(1e9 / rate_hz)), realtime_(realtime) {
-  if (!(rate_hz > 0) || rate_hz > 100000) throw std::invalid_argument("rate must be in (0, 100000] Hz");
+  if (!(rate_hz > 0) || rate_hz > 100000) throw BadInput("rate must be in (0, 100000] Hz");
   start_ns_ = mono_ns() + period_ns_;
 }
 

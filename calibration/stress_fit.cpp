@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "models/finger_layout.hpp"
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

@@ -9,16 +9,16 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/checked_output.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 
 namespace {
 
 // The sweep file is streamed, hold by hold, so that a stopped sweep keeps every finished hold;
-// each flush and the close are checked, and a failure is models/checked_output's one line. A
+// each flush and the close are checked, and a failure is io/checked_output's one line. A
 // file that failed cannot be left looking like a whole sweep: without holds it is removed; with
 // some it is renamed NAME.partial (a rename needs no room on the disk), which the line names.
 // Only a regular file is removed or renamed: never a device (/dev/full) or a FIFO given as --out.
@@ -88,7 +88,10 @@ void SweepCsvWriter::on_hold(std::size_t index, const SweepHold& hold, std::span
 void SweepCsvWriter::finish(const SweepOutcome& o) {
   out_ << "# holds: " << o.holds_done << " of " << o.holds_planned << " (" << o.holds_unsettled << " not settled)\n";
   if (o.holds_redone) out_ << "# redone: " << o.holds_redone << " hold(s) started again after a link outage\n";
-  if (o.stopped) out_ << "# stopped: signal " << o.stop_signal << "; channels vented; the rows above were kept\n";
+  if (o.stopped)
+    out_ << "# stopped: "
+         << (o.stop_signal ? "signal " + std::to_string(o.stop_signal) : std::string("by the operator"))
+         << "; channels vented; the rows above were kept\n";
   if (o.faulted) out_ << "# fault: " << o.fault << "; channels vented\n";
   if (!out_.flush()) fail_writing(out_, path_, rows_ > 0);
   out_.close();

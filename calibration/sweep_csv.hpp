@@ -39,7 +39,7 @@ struct SweepFileInfo {
 
 class SweepCsvWriter final : public SweepSink {
  public:
-  // Throws OutputError (models/checked_output.hpp: the file and the system's reason) when the file
+  // Throws OutputError (io/checked_output.hpp: the file and the system's reason) when the file
   // cannot be created; on_hold and finish likewise when a flush or the close fails.
   SweepCsvWriter(const std::filesystem::path& path, const SweepFileInfo& info,
                  const std::array<bool, kFingerCount>& channels);

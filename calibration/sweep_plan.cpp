@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "calibration/line_fit.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

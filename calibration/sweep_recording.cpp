@@ -4,11 +4,12 @@
 
 namespace palprig {
 
-SweepRecording record_calibration_sweep(RigBackend& backend, const RigConfig& rig, const SweepSchedule& schedule,
+SweepRecording record_calibration_sweep(RigLease& lease, const RigConfig& rig, const SweepSchedule& schedule,
                                         const SweepRunOptions& options, const std::filesystem::path& out,
                                         const SweepProgress& progress) {
   SweepFileInfo info;
   info.rig_id = rig.id;
+  const RigBackend& backend = lease.backend();
   info.backend = backend.describe();
   info.date = utc_timestamp_now();
   info.p_max_kPa = rig.safety.p_max_kPa;
@@ -17,7 +18,7 @@ SweepRecording record_calibration_sweep(RigBackend& backend, const RigConfig& ri
   info.notes = schedule.notes;
   SweepCsvWriter writer(out, info, options.channels);
   SweepRecording r;
-  r.outcome = run_calibration_sweep(backend, schedule, options, writer, progress);
+  r.outcome = run_calibration_sweep(lease, schedule, options, writer, progress);
   writer.finish(r.outcome);
   r.rows = writer.rows();
   return r;

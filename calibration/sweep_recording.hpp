@@ -19,8 +19,8 @@ struct SweepRecording {
   std::size_t rows = 0;
 };
 
-// Throws std::runtime_error when `out` cannot be written (before anything moves).
-SweepRecording record_calibration_sweep(RigBackend& backend, const RigConfig& rig, const SweepSchedule& schedule,
+// Throws OutputError when `out` cannot be written (before anything moves).
+SweepRecording record_calibration_sweep(RigLease& lease, const RigConfig& rig, const SweepSchedule& schedule,
                                         const SweepRunOptions& options, const std::filesystem::path& out,
                                         const SweepProgress& progress = {});
 

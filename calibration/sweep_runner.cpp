@@ -1,10 +1,13 @@
 #include "calibration/sweep_runner.hpp"
 
+#include "controller/fault_recorder.hpp"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <vector>
 
+#include "core/error.hpp"
 #include "calibration/pacer.hpp"
 #include "controller/rig_step.hpp"
 
@@ -32,18 +35,18 @@ constexpr int kMaxHoldAttempts = 3;
 
 }  // namespace
 
-SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& schedule, const SweepRunOptions& o,
+SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedule, const SweepRunOptions& o,
                                    SweepSink& sink, const SweepProgress& progress) {
   if (!(o.settle_window_s > 0) || !(o.settle_band_kPa > 0) || !(o.average_s > 0) || !(o.min_hold_s >= 0) ||
       !(o.max_hold_s > o.min_hold_s) || !(o.max_hold_s >= o.settle_window_s + o.average_s) || !(o.max_hold_s <= 3600) ||
       !(o.rate_hz > 0) || !(o.rate_hz <= 10000) || !(o.slew_kPa_per_s > 0) || !(o.dynamics_rate_hz > 0) ||
       !(o.dynamics_rate_hz <= 10000))
-    throw std::invalid_argument(
+    throw BadInput(
         "sweep: need settle window, band and averaging window > 0, a max hold above min hold and both windows (at "
         "most an hour), rates in (0, 10000] Hz and a slew rate > 0");
   bool any = false;
   for (bool on : o.channels) any = any || on;
-  if (!any) throw std::invalid_argument("sweep: no channel selected");
+  if (!any) throw BadInput("sweep: no channel selected");
 
   // Every setpoint passes the controller's safety stage through a rig step (tick_direct without
   // a hysteresis inverse): clamped to the rig's p_max, slew-limited at the rig's own rate
@@ -51,6 +54,7 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
   // of 10 kPa at 100 Hz passes in one tick at the default 2000 kPa/s; larger steps ramp at the
   // rate the regulators slew at anyway, and the settle test waits the ramp out.
   TickConfig direct;
+  RigBackend& backend = lease.backend();
   direct.safety.p_max_kPa = backend.p_max_kPa();
   direct.safety.slew_kPa_per_s = o.slew_kPa_per_s;
   RigStep rig(direct, backend, RigStepOptions{o.rate_hz, true});
@@ -65,9 +69,26 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
   out.holds_planned = schedule.holds.size();
   std::uint64_t k = 0;
   double t_s = 0;
+  ExcursionWatch excursions(o.tolerance_kPa);
+  // Progress by the holds' expected rig time: a timed hold its duration, a held level about the
+  // settle test and the averaging window.
+  std::vector<double> expected_s(schedule.holds.size());
+  double total_s = 0;
+  int repeats = 0;
+  for (std::size_t h = 0; h < schedule.holds.size(); ++h) {
+    const SweepHold& hold = schedule.holds[h];
+    expected_s[h] = hold.duration_s > 0 ? hold.duration_s : o.settle_window_s + o.average_s;
+    total_s += expected_s[h];
+    repeats = std::max(repeats, hold.repeat);
+  }
+  double done_s = 0, current_expected_s = 0, current_start_s = 0;
+  ProgressMeter meter("sweep", o.progress_report);
+  auto tick_progress = [&] {
+    meter.update((done_s + std::min(t_s - current_start_s, current_expected_s)) / std::max(total_s, 1e-9));
+  };
   if (rig.arm() != BackendStatus::ok) {
     out.faulted = true;
-    out.fault = rig.fault_detail();
+    out.fault = rig.fault().detail();
     return out;
   }
   // A step is usable only when its setpoints reached the regulators and every selected monitor
@@ -98,9 +119,10 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
     for (std::uint64_t j = 0; j < n; ++j) {
       const double t = t0 + fast.wait_for_tick(j);
       t_s = t;
-      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+      tick_progress();
+      if (o.control && o.control->stop_requested()) {
         out.stopped = true;
-        out.stop_signal = o.stop_signal->load();
+        out.stop_signal = o.control->stop_signal();
         end = HoldEnd::ended;
         break;
       }
@@ -110,7 +132,7 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
       const StepResult& step = rig.step_direct(target, t);
       if (rig.faulted()) {
         out.faulted = true;
-        out.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
+        out.fault = rig.fault() == FaultCode::backend_error ? rig.fault().detail()
                                                             : std::string("safety stage: ") + to_string(rig.fault());
         end = HoldEnd::ended;
         break;
@@ -141,15 +163,16 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
     const double hold_start_s = pacer.period_s() * double(k);
     for (;;) {
       t_s = pacer.wait_for_tick(k++);
-      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+      tick_progress();
+      if (o.control && o.control->stop_requested()) {
         out.stopped = true;
-        out.stop_signal = o.stop_signal->load();
+        out.stop_signal = o.control->stop_signal();
         return HoldEnd::ended;
       }
       const StepResult& step = rig.step_direct(target, t_s);
       if (rig.faulted()) {
         out.faulted = true;
-        out.fault = rig.fault() == FaultCode::backend_error ? std::string(rig.fault_detail())
+        out.fault = rig.fault() == FaultCode::backend_error ? rig.fault().detail()
                                                             : std::string("safety stage: ") + to_string(rig.fault());
         return HoldEnd::ended;
       }
@@ -169,7 +192,11 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
         }
         averaging = true;
         averaging_from = hold_samples.size();
-      } else if (averaging && hold_samples.size() - averaging_from >= average) {
+      } else if (averaging) {
+        for (std::size_t c = 0; c < kFingerCount; ++c)
+          if (o.channels[c]) excursions.add(c, t_s, level, step.monitor_kPa[c]);
+      }
+      if (averaging && hold_samples.size() - averaging_from >= average) {
         result.settled = true;
         for (std::size_t j = averaging_from; j < hold_samples.size(); ++j) hold_samples[j].settled = true;
         return HoldEnd::settled;
@@ -184,15 +211,16 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
     const ChannelPressures vented{};
     for (;;) {
       t_s = pacer.wait_for_tick(k++);
-      if (o.stop_signal && o.stop_signal->load(std::memory_order_relaxed) != 0) {
+      tick_progress();
+      if (o.control && o.control->stop_requested()) {
         out.stopped = true;
-        out.stop_signal = o.stop_signal->load();
+        out.stop_signal = o.control->stop_signal();
         return false;
       }
       const StepResult& step = rig.step_direct(vented, t_s);
       if (rig.faulted()) {
         out.faulted = true;
-        out.fault = std::string(rig.fault_detail());
+        out.fault = rig.fault().detail();
         return false;
       }
       if (usable(step)) return true;
@@ -208,6 +236,14 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
   try {
     for (std::size_t h = 0; h < schedule.holds.size() && !out.stopped && !out.faulted; ++h) {
       const SweepHold& hold = schedule.holds[h];
+      current_start_s = t_s;
+      current_expected_s = expected_s[h];
+      if (hold.segment != SweepSegment::vent)
+        meter.phase(std::string(to_string(hold.segment)) +
+                        (hold.segment == SweepSegment::staircase && repeats > 0
+                             ? " repeat " + std::to_string(hold.repeat) + "/" + std::to_string(repeats)
+                             : std::string()),
+                    done_s / std::max(total_s, 1e-9));
       HoldOutcome result;
       bool history_lost = false;  // the plant was vented by an outage since the last vent hold
       HoldEnd end = HoldEnd::interrupted;
@@ -248,6 +284,8 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
         ++out.holds_done;
         if (!result.settled && !result.timed) ++out.holds_unsettled;
       }
+      done_s += expected_s[h];
+      excursions.close();  // an excursion does not run on into the next hold
       if (progress && !out.stopped && !out.faulted) progress(h + 1, schedule.holds.size(), hold, result);
     }
   } catch (...) {
@@ -256,6 +294,13 @@ SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& sch
   }
   rig.disarm();
   out.duration_s = t_s;
+  if (rig.faulted())
+    out.fault_record =
+        save_fault_record(rig.recorder(), rig.fault(), "the calibration sweep", {},
+                          o.fault_record_folder.empty() ? std::filesystem::current_path() : o.fault_record_folder);
+  excursions.close();
+  out.excursions = excursions.excursions();
+  if (!out.stopped && !out.faulted) meter.finish();
   return out;
 }
 

@@ -16,14 +16,19 @@
 // stop flag), a backend error, an exception from the sink or the end all vent every channel.
 // Setpoints go through the controller's rig step and safety stage like every other path.
 #include <array>
-#include <atomic>
+#include <filesystem>
 #include <functional>
 #include <span>
 #include <string>
+#include <vector>
 
+#include "calibration/excursions.hpp"
+#include "calibration/progress_meter.hpp"
 #include "calibration/sweep_plan.hpp"
 #include "models/safety_limits.hpp"
+#include "controller/rig_lease.hpp"
 #include "rigs/rig_backend.hpp"
+#include "runtime/run_control.hpp"
 
 namespace palprig {
 
@@ -57,29 +62,41 @@ struct SweepRunOptions {
   double min_hold_s = 0.2;
   double max_hold_s = 10.0;
   std::array<bool, kFingerCount> channels{true, true, true};
-  const std::atomic<int>* stop_signal = nullptr;
+  const RunControl* control = nullptr;  // the operator's handle: a stop request vents and ends the sweep
+  // Where the ticks before a rig fault are written (controller/fault_recorder.hpp); empty: the
+  // working folder.
+  std::filesystem::path fault_record_folder;
   // The rig file's safety.slew_kPa_per_s: every setpoint passes the tick's safety stage, so a
   // step between holds rises at most this fast (p_max is the backend's).
   double slew_kPa_per_s = SafetyLimits{}.slew_kPa_per_s;
   // Step and chirp holds (the dynamics fit's excitations) run and record at this rate: the
   // loop's, so the identified dead time and lag are what the tick sees.
   double dynamics_rate_hz = 1000.0;
+  // A settled reading further than this from the hold's command is an excursion (reported in
+  // SweepOutcome::excursions with its time; steps and chirps are not watched: they are meant to
+  // be away from their command while the regulator follows).
+  double tolerance_kPa = kDefaultRegulatorTolerance_kPa;
+  // Progress (phase: the segment, "staircase repeat 2/5"; share: the holds' expected rig time),
+  // at each segment and at least every 5 s of wall time.
+  ProgressSink progress_report;
 };
 
 struct SweepOutcome {
   std::size_t holds_planned = 0, holds_done = 0, holds_unsettled = 0;
   std::size_t holds_redone = 0;  // holds started again after a link outage spoiled them
-  bool stopped = false;          // by the stop flag (the signal number is in stop_signal)
-  int stop_signal = 0;
-  bool faulted = false;  // a backend error; `fault` says which
+  bool stopped = false;          // by a stop request (RunControl)
+  int stop_signal = 0;           // the signal that asked, 0 for an operator's stop
+  bool faulted = false;          // a backend error; `fault` says which
   std::string fault;
-  double duration_s = 0;  // rig time
+  std::string fault_record;           // after a rig fault: "the last N ticks before it: FILE"
+  double duration_s = 0;              // rig time
+  std::vector<Excursion> excursions;  // settled readings beyond the tolerance, rig time
 };
 
 using SweepProgress = std::function<void(std::size_t done, std::size_t total, const SweepHold&, const HoldOutcome&)>;
 
-// Throws std::invalid_argument for options that make no sweep (before anything is written).
-SweepOutcome run_calibration_sweep(RigBackend& backend, const SweepSchedule& schedule, const SweepRunOptions& options,
+// Throws BadInput for options that make no sweep (before anything is written).
+SweepOutcome run_calibration_sweep(RigLease& lease, const SweepSchedule& schedule, const SweepRunOptions& options,
                                    SweepSink& sink, const SweepProgress& progress = {});
 
 }  // namespace palprig

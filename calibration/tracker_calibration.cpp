@@ -10,9 +10,9 @@
 #include <stdexcept>
 
 #include "models/decimal_number.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/pose_hold.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 
@@ -58,7 +58,7 @@ struct SeenNames {
 void poll_or_throw(IgtlPoseReader& tracker, std::vector<DecodedPose>& poses) {
   poses.clear();
   const IgtlPoseReader::Status s = tracker.poll(poses, 20);
-  if (s != IgtlPoseReader::Status::ok) throw std::runtime_error(std::string("tracker: ") + tracker.why());
+  if (s != IgtlPoseReader::Status::ok) throw Error(std::string("tracker: ") + tracker.why());
 }
 
 double angle_deg(const Rotation3& a, const Rotation3& b) {
@@ -160,11 +160,11 @@ std::vector<Vec3_mm> touch_fiducials(IgtlPoseReader& tracker, const TrackedTool&
         }
       }
       if (std::chrono::duration<double>(std::chrono::steady_clock::now() - seen_tool_at).count() > rules.timeout_s)
-        throw std::runtime_error("tool " + tool.name + " not seen for " + std::to_string(int(rules.timeout_s)) +
-                                 " s (the tracker sent " + seen.text() + ")");
+        throw Error("tool " + tool.name + " not seen for " + std::to_string(int(rules.timeout_s)) +
+                    " s (the tracker sent " + seen.text() + ")");
       if (!done && seconds_since(t0) > rules.timeout_s)
-        throw std::runtime_error("fiducial " + f.name + ": no rest of " + tool.name + "'s tip within " +
-                                 std::to_string(int(rules.timeout_s)) + " s");
+        throw Error("fiducial " + f.name + ": no rest of " + tool.name + "'s tip within " +
+                    std::to_string(int(rules.timeout_s)) + " s");
     }
     last = hold.mean();
     touched.push_back(*last);
@@ -179,7 +179,7 @@ PointRegistration register_fiducials(const std::vector<Fiducial>& fiducials, con
   for (const auto& f : fiducials) scene.push_back(f.scene_mm);
   try {
     return register_points(touched, scene);
-  } catch (const std::invalid_argument& e) {
+  } catch (const BadInput& e) {
     throw InputError(fiducials_file, "fiducials", e.what());
   }
 }
@@ -202,14 +202,14 @@ PivotCalibration pivot_from_tracker(IgtlPoseReader& tracker, const std::string& 
     }
     if (first && std::chrono::duration<double>(std::chrono::steady_clock::now() - *first).count() >= seconds) break;
     if (!first && seconds_since(t0) > timeout_s)
-      throw std::runtime_error("tool " + tool + " not seen within " + std::to_string(int(timeout_s)) +
-                               " s (the tracker sent " + seen.text() + ")");
+      throw Error("tool " + tool + " not seen within " + std::to_string(int(timeout_s)) + " s (the tracker sent " +
+                  seen.text() + ")");
   }
   say("  " + std::to_string(kept.size()) + " poses at least " + number_text(min_step_deg) + " degrees apart");
   try {
     return pivot_calibrate(kept);
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(std::string("pivot calibration of ") + tool + ": " + e.what());
+  } catch (const BadInput& e) {
+    throw Error(std::string("pivot calibration of ") + tool + ": " + e.what());
   }
 }
 
@@ -243,8 +243,8 @@ Vec3_mm digitize_from_tracker(IgtlPoseReader& tracker, const std::string& finger
       }
     }
     if (seconds_since(t0) > rules.timeout_s)
-      throw std::runtime_error("no rest of " + digitizer_tool + " on " + finger_tool + " within " +
-                               std::to_string(int(rules.timeout_s)) + " s (the tracker sent " + seen.text() + ")");
+      throw Error("no rest of " + digitizer_tool + " on " + finger_tool + " within " +
+                  std::to_string(int(rules.timeout_s)) + " s (the tracker sent " + seen.text() + ")");
   }
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Calibrating a tracker to the rig (issue 26), from poses a live OpenIGTLink server streams:
+// Calibrating a tracker to the rig, from poses a live OpenIGTLink server streams:
 //
 //   registration: fiducials on the phantom with known scene coordinates (a CSV) are touched in
 //     turn with a tracked tip; each touch is taken when the tip rests (models/pose_hold.hpp);
@@ -48,7 +48,7 @@ struct TouchRules {
 using Say = std::function<void(const std::string&)>;
 
 // The tip of `tool` (its tip offset applied) in tracker space at each fiducial, in order.
-// Throws std::runtime_error (the tracker closed, the tool never came, a timeout).
+// Throws Error (the tracker closed, the tool never came, a timeout).
 std::vector<Vec3_mm> touch_fiducials(IgtlPoseReader& tracker, const TrackedTool& tool,
                                      const std::vector<Fiducial>& fiducials, const TouchRules& rules, const Say& say);
 
@@ -58,12 +58,12 @@ PointRegistration register_fiducials(const std::vector<Fiducial>& fiducials, con
                                      const std::string& fiducials_file);
 
 // Poses of `tool` for `seconds` (only those at least min_step_deg apart from the last kept, so
-// a tool held still is not counted many times), then the pivot fit. Throws std::runtime_error.
+// a tool held still is not counted many times), then the pivot fit. Throws Error.
 PivotCalibration pivot_from_tracker(IgtlPoseReader& tracker, const std::string& tool, double seconds, double timeout_s,
                                     const Say& say, double min_step_deg = 1.0);
 
 // Static digitization of `finger_tool`'s fingertip with `digitizer_tool`'s tip (its own tip
-// offset digitizer_tip_mm). Throws std::runtime_error.
+// offset digitizer_tip_mm). Throws Error.
 Vec3_mm digitize_from_tracker(IgtlPoseReader& tracker, const std::string& finger_tool,
                               const std::string& digitizer_tool, const Vec3_mm& digitizer_tip_mm,
                               const TouchRules& rules, const Say& say);

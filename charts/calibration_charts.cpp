@@ -6,20 +6,23 @@
 
 #include "calibration/branch_fits.hpp"
 #include "charts/chart_png.hpp"
+#include "charts/chart_svg.hpp"
 #include "models/hysteresis.hpp"
 
 namespace palprig::charts {
 
 namespace {
 
-constexpr unsigned kInflationRgb = 0x1f77b4, kDeflationRgb = 0xd62728, kBothRgb = 0x555555;
+constexpr unsigned kInflationRgb = 0x0072B2, kDeflationRgb = 0xD55E00, kBothRgb = 0x555555;
 
-ChartSeries line_series(const std::string& label, const LineFit& f, unsigned rgb) {
+ChartSeries line_series(const std::string& label, const LineFit& f, unsigned rgb, Dash dash) {
   ChartSeries s;
   s.label = label;
   s.x = {f.x_min, f.x_max};
   s.y = {f.at(f.x_min), f.at(f.x_max)};
   s.color_rgb = rgb;
+  s.dash = dash;
+  s.width_px = 1.8;
   return s;
 }
 
@@ -32,8 +35,13 @@ Chart branch_chart(const std::string& title, const std::string& y_label, const s
   c.y_label = y_label;
   ChartSeries up, down;
   up.style = down.style = ChartSeries::Style::points;
+  up.label = "inflation holds";
+  down.label = "deflation holds";
   up.color_rgb = kInflationRgb;
   down.color_rgb = kDeflationRgb;
+  up.marker = Marker::triangle;
+  down.marker = Marker::inverted_triangle;
+  up.marker_px = down.marker_px = 7;
   for (const auto& p : pts) {
     if (p.segment != SweepSegment::staircase || p.branch == SweepBranch::none) continue;
     ChartSeries& s = p.branch == SweepBranch::inflation ? up : down;
@@ -41,12 +49,12 @@ Chart branch_chart(const std::string& title, const std::string& y_label, const s
     s.y.push_back(response_of(p, response));
   }
   char text[96];
-  std::snprintf(text, sizeof text, "inflation, R^2 %.4f", fits.inflation.r_squared);
-  c.series.push_back(line_series(text, fits.inflation, kInflationRgb));
-  std::snprintf(text, sizeof text, "deflation, R^2 %.4f", fits.deflation.r_squared);
-  c.series.push_back(line_series(text, fits.deflation, kDeflationRgb));
-  std::snprintf(text, sizeof text, "both, R^2 %.4f", fits.both.r_squared);
-  c.series.push_back(line_series(text, fits.both, kBothRgb));
+  std::snprintf(text, sizeof text, "inflation line, R^2 %.4f", fits.inflation.r_squared);
+  c.series.push_back(line_series(text, fits.inflation, kInflationRgb, Dash::solid));
+  std::snprintf(text, sizeof text, "deflation line, R^2 %.4f", fits.deflation.r_squared);
+  c.series.push_back(line_series(text, fits.deflation, kDeflationRgb, Dash::dashed));
+  std::snprintf(text, sizeof text, "both branches, R^2 %.4f", fits.both.r_squared);
+  c.series.push_back(line_series(text, fits.both, kBothRgb, Dash::dotted));
   c.series.push_back(up);
   c.series.push_back(down);
   return c;
@@ -54,27 +62,20 @@ Chart branch_chart(const std::string& title, const std::string& y_label, const s
 
 }  // namespace
 
-std::vector<std::filesystem::path> plot_fit(const std::filesystem::path& dir, const SweepData& data,
-                                            const CalibrationResult& r) {
-  std::filesystem::create_directories(dir);
-  std::vector<std::filesystem::path> written;
-  auto save = [&](const Chart& c, const std::string& name) {
-    const auto p = dir / name;
-    charts::write_chart_png(c, p);
-    written.push_back(p);
-  };
+std::vector<NamedChart> fit_charts(const SweepData& data, const CalibrationResult& r) {
+  std::vector<NamedChart> out;
   for (const auto& ch : r.channels) {
     if (!ch.swept) continue;
     const std::string n = std::to_string(ch.channel);
     const auto pts = data.channel_points(ch.channel);
     if (ch.regulator)
-      save(branch_chart("Channel " + n + ": regulator monitor against command", "monitored pressure (kPa)", pts,
-                        MeasuredSignal::monitor, *ch.regulator),
-           "channel_" + n + "_regulator.png");
+      out.push_back({"channel_" + n + "_regulator",
+                     branch_chart("Channel " + n + ": regulator monitor against command", "monitored pressure (kPa)",
+                                  pts, MeasuredSignal::monitor, *ch.regulator)});
     if (ch.response)
-      save(branch_chart("Channel " + n + ": " + r.sensor_name + " against command", r.sensor_name, pts,
-                        MeasuredSignal::sensor, *ch.response),
-           "channel_" + n + "_sensor.png");
+      out.push_back(
+          {"channel_" + n + "_sensor", branch_chart("Channel " + n + ": " + r.sensor_name + " against command",
+                                                    r.sensor_name, pts, MeasuredSignal::sensor, *ch.response)});
     if (ch.hysteresis) {
       // Every hold's reading, and the model driven through a major loop and nested minor loops.
       Chart c;
@@ -84,8 +85,10 @@ std::vector<std::filesystem::path> plot_fit(const std::filesystem::path& dir, co
           ch.hysteresis_source == HysteresisSource::sensor ? "sensor as pressure (kPa)" : "monitored pressure (kPa)";
       ChartSeries measured, model;
       measured.style = ChartSeries::Style::points;
-      measured.label = "holds";
+      measured.label = "recorded holds";
       measured.color_rgb = 0x999999;
+      measured.marker = Marker::circle;
+      measured.marker_px = 5;
       double lo = 1e300, hi = -1e300;
       for (const auto& p : pts) {
         const double y = ch.hysteresis_source == HysteresisSource::monitor ? p.monitor_kPa : std::nan("");
@@ -98,7 +101,7 @@ std::vector<std::filesystem::path> plot_fit(const std::filesystem::path& dir, co
       }
       PrandtlIshlinskii m = ch.hysteresis->model;
       m.reset(0);
-      model.label = "model: major and minor loops";
+      model.label = "fitted model: major and minor loops";
       model.color_rgb = kDeflationRgb;
       const double mid = 0.5 * (lo + hi);
       double at = 0;
@@ -111,23 +114,21 @@ std::vector<std::filesystem::path> plot_fit(const std::filesystem::path& dir, co
       }
       if (ch.hysteresis_source == HysteresisSource::monitor) c.series.push_back(measured);
       c.series.push_back(model);
-      save(c, "channel_" + n + "_hysteresis.png");
+      out.push_back({"channel_" + n + "_hysteresis", std::move(c)});
     }
   }
-  return written;
+  return out;
 }
 
-std::vector<std::filesystem::path> plot_evaluation(const std::filesystem::path& dir, const EvaluationResult& r,
-                                                   const std::array<bool, kFingerCount>& channels) {
-  std::filesystem::create_directories(dir);
-  std::vector<std::filesystem::path> written;
+std::vector<NamedChart> evaluation_charts(const EvaluationResult& r, const std::array<bool, kFingerCount>& channels) {
+  std::vector<NamedChart> out;
   for (std::size_t c = 0; c < kFingerCount; ++c) {
     if (!channels[c]) continue;
     const std::string n = std::to_string(c + 1);
     Chart error, loops;
     error.title = "Channel " + n + ": tracking error with and without compensation";
     error.x_label = "time into the scored run (s)";
-    error.y_label = "monitor - target (kPa)";
+    error.y_label = "monitor minus target (kPa)";
     loops.title = "Channel " + n + ": output against target";
     loops.x_label = "target (kPa)";
     loops.y_label = "monitored pressure (kPa)";
@@ -139,6 +140,7 @@ std::vector<std::filesystem::path> plot_evaluation(const std::filesystem::path& 
                     run.channels[c].rms_error_kPa);
       e.label = l.label = label;
       e.color_rgb = l.color_rgb = with ? kInflationRgb : kDeflationRgb;
+      e.dash = l.dash = with ? Dash::solid : Dash::dashed;
       e.width_px = l.width_px = 1.2;
       for (const auto& row : run.trace) {
         if (row.t_s < run.scored_from_t_s) continue;  // the rest and the first approach
@@ -151,18 +153,43 @@ std::vector<std::filesystem::path> plot_evaluation(const std::filesystem::path& 
       loops.series.push_back(l);
     }
     ChartSeries identity;
-    identity.label = "target";
+    identity.label = "monitor = target";
     identity.color_rgb = kBothRgb;
-    identity.width_px = 1;
+    identity.dash = Dash::dotted;
+    identity.width_px = 1.5;
     identity.x = identity.y = {r.from_kPa, r.to_kPa};
     loops.series.push_back(identity);
-    for (const auto& [chart, name] : {std::pair{&error, "evaluate_channel_" + n + "_error.png"},
-                                      std::pair{&loops, "evaluate_channel_" + n + "_loops.png"}}) {
-      charts::write_chart_png(*chart, dir / name);
-      written.push_back(dir / name);
+    out.push_back({"evaluate_channel_" + n + "_error", std::move(error)});
+    out.push_back({"evaluate_channel_" + n + "_loops", std::move(loops)});
+  }
+  return out;
+}
+
+std::vector<std::filesystem::path> write_charts(const std::filesystem::path& dir, const std::vector<NamedChart>& charts,
+                                                bool svg) {
+  std::filesystem::create_directories(dir);
+  std::vector<std::filesystem::path> written;
+  for (const NamedChart& c : charts) {
+    const auto png = dir / (c.stem + ".png");
+    write_chart_png(c.chart, png);
+    written.push_back(png);
+    if (svg) {
+      const auto file = dir / (c.stem + ".svg");
+      write_chart_svg(c.chart, file);
+      written.push_back(file);
     }
   }
   return written;
+}
+
+std::vector<std::filesystem::path> plot_fit(const std::filesystem::path& dir, const SweepData& data,
+                                            const CalibrationResult& r, bool svg) {
+  return write_charts(dir, fit_charts(data, r), svg);
+}
+
+std::vector<std::filesystem::path> plot_evaluation(const std::filesystem::path& dir, const EvaluationResult& r,
+                                                   const std::array<bool, kFingerCount>& channels, bool svg) {
+  return write_charts(dir, evaluation_charts(r, channels), svg);
 }
 
 }  // namespace palprig::charts

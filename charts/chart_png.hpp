@@ -1,50 +1,34 @@
 #pragma once
-// Charts as PNG files, for the command line's --plot options and anything else that needs a
-// figure on disk: line, point and bar series on numeric axes (or named categories), optional
-// error bars with separate low and high ends (Wilson intervals are not symmetric), a title,
-// axis labels and a legend (right of the plot area, never over the data). Drawn with QPainter on a QImage; when no Qt
-// application exists yet, an offscreen QGuiApplication is created for the fonts (no display needed).
+// Charts (charts/chart.hpp) drawn by QCustomPlot (Debian's libqcustomplot2.1-qt6, the plotting
+// widget many lab programs use for live plots): as PNG files at print size (kPrintScale times
+// the chart's logical pixels, 300 dpi in the file), as images for the window, and on any paint
+// device (an SVG generator: chart_svg.hpp). One drawing for every chart kind of palprig, so the
+// command line's --plot, the window's chart views and its export buttons show the same picture.
+//
+// QCustomPlot is a QWidget: drawing needs a QApplication (one with the offscreen platform is
+// made when none exists, so the command line needs no display) and must happen on the
+// application's thread. A call from another thread is refused (std::logic_error): a worker
+// makes the Chart (plain data) and hands it to the GUI thread to draw.
 #include <filesystem>
-#include <optional>
-#include <string>
-#include <vector>
 
-class QPainter;
+#include "charts/chart.hpp"
+
 class QImage;
+class QPaintDevice;
 
 namespace palprig::charts {
 
-struct ChartSeries {
-  enum class Style { line, points, bars };
-  std::string label;  // legend entry; empty: not in the legend
-  Style style = Style::line;
-  std::vector<double> x, y;             // non-finite points are skipped (a line breaks there)
-  std::vector<double> y_low, y_high;    // optional error bar ends (absolute values), same size as y
-  std::vector<std::string> bar_labels;  // bars: optional text above each bar ("n=42", "n/a"), same size as y
-  unsigned color_rgb = 0;               // 0xRRGGBB; 0 picks the next palette colour
-  double width_px = 2.0;                // line width, point diameter / 3
-};
-
-struct Chart {
-  std::string title, x_label, y_label;
-  std::vector<ChartSeries> series;
-  // When set, x = 0, 1, ... are these categories (bar charts); bars of several series sit side
-  // by side within a category.
-  std::vector<std::string> x_categories;
-  std::optional<double> x_min, x_max, y_min, y_max;  // default: the data's range, padded
-  int width_px = 1000, height_px = 650;
-};
-
-// Throws std::invalid_argument for a chart with nothing to draw or series of mismatched sizes,
-// OutputError (models/checked_output.hpp: the file and the system's reason; no file is left)
-// when the file cannot be written whole.
+// Throws BadInput as validate_chart, OutputError (io/checked_output.hpp: the
+// file and the system's reason; no file is left) when the file cannot be written whole.
 void write_chart_png(const Chart& chart, const std::filesystem::path& path);
 
-// The same drawing on any paint device (a widget, an SVG generator) of chart.width_px x
-// chart.height_px. Throws std::invalid_argument as write_chart_png, before painting anything.
-void paint_chart(QPainter& painter, const Chart& chart);
-QImage render_chart(const Chart& chart);
-// Makes the offscreen application the fonts need when none exists (see write_chart_png).
+// The chart at chart.width_px x chart.height_px logical pixels, `scale` image pixels each.
+QImage render_chart(const Chart& chart, double scale = 1.0);
+
+// Draws the chart on `device` (chart.width_px x chart.height_px).
+void paint_chart(QPaintDevice& device, const Chart& chart);
+
+// Makes the offscreen application QCustomPlot needs when none exists (see above).
 void ensure_chart_application();
 
 }  // namespace palprig::charts

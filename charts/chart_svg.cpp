@@ -2,16 +2,14 @@
 
 #include <QtCore/QBuffer>
 #include <QtCore/QByteArray>
-#include <QtGui/QPainter>
 #include <QtSvg/QSvgGenerator>
 
-#include <stdexcept>
-
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig::charts {
 
 void write_chart_svg(const Chart& chart, const std::filesystem::path& path) {
+  validate_chart(chart);
   ensure_chart_application();
   // Drawn into memory, then written through the checked writer: QSvgGenerator reports a file it
   // cannot open or write only as a warning.
@@ -23,12 +21,12 @@ void write_chart_svg(const Chart& chart, const std::filesystem::path& path) {
     svg.setOutputDevice(&buffer);
     svg.setSize(QSize(chart.width_px, chart.height_px));
     svg.setViewBox(QRect(0, 0, chart.width_px, chart.height_px));
+    // 100 logical pixels an inch: the default 700 x 440 chart is 7 x 4.4 in, a double-column
+    // figure, with its text at 8-10 pt.
+    svg.setResolution(100);
     svg.setTitle(QString::fromStdString(chart.title));
     svg.setDescription(QStringLiteral("palprig chart"));
-    QPainter p;
-    if (!p.begin(&svg)) throw OutputError(path, "the SVG could not be drawn");
-    paint_chart(p, chart);
-    p.end();
+    paint_chart(svg, chart);
   }
   write_file_checked(path, std::string_view(svg_bytes.constData(), static_cast<std::size_t>(svg_bytes.size())));
 }

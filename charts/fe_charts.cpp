@@ -15,7 +15,7 @@
 
 #include "charts/chart_png.hpp"
 #include "charts/chart_svg.hpp"
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig::charts {
 

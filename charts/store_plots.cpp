@@ -7,12 +7,13 @@
 #include "charts/chart_svg.hpp"
 #include "charts/measures_chart.hpp"
 #include "charts/psychometric_charts.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "statistics/statistics_error.hpp"
 #include "store/pulse_store.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "store/threshold_psychometric.hpp"
 #include "store/threshold_store.hpp"
+#include "store/threshold_summary.hpp"
 #include "store/trial_summary.hpp"
 
 namespace palprig::charts {
@@ -35,22 +36,6 @@ void write(const Chart& chart, const std::filesystem::path& dir, const std::stri
     write_chart_svg(chart, svg);
     written.push_back(svg);
   }
-}
-
-Chart pulse_hits_chart(const std::vector<PulseConditionSummary>& rows) {
-  Chart chart;
-  chart.title = "Pulse localisation: hits per condition (Wilson 95 % intervals)";
-  chart.y_label = "hit rate";
-  chart.y_min = 0.0;
-  chart.y_max = 1.0;
-  ChartSeries bars;
-  bars.style = ChartSeries::Style::bars;
-  for (const PulseConditionSummary& r : rows) {
-    chart.x_categories.push_back(r.condition);
-    add_measure_bar(bars, Measure{r.hits, r.trials, r.trials > 0, r.hit_rate, r.hit_low, r.hit_high});
-  }
-  chart.series.push_back(std::move(bars));
-  return chart;
 }
 
 // 2AFC sessions guess at 0.5; a yes/no session's "correct" is a yes, whose floor is the
@@ -79,6 +64,19 @@ std::vector<std::filesystem::path> plot_store(TrialStore& store, const std::file
   by_condition.include_practice = false;
   const Chart measures = measures_chart(summarise_trials(store, by_condition));
   if (!measures.series.empty()) write(measures, dir, "measures_by_condition", options, written);
+  // Per finger value (discrimination) and per tumor (localisation), as the window shows them.
+  for (SummaryKey key : {SummaryKey::finger, SummaryKey::tumor}) {
+    SummaryOptions by = by_condition;
+    by.by = {key};
+    TrialSummary summary = summarise_trials(store, by);
+    std::erase_if(summary.rows, [](const SummaryRow& r) { return r.key.empty() || r.key[0] == "-"; });
+    if (summary.rows.empty()) continue;
+    if (key == SummaryKey::finger)
+      write(measures_chart(summary, "Se, Sp, PPV and ACC per finger value (Wilson 95 % intervals)", "finger "), dir,
+            "measures_by_finger", options, written);
+    else
+      write(tumor_sensitivity_chart(summary), dir, "sensitivity_by_tumor", options, written);
+  }
 
   if (auto* sqlite = dynamic_cast<SqliteTrialStore*>(&store)) {
     ThresholdStore threshold(*sqlite, false);
@@ -86,7 +84,7 @@ std::vector<std::filesystem::path> plot_store(TrialStore& store, const std::file
     bool answered = false;
     for (const ThresholdTrialRow& r : rows) answered = answered || r.trial.answered;
     if (answered) {
-      for (const SessionTrackChart& c : track_charts(rows))
+      for (const SessionTrackChart& c : track_charts(rows, summarise_threshold_tracks(*sqlite)))
         write(c.chart, dir, "track_session" + std::to_string(c.session), options, written);
       stats::PsychometricOptions fit_options;
       fit_options.guess = threshold_guess(store);
@@ -100,14 +98,16 @@ std::vector<std::filesystem::path> plot_store(TrialStore& store, const std::file
         } catch (const stats::StatisticsError& e) {
           throw InputError(store.location(), "threshold trials of track '" + g.label + "'", e.what());
         }
-        write(psychometric_chart(g.label, fit, "level_kPa"), dir, "psychometric_" + file_label(g.label), options,
-              written);
+        write(psychometric_chart(g.label, fit, "level_kPa", fit_options.guess ? "correct" : "yes"), dir,
+              "psychometric_" + file_label(g.label), options, written);
       }
     }
     PulseStore pulse(*sqlite, false);
     if (pulse.has_trials()) {
       const auto summary = pulse.summarise();
-      if (!summary.empty()) write(pulse_hits_chart(summary), dir, "pulse_hits_by_condition", options, written);
+      if (!summary.empty())
+        write(pulse_hit_rate_chart(summary, 0.95), dir, "pulse_hits_by_condition", options, written);
+      if (!summary.empty()) write(pulse_distance_chart(summary), dir, "pulse_distance_by_condition", options, written);
     }
   }
   if (written.empty()) throw InputError(store.location(), "trials", "at least one scored trial to plot");

@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig::cli {
 

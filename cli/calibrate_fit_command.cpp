@@ -15,7 +15,7 @@
 #include "cli/commands.hpp"
 #include "formats/calibration_file.hpp"
 #include "formats/fe_result_files.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "charts/calibration_charts.hpp"
 
 using namespace palprig;
@@ -27,7 +27,7 @@ struct FitArgs {
   std::string data, out, rig_id, stress, presses, base, plot_dir, loss = "none", source, stress_model;
   double regulator_tolerance_kPa = 3.0, diastolic_mmHg = 60, systolic_mmHg = 120;
   HysteresisFitOptions hysteresis;
-  bool no_refine = false, json = false, lag_compensation = false;
+  bool no_refine = false, json = false, lag_compensation = false, svg = false;
   double max_lead_kPa = 10, min_r_squared = kDefaultMinDynamicsRSquared;
   bool operators_given = false;  // --operators named: refuse data that cannot support it
 };
@@ -53,6 +53,7 @@ void run_fit(const FitArgs& a) {
   o.lag_compensation.min_r_squared = a.min_r_squared;
   o.rig_id = a.rig_id;
   o.date = utc_timestamp_now();
+  o.progress = [](const ProgressReport& r) { std::cerr << progress_line(r) << "\n"; };
   if (!a.base.empty()) o.base = load_calibration_file(a.base);
   if (!a.stress_model.empty()) {  // the stress model from physics (`palprig fe stress-model`)
     const FeStressModelFile fe = load_stress_model_file(a.stress_model);
@@ -84,7 +85,8 @@ void run_fit(const FitArgs& a) {
   else
     print_fit_report(std::cout, result, a.out);
   if (!a.plot_dir.empty())
-    for (const auto& p : charts::plot_fit(a.plot_dir, data, result)) std::cout << "  plot: " << p.string() << "\n";
+    for (const auto& p : charts::plot_fit(a.plot_dir, data, result, a.svg))
+      std::cout << "  plot: " << p.string() << "\n";
 }
 
 }  // namespace
@@ -137,6 +139,7 @@ void register_calibrate_fit(CLI::App* cal) {
       ->default_val(kDefaultMinDynamicsRSquared)
       ->check(CLI::Range(kLowestMinDynamicsRSquared, 1.0));
   fit->add_option("--plot", fa->plot_dir, "Write PNG plots of the data and fitted lines to DIR");
+  fit->add_flag("--svg", fa->svg, "With --plot: an SVG beside every PNG");
   fit->add_flag("--json", fa->json, "Print the calibration file instead of the tables");
   fit->callback([fa, operators] {
     fa->operators_given = operators->count() > 0;

@@ -14,8 +14,9 @@
 #include "calibration/sweep_runner.hpp"
 #include "cli/calibrate_arguments.hpp"
 #include "cli/commands.hpp"
-#include "controller/backend_factory.hpp"
-#include "models/parse_error.hpp"
+#include "controller/rig_lease.hpp"
+#include "runtime/run_control.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;
@@ -62,56 +63,56 @@ void run_sweep(const SweepArgs& a) {
                      "windows, at most 3600 s");
   for (const auto& n : plan.notes) std::cerr << "palprig: note: " << n << "\n";
 
-  auto backend = make_backend(rig);
+  std::unique_ptr<Rig> opened = make_rig(rig);
+  const RigBackend& backend = opened->backend();
   SweepFileInfo info;
   info.rig_id = rig.id;
-  info.backend = backend->describe();
+  info.backend = backend.describe();
   info.date = utc_timestamp_now();
   info.p_max_kPa = rig.safety.p_max_kPa;
   info.rate_hz = run.rate_hz;
-  info.sensor_name = backend->sensor_name();
+  info.sensor_name = backend.sensor_name();
   info.notes = plan.notes;
   SweepCsvWriter writer(a.out, info, run.channels);  // a path that cannot be written fails here, before open
   // Said before anything moves (and after a refusal of the file, which is the one line then);
   // the sweep still runs (a short check of the link is a use).
   if (const std::string shortfall = sweep_fit_shortfall(plan); !shortfall.empty())
     std::cerr << "palprig: warning: this sweep is " << shortfall << "\n";
-  backend->open();
+  opened->open();
+  RigLease lease = opened->lease("palprig calibrate sweep");
 
-  cli::install_stop_signals();
-  run.stop_signal = &cli::stop_signal();
-  SweepSegment last_segment = SweepSegment::vent;
-  int last_repeat = -1;
-  const bool quiet = a.quiet;
-  auto progress = [&](std::size_t done, std::size_t total, const SweepHold& hold, const HoldOutcome& result) {
+  install_stop_signals();
+  run.control = &process_run_control();
+  run.fault_record_folder = std::filesystem::absolute(a.out).parent_path();  // beside the sweep data
+  // A line at each segment and at least every 5 s of wall time: the share done and the time left.
+  if (!a.quiet) run.progress_report = [](const ProgressReport& r) { std::cerr << progress_line(r) << "\n"; };
+  auto progress = [&](std::size_t done, std::size_t, const SweepHold& hold, const HoldOutcome& result) {
     if (!result.settled && !result.timed)
       std::cerr << "palprig: warning: hold " << done << " (" << to_string(hold.segment) << " " << hold.level_kPa
                 << " kPa) did not settle within " << run.max_hold_s << " s; kept, marked unsettled\n";
-    if (quiet || hold.segment == SweepSegment::vent) return;
-    if (hold.segment != last_segment || hold.repeat != last_repeat) {
-      std::cerr << "sweep: " << to_string(hold.segment);
-      if (hold.segment == SweepSegment::staircase)
-        std::cerr << " repeat " << hold.repeat << "/" << plan_options.repeats;
-      std::cerr << " (" << (100 * done / total) << " %, hold " << done << "/" << total << ")\n";
-      last_segment = hold.segment;
-      last_repeat = hold.repeat;
-    }
   };
-  const SweepOutcome outcome = run_calibration_sweep(*backend, plan, run, writer, progress);
+  const SweepOutcome outcome = run_calibration_sweep(lease, plan, run, writer, progress);
   writer.finish(outcome);
-  backend->close();
+  lease.release();
+  opened.reset();  // vented and closed
   std::cout << "palprig calibrate sweep: rig " << rig.id << " (" << info.backend << "), channels "
             << channels_text(run.channels) << ", " << (run.realtime ? "real time" : "simulated time") << "\n"
             << "  " << outcome.holds_done << " of " << outcome.holds_planned << " holds (" << outcome.holds_unsettled
             << " not settled"
             << (outcome.holds_redone ? ", " + std::to_string(outcome.holds_redone) + " redone after a link outage" : "")
             << ") in " << outcome.duration_s << " s of rig time; " << writer.rows() << " rows -> " << a.out << "\n";
+  // The plant away from a settled level by more than the regulator tolerance: a leak, a sagging
+  // supply, lost frames; said with its time whether or not an outage was counted.
+  for (const Excursion& e : outcome.excursions)
+    std::cerr << "palprig: warning: excursion at a held level, " << excursion_text(e, run.tolerance_kPa) << "\n";
   if (outcome.stopped || outcome.faulted) {
     std::cerr << "palprig: sweep "
-              << (outcome.stopped ? "stopped by signal " + std::to_string(outcome.stop_signal)
+              << (outcome.stopped ? (outcome.stop_signal ? "stopped by signal " + std::to_string(outcome.stop_signal)
+                                                         : std::string("stopped"))
                                   : "faulted: " + outcome.fault)
               << " after " << outcome.holds_done << " of " << outcome.holds_planned
-              << " holds; all channels vented; what was recorded is in " << a.out << "\n";
+              << " holds; all channels vented; what was recorded is in " << a.out
+              << (outcome.fault_record.empty() ? "" : "; " + outcome.fault_record) << "\n";
     cli::finish(cli::kExitFault);
   }
 }
@@ -163,6 +164,11 @@ void register_calibrate_sweep(CLI::App* cal) {
   auto* rt = sweep->add_flag("--realtime", sa->realtime, "Real time even on the simulated rig");
   sweep->add_flag("--fast", sa->fast, "Simulated time (simulated rig only; the default there)")->excludes(rt);
   sweep->add_flag("--quiet", sa->quiet, "No progress lines");
+  sweep
+      ->add_option("--regulator-tolerance-kPa", sa->run.tolerance_kPa,
+                   "A settled reading further than this from its command is an excursion, reported with its time")
+      ->default_val(kDefaultRegulatorTolerance_kPa)
+      ->check(CLI::Range(0.01, 1000.0));
   sweep->add_option("--out", sa->out, "Data file to write (CSV)")->required();
   sweep->callback([sa] { run_sweep(*sa); });
 }

@@ -32,7 +32,7 @@
 #include "inputs/pose_recording.hpp"
 #include "inputs/input_source.hpp"
 #include "inputs/tablet_source.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/stiffness_map.hpp"
 #include "study/protocol.hpp"
 #include "study/pulse_protocol.hpp"

@@ -1,7 +1,6 @@
 #pragma once
 // One registration function per capability; cli/main.cpp calls them all. Each subcommand is a
 // thin layer: parse arguments, call one library function, print, return an exit code.
-#include <atomic>
 #include <filesystem>
 #include <string>
 
@@ -13,10 +12,6 @@ namespace palprig::cli {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFault = 1;     // the rig faulted while running (channels vented)
 inline constexpr int kExitBadInput = 2;  // a file or argument was refused before anything moved
-
-// Set by SIGINT/SIGTERM; loops poll it and vent.
-std::atomic<int>& stop_signal();
-void install_stop_signals();
 
 // End a subcommand with an exit code (CLI11 callbacks return void; main returns this code).
 [[noreturn]] inline void finish(int exit_code) { throw CLI::RuntimeError(exit_code); }
@@ -32,7 +27,8 @@ std::filesystem::path data_dir();
 }  // namespace palprig::cli
 
 // Registration functions, each defined in its own cli/*_command.cpp. The process context
-// (stop_signal, data_dir) is cli/process_context.cpp.
+// (data_dir) is cli/process_context.cpp; SIGINT/SIGTERM reach a run through
+// runtime/run_control.hpp's process_run_control().
 void register_run_command(CLI::App& app);
 void register_demo_command(CLI::App& app);
 void register_telemetry_command(CLI::App& app);
@@ -48,7 +44,7 @@ void register_rt_check_command(CLI::App& app);
 void register_store_command(CLI::App& app);
 // palprig check: load files through their readers (check_command.cpp; needs inputs/, so a rig command).
 void register_check_command(CLI::App& app);
-// Tracked fingers (issue 26): the OpenIGTLink replay server, the tracker's calibration, the load cells.
+// Tracked fingers: the OpenIGTLink replay server, the tracker's calibration, the load cells.
 void register_igtl_replay_command(CLI::App& app);
 void register_tracking_command(CLI::App& app);
 void register_load_cell_command(CLI::App& app);

@@ -10,6 +10,7 @@
 #include "controller/region_table.hpp"
 #include "controller/run_report.hpp"
 #include "controller/run_setup.hpp"
+#include "runtime/run_control.hpp"
 
 using namespace palprig;
 
@@ -49,8 +50,8 @@ void register_demo_command(CLI::App& app) {
     opt.mode = LoopMode::replay;
     opt.telemetry_path = std::filesystem::path(*out_dir) / "telemetry.csv";
     opt.observer = &table;
-    cli::install_stop_signals();
-    opt.stop_signal = &cli::stop_signal();
+    install_stop_signals();
+    opt.control = &process_run_control();
     const RunSummary s = execute_run(run, opt);
 
     const bool all_higher = table.tumors_feel_harder();
@@ -61,7 +62,7 @@ void register_demo_command(CLI::App& app) {
       std::cout << j.dump(2) << "\n";
     } else {
       print_run_summary(std::cout, s, run, opt);
-      table.print(std::cout);
+      table.print(std::cout, s.fault == FaultCode::none ? "" : std::string(to_string(s.fault.code)), s.fault.t_s);
     }
     if (s.fault != FaultCode::none) cli::finish(cli::kExitFault);
     if (!all_higher) cli::finish(cli::kExitFault);

@@ -2,7 +2,8 @@
 // headless with a simulated participant (sim:SEED), against the trial store. The session itself
 // is sessions/study_session's run_study_session; this file parses, prints and sets the exit code.
 //   palprig experiment run  --protocol F --participant ID|sim:SEED --db F [--rig F] [--cal F] [--resume]
-//   palprig experiment plan --protocol F --participant ID [--seed N]   (print the generated order)
+//   palprig experiment plan --protocol F --participant ID [--db F | --number N] [--seed N]
+//     (print the generated order; standard error says for which participant number)
 // Every file is validated before anything moves (exit 2); a rig fault vents and exits 1; a stop
 // (Ctrl-C, 'q', end of input) keeps every committed trial and the session resumable (exit 1).
 #include <unistd.h>
@@ -19,13 +20,15 @@
 #include "experiments/pulse_session.hpp"
 #include "study/threshold_protocol.hpp"
 #include "formats/json_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "study/protocol.hpp"
 #include "experiments/terminal_participant.hpp"
 #include "study/session_plan.hpp"
+#include "sessions/session_preview.hpp"
 #include "sessions/session_setup.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "sessions/study_session.hpp"
+#include "runtime/run_control.hpp"
 
 using namespace palprig;
 
@@ -34,7 +37,7 @@ namespace {
 struct RunArgs {
   StudySessionRequest request;
   bool quiet = false;
-  double sim_threshold_noise_kPa = 0.8, sim_threshold_criterion_kPa = 0.5;  // threshold protocols (issue 13)
+  double sim_threshold_noise_kPa = 0.8, sim_threshold_criterion_kPa = 0.5;  // threshold protocols
 };
 
 std::string trial_line(const TrialRecord& t, int total) {
@@ -107,7 +110,7 @@ class TerminalReport final : public SessionListener {
 void run_experiment(const RunArgs& a) {
   StudySessionRequest request = a.request;
   if (request.rig_file.empty()) request.rig_file = cli::data_dir() / "rigs" / "simulated.json";
-  // Threshold protocols (staircases, QUEST) and the pulse task run in their own files (issue 13).
+  // Threshold protocols (staircases, QUEST) and the pulse task run in their own files.
   const nlohmann::json document = read_json_file(request.protocol_file);
   if (is_threshold_protocol(document)) {
     ThresholdStudyRequest threshold{request, {}};
@@ -121,11 +124,11 @@ void run_experiment(const RunArgs& a) {
     return;
   }
   TerminalReport report(request.store_location, a.quiet);
-  cli::install_stop_signals();
+  install_stop_signals();
   const PersonFactory terminal = [](const Protocol& protocol) {
-    return std::make_unique<TerminalParticipant>(protocol, std::cout, cli::stop_signal(), STDIN_FILENO);
+    return std::make_unique<TerminalParticipant>(protocol, std::cout, process_run_control(), STDIN_FILENO);
   };
-  const SessionEnd end = run_study_session(request, terminal, report, &cli::stop_signal());
+  const SessionEnd end = run_study_session(request, terminal, report, process_run_control());
   if (const std::string telemetry = telemetry_summary(end); !telemetry.empty()) std::cout << telemetry << "\n";
   if (end.unpushed_trials > 0) {
     std::cerr << "palprig: the lab server has not confirmed every trial yet; they are kept in the journal "
@@ -140,7 +143,8 @@ void run_experiment(const RunArgs& a) {
   }
   if (!end.fault.empty()) {
     std::cerr << "palprig: rig fault: " << end.fault << "; " << end.committed_trials << " of " << end.total_trials
-              << " trials kept, continue with --resume\n";
+              << " trials kept, continue with --resume" << (end.fault_record.empty() ? "" : "; " + end.fault_record)
+              << "\n";
   } else {
     std::cerr << "palprig: session " << report.session_id() << " stopped after " << end.committed_trials << " of "
               << end.total_trials << " trials (all kept); continue with --resume\n";
@@ -206,7 +210,7 @@ void register_run(CLI::App* experiment) {
   sub->add_option("--sim-rt-sd-sequential", a->request.model.sequential.sd_s, "Simulated: response time sd in s")
       ->default_val(a->request.model.sequential.sd_s)
       ->check(CLI::Range(0.0, 600.0));
-  // issue 13: the simulated threshold observer (experiments/threshold_observer.hpp)
+  // The simulated threshold observer (experiments/threshold_observer.hpp)
   sub->add_option("--sim-threshold-noise-kPa", a->sim_threshold_noise_kPa,
                   "Simulated, threshold protocols: sd of each finger's perceived pressure per interval")
       ->default_val(a->sim_threshold_noise_kPa)
@@ -221,22 +225,54 @@ void register_run(CLI::App* experiment) {
 
 void register_plan(CLI::App* experiment) {
   struct Args {
-    std::string protocol, participant;
-    int number = 1;
+    std::string protocol, participant, db;
+    std::optional<int> number;
     std::optional<std::uint64_t> seed;
   };
   auto a = std::make_shared<Args>();
-  auto* sub = experiment->add_subcommand("plan", "Print the trial order a participant would get (nothing is stored)");
+  auto* sub = experiment->add_subcommand(
+      "plan",
+      "Print the trial order a participant would get (nothing is stored); counterbalancing follows the participant's "
+      "number in the store (--db), which standard error names");
   sub->add_option("--protocol", a->protocol, "Protocol file (JSON)")->required();
   sub->add_option("--participant", a->participant, "Participant code (the default seed derives from it)")->required();
-  sub->add_option("--number", a->number, "Participant number for counterbalancing (1 = first enrolled)")
-      ->default_val(1)
-      ->check(CLI::Range(1, 1000000));
+  auto* db = sub->add_option("--db", a->db,
+                             "Trial store the session would run on: the participant's number there (or the next "
+                             "enrolment's), and an unfinished session's stored order; nothing is written");
+  sub->add_option("--number", a->number,
+                  "Participant number for counterbalancing without a store (default 1, the first enrolled)")
+      ->check(CLI::Range(1, 1000000))
+      ->excludes(db);
   sub->add_option("--seed", a->seed, "Seed; default: derived from participant and protocol");
   sub->callback([a] {
     const Protocol p = load_protocol(a->protocol);
-    const std::uint64_t seed = a->seed ? *a->seed : default_session_seed(a->participant, p.name);
-    write_plan_csv(std::cout, p, make_session_plan(p, a->number, seed));
+    std::string how;
+    SessionPlan plan;
+    if (!a->db.empty()) {
+      SessionPreview preview = preview_session(a->db, p, a->participant);
+      const std::string number = "no. " + std::to_string(preview.participant_number);
+      if (preview.unfinished_session && !a->seed) {
+        how = number + " in " + a->db + ", whose unfinished session " + std::to_string(*preview.unfinished_session) +
+              " (" + cli::counted(preview.completed_trials, "trial", "trials") +
+              " done) continues this stored order with --resume";
+        plan = std::move(preview.plan);
+      } else {
+        how = preview.enrolled      ? number + ", enrolled in " + a->db
+              : preview.store_found ? number + ", the next enrolment in " + a->db + " (not enrolled yet)"
+                                    : number + ", the first enrolment (" + a->db + " does not exist yet)";
+        plan = make_session_plan(p, preview.participant_number,
+                                 a->seed ? *a->seed : default_session_seed(a->participant, p.name));
+      }
+    } else {
+      const int number = a->number.value_or(1);
+      how = "no. " + std::to_string(number) +
+            (a->number ? std::string(" (--number)")
+                       : std::string(" (no --db: the first enrolment; --db STORE plans for the number there)"));
+      plan = make_session_plan(p, number, a->seed ? *a->seed : default_session_seed(a->participant, p.name));
+    }
+    write_plan_csv(std::cout, p, plan);
+    std::cerr << "palprig experiment plan: " << p.name << ", participant " << a->participant << " as " << how
+              << ", seed " << plan.seed << "\n";
   });
 }
 

@@ -12,7 +12,7 @@
 #include "store/trial_export.hpp"
 #include "store/trial_store.hpp"
 #include "store/trial_summary.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "charts/store_plots.hpp"
 
 using namespace palprig;

@@ -5,10 +5,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 #include "models/decimal_number.hpp"
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig::cli {
 

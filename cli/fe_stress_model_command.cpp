@@ -13,7 +13,7 @@
 #include "cli/fe_arguments.hpp"
 #include "formats/fe_body_files.hpp"
 #include "formats/fe_result_files.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;

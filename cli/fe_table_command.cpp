@@ -16,7 +16,7 @@
 #include "formats/fe_body_files.hpp"
 #include "formats/fe_result_files.hpp"
 #include "mechanics/stress_table_build.hpp"
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;

@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig::cli {
 

@@ -3,7 +3,8 @@
 
 #include "cli/commands.hpp"
 #include "gui/gui_app.hpp"
-#include "models/parse_error.hpp"
+#include "runtime/run_control.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 
@@ -70,8 +71,8 @@ void register_gui_command(CLI::App& app) {
     g.files.data_dir = cli::data_dir();
     g.run.telemetry_path = o->telemetry;
     g.run.want_fifo = !o->no_fifo;
-    cli::install_stop_signals();
-    g.run.stop_signal = &cli::stop_signal();
+    install_stop_signals();
+    g.run.control = &process_run_control();
     // Qt wants argc/argv for its own options; palprig's are already parsed.
     static int argc = 1;
     static char name[] = "palprig";

@@ -11,7 +11,8 @@
 #include "cli/commands.hpp"
 #include "inputs/igtl_pose_server.hpp"
 #include "inputs/pose_recording.hpp"
-#include "models/parse_error.hpp"
+#include "runtime/run_control.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 
@@ -50,10 +51,10 @@ void register_igtl_replay_command(CLI::App& app) {
       std::lock_guard<std::mutex> lock(*out_mutex);
       std::cout << "palprig igtl-replay: " << line << std::endl;
     });
-    cli::install_stop_signals();
+    install_stop_signals();
     try {
       server.start();
-    } catch (const std::runtime_error& e) {
+    } catch (const Error& e) {  // the port cannot be served: the argument's fault
       std::cerr << "palprig igtl-replay: " << e.what() << "\n";
       cli::finish(cli::kExitBadInput);
     }
@@ -68,7 +69,7 @@ void register_igtl_replay_command(CLI::App& app) {
                 << " messages; each client gets the recording from its start" << std::endl;
     }
     const auto start = std::chrono::steady_clock::now();
-    while (cli::stop_signal().load() == 0) {
+    while (!process_run_control().stop_requested()) {
       if (a->duration_s > 0 && std::chrono::steady_clock::now() - start >= std::chrono::duration<double>(a->duration_s))
         break;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -1,4 +1,4 @@
-// palprig load-cell read|press: the rig's load cells (issue 26) read at rest, for their
+// palprig load-cell read|press: the rig's load cells read at rest, for their
 // calibration (tare, gain) and paper 003's reference presses at 60 and 120 mmHg, which
 // `calibrate fit --force-presses` turns into the pulse's force window.
 #include <chrono>
@@ -10,12 +10,13 @@
 #include <thread>
 
 #include "cli/commands.hpp"
-#include "controller/backend_factory.hpp"
+#include "controller/rig_lease.hpp"
 #include "formats/rig_file.hpp"
-#include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/checked_output.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 #include "rigs/simulated_rig.hpp"
+#include "runtime/run_control.hpp"
 
 using namespace palprig;
 
@@ -51,27 +52,26 @@ Reading read_cells(const std::string& rig_path, double seconds, double load_N) {
     throw InputError(r.rig.source, "load_cells", "a \"load_cells\" section (the rig's force sensors)");
   if (load_N > 0 && r.rig.backend != "simulated")
     throw InputError("--load-N", r.rig.source, "a simulated rig (a real cell feels the weight you put on it)");
-  auto backend = make_backend(r.rig);
-  backend->open();  // connected and vented: reading moves nothing
-  if (auto* sim = dynamic_cast<SimulatedRig*>(backend.get()))
+  std::unique_ptr<Rig> opened = open_rig(r.rig);  // connected and vented: reading moves nothing
+  RigLease lease = opened->lease("palprig load-cell read");
+  RigBackend* backend = &lease.backend();
+  if (auto* sim = dynamic_cast<SimulatedRig*>(backend))
     for (std::size_t i = 0; i < kFingerCount; ++i) sim->place_load_N(i, load_N);
   r.cells.resize(backend->load_cell_count());
   const bool real_time = r.rig.backend != "simulated";
   const int samples = std::max(1, static_cast<int>(std::lround(seconds * 100)));
   const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < samples && cli::stop_signal().load() == 0; ++k) {
+  for (int k = 0; k < samples && !process_run_control().stop_requested(); ++k) {
     const double t_s = k * 0.01;
     if (real_time) std::this_thread::sleep_until(start + std::chrono::duration<double>(t_s));
     LoadCellReading reading;
     if (backend->read_load_cells(reading, t_s) != BackendStatus::ok) {
       const std::string why = backend->last_error();
-      backend->close();
-      throw std::runtime_error("load cells: " + why);
+      throw Error("load cells: " + why);
     }
     for (std::size_t i = 0; i < reading.count; ++i) r.cells[i].add(reading.volts[i], reading.force_N[i]);
   }
-  backend->close();
-  return r;
+  return r;  // the lease goes back and the rig closes
 }
 
 // A mean that rounds to zero is shown as 0, never "-0.000".
@@ -108,7 +108,7 @@ void register_load_cell_command(CLI::App& app) {
           "The load on the cells is known (a weight): print the gain N_per_V that reads it, from the rig file's tare_V")
       ->check(CLI::Range(0.0, 1000.0));
   read->callback([a] {
-    cli::install_stop_signals();
+    install_stop_signals();
     const Reading r = read_cells(a->rig, a->seconds, a->load_N);
     std::cout << "palprig load-cell read: rig '" << r.rig.id << "' (" << r.rig.backend << "), " << r.cells.size()
               << (r.cells.size() == 1 ? " cell, " : " cells, ") << r.cells.front().n << " readings each\n"
@@ -155,13 +155,13 @@ void register_load_cell_command(CLI::App& app) {
   press->add_option("--load-N", p->load_N, "Simulated rig: the force the cuff presses with")
       ->check(CLI::Range(0.0, 1000.0));
   press->callback([p] {
-    cli::install_stop_signals();
+    install_stop_signals();
     const Reading r = read_cells(p->rig, p->seconds, p->load_N);
     // The force of the press: the mean of every cell (a cuff presses them all alike).
     double force = 0;
     for (const auto& c : r.cells) force += c.mean_f();
     force /= double(r.cells.size());
-    // Appended by rewriting it whole (models/checked_output.hpp): a full disk never leaves half a file.
+    // Appended by rewriting it whole (io/checked_output.hpp): a full disk never leaves half a file.
     std::string before;
     if (std::filesystem::exists(p->presses)) {
       std::ifstream in = open_regular_file(p->presses, kMaxTableFileBytes, "a presses CSV", std::ios::in);

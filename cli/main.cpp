@@ -3,9 +3,13 @@
 
 #include "cli/commands.hpp"
 #include "cli/field_flags.hpp"
-#include "models/parse_error.hpp"
+#include "cli/standard_output.hpp"
+#include "core/error.hpp"
+#include "core/input_error.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_command(int argc, char** argv) {
   CLI::App app{"palprig: drive a pneumatic multi-finger palpation rig and run the studies done on it"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "palprig " PALPRIG_VERSION);
@@ -29,9 +33,23 @@ int main(int argc, char** argv) {
   } catch (const palprig::InputError& e) {
     std::cerr << "palprig: " << palprig::cli::input_error_line(e) << "\n";
     return palprig::cli::kExitBadInput;
+  } catch (const palprig::Error& e) {
+    // The project's exception root (core/error.hpp): its class says the exit code (BadInput 2,
+    // RigFault and any other Error 1).
+    std::cerr << "palprig: " << e.what() << "\n";
+    return e.exit_code();
   } catch (const std::exception& e) {
+    // Not palprig's own (std::bad_alloc, a library's exception): a failure, not an answer.
     std::cerr << "palprig: " << e.what() << "\n";
     return palprig::cli::kExitFault;
   }
   return 0;
+}
+
+}  // namespace
+
+// Standard output is checked to its last byte for every command (cli/standard_output.hpp).
+int main(int argc, char** argv) {
+  palprig::cli::check_standard_output();
+  return palprig::cli::finish_standard_output(run_command(argc, argv));
 }

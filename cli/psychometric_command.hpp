@@ -1,5 +1,5 @@
 #pragma once
-// `palprig stats psychometric` (issue 13): psychometric function fits of a CSV or a trial database.
+// `palprig stats psychometric`: psychometric function fits of a CSV or a trial database.
 #include <CLI/CLI.hpp>
 
 void register_psychometric_command(CLI::App& stats_app);

@@ -10,6 +10,7 @@
 #include "cli/commands.hpp"
 #include "sessions/pulse_study.hpp"
 #include "sessions/session_telemetry.hpp"
+#include "runtime/run_control.hpp"
 
 namespace palprig::cli {
 
@@ -52,7 +53,7 @@ class TerminalPulseReport final : public PulseSessionListener {
 void run_pulse_experiment(const StudySessionRequest& request, bool quiet) {
   TerminalPulseReport report(request.store_location, quiet);
   install_stop_signals();
-  const SessionEnd end = run_pulse_study(request, nullptr, report, &stop_signal());
+  const SessionEnd end = run_pulse_study(request, nullptr, report, process_run_control());
   if (const std::string telemetry = telemetry_summary(end); !telemetry.empty()) std::cout << telemetry << "\n";
   if (end.completed) {
     std::cout << "session " << report.session_id()
@@ -61,7 +62,8 @@ void run_pulse_experiment(const StudySessionRequest& request, bool quiet) {
     return;
   }
   std::cerr << "palprig: " << (end.fault.empty() ? "session stopped" : "rig fault: " + end.fault) << " after "
-            << end.committed_trials << " of " << end.total_trials << " trials (all kept); continue with --resume\n";
+            << end.committed_trials << " of " << end.total_trials << " trials (all kept); continue with --resume"
+            << (end.fault_record.empty() ? "" : "; " + end.fault_record) << "\n";
   finish(kExitFault);
 }
 

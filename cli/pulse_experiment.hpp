@@ -1,5 +1,5 @@
 #pragma once
-// `palprig experiment run` for pulse-localisation protocols (issue 13, paper 000).
+// `palprig experiment run` for pulse-localisation protocols (paper 000).
 // cli/experiment_command.cpp hands over when the protocol file says "task": "pulse"; the session
 // is sessions/pulse_study's run_pulse_study; this file prints.
 #include "sessions/study_session.hpp"

@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
-#include "controller/loop_probe.hpp"
-#include "models/parse_error.hpp"
-#include "runtime/rt_readiness.hpp"
+#include "diagnostics/loop_probe.hpp"
+#include "core/input_error.hpp"
+#include "diagnostics/rt_readiness.hpp"
 
 using namespace palprig;
 

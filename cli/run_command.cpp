@@ -8,6 +8,7 @@
 #include "controller/region_table.hpp"
 #include "controller/run_report.hpp"
 #include "controller/run_setup.hpp"
+#include "runtime/run_control.hpp"
 
 using namespace palprig;
 
@@ -74,8 +75,8 @@ void register_run_command(CLI::App& app) {
     RunOptions opt = o->run;
     settle_timing(run, o->timing, opt);
     opt.telemetry_path = o->telemetry;
-    cli::install_stop_signals();
-    opt.stop_signal = &cli::stop_signal();
+    install_stop_signals();
+    opt.control = &process_run_control();
     RegionTable table(run.scene.tumors, run.config.contact_force_N);
     if (o->regions) opt.observer = &table;
     const RunSummary s = execute_run(run, opt);
@@ -85,11 +86,13 @@ void register_run_command(CLI::App& app) {
       std::cout << j.dump(2) << "\n";
     } else {
       print_run_summary(std::cout, s, run, opt);
-      if (o->regions) table.print(std::cout);
+      if (o->regions)
+        table.print(std::cout, s.fault == FaultCode::none ? "" : std::string(to_string(s.fault.code)), s.fault.t_s);
     }
     if (s.fault != FaultCode::none) {
-      std::cerr << "palprig: fault at t=" << s.fault_t_s << " s: " << to_string(s.fault)
-                << (s.fault_detail.empty() ? "" : " (" + s.fault_detail + ")") << "; all channels vented\n";
+      std::cerr << "palprig: fault at t=" << s.fault.t_s << " s: " << to_string(s.fault)
+                << (s.fault.detail().empty() ? "" : " (" + s.fault.detail() + ")") << "; all channels vented; "
+                << s.fault_record << "\n";
       cli::finish(cli::kExitFault);
     }
   });

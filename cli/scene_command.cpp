@@ -14,8 +14,8 @@
 #include "formats/scene_file.hpp"
 #include "models/artery.hpp"
 #include "models/case_generator.hpp"
-#include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
+#include "io/checked_output.hpp"
+#include "core/input_error.hpp"
 #include "models/stiffness_map.hpp"
 #include "models/tissue_scene.hpp"
 

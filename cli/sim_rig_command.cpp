@@ -9,7 +9,8 @@
 #include "rigs/modbus_link.hpp"
 #include "rigs/modbus_sim_server.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "runtime/run_control.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 
@@ -70,7 +71,7 @@ void register_sim_rig_command(CLI::App& app) {
       for (const auto& text : *listen) {
         try {
           addresses.push_back(parse_listen_address(text));
-        } catch (const std::invalid_argument& e) {
+        } catch (const BadInput& e) {
           throw InputError("--listen", text, e.what());
         }
       }
@@ -82,10 +83,10 @@ void register_sim_rig_command(CLI::App& app) {
       server.set_load_cells(*rig.load_cells, *load_N);
     else if (*load_N > 0)
       throw InputError(rig.source, "load_cells", "a \"load_cells\" section (--load-N loads the rig's load cells)");
-    cli::install_stop_signals();
+    install_stop_signals();
     try {
       server.start(addresses);
-    } catch (const std::runtime_error& e) {
+    } catch (const Error& e) {  // an address that cannot be served: the argument's fault
       std::cerr << "palprig sim-rig: " << e.what() << "\n";
       cli::finish(cli::kExitBadInput);
     }
@@ -101,7 +102,7 @@ void register_sim_rig_command(CLI::App& app) {
     }
     std::cout << "palprig sim-rig: serving " << kFingerCount << " channels; stop with Ctrl-C" << std::endl;
     const auto start = std::chrono::steady_clock::now();
-    while (cli::stop_signal().load() == 0) {
+    while (!process_run_control().stop_requested()) {
       if (*duration_s > 0 && std::chrono::steady_clock::now() - start >= std::chrono::duration<double>(*duration_s))
         break;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));

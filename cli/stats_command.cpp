@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "cli/psychometric_command.hpp"  // issue 13
+#include "cli/psychometric_command.hpp"
 #include "cli/stats_printing.hpp"
 #include "statistics/csv_groups.hpp"
 #include "statistics/csv_table.hpp"
@@ -18,7 +18,7 @@
 #include "statistics/statistics_report.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;
@@ -113,6 +113,9 @@ void register_ttest(CLI::App* stats_app) {
       throw InputError("command line", "ttest", "one of --by, --paired-with or --against");
     const CsvTable table = CsvTable::read(a->file);
     stats::Report report;
+    // Said before the result: a long file (several rows per trial) or practice rows inflate n.
+    const std::vector<std::string> warnings = one_value_per_trial_warnings(table);
+    for (const std::string& w : warnings) std::cerr << "palprig: warning: " << w << "\n";
     if (*by) {
       const auto groups = two_groups(table, a->column, a->by, a->groups);
       report = refuse_bad_data(a->file, "column '" + a->column + "'", [&] {
@@ -132,6 +135,7 @@ void register_ttest(CLI::App* stats_app) {
         return stats::to_report(stats::one_sample_t_test(x, a->against, a->confidence));
       });
     }
+    if (!warnings.empty() && a->json) report["warnings"] = warnings;  // text: on standard error only
     print(report, a->json);
   });
 }
@@ -148,5 +152,5 @@ void register_stats_command(CLI::App& app) {
   register_ttest(stats_app);
   register_stats_rank_tests(stats_app);
   register_stats_trials(stats_app);
-  register_psychometric_command(*stats_app);  // issue 13
+  register_psychometric_command(*stats_app);  // stats psychometric
 }

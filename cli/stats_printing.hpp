@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "statistics/statistics_error.hpp"
 #include "statistics/statistics_report.hpp"
 #include "statistics/statistics_rank_tests.hpp"

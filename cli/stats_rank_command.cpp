@@ -13,7 +13,7 @@
 #include "statistics/statistics_report.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 using namespace palprig::cli;
@@ -40,6 +40,8 @@ void register_mannwhitney(CLI::App* stats_app) {
   sub->add_flag("--json", a->json, "Print one JSON object");
   sub->callback([a] {
     const CsvTable table = CsvTable::read(a->file);
+    const std::vector<std::string> warnings = one_value_per_trial_warnings(table);
+    for (const std::string& w : warnings) std::cerr << "palprig: warning: " << w << "\n";
     const auto groups = two_groups(table, a->column, a->by, a->groups);
     stats::Report report = refuse_bad_data(a->file, "column '" + a->column + "'", [&] {
       return stats::to_report(
@@ -47,6 +49,7 @@ void register_mannwhitney(CLI::App* stats_app) {
     });
     report["group1"] = groups[0].label;
     report["group2"] = groups[1].label;
+    if (!warnings.empty() && a->json) report["warnings"] = warnings;  // text: on standard error only
     print(report, a->json);
   });
 }

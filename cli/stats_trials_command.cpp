@@ -1,5 +1,6 @@
-// palprig stats trials DB: scores of a trial store per group (store/trial_summary), printed as
-// an aligned table, CSV or JSON.
+// palprig stats trials DB: scores of a trial store per group (store/trial_summary) with paper
+// 002's tests between conditions (store/condition_comparisons), and every other task kind's
+// statistics, printed as an aligned table, CSV or JSON.
 #include <iostream>
 #include <memory>
 #include <string>
@@ -15,7 +16,7 @@ using namespace palprig;
 
 void register_stats_trials(CLI::App* stats_app) {
   struct Args {
-    std::string db, by = "condition", format = "table";
+    std::string db, by = "condition", format = "table", rt_test = "student";
     bool json = false, include_practice = false;
     double confidence = 0.95;
   };
@@ -24,7 +25,10 @@ void register_stats_trials(CLI::App* stats_app) {
       "trials",
       "Scores of a trial database: TP/FN/TN/FP per finger value (discrimination) or per tumor "
       "(localisation), Se, Sp, PPV, ACC (paper 002 eq. 5-8) with Wilson 95 % intervals (no continuity "
-      "correction), mean and sd of response times; practice trials left out");
+      "correction), mean and sd of response times, and between conditions paper 002's tests: response times by "
+      "Student's t-test (or --rt-test welch), one value per answered trial, and each measure by the combined "
+      "interval of eq. 10; threshold stores: each track's threshold; pulse stores: hit rates; practice trials left "
+      "out");
   sub->add_option("db", a->db,
                   "Trial store written by palprig experiment run: an SQLite file or postgresql://user@host:port/dbname")
       ->required();
@@ -37,6 +41,11 @@ void register_stats_trials(CLI::App* stats_app) {
       ->default_val("table");
   sub->add_flag("--json", a->json, "Same as --format json");
   sub->add_flag("--include-practice", a->include_practice, "Score practice trials too");
+  sub->add_option("--rt-test", a->rt_test,
+                  "Test of response times between conditions: student (pooled variance, paper 002; scipy ttest_ind) "
+                  "or welch (R t.test's default)")
+      ->check(CLI::IsMember({"student", "welch"}))
+      ->default_val("student");
   sub->add_option("--confidence", a->confidence, "Confidence level of the Wilson intervals")
       ->default_val(0.95)
       ->check(cli::kConfidenceLevel);
@@ -46,8 +55,9 @@ void register_stats_trials(CLI::App* stats_app) {
     options.include_practice = a->include_practice;
     options.confidence = a->confidence;
     const auto store = open_trial_store(a->db, TrialStore::Access::read_only);
-    // Pulse-localisation trials (issue 13) first, then the rest: one library call, which the
+    // Pulse-localisation trials first, then the rest: one library call, which the
     // GUI's statistics.json export makes too.
-    std::cout << stats_trials_text(*store, options, a->json ? "json" : a->format);
+    std::cout << stats_trials_text(*store, options, a->json ? "json" : a->format,
+                                   a->rt_test == "welch" ? ResponseTimeTest::welch : ResponseTimeTest::student);
   });
 }

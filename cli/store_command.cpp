@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/lab_sync.hpp"
 #include "store/pg_target.hpp"
 #include "store/postgres_trial_store.hpp"

@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "experiments/terminal_threshold_participant.hpp"
+#include "runtime/run_control.hpp"
 
 namespace palprig::cli {
 
@@ -74,9 +75,9 @@ void run_threshold_experiment(const ThresholdStudyRequest& request, bool quiet) 
   TerminalThresholdReport report(db, quiet);
   install_stop_signals();
   const ThresholdPersonFactory terminal = [](ThresholdMethod method) {
-    return std::make_unique<TerminalThresholdParticipant>(method, std::cout, stop_signal(), STDIN_FILENO);
+    return std::make_unique<TerminalThresholdParticipant>(method, std::cout, process_run_control(), STDIN_FILENO);
   };
-  const ThresholdEnd end = run_threshold_study(request, terminal, report, &stop_signal());
+  const ThresholdEnd end = run_threshold_study(request, terminal, report, process_run_control());
   if (const std::string telemetry = telemetry_summary(end.session); !telemetry.empty()) std::cout << telemetry << "\n";
   const int done = end.session.committed_trials;
   if (end.session.completed) {
@@ -86,8 +87,8 @@ void run_threshold_experiment(const ThresholdStudyRequest& request, bool quiet) 
     return;
   }
   if (!end.session.fault.empty()) {
-    std::cerr << "palprig: rig fault: " << end.session.fault << "; " << done
-              << " trials kept, continue with --resume\n";
+    std::cerr << "palprig: rig fault: " << end.session.fault << "; " << done << " trials kept, continue with --resume"
+              << (end.session.fault_record.empty() ? "" : "; " + end.session.fault_record) << "\n";
   } else {
     std::cerr << "palprig: session " << end.session_id << " stopped after " << done
               << " trials (all kept); continue with --resume\n";

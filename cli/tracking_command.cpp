@@ -1,4 +1,4 @@
-// palprig tracking register|pivot|digitize: calibrating a tracker to the rig (issue 26), from a
+// palprig tracking register|pivot|digitize: calibrating a tracker to the rig, from a
 // live OpenIGTLink server (calibration/tracker_calibration.hpp); each writes the tracking file.
 #include <cmath>
 #include <iomanip>
@@ -9,7 +9,7 @@
 #include "cli/commands.hpp"
 #include "formats/tracking_file.hpp"
 #include "inputs/igtl_input.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 
@@ -109,7 +109,7 @@ void register_register(CLI::App* parent) {
       IgtlPoseReader tracker(e.host, e.port, "--igtl");
       try {
         touched = touch_fiducials(tracker, tool, fiducials, a->rules, say);
-      } catch (const std::runtime_error& err) {
+      } catch (const Error& err) {
         std::cerr << "palprig tracking register: " << err.what() << "; nothing written\n";
         cli::finish(cli::kExitFault);
       }
@@ -166,7 +166,7 @@ void register_pivot(CLI::App* parent) {
     PivotCalibration pc;
     try {
       pc = pivot_from_tracker(tracker, name, a->seconds, a->rules.timeout_s, say);
-    } catch (const std::runtime_error& err) {
+    } catch (const Error& err) {
       std::cerr << "palprig tracking pivot: " << err.what() << "; nothing written\n";
       cli::finish(cli::kExitFault);
     }
@@ -220,7 +220,7 @@ void register_digitize(CLI::App* parent) {
     try {
       tip = digitize_from_tracker(tracker, name, a->digitizer,
                                   {a->digitizer_tip[0], a->digitizer_tip[1], a->digitizer_tip[2]}, a->rules, say);
-    } catch (const std::runtime_error& err) {
+    } catch (const Error& err) {
       std::cerr << "palprig tracking digitize: " << err.what() << "; nothing written\n";
       cli::finish(cli::kExitFault);
     }

@@ -5,7 +5,7 @@
 #include "rigs/comedi_rig.hpp"
 #include "rigs/modbus_rig.hpp"
 #include "rigs/simulated_rig.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -8,7 +8,7 @@
 namespace palprig {
 
 // Open the backend the rig file names. Throws InputError for a bad backend section and
-// std::runtime_error when the device cannot be reached.
+// Error (core/error.hpp) when the device cannot be reached.
 std::unique_ptr<RigBackend> make_backend(const RigConfig& rig);
 
 }  // namespace palprig

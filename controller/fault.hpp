@@ -1,6 +1,10 @@
 #pragma once
-// Why the rig was vented. Stored in every telemetry record and in the run summary.
+// Why the rig was vented: the code (stored in every telemetry record) and the Fault that carries
+// it with its time and the words of whoever found it (the backend's, a worker's, the loop's).
+#include <array>
 #include <cstdint>
+#include <cstdio>
+#include <string>
 
 namespace palprig {
 
@@ -36,5 +40,38 @@ constexpr const char* to_string(FaultCode f) noexcept {
   }
   return "unknown";
 }
+
+// A fault with its reason. The first reason latched wins, as the tick's latch does: a backend
+// error that follows a signal does not hide the signal. Fixed size, so the loop thread latches it
+// without allocating; compared with a FaultCode it compares its code.
+struct Fault {
+  FaultCode code = FaultCode::none;
+  double t_s = 0;                 // loop time it was latched at
+  std::array<char, 224> words{};  // the finder's own words; empty when the code says it all
+
+  bool active() const noexcept { return code != FaultCode::none; }
+  std::string detail() const { return words.data(); }
+  // Latch `why` at t_s with `text` (copied, cut to fit) unless a fault is already latched.
+  // True when this call latched it.
+  bool latch(FaultCode why, double at_t_s, const char* text = nullptr) noexcept {
+    if (active() || why == FaultCode::none) return false;
+    code = why;
+    t_s = at_t_s;
+    std::snprintf(words.data(), words.size(), "%s", text ? text : "");
+    return true;
+  }
+  // "rig backend error at t=1.234 s (modbus link down ...)"; "none" when no fault.
+  std::string describe() const {
+    if (!active()) return "none";
+    char when[48];
+    std::snprintf(when, sizeof when, " at t=%.3f s", t_s);
+    std::string text = std::string(to_string(code)) + when;
+    if (words[0] != '\0') text += std::string(" (") + words.data() + ")";
+    return text;
+  }
+  friend bool operator==(const Fault& f, FaultCode c) noexcept { return f.code == c; }
+};
+
+inline const char* to_string(const Fault& f) noexcept { return to_string(f.code); }
 
 }  // namespace palprig

@@ -1,5 +1,5 @@
 #pragma once
-// The tick's lag compensation stage (DESIGN.md "One tick": between the target and the
+// The tick's lag compensation stage (docs/architecture.md, "The tick": between the target and the
 // hysteresis inverse). The regulators answer a dead time and a first-order lag late (paper 002:
 // about 50 ms), so a fingertip crossing a tumor edge feels it a lag late and a pulse arrives
 // late and rounded. One mechanism for both: per channel a LagCompensator

@@ -9,8 +9,10 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/error.hpp"
 #include "runtime/monotonic_clock.hpp"
 #include "runtime/realtime.hpp"
+#include "controller/fault_recorder.hpp"
 #include "controller/rig_step.hpp"
 #include "controller/telemetry_writer.hpp"
 #include "runtime/worker_fault.hpp"
@@ -37,10 +39,10 @@ constexpr std::uint32_t kCpuMarkTicks = 64;
 
 }  // namespace
 
-RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& input, RigBackend& backend,
+RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& input, RigLease& lease,
                     const RunOptions& opt) {
-  if (!(opt.rate_hz > 0) || opt.rate_hz > 100000) throw std::invalid_argument("rate must be in (0, 100000] Hz");
-  if (!(opt.duration_s > 0) || !std::isfinite(opt.duration_s)) throw std::invalid_argument("duration must be > 0 s");
+  if (!(opt.rate_hz > 0) || opt.rate_hz > 100000) throw BadInput("rate must be in (0, 100000] Hz");
+  if (!(opt.duration_s > 0) || !std::isfinite(opt.duration_s)) throw BadInput("duration must be > 0 s");
 
   RunSummary sum;
   std::unique_ptr<TelemetryWriter> telemetry;
@@ -50,8 +52,7 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
   }
   // Everything the loop touches is allocated here, before the first tick.
   LatencyHistogram wake_hist, io_hist, tick_hist;
-  RigStep rig(config, backend, RigStepOptions{opt.rate_hz, false});
-  if (opt.rig_step_ready) opt.rig_step_ready(rig);
+  RigStep rig(config, lease.backend(), RigStepOptions{opt.rate_hz, false});
   const bool realtime = opt.mode == LoopMode::realtime;
   const double period_s = 1.0 / opt.rate_hz;
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / opt.rate_hz));
@@ -90,7 +91,8 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
   const auto wall_start = Clock::now();
   const std::int64_t start_ns = mono_ns() + period_ns;  // first deadline one period from now
   std::uint64_t k = 0;
-  while (k < total_ticks && !rig.faulted()) {
+  bool stopping = false;  // a stop was asked for: this tick is the last, vented
+  while (k < total_ticks && !rig.faulted() && !stopping) {
     const double t_s = double(k) * period_s;
     float wake_us = 0;
     if (realtime) {
@@ -99,17 +101,27 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       wake_us = float(double(mono_ns() - deadline) / 1000.0);
       wake_hist.record(wake_us);
     }
-    if (opt.stop_signal && opt.stop_signal->load(std::memory_order_relaxed) != 0) rig.enter_fault(FaultCode::signal);
+    if (opt.control && opt.control->stop_signal() != 0) rig.enter_fault(FaultCode::signal);
     if (telemetry && telemetry->failed()) rig.enter_fault(FaultCode::thread_exception);
     if (!rig.faulted() && worker_fault_pending(worker_detail, sizeof worker_detail))
       rig.enter_fault(FaultCode::thread_exception, worker_detail);
 
-    if (opt.stop_request && opt.stop_request->load(std::memory_order_relaxed)) break;
+    if (!rig.faulted() && ((opt.control && opt.control->stopped_by_operator()) || lease.release_requested())) {
+      // A stop asked for from another thread (the window closing, the rig wanted elsewhere),
+      // perhaps because a signal came: the signal is looked at again, so a stop it caused is
+      // recorded as the signal's fault. Either way this tick is the last: vented, and its
+      // record is always written (below).
+      if (opt.control && opt.control->stop_signal() != 0)
+        rig.enter_fault(FaultCode::signal);
+      else
+        rig.disarm();
+      stopping = true;
+    }
     // The operator's VENT (held from another thread) disarms: 0 kPa from this very tick, the
     // loop runs on reading monitors; released, the rig is armed again and pressure rises from
     // 0 kPa under the slew limit.
-    const bool vent_held = opt.vent_request && opt.vent_request->load(std::memory_order_relaxed);
-    if (vent_held != vent_was_held) {
+    const bool vent_held = opt.control && opt.control->vent_held();
+    if (!stopping && vent_held != vent_was_held) {
       if (vent_held)
         rig.disarm();
       else
@@ -122,8 +134,9 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       wall_mark = mono_ns();
       ticks_since_mark = 0;
     }
-    const std::int64_t wall_start = realtime ? 0 : mono_ns();
-    const StepResult& step = rig.step(scene, input.latest(t_s), t_s);
+    const std::int64_t tick_start_ns = realtime ? 0 : mono_ns();
+    const TickInputs inputs = opt.switches ? opt.switches->read() : TickInputs{};
+    const StepResult& step = rig.step(scene, input.latest(t_s), t_s, inputs);
     if (!realtime) {
       // A replay has no deadlines, but a tick that costs more than its period could not run
       // in real time: its excess counts as lost periods, so a replay of a scene too slow for
@@ -134,9 +147,9 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
       ++ticks_since_mark;
       const std::int64_t wall_end = mono_ns();
       std::uint64_t lost = 0;
-      if (wall_end - wall_start > period_ns) {
+      if (wall_end - tick_start_ns > period_ns) {
         const std::int64_t cpu_now = thread_cpu_ns();
-        const std::int64_t cpu = (cpu_now - cpu_mark) - (wall_start - wall_mark);
+        const std::int64_t cpu = (cpu_now - cpu_mark) - (tick_start_ns - wall_mark);
         if (cpu > period_ns) lost = static_cast<std::uint64_t>((cpu - 1) / period_ns);
         cpu_mark = cpu_now;
         wall_mark = mono_ns();
@@ -181,18 +194,17 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
     }
     if (opt.observer) opt.observer->on_tick(rec);
     if (telemetry) {
-      if (realtime)
+      // In real time a full queue drops a record rather than make the rig wait for the disk;
+      // the last record of a run that faulted or was stopped (vented, with the reason) is
+      // waited for: why the rig vented is always written.
+      if (realtime && !rig.faulted() && !stopping)
         telemetry->try_push(rec);
       else
         telemetry->push_wait(rec);
     }
-    if (rig.faulted()) {
-      sum.fault = rig.fault();
-      sum.fault_t_s = t_s;
-    }
   }
-  if (rig.faulted() && sum.fault == FaultCode::none) sum.fault = rig.fault();  // refused before the first tick
   rig.disarm();  // a run always ends with every channel at 0 kPa
+  sum.fault = rig.fault();
   sum.link_outages = rig.link_outages();
   sum.unlinked_ticks = rig.unlinked_steps();
   rt.pm_qos.release();  // the CPUs may sleep deeply again
@@ -201,15 +213,19 @@ RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& i
   sum.wake_latency = wake_hist.summary();
   sum.io_time = io_hist.summary();
   sum.tick_time = tick_hist.summary();
-  sum.fault_detail = rig.fault_detail();
   if (telemetry) {
     sum.telemetry_dropped = telemetry->dropped();
     try {
       telemetry->finish();
     } catch (const std::exception& e) {
-      if (sum.fault == FaultCode::none) sum.fault = FaultCode::thread_exception;
-      sum.fault_detail = e.what();
+      sum.fault.latch(FaultCode::thread_exception, sum.sim_time_s, e.what());
     }
+  }
+  if (sum.fault.active()) {
+    const std::filesystem::path folder =
+        opt.fault_record_folder.empty() ? std::filesystem::current_path() : opt.fault_record_folder;
+    sum.fault_record = save_fault_record(rig.recorder(), sum.fault, lease.rig().holder() + " on " + lease.rig().name(),
+                                         opt.telemetry_path, folder, &sum.fault_record_file);
   }
   return sum;
 }

@@ -16,13 +16,15 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <functional>
 #include <string>
 
 #include "inputs/input_source.hpp"
 #include "runtime/latency_histogram.hpp"
 #include "runtime/realtime.hpp"
+#include "runtime/run_control.hpp"
 #include "rigs/rig_backend.hpp"
+#include "controller/operator_switches.hpp"
+#include "controller/rig_lease.hpp"
 #include "controller/rig_step.hpp"
 #include "controller/tick.hpp"
 
@@ -47,18 +49,19 @@ struct RunOptions {
   // Realtime mode only: FIFO priority, PM QoS request, timer slack, stack prefault, CPU pinning
   // (runtime/realtime.hpp). FIFO is used when both want_fifo and realtime.fifo are true.
   RealtimeOptions realtime;
-  const std::atomic<int>* stop_signal = nullptr;  // set non-zero by a signal handler to stop (vents)
-  // Operator controls from another thread (the GUI), read once per tick, never waited on:
-  // while vent_request is set every setpoint is 0 kPa from that very tick on and the loop keeps
-  // running (telemetry flag vented); when it clears, pressure rises again from 0 under the slew
-  // limit. The backend is disarmed while it is held and armed again when it clears.
-  // stop_request ends the run cleanly (vented, no fault).
-  const std::atomic<bool>* vent_request = nullptr;
-  const std::atomic<bool>* stop_request = nullptr;
+  // The operator's handle (runtime/run_control.hpp), read once per tick, never waited on: a
+  // stop request ends the run (vented; a stop by signal is a fault of the run, FaultCode::signal);
+  // while the vent is held every setpoint is 0 kPa from that very tick on, the backend is
+  // disarmed and the loop keeps running (telemetry flag vented); when it is released, the rig is
+  // armed again and pressure rises from 0 under the slew limit. Null: nothing steers the run.
+  const RunControl* control = nullptr;
   TickObserver* observer = nullptr;
-  // Called once, on the calling thread, before the first tick with the run's rig step: a front
-  // end keeps it to request arm/disarm from its own thread. Valid until run_loop returns.
-  std::function<void(RigStep&)> rig_step_ready;
+  // The operator's switches (lag compensation, each artery's rate and amplitude), read once per
+  // tick into the tick's inputs. Null: the configuration's own behaviour.
+  const OperatorSwitches* switches = nullptr;
+  // Where the fault record goes when the run ends on a fault (controller/fault_recorder.hpp):
+  // beside the telemetry file when there is one, else in this folder (empty: the working one).
+  std::filesystem::path fault_record_folder;
 };
 
 struct RangeStats {
@@ -88,9 +91,11 @@ struct RunSummary {
   // Ticks each finger spent vented for a reason of its own (tracked fingers: FingerVent), by reason.
   static constexpr std::size_t kVentReasons = 6;
   std::array<std::array<std::uint64_t, kVentReasons>, kFingerCount> finger_vent_ticks{};
-  FaultCode fault = FaultCode::none;
-  double fault_t_s = 0;
-  std::string fault_detail;     // the backend's or worker's own message
+  Fault fault;  // none, or why the run vented: code, loop time and the finder's own words
+  // After a fault: the sentence naming the file that holds the ticks before it ("the last 2000
+  // ticks before it: FILE"), or why it could not be written; empty without a fault.
+  std::string fault_record;
+  std::filesystem::path fault_record_file;
   LatencySummary wake_latency;  // realtime only
   LatencySummary io_time;
   LatencySummary tick_time;
@@ -100,7 +105,9 @@ struct RunSummary {
   std::string telemetry_path;
 };
 
-RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& input, RigBackend& backend,
+// Drives the rig through `lease` (controller/rig_lease.hpp): the run ends cleanly, vented, when
+// the lease is asked to give the rig back.
+RunSummary run_loop(const TickConfig& config, const Scene& scene, InputSource& input, RigLease& lease,
                     const RunOptions& options);
 
 }  // namespace palprig

@@ -1,5 +1,5 @@
 #pragma once
-// The tick's pulse stage (DESIGN.md "One tick": "+ pulse" after the ActuatorModel). For each
+// The tick's pulse stage (docs/architecture.md, "The tick": after the ActuatorModel). For each
 // finger: the arteries in range and their activation (PulseField) and the pulse pressure it
 // should feel now and, for the lag compensation stage (controller/lag_compensation_stage.hpp,
 // which compensates the regulators' lag for the pulse and the stiffness target alike), the pulse
@@ -15,10 +15,12 @@
 
 namespace palprig {
 
-// What the stage renders with: the rig's calibrated force window and the scene's arteries.
+// What the stage renders with: the rig's calibrated force window, the scene's arteries and the
+// operator's rates and amplitudes this tick.
 struct PulseStageSetting {
   const PulseRendering& rendering;
   const PulseField& arteries;
+  const PulseSettings& settings;
 };
 
 // Where the fingers are this tick. centres are valid only while pressed.
@@ -26,7 +28,7 @@ struct FingersOnSkin {
   bool pressed = false;
   std::array<Point2_mm, kFingerCount> centres{};
   double force_N = 0;
-  // Per finger (issue 26: tracked fingers each with their own load cell, a vented finger): its
+  // Per finger (tracked fingers each with their own load cell, a vented finger): its
   // force and whether it presses. The pen gives every finger force_N and pressed.
   std::array<double, kFingerCount> finger_force_N{};
   std::array<bool, kFingerCount> finger_pressed{};

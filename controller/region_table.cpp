@@ -1,16 +1,21 @@
 #include "controller/region_table.hpp"
 
 #include <cmath>
+#include <string>
+#include <vector>
 #include <iomanip>
 #include <ostream>
 
 namespace palprig {
 
 void RegionTable::Row::add(double target, double plant) noexcept {
+  if (!std::isfinite(target)) return;
   ++n;
   target_sum += target;
-  plant_sum += plant;
   target_max = std::max(target_max, target);
+  if (!std::isfinite(plant)) return;  // no reading (a link down): nothing to average
+  ++plant_n;
+  plant_sum += plant;
   plant_max = std::max(plant_max, plant);
 }
 
@@ -40,25 +45,43 @@ bool RegionTable::tumors_feel_harder() const {
   return all;
 }
 
-void RegionTable::print(std::ostream& out) const {
+void RegionTable::print(std::ostream& out, const std::string& fault, double fault_t_s) const {
   const auto flags = out.flags();
   const auto precision = out.precision();
-  out << "\n  Pressure per region (fingers over it while they pressed; plant = regulator monitor)\n"
-      << "  region            finger-ticks   target kPa mean / max   plant kPa mean / max\n"
-      << std::fixed;
+  out << std::fixed << std::setprecision(2) << "\n  Pressure per region (fingers over it while they pressed; plant = "
+      << "regulator monitor)" << (fault.empty() ? "" : ", up to the fault") << "\n"
+      << "  region            finger-ticks   target kPa mean / max   plant kPa mean / max\n";
+  std::vector<std::string> unreached;
   for (std::size_t t = 0; t <= tumors_.size(); ++t) {
     const Row& r = rows_[t];
     const std::string name =
         t < tumors_.size() ? "tumor " + tumors_[t].name + " (r " + std::to_string(int(tumors_[t].radius_mm)) + " mm)"
                            : "soft tissue";
-    out << "  " << std::left << std::setw(18) << name << std::right << std::setw(12) << r.n << "   "
-        << std::setprecision(2) << std::setw(9) << r.target_mean() << " / " << std::setw(6) << r.target_max << "       "
-        << std::setw(7) << r.plant_mean() << " / " << std::setw(6) << r.plant_max << "\n";
+    out << "  " << std::left << std::setw(18) << name << std::right << std::setw(12) << r.n << "   ";
+    if (r.n == 0) {
+      out << "   not reached\n";
+      unreached.push_back(t < tumors_.size() ? "tumor " + tumors_[t].name : name);
+      continue;
+    }
+    out << std::setw(9) << r.target_mean() << " / " << std::setw(6) << r.target_max << "       ";
+    if (r.plant_n == 0)
+      out << "    n/a (no monitor reading)\n";
+    else
+      out << std::setw(7) << r.plant_mean() << " / " << std::setw(6) << r.plant_max << "\n";
   }
-  out << "\n  "
-      << (tumors_feel_harder() ? "Every tumor got higher pressure than soft tissue."
-                               : "WARNING: a tumor did not get higher pressure than soft tissue.")
-      << "\n";
+  std::string list;
+  for (const auto& u : unreached) list += (list.empty() ? "" : ", ") + u;
+  out << "\n  ";
+  if (!fault.empty())
+    out << "The run faulted at t = " << fault_t_s << " s (" << fault << "): the table covers what ran before it"
+        << (unreached.empty() ? "" : "; not reached: " + list) << ". No verdict on the tumors.";
+  else if (!unreached.empty())
+    out << "WARNING: not pressed on during the run: " << list << "; no comparison for "
+        << (unreached.size() == 1 ? "it." : "them.");
+  else
+    out << (tumors_feel_harder() ? "Every tumor got higher pressure than soft tissue."
+                                 : "WARNING: a tumor did not get higher pressure than soft tissue.");
+  out << "\n";
   out.flags(flags);
   out.precision(precision);
 }
@@ -67,12 +90,14 @@ nlohmann::json RegionTable::json() const {
   nlohmann::json regions = nlohmann::json::array();
   for (std::size_t t = 0; t <= tumors_.size(); ++t) {
     const Row& r = rows_[t];
+    // JSON has no NaN: a region not reached, or without a monitor reading, has null figures.
+    auto figure = [](bool have, double v) { return have ? nlohmann::json(v) : nlohmann::json(nullptr); };
     regions.push_back({{"region", t < tumors_.size() ? "tumor " + tumors_[t].name : "soft tissue"},
                        {"finger_ticks", r.n},
-                       {"target_kPa_mean", r.target_mean()},
-                       {"target_kPa_max", r.target_max},
-                       {"plant_kPa_mean", r.plant_mean()},
-                       {"plant_kPa_max", r.plant_max}});
+                       {"target_kPa_mean", figure(r.n > 0, r.target_mean())},
+                       {"target_kPa_max", figure(r.n > 0, r.target_max)},
+                       {"plant_kPa_mean", figure(r.plant_n > 0, r.plant_mean())},
+                       {"plant_kPa_max", figure(r.plant_n > 0, r.plant_max)}});
   }
   return regions;
 }

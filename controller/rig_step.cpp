@@ -26,25 +26,20 @@ RigStep::RigStep(const TickConfig& config, RigBackend& backend, const RigStepOpt
   result_.sensor.fill(std::numeric_limits<double>::quiet_NaN());
 }
 
-void RigStep::set_detail(const char* text) noexcept { std::snprintf(fault_detail_, sizeof fault_detail_, "%s", text); }
-
 void RigStep::enter_fault(FaultCode why, const char* detail) noexcept {
-  if (state_.fault != FaultCode::none) return;  // the first reason wins
+  if (faulted() || state_.fault != FaultCode::none) return;  // the first reason wins
   state_.enter_fault(why);
-  if (detail) set_detail(detail);
+  fault_.latch(why, last_t_s_, detail);
 }
 
 BackendStatus RigStep::arm() noexcept {
-  if (faulted()) {
-    if (fault_detail_[0] == '\0') set_detail(to_string(state_.fault));
-    return BackendStatus::error;
-  }
-  if (backend_.arm() != BackendStatus::ok) {
-    enter_fault(FaultCode::backend_error, backend_.last_error());
+  if (faulted()) return BackendStatus::failure(to_string(fault_.code));  // a faulted step never moves air again
+  if (const BackendStatus armed = backend_.arm(); armed == BackendStatus::error) {
+    enter_fault(FaultCode::backend_error, armed.reason());
     backend_.vent();
-    return BackendStatus::error;
+    return armed;
   }
-  // Issue 10: pressure rises from the vented state under the slew limit after every arm.
+  // Pressure rises from the vented state under the slew limit after every arm.
   state_.restart_from_vented();
   return BackendStatus::ok;
 }
@@ -62,14 +57,6 @@ void RigStep::vent_and_disarm() noexcept {
     backend_.vent();
 }
 
-void RigStep::apply_request() noexcept {
-  const int request = request_.exchange(kNone, std::memory_order_acq_rel);
-  if (request == kArm && !backend_.armed())
-    arm();
-  else if (request == kDisarm)
-    disarm();
-}
-
 TouchSample RigStep::with_load_cell_force(const TouchSample& sample, double t_s) noexcept {
   TouchSample s = sample;
   std::array<double, kFingerCount> depth_mm{};
@@ -80,8 +67,9 @@ TouchSample RigStep::with_load_cell_force(const TouchSample& sample, double t_s)
   }
   backend_.feel_press(depth_mm);
   LoadCellReading& cells = result_.load_cells;
-  if (backend_.read_load_cells(cells, t_s) != BackendStatus::ok) {
-    enter_fault(FaultCode::backend_error, backend_.last_error());
+  if (const BackendStatus read = backend_.read_load_cells(cells, t_s); read == BackendStatus::error) {
+    last_t_s_ = t_s;
+    enter_fault(FaultCode::backend_error, read.reason());
     s.force_N = std::numeric_limits<double>::quiet_NaN();  // and the tick vents on it too
     return s;
   }
@@ -100,23 +88,22 @@ TouchSample RigStep::with_load_cell_force(const TouchSample& sample, double t_s)
   return s;
 }
 
-const StepResult& RigStep::step(const Scene& scene, const TouchSample& sample, double t_s) noexcept {
-  apply_request();
+const StepResult& RigStep::step(const Scene& scene, const TouchSample& sample, double t_s,
+                                const TickInputs& inputs) noexcept {
   const bool linked = backend_.linked();
   const std::int64_t tick_start = mono_ns();
   result_.load_cells.count = 0;
   if (sample.force_from_load_cells) {
-    result_.tick = tick(state_, config_, scene, with_load_cell_force(sample, t_s), t_s);
+    result_.tick = tick(state_, config_, scene, with_load_cell_force(sample, t_s), t_s, inputs);
     finish(tick_start, linked, t_s);
     return result_;
   }
-  result_.tick = tick(state_, config_, scene, sample, t_s);
+  result_.tick = tick(state_, config_, scene, sample, t_s, inputs);
   finish(tick_start, linked, t_s);
   return result_;
 }
 
 const StepResult& RigStep::step_direct(const ChannelPressures& target_kPa, double t_s) noexcept {
-  apply_request();
   const bool linked = backend_.linked();
   const std::int64_t tick_start = mono_ns();
   result_.tick = tick_direct(state_, config_, target_kPa, t_s);
@@ -125,6 +112,9 @@ const StepResult& RigStep::step_direct(const ChannelPressures& target_kPa, doubl
 }
 
 void RigStep::finish(std::int64_t tick_start, bool linked, double t_s) noexcept {
+  last_t_s_ = t_s;
+  // A fault the tick latched (a bad sample, a non-finite target) is the step's, with its time.
+  if (state_.fault != FaultCode::none) fault_.latch(state_.fault, t_s);
   TickResult& r = result_.tick;
   TelemetryRecord& rec = r.record;
   const bool armed = backend_.armed();
@@ -144,21 +134,21 @@ void RigStep::finish(std::int64_t tick_start, bool linked, double t_s) noexcept 
   }
 
   const std::int64_t io_start = mono_ns();
-  bool io_ok = true;
   // While armed the vented setpoints of a down link still go through write(): a backend that
   // bounds its outages (Modbus max_outage_s) reports an outage that lasts too long there.
+  BackendStatus io = BackendStatus::ok;
   if (armed)
-    io_ok = backend_.write(r.setpoint_kPa, t_s) == BackendStatus::ok;
+    io = backend_.write(r.setpoint_kPa, t_s);
   else
-    backend_.vent();
-  io_ok = io_ok && backend_.read_monitors(result_.monitor_kPa, t_s) == BackendStatus::ok;
+    (void)backend_.vent();  // a disarmed rig: the reads below say whether its link holds
+  if (io == BackendStatus::ok) io = backend_.read_monitors(result_.monitor_kPa, t_s);
   // A tick that began with the link down has no reading it can vouch for: the bus thread may
   // publish the first fresh monitors of a reconnect between our linked() and read_monitors(),
   // and an alarm row must not carry them (they belong to the next, linked tick).
   if (!linked) result_.monitor_kPa.fill(std::numeric_limits<double>::quiet_NaN());
-  if (io_ok && read_sensors_) io_ok = backend_.read_sensors(result_.sensor, t_s) == BackendStatus::ok;
+  if (io == BackendStatus::ok && read_sensors_) io = backend_.read_sensors(result_.sensor, t_s);
   const std::int64_t io_end = mono_ns();
-  if (!io_ok) enter_fault(FaultCode::backend_error, backend_.last_error());
+  if (io == BackendStatus::error) enter_fault(FaultCode::backend_error, io.reason());
 
   result_.tick_us = double(io_start - tick_start) / 1000.0;
   result_.io_us = double(io_end - io_start) / 1000.0;
@@ -177,6 +167,7 @@ void RigStep::finish(std::int64_t tick_start, bool linked, double t_s) noexcept 
     vent_and_disarm();
     rec.flags |= kVented;
   }
+  recorder_.record(rec);
 }
 
 }  // namespace palprig

@@ -16,9 +16,9 @@
 // vented, the record says so, and the slew limiter restarts from 0 kPa when pressure may flow
 // again. Runs on the loop thread: no allocation, no locks, no exceptions.
 #include <array>
-#include <atomic>
 #include <cstdint>
 
+#include "controller/fault_recorder.hpp"
 #include "controller/tick.hpp"
 #include "rigs/rig_backend.hpp"
 
@@ -50,30 +50,31 @@ class RigStep {
 
   // Arm the backend; the next step rises from the vented state under the slew limit. Refused
   // after a fault (a faulted step never moves air again) and on a closed backend: the reason is
-  // in fault_detail() and, for the backend's refusal, the step faults (backend_error).
+  // in fault() and, for the backend's refusal, the step faults (backend_error).
   BackendStatus arm() noexcept;
   // Vent and disarm; later steps keep reading monitors until arm().
   void disarm() noexcept;
-  // From another thread (the GUI's buttons): applied at the start of the next step.
-  void request_arm() noexcept { request_.store(kArm, std::memory_order_release); }
-  void request_disarm() noexcept { request_.store(kDisarm, std::memory_order_release); }
 
-  // Latch a fault found outside the step (signal, worker thread, deadline overruns); the next
-  // step vents. detail (copied) overrides the reason text when given.
+  // Latch a fault found outside the step (signal, worker thread, deadline overruns) at the last
+  // step's time; the next step vents. The first reason wins; `detail` (copied) is its words.
   void enter_fault(FaultCode why, const char* detail = nullptr) noexcept;
 
   // One step with the pen on a scene. A sample whose force comes from the rig's load cells
-  // (tracked fingers, issue 26: TouchSample::force_from_load_cells) gets it here, read before
+  // (tracked fingers: TouchSample::force_from_load_cells) gets it here, read before
   // the tick: the fingertips' press is handed to the backend (a simulated rig's cells feel it),
   // the cells are read, and their forces (clipped at 0 N: below the tare is noise) go in.
-  const StepResult& step(const Scene& scene, const TouchSample& sample, double t_s) noexcept;
+  // `inputs`: the operator's switches this tick (controller/operator_switches.hpp).
+  const StepResult& step(const Scene& scene, const TouchSample& sample, double t_s,
+                         const TickInputs& inputs = {}) noexcept;
   // One step with direct per-finger targets (hysteresis inverse and safety stage only).
   const StepResult& step_direct(const ChannelPressures& target_kPa, double t_s) noexcept;
 
-  FaultCode fault() const noexcept { return state_.fault; }
-  bool faulted() const noexcept { return state_.fault != FaultCode::none; }
-  // The backend's or caller's own words for the fault, or for a refused arm(); "" when none.
-  const char* fault_detail() const noexcept { return fault_detail_; }
+  // Why the step vented for good: the code, when, and the words of whoever found it (the
+  // backend's, a worker's, the loop's); for a refused arm() after a fault, that fault.
+  const Fault& fault() const noexcept { return fault_; }
+  // The last steps' records (kFaultRecordTicks), kept for the record of a fault.
+  const FaultRecorder& recorder() const noexcept { return recorder_; }
+  bool faulted() const noexcept { return fault_.active(); }
   const TickState& tick_state() const noexcept { return state_; }
   const TickConfig& config() const noexcept { return config_; }
   const StepResult& last() const noexcept { return result_; }
@@ -83,12 +84,9 @@ class RigStep {
   std::uint64_t unlinked_steps() const noexcept { return unlinked_steps_; }
 
  private:
-  enum Request : int { kNone = 0, kArm, kDisarm };
-  void apply_request() noexcept;
   void vent_and_disarm() noexcept;
   // Everything after the tick: write (or vent), read, fault check, vent on fault, record.
   void finish(std::int64_t tick_start_ns, bool linked, double t_s) noexcept;
-  void set_detail(const char* text) noexcept;
   // The sample with its force from the load cells (see step()).
   TouchSample with_load_cell_force(const TouchSample& sample, double t_s) noexcept;
 
@@ -97,10 +95,11 @@ class RigStep {
   bool read_sensors_ = false;
   TickState state_;
   StepResult result_;
-  std::atomic<int> request_{kNone};
   bool was_linked_ = true;
   std::uint64_t link_outages_ = 0, unlinked_steps_ = 0;
-  char fault_detail_[256] = {0};
+  Fault fault_;
+  FaultRecorder recorder_;
+  double last_t_s_ = 0;  // the last step's time: when a fault found outside a step is latched
 };
 
 }  // namespace palprig

@@ -18,7 +18,7 @@ nlohmann::json run_summary_json(const RunSummary& s, const LoadedRun& run, const
   json j = {
       {"scene", run.scene.source},
       {"rig", run.rig.id},
-      {"backend", run.backend ? run.backend->describe() : std::string("none")},
+      {"backend", run.rig_opened ? run.rig_opened->backend().describe() : std::string("none")},
       {"input", run.input->describe()},
       {"mode", opt.mode == LoopMode::realtime ? "realtime" : "replay"},
       {"rate_hz", opt.rate_hz},
@@ -34,10 +34,10 @@ nlohmann::json run_summary_json(const RunSummary& s, const LoadedRun& run, const
       {"setpoint_kPa", stats(s.setpoint_kPa)},
       {"plant_kPa", stats(s.monitor_kPa)},
       {"fault", s.fault == FaultCode::none ? json(nullptr)
-                                           : json{{"code", static_cast<int>(s.fault)},
+                                           : json{{"code", static_cast<int>(s.fault.code)},
                                                   {"reason", to_string(s.fault)},
-                                                  {"detail", s.fault_detail},
-                                                  {"t_s", s.fault_t_s}}},
+                                                  {"detail", s.fault.detail()},
+                                                  {"t_s", s.fault.t_s}}},
       {"tick_time", lat(s.tick_time)},
       {"io_time", lat(s.io_time)},
       {"telemetry", s.telemetry_path.empty() ? json(nullptr) : json(s.telemetry_path)},
@@ -63,8 +63,8 @@ nlohmann::json run_summary_json(const RunSummary& s, const LoadedRun& run, const
 }
 
 void print_run_summary(std::ostream& out, const RunSummary& s, const LoadedRun& run, const RunOptions& opt) {
-  out << "palprig run: " << run.scene.source << " on " << (run.backend ? run.backend->describe() : "?") << " ("
-      << run.rig.id << "), input " << run.input->describe() << "\n";
+  out << "palprig run: " << run.scene.source << " on " << (run.rig_opened ? run.rig_opened->backend().describe() : "?")
+      << " (" << run.rig.id << "), input " << run.input->describe() << "\n";
   out << "  " << s.ticks << " ticks at " << opt.rate_hz << " Hz, " << std::fixed << std::setprecision(3);
   // A replay says how much faster than real time it ran; a real-time run took its own length
   // by design, so it says so rather than "13.290 s simulated in 13.290 s wall (1x)".
@@ -110,7 +110,7 @@ void print_run_summary(std::ostream& out, const RunSummary& s, const LoadedRun& 
   out << "  faults: "
       << (s.fault == FaultCode::none
               ? std::string("none")
-              : std::string(to_string(s.fault)) + (s.fault_detail.empty() ? "" : ": " + s.fault_detail))
+              : std::string(to_string(s.fault)) + (s.fault.detail().empty() ? "" : ": " + s.fault.detail()))
       << "\n";
   if (!s.telemetry_path.empty())
     out << "  telemetry: " << s.telemetry_path

@@ -8,7 +8,7 @@
 #include "formats/function_scene_file.hpp"
 #include "inputs/igtl_input.hpp"
 #include "models/tissue_scene.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "runtime/realtime.hpp"
 
 namespace palprig {
@@ -137,11 +137,9 @@ void settle_timing(const LoadedRun& run, const RunTiming& timing, RunOptions& op
 }
 
 RunSummary execute_run(LoadedRun& run, const RunOptions& options) {
-  run.backend = make_backend(run.rig);
-  run.backend->open();
-  RunSummary s = run_loop(run.config, *run.scene.scene, *run.input, *run.backend, options);
-  run.backend->close();
-  return s;
+  run.rig_opened = open_rig(run.rig);
+  RigLease lease = run.rig_opened->lease("palprig run");
+  return run_loop(run.config, *run.scene.scene, *run.input, lease, options);
 }
 
 }  // namespace palprig

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "controller/loop_runner.hpp"
+#include "controller/rig_lease.hpp"
 #include "formats/calibration_file.hpp"
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"
@@ -40,7 +41,7 @@ struct LoadedRun {
   std::unique_ptr<InputSource> input;
   std::string input_spec;
   std::optional<TrackingConfig> tracking;  // an igtl input's
-  std::unique_ptr<RigBackend> backend;     // made by execute_run
+  std::unique_ptr<Rig> rig_opened;         // opened by execute_run (the machine-wide lock of its device held)
   bool live = false;                       // hardware or a live pen: runs on the wall clock only
   // What the run does about the regulators' lag (controller/tick_setup.hpp's
   // describe_lag_compensation): lines for the front end to print before it runs.
@@ -73,7 +74,7 @@ LoadedRun load_run_files(const RunFiles& files);
 // refused, naming the field "replay"); a run with no length is refused ("duration_s"); a CPU
 // the process may not run on is refused ("cpu").
 void settle_timing(const LoadedRun& run, const RunTiming& timing, RunOptions& options);
-// Opens the backend, runs the loop, closes the backend.
+// Opens the rig (open_rig), takes its lease, runs the loop, gives the rig back and closes it.
 RunSummary execute_run(LoadedRun& run, const RunOptions& options);
 
 }  // namespace palprig

@@ -24,7 +24,7 @@ struct TelemetryRecord {
   FaultCode fault = FaultCode::none;
   std::uint8_t flags = 0;  // TelemetryFlag bits
   // Where each finger was and how hard it pressed (the pen's triangle, or each tracked
-  // fingertip with its own load cell: issue 26), and why a tracked finger was vented.
+  // fingertip with its own load cell), and why a tracked finger was vented.
   float finger_x_mm[kFingerCount] = {};
   float finger_y_mm[kFingerCount] = {};
   float finger_force_N[kFingerCount] = {};

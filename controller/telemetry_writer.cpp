@@ -12,9 +12,9 @@
 #include <sstream>
 #include <string>
 
-#include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "io/checked_output.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 
@@ -87,19 +87,17 @@ std::string size_text(std::uint64_t bytes) {
 }  // namespace
 
 void TelemetryWriter::check_room(std::uint64_t more) {
-  constexpr std::uint64_t kMiB = 1 << 20;
   if (bytes_ + more > limits_.max_bytes)
-    throw std::runtime_error("telemetry stopped at " + size_text(bytes_) + " in " + path_.string() +
-                             ": the budget of " + size_text(limits_.max_bytes) + " per file is reached");
+    throw Error("telemetry stopped at " + size_text(bytes_) + " in " + path_.string() + ": the budget of " +
+                size_text(limits_.max_bytes) + " per file is reached");
   if (bytes_ + more - bytes_at_space_check_ < kMiB && bytes_ != 0) return;
   bytes_at_space_check_ = bytes_ + more;
   std::error_code ec;
   const auto dir = path_.has_parent_path() ? path_.parent_path() : std::filesystem::path(".");
   const std::filesystem::space_info room = std::filesystem::space(dir, ec);
   if (!ec && room.available < limits_.min_free_bytes + more)
-    throw std::runtime_error("telemetry stopped at " + size_text(bytes_) + " in " + path_.string() + ": the disk has " +
-                             size_text(room.available) + " free and " + size_text(limits_.min_free_bytes) +
-                             " are kept free");
+    throw Error("telemetry stopped at " + size_text(bytes_) + " in " + path_.string() + ": the disk has " +
+                size_text(room.available) + " free and " + size_text(limits_.min_free_bytes) + " are kept free");
 }
 
 std::string TelemetryWriter::failure() const { return failed() ? failure_ : std::string(); }
@@ -107,7 +105,7 @@ std::string TelemetryWriter::failure() const { return failed() ? failure_ : std:
 void TelemetryWriter::run() noexcept {
   try {
     std::ofstream out(path_, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot open " + path_.string());
+    if (!out) throw Error("cannot open " + path_.string());
     std::ostringstream chunk;  // one batch, so its size is known before it reaches the disk
     if (format_ == TelemetryFormat::binary) {
       chunk.write(kMagic, sizeof kMagic);
@@ -134,14 +132,14 @@ void TelemetryWriter::run() noexcept {
         bytes_ += bytes.size();
       }
       written_.fetch_add(n, std::memory_order_relaxed);
-      if (!out) throw std::runtime_error("write failed on " + path_.string() + " (disk full?)");
+      if (!out) throw Error("write failed on " + path_.string() + " (disk full?)");
       if (n == 0) {
         if (finishing) break;
         std::this_thread::sleep_for(std::chrono::milliseconds(2));
       }
     }
     out.flush();
-    if (!out) throw std::runtime_error("write failed on " + path_.string());
+    if (!out) throw Error("write failed on " + path_.string());
   } catch (const std::exception& e) {
     failure_ = e.what();
     failed_.store(true, std::memory_order_release);
@@ -151,7 +149,7 @@ void TelemetryWriter::run() noexcept {
 void TelemetryWriter::finish() {
   done_.store(true, std::memory_order_release);
   if (thread_.joinable()) thread_.join();
-  if (failed()) throw std::runtime_error("telemetry writer: " + failure_);
+  if (failed()) throw Error("telemetry writer: " + failure_);
 }
 
 void write_telemetry_csv_header(std::ostream& out) {

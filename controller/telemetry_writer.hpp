@@ -17,8 +17,8 @@
 namespace palprig {
 
 // The binary telemetry file's version (its header). 2: the per-finger position, force and vent
-// reason (issue 26) after the flags; 3: then how far tissue dragging carries the tissue under
-// each finger (drag_x_mm, drag_y_mm; issue 25).
+// reason after the flags; 3: then how far tissue dragging carries the tissue under
+// each finger (drag_x_mm, drag_y_mm).
 inline constexpr std::uint32_t kTelemetryFileVersion = 3;
 
 enum class TelemetryFormat { binary, csv };
@@ -74,7 +74,7 @@ class TelemetryWriter {
 void write_telemetry_csv_header(std::ostream& out);
 void write_telemetry_csv_row(std::ostream& out, const TelemetryRecord& r);
 // Convert a binary telemetry file to CSV; throws InputError on a file that is not one (no CSV is
-// left then), OutputError when the CSV cannot be written whole (models/checked_output.hpp).
+// left then), OutputError when the CSV cannot be written whole (io/checked_output.hpp).
 std::uint64_t convert_telemetry_to_csv(const std::filesystem::path& binary, const std::filesystem::path& csv);
 
 }  // namespace palprig

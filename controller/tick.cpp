@@ -1,10 +1,6 @@
 #include "controller/tick.hpp"
 
-#include <algorithm>
 #include <cmath>
-
-#include "controller/pulse_stage.hpp"
-#include "models/finger_placement.hpp"
 
 namespace palprig {
 
@@ -31,127 +27,8 @@ void check_targets(TickState& state, const ChannelPressures& target_kPa, double 
 
 }  // namespace
 
-namespace {
-
-// The actuator's play follows the setpoints actually sent (not what the inverse stage computed:
-// the safety stage may have cut a reversal's jump of twice the play to its slew step, or clamped
-// at p_max), with the regulator's exhaust near 0 kPa (the band above the command narrows to the
-// command), so the next inversion starts from where the actuator is. Venting: kept as they are.
-void hysteresis_follow_setpoints(TickState& state, const TickResult& out) noexcept {
-  if (state.fault != FaultCode::none || (out.record.flags & kVented)) return;
-  for (std::size_t i = 0; i < kFingerCount; ++i)
-    if (!state.hysteresis_model[i].is_identity()) state.hysteresis_model[i].apply_exhausting(out.setpoint_kPa[i]);
-}
-
-}  // namespace
-
-ChannelPressures hysteresis_inverse_stage(TickState& state, const ChannelPressures& target_kPa) noexcept {
-  ChannelPressures command = target_kPa;
-  if (state.fault != FaultCode::none) return command;  // venting: the inverses keep their state
-  for (std::size_t i = 0; i < kFingerCount; ++i)
-    if (std::isfinite(target_kPa[i]) && !state.hysteresis_model[i].is_identity())
-      command[i] = state.hysteresis_model[i].input_for(target_kPa[i]);
-  return command;
-}
-
-void safety_stage(TickState& state, const TickConfig& config, const ChannelPressures& command_kPa, double t_s,
-                  TickResult& out) noexcept {
-  TelemetryRecord& rec = out.record;
-  const SafetyLimits& lim = config.safety;
-  for (double p : command_kPa)
-    if (!std::isfinite(p)) state.enter_fault(FaultCode::non_finite_target);  // a broken inverse, too
-
-  if (state.fault != FaultCode::none) {
-    // Vent: every channel to 0 kPa at once (no slew limit on the way down to safety).
-    out.setpoint_kPa = {};
-    rec.flags |= kVented;
-  } else {
-    // The first tick has no previous time: one nominal period. From the vented state (the
-    // state's last setpoint is 0 kPa at the start and after restart_from_vented) the
-    // setpoint therefore rises by at most one slew step, whatever the pen pressed on.
-    const double dt = state.started ? std::max(t_s - state.last_t_s, 0.0) : config.period_s;
-    const double max_step = lim.slew_kPa_per_s * dt;
-    for (std::size_t i = 0; i < kFingerCount; ++i) {
-      double p = command_kPa[i];
-      if (p > lim.p_max_kPa) {
-        p = lim.p_max_kPa;
-        rec.flags |= kClamped;
-      }
-      if (p < 0) p = 0;
-      const double prev = state.last_setpoint_kPa[i];
-      if (p > prev + max_step) {
-        p = prev + max_step;
-        rec.flags |= kSlewLimited;
-      } else if (p < prev - max_step) {
-        p = prev - max_step;
-        rec.flags |= kSlewLimited;
-      }
-      out.setpoint_kPa[i] = p;
-    }
-  }
-  for (std::size_t i = 0; i < kFingerCount; ++i) rec.setpoint_kPa[i] = static_cast<float>(out.setpoint_kPa[i]);
-  rec.fault = state.fault;
-  rec.t_s = t_s;
-  rec.tick = state.ticks++;
-  state.last_setpoint_kPa = out.setpoint_kPa;
-  state.last_t_s = t_s;
-  state.started = true;
-}
-
-namespace {
-
-// The target of one finger pressing `felt_at` (the tissue point under it) with force_N: the
-// scene's stiffness there, the stress model and the channel's actuator line. A scene rendering
-// from the finite-element table gives the stress its nodules add instead: the healthy tissue's
-// stress at this press (the stress model's soft stress, which the actuator's passive part
-// renders) plus that rise.
-double finger_target_kPa(const TickConfig& config, const Scene& scene, std::size_t i, const Point2_mm& felt_at,
-                         double force_N, double t_s, TissueSample* felt_out = nullptr) noexcept {
-  const TissueSample felt = scene.sample(felt_at, force_N, t_s);
-  if (felt_out) *felt_out = felt;
-  const double stress_kPa = felt.fe_stress ? config.stress.target_stress_kPa(0.0, force_N) + felt.stress_rise_kPa
-                                           : config.stress.target_stress_kPa(felt.stiffness, force_N);
-  return config.actuators[i].pressure_kPa(stress_kPa, config.stress.force_ratio(force_N));
-}
-
-// Where the fingers will be `lead_s` from now (the pen extrapolated from its past samples),
-// which tissue they will press then (the drag stepped along), and the target there.
-double predicted_target_kPa(const TickState& state, const TickConfig& config, const Scene& scene, std::size_t i,
-                            double t_s, double lead_s) noexcept {
-  const PredictedFinger pen = state.lag.pen.predict_finger(t_s + lead_s, config.lag_compensation.prediction, i);
-  if (!pen.in_contact || !(pen.pen_force_N >= config.contact_force_N)) return 0.0;  // a lift coming
-  // The pen's triangle, or (tracked fingers) this finger's own extrapolated position and force,
-  // as place_fingers places them now.
-  const double force_N = pen.own_force ? pen.force_N : pen.pen_force_N;
-  if (!(force_N >= config.contact_force_N) || pen.vent != FingerVent::none) return 0.0;  // vented, or lifting
-  const Point2_mm centre =
-      pen.own_position ? Point2_mm{pen.x_mm, pen.y_mm} : config.layout.centres(pen.pen_x_mm, pen.pen_y_mm)[i];
-  const DragSetting setting = scene.drag(state.drag_layer[i]);
-  if (!setting.drags() && state.drag[i].phase == DragPhase::free && state.drag[i].offset.x_mm == 0 &&
-      state.drag[i].offset.y_mm == 0)
-    return finger_target_kPa(config, scene, i, centre, force_N, t_s + lead_s);  // nothing carried
-  FingerDrag drag = state.drag[i];
-  step_drag(drag, setting, centre, force_N, true, lead_s);
-  return finger_target_kPa(config, scene, i, drag.felt_point(centre), force_N, t_s + lead_s);
-}
-
-// The target of finger i `ahead_s` from now, for the lag compensation's look ahead.
-struct Ahead {
-  const TickState& state;
-  const TickConfig& config;
-  const Scene& scene;
-  std::size_t i;
-  double t_s, now_kPa;
-  static double sample(const void* context, double ahead_s) noexcept {
-    const Ahead& a = *static_cast<const Ahead*>(context);
-    return ahead_s > 0 ? predicted_target_kPa(a.state, a.config, a.scene, a.i, a.t_s, ahead_s) : a.now_kPa;
-  }
-};
-
-}  // namespace
-
-TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, const TouchSample& sample,
-                double t_s) noexcept {
+TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, const TouchSample& sample, double t_s,
+                const TickInputs& inputs) noexcept {
   TickResult out;
   TelemetryRecord& rec = out.record;
   rec.x_mm = static_cast<float>(sample.x_mm);
@@ -159,98 +36,36 @@ TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, 
   rec.force_N = static_cast<float>(sample.force_N);
   const double dt_s = state.started ? t_s - state.last_t_s : 0.0;
 
-  ChannelPressures target{};
-  FingersOnSkin fingers;
-  // Each bad reading is named for what is wrong with it (a NaN position is not a bad force).
-  if (!std::isfinite(sample.x_mm) || !std::isfinite(sample.y_mm) || !finger_positions_finite(sample)) {
-    state.enter_fault(FaultCode::bad_position);
-  } else if (!std::isfinite(sample.t_s)) {
-    state.enter_fault(FaultCode::bad_time);
-  } else if (!std::isfinite(sample.force_N) || sample.force_N < 0 || !finger_forces_valid(sample)) {
-    state.enter_fault(FaultCode::bad_sample);
-  } else if (t_s - sample.t_s > config.safety.max_input_age_s) {
-    state.enter_fault(FaultCode::input_stale);
-  } else {
-    // The triangle around the pen, or each finger at its own tracked position (issue 26); a
-    // finger whose tool is out of view is vented (target 0 kPa) and says why in the record.
-    const PlacedFingers placed = place_fingers(config.layout, sample, config.contact_force_N);
-    fingers.centres = placed.centres;
-    fingers.finger_force_N = placed.force_N;
-    fingers.finger_pressed = placed.pressed;
-    if (sample.own_positions) rec.flags |= kOwnPositions;
-    for (std::size_t i = 0; i < kFingerCount; ++i) {
-      rec.finger_x_mm[i] = static_cast<float>(placed.centres[i].x_mm);
-      rec.finger_y_mm[i] = static_cast<float>(placed.centres[i].y_mm);
-      rec.finger_force_N[i] = static_cast<float>(placed.force_N[i]);
-      rec.finger_vent[i] = sample.fingers[i].vent;
-    }
-    if (sample.in_contact && sample.force_N >= config.contact_force_N) {
-      rec.flags |= kInContact;
-      fingers.pressed = true;
-      fingers.force_N = sample.force_N;
-    }
-  }
-  if (!fingers.pressed) fingers.force_N = sample.force_N;
-  // Tissue dragging (paper 000's stick/slip): each finger feels the tissue now under it, which
-  // a sticking finger has carried along; the arteries move with it too. Each finger drags with
-  // its own force (a load cell under each tracked finger); a vented finger carries nothing.
-  for (std::size_t i = 0; i < kFingerCount; ++i) {
-    const bool pressing = fingers.pressed && fingers.finger_pressed[i];
-    step_drag(state.drag[i], scene.drag(state.drag_layer[i]), fingers.centres[i], fingers.finger_force_N[i], pressing,
-              std::max(dt_s, 0.0));
-    if (pressing) fingers.centres[i] = state.drag[i].felt_point(fingers.centres[i]);
-    rec.drag_x_mm[i] = static_cast<float>(state.drag[i].offset.x_mm);
-    rec.drag_y_mm[i] = static_cast<float>(state.drag[i].offset.y_mm);
-  }
-  for (std::size_t i = 0; i < kFingerCount; ++i) {
-    if (!fingers.pressed || !fingers.finger_pressed[i]) {
-      state.drag_layer[i] = -1;
-      continue;
-    }
-    TissueSample felt;
-    target[i] = finger_target_kPa(config, scene, i, fingers.centres[i], fingers.finger_force_N[i], t_s, &felt);
-    rec.stiffness[i] = static_cast<float>(felt.stiffness);
-    state.drag_layer[i] = felt.layer;
-  }
+  FingersOnSkin fingers = finger_placement_stage(state, config, sample, t_s, rec);
+  tissue_drag_stage(state, scene, fingers, dt_s, rec);
+  ChannelPressures target = stiffness_target_stage(state, config, scene, fingers, t_s, rec);
 
   // What each channel compensates this tick, and the targets it compensates toward: the scene
   // where the fingers will be (channels compensating the whole target), the pulse now and ahead.
   const PulseField* arteries = scene.pulse();
-  const bool switch_on =
-      !config.pulse.compensate_lag_switch || config.pulse.compensate_lag_switch->load(std::memory_order_relaxed);
   const double period_s = dt_s > 0 && std::isfinite(dt_s) ? dt_s : state.pulse.last_dt_s;
-  const LagPlan plan = plan_lag_compensation(state.lag, config.lag_compensation, config.pulse.lag,
-                                             config.pulse.compensate_lag, switch_on, arteries != nullptr, period_s);
+  const LagPlan plan =
+      plan_lag_compensation(state.lag, config.lag_compensation, config.pulse.lag, config.pulse.compensate_lag,
+                            inputs.compensate_lag, arteries != nullptr, period_s);
   LagTargets lag_targets;
   lag_targets.base_now_kPa = target;
   lag_targets.base_ahead_kPa = target;
   if (state.fault == FaultCode::none) state.lag.pen.observe(sample, config.lag_compensation.prediction);
   ++state.lag.ticks;
-  // A lifted pen, or a run that restarts: the window's cached targets are stale.
-  // A finger that is not pressing (a tracked one vented, or lifted by its own load cell) too.
+  // A lifted pen, or a run that restarts: the window's cached targets are stale. A finger that
+  // is not pressing (a tracked one vented, or lifted by its own load cell) too.
   for (std::size_t i = 0; i < kFingerCount; ++i)
     if (!fingers.pressed || !fingers.finger_pressed[i]) state.lag.window_sampled[i] = false;
-  if (plan.any_total() && state.fault == FaultCode::none) {
-    rec.flags |= kLagCompensated;
-    for (std::size_t i = 0; i < kFingerCount; ++i) {
-      if (plan.part[i] != CompensatedPart::total) continue;
-      const LagCompensationSetting& lag = config.lag_compensation;
-      const Ahead context{state, config, scene, i, t_s, target[i]};
-      const WindowCache window{&state.lag.window_target_kPa[i], &state.lag.window_sampled[i],
-                               state.lag.ticks % kWindowStride == i % kWindowStride};
-      lag_targets.base_ahead_kPa[i] = anticipated_target_kPa(
-          plan.model[i], plan.lead_s[i], state.lag.compensator[i].predicted_kPa(), lag.max_lead_kPa,
-          config.safety.p_max_kPa, lag.samples_ahead, lag.anticipate_edges, &Ahead::sample, &context, window);
-    }
-  }
+  look_ahead_stage(state, config, scene, plan, target, t_s, lag_targets, rec);
+
   // Scenes without arteries (maps) skip the pulse stage entirely.
   if (arteries) {
     std::array<PulseLookahead, kFingerCount> ahead{};
     for (std::size_t i = 0; i < kFingerCount; ++i)
       ahead[i] = {plan.lead_s[i], plan.rise_advance_s[i], plan.fall_advance_s[i]};
     PulseOutput pulse;
-    apply_pulse_stage(state.pulse, PulseStageSetting{config.pulse, *arteries}, fingers, TickTime{t_s, dt_s}, ahead,
-                      pulse);
+    apply_pulse_stage(state.pulse, PulseStageSetting{config.pulse, *arteries, inputs.pulse}, fingers,
+                      TickTime{t_s, dt_s}, ahead, pulse);
     out.pulse_kPa = pulse.now_kPa;
     lag_targets.pulse_now_kPa = pulse.now_kPa;
     lag_targets.pulse_ahead_kPa = pulse.ahead_kPa;

@@ -1,14 +1,21 @@
 #pragma once
-// The tick: one pass from pen sample to three setpoints (DESIGN.md "One tick"). A plain
-// function of (state, configuration, scene, sample, time): no threads, clocks, allocation or
-// exceptions, so tests and replays run it directly.
+// The tick: one pass from pen sample to three setpoints (docs/architecture.md, "The tick"). A
+// plain function of (state, configuration, scene, sample, the operator's inputs, time): no
+// threads, clocks, allocation or exceptions, so tests and replays run it directly. Each stage is
+// a named function, called in this order:
 //
-//   sample -> FingerLayout [-> tissue drag (scenes whose layers drag; models/tissue_drag.hpp)]
-//          -> Scene::sample -> StressModel -> ActuatorModel
-//          [-> pulse stage (scenes with arteries only; controller/pulse_stage.hpp)]
-//          -> lag compensation stage (controller/lag_compensation_stage.hpp: the pulse part, or
-//             with identified regulators the whole target, sampled where the fingers will be)
-//          -> hysteresis inverse stage -> safety stage (clamp, slew, vent) -> setpoints + telemetry
+//   finger_placement_stage   the sample checked, the three fingers placed (the pen's triangle, or
+//                            each tracked finger at its own position with its own force)
+//   tissue_drag_stage        what lies under a sticking finger moves with it (scenes whose
+//                            layers drag; models/tissue_drag.hpp)
+//   stiffness_target_stage   Scene::sample -> StressModel -> ActuatorModel, per finger
+//   look_ahead_stage         with the regulators' dynamics identified: the targets where the
+//                            fingers will be (controller/lag_compensation_stage.hpp plans it)
+//   apply_pulse_stage        the pulse each finger should feel now and ahead (scenes with
+//                            arteries only; controller/pulse_stage.hpp)
+//   lag_compensation_stage   the inverse of the regulators' lag, bounded
+//   hysteresis_inverse_stage the command that lands the actuator on the target on both branches
+//   safety_stage             clamp to [0, p_max], slew limit, vent on fault -> setpoints + record
 //
 // Experiments that present fixed per-finger pressures, and calibration, use tick_direct(),
 // which enters at the hysteresis inverse stage and passes the same safety stage. What happens
@@ -17,6 +24,7 @@
 
 #include "controller/fault.hpp"
 #include "controller/lag_compensation_stage.hpp"
+#include "controller/pulse_stage.hpp"
 #include "controller/telemetry.hpp"
 #include "models/touch_sample.hpp"
 #include "models/channel_pressures.hpp"
@@ -29,6 +37,14 @@
 #include "models/tissue_drag.hpp"
 
 namespace palprig {
+
+// What the operator sets while a run goes on, as it stands this tick: the tick's inputs beside
+// the pen sample (the loop reads them once per tick from controller/operator_switches.hpp). The
+// defaults are the configuration's own behaviour.
+struct TickInputs {
+  bool compensate_lag = true;  // the window's lag compensation switch (with the configuration's)
+  PulseSettings pulse;         // each artery's rate and amplitude (NaN: the scene's)
+};
 
 struct TickConfig {
   FingerLayout layout;
@@ -93,16 +109,33 @@ struct TickResult {
 // Prepare a state for a run: the hysteresis models of the configuration's inverses, relaxed at 0.
 TickState make_tick_state(const TickConfig& config) noexcept;
 
-TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, const TouchSample& sample,
-                double t_s) noexcept;
+TickResult tick(TickState& state, const TickConfig& config, const Scene& scene, const TouchSample& sample, double t_s,
+                const TickInputs& inputs = {}) noexcept;
 
 // Direct per-finger pressures (experiments, calibration): hysteresis inverse and safety only.
 TickResult tick_direct(TickState& state, const TickConfig& config, const ChannelPressures& target_kPa,
                        double t_s) noexcept;
 
-// The last two stages, named as in the design diagram (tick and tick_direct call them in this
-// order). The hysteresis inverse stage turns targets into commands that land the actuator on the
-// target on both branches (the model's input for the target at the actuator's present state,
+// The stages, in the order tick() calls them (see the top of this file). Each fills its part of
+// the record. Exposed so that a test can run one stage alone.
+
+// The sample checked (a bad position, time, force or a stale sample latches a fault named for
+// what is wrong with it) and the fingers placed.
+FingersOnSkin finger_placement_stage(TickState& state, const TickConfig& config, const TouchSample& sample, double t_s,
+                                     TelemetryRecord& rec) noexcept;
+// Each pressing finger feels the tissue now under it, which a sticking finger has carried along.
+void tissue_drag_stage(TickState& state, const Scene& scene, FingersOnSkin& fingers, double dt_s,
+                       TelemetryRecord& rec) noexcept;
+// Per pressing finger: the scene's stiffness, the stress model and the channel's actuator line.
+ChannelPressures stiffness_target_stage(TickState& state, const TickConfig& config, const Scene& scene,
+                                        const FingersOnSkin& fingers, double t_s, TelemetryRecord& rec) noexcept;
+// Channels that compensate their whole target: the target where the fingers will be, from the
+// pen's past samples only (the plan says which channels and how far ahead).
+void look_ahead_stage(TickState& state, const TickConfig& config, const Scene& scene, const LagPlan& plan,
+                      const ChannelPressures& target_now_kPa, double t_s, LagTargets& targets,
+                      TelemetryRecord& rec) noexcept;
+// The hysteresis inverse stage turns targets into commands that land the actuator on the target on
+// both branches (the model's input for the target at the actuator's present state,
 // PrandtlIshlinskii::input_for, which equals the analytic inverse above the regulator's exhaust
 // and handles it below); it leaves non-finite targets for the safety stage and does nothing
 // once a fault is latched. The states then follow what the safety stage sent
@@ -113,5 +146,7 @@ ChannelPressures hysteresis_inverse_stage(TickState& state, const ChannelPressur
 // setpoints and the record's setpoint, flag, fault, time and tick fields, and advances the state.
 void safety_stage(TickState& state, const TickConfig& config, const ChannelPressures& command_kPa, double t_s,
                   TickResult& out) noexcept;
+// After the safety stage: the hysteresis models follow the setpoints actually sent.
+void hysteresis_follow_setpoints(TickState& state, const TickResult& out) noexcept;
 
 }  // namespace palprig

@@ -19,11 +19,11 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
                                      const PulseSessionOptions& options) {
   PulseSessionResult result;
   const std::vector<int> order = pulse_trial_order(protocol, options.seed);
-  SessionPacer pacer(clock, options.period_s, options.stop);
+  SessionPacer pacer(clock, options.period_s, options.control);
   participant.session_clock(clock);
   ChannelPressures felt{};
   auto pass = [&]() { return pacer.pass(output, felt); };
-  auto pause_asked = [&] { return options.pause && options.pause->load(); };
+  auto pause_asked = [&] { return pacer.pause_requested(); };
   // The participant's go-ahead (the rig is serviced, vented, meanwhile). The simulated observer
   // is ready at once: no pass, no time, so its sessions are unchanged by this wait.
   auto wait_ready = [&](int position) {

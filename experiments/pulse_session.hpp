@@ -4,7 +4,6 @@
 // for a mark, scores it (models/pulse_localisation: score_pulse_mark) and hands the record to
 // on_trial. The protocol, order and records are study/pulse_*; the simulated participant is
 // experiments/simulated_pulse_observer.hpp.
-#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -14,6 +13,7 @@
 #include "experiments/participant.hpp"
 #include "experiments/session_clock.hpp"
 #include "experiments/stimulus_output.hpp"
+#include "runtime/run_control.hpp"
 #include "formats/scene_file.hpp"
 #include "study/pulse_protocol.hpp"
 #include "study/pulse_record.hpp"
@@ -50,13 +50,13 @@ struct PulseTrialStart {
 struct PulseSessionOptions {
   std::uint64_t seed = 1;
   int start_position = 0;
-  double period_s = 0.002;                 // the pulse is a 72 BPM wave: service the rig often
-  const std::atomic<int>* stop = nullptr;  // non-zero: vent and stop (the trial in progress is not kept)
-  // true: pause, with the discrimination session's semantics (experiments/session_loop.hpp): vents
+  double period_s = 0.002;  // the pulse is a 72 BPM wave: service the rig often
+  // The operator's handle: a stop request vents and stops (the trial in progress is not kept);
+  // a pause, with the discrimination session's semantics (experiments/session_loop.hpp): vents
   // at once and holds the trial in progress, which is presented again from its start once the
   // pause is lifted and the participant is ready; a pause in the inter-trial interval (the trial
-  // is committed) cuts it short. Nothing committed is lost.
-  const std::atomic<bool>* pause = nullptr;
+  // is committed) cuts it short. Nothing committed is lost. Null: none.
+  const RunControl* control = nullptr;
   std::function<void(const PulseTrialRecord&)> on_trial;
   std::function<void(const PulseTrialStart&)> on_trial_started;
   // The session waits: `paused` true once a pause is taken (vented, holding); false while it

@@ -8,7 +8,7 @@ namespace palprig {
 
 RigStimulus::RigStimulus(const TickConfig& config, RigBackend& backend, double rate_hz)
     : rig_(config, backend, RigStepOptions{rate_hz, false}) {
-  if (rig_.arm() != BackendStatus::ok) fault(std::string("rig backend: ") + rig_.fault_detail());
+  if (rig_.arm() != BackendStatus::ok) fault(std::string("rig backend: ") + rig_.fault().detail());
 }
 
 RigStimulus::~RigStimulus() { rig_.disarm(); }
@@ -47,7 +47,7 @@ ChannelPressures RigStimulus::service(double t_s) {
                                  ? rig_.step(*scene_, pen_->latest(t), t)
                                  : rig_.step_direct(mode_ == Mode::hold ? target_kPa_ : ChannelPressures{}, t);
   if (rig_.faulted()) {
-    if (rig_.fault() == FaultCode::backend_error) fault(std::string("rig backend: ") + rig_.fault_detail());
+    if (rig_.fault() == FaultCode::backend_error) fault(std::string("rig backend: ") + rig_.fault().detail());
     fault(std::string("safety stage: ") + to_string(rig_.fault()));
   }
   last_ = result.tick.record;

@@ -30,6 +30,9 @@ class RigStimulus final : public StimulusOutput {
   ChannelPressures service(double t_s) override;
   std::string describe() const override { return rig_.backend().describe(); }
 
+  // The rig step: its fault and the record of the ticks before it (controller/fault_recorder.hpp).
+  const RigStep& step() const noexcept { return rig_; }
+
   // The record of the last serviced tick (pen position and per-finger values, for observers).
   const TelemetryRecord* last_record() const noexcept override { return &last_; }
 

@@ -12,7 +12,7 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
   int started_position = -1;
   bool paused = false;
   std::optional<Response> pending;  // an answer the runner does not take yet
-  SessionPacer pacer(clock, options.period_s, options.stop);
+  SessionPacer pacer(clock, options.period_s, options.control);
   participant.session_clock(clock);
   try {
     while (runner.state() != RunnerState::done) {
@@ -23,7 +23,7 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
         result.stopped = true;
         return result;
       }
-      const bool pause_asked = options.pause && options.pause->load();
+      const bool pause_asked = pacer.pause_requested();
       if (pause_asked != paused) {
         paused = pause_asked;
         if (paused) {

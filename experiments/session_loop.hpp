@@ -2,24 +2,24 @@
 // The session loop: feeds the runner the clock's time, tells the participant what the fingers
 // feel, passes on readiness and answers, and services the rig every period, until the
 // session is done, a stop is requested, or the rig faults. No terminal or GUI knowledge.
-#include <atomic>
 #include <string>
 
 #include "experiments/participant.hpp"
 #include "experiments/session_clock.hpp"
 #include "experiments/trial_runner.hpp"
+#include "runtime/run_control.hpp"
 
 namespace palprig {
 
 struct SessionLoopOptions {
-  double period_s = 0.005;                 // how often the runner and rig are serviced
-  const std::atomic<int>* stop = nullptr;  // non-zero: stop (vents; the current trial is not kept)
-  // true: pause (TrialRunner::pause: vents, holds the session, the trial in progress is not
+  double period_s = 0.005;  // how often the runner and rig are serviced
+  // The operator's handle: a stop request stops (vents; the current trial is not kept); a
+  // pause (RunControl::set_paused(true); TrialRunner::pause: vents, holds the session, the trial in progress is not
   // kept); back to false: resume. The runner then waits in `ready` until the participant says
   // ready again, as at the start of the session and after a break: the experimenter's Continue
   // alone does not put a stimulus under fingers that may have left the actuators. The held
-  // trial is then presented again from its start. The rig is serviced all along.
-  const std::atomic<bool>* pause = nullptr;
+  // trial is then presented again from its start. The rig is serviced all along. Null: none.
+  const RunControl* control = nullptr;
   const StimulusOutput* output = nullptr;  // for the rig's last tick record (pen position)
 };
 

@@ -3,10 +3,9 @@
 // runner, thresholds, pulse localisation): a stop request vents and ends the session; the rig is
 // serviced; the loop waits for the next period on an absolute schedule (no drift). Written once
 // so a stop behaves the same in every task kind.
-#include <atomic>
-
 #include "experiments/session_clock.hpp"
 #include "experiments/stimulus_output.hpp"
+#include "runtime/run_control.hpp"
 
 namespace palprig {
 
@@ -16,12 +15,14 @@ struct SessionStopped {};
 
 class SessionPacer {
  public:
-  // `stop`: non-zero asks the session to stop (SIGINT/SIGTERM, the window's Abort); may be null.
-  SessionPacer(SessionClock& clock, double period_s, const std::atomic<int>* stop)
-      : clock_(clock), period_s_(period_s), stop_(stop), next_s_(clock.now_s()) {}
+  // `control`: a stop request (SIGINT/SIGTERM, the terminal's q, the window's Abort) ends the
+  // session; may be null.
+  SessionPacer(SessionClock& clock, double period_s, const RunControl* control)
+      : clock_(clock), period_s_(period_s), control_(control), next_s_(clock.now_s()) {}
 
   double now_s() { return clock_.now_s(); }
-  bool stop_requested() const noexcept { return stop_ && stop_->load() != 0; }
+  bool stop_requested() const noexcept { return control_ && control_->stop_requested(); }
+  bool pause_requested() const noexcept { return control_ && control_->paused(); }
   // The next period's deadline, then wait for it.
   void wait_next() {
     next_s_ += period_s_;
@@ -43,7 +44,7 @@ class SessionPacer {
  private:
   SessionClock& clock_;
   double period_s_;
-  const std::atomic<int>* stop_;
+  const RunControl* control_;
   double next_s_;
 };
 

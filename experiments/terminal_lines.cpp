@@ -3,8 +3,6 @@
 #include <poll.h>
 #include <unistd.h>
 
-#include <csignal>
-
 namespace palprig {
 
 std::optional<std::string> TerminalLines::next() {
@@ -21,14 +19,14 @@ std::optional<std::string> TerminalLines::next() {
   }
   const auto newline = pending_.find('\n');
   if (newline == std::string::npos) {
-    if (eof_) stop_request_.store(SIGTERM);
+    if (eof_) control_.request_stop();
     return std::nullopt;
   }
   std::string line = pending_.substr(0, newline);
   pending_.erase(0, newline + 1);
   if (!line.empty() && line.back() == '\r') line.pop_back();
   if (line == "q") {
-    stop_request_.store(SIGTERM);
+    control_.request_stop();
     return std::nullopt;
   }
   return line;

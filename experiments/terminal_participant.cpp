@@ -4,9 +4,9 @@
 
 namespace palprig {
 
-TerminalParticipant::TerminalParticipant(const Protocol& protocol, std::ostream& prompts,
-                                         std::atomic<int>& stop_request, int input_fd)
-    : protocol_(protocol), out_(prompts), lines_(input_fd, stop_request) {}
+TerminalParticipant::TerminalParticipant(const Protocol& protocol, std::ostream& prompts, RunControl& control,
+                                         int input_fd)
+    : protocol_(protocol), out_(prompts), lines_(input_fd, control) {}
 
 bool TerminalParticipant::ready(double) {
   if (!prompted_ready_) {

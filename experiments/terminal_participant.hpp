@@ -5,7 +5,6 @@
 // rating 1..levels (both re-asked on bad input); Enter goes on after a break; "q" or the end of input asks the session
 // to stop (it stays resumable). Discrimination only: a person palpates a scene with the pen, which a terminal does not
 // read.
-#include <atomic>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -18,9 +17,8 @@ namespace palprig {
 
 class TerminalParticipant final : public Participant {
  public:
-  // `stop_request` is set (SIGTERM's number) when the person quits or the input ends.
-  TerminalParticipant(const Protocol& protocol, std::ostream& prompts, std::atomic<int>& stop_request,
-                      int input_fd = 0);
+  // `control` is asked to stop when the person quits (q) or the input ends.
+  TerminalParticipant(const Protocol& protocol, std::ostream& prompts, RunControl& control, int input_fd = 0);
 
   bool ready(double t_s) override;
   void trial_started(const PlannedTrial& trial, const Condition& condition, double t_s) override;

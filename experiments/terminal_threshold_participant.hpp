@@ -2,7 +2,6 @@
 // A person at a text terminal in a threshold session: "1"/"2" for the stronger interval (2AFC),
 // "y"/"n" for "was the second interval stronger?" (yes-no); lines read through TerminalLines,
 // so the session loop never blocks and "q" or the end of input stops (resumable).
-#include <atomic>
 #include <iosfwd>
 #include <optional>
 
@@ -13,9 +12,8 @@ namespace palprig {
 
 class TerminalThresholdParticipant final : public ThresholdParticipant {
  public:
-  TerminalThresholdParticipant(ThresholdMethod method, std::ostream& prompts, std::atomic<int>& stop_request,
-                               int input_fd = 0)
-      : method_(method), out_(prompts), lines_(input_fd, stop_request) {}
+  TerminalThresholdParticipant(ThresholdMethod method, std::ostream& prompts, RunControl& control, int input_fd = 0)
+      : method_(method), out_(prompts), lines_(input_fd, control) {}
 
   bool ready(double t_s) override;
   void trial_started(const ThresholdTrialInfo& trial, double t_s) override;

@@ -14,7 +14,7 @@ ThresholdSessionResult run_threshold_session(const ThresholdProtocol& protocol, 
                                              StimulusOutput& output, ThresholdParticipant& participant,
                                              SessionClock& clock, const ThresholdSessionOptions& options) {
   ThresholdSessionResult result;
-  SessionPacer pacer(clock, options.period_s, options.stop);
+  SessionPacer pacer(clock, options.period_s, options.control);
   const ThresholdTiming& tm = protocol.timing;
   ChannelPressures felt{};
   try {

@@ -8,7 +8,6 @@
 // then a vented inter-trial pause. An unanswered trial is recorded but leaves the track
 // unchanged (the level is presented again).
 #include <array>
-#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -20,6 +19,7 @@
 #include "experiments/participant.hpp"
 #include "experiments/session_clock.hpp"
 #include "experiments/stimulus_output.hpp"
+#include "runtime/run_control.hpp"
 #include "study/threshold_protocol.hpp"
 #include "study/threshold_record.hpp"
 
@@ -49,7 +49,7 @@ struct ThresholdSessionOptions {
   std::uint64_t seed = 1;
   int start_position = 0;  // trials already committed
   double period_s = 0.005;
-  const std::atomic<int>* stop = nullptr;
+  const RunControl* control = nullptr;  // a stop request vents and stops; null: none
   std::function<void(const ThresholdTrialRecord&)> on_trial;
 };
 

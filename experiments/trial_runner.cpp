@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 const char* to_string(RunnerState s) noexcept {
@@ -30,7 +32,7 @@ TrialRunner::TrialRunner(const Protocol& protocol, const SessionPlan& plan, int 
       reached_s_(std::numeric_limits<double>::quiet_NaN()),
       felt_prev_t_s_(std::numeric_limits<double>::quiet_NaN()) {
   if (protocol.task == TaskKind::localisation && (scene == nullptr || pen == nullptr)) {
-    throw std::invalid_argument("a localisation session needs a scene and a pen input");
+    throw BadInput("a localisation session needs a scene and a pen input");
   }
   if (position_ >= total_trials()) state_ = RunnerState::done;
 }

@@ -1,5 +1,6 @@
 #include "formats/calibration_file.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "formats/json_file.hpp"
@@ -7,6 +8,9 @@
 namespace palprig {
 
 namespace {
+
+constexpr double kMaxFitFigure = 1e9;    // any figure of the "fits" tables
+constexpr double kMaxFitPressure = 1e4;  // kPa: 100 bar, beyond any proportional regulator
 
 std::string plain(double v) {
   std::ostringstream o;
@@ -19,6 +23,11 @@ std::string plain(double v) {
 // quality numbers are what they can be. Walked with its field path for the refusal.
 void check_fit_tables(const nlohmann::json& v, const std::string& file, const std::string& where, int depth = 0) {
   if (depth > 16) return;  // the JSON reader bounds nesting; the tables are 4 levels deep
+  // Every figure of the tables is a count, a time, a pressure or a quality of fit: none is
+  // beyond 1e9 in any unit palprig writes (a calibration with a pressure of 1.8e19 kPa read as
+  // valid before).
+  if (v.is_number() && !(std::fabs(v.get<double>()) <= kMaxFitFigure))
+    throw InputError(file, where, "a figure within -1e+09..1e+09, got " + json_excerpt(v));
   if (v.is_array()) {
     for (std::size_t i = 0; i < v.size(); ++i)
       check_fit_tables(v[i], file, where + "[" + std::to_string(i) + "]", depth + 1);
@@ -41,6 +50,13 @@ void check_fit_tables(const nlohmann::json& v, const std::string& file, const st
     number("r_squared", -1e9, 1, "an R^2 of at most 1");
     number("residual_sd", 0, 1e6, "a residual sd in 0..1e+06");
     number("n", 0, 1e9, "a count of points in 0..1e9");
+    // The commanded pressures the line was fitted over: a regulator's range.
+    number("x_min_kPa", -kMaxFitPressure, kMaxFitPressure, "a pressure in -1e+04..1e+04 kPa");
+    number("x_max_kPa", -kMaxFitPressure, kMaxFitPressure, "a pressure in -1e+04..1e+04 kPa");
+    if (v.contains("x_min_kPa") && v.contains("x_max_kPa") && v.at("x_min_kPa").is_number() &&
+        v.at("x_max_kPa").is_number() && v.at("x_min_kPa").get<double>() > v.at("x_max_kPa").get<double>())
+      throw InputError(file, where + ".x_max_kPa",
+                       "a pressure at or above x_min_kPa, got " + json_excerpt(v.at("x_max_kPa")));
   }
   for (auto it = v.begin(); it != v.end(); ++it) check_fit_tables(it.value(), file, where + "." + it.key(), depth + 1);
 }

@@ -4,7 +4,7 @@
 
 #include "formats/calibration_file.hpp"
 #include "formats/json_file.hpp"
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The two files the finite-element model writes for the rest of palprig (JSON, versioned),
-// written whole or not at all (models/checked_output.hpp) and read back before they replace an
+// written whole or not at all (io/checked_output.hpp) and read back before they replace an
 // older file:
 //
 //   stress model   {"version": 1, "kind": "stress_model", "inputs": {"fingertip", "tissue",

@@ -1,3 +1,5 @@
+// Over 400 lines: every key of a function scene (layers, inclusions and their shapes, arteries,
+// waveforms, respiration) is validated here in the file's order, so each refusal names its field.
 #include "formats/function_scene_file.hpp"
 
 #include <cmath>
@@ -5,9 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/error.hpp"
 #include "formats/fe_result_files.hpp"
 #include "models/decimal_number.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 #include "models/tissue_scene.hpp"
 
 namespace palprig {
@@ -283,7 +286,7 @@ PulseWaveform load_waveform_csv(const std::filesystem::path& path) {
   if (t.empty()) throw InputError(file, "table", "at least 4 rows t_s,value over one beat (the table is empty)");
   try {
     return PulseWaveform::table(t, v);
-  } catch (const std::invalid_argument& e) {
+  } catch (const BadInput& e) {
     throw InputError(file, "table", e.what());
   }
 }
@@ -358,7 +361,9 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
       inc.stiffness_kPa = positive(o, "stiffness_kPa", "Young's modulus in kPa", kMaxModulus_kPa);
       try {
         parse_shape(o.object("shape"), inc.shape, 0);
-      } catch (const std::invalid_argument& e) {  // the builders' own checks, should the loader's miss one
+      } catch (const InputError&) {
+        throw;                       // the loader's own refusal names its field already
+      } catch (const BadInput& e) {  // the builders' own checks, should the loader's miss one
         o.fail("shape", e.what());
       }
       if (o.has("breathing_excursion_mm")) inc.breathing_excursion_mm = point3(o, "breathing_excursion_mm");
@@ -395,7 +400,7 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
   std::unique_ptr<FunctionScene> scene;
   try {
     scene = std::make_unique<FunctionScene>(std::move(tissue), std::move(arteries));
-  } catch (const std::invalid_argument& e) {
+  } catch (const BadInput& e) {
     throw InputError(file, "scene", e.what());
   }
   const double tick_cost = double(kFingerCount) * scene->field().worst_case_sample_cost();

@@ -45,12 +45,12 @@ PulseWaveform load_waveform_csv(const std::filesystem::path& path);
 
 // A waveform table is a few hundred rows; anything that is not a regular file (a FIFO blocks,
 // /dev/zero never ends) or is larger than this is refused before it is opened.
-inline constexpr std::uintmax_t kMaxWaveformFileBytes = 1024 * 1024;
+inline constexpr std::uintmax_t kMaxWaveformFileBytes = std::uintmax_t(1) << 20;  // 1 MiB
 // Why `path` cannot be a waveform table (empty: it may be read).
 std::string waveform_file_refusal(const std::filesystem::path& path);
 
 // A generated rehearsal case as a function scene file (with its generator provenance), and the
-// writer that puts it on disk (models/checked_output: whole or not at all; OutputError naming the
+// writer that puts it on disk (io/checked_output: whole or not at all; OutputError naming the
 // file and the system's reason when it cannot be written).
 nlohmann::json generated_case_json(const GeneratedCase& c);
 void write_scene_json(const std::filesystem::path& path, const nlohmann::json& scene);

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig {
 

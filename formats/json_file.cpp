@@ -5,7 +5,7 @@
 #include <sstream>
 #include <vector>
 
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 
@@ -199,7 +199,7 @@ std::string JsonObject::string_or(const std::string& key, const std::string& fal
 }
 
 std::string JsonObject::choice(const std::string& key, const std::vector<std::string>& allowed) const {
-  const std::string s = string(key);
+  std::string s = string(key);  // not const: returned by move
   for (const auto& a : allowed)
     if (a == s) return s;
   std::string list;

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -1,5 +1,5 @@
 #pragma once
-// The rig file's load cells (issue 26): the pressing force measured under the fingertip (paper
+// The rig file's load cells: the pressing force measured under the fingertip (paper
 // 003's FSR) instead of given by a pen. One cell shared by every finger, or one per finger, each
 // read as a voltage on one of the rig's analog inputs and turned into newtons by its own
 // calibration (tare, gain: models/load_cell.hpp).

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "formats/json_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "formats/rig_file.hpp"
 
 namespace palprig {
@@ -39,7 +39,7 @@ std::string ModbusLinkConfig::endpoint() const {
 }
 
 std::string modbus_host_refusal(const std::string& host) {
-  const std::string expected =
+  std::string expected =  // not const: returned by move
       "a host name (letters, digits, '-' and '.', labels of at most 63 and at most 253 characters) or an IPv4 or "
       "IPv6 address, got \"" +
       host + "\"";

@@ -36,7 +36,7 @@ struct RigConfig {
   std::optional<ModbusRigConfig> modbus;
   std::optional<ComediRigConfig> comedi;
   TabletConfig tablet;  // the pen tablet ("tablet" section; defaults when absent)
-  // Load cells measuring the pressing force (issue 26; "load_cells" section; absent: none).
+  // Load cells measuring the pressing force ("load_cells" section; absent: none).
   std::optional<LoadCellConfig> load_cells;
 };
 

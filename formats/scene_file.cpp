@@ -4,7 +4,7 @@
 
 #include "formats/function_scene_file.hpp"
 #include "formats/json_file.hpp"
-#include "models/regular_file.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

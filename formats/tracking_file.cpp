@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "formats/json_file.hpp"
-#include "models/checked_output.hpp"
-#include "models/parse_error.hpp"
+#include "io/checked_output.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -50,7 +50,7 @@ Rotation3 rotation(const JsonObject& o, const std::string& key) {
 }
 
 std::string tool_name(const JsonObject& o) {
-  const std::string name = o.string("name");
+  std::string name = o.string("name");  // not const: returned by move
   if (name.empty() || name.size() > kMaxToolNameChars)
     o.fail("name", "an OpenIGTLink device name of 1 to 20 characters, got '" + name + "' (" +
                        std::to_string(name.size()) + ")");

@@ -1,5 +1,5 @@
 #pragma once
-// The tracking file (JSON, versioned): how a tracker's tools become fingers (issue 26). Which
+// The tracking file (JSON, versioned): how a tracker's tools become fingers. Which
 // OpenIGTLink device names (PLUS's "StylusToTracker", "Finger1ToTracker") are which finger,
 // where each fingertip sits in its tool's frame (static digitization or pivot calibration,
 // paper 003), and the rigid transform from tracker space to scene space (point-based
@@ -68,7 +68,7 @@ TrackingConfig load_tracking_file(const std::filesystem::path& path);
 TrackingConfig parse_tracking(const nlohmann::json& doc, const std::string& file);
 // The file's text as write_tracking_file writes it (one tool per line, numbers to 9 digits).
 std::string tracking_text(const TrackingConfig& config);
-// Written whole or not at all (models/checked_output.hpp), read back through the loader first.
+// Written whole or not at all (io/checked_output.hpp), read back through the loader first.
 void write_tracking_file(const std::filesystem::path& path, const TrackingConfig& config);
 
 }  // namespace palprig

@@ -1,4 +1,4 @@
-// What a tracker's server may send (issue 26): any bytes, cut into reads at the positions the
+// What a tracker's server may send: any bytes, cut into reads at the positions the
 // input's first byte picks, through the OpenIGTLink stream decoder (libopenigtlink unpacks and
 // CRC-checks each message). A stream that is not OpenIGTLink is refused (feed() false); nothing
 // may crash, read out of bounds or hang.

@@ -1,4 +1,4 @@
-// Tracking files (issue 26) through their validator: tools, fingers, tips, the registration.
+// Tracking files through their validator: tools, fingers, tips, the registration.
 #include "formats/tracking_file.hpp"
 #include "fuzz/fuzz_input.hpp"
 

@@ -22,6 +22,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <cmath>
 
+#include "core/error.hpp"
 #include "calibration/calibration_report.hpp"
 #include "calibration/calibration_writer.hpp"
 #include "formats/calibration_file.hpp"
@@ -258,7 +259,7 @@ void CalibrationPage::start_sweep() {
   run.slew_kPa_per_s = rig.safety.slew_kPa_per_s;  // steps pass the safety stage at the rig's slew, as the CLI's
   SweepSchedule schedule;
   try {
-    if (!any) throw std::invalid_argument("channels: at least one channel to sweep");
+    if (!any) throw BadInput("channels: at least one channel to sweep");
     schedule = plan_calibration_sweep(plan_options, rig.safety.p_max_kPa);  // refused before anything moves
   } catch (const std::exception& e) {
     say(QString("palprig: ") + e.what(), true);
@@ -280,8 +281,13 @@ void CalibrationPage::start_sweep() {
     return;
   }
   sweep_file_ = chosen.isEmpty() ? QString::fromStdString(default_file("-sweep.csv").string()) : chosen;
-  RigBackend& backend = host_.take_backend();
-  job_ = std::make_unique<CalibrationJob>(backend, rig, std::move(schedule), run, data_path().toStdString());
+  try {
+    job_ = std::make_unique<CalibrationJob>(host_.opened_rig().lease("the calibration sweep"), control(), rig,
+                                            std::move(schedule), run, data_path().toStdString());
+  } catch (const std::exception& e) {  // RigBusy: something else holds the rig
+    say(QString("palprig: ") + e.what(), true);
+    return;
+  }
   progress_->setFormat("%v of %m holds");
   progress_->setRange(0, int(job_->holds_total()));
   progress_->setValue(0);
@@ -304,19 +310,17 @@ void CalibrationPage::poll_job() {
   std::unique_ptr<CalibrationJob> job = std::move(job_);
   if (job->is_evaluation()) {
     evaluation_done(*job);
-    job.reset();  // joined: the backend is free again
-    host_.give_back_backend();
+    job.reset();  // joined, and its lease given back: the live loop starts again
     emit evaluation_finished();
     return;
   }
   const std::string error = job->error();
   const SweepOutcome o = job->recording().outcome;
-  job.reset();  // joined: the backend is free again
+  job.reset();  // joined, and its lease given back: the live loop starts again
   if (error.empty()) {
     progress_->setRange(0, int(o.holds_planned));
     progress_->setValue(int(o.holds_done));  // the last progress call may have come after the poll's read
   }
-  host_.give_back_backend();
   start_->setEnabled(true);
   stop_->setEnabled(false);
   if (!error.empty()) {

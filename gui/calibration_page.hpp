@@ -40,20 +40,23 @@ class QGridLayout;
 
 namespace palprig::gui {
 
-// One fit, made on a worker: the data read, the library's result and the charts drawn, or the
-// library's refusal.
+// One fit, made on a worker: the data read, the library's result and its charts as data (drawn
+// on the GUI thread: QCustomPlot is a widget), or the library's refusal.
 struct CalibrationFitOutcome {
   std::optional<SweepData> data;
   std::optional<CalibrationResult> result;
-  std::vector<std::filesystem::path> charts;
+  std::vector<charts::NamedChart> charts;
+  std::filesystem::path chart_dir;
   std::string error;
 };
 
 // What the page needs from the window that owns the rig.
 struct CalibrationHost {
-  std::function<RigConfig()> rig;                           // the connected rig's configuration
-  std::function<RigBackend&()> take_backend;                // stop and vent the live loop, hand its backend over
-  std::function<void()> give_back_backend;                  // the sweep ended: the live loop starts again as on opening
+  std::function<RigConfig()> rig;  // the connected rig's configuration
+  // The window's opened rig: a sweep or an evaluation leases it (the live loop gives way, and
+  // starts again when the lease goes back).
+  std::function<Rig&()> opened_rig;
+  RunControl* control = nullptr;                            // the window's operator handle (Stop)
   std::function<bool(const std::string&)> use_calibration;  // reload the window with this file
   // Where the sweep data and the fitted file go unless the user chooses: beside the rig file
   // the user opened (the shipped rigs' folder is not the user's: the current directory then).
@@ -100,6 +103,8 @@ class CalibrationPage final : public QWidget {
   void show_shortfall();  // the staircase's fields make a sweep too short to fit: said now
 
   CalibrationHost host_;
+  RunControl own_control_;  // when the host gives none
+  RunControl& control() noexcept { return host_.control ? *host_.control : own_control_; }
   QTemporaryDir work_dir_;  // the chart PNGs shown on the page (the data and the fit go where the user says)
   std::unique_ptr<CalibrationJob> job_;
   std::optional<CalibrationResult> result_;

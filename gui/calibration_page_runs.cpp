@@ -9,6 +9,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <cmath>
 
+#include "core/error.hpp"
 #include "calibration/calibration_report.hpp"
 #include "calibration/calibration_writer.hpp"
 #include "formats/calibration_file.hpp"
@@ -39,7 +40,8 @@ void CalibrationPage::fit() {
       o.data = read_sweep_csv(data_file);
       o.result = fit_calibration(*o.data, options);
       std::filesystem::remove_all(dir);
-      o.charts = charts::plot_fit(dir, *o.data, *o.result);
+      o.charts = charts::fit_charts(*o.data, *o.result);
+      o.chart_dir = dir;
     } catch (const std::exception& e) {
       o = CalibrationFitOutcome{};
       o.error = e.what();
@@ -65,7 +67,12 @@ void CalibrationPage::fit_done() {
   }
   data_ = std::move(o.data);
   result_ = std::move(o.result);
-  fit_charts_ = std::move(o.charts);
+  try {
+    fit_charts_ = charts::write_charts(o.chart_dir, o.charts);
+  } catch (const std::exception& e) {
+    fit_charts_.clear();
+    say(QString("palprig: charts not drawn: ") + QString::fromStdString(e.what()), true);
+  }
   show_table();
   show_charts();
   save_->setEnabled(true);
@@ -112,7 +119,7 @@ void CalibrationPage::evaluate() {
     check_calibration_matches(cal, rig.id, rig.source);
     bool any = false;
     for (std::size_t c = 0; c < kFingerCount; ++c) any |= (options.channels[c] = !cal.hysteresis[c].is_identity());
-    if (!any) throw std::invalid_argument("calibration: a hysteresis model on at least one channel to evaluate");
+    if (!any) throw BadInput("calibration: a hysteresis model on at least one channel to evaluate");
   } catch (const std::exception& e) {
     say(QString("palprig: ") + e.what(), true);
     return;
@@ -122,9 +129,14 @@ void CalibrationPage::evaluate() {
   evaluation_charts_.clear();
   const std::filesystem::path dir = work_dir_.filePath("evaluation").toStdString();
   std::filesystem::remove_all(dir);
-  RigBackend& backend = host_.take_backend();
+  try {
+    job_ = std::make_unique<CalibrationJob>(host_.opened_rig().lease("the compensation evaluation"), control(), rig,
+                                            std::move(cal), options, dir);
+  } catch (const std::exception& e) {  // RigBusy: something else holds the rig
+    say(QString("palprig: ") + e.what(), true);
+    return;
+  }
   set_busy(true);
-  job_ = std::make_unique<CalibrationJob>(backend, rig, std::move(cal), options, dir);
   stop_->setEnabled(true);
   say(QString("Evaluating %1 on rig %2 (%3): the test trajectory without, then with compensation...")
           .arg(cal_path, QString::fromStdString(rig.id), options.realtime ? "real time" : "simulated time"));
@@ -139,7 +151,12 @@ void CalibrationPage::evaluation_done(const CalibrationJob& job) {
     return;
   }
   evaluation_ = job.evaluation();
-  evaluation_charts_ = job.evaluation_charts();
+  try {
+    evaluation_charts_ = charts::write_charts(job.chart_dir(), job.evaluation_charts());
+  } catch (const std::exception& e) {
+    evaluation_charts_.clear();
+    say(QString("palprig: charts not drawn: ") + QString::fromStdString(e.what()), true);
+  }
   const EvaluationResult& r = *evaluation_;
   QStringList lines;
   for (std::size_t c = 0; c < kFingerCount; ++c) {

@@ -1,8 +1,11 @@
 #include "gui/chart_view.hpp"
 
+#include <QImage>
 #include <QPainter>
 #include <cmath>
 #include <stdexcept>
+
+#include "core/error.hpp"
 
 namespace palprig::gui {
 
@@ -28,16 +31,17 @@ void ChartView::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.fillRect(rect(), Qt::white);
   if (has_data()) {
+    // The export's drawing (QCustomPlot) at the widget's size and pixel ratio.
     charts::Chart sized = chart_;
     sized.width_px = width();
     sized.height_px = height();
     try {
-      charts::paint_chart(p, sized);
+      const QImage image = charts::render_chart(sized, devicePixelRatioF());
+      p.drawImage(rect(), image);
       return;
-    } catch (const std::invalid_argument&) {
-      // Too narrow for the legend, say: fall through to the text.
+    } catch (const BadInput&) {
+      // Too small to draw: fall through to the text.
     }
-    p.fillRect(rect(), Qt::white);
   }
   p.setPen(QColor(110, 110, 110));
   p.drawText(rect(), Qt::AlignCenter, has_data() ? tr("window too small for this chart") : empty_text_);

@@ -24,7 +24,7 @@
 #include "sessions/session_preview.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "gui/statistics_view.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "store/trial_store.hpp"
 
@@ -54,7 +54,8 @@ bool is_simulated_code(const std::string& code) {
 
 }  // namespace
 
-ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent) : QWidget(parent), host_(std::move(host)) {
+ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent)
+    : QWidget(parent), host_(std::move(host)), run_(host_.control) {
   setObjectName("experiment_page");
   // Top: the session (left) and the participant's screen (right); below, full width, the trial
   // list and the live statistics, whose charts need the room. The parts are built in
@@ -130,8 +131,6 @@ void ExperimentPage::connect_session() {
     participant_keys_->remove();  // the keyboard is the experimenter's again
     person_session_ = false;
     apply_answer_key();
-    if (rig_taken_ && host_.give_back_rig) host_.give_back_rig();
-    rig_taken_ = false;
     // A session that stopped or faulted is resumable: offer it at once (the list keeps its
     // ticks, read back from the store). A completed one stays on show as it ended.
     if (!last_completed_ && refusal_text().isEmpty()) {

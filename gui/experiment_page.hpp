@@ -36,21 +36,22 @@ namespace palprig::gui {
 class ParticipantScreen;
 class StatisticsView;
 
-// What the page needs from the window: the rig it is on, and the rig for the session's length
-// (the live loop stops and vents while a session owns the rig, and starts again after).
+// What the page needs from the window: the rig it is on and the window's opened rig, which a
+// session leases for its length (the live loop gives way, vented, and starts again after), and
+// the window's operator handle (Pause, Abort).
 struct ExperimentHost {
   std::function<std::filesystem::path()> rig_file;
   std::function<std::filesystem::path()> calibration_file;  // empty: paper 002's models
-  std::function<void()> take_rig;
-  std::function<void()> give_back_rig;
+  std::function<Rig&()> opened_rig;                         // none: the session opens rig_file itself
+  RunControl* control = nullptr;                            // null: the page keeps its own
   // Where the session's rig ticks go for the live view (the live page's feed); null: nowhere.
   std::function<TickObserver*()> tick_observer;
 };
 
 struct ExperimentFields {
   std::string protocol, participant, store;
-  double speed = 0;       // simulated participant only (0: as fast as the simulated rig allows)
-  std::string telemetry;  // the session's rig ticks to this new file (.bin or .csv); empty: none
+  double speed = 0;            // simulated participant only (0: as fast as the simulated rig allows)
+  std::string telemetry = {};  // the session's rig ticks to this new file (.bin or .csv); empty: none
 };
 
 class ParticipantKeys;
@@ -72,9 +73,9 @@ class ExperimentPage final : public QWidget {
   // The Abort button: asks first (a window-modal "End the session?" box, objectName
   // "abort_confirmation"); Yes aborts.
   void ask_abort();
-  // Abort and wait for the session thread; every committed trial is kept. `give_back_rig`:
-  // restart the live loop (not when the window is closing).
-  void abort_and_wait(bool give_back_rig = true);
+  // Abort and wait for the session thread; every committed trial is kept (the session's lease
+  // on the rig goes back as it ends).
+  void abort_and_wait();
 
   bool session_running() const noexcept { return run_.running(); }
   bool resume_offered() const noexcept { return offered_session_.has_value(); }
@@ -150,7 +151,6 @@ class ExperimentPage final : public QWidget {
   std::optional<PulseProtocol> pulse_protocol_;
   std::optional<std::int64_t> offered_session_;
   int offered_start_ = 0;
-  bool rig_taken_ = false;
   bool simulated_ = false;
   bool pause_held_ = false;
   bool person_session_ = false;  // a person (not sim:SEED) answers in the session running

@@ -31,7 +31,7 @@
 #include "sessions/session_preview.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "gui/statistics_view.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "store/trial_store.hpp"
 
@@ -67,6 +67,7 @@ bool ExperimentPage::begin(bool resume) {
   request.resume = resume;
   request.telemetry_file = f.telemetry;
   request.tick_observer = host_.tick_observer ? host_.tick_observer() : nullptr;
+  request.rig = host_.opened_rig ? &host_.opened_rig() : nullptr;
   simulated_ = is_simulated_code(f.participant);
   request.speed = simulated_ ? f.speed : 0;
   request.person_palpates = true;  // the window gives a person a pen
@@ -92,8 +93,6 @@ bool ExperimentPage::begin(bool resume) {
   status_->setStyleSheet("");
   status_->setProperty("refusal", QString());
   status_->setText(resume ? "Resuming..." : "Starting...");
-  if (host_.take_rig) host_.take_rig();
-  rig_taken_ = true;
   if (pulse_protocol_)
     start_pulse_run(request);
   else
@@ -227,11 +226,9 @@ void ExperimentPage::ask_abort() {
   box->open();  // window-modal, not exec(): the session and the poll timer go on meanwhile
 }
 
-void ExperimentPage::abort_and_wait(bool give_back_rig) {
+void ExperimentPage::abort_and_wait() {
   run_.abort_and_wait();
   participant_keys_->remove();
-  if (give_back_rig && rig_taken_ && host_.give_back_rig) host_.give_back_rig();
-  rig_taken_ = false;
   set_buttons();
 }
 

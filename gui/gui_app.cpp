@@ -17,7 +17,7 @@
 #include "gui/statistics_view.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "experiments/simulated_participant.hpp"
-#include "models/parse_error.hpp"
+#include "core/error.hpp"
 
 namespace palprig::gui {
 
@@ -73,8 +73,8 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
   std::unique_ptr<LiveRun> run;
   try {
     run = std::make_unique<LiveRun>(load_live_run(o.files), o.run);
-  } catch (const InputError& e) {
-    return refuse(e.what(), 2, interactive);
+  } catch (const Error& e) {  // core/error.hpp: BadInput (InputError) 2, anything else of palprig's 1
+    return refuse(e.what(), e.exit_code(), interactive);
   } catch (const std::exception& e) {
     return refuse(e.what(), 1, interactive);
   }
@@ -110,7 +110,8 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
     QObject::connect(&page, &ExperimentPage::sessionEnded, &window, [&](const SessionEnd& e) {
       if (!e.fault.empty()) {
         std::cerr << "palprig: rig fault: " << e.fault << "; " << e.committed_trials << " of " << e.total_trials
-                  << " trials kept, continue with --resume\n";
+                  << " trials kept, continue with --resume" << (e.fault_record.empty() ? "" : "; " + e.fault_record)
+                  << "\n";
         exit_code = 1;
       } else {
         std::cout << "palprig gui: session " << (e.completed ? "completed" : "stopped") << ": " << e.committed_trials
@@ -172,7 +173,7 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
   }
   app.exec();
   // SIGINT/SIGTERM ends the run (and a session: vented, committed trials kept) as a stop, exit 1.
-  if (o.run.stop_signal && o.run.stop_signal->load() != 0 && exit_code == 0) exit_code = 1;
+  if (o.run.control && o.run.control->stop_signal() != 0 && exit_code == 0) exit_code = 1;
   window.run().stop();
   const RunSummary& s = window.run().last_summary();
   if (o.json) {
@@ -183,8 +184,9 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
     std::cout << summary.dump(2) << "\n";
   }
   if (s.fault != FaultCode::none) {
-    std::cerr << "palprig: fault at t=" << s.fault_t_s << " s: " << to_string(s.fault)
-              << (s.fault_detail.empty() ? "" : " (" + s.fault_detail + ")") << "; all channels vented\n";
+    std::cerr << "palprig: fault at t=" << s.fault.t_s << " s: " << to_string(s.fault)
+              << (s.fault.detail().empty() ? "" : " (" + s.fault.detail() + ")") << "; all channels vented; "
+              << s.fault_record << "\n";
     if (exit_code == 0) exit_code = 1;
   }
   return exit_code;

@@ -5,12 +5,11 @@
 
 #include <sstream>
 
-#include "controller/backend_factory.hpp"
 #include "controller/run_setup.hpp"
 #include "controller/tick_setup.hpp"
 #include "formats/calibration_file.hpp"
 #include "inputs/tablet_input.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig::gui {
 
@@ -20,6 +19,7 @@ const char* to_string(RigLifecycle s) noexcept {
     case RigLifecycle::armed: return "armed";
     case RigLifecycle::vented: return "vented";
     case RigLifecycle::fault: return "fault (vented)";
+    case RigLifecycle::lent: return "lent (a session or a calibration drives the rig)";
     case RigLifecycle::stopped: return "stopped";
   }
   return "?";
@@ -64,46 +64,48 @@ std::unique_ptr<InputSource> make_live_input(const LiveRunSetup& s) {
 
 }  // namespace
 
-LiveRun::LiveRun(LiveRunSetup setup, const LiveRunOptions& options) : setup_(std::move(setup)), options_(options) {
-  setup_.config.pulse.compensate_lag_switch = &lag_compensation_;
-  lag_compensation_.store(setup_.config.pulse.compensate_lag);
+LiveRun::LiveRun(LiveRunSetup setup, const LiveRunOptions& options)
+    : setup_(std::move(setup)), options_(options), control_(options.control ? options.control : &own_control_) {
+  switches_.set_lag_compensation(setup_.config.pulse.compensate_lag);
   input_ = make_live_input(setup_);
   window_pen_ = dynamic_cast<WindowPenInput*>(input_.get());
   tracker_ = dynamic_cast<IgtlInput*>(input_.get());
-  backend_ = make_backend(setup_.rig);
-  backend_->open();
-  // Hardware starts connected and vented; the operator arms it. The in-process simulation
-  // needs no such care and starts ready to press.
-  vent_request_.store(!(options_.arm_at_start && setup_.rig.backend == "simulated"));
+  rig_ = open_rig(setup_.rig);
   start_loop();
 }
 
 LiveRun::~LiveRun() {
   stop();
-  backend_->vent();
-  backend_->close();
+  rig_.reset();  // vented and closed; its device lock goes with it
 }
 
 void LiveRun::start_loop() {
+  // The rig may be lent (a session, a sweep): the loop starts when it comes back.
+  if (rig_->leased()) return;
+  lease_.emplace(rig_->lease("the window's live loop", LeaseKind::yielding));
+  // As on opening: hardware starts connected and vented, and the operator arms it; the
+  // in-process simulation needs no such care and starts ready to press.
+  control_->restart();
+  control_->hold_vent(!(options_.arm_at_start && setup_.rig.backend == "simulated"));
+  vented_by_operator_ = false;
   RunOptions opt;
   opt.rate_hz = options_.rate_hz;
   opt.duration_s = 30.0 * 24 * 3600;  // as long as the window stays open
   opt.mode = LoopMode::realtime;
   opt.want_fifo = options_.want_fifo;
   if (!options_.telemetry_path.empty()) {
-    // A recording is never overwritten: a restart after a fault, a scene or rig opened from the
-    // File menu (a new LiveRun) or a window started again with the same --telemetry each write
-    // the first free NAME-N.EXT beside the earlier ones; the status bar says which.
+    // A recording is never overwritten: a restart after a fault or after the rig was lent, a
+    // scene or rig opened from the File menu (a new LiveRun) or a window started again with the
+    // same --telemetry each write the first free NAME-N.EXT beside the earlier ones; the status
+    // bar says which.
     const std::filesystem::path p = first_free_file(options_.telemetry_path);
     telemetry_file_ = p;
     opt.telemetry_path = p;
   }
-  opt.stop_signal = options_.stop_signal;
-  opt.vent_request = &vent_request_;
-  opt.stop_request = &stop_request_;
+  opt.control = control_;
+  opt.switches = &switches_;
   opt.observer = &feed_;
   ++runs_;
-  stop_request_.store(false);
   loop_done_.store(false);
   feed_.reset_statistics();
   if (window_pen_) window_pen_->restart_clock();
@@ -111,12 +113,11 @@ void LiveRun::start_loop() {
   loop_running_ = true;
   loop_ = std::thread([this, opt] {
     try {
-      loop_summary_ = run_loop(setup_.config, *setup_.scene.scene, *input_, *backend_, opt);
+      loop_summary_ = run_loop(setup_.config, *setup_.scene.scene, *input_, *lease_, opt);
     } catch (const std::exception& e) {
-      backend_->vent();
+      lease_->backend().vent();
       loop_summary_ = RunSummary{};
-      loop_summary_.fault = FaultCode::thread_exception;
-      loop_summary_.fault_detail = e.what();
+      loop_summary_.fault.latch(FaultCode::thread_exception, 0, e.what());
     }
     loop_done_.store(true, std::memory_order_release);
   });
@@ -124,6 +125,7 @@ void LiveRun::start_loop() {
 
 void LiveRun::join_loop() {
   if (loop_.joinable()) loop_.join();
+  lease_.reset();  // vented; the rig is free for whoever asked for it
   if (loop_running_) {
     last_summary_ = loop_summary_;
     loop_running_ = false;
@@ -137,62 +139,64 @@ bool LiveRun::poll_finished() {
   return true;
 }
 
+bool LiveRun::resume_when_free() {
+  poll_finished();
+  if (stopped_ || fault_pending_ || loop_running_ || rig_->leased()) return false;
+  start_loop();
+  return loop_running_;
+}
+
+bool LiveRun::lent() const { return !loop_running_ && !stopped_ && rig_->leased(); }
+
 void LiveRun::arm() {
   if (stopped_ || fault_pending_) return;  // a fault is acknowledged first
   if (!loop_running_) start_loop();
   vented_by_operator_ = false;
-  vent_request_.store(false);
+  control_->hold_vent(false);
 }
 
 void LiveRun::vent() {
-  // Only the flag: the backend belongs to the loop thread while it runs (a second caller would
+  // Only the handle: the backend belongs to the loop thread while it runs (a second caller would
   // race the loop's own writes); the loop sends 0 kPa from its next tick.
   vent_pressed_after_t_s_ = feed_.last_t_s();
-  vent_request_.store(true);
+  control_->hold_vent(true);
   vented_by_operator_ = true;
 }
 
 void LiveRun::disarm() {
-  vent_request_.store(true);
+  control_->hold_vent(true);
   vented_by_operator_ = false;
 }
 
 void LiveRun::acknowledge_fault() {
   if (!fault_pending_) return;
   fault_pending_ = false;
-  vented_by_operator_ = false;
-  vent_request_.store(true);
   if (!stopped_ && !loop_running_) start_loop();
+  control_->hold_vent(true);  // the loop restarts vented after a fault, whatever the rig
+  vented_by_operator_ = false;
 }
 
 void LiveRun::stop() {
-  stop_request_.store(true);
-  vent_request_.store(true);
+  if (lease_) lease_->request_release();  // the loop ends at its next tick, vented
   join_loop();
   stopped_ = true;
 }
 
-RigBackend& LiveRun::backend_when_stopped() {
-  if (!stopped_ || loop_running_) throw std::logic_error("LiveRun::backend_when_stopped before stop()");
-  return *backend_;
-}
-
 RigLifecycle LiveRun::state() const noexcept {
   if (fault_pending_) return RigLifecycle::fault;
-  if (stopped_ || !loop_running_) return RigLifecycle::stopped;
-  if (!vent_request_.load()) return RigLifecycle::armed;
+  if (stopped_) return RigLifecycle::stopped;
+  if (!loop_running_) return rig_->leased() ? RigLifecycle::lent : RigLifecycle::stopped;
+  if (!control_->vent_held()) return RigLifecycle::armed;
   return vented_by_operator_ ? RigLifecycle::vented : RigLifecycle::connected;
 }
 
 std::string LiveRun::fault_text() const {
   std::ostringstream s;
-  s << to_string(last_summary_.fault) << " at t=" << last_summary_.fault_t_s << " s";
-  if (!last_summary_.fault_detail.empty()) s << " (" << last_summary_.fault_detail << ")";
-  s << "; every channel vented";
+  s << last_summary_.fault.describe() << "; every channel vented";
   return s.str();
 }
 
-std::string LiveRun::backend_text() const { return backend_->describe(); }
+std::string LiveRun::backend_text() const { return rig_->backend().describe(); }
 
 std::optional<TrackerStatus> LiveRun::tracker_status() noexcept {
   if (!tracker_) return std::nullopt;

@@ -48,7 +48,7 @@ class LocalisationMarking final : public QWidget {
   // The session that lent its pen is over: the heartbeat stops and the view lets go of the pen.
   // Must come before that session's ParticipantChannel (which owns the pen) may be released:
   // the 16 ms heartbeat wrote into a freed pen when a discrimination session followed a
-  // localisation session in the same window (heap corruption, issue 22).
+  // localisation session in the same window (heap corruption, found by a user).
   void detach_pen();  // M: a mark where the pointer is (as a right-click there)
   void clear_marks();
   void finish();  // Done

@@ -18,7 +18,7 @@
 #include "gui/experiment_page.hpp"
 #include "gui/live_page.hpp"
 #include "gui/rig_panel.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig::gui {
 
@@ -70,24 +70,18 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
 }
 
 MainWindow::~MainWindow() {
-  experiment_page_->abort_and_wait(false);  // the session vents and closes its rig first
-  calibration_page_->cancel_sweep();        // before the backend it borrowed goes with run_
+  experiment_page_->abort_and_wait();  // the session vents and gives the rig back first
+  calibration_page_->cancel_sweep();   // before the backend it borrowed goes with run_
   if (run_) run_->stop();
 }
 
 void MainWindow::build_calibration_page() {
   CalibrationHost host;
   host.rig = [this] { return run_->setup().rig; };
-  host.take_backend = [this]() -> RigBackend& {
-    live_page_->setEnabled(false);  // no Arm while the sweep owns the rig
-    run_->stop();                   // the loop vents and ends: one owner of the backend at a time
-    return run_->backend_when_stopped();
-  };
-  host.give_back_backend = [this] {
-    QWidget* current = tabs_->currentWidget();
-    open_files(files_);  // the live loop starts again on the same files
-    tabs_->setCurrentWidget(current);
-  };
+  // A sweep or an evaluation leases the window's rig: the live loop gives way, and the poll
+  // starts it again when the lease goes back (controller/rig_lease.hpp).
+  host.opened_rig = [this]() -> Rig& { return run_->rig(); };
+  host.control = options_.control;
   host.output_folder = [this] {
     // Beside the rig file the user opened; the shipped rigs (the default simulated one) are
     // not the user's folder: the current directory then, as the command line writes there.
@@ -118,18 +112,13 @@ void MainWindow::build_experiment_page() {
                                    : std::filesystem::path(files_.rig_path);
   };
   host.calibration_file = [this] { return std::filesystem::path(files_.cal_path); };
-  host.take_rig = [this] {
-    run_->stop();                            // the live loop vents and ends: one user of the rig at a time
-    live_page_->set_session_owns_rig(true);  // no Arm; the gauges and traces follow the session
-  };
-  // The live loop is stopped while a session runs, so its feed has one producer at a time; the
-  // LiveRun is not replaced during a session (choose_file refuses), so the pointer stays valid.
+  // A session leases the window's rig (the live loop gives way; the poll starts it again when
+  // the lease goes back). The live loop is stopped while a session runs, so its feed has one
+  // producer at a time; the LiveRun is not replaced during a session (choose_file refuses), so
+  // the pointers stay valid.
+  host.opened_rig = [this]() -> Rig& { return run_->rig(); };
+  host.control = options_.control;
   host.tick_observer = [this]() -> TickObserver* { return &run_->feed(); };
-  host.give_back_rig = [this] {
-    QWidget* current = tabs_->currentWidget();
-    open_files(files_);  // the live loop starts again on the same files
-    tabs_->setCurrentWidget(current);
-  };
   experiment_page_ = new ExperimentPage(std::move(host));
   tabs_->addTab(experiment_page_, "Experiment");
 }
@@ -151,12 +140,22 @@ void MainWindow::build_live_page() {
 }
 
 void MainWindow::poll() {
-  if (options_.stop_signal && options_.stop_signal->load() != 0) {
+  if (options_.control && options_.control->stop_signal() != 0) {
     close_without_asking_ = true;
     close();  // SIGINT/SIGTERM: the loop has vented on its own already
     return;
   }
   run_->poll_finished();
+  // Whoever holds the rig: a session (the gauges and traces follow it, no Arm), a sweep or an
+  // evaluation (the live page is idle), or the live loop, which starts again once the rig is free.
+  run_->resume_when_free();
+  const bool lent = run_->lent();
+  const bool session_owns = lent && experiment_page_->session_running();
+  if (session_owns != session_owns_rig_) {
+    live_page_->set_session_owns_rig(session_owns);
+    session_owns_rig_ = session_owns;
+  }
+  live_page_->setEnabled(!(lent && !session_owns));
   const FeedStatus st = live_page_->poll();
   if (experiment_page_->session_running()) {
     status_->setText(
@@ -192,21 +191,21 @@ bool MainWindow::open_files(const LiveRunFiles& files) {
     refuse(e.what());
     return false;
   }
-  std::unique_ptr<LiveRun> next;
   bool opened = true;
-  live_page_->setEnabled(false);
-  run_->stop();  // the old rig vents before the new backend opens
-  try {
-    next = std::make_unique<LiveRun>(std::move(setup), options_);
-  } catch (const std::exception& e) {
-    refuse(e.what());  // the new backend did not open: back to the files that worked
-    opened = false;
-    next = std::make_unique<LiveRun>(load_live_run(files_), options_);
-  }
-  if (opened) files_ = files;
+  // The old rig vents and closes (and gives up its device) before the new one opens; the live
+  // page refers to the old run, so it goes first.
   delete live_page_;
   live_page_ = nullptr;
-  run_ = std::move(next);
+  session_owns_rig_ = false;
+  run_.reset();
+  try {
+    run_ = std::make_unique<LiveRun>(std::move(setup), options_);
+  } catch (const std::exception& e) {
+    refuse(e.what());  // the new rig did not open: back to the files that worked
+    opened = false;
+    run_ = std::make_unique<LiveRun>(load_live_run(files_), options_);
+  }
+  if (opened) files_ = files;
   build_live_page();
   setWindowTitle(QString("palprig - %1").arg(QString::fromStdString(run_->setup().scene.name)));
   return opened;
@@ -244,7 +243,7 @@ void MainWindow::closeEvent(QCloseEvent* e) {
         return;
       }
     }
-    experiment_page_->abort_and_wait(false);  // vents, keeps what was committed
+    experiment_page_->abort_and_wait();  // vents, keeps what was committed
   }
   // A participant screen on its own display is a second top-level window: it comes back, or
   // the application would not end with the console's window.

@@ -58,6 +58,7 @@ class MainWindow final : public QMainWindow {
   std::unique_ptr<LiveRun> run_;
   LiveRunFiles files_;
   LiveRunOptions options_;
+  bool session_owns_rig_ = false;  // the live page follows a session's ticks
   QTabWidget* tabs_ = nullptr;
   LivePage* live_page_ = nullptr;
   CalibrationPage* calibration_page_ = nullptr;

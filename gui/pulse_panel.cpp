@@ -28,17 +28,20 @@ PulsePanel::PulsePanel(LiveRun& run, QWidget* parent) : QGroupBox("Pulse", paren
     bpm->setObjectName(QString("bpm_%1").arg(i));
     bpm->setRange(kMinPulseRateBpm, kMaxPulseRateBpm);
     bpm->setDecimals(0);
-    bpm->setValue(field->requested_rate_bpm(i));
+    bpm->setValue(field->rate_bpm(i, run.switches().read().pulse));
     auto* amp = new QDoubleSpinBox;
     amp->setObjectName(QString("amplitude_%1").arg(i));
-    amp->setRange(0, 50);
+    amp->setRange(0, kMaxPulseAmplitude_kPa);
     amp->setSingleStep(0.5);
     amp->setDecimals(1);
-    amp->setValue(field->requested_amplitude_kPa(i));
+    amp->setValue(field->amplitude_kPa(i, run.switches().read().pulse));
     grid->addWidget(bpm, row, 1);
     grid->addWidget(amp, row, 2);
-    connect(bpm, &QDoubleSpinBox::valueChanged, this, [field, i](double v) { field->request_rate_bpm(i, v); });
-    connect(amp, &QDoubleSpinBox::valueChanged, this, [field, i](double v) { field->request_amplitude_kPa(i, v); });
+    OperatorSwitches* switches = &run.switches();
+    connect(bpm, &QDoubleSpinBox::valueChanged, this,
+            [switches, i](double v) { switches->request_pulse_rate_bpm(i, v); });
+    connect(amp, &QDoubleSpinBox::valueChanged, this,
+            [switches, i](double v) { switches->request_pulse_amplitude_kPa(i, v); });
   }
   auto* lag = new QCheckBox("Regulator lag compensation");
   lag->setObjectName("lag_compensation");

@@ -1,8 +1,8 @@
 #pragma once
 // PulsePanel: for scenes with arteries, each artery's rate (BPM) and amplitude (kPa) changed
-// while the loop runs (PulseField's request_rate_bpm / request_amplitude_kPa: relaxed atomics
-// the loop reads at its next tick, phase kept continuous), and the regulator-lag compensation
-// switch (PulseRendering::compensate_lag_switch).
+// while the loop runs, and the regulator-lag compensation switch: LiveRun::switches()
+// (controller/operator_switches.hpp), which the loop reads into the tick's inputs every tick (a
+// rate applies from the next tick, phase kept continuous).
 #include <QGroupBox>
 
 #include "gui/live_run.hpp"

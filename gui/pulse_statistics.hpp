@@ -1,19 +1,16 @@
 #pragma once
-// The statistics view's pulse-localisation part: the rows PulseStore::summarise computes (the
-// numbers `palprig stats trials` prints for pulse trials) as charts and a table. Hit rate per
-// condition with its Wilson interval and n; the mark's distance to the artery centreline, mean
-// and median (bars: median with the quartiles as its range).
+// The statistics view's pulse-localisation table: the rows PulseStore::summarise computes (the
+// numbers `palprig stats trials` prints for pulse trials). Hit rate per condition with its Wilson
+// interval and n; the mark's distance to the artery centreline, mean, median and IQR. Its charts
+// are charts/measures_chart's (pulse_hit_rate_chart, pulse_distance_chart), as `export --plot`
+// draws them.
 #include <vector>
 
-#include "charts/chart_png.hpp"
 #include "store/pulse_store.hpp"
 
 class QTableWidget;
 
 namespace palprig::gui {
-
-charts::Chart pulse_hit_rate_chart(const std::vector<PulseConditionSummary>& rows, double confidence);
-charts::Chart pulse_distance_chart(const std::vector<PulseConditionSummary>& rows);
 
 enum PulseStatisticsColumn {
   pulse_condition_column = 0,

@@ -3,7 +3,7 @@
 #include <QMetaObject>
 #include <csignal>
 
-#include "models/parse_error.hpp"
+#include "core/error.hpp"
 
 namespace palprig::gui {
 
@@ -77,28 +77,29 @@ class QueuedPulseListener final : public PulseSessionListener {
 
 }  // namespace
 
-SessionRun::SessionRun(QObject* parent) : QObject(parent) {}
+SessionRun::SessionRun(RunControl* control, QObject* parent)
+    : QObject(parent), control_(control ? control : &own_control_) {}
 
 SessionRun::~SessionRun() { abort_and_wait(); }
 
 void SessionRun::start(const StudySessionRequest& request, PersonFactory person) {
   launch([this, request, person = std::move(person)] {
     QueuedListener listener(this);
-    run_study_session(request, person, listener, &stop_, &pause_);
+    run_study_session(request, person, listener, *control_);
   });
 }
 
 void SessionRun::start_pulse(const StudySessionRequest& request, PulsePersonFactory person) {
   launch([this, request, person = std::move(person)] {
     QueuedPulseListener listener(this);
-    run_pulse_study(request, person, listener, &stop_, &pause_);
+    run_pulse_study(request, person, listener, *control_);
   });
 }
 
 void SessionRun::launch(std::function<void()> session) {
   abort_and_wait();
-  stop_.store(0);
-  pause_.store(false);
+  control_->restart();
+  control_->set_paused(false);
   running_ = true;
   const int generation = ++generation_;
   thread_ = std::thread([this, generation, session = std::move(session)] {
@@ -106,9 +107,9 @@ void SessionRun::launch(std::function<void()> session) {
     int code = 0;
     try {
       session();
-    } catch (const InputError& e) {
+    } catch (const Error& e) {  // core/error.hpp: BadInput (InputError) 2, anything else of palprig's 1
       refusal = QString::fromStdString(e.what());
-      code = 2;
+      code = e.exit_code();
     } catch (const std::exception& e) {
       refusal = QString::fromStdString(e.what());
       code = 1;
@@ -125,9 +126,9 @@ void SessionRun::launch(std::function<void()> session) {
   });
 }
 
-void SessionRun::pause() { pause_.store(true); }
-void SessionRun::resume() { pause_.store(false); }
-void SessionRun::abort() { stop_.store(SIGTERM); }
+void SessionRun::pause() { control_->set_paused(true); }
+void SessionRun::resume() { control_->set_paused(false); }
+void SessionRun::abort() { control_->request_stop(); }
 
 void SessionRun::abort_and_wait() {
   if (!thread_.joinable()) return;

@@ -3,7 +3,7 @@
 // sessions/pulse_study's run_pulse_study for pulse protocols), as LiveRun is to run_loop. The session runs on its own
 // thread; what it reports (SessionListener calls, on that thread) is copied and handed to the GUI thread with queued
 // calls, so the session thread never waits for the window. Pause, Resume and Abort reach the session loop through
-// atomics it reads every pass.
+// the window's RunControl, which it reads every pass.
 #include <QObject>
 #include <QString>
 #include <atomic>
@@ -20,7 +20,8 @@ namespace palprig::gui {
 class SessionRun final : public QObject {
   Q_OBJECT
  public:
-  explicit SessionRun(QObject* parent = nullptr);
+  // `control`: the window's operator handle (null: the run keeps its own).
+  explicit SessionRun(RunControl* control = nullptr, QObject* parent = nullptr);
   ~SessionRun() override;  // aborts (vents) and joins a running session
 
   // Starts the session thread. `person` makes the GUI participant (null for sim:SEED).
@@ -31,7 +32,7 @@ class SessionRun final : public QObject {
   // and the pulse trials as pulseTrialStarted / pulseTrialCommitted.
   void start_pulse(const StudySessionRequest& request, PulsePersonFactory person);
   bool running() const noexcept { return running_; }
-  bool paused() const noexcept { return pause_.load(); }
+  bool paused() const noexcept { return control_->paused(); }
 
   void pause();   // vents and holds the trial in progress
   void resume();  // presents the held trial again from its start
@@ -58,8 +59,8 @@ class SessionRun final : public QObject {
   void launch(std::function<void()> session);
 
   std::thread thread_;
-  std::atomic<int> stop_{0};
-  std::atomic<bool> pause_{false};
+  RunControl own_control_;
+  RunControl* control_;
   bool running_ = false;
   int generation_ = 0;  // GUI thread: which start() a queued end belongs to
 };

@@ -1,4 +1,5 @@
 #include "gui/statistics_view.hpp"
+#include "core/error.hpp"
 #include "gui/counted_text.hpp"
 
 #include <QDateTime>
@@ -18,12 +19,12 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 
 #include "charts/chart_svg.hpp"
 #include "gui/chart_view.hpp"
 #include "charts/measures_chart.hpp"
 #include "gui/pulse_statistics.hpp"
+#include "io/checked_output.hpp"
 #include "gui/statistics_tables.hpp"
 #include "store/trial_export.hpp"
 #include "store/trial_summary_report.hpp"
@@ -55,11 +56,11 @@ StatisticsRefresh compute(const std::string& location) {
 bool pulse_only(const TrialStatistics& s) { return !s.pulse.empty() && s.by_condition.rows.empty(); }
 
 charts::Chart condition_chart(const TrialStatistics& s) {
-  return pulse_only(s) ? pulse_hit_rate_chart(s.pulse, s.confidence) : charts::measures_chart(s.by_condition);
+  return pulse_only(s) ? charts::pulse_hit_rate_chart(s.pulse, s.confidence) : charts::measures_chart(s.by_condition);
 }
 
 charts::Chart detail_chart(const TrialStatistics& s) {
-  if (pulse_only(s)) return pulse_distance_chart(s.pulse);
+  if (pulse_only(s)) return charts::pulse_distance_chart(s.pulse);
   if (!s.by_tumor.rows.empty() && s.by_finger.rows.empty()) return charts::tumor_sensitivity_chart(s.by_tumor);
   return charts::measures_chart(s.by_finger, "Se, Sp, PPV and ACC per finger value (Wilson 95 % intervals)", "finger ");
 }
@@ -75,7 +76,8 @@ bool has_bars(const charts::Chart& chart) {
   return false;
 }
 
-// Runs on the worker; the same library calls as `palprig export` and `palprig stats trials --json`.
+// Runs on the worker (charts: on the GUI thread); the same library calls as `palprig export` and
+// `palprig stats trials --json`.
 StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& location,
                             const std::filesystem::path& dir, std::shared_ptr<const TrialStatistics> shown) {
   using Kind = StatisticsView::ExportKind;
@@ -88,9 +90,9 @@ StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& 
       if (kind == Kind::statistics_json) {
         const SummaryOptions options = view_options();
         const auto path = dir / "statistics.json";
-        std::ofstream file(path);
-        file << stats_trials_text(*store, options, "json");  // byte for byte `stats trials --json`
-        if (!file.flush()) throw std::runtime_error("cannot write " + path.string());
+        CheckedOutputFile file(path);
+        file.write(stats_trials_text(*store, options, "json"));  // byte for byte `stats trials --json`
+        file.commit();
         files.push_back(path);
       } else {
         const ExportResult r = kind == Kind::bids ? export_bids(*store, dir, ExportOptions{})
@@ -99,7 +101,7 @@ StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& 
       }
     } else {
       // The charts as the view shows them (the numbers of the last refresh).
-      if (!shown) throw std::runtime_error("no statistics shown yet: refresh first");
+      if (!shown) throw BadInput("no statistics shown yet: refresh first");
       const char* ext = kind == Kind::chart_png ? ".png" : ".svg";
       auto write = [&](const charts::Chart& chart, const std::string& name) {
         const auto path = dir / (name + ext);
@@ -189,18 +191,8 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   connect(change_delay_, &QTimer::timeout, this, &StatisticsView::refresh);
   connect(file_watcher_, &QFileSystemWatcher::fileChanged, this, [this] { change_delay_->start(); });
   connect(&refresh_watcher_, &QFutureWatcher<StatisticsRefresh>::finished, this, &StatisticsView::refresh_done);
-  connect(&export_watcher_, &QFutureWatcher<StatisticsExport>::finished, this, [this] {
-    const StatisticsExport r = export_watcher_.result();
-    for (auto* b : export_buttons_) b->setEnabled(statistics_ != nullptr);
-    if (!r.error.isEmpty()) {
-      status_->setText(tr("export refused: %1").arg(r.error));
-      emit export_failed(r.error);
-    } else {
-      status_->setText(
-          tr("exported %1 file(s) to %2").arg(r.files.size()).arg(QFileInfo(r.files.value(0)).absolutePath()));
-      emit exported(r.files);
-    }
-  });
+  connect(&export_watcher_, &QFutureWatcher<StatisticsExport>::finished, this,
+          [this] { export_finished(export_watcher_.result()); });
   condition_chart_->set_chart(charts::Chart{}, tr("no scored trial yet"));
   detail_chart_->set_chart(charts::Chart{}, tr("no scored trial yet"));
 }
@@ -292,7 +284,7 @@ void StatisticsView::display(const TrialStatistics& s) {
     tables_->setSizes(pulse_only(s) ? QList<int>{520, 0, 0, 230}
                                     : QList<int>{520, 230, 170, s.pulse.empty() ? 0 : 150});
   }
-  for (auto* b : export_buttons_) b->setEnabled(!export_watcher_.isRunning());
+  for (auto* b : export_buttons_) b->setEnabled(!export_watcher_.isRunning() && !chart_export_pending_);
 }
 
 void StatisticsView::watch_store_files() {
@@ -313,14 +305,37 @@ void StatisticsView::ask_and_export(ExportKind kind) {
 }
 
 void StatisticsView::export_to(ExportKind kind, const QString& dir) {
-  if (export_watcher_.isRunning()) {
+  if (export_watcher_.isRunning() || chart_export_pending_) {
     emit export_failed(tr("an export is still running"));
     return;
   }
   for (auto* b : export_buttons_) b->setEnabled(false);
   status_->setText(tr("exporting to %1…").arg(dir));
+  if (kind == ExportKind::chart_png || kind == ExportKind::chart_svg) {
+    // Charts are drawn on the GUI thread (QCustomPlot is a widget), at the event loop's next turn.
+    chart_export_pending_ = true;
+    QTimer::singleShot(0, this, [this, kind, dir] {
+      const StatisticsExport r =
+          run_export(kind, location_.toStdString(), std::filesystem::path(dir.toStdString()), statistics_);
+      chart_export_pending_ = false;
+      export_finished(r);
+    });
+    return;
+  }
   export_watcher_.setFuture(QtConcurrent::run(run_export, kind, location_.toStdString(),
                                               std::filesystem::path(dir.toStdString()), statistics_));
+}
+
+void StatisticsView::export_finished(const StatisticsExport& r) {
+  for (auto* b : export_buttons_) b->setEnabled(statistics_ != nullptr);
+  if (!r.error.isEmpty()) {
+    status_->setText(tr("export refused: %1").arg(r.error));
+    emit export_failed(r.error);
+  } else {
+    status_->setText(
+        tr("exported %1 file(s) to %2").arg(r.files.size()).arg(QFileInfo(r.files.value(0)).absolutePath()));
+    emit exported(r.files);
+  }
 }
 
 }  // namespace palprig::gui

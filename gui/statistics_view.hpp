@@ -1,5 +1,5 @@
 #pragma once
-// The live statistics of a trial store (issue 15): Se, Sp, PPV, ACC per condition and per finger
+// The live statistics of a trial store: Se, Sp, PPV, ACC per condition and per finger
 // value with Wilson intervals as asymmetric error bars (n above each bar, "n/a" where a measure
 // has no cases), per-tumor sensitivity for localisation, response time mean/sd per condition
 // with paper 002's t-test, and paper 002's combined-interval comparison (eq. 10).
@@ -12,9 +12,11 @@
 //
 // Exports (buttons, or export_to for the console and tests) run on a worker too and call the
 // same library functions as `palprig export` (long CSV, BIDS) and `palprig stats trials --json`
-// (statistics.json); the charts are written as PNG and SVG from the same drawing as the screen.
+// (statistics.json); the charts are written as PNG and SVG from the same drawing as the screen,
+// on the GUI thread (QCustomPlot draws them, and it is a widget; a chart takes a few tens of ms),
+// from the event loop's next turn, so exported() follows export_to as for the other kinds.
 //
-// Pulse-localisation trials (issue 15): hit rate per condition with its Wilson interval and n,
+// Pulse-localisation trials: hit rate per condition with its Wilson interval and n,
 // distance to the artery mean / median / IQR, from PulseStore::summarise (the same call as
 // `palprig stats trials`), in their own table and, when the store has only pulse trials, in the
 // two charts (gui/pulse_statistics).
@@ -94,10 +96,12 @@ class StatisticsView : public QWidget {
   void display(const TrialStatistics& statistics);
   void watch_store_files();
   void ask_and_export(ExportKind kind);
+  void export_finished(const StatisticsExport& result);
 
   QString location_, export_dir_;
   std::shared_ptr<const TrialStatistics> statistics_;
   bool running_ = false, pending_ = false;
+  bool chart_export_pending_ = false;  // a chart export waits for the event loop (GUI thread)
   QFutureWatcher<StatisticsRefresh> refresh_watcher_;
   QFutureWatcher<StatisticsExport> export_watcher_;
   QFileSystemWatcher* file_watcher_ = nullptr;

@@ -8,7 +8,7 @@
 // minimum and maximum in each column (TraceHistory::columns_min_max, one pass over the window)
 // and draws one vertical span per column plus the joins: the cost follows the width in pixels,
 // not the number of samples, and no peak is lost (a 1 ms spike still colours its column).
-// Measured in bench/bench_gui_frames.cpp (docs/developing.md).
+// Measured in bench/bench_gui_frames.cpp (docs/benchmarks.md, "The window's frame times").
 #include <QWidget>
 #include <array>
 #include <vector>

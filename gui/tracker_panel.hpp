@@ -1,5 +1,5 @@
 #pragma once
-// TrackerPanel: a tracker input's state for the operator (issue 26): the server and whether it
+// TrackerPanel: a tracker input's state for the operator: the server and whether it
 // is connected, the messages received, each tool of the tracking file with its finger, how
 // many poses came and how old the last is (red once older than the stale-input limit: that
 // finger is vented), and device names the tracker sends that the tracking file does not map

@@ -8,7 +8,7 @@
 
 #include "formats/modbus_register_map.hpp"
 #include "inputs/igtl_pose_reader.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "runtime/monotonic_clock.hpp"
 #include "runtime/realtime.hpp"
 #include "runtime/worker_fault.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// IgtlInput: tracked fingers over OpenIGTLink (issue 26) as the loop's input source. A client
+// IgtlInput: tracked fingers over OpenIGTLink as the loop's input source. A client
 // connects to a tracker's server (PlusServer streaming an NDI Aurora, 3D Slicer, `palprig
 // igtl-replay`) at `igtl:HOST:PORT`; a reader thread below the loop's priority receives
 // TRANSFORM (and POSITION) messages, keeps the poses of the tools the tracking file names,

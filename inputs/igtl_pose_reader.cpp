@@ -12,7 +12,7 @@
 
 #include <igtlClientSocket.h>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

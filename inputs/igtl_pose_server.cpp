@@ -11,6 +11,7 @@
 #include <igtlTimeStamp.h>
 #include <igtlTransformMessage.h>
 
+#include "core/error.hpp"
 #include "runtime/monotonic_clock.hpp"
 
 namespace palprig {
@@ -32,8 +33,8 @@ void IgtlPoseServer::start() {
   errno = 0;
   if (listener_->socket->CreateServer(options_.port) != 0) {
     const int error = errno;
-    throw std::runtime_error("cannot listen on port " + std::to_string(options_.port) +
-                             (error ? std::string(": ") + std::strerror(error) : std::string()));
+    throw Error("cannot listen on port " + std::to_string(options_.port) +
+                (error ? std::string(": ") + std::strerror(error) : std::string()));
   }
   port_ = listener_->socket->GetServerPort();
   if (record_) sends_.reserve(poses_.size() * 2);

@@ -42,7 +42,7 @@ class IgtlPoseServer {
   // Keep the CLOCK_MONOTONIC time each row was sent (the latency benchmark); before start().
   void record_sends(bool on) { record_ = on; }
 
-  // Listens and starts accepting. Throws std::runtime_error naming the port when it cannot.
+  // Listens and starts accepting. Throws Error naming the port when it cannot.
   void start();
   void stop() noexcept;
   int port() const noexcept { return port_; }

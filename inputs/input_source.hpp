@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/touch_sample.hpp"
 #include "models/scene.hpp"
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 namespace {
@@ -25,14 +27,13 @@ double event_time_s(const input_event& ev) noexcept {
 }
 
 TabletDecoder::TabletDecoder(const TabletAxes& axes, const TabletConfig& config) : axes_(axes), config_(config) {
-  if (axes.x_max <= axes.x_min || axes.y_max <= axes.y_min)
-    throw std::invalid_argument("the tablet reports an empty X or Y range");
-  if (axes.pressure_max <= axes.pressure_min) throw std::invalid_argument("the tablet reports no pressure range");
+  if (axes.x_max <= axes.x_min || axes.y_max <= axes.y_min) throw BadInput("the tablet reports an empty X or Y range");
+  if (axes.pressure_max <= axes.pressure_min) throw BadInput("the tablet reports no pressure range");
   auto units_per_mm = [](int resolution, int lo, int hi, double size_mm, const char* axis) {
     if (size_mm > 0) return double(hi - lo) / size_mm;  // the rig file's size wins
     if (resolution > 0) return double(resolution);
-    throw std::invalid_argument(std::string("the tablet reports no resolution on ") + axis +
-                                "; give tablet.size_mm [width, height] in the rig file");
+    throw BadInput(std::string("the tablet reports no resolution on ") + axis +
+                   "; give tablet.size_mm [width, height] in the rig file");
   };
   x_units_per_mm_ = units_per_mm(axes.x_resolution, axes.x_min, axes.x_max, config.size_mm[0], "X");
   y_units_per_mm_ = units_per_mm(axes.y_resolution, axes.y_min, axes.y_max, config.size_mm[1], "Y");

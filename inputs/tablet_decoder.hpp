@@ -49,7 +49,7 @@ struct PenFrame {
 
 class TabletDecoder {
  public:
-  // Throws std::invalid_argument when the axes cannot be converted (no resolution and no
+  // Throws BadInput when the axes cannot be converted (no resolution and no
   // size_mm, empty ranges).
   TabletDecoder(const TabletAxes& axes, const TabletConfig& config);
 

@@ -9,7 +9,7 @@
 
 #include "runtime/realtime.hpp"
 #include "runtime/worker_fault.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -115,7 +115,9 @@ std::unique_ptr<TabletInput> make_tablet_input(const std::string& spec, const Ta
     source = std::make_unique<EvdevPenSource>(path, config.grab);
   try {
     return std::make_unique<TabletInput>(std::move(source), config);
-  } catch (const std::invalid_argument& e) {
+  } catch (const InputError&) {
+    throw;  // a recording refused: it names its file and line already
+  } catch (const BadInput& e) {
     throw InputError("input", spec, std::string("a tablet palprig can convert to mm and newtons (") + e.what() + ")");
   }
 }

@@ -25,7 +25,7 @@ namespace palprig {
 
 class TabletInput final : public InputSource {
  public:
-  // Starts the reader thread at once. Throws std::invalid_argument (axes the config cannot
+  // Starts the reader thread at once. Throws BadInput (axes the config cannot
   // convert) before starting it.
   TabletInput(std::unique_ptr<PenEventSource> source, const TabletConfig& config);
   ~TabletInput() override;

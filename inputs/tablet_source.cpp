@@ -1,3 +1,5 @@
+// Over 400 lines: the two pen sources (a live evdev device, an evemu recording) share the event
+// decoding and the checks of a recording's lines, which stay beside the source they guard.
 #include "inputs/tablet_source.hpp"
 #include "runtime/monotonic_clock.hpp"
 
@@ -20,8 +22,8 @@
 #include <memory>
 #include <set>
 
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "inputs/tablet_decoder.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 struct libevdev;
 

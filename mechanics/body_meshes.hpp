@@ -17,11 +17,11 @@ enum FingertipMaterial { kSkin = 0, kFingerTissue = 1, kNail = 2 };
 // Boundaries: "bone" (the phalanx's outline, where the press is applied), "fingertip_contact"
 // (the outline below 3/4 of the height: what may touch), "fingertip_surface" (all the outline).
 struct FingertipMeshSizes {
-  double element_mm = 1.0;       // along the outline below fine_height_mm
-  double fine_height_mm = -1;    // default: 0.6 of the height
-  double top_element_mm = -1;    // at the top, growing linearly above fine_height_mm (default 2.5 x)
-  int tissue_rows = 0;           // element rows from the bone to the skin (default: from the palmar thickness)
-  double row_grading = 0.8;      // rows at (i/n)^grading of the way: < 1 finer towards the skin
+  double element_mm = 1.0;     // along the outline below fine_height_mm
+  double fine_height_mm = -1;  // default: 0.6 of the height
+  double top_element_mm = -1;  // at the top, growing linearly above fine_height_mm (default 2.5 x)
+  int tissue_rows = 0;         // element rows from the bone to the skin (default: from the palmar thickness)
+  double row_grading = 0.8;    // rows at (i/n)^grading of the way: < 1 finer towards the skin
 };
 QuadMesh mesh_fingertip(const FingertipBody& body, const FingertipMeshSizes& sizes);
 inline QuadMesh mesh_fingertip(const FingertipBody& body, double element_mm) {
@@ -38,8 +38,8 @@ struct BlockMeshSizes {
   double element_mm = 1.0;
   double fine_half_width_mm = 10.0;
   double fine_depth_mm = 12.0;
-  double growth = 0.2;           // element size added per mm beyond the fine zone
-  double max_element_mm = -1;    // default: 5 x element_mm
+  double growth = 0.2;         // element size added per mm beyond the fine zone
+  double max_element_mm = -1;  // default: 5 x element_mm
 };
 QuadMesh mesh_block(const TissueBlock& block, const BlockMeshSizes& sizes);
 

@@ -6,12 +6,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 namespace {
 
 void need(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument(what);
+  if (!ok) throw BadInput(what);
 }
 
 double segment_distance(const Point2_mm& p, const Point2_mm& a, const Point2_mm& b) noexcept {
@@ -115,15 +117,11 @@ double Artery::distance_factor(const Point2_mm& p) const noexcept {
 
 PulseField::PulseField(std::vector<ArterySpec> arteries, double pad_radius_mm) {
   if (arteries.size() > kMaxArteries)
-    throw std::invalid_argument("at most " + std::to_string(kMaxArteries) + " arteries per scene, got " +
-                                std::to_string(arteries.size()));
+    throw BadInput("at most " + std::to_string(kMaxArteries) + " arteries per scene, got " +
+                   std::to_string(arteries.size()));
   for (ArterySpec& a : arteries) {
-    if (find(a.name) >= 0) throw std::invalid_argument("two arteries are named '" + a.name + "'");
+    if (find(a.name) >= 0) throw BadInput("two arteries are named '" + a.name + "'");
     arteries_.emplace_back(std::move(a), pad_radius_mm);
-  }
-  for (std::size_t i = 0; i < arteries_.size(); ++i) {
-    requested_bpm_[i].store(arteries_[i].spec().rate_bpm);
-    requested_amplitude_kPa_[i].store(arteries_[i].spec().amplitude_kPa);
   }
 }
 
@@ -133,31 +131,29 @@ int PulseField::find(const std::string& name) const noexcept {
   return -1;
 }
 
-bool PulseField::request_rate_bpm(std::size_t artery, double bpm) const noexcept {
-  if (artery >= arteries_.size() || !std::isfinite(bpm) || bpm < kMinPulseRateBpm || bpm > kMaxPulseRateBpm)
-    return false;
-  requested_bpm_[artery].store(bpm, std::memory_order_relaxed);
-  return true;
+bool PulseField::valid_rate_bpm(double bpm) noexcept {
+  return std::isfinite(bpm) && bpm >= kMinPulseRateBpm && bpm <= kMaxPulseRateBpm;
 }
 
-double PulseField::requested_rate_bpm(std::size_t artery) const noexcept {
-  return artery < arteries_.size() ? requested_bpm_[artery].load(std::memory_order_relaxed) : 0.0;
+bool PulseField::valid_amplitude_kPa(double amplitude_kPa) noexcept {
+  return std::isfinite(amplitude_kPa) && amplitude_kPa >= 0 && amplitude_kPa <= kMaxPulseAmplitude_kPa;
 }
 
-bool PulseField::request_amplitude_kPa(std::size_t artery, double amplitude_kPa) const noexcept {
-  if (artery >= arteries_.size() || !std::isfinite(amplitude_kPa) || amplitude_kPa < 0 || amplitude_kPa > 50)
-    return false;
-  requested_amplitude_kPa_[artery].store(amplitude_kPa, std::memory_order_relaxed);
-  return true;
+double PulseField::rate_bpm(std::size_t artery, const PulseSettings& settings) const noexcept {
+  if (artery >= arteries_.size()) return 0.0;
+  const double set = settings.rate_bpm[artery];
+  return valid_rate_bpm(set) ? set : arteries_[artery].spec().rate_bpm;
 }
 
-double PulseField::requested_amplitude_kPa(std::size_t artery) const noexcept {
-  return artery < arteries_.size() ? requested_amplitude_kPa_[artery].load(std::memory_order_relaxed) : 0.0;
+double PulseField::amplitude_kPa(std::size_t artery, const PulseSettings& settings) const noexcept {
+  if (artery >= arteries_.size()) return 0.0;
+  const double set = settings.amplitude_kPa[artery];
+  return valid_amplitude_kPa(set) ? set : arteries_[artery].spec().amplitude_kPa;
 }
 
-void PulseField::update_clocks(PulseClocks& clocks, double t_s) const noexcept {
+void PulseField::update_clocks(PulseClocks& clocks, double t_s, const PulseSettings& settings) const noexcept {
   for (std::size_t i = 0; i < arteries_.size(); ++i) {
-    const double want = requested_bpm_[i].load(std::memory_order_relaxed);
+    const double want = rate_bpm(i, settings);
     PulseClock& c = clocks.clock[i];
     if (!clocks.started) {
       c = PulseClock{want, 0.0, arteries_[i].spec().phase_offset};
@@ -169,7 +165,8 @@ void PulseField::update_clocks(PulseClocks& clocks, double t_s) const noexcept {
 }
 
 PulseFelt PulseField::felt(const FingerContact& finger, const PulseClocks& clocks, PulseActivation& activation,
-                           double t_s, const PulseLookahead& ahead, const ForceWindow* measured_window) const noexcept {
+                           double t_s, const PulseLookahead& ahead, const ForceWindow* measured_window,
+                           const PulseSettings& settings) const noexcept {
   PulseFelt out;
   const Point2_mm& at = finger.at;
   const double force_N = finger.force_N;
@@ -193,8 +190,7 @@ PulseFelt PulseField::felt(const FingerContact& finger, const PulseClocks& clock
     ++out.arteries_on;
     const ForceWindow& window =
         !a.spec().own_force_window && measured_window ? *measured_window : a.spec().force_window;
-    const double amp =
-        requested_amplitude_kPa_[i].load(std::memory_order_relaxed) * a.distance_factor(at) * window.factor(force_N);
+    const double amp = amplitude_kPa(i, settings) * a.distance_factor(at) * window.factor(force_N);
     if (amp <= 0) continue;
     const PulseClock& c = clocks.clock[i];
     out.now_kPa += amp * a.spec().waveform.value(c.phase(t_s));

@@ -21,12 +21,12 @@
 //   pulse pressure    amplitude_kPa * distance factor * force factor * waveform(phase).
 // A finger over two arteries feels both; every finger over an artery feels it.
 //
-// Rates and amplitudes can change while running from any thread (request_rate_bpm,
-// request_amplitude_kPa: relaxed atomics, no lock); the loop thread applies a rate request at its
-// next tick with the phase kept continuous (PulseClock).
+// Rates and amplitudes can change while running: the operator's values arrive with each tick as
+// PulseSettings (the tick's inputs), and a new rate applies from that tick with the phase kept
+// continuous (PulseClock). The field itself never changes after it is made.
 #include <array>
-#include <atomic>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,6 +38,7 @@ namespace palprig {
 
 inline constexpr std::size_t kMaxArteries = 8;
 inline constexpr std::size_t kMaxSourcesPerArtery = 512;
+inline constexpr double kMaxPulseAmplitude_kPa = 50.0;
 
 // 003's force window. Defaults: 60 and 120 mmHg (diastolic, systolic) over a 1.5 cm^2 fingertip
 // contact, i.e. 8.0 kPa and 16.0 kPa times 150 mm^2.
@@ -72,7 +73,7 @@ struct ArterySpec {
 
 class Artery {
  public:
-  // Validates (std::invalid_argument naming the problem) and places the sources.
+  // Validates (BadInput naming the problem) and places the sources.
   Artery(ArterySpec spec, double finger_pad_radius_mm);
 
   const ArterySpec& spec() const noexcept { return spec_; }
@@ -94,6 +95,20 @@ class Artery {
   std::vector<Point3_mm> sources_;
   double range_mm_ = 0, on_mm_ = 0, off_mm_ = 0, length_mm_ = 0;
   double region_x0_ = 0, region_y0_ = 0, region_x1_ = 0, region_y1_ = 0;
+};
+
+// The operator's rate and amplitude per artery for one tick; NaN: the scene's own value.
+struct PulseSettings {
+  static constexpr double kScene = std::numeric_limits<double>::quiet_NaN();
+  std::array<double, kMaxArteries> rate_bpm = filled(kScene);
+  std::array<double, kMaxArteries> amplitude_kPa = filled(kScene);
+
+ private:
+  static constexpr std::array<double, kMaxArteries> filled(double v) {
+    std::array<double, kMaxArteries> a{};
+    for (double& x : a) x = v;
+    return a;
+  }
 };
 
 struct PulseClocks {
@@ -140,28 +155,26 @@ class PulseField {
   // Index of the artery with this name, or -1.
   int find(const std::string& name) const noexcept;
 
-  // Any thread: beat at bpm from the next tick on. False (and no change) for an unknown artery
-  // or a rate outside kMinPulseRateBpm..kMaxPulseRateBpm.
-  bool request_rate_bpm(std::size_t artery, double bpm) const noexcept;
-  double requested_rate_bpm(std::size_t artery) const noexcept;
-  // Any thread: pulse amplitude (kPa straight over the artery at the force window's top) from
-  // the next tick on. False (and no change) for an unknown artery or a value outside 0..50 kPa.
-  bool request_amplitude_kPa(std::size_t artery, double amplitude_kPa) const noexcept;
-  double requested_amplitude_kPa(std::size_t artery) const noexcept;
+  // The rates and amplitudes an operator may set: kMinPulseRateBpm..kMaxPulseRateBpm, and
+  // 0..kMaxPulseAmplitude_kPa (kPa straight over the artery at the force window's top).
+  static bool valid_rate_bpm(double bpm) noexcept;
+  static bool valid_amplitude_kPa(double amplitude_kPa) noexcept;
+  // What artery i beats at and how strongly with these settings (the scene's where they are NaN).
+  double rate_bpm(std::size_t artery, const PulseSettings& settings) const noexcept;
+  double amplitude_kPa(std::size_t artery, const PulseSettings& settings) const noexcept;
 
   // Loop thread, once per tick before felt(): start the clocks (phase 0 + offset at t = 0 of
-  // the run) or apply pending rate requests at t.
-  void update_clocks(PulseClocks& clocks, double t_s) const noexcept;
+  // the run) or apply the settings' rates from t.
+  void update_clocks(PulseClocks& clocks, double t_s, const PulseSettings& settings = {}) const noexcept;
   // Loop thread, per finger: update its activation and return its pulse pressure now and
   // ahead.lead_s ahead (see PulseLookahead). measured_window, when given, serves arteries whose
   // scene left their force window out. A lifted finger releases every artery.
   PulseFelt felt(const FingerContact& finger, const PulseClocks& clocks, PulseActivation& activation, double t_s,
-                 const PulseLookahead& ahead, const ForceWindow* measured_window = nullptr) const noexcept;
+                 const PulseLookahead& ahead, const ForceWindow* measured_window = nullptr,
+                 const PulseSettings& settings = {}) const noexcept;
 
  private:
   std::vector<Artery> arteries_;
-  mutable std::array<std::atomic<double>, kMaxArteries> requested_bpm_{};
-  mutable std::array<std::atomic<double>, kMaxArteries> requested_amplitude_kPa_{};
 };
 
 }  // namespace palprig

@@ -6,6 +6,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 namespace {
@@ -57,7 +59,7 @@ CaseDifficulty parse_difficulty(const std::string& word) {
   if (word == "easy") return CaseDifficulty::easy;
   if (word == "medium") return CaseDifficulty::medium;
   if (word == "hard") return CaseDifficulty::hard;
-  throw std::invalid_argument("difficulty must be easy, medium or hard, got \"" + word + "\"");
+  throw BadInput("difficulty must be easy, medium or hard, got \"" + word + "\"");
 }
 
 GeneratedCase generate_case(std::uint64_t seed, CaseDifficulty difficulty) {

@@ -27,7 +27,7 @@ namespace palprig {
 
 enum class CaseDifficulty : std::uint8_t { easy, medium, hard };
 const char* to_string(CaseDifficulty d) noexcept;
-// Throws std::invalid_argument for anything but "easy", "medium", "hard".
+// Throws BadInput for anything but "easy", "medium", "hard".
 CaseDifficulty parse_difficulty(const std::string& word);
 
 struct GeneratedTumor {

@@ -1,6 +1,6 @@
 #pragma once
 // Where the fingers are and how hard each presses, from one sample: FingerLayout's triangle
-// around the pen (paper 002), or each finger at its own tracked position (issue 26); one force
+// around the pen (paper 002), or each finger at its own tracked position; one force
 // for all fingers (the pen, a shared load cell) or one per finger (a load cell under each).
 #include <array>
 

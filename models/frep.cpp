@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 namespace {
@@ -14,7 +16,7 @@ namespace {
 constexpr double kOutside = -1.0;  // value reported for points outside a node's box
 
 void need(bool ok, const char* what) {
-  if (!ok) throw std::invalid_argument(std::string("FrepShape: ") + what);
+  if (!ok) throw BadInput(std::string("FrepShape: ") + what);
 }
 
 bool finite(const Point3_mm& p) { return std::isfinite(p.x_mm) && std::isfinite(p.y_mm) && std::isfinite(p.z_mm); }
@@ -169,7 +171,7 @@ void FrepShape::index_union(NodeData& n) {
   std::size_t entries = 0;
   for (int pass = 0; pass < 2; ++pass) {
     for (std::int32_t i = 0; i < n.count; ++i) {
-      const Node c = children_[static_cast<std::size_t>(n.first + i)];
+      const Node c = children_[std::size_t(n.first) + std::size_t(i)];
       const Box3_mm& b = nodes_[static_cast<std::size_t>(c)].box;
       if (b.empty()) continue;  // contains nothing: never a candidate
       const std::int32_t x0 = cell(b.lo.x_mm, g.x0, g.inv_cell_x, side), x1 = cell(b.hi.x_mm, g.x0, g.inv_cell_x, side);
@@ -181,7 +183,7 @@ void FrepShape::index_union(NodeData& n) {
             ++count[k + 1];
             ++entries;
           } else {
-            g.parts[static_cast<std::size_t>(g.cell_start[k] + count[k]++)] = c;
+            g.parts[std::size_t(g.cell_start[k]) + std::size_t(count[k]++)] = c;
           }
         }
     }
@@ -261,7 +263,7 @@ Box3_mm FrepShape::bounds() const noexcept { return root_ < 0 ? empty_box() : no
 double FrepShape::cost_of(const NodeData& n) const noexcept {
   constexpr double kVisit = 1.0, kPowCalls = 4.0, kExpCall = 3.0;
   auto cost = [&](Node c) { return nodes_[static_cast<std::size_t>(c)].cost; };
-  auto child = [&](std::int32_t i) { return children_[static_cast<std::size_t>(n.first + i)]; };
+  auto child = [&](std::int32_t i) { return children_[std::size_t(n.first) + std::size_t(i)]; };
   switch (n.kind) {
     case Kind::sphere:
     case Kind::ellipsoid:
@@ -317,7 +319,7 @@ double FrepShape::eval(Node index, const Point3_mm& p) const noexcept {
     case Kind::blobs: {
       double sum = 0;
       for (std::int32_t i = 0; i < n.count; ++i) {
-        const Blob& b = terms_[static_cast<std::size_t>(n.first + i)];
+        const Blob& b = terms_[std::size_t(n.first) + std::size_t(i)];
         const double bx = p.x_mm - b.centre.x_mm, by = p.y_mm - b.centre.y_mm, bz = p.z_mm - b.centre.z_mm;
         const auto& s = b.inverse_scale_per_mm2;
         sum += b.k * std::exp(-(s[0] * bx * bx + s[1] * by * by + s[2] * bz * bz));
@@ -328,8 +330,8 @@ double FrepShape::eval(Node index, const Point3_mm& p) const noexcept {
       double v = kOutside;
       if (n.grid >= 0) {  // only the parts whose box meets p's cell can hold p
         const PartGrid& g = grids_[static_cast<std::size_t>(n.grid)];
-        auto cell = [](double v, double origin, double inv, std::int32_t cells) {
-          const double c = std::floor((v - origin) * inv);
+        auto cell = [](double coordinate_mm, double origin, double inv, std::int32_t cells) {
+          const double c = std::floor((coordinate_mm - origin) * inv);
           return static_cast<std::int32_t>(std::clamp(c, 0.0, double(cells - 1)));
         };
         const std::size_t k = static_cast<std::size_t>(cell(p.y_mm, g.y0, g.inv_cell_y, g.ny)) * g.nx +
@@ -339,20 +341,20 @@ double FrepShape::eval(Node index, const Point3_mm& p) const noexcept {
         return v;
       }
       for (std::int32_t i = 0; i < n.count; ++i) {
-        v = std::max(v, eval(children_[static_cast<std::size_t>(n.first + i)], p));
+        v = std::max(v, eval(children_[std::size_t(n.first) + std::size_t(i)], p));
       }
       return v;
     }
     case Kind::intersect: {
       double v = std::numeric_limits<double>::infinity();
       for (std::int32_t i = 0; i < n.count; ++i) {
-        v = std::min(v, eval(children_[static_cast<std::size_t>(n.first + i)], p));
+        v = std::min(v, eval(children_[std::size_t(n.first) + std::size_t(i)], p));
       }
       return v;
     }
     case Kind::subtract: {
       const double a = eval(children_[static_cast<std::size_t>(n.first)], p);
-      return std::min(a, -eval(children_[static_cast<std::size_t>(n.first + 1)], p));
+      return std::min(a, -eval(children_[std::size_t(n.first) + 1], p));
     }
     case Kind::scaled: {
       const Point3_mm q{n.a.x_mm + dx / n.b.x_mm, n.a.y_mm + dy / n.b.y_mm, n.a.z_mm + dz / n.b.z_mm};

@@ -48,7 +48,7 @@ class FrepShape {
   using Node = std::int32_t;
 
   // Builders return the new node; the last node built is the root unless set_root() says
-  // otherwise. Sizes must be positive and finite (std::invalid_argument otherwise): the scene
+  // otherwise. Sizes must be positive and finite (BadInput otherwise): the scene
   // loader refuses bad files with the field's name before it gets here.
   Node sphere(const Point3_mm& centre, double radius_mm);
   // Semi-axes along x, y, z, the x-y axes turned by yaw_deg about the depth axis.

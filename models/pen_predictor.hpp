@@ -9,7 +9,7 @@
 // a tablet reports at 100-200 Hz, the loop runs at 1 kHz) is not a new sample. The horizon is
 // capped (max_horizon_s) and so is the speed (max_speed_mm_per_s, well above a hand's), so a
 // pen that jumps (a lifted pen put down elsewhere, a glitch) is not flung across the pad.
-// Tracked fingers (TouchSample::own_positions, per_finger_force: issue 26) are extrapolated the
+// Tracked fingers (TouchSample::own_positions, per_finger_force) are extrapolated the
 // same way, each from its own positions and force, over the samples since its tool was last
 // vented (out of view), so a tool coming back into view is not read as a jump.
 #include <array>

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 namespace {
@@ -13,7 +15,7 @@ constexpr std::size_t kDelayCapacity = 8192;  // enough for 8 s of dead time at 
 
 PneumaticPlant::PneumaticPlant(const PlantParams& p) : params_(p), delay_(kDelayCapacity), rng_(p.seed) {
   auto need = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("PneumaticPlant: ") + what);
+    if (!ok) throw BadInput(std::string("PneumaticPlant: ") + what);
   };
   need(std::isfinite(p.dead_time_s) && p.dead_time_s >= 0, "dead_time_s must be >= 0");
   need(std::isfinite(p.time_constant_s) && p.time_constant_s >= 0, "time_constant_s must be >= 0");
@@ -37,8 +39,8 @@ double PneumaticPlant::step(double command_kPa, double dt_s) noexcept {
   const double x = std::clamp(command_kPa, params_.min_kPa, params_.max_kPa);
   // Play operator (backlash of +/- r). Near the bottom of the range the band above the
   // command narrows to the distance from the bottom: a regulator's exhaust valve opens fully at
-  // a 0 kPa command, so venting empties the actuator instead of leaving it at +r (issue 10:
-  // a vented plant read about 2 kPa, and a 0 kPa stimulus was felt at 2 kPa). Above 2 r the
+  // a 0 kPa command, so venting empties the actuator instead of leaving it at +r (before
+  // this, a vented plant read about 2 kPa, and a 0 kPa stimulus was felt at 2 kPa). Above 2 r the
   // band is the full +/- r, continuous in between.
   const double r = params_.hysteresis_kPa;
   const double r_above = std::min(r, x - params_.min_kPa);

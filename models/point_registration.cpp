@@ -6,6 +6,8 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 namespace {
@@ -15,7 +17,7 @@ Eigen::Matrix3Xd columns(const std::vector<Vec3_mm>& points) {
   for (std::size_t i = 0; i < points.size(); ++i)
     for (int r = 0; r < 3; ++r) {
       if (!std::isfinite(points[i][r]))
-        throw std::invalid_argument("fiducial " + std::to_string(i + 1) + " has a non-finite coordinate");
+        throw BadInput("fiducial " + std::to_string(i + 1) + " has a non-finite coordinate");
       m(r, static_cast<Eigen::Index>(i)) = points[i][r];
     }
   return m;
@@ -32,17 +34,16 @@ double second_spread_mm(const Eigen::Matrix3Xd& m) {
 
 PointRegistration register_points(const std::vector<Vec3_mm>& from, const std::vector<Vec3_mm>& to) {
   if (from.size() != to.size())
-    throw std::invalid_argument("as many touched points as fiducials (got " + std::to_string(from.size()) + " and " +
-                                std::to_string(to.size()) + ")");
-  if (from.size() < 3) throw std::invalid_argument("at least 3 fiducials, got " + std::to_string(from.size()));
+    throw BadInput("as many touched points as fiducials (got " + std::to_string(from.size()) + " and " +
+                   std::to_string(to.size()) + ")");
+  if (from.size() < 3) throw BadInput("at least 3 fiducials, got " + std::to_string(from.size()));
   const Eigen::Matrix3Xd a = columns(from), b = columns(to);
   // 1 mm of spread off the line: below that, the rotation about the line is noise.
   constexpr double kMinSpread_mm = 1.0;
   if (second_spread_mm(b) < kMinSpread_mm)
-    throw std::invalid_argument("fiducials that are not all on one line (their spread off the line is under 1 mm)");
+    throw BadInput("fiducials that are not all on one line (their spread off the line is under 1 mm)");
   if (second_spread_mm(a) < kMinSpread_mm)
-    throw std::invalid_argument(
-        "touched points that are not all on one line (their spread off the line is under 1 mm)");
+    throw BadInput("touched points that are not all on one line (their spread off the line is under 1 mm)");
   const Eigen::Matrix4d t = Eigen::umeyama(a, b, false);
   PointRegistration out;
   for (int r = 0; r < 3; ++r) {

@@ -17,7 +17,7 @@ struct PointRegistration {
   std::vector<double> residual_mm;  // per fiducial: |to - from_to(from)|
 };
 
-// Throws std::invalid_argument (with what is wrong) for fewer than 3 pairs, different counts,
+// Throws BadInput (with what is wrong) for fewer than 3 pairs, different counts,
 // non-finite coordinates, or points that are (nearly) collinear in either set: the rotation
 // about their line would be undetermined.
 PointRegistration register_points(const std::vector<Vec3_mm>& from, const std::vector<Vec3_mm>& to);

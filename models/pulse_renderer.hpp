@@ -12,7 +12,6 @@
 // earlier by the compensator's measured half-way times (anticipation). The pulse repeats every
 // beat, so what one beat measures serves the next.
 #include <array>
-#include <atomic>
 
 #include "models/artery.hpp"
 #include "models/lag_compensator.hpp"
@@ -21,13 +20,8 @@
 namespace palprig {
 
 struct PulseRendering {
+  // Compensation is on when this and the operator's switch of the tick (TickInputs) are both on.
   bool compensate_lag = true;
-  // Optional run-time switch (the GUI's lag compensation check box), read each tick with a
-  // relaxed load: compensation is on when compensate_lag and the switch (if any) are both on.
-  const std::atomic<bool>* compensate_lag_switch = nullptr;
-  bool lag_compensation_on() const noexcept {
-    return compensate_lag && (!compensate_lag_switch || compensate_lag_switch->load(std::memory_order_relaxed));
-  }
   std::array<RegulatorLag, kFingerCount> lag{};
   // 003's force window as calibration measured it on this rig (60 and 120 mmHg), for arteries
   // whose scene gives none.

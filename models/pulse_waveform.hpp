@@ -29,7 +29,7 @@ class PulseWaveform {
   static constexpr std::size_t kTableSize = 512;
 
   PulseWaveform() = default;  // rectangular, duty 0.2
-  // The factories throw std::invalid_argument naming what is wrong.
+  // The factories throw BadInput naming what is wrong.
   static PulseWaveform rectangular(double duty = 0.2);
   static PulseWaveform sawtooth(double rise_fraction = 0.15);
   // One recorded beat: times strictly increasing, the last sample closing the cycle (its value

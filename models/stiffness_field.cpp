@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 namespace {
@@ -47,7 +49,7 @@ constexpr std::array<LateralPoint, 5> kLateral{{
 }};
 
 void need(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument("StiffnessField: " + what);
+  if (!ok) throw BadInput("StiffnessField: " + what);
 }
 
 bool positive(double v) { return std::isfinite(v) && v > 0; }

@@ -109,7 +109,7 @@ struct TissueDefinition {
 
 class StiffnessField {
  public:
-  // Throws std::invalid_argument for a definition that cannot describe tissue (no layers,
+  // Throws BadInput for a definition that cannot describe tissue (no layers,
   // non-positive sizes or moduli, soft >= hard, too many layers or inclusions).
   explicit StiffnessField(TissueDefinition definition);
 

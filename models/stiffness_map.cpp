@@ -6,8 +6,9 @@
 #include <ostream>
 #include <sstream>
 
+#include "core/error.hpp"
 #include "models/decimal_number.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -19,15 +20,15 @@ StiffnessMap::StiffnessMap(std::size_t cols, std::size_t rows, double width_mm, 
       height_mm_(height_mm),
       values_(std::move(values)),
       outside_(outside) {
-  if (cols < 2 || rows < 2) throw std::invalid_argument("StiffnessMap: need at least 2x2 vertices");
+  if (cols < 2 || rows < 2) throw BadInput("StiffnessMap: need at least 2x2 vertices");
   if (!(width_mm > 0) || !(height_mm > 0) || !std::isfinite(width_mm) || !std::isfinite(height_mm))
-    throw std::invalid_argument("StiffnessMap: width_mm and height_mm must be positive");
-  if (values_.size() != cols * rows) throw std::invalid_argument("StiffnessMap: values != cols*rows");
+    throw BadInput("StiffnessMap: width_mm and height_mm must be positive");
+  if (values_.size() != cols * rows) throw BadInput("StiffnessMap: values != cols*rows");
   for (float v : values_)
     if (!std::isfinite(v) || v < 0.f || v > 1.f)
-      throw std::invalid_argument("StiffnessMap: stiffness values must be finite and in 0..1");
+      throw BadInput("StiffnessMap: stiffness values must be finite and in 0..1");
   if (!(outside.background_stiffness >= 0 && outside.background_stiffness <= 1))
-    throw std::invalid_argument("StiffnessMap: background stiffness must be in 0..1");
+    throw BadInput("StiffnessMap: background stiffness must be in 0..1");
 }
 
 bool StiffnessMap::to_grid(double x_mm, double y_mm, double& gx, double& gy) const noexcept {

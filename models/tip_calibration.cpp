@@ -8,6 +8,8 @@
 
 #include <Eigen/Dense>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 Vec3_mm digitize_tip(const RigidTransform& sensor, const Vec3_mm& p) noexcept {
@@ -32,11 +34,11 @@ double angle_between_deg(const Rotation3& a, const Rotation3& b) {
 }  // namespace
 
 PivotCalibration pivot_calibrate(const std::vector<RigidTransform>& poses, double min_spread_deg) {
-  if (poses.size() < 4) throw std::invalid_argument("at least 4 poses, got " + std::to_string(poses.size()));
+  if (poses.size() < 4) throw BadInput("at least 4 poses, got " + std::to_string(poses.size()));
   for (std::size_t i = 0; i < poses.size(); ++i) {
     if (!is_rotation(poses[i].rotation) || !std::isfinite(poses[i].translation_mm[0]) ||
         !std::isfinite(poses[i].translation_mm[1]) || !std::isfinite(poses[i].translation_mm[2]))
-      throw std::invalid_argument("pose " + std::to_string(i + 1) + " is not a rigid transform");
+      throw BadInput("pose " + std::to_string(i + 1) + " is not a rigid transform");
   }
   PivotCalibration out;
   for (std::size_t i = 0; i < poses.size(); ++i)
@@ -44,8 +46,8 @@ PivotCalibration pivot_calibrate(const std::vector<RigidTransform>& poses, doubl
       out.rotation_spread_deg =
           std::max(out.rotation_spread_deg, angle_between_deg(poses[i].rotation, poses[j].rotation));
   if (out.rotation_spread_deg < min_spread_deg)
-    throw std::invalid_argument("poses that pivot at least " + std::to_string(int(min_spread_deg)) +
-                                " degrees apart, got " + std::to_string(out.rotation_spread_deg) + " degrees");
+    throw BadInput("poses that pivot at least " + std::to_string(int(min_spread_deg)) + " degrees apart, got " +
+                   std::to_string(out.rotation_spread_deg) + " degrees");
   const auto n = static_cast<Eigen::Index>(poses.size());
   Eigen::MatrixXd a(3 * n, 6);
   Eigen::VectorXd b(3 * n);
@@ -58,11 +60,10 @@ PivotCalibration pivot_calibrate(const std::vector<RigidTransform>& poses, doubl
     }
   }
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::VectorXd s = svd.singularValues();
+  const Eigen::VectorXd& s = svd.singularValues();
   // Turning about one axis only leaves the tip along that axis free: A loses rank.
   if (s(5) < 1e-3 * s(0))
-    throw std::invalid_argument(
-        "poses that turn about more than one axis (pivot the tool in a cone, not in one plane)");
+    throw BadInput("poses that turn about more than one axis (pivot the tool in a cone, not in one plane)");
   const Eigen::VectorXd x = svd.solve(b);
   for (int r = 0; r < 3; ++r) {
     out.tip_mm[r] = x(r);

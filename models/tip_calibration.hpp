@@ -24,7 +24,7 @@ struct PivotCalibration {
   double rotation_spread_deg = 0;  // largest angle between two of the poses used
 };
 
-// Throws std::invalid_argument for fewer than 4 poses, non-finite or non-rotation poses, or
+// Throws BadInput for fewer than 4 poses, non-finite or non-rotation poses, or
 // poses that turn less than `min_spread_deg` apart or about one axis only (the tip along that
 // axis is then undetermined).
 PivotCalibration pivot_calibrate(const std::vector<RigidTransform>& poses, double min_spread_deg = 10.0);

@@ -25,7 +25,7 @@ struct InclusionOutline {
 
 class FunctionScene final : public Scene {
  public:
-  // Throws std::invalid_argument for a tissue or an artery that cannot exist.
+  // Throws BadInput for a tissue or an artery that cannot exist.
   FunctionScene(TissueDefinition tissue, std::vector<ArterySpec> arteries);
 
   TissueSample sample(const Point2_mm& at, double force_N, double t_s) const noexcept override;

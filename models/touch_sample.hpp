@@ -1,6 +1,6 @@
 #pragma once
 // One reading of the pen on the touchpad, already in physical units; or, from a tracker, the
-// tracked fingertips (issue 26: each finger at its own position, with its own force).
+// tracked fingertips (each finger at its own position, with its own force).
 #include <array>
 #include <cstdint>
 
@@ -46,7 +46,7 @@ struct TouchSample {
   double force_N = 0;  // pressing force, >= 0 (with per-finger forces: the largest)
   bool in_contact = false;
 
-  // Tracked fingers (issue 26). The pen leaves all of these at their defaults, and the tick then
+  // Tracked fingers. The pen leaves all of these at their defaults, and the tick then
   // places the three fingers in FingerLayout's triangle around (x_mm, y_mm), as it always did.
   bool own_positions = false;                       // each finger at fingers[i] (no triangle)
   bool per_finger_force = false;                    // each finger pressed with fingers[i].force_N

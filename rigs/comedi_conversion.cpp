@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 comedi_polynomial_t linear_polynomial(double range_min_V, double range_max_V, lsampl_t maxdata,
@@ -39,9 +41,8 @@ ComediConversion make_comedi_conversion(const comedi_polynomial_t& to_counts, co
     return value;
   };
   double lo = std::max(span_lo_V, range_min_V), hi = std::min(span_hi_V, range_max_V);
-  if (lo > hi) throw std::invalid_argument("the regulator's volts span lies outside the card's range");
-  if (!(counts_at(hi) > counts_at(lo)))
-    throw std::invalid_argument("the conversion polynomial does not rise with volts");
+  if (lo > hi) throw BadInput("the regulator's volts span lies outside the card's range");
+  if (!(counts_at(hi) > counts_at(lo))) throw BadInput("the conversion polynomial does not rise with volts");
   // Move an edge inwards to where the counts become representable (bisection on a rising
   // polynomial); a calibrated polynomial may put the range edges a few counts outside.
   auto solve = [&](double a, double b, double target) {  // counts_at(a) on the wrong side, counts_at(b) inside

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -150,7 +150,7 @@ void ComediRig::do_open() {
     try {
       conv = make_comedi_conversion(to_counts, to_volts, maxdata, r->min, r->max, spec.volts_lo, spec.volts_hi,
                                     spec.regulator);
-    } catch (const std::invalid_argument& e) {
+    } catch (const BadInput& e) {
       refuse(field, std::string("a usable conversion (") + e.what() + ")");
     }
     insn = comedi_insn{};
@@ -198,14 +198,12 @@ void ComediRig::do_close() noexcept {
 
 BackendStatus ComediRig::write_counts() noexcept {
   if (!dev_) {
-    set_error("comedi device not open");
-    return BackendStatus::error;
+    return set_error("comedi device not open");
   }
   if (comedi_do_insnlist(dev_, &write_list_) != int(kFingerCount)) {
     char msg[200];
     std::snprintf(msg, sizeof msg, "comedi write on %s: %s", config_.device.c_str(), comedi_strerror(comedi_errno()));
-    set_error(msg);
-    return BackendStatus::error;
+    return set_error(msg);
   }
   return BackendStatus::ok;
 }
@@ -219,14 +217,12 @@ BackendStatus ComediRig::do_write(const ChannelPressures& setpoint_kPa, double) 
 
 BackendStatus ComediRig::do_read(ChannelPressures& monitor_kPa, double) noexcept {
   if (!dev_) {
-    set_error("comedi device not open");
-    return BackendStatus::error;
+    return set_error("comedi device not open");
   }
   if (comedi_do_insnlist(dev_, &read_list_) != int(kFingerCount)) {
     char msg[200];
     std::snprintf(msg, sizeof msg, "comedi read on %s: %s", config_.device.c_str(), comedi_strerror(comedi_errno()));
-    set_error(msg);
-    return BackendStatus::error;
+    return set_error(msg);
   }
   for (std::size_t c = 0; c < kFingerCount; ++c) monitor_kPa[c] = kPa_from_counts(mon_conv_[c], mon_counts_[c]);
   return BackendStatus::ok;
@@ -234,15 +230,13 @@ BackendStatus ComediRig::do_read(ChannelPressures& monitor_kPa, double) noexcept
 
 BackendStatus ComediRig::do_read_load_cells(std::array<double, kFingerCount>& volts, double) noexcept {
   if (!dev_ || cell_list_.n_insns == 0) {
-    set_error("comedi device not open");
-    return BackendStatus::error;
+    return set_error("comedi device not open");
   }
   if (comedi_do_insnlist(dev_, &cell_list_) != int(cell_list_.n_insns)) {
     char msg[200];
     std::snprintf(msg, sizeof msg, "comedi load cell read on %s: %s", config_.device.c_str(),
                   comedi_strerror(comedi_errno()));
-    set_error(msg);
-    return BackendStatus::error;
+    return set_error(msg);
   }
   for (std::size_t i = 0; i < cell_list_.n_insns; ++i) volts[i] = volts_from_counts(cell_conv_[i], cell_counts_[i]);
   return BackendStatus::ok;

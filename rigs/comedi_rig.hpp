@@ -31,7 +31,7 @@ class ComediRig final : public RigBackend {
   BackendStatus do_write(const ChannelPressures& setpoint_kPa, double t_s) noexcept override;
   BackendStatus do_read(ChannelPressures& monitor_kPa, double t_s) noexcept override;
   BackendStatus do_vent() noexcept override;
-  // The load cells' analog inputs (issue 26), one instruction list prepared in open().
+  // The load cells' analog inputs, one instruction list prepared in open().
   BackendStatus do_read_load_cells(std::array<double, kFingerCount>& volts, double t_s) noexcept override;
 
  private:

@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -78,8 +78,7 @@ ModbusLink::ModbusLink(const ModbusRigConfig& rig, std::size_t index) : link_(ri
     ctx_ = numeric.ipv6 ? modbus_new_tcp_pi(numeric.address.c_str(), std::to_string(link_.port).c_str())
                         : modbus_new_tcp(numeric.address.c_str(), link_.port);
   }
-  if (!ctx_)
-    throw std::runtime_error("modbus link '" + link_.name + "' (" + link_.endpoint() + "): " + modbus_strerror(errno));
+  if (!ctx_) throw Error("modbus link '" + link_.name + "' (" + link_.endpoint() + "): " + modbus_strerror(errno));
   modbus_set_slave(ctx_, link_.unit_id);
   // The I/O thread decides about reconnecting itself (with backoff); libmodbus must not retry
   // or sleep on its own.

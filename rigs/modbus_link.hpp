@@ -32,7 +32,7 @@ NumericHost resolve_modbus_host(const std::string& host);
 
 class ModbusLink {
  public:
-  // Creates the libmodbus context (no I/O yet). Throws std::runtime_error on bad parameters.
+  // Creates the libmodbus context (no I/O yet). Throws Error when libmodbus refuses the parameters.
   ModbusLink(const ModbusRigConfig& rig, std::size_t link_index);
   ~ModbusLink();
   ModbusLink(const ModbusLink&) = delete;
@@ -46,7 +46,7 @@ class ModbusLink {
   bool write_outputs(const ChannelWords& words) noexcept;
   // Read this link's monitor words into `words` (entries of other channels untouched).
   bool read_monitors(ChannelWords& words) noexcept;
-  // The load cells (issue 26) read on this link: planned once before connecting, then read
+  // The load cells read on this link: planned once before connecting, then read
   // each bus cycle into `words` indexed by cell (entries of cells on other links untouched).
   void plan_load_cells(const LoadCellConfig& cells, std::size_t link_index);
   bool read_load_cells(ChannelWords& words) noexcept;

@@ -14,7 +14,7 @@
 #include "runtime/monotonic_clock.hpp"
 #include "runtime/realtime.hpp"
 #include "runtime/worker_fault.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -140,16 +140,14 @@ ModbusBusStats ModbusRig::bus_stats() const {
 BackendStatus ModbusRig::do_write(const ChannelPressures& setpoint_kPa, double) noexcept {
   const std::int64_t now = mono_ns();
   if (fatal_.load(std::memory_order_acquire)) {
-    set_error(fatal_text_);
-    return BackendStatus::error;
+    return set_error(fatal_text_);
   }
   if (config_.max_outage_s > 0) {
     const std::int64_t since = down_since_ns_.load(std::memory_order_relaxed);
     if (since != 0 && double(now - since) * 1e-9 > config_.max_outage_s) {
       char msg[160];
       std::snprintf(msg, sizeof msg, "modbus link down for more than max_outage_s = %.3f s", config_.max_outage_s);
-      set_error(msg);
-      return BackendStatus::error;
+      return set_error(msg);
     }
   }
   commands_.publish(Command{setpoint_kPa, now});
@@ -158,18 +156,18 @@ BackendStatus ModbusRig::do_write(const ChannelPressures& setpoint_kPa, double) 
 
 BackendStatus ModbusRig::do_read(ChannelPressures& monitor_kPa, double) noexcept {
   monitor_kPa = monitors_.latest().kPa;
-  return fatal_.load(std::memory_order_acquire) ? BackendStatus::error : BackendStatus::ok;
+  return fatal_.load(std::memory_order_acquire) ? BackendStatus::failure(fatal_text_) : BackendStatus::ok;
 }
 
 BackendStatus ModbusRig::do_read_load_cells(std::array<double, kFingerCount>& volts, double) noexcept {
   volts = monitors_.latest().cell_volts;
-  return fatal_.load(std::memory_order_acquire) ? BackendStatus::error : BackendStatus::ok;
+  return fatal_.load(std::memory_order_acquire) ? BackendStatus::failure(fatal_text_) : BackendStatus::ok;
 }
 
 BackendStatus ModbusRig::do_vent() noexcept {
   // The I/O thread writes it within one bus period; the stamp keeps it fresh.
   commands_.publish(Command{ChannelPressures{}, mono_ns()});
-  return fatal_.load(std::memory_order_acquire) ? BackendStatus::error : BackendStatus::ok;
+  return fatal_.load(std::memory_order_acquire) ? BackendStatus::failure(fatal_text_) : BackendStatus::ok;
 }
 
 // ---- I/O thread --------------------------------------------------------------------------

@@ -1,4 +1,5 @@
 #include "rigs/modbus_sim_server.hpp"
+#include "core/error.hpp"
 #include "runtime/monotonic_clock.hpp"
 
 #include <arpa/inet.h>
@@ -27,7 +28,7 @@ ListenAddress parse_listen_address(const std::string& text) {
   }
   const auto colon = text.rfind(':');
   if (colon == std::string::npos || colon == 0 || colon + 1 == text.size())
-    throw std::invalid_argument("HOST:PORT (e.g. 127.0.0.1:1502, port 0 for any free port) or pty, got '" + text + "'");
+    throw BadInput("HOST:PORT (e.g. 127.0.0.1:1502, port 0 for any free port) or pty, got '" + text + "'");
   ListenAddress a;
   a.host = text.substr(0, colon);
   const std::string port = text.substr(colon + 1);
@@ -39,10 +40,10 @@ ListenAddress parse_listen_address(const std::string& text) {
     used = 0;
   }
   if (used != port.size() || value < 0 || value > 65535)
-    throw std::invalid_argument("a port number 0..65535 after the colon, got '" + text + "'");
+    throw BadInput("a port number 0..65535 after the colon, got '" + text + "'");
   in_addr probe{};
   if (inet_pton(AF_INET, a.host.c_str(), &probe) != 1)
-    throw std::invalid_argument("an IPv4 address before the colon (e.g. 127.0.0.1 or 0.0.0.0), got '" + text + "'");
+    throw BadInput("an IPv4 address before the colon (e.g. 127.0.0.1 or 0.0.0.0), got '" + text + "'");
   a.port = value;
   return a;
 }
@@ -64,8 +65,7 @@ void ModbusSimServer::log(const std::string& line) {
 void ModbusSimServer::set_write_log(const std::filesystem::path& path) {
   if (write_log_) std::fclose(write_log_);
   write_log_ = std::fopen(path.c_str(), "w");
-  if (!write_log_)
-    throw std::runtime_error("cannot create the write log " + path.string() + ": " + std::strerror(errno));
+  if (!write_log_) throw Error("cannot create the write log " + path.string() + ": " + std::strerror(errno));
   std::setvbuf(write_log_, nullptr, _IOLBF, 0);  // a killed simulator still leaves whole lines
   std::fprintf(write_log_, "t_s,channel,word,kPa,mono_ns\n");
 }
@@ -111,8 +111,8 @@ std::uint16_t* ModbusSimServer::monitor_register(std::size_t c) const noexcept {
 void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
   stop();
   if (listen.size() != map_.links.size())
-    throw std::runtime_error("the register map has " + std::to_string(map_.links.size()) +
-                             " link(s); give one listen address each, got " + std::to_string(listen.size()));
+    throw BadInput("the register map has " + std::to_string(map_.links.size()) +
+                   " link(s); give one listen address each, got " + std::to_string(listen.size()));
   links_.clear();
   for (std::size_t i = 0; i < map_.links.size(); ++i) {
     auto link = std::make_unique<Link>();
@@ -140,35 +140,34 @@ void ModbusSimServer::start(const std::vector<ListenAddress>& listen) {
     link->mapping = modbus_mapping_new_start_address(
         0, 0, 0, 0, h_hi < 0 ? 0 : unsigned(h_lo), h_hi < 0 ? 0 : unsigned(h_hi - h_lo + 1),
         i_hi < 0 ? 0 : unsigned(i_lo), i_hi < 0 ? 0 : unsigned(i_hi - i_lo + 1));
-    if (!link->mapping)
-      throw std::runtime_error(std::string("cannot allocate the register space: ") + modbus_strerror(errno));
+    if (!link->mapping) throw Error(std::string("cannot allocate the register space: ") + modbus_strerror(errno));
     if (link->address.pty) {
       link->pty_master = posix_openpt(O_RDWR | O_NOCTTY);
       if (link->pty_master < 0 || grantpt(link->pty_master) != 0 || unlockpt(link->pty_master) != 0)
-        throw std::runtime_error(std::string("cannot create a pseudo-terminal: ") + std::strerror(errno));
+        throw Error(std::string("cannot create a pseudo-terminal: ") + std::strerror(errno));
       link->pty_path = ptsname(link->pty_master);
       // Hold the slave side open in raw mode: the line discipline must not echo or edit the
       // binary frames, and the master must not see a hang-up between clients.
       link->pty_slave = ::open(link->pty_path.c_str(), O_RDWR | O_NOCTTY);
       termios raw{};
       if (link->pty_slave < 0 || tcgetattr(link->pty_slave, &raw) != 0)
-        throw std::runtime_error("cannot open " + link->pty_path + ": " + std::strerror(errno));
+        throw Error("cannot open " + link->pty_path + ": " + std::strerror(errno));
       cfmakeraw(&raw);
       tcsetattr(link->pty_slave, TCSANOW, &raw);
       const ModbusLinkConfig& cfg = map_.links[i];
       link->ctx = modbus_new_rtu(link->pty_path.c_str(), cfg.baud, cfg.parity, cfg.data_bits, cfg.stop_bits);
-      if (!link->ctx) throw std::runtime_error(std::string("modbus_new_rtu: ") + modbus_strerror(errno));
+      if (!link->ctx) throw Error(std::string("modbus_new_rtu: ") + modbus_strerror(errno));
       modbus_set_slave(link->ctx, cfg.unit_id);  // an RTU module answers its own address only
       modbus_set_socket(link->ctx, link->pty_master);
       links_.push_back(std::move(link));
       continue;
     }
     link->ctx = modbus_new_tcp(link->address.host.c_str(), link->address.port);
-    if (!link->ctx) throw std::runtime_error(std::string("modbus_new_tcp: ") + modbus_strerror(errno));
+    if (!link->ctx) throw Error(std::string("modbus_new_tcp: ") + modbus_strerror(errno));
     link->listen_fd = modbus_tcp_listen(link->ctx, 16);
     if (link->listen_fd == -1)
-      throw std::runtime_error("cannot listen on " + link->address.host + ":" + std::to_string(link->address.port) +
-                               ": " + modbus_strerror(errno));
+      throw Error("cannot listen on " + link->address.host + ":" + std::to_string(link->address.port) + ": " +
+                  modbus_strerror(errno));
     sockaddr_in bound{};
     socklen_t len = sizeof bound;
     getsockname(link->listen_fd, reinterpret_cast<sockaddr*>(&bound), &len);

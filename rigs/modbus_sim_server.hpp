@@ -38,7 +38,7 @@ struct ListenAddress {
   bool pty = false;  // Modbus RTU on a new pseudo-terminal instead (see ModbusSimServer::pty_path())
 };
 
-// "HOST:PORT" or "pty" -> ListenAddress; throws std::invalid_argument with the reason.
+// "HOST:PORT" or "pty" -> ListenAddress; throws BadInput with the reason.
 ListenAddress parse_listen_address(const std::string& text);
 
 class ModbusSimServer {
@@ -57,13 +57,13 @@ class ModbusSimServer {
   // so end-to-end latency can be measured across processes on one machine).
   void set_write_log(const std::filesystem::path& path);
   void set_watchdog_s(double seconds) { watchdog_s_ = seconds; }
-  // The rig's load cells on Modbus registers (issue 26): each is simulated from its channel's
+  // The rig's load cells on Modbus registers: each is simulated from its channel's
   // tare and gain, with `load_N` resting on it (a calibration weight; 0: nothing), and its
   // register kept up to date by the plant thread. Before start().
   void set_load_cells(const LoadCellConfig& cells, double load_N);
 
   // Listen on one address per link (in the map's link order) and start serving. Throws
-  // std::runtime_error with the address and the system's reason when a socket cannot be bound.
+  // Error with the address and the system's reason when a socket cannot be bound.
   void start(const std::vector<ListenAddress>& listen);
   void stop() noexcept;
   int port(std::size_t link) const { return links_.at(link)->port; }

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 const char* to_string(BackendState state) noexcept {
@@ -19,7 +21,7 @@ const char* to_string(BackendState state) noexcept {
 
 RigBackend::RigBackend(double p_max_kPa) : p_max_kPa_(p_max_kPa) {
   if (!(p_max_kPa > 0) || !std::isfinite(p_max_kPa))
-    throw std::invalid_argument("RigBackend: p_max_kPa must be positive and finite");
+    throw BadInput("RigBackend: p_max_kPa must be positive and finite");
 }
 
 void RigBackend::open() {
@@ -46,8 +48,7 @@ void RigBackend::close() noexcept {
 BackendStatus RigBackend::arm() noexcept {
   const BackendState s = state();
   if (s == BackendState::closed) {
-    set_error("cannot arm: the rig backend is closed (open it first)");
-    return BackendStatus::error;
+    return set_error("cannot arm: the rig backend is closed (open it first)");
   }
   state_.store(BackendState::armed, std::memory_order_release);
   return BackendStatus::ok;
@@ -56,7 +57,7 @@ BackendStatus RigBackend::arm() noexcept {
 BackendStatus RigBackend::disarm() noexcept {
   if (state() != BackendState::armed) return BackendStatus::ok;
   state_.store(BackendState::disarmed, std::memory_order_release);
-  return do_vent();
+  return with_reason(do_vent());
 }
 
 BackendStatus RigBackend::write(const ChannelPressures& setpoint_kPa, double t_s) noexcept {
@@ -64,8 +65,7 @@ BackendStatus RigBackend::write(const ChannelPressures& setpoint_kPa, double t_s
     char msg[160];
     std::snprintf(msg, sizeof msg, "refused setpoints: the rig is %s, not armed; vented", to_string(state()));
     do_vent();
-    set_error(msg);
-    return BackendStatus::error;
+    return set_error(msg);
   }
   for (std::size_t i = 0; i < setpoint_kPa.size(); ++i) {
     const double p = setpoint_kPa[i];
@@ -74,36 +74,32 @@ BackendStatus RigBackend::write(const ChannelPressures& setpoint_kPa, double t_s
       std::snprintf(msg, sizeof msg, "refused setpoint %.3f kPa on channel %zu (allowed 0..%.1f kPa); vented", p, i + 1,
                     p_max_kPa_);
       do_vent();
-      set_error(msg);
-      return BackendStatus::error;
+      return set_error(msg);
     }
   }
-  return do_write(setpoint_kPa, t_s);
+  return with_reason(do_write(setpoint_kPa, t_s));
 }
 
 BackendStatus RigBackend::read_monitors(ChannelPressures& monitor_kPa, double t_s) noexcept {
   if (state() == BackendState::closed) {
-    set_error("cannot read monitors: the rig backend is closed (open it first)");
-    return BackendStatus::error;
+    return set_error("cannot read monitors: the rig backend is closed (open it first)");
   }
-  return do_read(monitor_kPa, t_s);
+  return with_reason(do_read(monitor_kPa, t_s));
 }
 
 BackendStatus RigBackend::read_sensors(std::array<double, kFingerCount>& value, double t_s) noexcept {
   if (state() == BackendState::closed) {
-    set_error("cannot read sensors: the rig backend is closed (open it first)");
-    return BackendStatus::error;
+    return set_error("cannot read sensors: the rig backend is closed (open it first)");
   }
-  return do_read_sensors(value, t_s);
+  return with_reason(do_read_sensors(value, t_s));
 }
 
 BackendStatus RigBackend::do_read_sensors(std::array<double, kFingerCount>& value, double) noexcept {
   value.fill(std::nan(""));
-  set_error("this rig has no sensor channel");
-  return BackendStatus::error;
+  return set_error("this rig has no sensor channel");
 }
 
-BackendStatus RigBackend::vent() noexcept { return do_vent(); }
+BackendStatus RigBackend::vent() noexcept { return with_reason(do_vent()); }
 
 void RigBackend::attach_load_cells(const LoadCellConfig& config) {
   if (state() != BackendState::closed) throw std::logic_error("load cells are attached before open()");
@@ -120,29 +116,33 @@ BackendStatus RigBackend::read_load_cells(LoadCellReading& reading, double t_s) 
   reading.volts.fill(std::nan(""));
   reading.force_N.fill(std::nan(""));
   if (!load_cells_) {
-    set_error("this rig has no load cells (the rig file's \"load_cells\" section)");
-    return BackendStatus::error;
+    return set_error("this rig has no load cells (the rig file's \"load_cells\" section)");
   }
   if (state() == BackendState::closed) {
-    set_error("cannot read the load cells: the rig backend is closed (open it first)");
-    return BackendStatus::error;
+    return set_error("cannot read the load cells: the rig backend is closed (open it first)");
   }
   const BackendStatus status = do_read_load_cells(reading.volts, t_s);
   reading.count = load_cells_->channels.size();
   for (std::size_t i = 0; i < reading.count; ++i)
     reading.force_N[i] = load_cells_->channels[i].calibration.force_N(reading.volts[i]);
-  return status;
+  return with_reason(status);
 }
 
 BackendStatus RigBackend::do_read_load_cells(std::array<double, kFingerCount>& volts, double) noexcept {
   volts.fill(std::nan(""));
-  set_error("this backend cannot read load cells");
-  return BackendStatus::error;
+  return set_error("this backend cannot read load cells");
 }
 
-void RigBackend::set_error(const char* message) noexcept {
+BackendStatus RigBackend::set_error(const char* message) noexcept {
   std::strncpy(last_error_, message, sizeof last_error_ - 1);
   last_error_[sizeof last_error_ - 1] = '\0';
+  return BackendStatus::failure(last_error_);
+}
+
+BackendStatus RigBackend::with_reason(BackendStatus status) const noexcept {
+  // A backend hook that failed without words of its own has left them in last_error_.
+  if (status == BackendStatus::error && status.reason()[0] == '\0') return BackendStatus::failure(last_error_);
+  return status;
 }
 
 }  // namespace palprig

@@ -32,7 +32,33 @@
 
 namespace palprig {
 
-enum class BackendStatus { ok, error };
+// What a backend call did: ok, or failed with the backend's own words. The words live in the
+// backend's fixed buffer (no allocation on the loop's path) until its next failure, so a caller
+// that keeps them longer copies them (RigStep's Fault does). `status == BackendStatus::ok` and
+// `== BackendStatus::error` compare the outcome.
+class BackendStatus {
+ public:
+  struct Ok {};
+  struct Failed {};
+  static constexpr Ok ok{};
+  static constexpr Failed error{};
+  constexpr BackendStatus(Ok = {}) noexcept {}  // NOLINT(google-explicit-constructor): `return BackendStatus::ok;`
+  constexpr BackendStatus(Failed) noexcept : failed_(true) {}  // NOLINT(google-explicit-constructor)
+  static constexpr BackendStatus failure(const char* reason) noexcept {
+    BackendStatus s{Failed{}};
+    s.reason_ = reason;
+    return s;
+  }
+  constexpr bool succeeded() const noexcept { return !failed_; }
+  // Why it failed, in the backend's words; "" when it succeeded (or a backend gave none).
+  constexpr const char* reason() const noexcept { return reason_ ? reason_ : ""; }
+  friend constexpr bool operator==(const BackendStatus& s, Ok) noexcept { return !s.failed_; }
+  friend constexpr bool operator==(const BackendStatus& s, Failed) noexcept { return s.failed_; }
+
+ private:
+  bool failed_ = false;
+  const char* reason_ = nullptr;
+};
 
 enum class BackendState { closed, connected, armed, disarmed };
 const char* to_string(BackendState state) noexcept;
@@ -46,7 +72,7 @@ struct BackendCapabilities {
   std::string sensor_unit;             // e.g. "mm"
   std::string link_kind;               // "in-process", "modbus-tcp", "modbus-rtu", "comedi"
   std::string endpoint;                // e.g. "127.0.0.1:1502", "/dev/ttyUSB0 9600 8N1", "/dev/comedi0"
-  std::size_t load_cells = 0;          // load cells measuring the pressing force (issue 26): 0, 1 or 3
+  std::size_t load_cells = 0;          // load cells measuring the pressing force: 0, 1 or 3
   bool load_cells_per_finger = false;  // 3 cells, one under each finger; else 1 shared
 };
 
@@ -65,7 +91,7 @@ class RigBackend {
   RigBackend& operator=(const RigBackend&) = delete;
 
   // closed (or any state: closes first) -> connected: connect, vent, ready to read. Throws
-  // std::runtime_error (InputError for configuration) with one clear line on failure; the
+  // Error (InputError for configuration) with one clear line on failure; the
   // backend is then closed.
   void open();
   // any -> closed: vent and disconnect. Safe to call repeatedly.
@@ -90,7 +116,7 @@ class RigBackend {
   // All channels to 0 kPa, in any state. Safe to call repeatedly and after errors.
   BackendStatus vent() noexcept;
 
-  // The rig file's load cells (issue 26), given before open(); the backend reads them on its
+  // The rig file's load cells, given before open(); the backend reads them on its
   // analog inputs. read_load_cells: any state but closed; error without load cells. The
   // force is the cell's calibration applied to its voltage (negative below the tare: noise).
   void attach_load_cells(const LoadCellConfig& config);
@@ -125,9 +151,15 @@ class RigBackend {
   const std::optional<LoadCellConfig>& load_cells() const noexcept { return load_cells_; }
   // capabilities() of a backend with load cells: fills the load-cell fields.
   void describe_load_cells(BackendCapabilities& c) const noexcept;
-  // Record why the last call failed (copied into a fixed buffer: no allocation).
-  void set_error(const char* message) noexcept;
+  // Record why the last call failed (copied into a fixed buffer: no allocation) and return the
+  // failure carrying those words: `return set_error("...");`.
+  BackendStatus set_error(const char* message) noexcept;
 
+ private:
+  // A failed hook's status with the backend's words attached when it gave none.
+  BackendStatus with_reason(BackendStatus status) const noexcept;
+
+ protected:
  private:
   double p_max_kPa_;
   std::optional<LoadCellConfig> load_cells_;

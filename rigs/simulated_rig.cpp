@@ -32,8 +32,7 @@ void SimulatedRig::do_open() {
 
 BackendStatus SimulatedRig::do_read_load_cells(std::array<double, kFingerCount>& volts, double) noexcept {
   if (cells_.empty()) {
-    set_error("the simulated rig's load cells are read after open()");
-    return BackendStatus::error;
+    return set_error("the simulated rig's load cells are read after open()");
   }
   if (cells_.size() == 1) {
     // One cell under every finger: it feels the deepest press.

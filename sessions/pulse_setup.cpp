@@ -1,6 +1,6 @@
 #include "sessions/pulse_setup.hpp"
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 
 namespace palprig {

@@ -3,7 +3,7 @@
 #include "experiments/rig_stimulus.hpp"
 #include "experiments/simulated_pulse_observer.hpp"
 #include "formats/scene_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/pulse_setup.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "sessions/session_setup.hpp"
@@ -12,8 +12,7 @@
 namespace palprig {
 
 SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactory& person,
-                           PulseSessionListener& listener, const std::atomic<int>* stop,
-                           const std::atomic<bool>* pause) {
+                           PulseSessionListener& listener, const RunControl& control) {
   refuse_server_store_for_task_session(r.store_location);
   const PulseProtocol from_file = load_pulse_protocol(r.protocol_file);
   std::uint64_t sim_seed = 0;
@@ -29,7 +28,9 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
   StudyRig rig = load_study_rig(r.rig_file, r.calibration_file);
   refuse_speed_on_hardware(rig, r.speed);
   if (!r.telemetry_file.empty()) refuse_unusable_telemetry_file(r.telemetry_file);
-  rig.open();  // before the session is stored: an unreachable device leaves no empty session
+  rig.take(
+      r.rig,
+      "pulse-localisation session");  // before the session is stored: an unreachable device leaves no empty session
 
   SqliteTrialStore store(r.store_location, TrialStore::Access::read_write);
   PulseObserverModel model;
@@ -63,14 +64,13 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
                                         session.start_position, total, session.seed, simulated, rig.hardware(), 0,
                                         clock->steady_origin()});
 
-  RigStimulus output(rig.config, *rig.backend);
+  RigStimulus output(rig.config, rig.backend());
   output.observe_with(r.tick_observer);
   SessionTelemetry telemetry(r.telemetry_file, output, *clock);
   PulseSessionOptions options;
   options.seed = session.seed;
   options.start_position = session.start_position;
-  options.stop = stop;
-  options.pause = pause;
+  options.control = &control;
   options.on_trial_started = [&](const PulseTrialStart& s) {
     listener.trial_started(s, session.protocol.conditions.at(static_cast<std::size_t>(s.condition)));
   };
@@ -82,12 +82,16 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
     listener.trial_committed(t, total);
   };
   const PulseSessionResult result = run_pulse_session(session.protocol, scenes, output, *participant, *clock, options);
-  rig.vent_and_close();
+  rig.vent();
 
   SessionEnd end;
   end.completed = result.completed;
   end.stopped = result.stopped;
   end.fault = result.fault;
+  if (!end.fault.empty())
+    end.fault_record = save_session_fault_record(
+        output, "pulse session " + std::to_string(session.session_id) + " of " + r.participant_code, r.telemetry_file,
+        r.store_location);
   telemetry.finish(end);
   end.committed_trials = session.start_position + committed;
   end.total_trials = total;

@@ -1,11 +1,10 @@
 #pragma once
-// A pulse-localisation session (issue 13, paper 000) end to end, as `palprig experiment run`
+// A pulse-localisation session (paper 000) end to end, as `palprig experiment run`
 // starts it for a protocol with "task": "pulse": the simulated participant (sim:SEED) palpates
 // each condition's scene through the rig and marks the pulse; each trial is committed as it
 // completes; resume continues the stored order; one process per session. A person palpates with
 // pen input, which only the GUI reads: the GUI passes a PulsePersonFactory (the command line
 // passes none and a person is refused with its one line).
-#include <atomic>
 #include <functional>
 #include <memory>
 
@@ -31,9 +30,8 @@ using PulsePersonFactory = std::function<std::unique_ptr<PulseParticipant>(const
 
 // request.rig_file is required; request.model is not used (the pulse observer has its own).
 // Throws InputError for refused input, before the rig moves (or when the store refuses).
-// `pause` (optional): experiments/pulse_task.hpp's PulseSessionOptions::pause.
+// `control`: the operator's stop and pause (experiments/pulse_session.hpp's PulseSessionOptions).
 SessionEnd run_pulse_study(const StudySessionRequest& request, const PulsePersonFactory& person,
-                           PulseSessionListener& listener, const std::atomic<int>* stop,
-                           const std::atomic<bool>* pause = nullptr);
+                           PulseSessionListener& listener, const RunControl& control);
 
 }  // namespace palprig

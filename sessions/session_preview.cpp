@@ -22,8 +22,10 @@ SessionPreview preview_session(const std::string& store_location, const Protocol
                                const std::string& participant_code) {
   SessionPreview preview;
   if (store_exists(store_location)) {
+    preview.store_found = true;
     const auto store = open_trial_store(store_location, TrialStore::Access::read_only);
     if (const auto who = store->find_participant(participant_code)) {
+      preview.enrolled = true;
       preview.participant_number = who->number;
       if (const auto id = store->find_unfinished_session(*who, protocol.name)) {
         StoredSession stored = store->load_session(*id);

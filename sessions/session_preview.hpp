@@ -19,6 +19,8 @@ namespace palprig {
 
 struct SessionPreview {
   int participant_number = 1;  // the participant's, or the one the next enrolment gets
+  bool enrolled = false;       // the store has the participant (else: the number enrolment would give)
+  bool store_found = false;    // the store exists (a new one numbers from 1)
   std::uint64_t seed = 0;
   SessionPlan plan;
   std::optional<std::int64_t> unfinished_session;  // Resume continues this one

@@ -1,7 +1,7 @@
 #include "sessions/session_setup.hpp"
 
 #include "study/random_source.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

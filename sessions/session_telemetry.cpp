@@ -3,7 +3,7 @@
 #include <string>
 #include <system_error>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -1,10 +1,9 @@
 #include "sessions/study_rig.hpp"
 
-#include "controller/backend_factory.hpp"
 #include "controller/tick_setup.hpp"
 #include "experiments/simulated_participant.hpp"
 #include "formats/calibration_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -17,15 +16,23 @@ StudyRig load_study_rig(const std::filesystem::path& rig_file, const std::filesy
   return s;
 }
 
-void StudyRig::open() {
-  backend = make_backend(rig);
-  backend->open();
+SessionRig::SessionRig(Rig* given, const RigConfig& config, const std::string& holder) {
+  Rig* rig = given;
+  if (!rig) {
+    opened_ = open_rig(config);
+    rig = opened_.get();
+  }
+  lease_.emplace(rig->lease(holder));
 }
 
-void StudyRig::vent_and_close() {
-  if (!backend) return;
-  backend->vent();
-  backend->close();
+std::string save_session_fault_record(const RigStimulus& output, const std::string& what_ran,
+                                      const std::filesystem::path& telemetry_file,
+                                      const std::filesystem::path& beside) {
+  if (!output.step().faulted()) return "";  // a telemetry failure: no rig fault to record
+  std::error_code ec;
+  std::filesystem::path folder = std::filesystem::absolute(beside, ec).parent_path();
+  if (folder.empty()) folder = std::filesystem::current_path(ec);
+  return save_fault_record(output.step().recorder(), output.step().fault(), what_ran, telemetry_file, folder);
 }
 
 bool simulated_participant(const std::string& code, std::uint64_t& seed) {

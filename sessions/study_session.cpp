@@ -1,4 +1,5 @@
 #include "sessions/study_session.hpp"
+#include "sessions/study_rig.hpp"
 
 #include <chrono>
 
@@ -11,7 +12,7 @@
 #include "formats/calibration_file.hpp"
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "store/journaled_trial_store.hpp"
@@ -72,7 +73,7 @@ std::uint64_t resumed_simulation_seed(std::uint64_t seed, int start_position) no
 }
 
 SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person, SessionListener& listener,
-                             const std::atomic<int>* stop, const std::atomic<bool>* pause) {
+                             const RunControl& control) {
   // Everything is loaded and validated before the rig is opened.
   const Protocol from_file = load_protocol(request.protocol_file);
   std::uint64_t sim_seed = 0;
@@ -122,8 +123,8 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   }
   // The rig is opened (and vented) before the session is stored, so an unreachable device does
   // not leave an empty session behind.
-  std::unique_ptr<RigBackend> backend = make_backend(rig);
-  backend->open();
+  std::optional<SessionRig> rig_taken;
+  rig_taken.emplace(request.rig, rig, "study session");
   SimulatedObserverModel model = request.model;
   model.seed = sim_seed;
   SessionRequest opening;
@@ -159,7 +160,7 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
                                         session.start_position, total, session.plan.seed, simulated, hardware,
                                         journaled ? journaled->pushed_at_open() : 0, clock->steady_origin()});
 
-  RigStimulus output(config, *backend);
+  RigStimulus output(config, rig_taken->backend());
   output.observe_with(request.tick_observer);
   ListenerBridge bridge(*store, session.session_id, session.plan, protocol, listener);
   TrialRunner runner(protocol, session.plan, session.start_position, output, bridge,
@@ -168,17 +169,19 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   SessionTelemetry telemetry(request.telemetry_file, output, *clock);
 
   SessionLoopOptions options;
-  options.stop = stop;
-  options.pause = pause;
+  options.control = &control;
   options.output = &output;
   const SessionLoopResult result = run_session_loop(runner, *participant, *clock, options);
-  backend->vent();
-  backend->close();
+  (void)rig_taken->backend().vent();  // given back (and closed, when opened here) as this returns
 
   SessionEnd end;
   end.completed = result.completed;
   end.stopped = result.stopped;
   end.fault = result.fault;
+  if (!end.fault.empty())
+    end.fault_record = save_session_fault_record(
+        output, "session " + std::to_string(session.session_id) + " of " + request.participant_code,
+        request.telemetry_file, journaled ? journaled->journal_file() : std::filesystem::path(request.store_location));
   telemetry.finish(end);
   end.committed_trials = session.start_position + bridge.committed();
   end.total_trials = total;

@@ -9,7 +9,6 @@
 // lab server that cannot be reached is refused here), before the rig is opened (InputError);
 // the rig is opened before the session is stored, so an unreachable device leaves no empty
 // session behind.
-#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -23,11 +22,13 @@
 #include "experiments/simulated_participant.hpp"
 #include "study/trial_record.hpp"
 #include "experiments/trial_runner.hpp"
+#include "runtime/run_control.hpp"
 #include "store/trial_store.hpp"
 
 namespace palprig {
 
 class TickObserver;  // controller/loop_runner.hpp
+class Rig;           // controller/rig_lease.hpp
 
 struct StudySessionRequest {
   std::filesystem::path protocol_file;
@@ -50,6 +51,9 @@ struct StudySessionRequest {
   // Every rig tick of the session is also handed to this observer (wait-free, on the session
   // thread; it must outlive the session): the window's live gauges and traces. Null: none.
   TickObserver* tick_observer = nullptr;
+  // The front end's opened rig (the window's), leased for the session; it must outlive the
+  // session. Null: the session opens rig_file itself.
+  Rig* rig = nullptr;
 };
 
 // Known once the session is opened in the store.
@@ -71,9 +75,12 @@ struct SessionStart {
 };
 
 struct SessionEnd {
-  bool completed = false;    // every planned trial committed; the session is marked completed
-  bool stopped = false;      // a stop was requested; committed trials kept, resumable
-  std::string fault;         // non-empty when the rig faulted (channels vented); resumable
+  bool completed = false;  // every planned trial committed; the session is marked completed
+  bool stopped = false;    // a stop was requested; committed trials kept, resumable
+  std::string fault;       // non-empty when the rig faulted (channels vented); resumable
+  // After a fault: "the last 2000 ticks before it: FILE" (beside the telemetry file, else beside
+  // the store), or why that file could not be written.
+  std::string fault_record;
   int committed_trials = 0;  // in the store for this session, including those before a resume
   int total_trials = 0;
   // Lab store: journal commits the server has not confirmed after a short wait at the end
@@ -107,12 +114,12 @@ class SessionListener {
 // simulated participant (sim:SEED), which the session makes itself.
 using PersonFactory = std::function<std::unique_ptr<Participant>(const Protocol&)>;
 
-// Runs the session to its end, a stop (`stop` non-zero) or a rig fault. Throws InputError for
-// refused input (before anything moves, or when the store refuses the session).
-// `pause` (optional): true vents and holds the session at the trial in progress, false goes on
+// Runs the session to its end, a stop (control.stop_requested()) or a rig fault. Throws
+// InputError for refused input (before anything moves, or when the store refuses the session).
+// control.paused() vents and holds the session at the trial in progress; unpaused, it goes on
 // with it (experiments/session_loop.hpp).
 SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person, SessionListener& listener,
-                             const std::atomic<int>* stop, const std::atomic<bool>* pause = nullptr);
+                             const RunControl& control);
 
 // The simulated observer's seed for a session resumed at `start_position`: moved on by the
 // trials done, so the answers differ from those of the lost attempt.

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 
 namespace palprig {
@@ -31,7 +31,7 @@ OpenedThresholdSession open_threshold_session(SqliteTrialStore& store, const Thr
     for (const TrackSpec& spec : opened.protocol.tracks) opened.tracks.emplace_back(spec);
     try {
       replay_tracks(opened.tracks, stored->trials);
-    } catch (const std::invalid_argument& e) {
+    } catch (const BadInput& e) {  // the study's replay refused a stored trial
       throw InputError(store.location(), "threshold_trials of session " + std::to_string(stored->id),
                        std::string("trials the stored protocol's tracks can replay (") + e.what() + ")");
     }

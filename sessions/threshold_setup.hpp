@@ -1,5 +1,5 @@
 #pragma once
-// Starting or resuming a threshold session (issue 13) against the trial store: the same rules
+// Starting or resuming a threshold session against the trial store: the same rules
 // as sessions/session_setup.hpp (a participant is enrolled once; an unfinished session with the
 // same protocol must be continued with resume; a changed protocol file is refused on resume),
 // and on resume the tracks are rebuilt from the state stored with the last committed trial.

@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "experiments/rig_stimulus.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "sessions/study_rig.hpp"
@@ -23,7 +23,7 @@ std::string one_decimal(double x) {
 }  // namespace
 
 ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const ThresholdPersonFactory& person,
-                                 ThresholdSessionListener& listener, const std::atomic<int>* stop) {
+                                 ThresholdSessionListener& listener, const RunControl& control) {
   const StudySessionRequest& r = request.session;
   refuse_server_store_for_task_session(r.store_location);
   const ThresholdProtocol from_file = load_threshold_protocol(r.protocol_file);
@@ -40,7 +40,7 @@ ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const Thr
                          one_decimal(from_file.max_pressure_kPa()));
   }
   refuse_speed_on_hardware(rig, r.speed);
-  rig.open();  // before the session is stored: an unreachable device leaves no empty session
+  rig.take(r.rig, "threshold session");  // before the session is stored: an unreachable device leaves no empty session
 
   SqliteTrialStore store(r.store_location, TrialStore::Access::read_write);
   ThresholdObserverModel model = request.observer;
@@ -68,13 +68,13 @@ ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const Thr
                    session.start_position, 0, session.seed, simulated, rig.hardware(), 0, clock->steady_origin()},
       session.protocol.method, static_cast<int>(session.tracks.size())});
 
-  RigStimulus output(rig.config, *rig.backend);
+  RigStimulus output(rig.config, rig.backend());
   output.observe_with(r.tick_observer);
   SessionTelemetry telemetry(r.telemetry_file, output, *clock);
   ThresholdSessionOptions options;
   options.seed = session.seed;
   options.start_position = session.start_position;
-  options.stop = stop;
+  options.control = &control;
   int committed = 0;
   options.on_trial = [&](const ThresholdTrialRecord& t) {
     threshold_store.commit_trial(session.session_id, t);  // committed before anyone is told
@@ -83,12 +83,16 @@ ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const Thr
   };
   const ThresholdSessionResult result =
       run_threshold_session(session.protocol, session.tracks, output, *participant, *clock, options);
-  rig.vent_and_close();
+  rig.vent();
 
   ThresholdEnd end;
   end.session.completed = result.completed;
   end.session.stopped = result.stopped;
   end.session.fault = result.fault;
+  if (!result.fault.empty())
+    end.session.fault_record = save_session_fault_record(
+        output, "threshold session " + std::to_string(session.session_id) + " of " + r.participant_code,
+        r.telemetry_file, r.store_location);
   telemetry.finish(end.session);
   end.session.committed_trials = session.start_position + committed;
   end.session_id = session.session_id;

@@ -1,11 +1,10 @@
 #pragma once
-// A threshold session (staircases, QUEST; issue 13) end to end, as `palprig experiment run`
+// A threshold session (staircases, QUEST) end to end, as `palprig experiment run`
 // starts it for a protocol with "task": "threshold": files checked, the rig opened, the session
 // started or resumed (and held: one process per session) in the trial store, each trial
 // committed with every track's state, the rig vented and closed. A person answers through the
 // front end's ThresholdParticipant (the terminal's, experiments/terminal_threshold_participant);
 // sim:SEED is the simulated threshold observer.
-#include <atomic>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -46,6 +45,6 @@ using ThresholdPersonFactory = std::function<std::unique_ptr<ThresholdParticipan
 
 // Throws InputError for refused input, before the rig moves (or when the store refuses).
 ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const ThresholdPersonFactory& person,
-                                 ThresholdSessionListener& listener, const std::atomic<int>* stop);
+                                 ThresholdSessionListener& listener, const RunControl& control);
 
 }  // namespace palprig

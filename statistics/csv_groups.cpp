@@ -1,8 +1,11 @@
 #include "statistics/csv_groups.hpp"
 
 #include <algorithm>
+#include <optional>
+#include <set>
+#include <tuple>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -12,6 +15,7 @@ std::vector<NumericGroup> group_numbers(const CsvTable& table, std::string_view 
   const std::size_t value_index = table.column(value_column);
   const std::size_t group_index = table.column(group_column);
   std::vector<NumericGroup> groups;
+  groups.reserve(selected_groups.size());
   for (const auto& label : selected_groups) groups.push_back({label, {}});
 
   for (std::size_t row = 0; row < table.rows(); ++row) {
@@ -47,6 +51,48 @@ std::vector<NumericGroup> two_groups(const CsvTable& table, std::string_view val
                          "); choose two with `groups` A,B");
   }
   return groups;
+}
+
+namespace {
+
+std::optional<std::size_t> find_column(const CsvTable& table, std::string_view name) {
+  const auto& h = table.header();
+  const auto it = std::find(h.begin(), h.end(), name);
+  if (it == h.end()) return std::nullopt;
+  return static_cast<std::size_t>(it - h.begin());
+}
+
+}  // namespace
+
+std::vector<std::string> one_value_per_trial_warnings(const CsvTable& table) {
+  std::vector<std::string> out;
+  const auto participant = find_column(table, "participant"), session = find_column(table, "session"),
+             trial = find_column(table, "trial");
+  if (trial) {
+    std::set<std::tuple<std::string, std::string, std::string>> seen;
+    std::size_t repeated = 0;
+    for (std::size_t row = 0; row < table.rows(); ++row) {
+      const auto key = std::make_tuple(participant ? table.text(row, *participant) : std::string(),
+                                       session ? table.text(row, *session) : std::string(), table.text(row, *trial));
+      if (!seen.insert(key).second) ++repeated;
+    }
+    if (repeated > 0) {
+      out.push_back(table.source() + ": " + std::to_string(table.rows()) + " rows hold " + std::to_string(seen.size()) +
+                    " trials (several rows per trial, as trials_long.csv's one row per finger value or tumor): a "
+                    "test of one value per trial counts those trials several times; use trials.csv of palprig "
+                    "export (one row per trial), or palprig stats trials on the store");
+    }
+  }
+  if (const auto practice = find_column(table, "practice")) {
+    std::size_t practice_rows = 0;
+    for (std::size_t row = 0; row < table.rows(); ++row) practice_rows += table.text(row, *practice) == "1" ? 1 : 0;
+    if (practice_rows > 0) {
+      out.push_back(table.source() + ": " + std::to_string(practice_rows) +
+                    " rows are practice trials (practice = 1), tested with the others; paper 002 and palprig stats "
+                    "trials leave them out");
+    }
+  }
+  return out;
 }
 
 }  // namespace palprig

@@ -27,4 +27,11 @@ std::vector<NumericGroup> two_groups(const CsvTable& table, std::string_view val
                                      std::string_view group_column,
                                      const std::vector<std::string>& selected_groups = {});
 
+// What a test of one value per trial should be told about a table before it runs: several rows
+// of the same trial (palprig's trials_long.csv has one row per finger value or tumor: a
+// participant, session and trial repeated), and practice trials (a `practice` column with 1s).
+// One sentence each, naming the file; empty when there is nothing to say (a table without those
+// columns is taken as it is).
+std::vector<std::string> one_value_per_trial_warnings(const CsvTable& table);
+
 }  // namespace palprig

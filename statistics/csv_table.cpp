@@ -5,8 +5,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

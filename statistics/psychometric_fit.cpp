@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -51,6 +52,7 @@ std::vector<LevelCounts> counts_per_level(const std::vector<double>& levels, con
       c.k += responses[i] != 0 ? 1 : 0;
     }
     std::vector<LevelCounts> out;
+    out.reserve(by_level.size());
     for (auto& [level, c] : by_level) out.push_back(c);
     return out;
   }
@@ -75,6 +77,8 @@ constexpr double kSqrt2 = 1.41421356237309504880;
 // 10^6 standard deviations from the levels, or a log scale or logit beyond 700 (e^700 is near
 // the largest double), is no fit but a step whose derivatives overflow.
 constexpr double kLocationBound = 1e6, kLogBound = 700;
+// One step between two levels may be at most this many times all the others together.
+constexpr double kMaxLevelGapRatio = 1e9;
 
 // (x - alpha) / beta for a plain level x. Doubles are divided as written. For Ceres' Jets the
 // division is Ceres' own (the value times 1 / beta.a, the derivative likewise), with that
@@ -387,6 +391,35 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
     if (c.n > 0) used.push_back(c);
   }
   if (used.size() < 2) throw StatisticsError("trials at 2 or more different levels");
+  // Levels a double can hold but a fit cannot resolve: one level far beyond the others (a level
+  // of 1e308 beside steps of 1 fitted to a threshold of -2.2e306 before). The fit reads location
+  // and slope on the scale of the steps between levels; a single step more than 1e9 times all
+  // the others together leaves it nothing to read them on. (Levels that differ only by rounding,
+  // as a QUEST track's may, are steps like any other and pass.)
+  {
+    std::vector<double> levels;
+    for (const LevelCounts& c : used) levels.push_back(c.level);
+    std::sort(levels.begin(), levels.end());
+    double widest = 0, others = 0;
+    std::size_t at = 0;
+    for (std::size_t i = 1; i < levels.size(); ++i) {
+      if (levels[i] - levels[i - 1] > widest) {
+        widest = levels[i] - levels[i - 1];
+        at = i;
+      }
+    }
+    // Summed apart from the widest (which would absorb them in a running sum).
+    for (std::size_t i = 1; i < levels.size(); ++i)
+      if (i != at) others += levels[i] - levels[i - 1];
+    if (levels.size() > 2 && others > 0 && widest > kMaxLevelGapRatio * others) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "levels within 1e9 times the other steps of each other: the step from %.3g to %.3g is beyond "
+                    "what the fit can resolve beside the others' %.3g",
+                    levels[at - 1], levels[at], others);
+      throw StatisticsError(text);
+    }
+  }
 
   Parameterisation param;
   param.sigmoid = o.sigmoid;
@@ -445,6 +478,7 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
 
   const auto boot_started = std::chrono::steady_clock::now();
   std::vector<double> predicted;
+  predicted.reserve(used.size());
   for (const LevelCounts& c : used)
     predicted.push_back(psychometric_value(fit.sigmoid, fit.alpha, fit.beta, fit.guess, fit.lapse, c.level));
   SplitMix random{o.seed};

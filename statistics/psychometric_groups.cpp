@@ -3,7 +3,7 @@
 #include <cmath>
 #include <map>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig::stats {
 
@@ -54,6 +54,7 @@ std::vector<PsychometricGroup> psychometric_groups(const CsvTable& table, const 
     }
   }
   std::vector<PsychometricGroup> out;
+  out.reserve(order.size());
   for (const auto& label : order) {
     PsychometricGroup g{label, {}};
     for (const auto& [x, c] : grouped[label]) g.counts.push_back(c);

@@ -1,15 +1,16 @@
 #pragma once
 // StatisticsError: a test cannot be computed from the data it was given (too few values, a
-// constant sample, an empty group). The command line turns it into one line naming the file
-// and the column, exit code 2; library callers can catch it like any invalid_argument.
-#include <stdexcept>
+// constant sample, an empty group). It is a BadInput (core/error.hpp): the command line turns it
+// into one line naming the file and the column, exit code 2.
 #include <string>
+
+#include "core/error.hpp"
 
 namespace palprig::stats {
 
-class StatisticsError : public std::invalid_argument {
+class StatisticsError : public BadInput {
  public:
-  explicit StatisticsError(const std::string& what) : std::invalid_argument(what) {}
+  explicit StatisticsError(const std::string& what) : BadInput(what) {}
 };
 
 }  // namespace palprig::stats

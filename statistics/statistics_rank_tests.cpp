@@ -91,7 +91,8 @@ MannWhitneyResult mann_whitney(std::span<const double> group1, std::span<const d
   r.n1 = group1.size();
   r.n2 = group2.size();
   const double n1 = static_cast<double>(r.n1), n2 = static_cast<double>(r.n2), n = n1 + n2;
-  const double rank_sum1 = std::accumulate(ranking.ranks.begin(), ranking.ranks.begin() + r.n1, 0.0);
+  const double rank_sum1 =
+      std::accumulate(ranking.ranks.begin(), ranking.ranks.begin() + static_cast<std::ptrdiff_t>(r.n1), 0.0);
   r.u1 = rank_sum1 - n1 * (n1 + 1.0) / 2.0;
   r.u2 = n1 * n2 - r.u1;
   r.u = std::min(r.u1, r.u2);

@@ -2,7 +2,7 @@
 
 #include <system_error>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

@@ -1,5 +1,5 @@
 #pragma once
-// One file of an export, through models/checked_output.hpp (the one checked writer): the text
+// One file of an export, through io/checked_output.hpp (the one checked writer): the text
 // goes to a temporary beside the target and is renamed into place only when every write and the
 // close succeeded; a file that was not committed is removed. A failed write is OutputError
 // ("FILE: cannot write: REASON", exit 1 in the command line), and no short file looks complete.
@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 namespace palprig {
 

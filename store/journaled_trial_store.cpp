@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <iostream>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/lab_sync.hpp"
 #include "store/postgres_schema.hpp"
 #include "store/postgres_session_rows.hpp"

@@ -4,7 +4,7 @@
 #include <functional>
 #include <map>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/pg_target.hpp"
 #include "store/postgres_schema.hpp"
 #include "store/postgres_session_rows.hpp"

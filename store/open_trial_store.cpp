@@ -1,7 +1,7 @@
 // open_trial_store: the one place that maps a store location to its implementation.
 #include <filesystem>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/journaled_trial_store.hpp"
 #include "store/pg_target.hpp"
 #include "store/postgres_trial_store.hpp"

@@ -5,11 +5,11 @@
 // password) and libpq's or the server's reason.
 #include <cstdint>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/error.hpp"
 #include "store/pg_target.hpp"
 
 struct pg_conn;
@@ -17,14 +17,13 @@ struct pg_result;
 
 namespace palprig {
 
-class PgError : public std::runtime_error {
+// An Error (core/error.hpp, exit 1): the server, not the input. Callers that know a refusal is
+// the user's (an unreachable server named on the command line) turn it into an InputError.
+class PgError : public Error {
  public:
   // sqlstate: the server's five-character SQLSTATE, empty when the connection itself failed.
   PgError(const std::string& what, std::string sqlstate, bool connection_lost, std::string reason = {})
-      : std::runtime_error(what),
-        sqlstate_(std::move(sqlstate)),
-        connection_lost_(connection_lost),
-        reason_(std::move(reason)) {}
+      : Error(what), sqlstate_(std::move(sqlstate)), connection_lost_(connection_lost), reason_(std::move(reason)) {}
   const std::string& sqlstate() const noexcept { return sqlstate_; }
   // True when the server could not be reached or went away: the caller may retry later.
   bool connection_lost() const noexcept { return connection_lost_; }

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string_view>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

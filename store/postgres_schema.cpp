@@ -4,7 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "models/parse_error.hpp"
+#include "core/error.hpp"
+#include "core/input_error.hpp"
 #include "store/session_rows.hpp"
 
 namespace palprig {
@@ -163,8 +164,8 @@ int pg_schema_version(PgConnection& db) {
 void ensure_pg_schema(PgConnection& db, int target_version) {
   static_assert(kPgSchemaVersion >= 1);
   if (target_version < 1 || target_version > kPgSchemaVersion) {
-    throw std::invalid_argument("ensure_pg_schema: target version " + std::to_string(target_version) + " outside 1.." +
-                                std::to_string(kPgSchemaVersion));
+    throw BadInput("ensure_pg_schema: target version " + std::to_string(target_version) + " outside 1.." +
+                   std::to_string(kPgSchemaVersion));
   }
   PgTransaction tx(db);
   // Serialises concurrent first uses: the second rig waits here and then finds the schema made.

@@ -9,7 +9,7 @@
 
 #include <algorithm>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/postgres_trial_store.hpp"
 #include "store/host_identity.hpp"
 #include "store/utc_time.hpp"

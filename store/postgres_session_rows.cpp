@@ -1,6 +1,6 @@
 #include "store/postgres_session_rows.hpp"
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/postgres_schema.hpp"
 
 #include <algorithm>

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "study/scoring.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/postgres_schema.hpp"
 #include "store/postgres_session_rows.hpp"
 #include "store/host_identity.hpp"

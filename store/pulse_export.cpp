@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/export_file.hpp"
 #include "store/export_text.hpp"
 #include "store/pulse_store.hpp"

@@ -5,7 +5,7 @@
 #include <limits>
 #include <map>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "statistics/statistics_describe.hpp"
 #include "statistics/statistics_proportion.hpp"
 #include "store/utc_time.hpp"

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <thread>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/integrity_check_cache.hpp"
 #include "store/sqlite_read_access.hpp"
 

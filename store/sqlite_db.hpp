@@ -7,19 +7,22 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
+
+#include "core/error.hpp"
 
 struct sqlite3;
 struct sqlite3_stmt;
 
 namespace palprig {
 
-class SqliteError : public std::runtime_error {
+// An Error (core/error.hpp, exit 1): the file or the machine failed while the store was used;
+// where it is the user's file that is refused, the store throws InputError instead.
+class SqliteError : public Error {
  public:
   SqliteError(const std::string& what, int code, bool environment = false, int system_errno = 0)
-      : std::runtime_error(what), code_(code), environment_(environment), system_errno_(system_errno) {}
+      : Error(what), code_(code), environment_(environment), system_errno_(system_errno) {}
   int code() const noexcept { return code_; }
   int system_errno() const noexcept { return system_errno_; }
   // The machine, not the data: a read-only file or folder, a full disk, a failed write. The

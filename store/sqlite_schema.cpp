@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

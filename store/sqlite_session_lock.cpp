@@ -12,7 +12,7 @@
 #include <iterator>
 #include <string>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/host_identity.hpp"
 #include "store/utc_time.hpp"
 
@@ -20,7 +20,7 @@ namespace palprig {
 
 namespace {
 
-// Which process runs a session (DESIGN.md "Data": one process per session). Created on every
+// Which process runs a session (docs/architecture.md, "Data": one process per session). Created on every
 // open for writing, so databases written before the table existed get it too.
 constexpr const char* kLockSchema = R"sql(
 CREATE TABLE IF NOT EXISTS session_locks (

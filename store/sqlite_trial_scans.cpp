@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/session_rows.hpp"
 #include "store/trial_rows.hpp"
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <optional>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/sqlite_session_rows.hpp"
 #include "store/trial_rows.hpp"
 #include "store/utc_time.hpp"

@@ -3,7 +3,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/export_file.hpp"
 #include "store/export_text.hpp"
 #include "store/threshold_store.hpp"
@@ -54,10 +54,12 @@ std::vector<ThresholdExportRow> threshold_export_rows(SqliteTrialStore& store,
         const AdaptiveTrack& track = after[static_cast<std::size_t>(r.track)];
         row.procedure = track.spec().procedure == AdaptiveProcedure::quest ? "quest" : "staircase";
         row.trial = r;
-        row.estimate_kPa = track.estimate().threshold_kPa;
+        row.estimate = track.estimate();
+        row.estimate_kPa = row.estimate.threshold_kPa;
+        row.track_finished = track.finished();
         out.push_back(std::move(row));
       });
-    } catch (const std::invalid_argument& e) {
+    } catch (const BadInput& e) {  // the study's replay refused a stored trial
       throw InputError(store.location(), "threshold_trials of " + where,
                        std::string("trials the stored protocol's tracks can replay (") + e.what() + ")");
     }

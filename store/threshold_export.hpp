@@ -21,7 +21,9 @@ struct ThresholdExportRow {
   ParticipantRecord participant;
   std::string protocol, method, procedure;  // method: 2afc or yes-no; procedure: staircase or quest
   ThresholdTrialRecord trial;
-  double estimate_kPa = 0;  // the trial's track's threshold estimate after this trial
+  double estimate_kPa = 0;      // the trial's track's threshold estimate after this trial
+  TrackEstimate estimate;       // the whole estimate after this trial (reversals, target proportion, sd)
+  bool track_finished = false;  // the track had reached its stopping rule after this trial
 };
 
 // Every threshold trial of the store, by session and position. InputError naming the store and

@@ -3,8 +3,8 @@
 #include <fstream>
 #include <limits>
 
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 
 namespace palprig {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/utc_time.hpp"
 
 namespace palprig {

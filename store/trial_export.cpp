@@ -15,12 +15,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/export_file.hpp"
 #include "store/export_text.hpp"
 #include "store/pulse_export.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "store/threshold_export.hpp"
+#include "store/trials_csv.hpp"
 
 namespace palprig {
 
@@ -306,17 +307,27 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
     }
     commit_into(out, result.files);
 
-    const auto marks_path = out_dir / "marks.csv";
-    ExportFile marks(marks_path);
-    marks << "participant,session,trial,mark,x_mm,y_mm,tumor\n";
-    for (const ExportTrial& t : c.trials) {  // ordered by participant, session, position; marks by mark
-      for (const StoredMark& m : t.marks) {
-        marks << csv_field(t.participant) << "," << t.session << "," << t.position + 1 << "," << m.mark + 1 << ","
-              << number(m.x_mm, 2) << "," << number(m.y_mm, 2) << "," << (m.tumor ? csv_field(*m.tumor) : "n/a")
-              << "\n";
+    // One row per trial, the unit of a response-time test (store/trials_csv.hpp).
+    std::vector<const StoredTrial*> rows;
+    for (const ExportTrial& t : c.trials) rows.push_back(&t);
+    write_trials_csv(rows, out_dir / "trials.csv", result.files);
+
+    // Marks exist only where the store holds localisation trials (no header-only file).
+    const bool localisation =
+        std::any_of(c.trials.begin(), c.trials.end(), [](const ExportTrial& t) { return t.mode == "scene"; });
+    if (localisation) {
+      const auto marks_path = out_dir / "marks.csv";
+      ExportFile marks(marks_path);
+      marks << "participant,session,trial,mark,x_mm,y_mm,tumor\n";
+      for (const ExportTrial& t : c.trials) {  // ordered by participant, session, position; marks by mark
+        for (const StoredMark& m : t.marks) {
+          marks << csv_field(t.participant) << "," << t.session << "," << t.position + 1 << "," << m.mark + 1 << ","
+                << number(m.x_mm, 2) << "," << number(m.y_mm, 2) << "," << (m.tumor ? csv_field(*m.tumor) : "n/a")
+                << "\n";
+        }
       }
+      commit_into(marks, result.files);
     }
-    commit_into(marks, result.files);
   }
   if (!c.threshold.empty()) {
     write_threshold_csv(c.threshold, out_dir / "threshold_trials.csv");

@@ -12,7 +12,7 @@
 //             dataset_description.json, README and participants.tsv/json at the top
 // Both write "n/a" for values that do not exist (an unanswered trial's response). A store with
 // no trial to export is an InputError, never an empty export. Every file is written through
-// ExportFile (store/export_file.hpp): a failed write is std::runtime_error naming the file, and
+// ExportFile (store/export_file.hpp): a failed write is an OutputError naming the file, and
 // leaves no file that looks complete.
 #include <filesystem>
 #include <string>

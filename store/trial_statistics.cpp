@@ -1,10 +1,7 @@
 #include "store/trial_statistics.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <map>
 
-#include "statistics/statistics_error.hpp"
 #include "store/sqlite_trial_store.hpp"
 
 namespace palprig {
@@ -22,19 +19,6 @@ void drop_placeholder_rows(TrialSummary& summary) {
   std::erase_if(summary.rows, [](const SummaryRow& r) { return !r.key.empty() && r.key[0] == "-"; });
 }
 
-// Per condition, the response time of every answered trial, once per trial (as summarise_trials
-// counts them for its mean and sd).
-std::map<std::string, std::vector<double>> response_times_by_condition(TrialStore& store, bool include_practice) {
-  std::map<std::string, std::vector<double>> times;
-  for (TrialFamily family : {TrialFamily::discrimination, TrialFamily::localisation}) {
-    store.scan_scored_trials(family, include_practice, [&](const ScoredTrial& t) {
-      auto& list = times[std::string(t.condition)];
-      if (t.answered && std::isfinite(t.response_time_s)) list.push_back(t.response_time_s);
-    });
-  }
-  return times;
-}
-
 }  // namespace
 
 TrialStatistics compute_trial_statistics(TrialStore& store, const SummaryOptions& options) {
@@ -48,37 +32,12 @@ TrialStatistics compute_trial_statistics(TrialStore& store, const SummaryOptions
   if (auto* sqlite = dynamic_cast<SqliteTrialStore*>(&store))
     s.pulse = PulseStore(*sqlite, false).summarise(options.confidence);
 
-  const auto times = response_times_by_condition(store, options.include_practice);
-  const auto& rows = s.by_condition.rows;  // sorted by condition
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    for (std::size_t j = i + 1; j < rows.size(); ++j) {
-      const std::string& a = rows[i].key[0];
-      const std::string& b = rows[j].key[0];
-      ResponseTimeComparison rt{a, b, std::nullopt, {}};
-      const auto ta = times.find(a), tb = times.find(b);
-      const std::size_t na = ta == times.end() ? 0 : ta->second.size(), nb = tb == times.end() ? 0 : tb->second.size();
-      if (na < 2 || nb < 2) {
-        rt.why_not = "fewer than 2 answered trials in a condition";
-      } else {
-        try {
-          rt.test = stats::two_sample_t_test(ta->second, tb->second, /*equal_variance=*/true, options.confidence);
-        } catch (const stats::StatisticsError& e) {
-          rt.why_not = e.what();
-        }
-      }
-      s.response_times.push_back(std::move(rt));
-
-      const std::pair<const char*, Measure DiagnosticMeasures::*> named[] = {{"Se", &DiagnosticMeasures::se},
-                                                                             {"Sp", &DiagnosticMeasures::sp},
-                                                                             {"PPV", &DiagnosticMeasures::ppv},
-                                                                             {"ACC", &DiagnosticMeasures::acc}};
-      for (const auto& [name, member] : named) {
-        const Measure& ma = rows[i].measures.*member;
-        const Measure& mb = rows[j].measures.*member;
-        if (!ma.defined || !mb.defined) continue;  // no cases on a side: nothing to compare
-        s.measures.push_back({name, a, b, stats::compare_proportions(ma.k, ma.n, mb.k, mb.n, options.confidence)});
-      }
-    }
+  // The same call `palprig stats trials --by condition` makes: one stratum, every pair of
+  // conditions, Student's t-test as in paper 002.
+  ConditionComparisons between = compare_conditions(s.by_condition, options.confidence, ResponseTimeTest::student);
+  if (!between.strata.empty()) {
+    s.response_times = std::move(between.strata[0].response_times);
+    s.measures = std::move(between.strata[0].measures);
   }
   return s;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// TrialStore: where a study's participants, sessions and trials live (DESIGN.md "Data"), as an
+// TrialStore: where a study's participants, sessions and trials live (docs/architecture.md, "Data"), as an
 // interface, so the session code, stats and export do not care whether the store is an SQLite
 // file (SqliteTrialStore, store/sqlite_trial_store.hpp) or a lab server.
 //
@@ -39,8 +39,8 @@ struct ParticipantRecord {
 
 struct SessionSetup {
   std::string rig_id, rig_backend, calibration;
-  nlohmann::json participant_model;  // the simulated participant's parameters; null for people
-  std::string protocol_dir;          // folder of the protocol file (resolves a scene path)
+  nlohmann::json participant_model = nullptr;  // the simulated participant's parameters; null for people
+  std::string protocol_dir = {};               // folder of the protocol file (resolves a scene path)
 };
 
 struct StoredSession {

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 
@@ -278,6 +278,7 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     row.unanswered = a.unanswered;
     row.mean_rt_s = a.rt.mean_or_nan();
     row.sd_rt_s = a.rt.sd_or_nan();
+    row.rt_count = a.rt.n;
     row.mean_rt_after_stimulus_s = a.rt_after.mean_or_nan();
     row.sd_rt_after_stimulus_s = a.rt_after.sd_or_nan();
     row.mean_rt_from_reached_s = a.rt_reached.mean_or_nan();

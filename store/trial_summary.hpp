@@ -36,6 +36,7 @@ struct SummaryRow {
   std::int64_t trials = 0;            // trials that contributed (answered or not)
   std::int64_t unanswered = 0;        // of which timed out
   double mean_rt_s = 0, sd_rt_s = 0;  // from onset (paper 002); NaN when fewer than 1 (mean) or 2 (sd) answered trials
+  std::int64_t rt_count = 0;          // the response times behind them: answered trials with a stored time
   // From the end of the stimulus (0 for an answer during it); NaN likewise, and for trials
   // stored before the stimulus end was.
   double mean_rt_after_stimulus_s = 0, sd_rt_after_stimulus_s = 0;

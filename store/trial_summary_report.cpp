@@ -1,7 +1,9 @@
 #include "store/trial_summary_report.hpp"
 
+#include "core/input_error.hpp"
 #include "store/pulse_store.hpp"
 #include "store/sqlite_trial_store.hpp"
+#include "store/threshold_summary.hpp"
 
 #include <cmath>
 #include <array>
@@ -118,8 +120,9 @@ std::string summary_csv(const TrialSummary& s) {
   return out.str();
 }
 
-nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence) {
+nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence, ResponseTimeTest test) {
   nlohmann::ordered_json j;
+  j["task"] = "discrimination/localisation";
   j["convention"] =
       "per finger value (discrimination) or per tumor (localisation): Se = TP/(TP+FN), "
       "Sp = TN/(TN+FP), PPV = TP/(TP+FP), ACC = (TP+TN)/all (paper 002 eq. 5-8); Wilson score "
@@ -147,6 +150,7 @@ nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence) {
     }
     row["rt_mean_s"] = number_or_null(r.mean_rt_s);
     row["rt_sd_s"] = number_or_null(r.sd_rt_s);
+    row["rt_n"] = r.rt_count;
     // From the end of the stimulus; rt_mean_s above is from onset (paper 002's t-test).
     row["rt_after_stimulus_mean_s"] = number_or_null(r.mean_rt_after_stimulus_s);
     row["rt_after_stimulus_sd_s"] = number_or_null(r.sd_rt_after_stimulus_s);
@@ -159,29 +163,58 @@ nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence) {
     }
     j["rows"].push_back(std::move(row));
   }
+  const ConditionComparisons between = compare_conditions(s, confidence, test);
+  if (between.by_condition) j["comparisons"] = comparisons_json(between);
   return j;
 }
 
-std::string stats_trials_text(TrialStore& store, const SummaryOptions& options, const std::string& format) {
-  std::string out;
-  // Pulse-localisation trials (their own table, SQLite files only so far) per condition.
+std::string stats_trials_text(TrialStore& store, const SummaryOptions& options, const std::string& format,
+                              ResponseTimeTest test) {
+  const bool json = format == "json";
+  std::vector<std::string> parts;               // table and csv: each kind's text
+  std::vector<nlohmann::ordered_json> objects;  // json: each kind's object
+  bool scored_trials = true;                    // discrimination or localisation trials (a server: assumed)
   if (auto* sqlite = dynamic_cast<SqliteTrialStore*>(&store)) {
+    // Pulse-localisation and threshold trials have their own tables (SQLite files only so far).
     PulseStore pulse(*sqlite, false);
     if (pulse.has_trials()) {
       const auto rows = pulse.summarise(options.confidence);
-      out += format == "json" ? pulse_summary_json(rows, options.confidence).dump(2) + "\n"
-                              : pulse_summary_table(rows, options.confidence);
-      auto any = sqlite->database().prepare("SELECT count(*) FROM trials");
-      if (!any.step() || any.integer(0) == 0) return out;
+      if (json)
+        objects.push_back(pulse_summary_json(rows, options.confidence));
+      else
+        parts.push_back(pulse_summary_table(rows, options.confidence));
+    }
+    const auto tracks = summarise_threshold_tracks(*sqlite);
+    if (!tracks.empty()) {
+      if (json)
+        objects.push_back(threshold_summary_json(tracks));
+      else
+        parts.push_back(threshold_summary_table(tracks));
+    }
+    auto any = sqlite->database().prepare("SELECT count(*) FROM trials");
+    scored_trials = any.step() && any.integer(0) > 0;
+    if (!scored_trials && parts.empty() && objects.empty())
+      throw InputError(store.location(), "trials", "a store holding trials (it holds none yet)");
+  }
+  if (scored_trials) {
+    const TrialSummary summary = summarise_trials(store, options);
+    if (json) {
+      objects.push_back(summary_json(summary, options.confidence, test));
+    } else if (format == "csv") {
+      parts.push_back(summary_csv(summary));
+    } else {
+      parts.push_back(summary_table(summary) +
+                      comparisons_table(compare_conditions(summary, options.confidence, test)));
     }
   }
-  const TrialSummary summary = summarise_trials(store, options);
-  if (format == "json")
-    out += summary_json(summary, options.confidence).dump(2) + "\n";
-  else if (format == "csv")
-    out += summary_csv(summary);
-  else
-    out += summary_table(summary);
+  if (json) {
+    if (objects.size() == 1) return objects[0].dump(2) + "\n";
+    nlohmann::ordered_json all;
+    all["tasks"] = objects;
+    return all.dump(2) + "\n";
+  }
+  std::string out;
+  for (std::size_t i = 0; i < parts.size(); ++i) out += (i > 0 ? "\n" : "") + parts[i];
   return out;
 }
 

@@ -47,7 +47,7 @@ class AdaptiveTrack {
   int trials() const;
   TrackEstimate estimate() const;
   nlohmann::json state_json() const;
-  void restore(const nlohmann::json& state);  // throws std::invalid_argument
+  void restore(const nlohmann::json& state);  // throws BadInput
   const TrackSpec& spec() const noexcept { return spec_; }
 
  private:

@@ -8,7 +8,7 @@
 
 #include "formats/json_file.hpp"
 #include "study/trial_order.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "study/session_bounds.hpp"
 
 namespace palprig {

@@ -5,7 +5,7 @@
 #include "formats/json_file.hpp"
 #include "formats/scene_file.hpp"
 #include "models/artery.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "study/session_bounds.hpp"
 #include "study/random_source.hpp"
 

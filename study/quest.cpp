@@ -4,18 +4,20 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 Quest::Quest(const QuestSettings& s) : settings_(s) {
-  if (!(s.gamma >= 0 && s.delta >= 0 && s.gamma + s.delta < 1)) throw std::invalid_argument("quest: gamma + delta < 1");
+  if (!(s.gamma >= 0 && s.delta >= 0 && s.gamma + s.delta < 1)) throw BadInput("quest: gamma + delta < 1");
   if (!(s.p_threshold > s.gamma && s.p_threshold < 1 - s.delta)) {
-    throw std::invalid_argument("quest: p_threshold between gamma and 1 - delta");
+    throw BadInput("quest: p_threshold between gamma and 1 - delta");
   }
   if (!(s.beta > 0) || !(s.prior_sd_log10 > 0) || !(s.grid_step_log10 > 0) || !(s.grid_half_width_log10 > 0)) {
-    throw std::invalid_argument("quest: beta, prior sd, grid step and width must be > 0");
+    throw BadInput("quest: beta, prior sd, grid step and width must be > 0");
   }
   if (!(s.min_kPa > 0 && s.min_kPa < s.max_kPa && s.prior_threshold_kPa > 0)) {
-    throw std::invalid_argument("quest: 0 < min_kPa < max_kPa and a positive prior threshold");
+    throw BadInput("quest: 0 < min_kPa < max_kPa and a positive prior threshold");
   }
   const double w = (s.p_threshold - s.gamma) / (1 - s.gamma - s.delta);
   epsilon_ = std::log10(-std::log1p(-w)) / s.beta;
@@ -45,7 +47,7 @@ void Quest::update(double level_kPa, bool correct) {
 }
 
 void Quest::record(double level_kPa, bool correct) {
-  if (!(level_kPa > 0) || !std::isfinite(level_kPa)) throw std::invalid_argument("quest: levels must be > 0 kPa");
+  if (!(level_kPa > 0) || !std::isfinite(level_kPa)) throw BadInput("quest: levels must be > 0 kPa");
   update(level_kPa, correct);
   history_.emplace_back(level_kPa, correct);
 }
@@ -112,7 +114,7 @@ void Quest::restore(const nlohmann::json& state) {
     *this = Quest(settings_);
     for (const auto& entry : state.at("history")) record(entry.at(0).get<double>(), entry.at(1).get<int>() != 0);
   } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(std::string("quest state: ") + e.what());
+    throw BadInput(std::string("quest state: ") + e.what());
   }
 }
 

@@ -42,7 +42,7 @@ struct QuestEstimate {
 
 class Quest {
  public:
-  explicit Quest(const QuestSettings& settings);  // throws std::invalid_argument
+  explicit Quest(const QuestSettings& settings);  // throws BadInput
 
   double next_level_kPa() const;
   void record(double level_kPa, bool correct);
@@ -53,7 +53,7 @@ class Quest {
 
   const std::vector<std::pair<double, bool>>& history() const noexcept { return history_; }
   nlohmann::json state_json() const;
-  // Replays a stored history (throws std::invalid_argument on a malformed state).
+  // Replays a stored history (throws BadInput on a malformed state).
   void restore(const nlohmann::json& state);
   const QuestSettings& settings() const noexcept { return settings_; }
 

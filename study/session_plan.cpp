@@ -6,7 +6,7 @@
 
 #include "study/random_source.hpp"
 #include "study/trial_order.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 

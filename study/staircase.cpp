@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace palprig {
 
 double staircase_target_probability(const StaircaseSettings& s) noexcept {
@@ -45,16 +47,15 @@ StaircaseState staircase_state_from_json(const nlohmann::json& j) {
     s.finished = j.at("finished").get<bool>();
     return s;
   } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(std::string("staircase state: ") + e.what());
+    throw BadInput(std::string("staircase state: ") + e.what());
   }
 }
 
 Staircase::Staircase(const StaircaseSettings& settings) : settings_(settings) {
-  if (settings.up < 1 || settings.down < 1) throw std::invalid_argument("staircase: up and down must be at least 1");
-  if (!(settings.step_up_kPa > 0) || !(settings.step_down_kPa > 0))
-    throw std::invalid_argument("staircase: steps must be > 0");
+  if (settings.up < 1 || settings.down < 1) throw BadInput("staircase: up and down must be at least 1");
+  if (!(settings.step_up_kPa > 0) || !(settings.step_down_kPa > 0)) throw BadInput("staircase: steps must be > 0");
   if (!(settings.min_kPa <= settings.start_kPa && settings.start_kPa <= settings.max_kPa)) {
-    throw std::invalid_argument("staircase: start level outside [min, max]");
+    throw BadInput("staircase: start level outside [min, max]");
   }
   state_.level_kPa = settings.start_kPa;
 }

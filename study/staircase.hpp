@@ -47,7 +47,7 @@ struct StaircaseState {
 };
 
 nlohmann::json to_json(const StaircaseState& s);
-StaircaseState staircase_state_from_json(const nlohmann::json& j);  // throws std::invalid_argument
+StaircaseState staircase_state_from_json(const nlohmann::json& j);  // throws BadInput
 
 class Staircase {
  public:

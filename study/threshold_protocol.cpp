@@ -5,7 +5,7 @@
 
 #include "formats/json_file.hpp"
 #include "models/finger_layout.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "study/session_bounds.hpp"
 
 namespace palprig {
@@ -128,8 +128,9 @@ ThresholdProtocol parse_threshold_protocol(const nlohmann::json& document, const
     p.tracks.push_back(spec);
   }
   long long most_trials = 0;  // every track run to its max_trials (unanswered trials are repeated on top)
-  for (const TrackSpec& t : p.tracks) {
-    most_trials += t.procedure == AdaptiveProcedure::staircase ? t.staircase.max_trials : t.quest.max_trials;
+  for (const TrackSpec& track : p.tracks) {
+    most_trials +=
+        track.procedure == AdaptiveProcedure::staircase ? track.staircase.max_trials : track.quest.max_trials;
   }
   if (most_trials > kMaxSessionTrials) root.fail("tracks", "max_trials summing to " + session_bound_text(most_trials));
   root.refuse_unknown();

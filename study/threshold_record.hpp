@@ -31,7 +31,7 @@ struct ThresholdTrialRecord {
   std::array<double, 2> felt_kPa{};         // mean pressure on the active fingers per interval
 };
 
-// Every track's state as one JSON array, and back (throws std::invalid_argument).
+// Every track's state as one JSON array, and back (throws BadInput).
 nlohmann::json tracks_state(const std::vector<AdaptiveTrack>& tracks);
 void restore_tracks(std::vector<AdaptiveTrack>& tracks, const nlohmann::json& state);
 
@@ -39,7 +39,7 @@ void restore_tracks(std::vector<AdaptiveTrack>& tracks, const nlohmann::json& st
 // order: each answered trial is one record() of its track at its level; an unanswered one
 // leaves the tracks as they were (the trial is repeated). `after_each` sees every trial with
 // the tracks as they stood after it (the export's estimate after each trial). Throws
-// std::invalid_argument naming the position when a trial names no track of the protocol, or its
+// BadInput naming the position when a trial names no track of the protocol, or its
 // level or reversal is not what the replayed track gives (a damaged or edited store, or one
 // written under another protocol).
 void replay_tracks(

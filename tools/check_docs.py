@@ -2,6 +2,9 @@
 """Executable docs: run every shell example of README.md and docs/**/*.md, compare the output the
 page shows, and load every JSON and CSV example through palprig's reader for its kind.
 
+Over 400 lines: one program (the page runner, the output matcher, the JSON and CSV loader, the
+link checker and the self-test), which ctest runs as one.
+
     python3 tools/check_docs.py [--bin BUILD/bin] [--repo ROOT] [--keep] [PAGE.md ...]
     python3 tools/check_docs.py --self-test [--bin BUILD/bin] [--repo ROOT]
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Makes the shipped tracker data of data/tracking/ (issue 26): what an NDI Aurora behind
+"""Makes the shipped tracker data of data/tracking/: what an NDI Aurora behind
 PlusServer would have streamed while a hand with a 6-DOF sensor on each of three fingers
 palpated paper 002's phantom, and the calibration sessions before it.
 

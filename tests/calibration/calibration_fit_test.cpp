@@ -11,7 +11,7 @@
 #include "calibration/calibration_fit.hpp"
 #include "calibration/calibration_writer.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -186,6 +186,27 @@ TEST(CalibrationFit, ChannelsWithoutStressPairsKeepTheBaseLine) {
   o.stress_pairs.pop_back();  // two pairs for channel 3: too few for a line
   EXPECT_EQ(refusal([&] { fit_calibration(rig.sweep({1}), o); }),
             "pairs.csv: stress line of channel 3: at least 3 points for a line, got 2");
+}
+
+// Without --stress pairs the note said "actuator stress lines from (built-in paper 002 defaults)
+// (no --stress pairs)": it now says in words where the lines come from, and a file given with
+// --base by its name.
+TEST(CalibrationFit, TheNoteSaysWhereTheActuatorLinesComeFrom) {
+  SyntheticRig rig;
+  const CalibrationResult built_in = fit_calibration(rig.sweep({1}), options());
+  bool noted = false;
+  for (const auto& n : built_in.notes) {
+    EXPECT_EQ(n.find("(built-in"), std::string::npos) << n;
+    noted = noted || n == "actuator stress lines kept from paper 002's regression (no --stress pairs given)";
+  }
+  EXPECT_TRUE(noted);
+  CalibrationFitOptions o = options();
+  o.base.source = "lab_rig.json";
+  const CalibrationResult based = fit_calibration(rig.sweep({1}), o);
+  noted = false;
+  for (const auto& n : based.notes)
+    noted = noted || n == "actuator stress lines kept from lab_rig.json (--base; no --stress pairs given)";
+  EXPECT_TRUE(noted);
 }
 
 TEST(CalibrationFit, SensorTablesAndHysteresisFromTheSensor) {

@@ -17,10 +17,11 @@
 #include "controller/tick_setup.hpp"
 #include "formats/calibration_file.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "rigs/simulated_rig.hpp"
 #include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/leased_run.hpp"
 
 using namespace palprig;
 using palprig::test_support::refusal;
@@ -46,7 +47,8 @@ SweepData recorded_sweep(const TempDir& dir, const PlantParams& plant, const std
   info.rate_hz = run.rate_hz;
   const auto path = dir.path() / ("sweep-" + excitation + ".csv");
   SweepCsvWriter writer(path, info, run.channels);
-  const SweepOutcome out = run_calibration_sweep(rig, schedule, run, writer);
+  palprig::testing::LeasedRig leased1(rig);
+  const SweepOutcome out = run_calibration_sweep(leased1.lease, schedule, run, writer);
   writer.finish(out);
   EXPECT_FALSE(out.faulted) << out.fault;
   EXPECT_EQ(out.holds_unsettled, 0u);  // timed holds are not "unsettled"

@@ -1,5 +1,5 @@
 // Hysteresis compensation on the default simulated plant, end to end in process: sweep,
-// fit, then the controller's tick with and without the fitted inverse. The bar: the
+// fit, then the controller's tick with and without the fitted inverse. The bar: the
 // compensated tracking error at least 5x lower.
 #include <gtest/gtest.h>
 
@@ -14,8 +14,9 @@
 #include "calibration/sweep_plan.hpp"
 #include "calibration/sweep_runner.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/leased_run.hpp"
 
 using namespace palprig;
 using palprig::test_support::TempDir;
@@ -38,7 +39,8 @@ CalibrationModels calibrate(const RigConfig& rig, const TempDir& dir) {
     SweepCsvWriter writer(data, info, {true, true, true});
     SweepRunOptions ro;
     ro.realtime = false;
-    writer.finish(run_calibration_sweep(*backend, plan, ro, writer));
+    palprig::testing::LeasedRig leased1(*backend);
+    writer.finish(run_calibration_sweep(leased1.lease, plan, ro, writer));
   }
   CalibrationFitOptions fo;
   fo.date = "test";
@@ -61,7 +63,8 @@ TEST(CompensationEvaluation, FittedInverseCutsTrackingErrorAtLeastFiveTimes) {
   const CalibrationModels cal = calibrate(rig, dir);
   auto backend = make_backend(rig);
   backend->open();
-  const EvaluationResult r = evaluate_compensation(*backend, rig, cal, fast());
+  palprig::testing::LeasedRig leased2(*backend);
+  const EvaluationResult r = evaluate_compensation(leased2.lease, rig, cal, fast());
   ASSERT_TRUE(r.complete());
   EXPECT_GE(r.reversals, 3u);
   EXPECT_DOUBLE_EQ(r.to_kPa, 48.0);  // 80 % of the rig's 60 kPa
@@ -89,7 +92,8 @@ TEST(CompensationEvaluation, AModelOfTheWrongPlantDoesNotPass) {
   const RigConfig rig = default_rig_file();
   auto backend = make_backend(rig);
   backend->open();
-  const EvaluationResult r = evaluate_compensation(*backend, rig, wrong, fast(30));
+  palprig::testing::LeasedRig leased3(*backend);
+  const EvaluationResult r = evaluate_compensation(leased3.lease, rig, wrong, fast(30));
   EXPECT_LT(r.worst_improvement, 2.0);
 }
 
@@ -99,10 +103,12 @@ TEST(CompensationEvaluation, StopSignalVentsAndReportsAnIncompleteRun) {
   const CalibrationModels cal = calibrate(rig, dir);
   auto backend = make_backend(rig);
   backend->open();
-  std::atomic<int> stop{15};
+  RunControl stop;
+  stop.signal_stop(15);
   EvaluationOptions o = fast();
-  o.stop_signal = &stop;
-  const EvaluationResult r = evaluate_compensation(*backend, rig, cal, o);
+  o.control = &stop;
+  palprig::testing::LeasedRig leased4(*backend);
+  const EvaluationResult r = evaluate_compensation(leased4.lease, rig, cal, o);
   EXPECT_FALSE(r.complete());
   EXPECT_TRUE(r.uncompensated.stopped);
 }
@@ -113,7 +119,8 @@ TEST(CompensationEvaluation, RefusesWhatCannotBeEvaluated) {
   backend->open();
   auto refusal = [&](const CalibrationModels& cal, EvaluationOptions o) -> std::string {
     try {
-      evaluate_compensation(*backend, rig, cal, o);
+      palprig::testing::LeasedRig leased5(*backend);
+      evaluate_compensation(leased5.lease, rig, cal, o);
     } catch (const InputError& e) {
       return e.what();
     }

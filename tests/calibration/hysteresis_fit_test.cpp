@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "calibration/hysteresis_fit.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "calibration/line_fit.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 using namespace palprig;
 

@@ -4,7 +4,7 @@
 
 #include "calibration/force_window.hpp"
 #include "calibration/stress_fit.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include <functional>
 
 #include "tests/support/refusal.hpp"

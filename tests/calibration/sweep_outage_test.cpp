@@ -1,4 +1,4 @@
-// Issue 24, part A, 2: a calibration sweep over a real fieldbus that loses its link mid-hold.
+// A calibration sweep over a real fieldbus that loses its link mid-hold.
 // `palprig sim-rig` serves the WAGO map on loopback; the sweep runs in this process on the
 // Modbus backend in real time; the simulator is SIGSTOPped mid-sweep and continued 0.1 s after
 // the link is reported lost. The interrupted hold is redone from the right hysteresis branch,
@@ -18,6 +18,7 @@
 #include "rigs/modbus_rig.hpp"
 #include "tests/support/modbus_support.hpp"
 #include "tests/support/run_process.hpp"
+#include "tests/support/leased_run.hpp"
 
 using namespace palprig;
 using namespace palprig::test_support;
@@ -62,9 +63,10 @@ TEST(SweepOverAFailingLink, AHoldThatSpansAnOutageIsRedoneAndTheFileFits) {
   const auto data = dir.path() / "data.csv";
   std::atomic<std::size_t> done{0};
   SweepRecording recording;
+  palprig::testing::LeasedRig leased(backend);
   std::thread sweep([&] {
     recording =
-        record_calibration_sweep(backend, rig, schedule, run, data,
+        record_calibration_sweep(leased.lease, rig, schedule, run, data,
                                  [&](std::size_t d, std::size_t, const SweepHold&, const HoldOutcome&) { done = d; });
   });
   // Into the falling branch: the next hold (40 kPa coming down from 60) is the one cut.

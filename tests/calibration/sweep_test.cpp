@@ -1,3 +1,5 @@
+// Over 400 lines: the schedule, the runner and the data file are one sweep's three sides and
+// share its fixtures.
 // Calibration sweeps: the schedule (paper 002's staircase, p_max clamp, identification
 // excitations), the runner on the simulated rig (settling, stop, backend faults, a sensor
 // channel) and the data file (round trip, hand-typed tables, malformed rows).
@@ -14,9 +16,10 @@
 #include "calibration/sweep_runner.hpp"
 #include "formats/rig_file.hpp"
 #include "rigs/simulated_rig.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/refusal.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/leased_run.hpp"
 
 using namespace palprig;
 using palprig::test_support::refusal;
@@ -237,7 +240,8 @@ TEST(SweepRunner, HoldsSettleOnTheSimulatedRigAndShowItsHysteresis) {
   po.repeats = 1;
   const SweepSchedule plan = plan_calibration_sweep(po, 60.0);
   MemorySink sink;
-  const SweepOutcome out = run_calibration_sweep(rig, plan, fast_options(), sink);
+  palprig::testing::LeasedRig leased1(rig);
+  const SweepOutcome out = run_calibration_sweep(leased1.lease, plan, fast_options(), sink);
   EXPECT_FALSE(out.stopped);
   EXPECT_FALSE(out.faulted);
   EXPECT_EQ(out.holds_done, plan.holds.size());
@@ -263,7 +267,7 @@ TEST(SweepRunner, HoldsSettleOnTheSimulatedRigAndShowItsHysteresis) {
   EXPECT_GE(rig.vents, 1);  // the sweep ends vented
 }
 
-// Issue 9: the sweep wrote its levels straight to the backend, past the tick's safety stage.
+// The sweep once wrote its levels straight to the backend, past the tick's safety stage.
 // Now every setpoint goes through it: with the rig's slew limit at 500 kPa/s and 100 steps a
 // second, no write rises by more than 5 kPa, though the staircase steps by 10 kPa and each
 // repeat starts from vented; the levels are still reached and recorded.
@@ -276,14 +280,17 @@ TEST(SweepRunner, EverySetpointPassesTheSafetyStage) {
   SweepRunOptions ro = fast_options();
   ro.slew_kPa_per_s = 500;
   MemorySink sink;
-  const SweepOutcome out = run_calibration_sweep(rig, plan_calibration_sweep(po, 60.0), ro, sink);
+  palprig::testing::LeasedRig leased2(rig);
+  const SweepOutcome out = run_calibration_sweep(leased2.lease, plan_calibration_sweep(po, 60.0), ro, sink);
   EXPECT_FALSE(out.faulted) << out.fault;
   EXPECT_EQ(out.holds_unsettled, 0u);
   EXPECT_GT(rig.largest_rise_kPa, 4.9);
   EXPECT_LE(rig.largest_rise_kPa, 5.0 + 1e-9);
-  for (const auto& h : sink.holds)
-    if (h.hold.segment == SweepSegment::staircase && h.hold.branch == SweepBranch::inflation)
+  for (const auto& h : sink.holds) {
+    if (h.hold.segment == SweepSegment::staircase && h.hold.branch == SweepBranch::inflation) {
       EXPECT_NEAR(settled_mean(h, 0), h.hold.level_kPa - 2.0, 0.06) << h.hold.level_kPa;
+    }
+  }
   EXPECT_EQ(rig.state(), BackendState::disarmed);  // vented and disarmed at the end
 }
 
@@ -295,7 +302,8 @@ TEST(SweepRunner, OnlySelectedChannelsAreDriven) {
   SweepRunOptions ro = fast_options();
   ro.channels = {false, true, false};
   MemorySink sink;
-  run_calibration_sweep(rig, plan_calibration_sweep(po, 60.0), ro, sink);
+  palprig::testing::LeasedRig leased3(rig);
+  run_calibration_sweep(leased3.lease, plan_calibration_sweep(po, 60.0), ro, sink);
   double most_1 = 0, most_2 = 0;
   for (const auto& h : sink.holds)
     for (const auto& s : h.samples) {
@@ -309,17 +317,18 @@ TEST(SweepRunner, OnlySelectedChannelsAreDriven) {
 TEST(SweepRunner, StopSignalVentsAndKeepsWhatWasRecorded) {
   CaliperRig rig(60.0);
   rig.open();
-  std::atomic<int> stop{0};
+  RunControl stop;
   SweepRunOptions ro = fast_options();
-  ro.stop_signal = &stop;
+  ro.control = &stop;
   MemorySink sink;
   std::size_t seen = 0;
   const SweepSchedule plan = plan_calibration_sweep({}, 60.0);
   auto progress = [&](std::size_t done, std::size_t, const SweepHold&, const HoldOutcome&) {
     seen = done;
-    if (done == 7) stop.store(2);  // SIGINT arrives during hold 8
+    if (done == 7) stop.signal_stop(2);  // SIGINT arrives during hold 8
   };
-  const SweepOutcome out = run_calibration_sweep(rig, plan, ro, sink, progress);
+  palprig::testing::LeasedRig leased4(rig);
+  const SweepOutcome out = run_calibration_sweep(leased4.lease, plan, ro, sink, progress);
   EXPECT_TRUE(out.stopped);
   EXPECT_EQ(out.stop_signal, 2);
   EXPECT_EQ(seen, 7u);
@@ -332,7 +341,8 @@ TEST(SweepRunner, BackendFaultVentsAndReportsTheBackendsReason) {
   CaliperRig rig(60.0, 500);
   rig.open();
   MemorySink sink;
-  const SweepOutcome out = run_calibration_sweep(rig, plan_calibration_sweep({}, 60.0), fast_options(), sink);
+  palprig::testing::LeasedRig leased5(rig);
+  const SweepOutcome out = run_calibration_sweep(leased5.lease, plan_calibration_sweep({}, 60.0), fast_options(), sink);
   EXPECT_TRUE(out.faulted);
   EXPECT_EQ(out.fault, "monitor read failed: cable unplugged");
   EXPECT_GT(out.holds_done, 5u);
@@ -351,7 +361,9 @@ TEST(SweepRunner, ASinkThatThrowsLeavesTheRigVented) {
       if (++holds == 3) throw std::runtime_error("cannot write data.csv");
     }
   } sink;
-  EXPECT_THROW(run_calibration_sweep(rig, plan_calibration_sweep({}, 60.0), fast_options(), sink), std::runtime_error);
+  palprig::testing::LeasedRig leased6(rig);
+  EXPECT_THROW(run_calibration_sweep(leased6.lease, plan_calibration_sweep({}, 60.0), fast_options(), sink),
+               std::runtime_error);
   EXPECT_EQ(rig.vents, 1);
 }
 
@@ -364,7 +376,8 @@ TEST(SweepRunner, AHoldThatNeverSettlesIsMarkedAndTheSweepGoesOn) {
   ro.settle_band_kPa = 1e-9;  // the monitor's noise never gets inside this
   ro.max_hold_s = 0.8;
   MemorySink sink;
-  const SweepOutcome out = run_calibration_sweep(rig, plan_calibration_sweep(po, 60.0), ro, sink);
+  palprig::testing::LeasedRig leased7(rig);
+  const SweepOutcome out = run_calibration_sweep(leased7.lease, plan_calibration_sweep(po, 60.0), ro, sink);
   EXPECT_EQ(out.holds_unsettled, out.holds_done);
   EXPECT_FALSE(out.faulted);
   for (const auto& h : sink.holds) {
@@ -402,7 +415,8 @@ TEST(SweepCsv, RoundTripAveragesSettledRowsPerHold) {
     } both(writer, memory);
     SweepRunOptions ro = fast_options();
     ro.channels = {true, false, true};
-    writer.finish(run_calibration_sweep(rig, plan, ro, both));
+    palprig::testing::LeasedRig leased8(rig);
+    writer.finish(run_calibration_sweep(leased8.lease, plan, ro, both));
   }
   const SweepData data = read_sweep_csv(path);
   EXPECT_EQ(data.info.rig_id, "bench-7");

@@ -1,5 +1,5 @@
 // palprig export --plot: a simulated study exported with paper 002's fig. 15 chart, read back
-// as an image (the right size, both conditions' bars present).
+// as an image at print size, both conditions' points present.
 #include <gtest/gtest.h>
 
 #include <QtGui/QImage>
@@ -25,18 +25,20 @@ TEST(ExportPlot, MeasuresByConditionChartIsWritten) {
   EXPECT_NE(r.out.find(png.string()), std::string::npos) << r.out;
   QImage img(QString::fromStdString(png.string()));
   ASSERT_FALSE(img.isNull());
-  EXPECT_EQ(img.width(), 1000);
-  EXPECT_EQ(img.height(), 650);
-  // Two conditions: the palette's first two colours fill bars somewhere in the plot.
+  // Print size: 7 x 4.4 in at 300 dpi.
+  EXPECT_EQ(img.width(), 2100);
+  EXPECT_EQ(img.height(), 1320);
+  // Two conditions: the palette's first two colours (Okabe and Ito's blue and vermillion) mark
+  // points and whiskers in the plot and their legend entries.
   int blue = 0, red = 0;
   for (int y = 0; y < img.height(); y += 2)
     for (int x = 0; x < img.width(); x += 2) {
       const QColor c = img.pixelColor(x, y);
-      if (c == QColor(0x1f, 0x77, 0xb4)) ++blue;
-      if (c == QColor(0xd6, 0x27, 0x28)) ++red;
+      if (c == QColor(0x00, 0x72, 0xb2)) ++blue;
+      if (c == QColor(0xd5, 0x5e, 0x00)) ++red;
     }
-  EXPECT_GT(blue, 1000);
-  EXPECT_GT(red, 1000);
+  EXPECT_GT(blue, 200);
+  EXPECT_GT(red, 200);
 }
 
 TEST(ExportPlot, AFileThatIsNotATrialDatabaseIsRefusedBeforeAnyPlot) {

@@ -1,4 +1,4 @@
-// `palprig export` of a store holding every task kind (issue 23): each shipped protocol run by
+// `palprig export` of a store holding every task kind: each shipped protocol run by
 // simulated participants, exported as long CSV and BIDS with every trial, plotted per kind;
 // an empty store, a full disk (/dev/full and a full tmpfs) and an unwritable folder are errors
 // that leave no file looking complete. The official bids-validator checks the BIDS tree when
@@ -273,7 +273,7 @@ TEST(ExportRefusals, AStoreWithoutTrialsIsAnErrorNotAnEmptyExport) {
   ScratchDir dir;
   const fs::path db = dir / "empty.db";
   { const auto store = open_trial_store(db.string(), TrialStore::Access::read_write); }
-  for (const std::string& format : {"csv", "bids"}) {
+  for (const char* format : {"csv", "bids"}) {
     const auto r = run_palprig({"export", db.string(), "--format", format, "--out", (dir / format).string()});
     EXPECT_EQ(r.exit_code, 2) << r.out;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
@@ -313,7 +313,7 @@ TEST(ExportRefusals, AFullDiskIsExitOneAndLeavesNoFileThatLooksComplete) {
   if (::geteuid() != 0 || ::mount("tmpfs", small.c_str(), "tmpfs", 0, "size=8k") != 0) {
     GTEST_SKIP() << "cannot mount a small tmpfs here (not root, or mount refused): the /dev/full case ran";
   }
-  for (const std::string& format : {"csv", "bids"}) {
+  for (const char* format : {"csv", "bids"}) {
     r = run_palprig({"export", db.string(), "--format", format, "--out", (small / format).string()});
     EXPECT_EQ(r.exit_code, 1) << format << ": " << r.out << r.err;
     EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;

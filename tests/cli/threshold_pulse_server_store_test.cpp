@@ -1,5 +1,5 @@
-// Threshold and pulse protocols (issue 13) keep their own SQLite tables; the PostgreSQL lab
-// store (issue 12) holds discrimination/localisation trials only. A postgresql:// --db for them
+// Threshold and pulse protocols keep their own SQLite tables; the PostgreSQL lab
+// store holds discrimination/localisation trials only. A postgresql:// --db for them
 // is a refused input (exit 2, names --db), and no local file named after the URI is created.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The command line of tracked fingers (issue 26), as a user runs it: `palprig igtl-replay` as a
+// The command line of tracked fingers, as a user runs it: `palprig igtl-replay` as a
 // real server process and `palprig run --input igtl:...` against it with the per-region table;
 // the tracking commands; the load-cell commands; and the refusals, each one line, exit 2.
 #include <gtest/gtest.h>
@@ -83,7 +83,13 @@ TEST(TrackingCli, RunOverAReplayedTrackerPrintsThePerRegionTable) {
   EXPECT_GT(regions[1]["finger_ticks"].get<int>(), 800);
   EXPECT_GT(regions[1]["target_kPa_mean"].get<double>(), 10.0);
   EXPECT_EQ(regions[0]["finger_ticks"].get<int>(), 0);  // A and C come later in the pass
-  EXPECT_LT(regions[3]["target_kPa_mean"].get<double>(), 1.0);
+  EXPECT_TRUE(regions[0]["target_kPa_mean"].is_null()) << "a region not reached has no figure, not a 0";
+  // Soft tissue: pressed on by the fingers beside B (a hard nodule's target is not theirs), or
+  // not reached in these 3 s.
+  if (regions[3]["finger_ticks"].get<int>() > 0)
+    EXPECT_LT(regions[3]["target_kPa_mean"].get<double>(), 1.0);
+  else
+    EXPECT_TRUE(regions[3]["target_kPa_mean"].is_null());
   // 4 mm deep on 0.5 N/mm; the recording's 0.1 mm of tracker noise and the finger's tilt add a little.
   EXPECT_NEAR(j["tracked_fingers"][1]["force_N"]["max"].get<double>(), 2.0, 0.25);
   ::kill(server.pid(), SIGTERM);

@@ -1,4 +1,4 @@
-// Every writer checks every write and its close (models/checked_output.hpp): on /dev/full, on a
+// Every writer checks every write and its close (io/checked_output.hpp): on /dev/full, on a
 // full file system (a filled 64 KiB tmpfs) and in a folder it may not write, `telemetry to-csv`,
 // `scene render`, `scene generate`, `stats psychometric --plot`, `calibrate sweep` and `store
 // copy` fail with one line naming the file and the system's reason, exit 1 (store copy: its

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "controller/operator_switches.hpp"
 #include "controller/tick_setup.hpp"
 #include "formats/calibration_file.hpp"
 #include "formats/rig_file.hpp"
@@ -168,12 +169,12 @@ TEST(FunctionSceneTick, RateChangedWhileRunningTakesEffectWithoutAJump) {
   TickState st = make_tick_state(cfg);
   std::vector<double> onsets;
   double previous = 0;
+  // The operator's switches as the loop reads them each tick; the window sets the rate at 4.1 s.
+  OperatorSwitches switches;
   for (int k = 0; k < 8000; ++k) {
     const double t = k * 0.001;
-    if (k == 4100) {
-      EXPECT_TRUE(scene->arteries().request_rate_bpm(0, 120));  // as a GUI thread would
-    }
-    const double p = tick(st, cfg, *scene, {t, 40, 60, 2.0, true}, t).pulse_kPa[0];
+    if (k == 4100) EXPECT_TRUE(switches.request_pulse_rate_bpm(0, 120));
+    const double p = tick(st, cfg, *scene, {t, 40, 60, 2.0, true}, t, switches.read()).pulse_kPa[0];
     if (p > 0.5 && previous <= 0.5) onsets.push_back(t);
     previous = p;
   }

@@ -174,7 +174,7 @@ struct Crossing {
 
 // Finger 1 (at the pen) crosses the tumor at 40 mm/s, 2 N, on the simulated rig without play or
 // noise, through RigStep (tick, backend, monitors).
-// tracked: the same finger 1 as a tracked fingertip (its own position and load cell; issue 26),
+// tracked: the same finger 1 as a tracked fingertip (its own position and load cell),
 // finger 2 tracked elsewhere on soft tissue, finger 3's tool out of view (vented).
 Crossing cross_tumor(bool compensate, const RegulatorLag& model, double max_lead_kPa = 10, double stop_at_s = 1e9,
                      bool tracked = false) {

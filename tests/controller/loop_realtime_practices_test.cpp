@@ -11,6 +11,7 @@
 #include "controller/loop_runner.hpp"
 #include "formats/rig_file.hpp"
 #include "rigs/simulated_rig.hpp"
+#include "tests/support/leased_run.hpp"
 
 using namespace palprig;
 
@@ -52,7 +53,7 @@ RunSummary run_briefly(RealtimeOptions rt, TickObserver* observer) {
     opt.duration_s = 0.05;
     opt.realtime = rt;
     opt.observer = observer;
-    s = run_loop(TickConfig{}, scene, pen, backend, opt);
+    s = palprig::testing::run_loop_leased(TickConfig{}, scene, pen, backend, opt);
   });
   t.join();
   return s;
@@ -90,6 +91,6 @@ TEST(LoopRealtimePractices, ReplayTouchesNoneOfThem) {
   RunOptions opt;
   opt.mode = LoopMode::replay;
   opt.duration_s = 0.05;
-  const RunSummary s = run_loop(TickConfig{}, scene, pen, backend, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(TickConfig{}, scene, pen, backend, opt);
   EXPECT_TRUE(s.realtime_practices.empty());
 }

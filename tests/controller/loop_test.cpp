@@ -8,9 +8,10 @@
 #include "controller/loop_runner.hpp"
 #include "rigs/simulated_rig.hpp"
 #include "controller/telemetry_writer.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/rigs_for_tests.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/leased_run.hpp"
 
 using namespace palprig;
 using palprig::test_support::TempDir;
@@ -32,7 +33,7 @@ TEST(LoopRunner, ReplayDrivesThePlantToTheTarget) {
   RestingPen pen(50, 20);  // finger 1 over hard tissue
   RunOptions opt;
   opt.duration_s = 1.0;
-  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(cfg, scene, pen, rig, opt);
   EXPECT_EQ(s.ticks, 1000u);
   EXPECT_EQ(s.fault, FaultCode::none);
   EXPECT_NEAR(s.target_kPa[1].max, 11.75, 1e-4);
@@ -49,9 +50,9 @@ TEST(LoopRunner, BackendErrorVentsAndStopsWithTheReason) {
   RestingPen pen(50, 20);
   RunOptions opt;
   opt.duration_s = 1.0;
-  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(cfg, scene, pen, rig, opt);
   EXPECT_EQ(s.fault, FaultCode::backend_error);
-  EXPECT_EQ(s.fault_detail, "bus timeout on channel 2");
+  EXPECT_EQ(s.fault.detail(), "bus timeout on channel 2");
   EXPECT_EQ(s.ticks, 100u);
   EXPECT_GE(rig.vents, 1);
   EXPECT_EQ(rig.last, (ChannelPressures{0, 0, 0}));
@@ -63,11 +64,12 @@ TEST(LoopRunner, StopSignalVents) {
   SimulatedRig rig(quiet_plants(), 60);
   rig.open();
   RestingPen pen(50, 20);
-  std::atomic<int> stop{15};
+  RunControl stop;
+  stop.signal_stop(15);
   RunOptions opt;
   opt.duration_s = 1.0;
-  opt.stop_signal = &stop;
-  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  opt.control = &stop;
+  const RunSummary s = palprig::testing::run_loop_leased(cfg, scene, pen, rig, opt);
   EXPECT_EQ(s.fault, FaultCode::signal);
   EXPECT_EQ(s.ticks, 1u);
   EXPECT_EQ(s.setpoint_kPa[1].max, 0.0);  // vented from the first tick on
@@ -87,7 +89,7 @@ TEST(LoopRunner, RealtimeModeRunsOnTheClock) {
   opt.rate_hz = 500;
   opt.duration_s = 0.2;
   opt.want_fifo = false;
-  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(cfg, scene, pen, rig, opt);
   EXPECT_EQ(s.fault, FaultCode::none);
   EXPECT_EQ(s.ticks + s.missed_periods, 100u);  // every period either ran or was skipped
   EXPECT_NEAR(s.sim_time_s, 0.2, 1e-9);
@@ -105,7 +107,7 @@ TEST(LoopRunner, BinaryTelemetryRoundTripsThroughCsv) {
   RunOptions opt;
   opt.duration_s = 0.5;
   opt.telemetry_path = dir.path() / "t.bin";
-  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(cfg, scene, pen, rig, opt);
   EXPECT_EQ(s.telemetry_dropped, 0u);
   EXPECT_EQ(std::filesystem::file_size(opt.telemetry_path), 16 + 500 * sizeof(TelemetryRecord));
   EXPECT_EQ(convert_telemetry_to_csv(opt.telemetry_path, dir.path() / "t.csv"), 500u);
@@ -150,18 +152,17 @@ namespace {
 // what each tick sent (the records are checked after the run).
 class VentOperator final : public TickObserver {
  public:
-  VentOperator(std::atomic<bool>& vent, std::atomic<bool>& stop) : vent_(vent), stop_(stop) {}
+  explicit VentOperator(RunControl& control) : control_(control) {}
   void on_tick(const TelemetryRecord& r) noexcept override {
     if (records.size() < records.capacity()) records.push_back(r);
-    if (r.tick == 499) vent_.store(true);
-    if (r.tick == 799) vent_.store(false);
-    if (r.tick == 1199) stop_.store(true);
+    if (r.tick == 499) control_.hold_vent(true);
+    if (r.tick == 799) control_.hold_vent(false);
+    if (r.tick == 1199) control_.request_stop();
   }
   std::vector<TelemetryRecord> records;
 
  private:
-  std::atomic<bool>& vent_;
-  std::atomic<bool>& stop_;
+  RunControl& control_;
 };
 
 }  // namespace
@@ -172,18 +173,21 @@ TEST(LoopRunner, VentRequestZeroesEverySetpointFromTheNextTickAndArmingSlewsBack
   FailingRig rig(1 << 30);  // never fails; keeps the last write
   rig.open();               // connected and vented: run_loop arms it
   RestingPen pen(50, 20);   // finger 2 over hard tissue: 11.75 kPa
-  std::atomic<bool> vent{false}, stop{false};
-  VentOperator op(vent, stop);
+  RunControl control;
+  VentOperator op(control);
   op.records.reserve(5000);
   RunOptions opt;
   opt.duration_s = 5.0;
-  opt.vent_request = &vent;
-  opt.stop_request = &stop;
+  opt.control = &control;
   opt.observer = &op;
-  const RunSummary s = run_loop(cfg, scene, pen, rig, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(cfg, scene, pen, rig, opt);
   EXPECT_EQ(s.fault, FaultCode::none);  // a vent and a stop are operator actions, not faults
-  EXPECT_EQ(s.ticks, 1200u);            // stop_request ended the run before its 5 s
-  ASSERT_EQ(op.records.size(), 1200u);
+  // The stop asked for after tick 1199 ended the run before its 5 s, with one last tick whose
+  // record shows every channel vented.
+  EXPECT_EQ(s.ticks, 1201u);
+  ASSERT_EQ(op.records.size(), 1201u);
+  EXPECT_TRUE(op.records[1200].flags & kVented);
+  for (int i = 0; i < kFingerCount; ++i) EXPECT_EQ(op.records[1200].setpoint_kPa[i], 0.0f);
   EXPECT_NEAR(op.records[499].setpoint_kPa[1], 11.75, 1e-4);
   for (std::size_t k = 500; k < 800; ++k) {
     for (int i = 0; i < kFingerCount; ++i) ASSERT_EQ(op.records[k].setpoint_kPa[i], 0.0f) << "tick " << k;

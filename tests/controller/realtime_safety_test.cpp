@@ -13,6 +13,7 @@
 #include "inputs/tablet_input.hpp"
 #include "runtime/worker_fault.hpp"
 #include "formats/rig_file.hpp"
+#include "tests/support/leased_run.hpp"
 
 using namespace palprig;
 
@@ -99,7 +100,7 @@ TEST(RealtimeSafety, ALinkOutageIsAnAlarmThatVentsAndRampsBackFromZero) {
   opt.mode = LoopMode::replay;
   opt.duration_s = 0.6;
   opt.observer = &rec;
-  const RunSummary s = run_loop(config, scene, pen, rig, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(config, scene, pen, rig, opt);
   EXPECT_EQ(s.fault, FaultCode::none);  // not latched: the run went on
   EXPECT_EQ(s.link_outages, 1u);
   EXPECT_EQ(s.unlinked_ticks, 100u);
@@ -136,11 +137,11 @@ TEST(RealtimeSafety, AnExceptionOnTheReaderThreadVentsAndStopsTheLoop) {
   TickConfig config;
   config.safety.max_consecutive_overruns = 1000000;  // a busy test machine must not end it first
   config.safety.max_lost_time_s = 10;
-  const RunSummary s = run_loop(config, uniform_scene(0.5f), input, backend, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(config, uniform_scene(0.5f), input, backend, opt);
   EXPECT_EQ(s.fault, FaultCode::thread_exception);
-  EXPECT_NE(s.fault_detail.find("USB bus reset"), std::string::npos) << s.fault_detail;
-  EXPECT_NE(s.fault_detail.find("pen tablet reader"), std::string::npos) << s.fault_detail;
-  EXPECT_LT(s.fault_t_s, 1.0);
+  EXPECT_NE(s.fault.detail().find("USB bus reset"), std::string::npos) << s.fault.detail();
+  EXPECT_NE(s.fault.detail().find("pen tablet reader"), std::string::npos) << s.fault.detail();
+  EXPECT_LT(s.fault.t_s, 1.0);
   clear_worker_faults();
 }
 
@@ -157,9 +158,9 @@ TEST(RealtimeSafety, ALiveTabletThatDisappearsIsAWorkerFaultWithTheReason) {
   TickConfig config;
   config.safety.max_consecutive_overruns = 1000000;  // a busy test machine must not end it first
   config.safety.max_lost_time_s = 10;
-  const RunSummary s = run_loop(config, uniform_scene(0.5f), input, backend, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(config, uniform_scene(0.5f), input, backend, opt);
   EXPECT_EQ(s.fault, FaultCode::thread_exception);
-  EXPECT_NE(s.fault_detail.find("unplugged"), std::string::npos) << s.fault_detail;
+  EXPECT_NE(s.fault.detail().find("unplugged"), std::string::npos) << s.fault.detail();
   clear_worker_faults();
 }
 

@@ -1,6 +1,6 @@
 // RigStep: the one path from targets to the regulators (tick, write, monitors, faults, vent),
 // and what it means for the loop and the other callers: pressure rises from the vented state on
-// the first tick and after every re-arm (issue 10), a disarmed backend is vented and read, a
+// the first tick and after every re-arm, a disarmed backend is vented and read, a
 // backend error vents with the backend's words, a closed backend moves nothing.
 #include <gtest/gtest.h>
 
@@ -11,6 +11,7 @@
 #include "controller/rig_step.hpp"
 #include "rigs/simulated_rig.hpp"
 #include "tests/support/rigs_for_tests.hpp"
+#include "tests/support/leased_run.hpp"
 
 using namespace palprig;
 
@@ -29,7 +30,7 @@ class Recorder final : public TickObserver {
 
 }  // namespace
 
-// Issue 10: a pen already pressed on a tumor when a run starts sent the full target (11.75 kPa)
+// A pen already pressed on a tumor when a run started once sent the full target (11.75 kPa)
 // in one tick to vented regulators. Now the first tick rises by one slew step (2000 kPa/s over
 // 1 ms = 2 kPa) and the setpoint ramps from there.
 TEST(RigStep, APenAlreadyPressedWhenTheRunStartsRampsFromVented) {
@@ -41,7 +42,7 @@ TEST(RigStep, APenAlreadyPressedWhenTheRunStartsRampsFromVented) {
   RunOptions opt;
   opt.duration_s = 0.05;
   opt.observer = &rec;
-  const RunSummary s = run_loop(TickConfig{}, scene, pen, rig, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(TickConfig{}, scene, pen, rig, opt);
   ASSERT_EQ(s.fault, FaultCode::none);
   ASSERT_EQ(rec.records.size(), 50u);
   EXPECT_NEAR(rec.records[0].target_kPa[1], 11.75, 1e-4);
@@ -63,7 +64,7 @@ TEST(RigStep, ADisarmedRigIsVentedAndReadAndRampsAgainAfterReArming) {
   for (int k = 0; k < 20; ++k, t += 0.001) step.step_direct({30, 0, 0}, t);
   EXPECT_NEAR(step.last().tick.setpoint_kPa[0], 30.0, 1e-9);
 
-  step.request_disarm();  // as a GUI button would, from its own thread
+  step.disarm();  // as the loop does while the operator holds VENT
   const std::size_t writes_before = rig.writes.size();
   for (int k = 0; k < 5; ++k, t += 0.001) {
     const StepResult& r = step.step_direct({30, 0, 0}, t);
@@ -77,7 +78,7 @@ TEST(RigStep, ADisarmedRigIsVentedAndReadAndRampsAgainAfterReArming) {
   EXPECT_EQ(rig.state(), BackendState::disarmed);
   EXPECT_FALSE(step.faulted());
 
-  step.request_arm();
+  ASSERT_EQ(step.arm(), BackendStatus::ok);
   const StepResult& first = step.step_direct({30, 0, 0}, t);
   EXPECT_TRUE(first.armed);
   EXPECT_NEAR(first.tick.setpoint_kPa[0], 2.0, 1e-9);  // from 0 kPa again, one slew step
@@ -100,7 +101,7 @@ TEST(RigStep, ABackendErrorVentsDisarmsAndKeepsTheBackendsWords) {
   EXPECT_EQ(r.tick.record.fault, FaultCode::backend_error);
   EXPECT_TRUE(r.tick.record.flags & kVented);
   EXPECT_EQ(step.fault(), FaultCode::backend_error);
-  EXPECT_STREQ(step.fault_detail(), "valve driver overheated on channel 3");
+  EXPECT_EQ(step.fault().detail(), "valve driver overheated on channel 3");
   EXPECT_GT(rig.vents, vents_before);
   EXPECT_EQ(rig.state(), BackendState::disarmed);
   // Latched: a faulted step never moves air again, even when asked to arm.
@@ -115,9 +116,9 @@ TEST(RigStep, ARunOnAClosedBackendMovesNothingAndSaysWhy) {
   RestingPen pen;
   RunOptions opt;
   opt.duration_s = 0.1;
-  const RunSummary s = run_loop(TickConfig{}, hard_right_scene(), pen, rig, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(TickConfig{}, hard_right_scene(), pen, rig, opt);
   EXPECT_EQ(s.fault, FaultCode::backend_error);
-  EXPECT_NE(s.fault_detail.find("closed"), std::string::npos) << s.fault_detail;
+  EXPECT_NE(s.fault.detail().find("closed"), std::string::npos) << s.fault.detail();
   EXPECT_EQ(s.ticks, 0u);
   EXPECT_TRUE(rig.writes.empty());
 }

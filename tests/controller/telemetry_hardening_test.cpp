@@ -12,8 +12,9 @@
 #include <random>
 #include <sstream>
 
+#include "core/error.hpp"
 #include "controller/telemetry_writer.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -144,7 +145,7 @@ TEST(TelemetryHardening, WriterStopsAtItsByteBudget) {
   try {
     w.finish();
     FAIL() << "the writer went past its budget";
-  } catch (const std::runtime_error& e) {
+  } catch (const palprig::Error& e) {
     EXPECT_NE(std::string(e.what()).find("budget of 64 KiB per file is reached"), std::string::npos) << e.what();
   }
   EXPECT_LE(std::filesystem::file_size(dir.path() / "t.bin"), limits.max_bytes);
@@ -160,7 +161,7 @@ TEST(TelemetryHardening, WriterStopsBeforeTheDiskFills) {
   try {
     w.finish();
     FAIL() << "the writer ignored the free space";
-  } catch (const std::runtime_error& e) {
+  } catch (const palprig::Error& e) {
     EXPECT_NE(std::string(e.what()).find("are kept free"), std::string::npos) << e.what();
   }
   EXPECT_EQ(std::filesystem::file_size(dir.path() / "t.csv"), 0u);

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "controller/telemetry_writer.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -172,7 +172,7 @@ TEST(TickDirect, PassesTheSameSafetyStage) {
   for (double p : r.setpoint_kPa) EXPECT_EQ(p, 0.0);
 }
 
-// Issue 10: the first tick was not slew-limited, so a pen already pressed on a tumor when a run
+// The first tick was once not slew-limited, so a pen already pressed on a tumor when a run
 // started sent the full target to vented regulators in one tick.
 TEST(Tick, FirstTickRisesFromVentedByOneSlewStep) {
   const auto scene = half_hard_scene();

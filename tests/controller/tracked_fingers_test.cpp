@@ -1,4 +1,6 @@
-// Tracked fingers in the tick and the rig step (issue 26), and end to end against a real
+// Over 400 lines: the tick, the rig step and the end-to-end runs share one set of tracked-finger
+// fixtures (a tracking file, a loopback OpenIGTLink server).
+// Tracked fingers in the tick and the rig step, and end to end against a real
 // OpenIGTLink server on loopback: fingers each at their own tracked position, per-finger load
 // cells, a finger whose tool is out of view vented with its reason, the fingers following a
 // known path within the registration error, pressure over a tumor, the pulse over an artery,
@@ -29,6 +31,7 @@
 #include "tests/support/process_support.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/rigs_for_tests.hpp"
+#include "tests/support/leased_run.hpp"
 
 using namespace palprig;
 using namespace palprig::test_rigs;
@@ -263,7 +266,7 @@ TEST(TrackedRigStep, ATrackerWithoutLoadCellsFaultsWithTheReason) {
   const StepResult& r = step.step(hard_right_scene(), s, 0);
   EXPECT_TRUE(step.faulted());
   EXPECT_EQ(step.fault(), FaultCode::backend_error);
-  EXPECT_NE(std::string(step.fault_detail()).find("no load cells"), std::string::npos) << step.fault_detail();
+  EXPECT_NE(step.fault().detail().find("no load cells"), std::string::npos) << step.fault().detail();
   for (float p : r.tick.record.setpoint_kPa) EXPECT_EQ(p, 0.0f);
 }
 
@@ -289,8 +292,9 @@ TEST(TrackedEndToEnd, FingersFollowAKnownPathAndTumorBGetsThePressure) {
   IgtlInput input({"127.0.0.1", server.port()}, three_finger_tracking(reg.from_to), rig_cfg.safety.max_input_age_s);
   ASSERT_TRUE(eventually([&] { return input.latest(0).fingers[1].vent == FingerVent::none; }));
   Recorder rec(4000);
-  const RunSummary s = run_loop(patient(rig_cfg), *scene.scene, input, rig, realtime(2.0, &rec));
-  EXPECT_EQ(s.fault, FaultCode::none) << s.fault_detail;
+  const RunSummary s =
+      palprig::testing::run_loop_leased(patient(rig_cfg), *scene.scene, input, rig, realtime(2.0, &rec));
+  EXPECT_EQ(s.fault, FaultCode::none) << s.fault.detail();
   ASSERT_GT(rec.records.size(), 1000u);
   // Every placed finger lies on its known path (each at its own y), within a bound set by the
   // registration's error: the tracker's float32 and the estimated registration's 0.2 mm noise.
@@ -355,8 +359,8 @@ TEST(TrackedEndToEnd, LagCompensationFollowsEachTrackedFingerOverTheStream) {
       cfg.lag_compensation.regulator[i] = {0.004, 0.050, 2000};
     }
     Recorder rec(4000);
-    const RunSummary s = run_loop(cfg, *scene.scene, input, rig, realtime(2.0, &rec));
-    EXPECT_EQ(s.fault, FaultCode::none) << s.fault_detail;
+    const RunSummary s = palprig::testing::run_loop_leased(cfg, *scene.scene, input, rig, realtime(2.0, &rec));
+    EXPECT_EQ(s.fault, FaultCode::none) << s.fault.detail();
     double sq = 0, mon = 0, tgt = 0;
     std::size_t n = 0;
     max_setpoint_kPa = 0;
@@ -413,8 +417,9 @@ TEST(TrackedEndToEnd, ThePulseIsFeltOverTheBrachialArtery) {
   IgtlInput input({"127.0.0.1", server.port()}, three_finger_tracking(scene_to_tracker().inverse()), 0.1);
   ASSERT_TRUE(eventually([&] { return input.latest(0).fingers[1].vent == FingerVent::none; }));
   Recorder rec(4000);
-  const RunSummary s = run_loop(patient(rig_cfg), *scene.scene, input, rig, realtime(2.5, &rec));
-  EXPECT_EQ(s.fault, FaultCode::none) << s.fault_detail;
+  const RunSummary s =
+      palprig::testing::run_loop_leased(patient(rig_cfg), *scene.scene, input, rig, realtime(2.5, &rec));
+  EXPECT_EQ(s.fault, FaultCode::none) << s.fault.detail();
   // Over 1.5 s (two beats at 72 BPM) the finger on the artery's target beats; the one beside it is still.
   float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
   for (const TelemetryRecord& r : rec.records) {
@@ -481,12 +486,13 @@ TEST(TrackedEndToEnd, ATrackerProcessKilledForRealVentsEveryFinger) {
       if (r.setpoint_kPa[1] > 5) pressing.store(true);
     }
   } watch(rec, pressing);
-  const RunSummary s = run_loop(patient(rig_cfg), *scene.scene, input, rig, realtime(15.0, &watch));
+  const RunSummary s =
+      palprig::testing::run_loop_leased(patient(rig_cfg), *scene.scene, input, rig, realtime(15.0, &watch));
   killer.join();
   tracker.wait();
   ASSERT_TRUE(pressing.load());
   EXPECT_EQ(s.fault, FaultCode::thread_exception);
-  EXPECT_NE(s.fault_detail.find("the server closed the connection"), std::string::npos) << s.fault_detail;
+  EXPECT_NE(s.fault.detail().find("the server closed the connection"), std::string::npos) << s.fault.detail();
   EXPECT_LT(s.sim_time_s, 14.0);  // it stopped, it did not run on
   // The last record vents every channel; the backend was left vented.
   ASSERT_FALSE(rec.records.empty());

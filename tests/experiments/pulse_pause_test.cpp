@@ -1,4 +1,4 @@
-// Pause and Ready in a pulse-localisation session (issue 15): run_pulse_session on a real
+// Pause and Ready in a pulse-localisation session: run_pulse_session on a real
 // RigStimulus over the simulated rig's backend, on a scripted simulated clock that asks for the
 // pause and lifts it at given times. A pause vents at once (the regulators' monitors fall to 0),
 // holds the trial in progress and presents it again from its start once the participant is
@@ -21,15 +21,15 @@ namespace {
 // Simulated time; the pause flag goes up at pause_on_s and down at pause_off_s.
 class ScriptedPauseClock final : public SessionClock {
  public:
-  ScriptedPauseClock(std::atomic<bool>& pause, double on_s, double off_s) : pause_(pause), on_s_(on_s), off_s_(off_s) {}
+  ScriptedPauseClock(RunControl& pause, double on_s, double off_s) : pause_(pause), on_s_(on_s), off_s_(off_s) {}
   double now_s() override { return t_s_; }
   void wait_until(double t_s) override {
     if (t_s > t_s_) t_s_ = t_s;
-    pause_.store(t_s_ >= on_s_ && t_s_ < off_s_);
+    pause_.set_paused(t_s_ >= on_s_ && t_s_ < off_s_);
   }
 
  private:
-  std::atomic<bool>& pause_;
+  RunControl& pause_;
   double t_s_ = 0, on_s_, off_s_;
 };
 
@@ -121,14 +121,14 @@ TEST(experiments_pulse_pause, pause_vents_holds_and_presents_the_same_trial_agai
   RigStimulus rig_output(make_tick_config(rig, CalibrationModels{}), *backend);
   WatchedOutput output(rig_output);
 
-  std::atomic<bool> pause{false};
+  RunControl pause;
   ScriptedPauseClock clock(pause, 1.5, 3.0);    // paused 1.5 s into trial 1, lifted at 3 s
   PressingParticipant participant(80.5, 45.0);  // on the femoral artery's course (x 79..82 mm)
   std::vector<PulseTrialRecord> committed;
   std::vector<std::pair<int, bool>> waits;
   PulseSessionOptions options;
   options.seed = 7;
-  options.pause = &pause;
+  options.control = &pause;
   options.on_trial = [&](const PulseTrialRecord& r) { committed.push_back(r); };
   options.on_waiting = [&](int position, bool paused) {
     waits.emplace_back(position, paused);
@@ -166,17 +166,15 @@ TEST(experiments_pulse_pause, stop_while_paused_keeps_what_was_committed) {
   auto backend = make_backend(rig);
   backend->open();
   RigStimulus output(make_tick_config(rig, CalibrationModels{}), *backend);
-  std::atomic<bool> pause{false};
-  ScriptedPauseClock clock(pause, 5.0, 1e9);  // paused in trial 2 (trial 1 ends at 3 s + 0.5 s gap), never lifted
+  RunControl control;
+  ScriptedPauseClock clock(control, 5.0, 1e9);  // paused in trial 2 (trial 1 ends at 3 s + 0.5 s gap), never lifted
   PressingParticipant participant(80.5, 45.0);
-  std::atomic<int> stop{0};
   std::vector<PulseTrialRecord> committed;
   PulseSessionOptions options;
-  options.pause = &pause;
-  options.stop = &stop;
+  options.control = &control;
   options.on_trial = [&](const PulseTrialRecord& r) { committed.push_back(r); };
   options.on_waiting = [&](int, bool paused) {
-    if (paused) stop.store(1);  // the experimenter aborts while paused
+    if (paused) control.request_stop();  // the experimenter aborts while paused
   };
   const PulseSessionResult result = run_pulse_session(protocol, scenes, output, participant, clock, options);
   backend->vent();

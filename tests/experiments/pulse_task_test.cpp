@@ -11,7 +11,7 @@
 #include "experiments/simulated_pulse_observer.hpp"
 #include "study/pulse_scene.hpp"
 #include "store/sqlite_trial_store.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "statistics/statistics_proportion.hpp"
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"

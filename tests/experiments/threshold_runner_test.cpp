@@ -67,11 +67,15 @@ TEST(experiments_threshold_runner, intervals_carry_reference_and_increment_on_th
       signal_intervals.insert(r.signal_interval);
       EXPECT_TRUE(r.answered);
       EXPECT_TRUE(r.correct) << "a noiseless participant always finds the increment";
-      if (method == ThresholdMethod::yes_no) EXPECT_EQ(r.signal_interval, 1);
+      if (method == ThresholdMethod::yes_no) {
+        EXPECT_EQ(r.signal_interval, 1);
+      }
       EXPECT_NEAR(r.felt_kPa[static_cast<std::size_t>(r.signal_interval)], p.reference_kPa + r.level_kPa, 1e-9);
       EXPECT_NEAR(r.felt_kPa[static_cast<std::size_t>(1 - r.signal_interval)], p.reference_kPa, 1e-9);
     }
-    if (method == ThresholdMethod::two_afc) EXPECT_EQ(signal_intervals.size(), 2u);
+    if (method == ThresholdMethod::two_afc) {
+      EXPECT_EQ(signal_intervals.size(), 2u);
+    }
     // Every hold: only the track's fingers pressurised, never above reference + max level.
     int one_finger_holds = 0;
     for (const auto& c : output.calls) {
@@ -96,13 +100,13 @@ TEST(experiments_threshold_runner, unanswered_trials_leave_the_track_and_a_stop_
   testing::RecordingOutput output;
   ScriptedParticipant silent(true);
   SimulatedClock clock;
-  std::atomic<int> stop{0};
+  RunControl stop;
   ThresholdSessionOptions o;
-  o.stop = &stop;
+  o.control = &stop;
   std::vector<ThresholdTrialRecord> records;
   o.on_trial = [&](const ThresholdTrialRecord& r) {
     records.push_back(r);
-    if (records.size() == 5) stop = 1;
+    if (records.size() == 5) stop.request_stop();
   };
   const auto result = run_threshold_session(p, tracks, output, silent, clock, o);
   EXPECT_TRUE(result.stopped);

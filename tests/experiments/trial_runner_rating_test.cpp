@@ -54,7 +54,7 @@ TrialRecord run_one(const Protocol& p, int condition, double answer_s, const Res
 
 TEST(experiments_trial_runner_rating, simultaneous_stimulus_ends_at_onset_plus_max_present) {
   const Protocol p = rated_protocol(false);
-  const TrialRecord t = run_one(p, 0, 7.5, Response{{false, true, false}, {}, std::nullopt});
+  const TrialRecord t = run_one(p, 0, 7.5, Response{{false, true, false}, {}, std::nullopt, std::nullopt});
   EXPECT_DOUBLE_EQ(t.onset_s, 1.0);
   EXPECT_DOUBLE_EQ(t.stimulus_end_s, 1.0 + 5.0);
   EXPECT_DOUBLE_EQ(t.response_time_s, 6.5);  // paper 002's measure, from onset
@@ -64,7 +64,7 @@ TEST(experiments_trial_runner_rating, simultaneous_stimulus_ends_at_onset_plus_m
 
 TEST(experiments_trial_runner_rating, sequential_stimulus_ends_after_the_whole_sequence) {
   const Protocol p = rated_protocol(false);
-  const TrialRecord t = run_one(p, 1, 6.25, Response{{false, true, false}, {}, std::nullopt});
+  const TrialRecord t = run_one(p, 1, 6.25, Response{{false, true, false}, {}, std::nullopt, std::nullopt});
   EXPECT_EQ(t.mode, PresentationMode::sequential);
   EXPECT_DOUBLE_EQ(t.stimulus_end_s, 1.0 + 4.0);
   EXPECT_NEAR(response_time_after_stimulus_s(t), 1.25, 1e-12);
@@ -80,14 +80,15 @@ TEST(experiments_trial_runner_rating, coarse_steps_record_the_planned_end_not_th
   r.begin(1.0);
   r.advance(6.8);  // noticed 0.8 s late
   ASSERT_EQ(r.state(), RunnerState::respond);
-  ASSERT_TRUE(r.respond(Response{{false, true, false}, {}, std::nullopt}, 7.0));
+  ASSERT_TRUE(r.respond(Response{{false, true, false}, {}, std::nullopt, std::nullopt}, 7.0));
   EXPECT_DOUBLE_EQ(c.trials.at(0).stimulus_end_s, 6.0);
   EXPECT_NEAR(response_time_after_stimulus_s(c.trials.at(0)), 1.0, 1e-12);
 }
 
 TEST(experiments_trial_runner_rating, an_answer_during_the_stimulus_ends_it_and_gives_zero) {
   const Protocol p = rated_protocol(false);
-  const TrialRecord t = run_one(p, 0, 2.5, Response{{false, true, false}, {}, std::nullopt});  // simultaneous
+  const TrialRecord t =
+      run_one(p, 0, 2.5, Response{{false, true, false}, {}, std::nullopt, std::nullopt});  // simultaneous
   EXPECT_DOUBLE_EQ(t.stimulus_end_s, 2.5);
   EXPECT_DOUBLE_EQ(response_time_after_stimulus_s(t), 0.0);
   EXPECT_DOUBLE_EQ(t.response_time_s, 1.5);
@@ -143,7 +144,7 @@ TEST(experiments_trial_runner_rating, unanswered_trial_has_no_after_stimulus_tim
 TEST(experiments_trial_runner_rating, confidence_passes_through) {
   const Protocol p = rated_protocol(true);
   for (int rating = 1; rating <= 4; ++rating) {
-    const TrialRecord t = run_one(p, 0, 7.0, Response{{false, true, false}, {}, rating});
+    const TrialRecord t = run_one(p, 0, 7.0, Response{{false, true, false}, {}, rating, std::nullopt});
     ASSERT_TRUE(t.confidence.has_value());
     EXPECT_EQ(*t.confidence, rating);
   }
@@ -158,11 +159,11 @@ TEST(experiments_trial_runner_rating, out_of_range_confidence_is_refused_and_nev
   r.begin(0.0);
   r.advance(6.0);
   for (int bad : {0, 5, -1, 99}) {
-    EXPECT_FALSE(r.respond(Response{{false, true, false}, {}, bad}, 6.5)) << bad;
+    EXPECT_FALSE(r.respond(Response{{false, true, false}, {}, bad, std::nullopt}, 6.5)) << bad;
     EXPECT_EQ(r.state(), RunnerState::respond) << "the trial still awaits a valid answer";
   }
   EXPECT_TRUE(c.trials.empty());
-  EXPECT_TRUE(r.respond(Response{{false, true, false}, {}, 3}, 7.0));
+  EXPECT_TRUE(r.respond(Response{{false, true, false}, {}, 3, std::nullopt}, 7.0));
   ASSERT_EQ(c.trials.size(), 1u);
   EXPECT_EQ(c.trials[0].confidence, 3);
 }
@@ -174,7 +175,7 @@ TEST(experiments_trial_runner_rating, a_rating_the_protocol_does_not_ask_for_is_
   Collector c;
   TrialRunner r(p, plan, 0, out, c);
   r.begin(0.0);
-  EXPECT_FALSE(r.respond(Response{{false, true, false}, {}, 2}, 1.0));
+  EXPECT_FALSE(r.respond(Response{{false, true, false}, {}, 2, std::nullopt}, 1.0));
   EXPECT_TRUE(c.trials.empty());
 }
 
@@ -230,7 +231,7 @@ TEST(experiments_trial_runner_rating, a_slow_rating_neither_lengthens_the_respon
   for (double t = 5.0; t < 12.0; t += 0.5) r.advance(t);
   EXPECT_EQ(r.state(), RunnerState::respond) << "no timeout while the rating is awaited";
   r.hold_timeout(false);
-  Response answer{{false, true, false}, {}, 3};
+  Response answer{{false, true, false}, {}, 3, std::nullopt};
   answer.given_at_s = 5.0;
   ASSERT_TRUE(r.respond(answer, 12.0));
   ASSERT_EQ(c.trials.size(), 1u);

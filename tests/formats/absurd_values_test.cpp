@@ -10,7 +10,7 @@
 
 #include "formats/calibration_file.hpp"
 #include "formats/scene_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
@@ -114,4 +114,28 @@ TEST(AbsurdValues, AFallingLineInTheFitTablesIsRefused) {
   c = read_json(data("calibration/sim-default.json"));
   c["fits"]["channels"][0]["stress_line"]["residual_sd"] = nullptr;
   EXPECT_EQ(refusal([&] { load_calibration_file(dir.write("null.json", c.dump())); }), "accepted");
+}
+
+// A calibration with x_max_kPa 1.8e19 read as valid (attack round 4): every figure of the fit
+// tables is bounded, a line's pressure range by a regulator's, with the field and the range.
+TEST(AbsurdValues, AbsurdFiguresInTheFitTablesAreRefusedWithTheRangeExpected) {
+  TempDir dir;
+  nlohmann::json c = read_json(data("calibration/sim-default.json"));
+  c["fits"]["channels"][0]["regulator"]["inflation"]["x_max_kPa"] = 1.8e19;
+  const auto f = dir.write("xmax.json", c.dump());
+  EXPECT_EQ(
+      refusal([&] { load_calibration_file(f); }),
+      f.string() + ": fits.channels[0].regulator.inflation.x_max_kPa: a pressure in -1e+04..1e+04 kPa, got 1.8e+19");
+  c = read_json(data("calibration/sim-default.json"));
+  c["fits"]["channels"][0]["regulator"]["inflation"]["x_min_kPa"] = 90;
+  c["fits"]["channels"][0]["regulator"]["inflation"]["x_max_kPa"] = 10;
+  const auto h = dir.write("order.json", c.dump());
+  EXPECT_EQ(refusal([&] { load_calibration_file(h); }),
+            h.string() + ": fits.channels[0].regulator.inflation.x_max_kPa: a pressure at or above x_min_kPa, got 10");
+  c = read_json(data("calibration/sim-default.json"));
+  c["fits"]["channels"][2]["hysteresis_fit"]["solve_seconds"] = 3e15;
+  const auto k = dir.write("seconds.json", c.dump());
+  EXPECT_NE(
+      refusal([&] { load_calibration_file(k); }).find("fits.channels[2].hysteresis_fit.solve_seconds: a figure within"),
+      std::string::npos);
 }

@@ -98,7 +98,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "materials.skin.alpha: an Ogden exponent of magnitude 0.1..50 (0 has no stress)"},
         Refused{"fingertip_002.json", "/materials/nail/shore_a", 40,
                 "materials.nail.youngs_kPa: exactly one of youngs_kPa, shore_a (20..80) or shore_d (30..85)"},
-        Refused{"fingertip_002.json", "/materials/tissue/mu_kpa", 1, "materials.tissue.mu_kpa: no such field here (unknown field; check its spelling)"},
+        Refused{"fingertip_002.json", "/materials/tissue/mu_kpa", 1,
+                "materials.tissue.mu_kpa: no such field here (unknown field; check its spelling)"},
         Refused{"soft_tissue_002_nodule.json", "/inclusions/0/centre_depth_mm", 4,
                 "inclusions[0].centre_depth_mm: a centre at least 0.5 mm deeper than the radius (5 mm): the "
                 "inclusion must stay under the surface"},
@@ -127,8 +128,9 @@ TEST(FeResultFiles, StressModelTheCalibrationCouldNotUseIsRefused) {
   m.actuator.intercept_kPa = 9;  // at or above the nodule's stress: no pressure renders it
   const auto path = dir / "model.json";
   EXPECT_EQ(refusal([&] { write_stress_model_file(path, m); }),
-            path.string() + ": actuator.intercept_kPa: the uninflated actuator's stress below the nodule stress (8 "
-                            "kPa): otherwise no air pressure renders a nodule");
+            path.string() +
+                ": actuator.intercept_kPa: the uninflated actuator's stress below the nodule stress (8 "
+                "kPa): otherwise no air pressure renders a nodule");
   EXPECT_FALSE(std::filesystem::exists(path)) << "a refused file is not left behind";
   m.actuator.intercept_kPa = 4;
   write_stress_model_file(path, m);

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "formats/calibration_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "inputs/input_source.hpp"
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"

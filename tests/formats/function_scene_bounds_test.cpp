@@ -13,7 +13,7 @@
 #include "formats/function_scene_file.hpp"
 #include "formats/scene_file.hpp"
 #include "models/frep.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;

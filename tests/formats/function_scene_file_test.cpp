@@ -11,7 +11,7 @@
 #include "formats/function_scene_file.hpp"
 #include "formats/scene_file.hpp"
 #include "models/case_generator.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/tissue_scene.hpp"
 #include "tests/support/temp_dir.hpp"
 

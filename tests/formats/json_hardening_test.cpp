@@ -10,7 +10,7 @@
 #include "formats/json_file.hpp"
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -10,7 +10,7 @@
 #include "rigs/modbus_link.hpp"
 #include "formats/modbus_register_map.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 

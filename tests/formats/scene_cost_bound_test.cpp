@@ -1,4 +1,4 @@
-// Issue 24, part A, 1: a function scene whose sampling cannot fit a 1 kHz tick is refused when it
+// A function scene whose sampling cannot fit a 1 kHz tick is refused when it
 // is loaded (one line naming the file and what was expected, exit 2, nothing moves), while the
 // shipped scenes, generated cases and large but indexed unions load as before.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include "formats/function_scene_file.hpp"
 #include "formats/scene_file.hpp"
 #include "models/case_generator.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/tissue_scene.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"

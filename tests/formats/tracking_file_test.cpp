@@ -1,4 +1,4 @@
-// The tracking file and the rig file's load cells (issue 26): what they hold, and every bad
+// The tracking file and the rig file's load cells: what they hold, and every bad
 // field refused with one line naming the file, the field and what was expected.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "formats/rig_file.hpp"
 #include "formats/tracking_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;

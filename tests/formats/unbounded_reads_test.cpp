@@ -1,5 +1,5 @@
 // Every reader of an outside file takes only a regular file no larger than its bound
-// (models/regular_file.hpp): a 3 GiB sparse file, /dev/zero, a FIFO and a directory are each
+// (io/regular_file.hpp): a 3 GiB sparse file, /dev/zero, a FIFO and a directory are each
 // refused with one line naming the file and "a regular file of at most N", before anything is
 // read. Without the check a FIFO blocks the reader for ever (the watchdog below then fails the
 // case), /dev/zero and the sparse file run memory up to gigabytes, a directory gives the
@@ -27,8 +27,8 @@
 #include "formats/scene_file.hpp"
 #include "inputs/input_source.hpp"
 #include "inputs/tablet_source.hpp"
-#include "models/parse_error.hpp"
-#include "models/regular_file.hpp"
+#include "core/input_error.hpp"
+#include "io/regular_file.hpp"
 #include "statistics/csv_table.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"

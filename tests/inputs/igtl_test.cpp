@@ -1,4 +1,4 @@
-// Tracked fingers over OpenIGTLink (issue 26), against a real server on loopback: the stream
+// Tracked fingers over OpenIGTLink, against a real server on loopback: the stream
 // decoder on messages packed by libopenigtlink itself, the pose recording file, the replay
 // server, and the loop's input following the tools, venting a finger whose tool stops and
 // reporting a server that goes away.
@@ -18,7 +18,7 @@
 #include "inputs/igtl_pose_server.hpp"
 #include "inputs/igtl_stream.hpp"
 #include "inputs/pose_recording.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "runtime/worker_fault.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -5,10 +5,11 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
 #include "formats/json_file.hpp"
 #include "inputs/tablet_decoder.hpp"
 #include "inputs/tablet_source.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
@@ -166,7 +167,7 @@ TEST(TabletDecoder, DeviceWithoutTouchKeyTouchesOnPressure) {
 
 TEST(TabletDecoder, NeedsAResolutionOrASizeInMillimetres) {
   TabletAxes axes{0, 1000, 0, 0, 800, 0, 0, 255, true};
-  EXPECT_THROW(TabletDecoder(axes, TabletConfig{}), std::invalid_argument);
+  EXPECT_THROW(TabletDecoder(axes, TabletConfig{}), palprig::BadInput);
   TabletConfig cfg;
   cfg.size_mm = {100.0, 80.0};
   TabletDecoder d(axes, cfg);

@@ -14,9 +14,10 @@
 #include "rigs/simulated_rig.hpp"
 #include "inputs/tablet_input.hpp"
 #include "runtime/worker_fault.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/leased_run.hpp"
 
 using namespace palprig;
 using namespace std::chrono_literals;
@@ -83,10 +84,10 @@ TEST(TabletInput, AnInputThatStopsIsStaleAndTheLoopVents) {
   opt.want_fifo = false;
   opt.rate_hz = 500;
   opt.duration_s = 1.6;  // the recording ends at 0.95 s
-  const RunSummary s = run_loop(config, scene, input, backend, opt);
+  const RunSummary s = palprig::testing::run_loop_leased(config, scene, input, backend, opt);
   EXPECT_EQ(s.fault, FaultCode::input_stale);
-  EXPECT_GE(s.fault_t_s, 0.95 + 0.1 - 0.02);
-  EXPECT_LE(s.fault_t_s, 0.95 + 0.1 + 0.3);
+  EXPECT_GE(s.fault.t_s, 0.95 + 0.1 - 0.02);
+  EXPECT_LE(s.fault.t_s, 0.95 + 0.1 + 0.3);
   EXPECT_GT(s.setpoint_kPa[0].max, 0.0);  // the stroke pressed a hard map
 }
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "inputs/tablet_source.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 
 using namespace palprig;

@@ -27,8 +27,7 @@ FeStressTable made_up_table() {
       for (double d : ax.diameter_mm)
         for (double k : ax.contrast)
           for (double o : ax.offset_mm)
-            peak.push_back(healthy[i] + (o == 0 ? 1.0 : 0.0) * (c == 1 ? 2.0 : 1.0) * d / 5 * std::log2(k) *
-                                            (i + 1));
+            peak.push_back(healthy[i] + (o == 0 ? 1.0 : 0.0) * (c == 1 ? 2.0 : 1.0) * d / 5 * std::log2(k) * (i + 1));
   return FeStressTable(ax, peak, healthy);
 }
 
@@ -42,8 +41,8 @@ TEST(FeStressTable, ExactAtGridPoints) {
 
 TEST(FeStressTable, LinearBetweenPointsAndLogInContrast) {
   const FeStressTable t = made_up_table();
-  EXPECT_DOUBLE_EQ(t.rise_kPa(2, 3, 5, 2, 0), 1.5);  // halfway in cover
-  EXPECT_DOUBLE_EQ(t.rise_kPa(2, 1, 5, 2, 5), 1.0);  // halfway in offset
+  EXPECT_DOUBLE_EQ(t.rise_kPa(2, 3, 5, 2, 0), 1.5);    // halfway in cover
+  EXPECT_DOUBLE_EQ(t.rise_kPa(2, 1, 5, 2, 5), 1.0);    // halfway in offset
   EXPECT_NEAR(t.rise_kPa(2, 5, 5, 4, 0), 2.0, 1e-12);  // log2(4) halfway between log2(2) and log2(8)
   EXPECT_DOUBLE_EQ(t.healthy_kPa(3), 2.0);
 }
@@ -52,7 +51,7 @@ TEST(FeStressTable, HealthyAtContrastOneDiameterZeroAndNoPress) {
   const FeStressTable t = made_up_table();
   EXPECT_DOUBLE_EQ(t.rise_kPa(2, 5, 5, 1.0, 0), 0.0);
   EXPECT_NEAR(t.rise_kPa(2, 5, 5, std::sqrt(2.0), 0), 0.5, 1e-12);  // halfway to contrast 2 on a log scale
-  EXPECT_DOUBLE_EQ(t.rise_kPa(2, 5, 2.5, 2, 0), 0.5);                // halfway to diameter 5
+  EXPECT_DOUBLE_EQ(t.rise_kPa(2, 5, 2.5, 2, 0), 0.5);               // halfway to diameter 5
   EXPECT_DOUBLE_EQ(t.healthy_kPa(0), 0.0);
   EXPECT_DOUBLE_EQ(t.healthy_kPa(1), 0.5);
   EXPECT_DOUBLE_EQ(t.rise_kPa(0, 5, 5, 2, 0), 0.0);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.hpp"
 #include "models/stiffness_field.hpp"
 
 using namespace palprig;
@@ -180,17 +181,17 @@ TEST(StiffnessField, OffTheBodyNothingIsFelt) {
 TEST(StiffnessField, RefusesDefinitionsThatCannotBeTissue) {
   TissueDefinition d = block();
   d.layers.clear();
-  EXPECT_THROW(StiffnessField{d}, std::invalid_argument);
+  EXPECT_THROW(StiffnessField{d}, palprig::BadInput);
   d = block();
   d.layers[0].thickness_mm = -1;
-  EXPECT_THROW(StiffnessField{d}, std::invalid_argument);
+  EXPECT_THROW(StiffnessField{d}, palprig::BadInput);
   d = block();
   d.felt = {21.9, 14.7};
-  EXPECT_THROW(StiffnessField{d}, std::invalid_argument);
+  EXPECT_THROW(StiffnessField{d}, palprig::BadInput);
   d = block();
   d.inclusions.push_back(sphere("T", {0, 0, 5}, 2, -3));
-  EXPECT_THROW(StiffnessField{d}, std::invalid_argument);
+  EXPECT_THROW(StiffnessField{d}, palprig::BadInput);
   d = block();
   d.body.half_width_mm = 0;
-  EXPECT_THROW(StiffnessField{d}, std::invalid_argument);
+  EXPECT_THROW(StiffnessField{d}, palprig::BadInput);
 }

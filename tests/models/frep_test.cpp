@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.hpp"
 #include "models/frep.hpp"
 
 using namespace palprig;
@@ -140,12 +141,12 @@ TEST(Frep, UndefinedShapeIsEmptyAndBadSizesAreRefused) {
   EXPECT_FALSE(empty.contains({0, 0, 0}));
   EXPECT_TRUE(empty.bounds().empty());
   FrepShape s;
-  EXPECT_THROW(s.sphere({0, 0, 0}, -1), std::invalid_argument);
-  EXPECT_THROW(s.sphere({0, 0, 0}, 0), std::invalid_argument);
-  EXPECT_THROW(s.ellipsoid({0, 0, 0}, {1, -2, 1}), std::invalid_argument);
-  EXPECT_THROW(s.blobs({}, 1), std::invalid_argument);
-  EXPECT_THROW(s.blobs({{{0, 0, 0}, 1, {1, 1, 1}}}, 0), std::invalid_argument);
-  EXPECT_THROW(s.superellipsoid({0, 0, 0}, {1, 1, 1}, 1.5), std::invalid_argument);
-  EXPECT_THROW(s.unite({3}), std::invalid_argument);
-  EXPECT_THROW(s.tube({0, 0, 0}, {1, 0, 0}, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(s.sphere({0, 0, 0}, -1), palprig::BadInput);
+  EXPECT_THROW(s.sphere({0, 0, 0}, 0), palprig::BadInput);
+  EXPECT_THROW(s.ellipsoid({0, 0, 0}, {1, -2, 1}), palprig::BadInput);
+  EXPECT_THROW(s.blobs({}, 1), palprig::BadInput);
+  EXPECT_THROW(s.blobs({{{0, 0, 0}, 1, {1, 1, 1}}}, 0), palprig::BadInput);
+  EXPECT_THROW(s.superellipsoid({0, 0, 0}, {1, 1, 1}, 1.5), palprig::BadInput);
+  EXPECT_THROW(s.unite({3}), palprig::BadInput);
+  EXPECT_THROW(s.tube({0, 0, 0}, {1, 0, 0}, std::nan("")), palprig::BadInput);
 }

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "models/decimal_number.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/stiffness_map.hpp"
 
 using namespace palprig;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
 #include "models/pneumatic_plant.hpp"
 
 using namespace palprig;
@@ -83,14 +84,14 @@ TEST(PneumaticPlant, NoiseIsSeededAndOnlyOnTheMonitor) {
 TEST(PneumaticPlant, RefusesImpossibleParameters) {
   PlantParams p;
   p.time_constant_s = -1;
-  EXPECT_THROW(PneumaticPlant{p}, std::invalid_argument);
+  EXPECT_THROW(PneumaticPlant{p}, palprig::BadInput);
   p = {};
   p.min_kPa = 50;
   p.max_kPa = 10;
-  EXPECT_THROW(PneumaticPlant{p}, std::invalid_argument);
+  EXPECT_THROW(PneumaticPlant{p}, palprig::BadInput);
 }
 
-// Issue 10: the default plant (2 kPa play) read about 2 kPa after a vent, so a 0 kPa stimulus
+// The default plant (2 kPa play) once read about 2 kPa after a vent, so a 0 kPa stimulus
 // was felt at 2 kPa. A regulator commanded to 0 exhausts to 0; above 2 r the play is unchanged.
 TEST(PneumaticPlant, ACommandOfZeroExhaustsToZero) {
   PlantParams p = ideal_lag(0.0, 0.0);

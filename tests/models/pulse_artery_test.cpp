@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.hpp"
 #include "models/artery.hpp"
 #include "models/pulse_localisation.hpp"
 
@@ -26,10 +27,11 @@ ArterySpec straight(const char* name = "a", double depth = 5, double radius = 2)
 }
 
 // Felt pulse at the top of a beat (phase 0.1 of a rectangular D = 0.2 wave).
-double peak(const PulseField& f, Point2_mm at, double force_N, PulseActivation& act) {
+double peak(const PulseField& f, Point2_mm at, double force_N, PulseActivation& act,
+            const PulseSettings& settings = {}) {
   PulseClocks clocks;
-  f.update_clocks(clocks, 0);
-  return f.felt({at, force_N, true}, clocks, act, 0.1, {}).now_kPa;
+  f.update_clocks(clocks, 0, settings);
+  return f.felt({at, force_N, true}, clocks, act, 0.1, {}, nullptr, settings).now_kPa;
 }
 
 }  // namespace
@@ -144,22 +146,25 @@ TEST(Artery, EveryFingerOverAnArteryFeelsItAndAmplitudesDifferPerArtery) {
   EXPECT_EQ(f.find("carotid"), -1);
 }
 
-TEST(Artery, RateRequestsFromAnotherThreadApplyAtTheNextTickWithThePhaseKept) {
+TEST(Artery, AnOperatorsRateAppliesFromTheTickItArrivesWithThePhaseKept) {
   const PulseField f({straight()}, 8);
   PulseClocks clocks;
   f.update_clocks(clocks, 0.0);
   EXPECT_EQ(clocks.clock[0].bpm, 60);
-  std::thread gui([&] { EXPECT_TRUE(f.request_rate_bpm(0, 120)); });
-  gui.join();
+  PulseSettings settings;
+  settings.rate_bpm[0] = 120;
   const double before = clocks.clock[0].phase(5.3);
-  f.update_clocks(clocks, 5.3);
+  f.update_clocks(clocks, 5.3, settings);
   EXPECT_EQ(clocks.clock[0].bpm, 120);
   EXPECT_NEAR(clocks.clock[0].phase(5.3), before, 1e-12);
   EXPECT_NEAR(clocks.clock[0].phase(6.3), before + 2, 1e-12);
-  EXPECT_FALSE(f.request_rate_bpm(0, 19));
-  EXPECT_FALSE(f.request_rate_bpm(0, 251));
-  EXPECT_FALSE(f.request_rate_bpm(3, 80));
-  EXPECT_EQ(f.requested_rate_bpm(0), 120);
+  EXPECT_EQ(f.rate_bpm(0, settings), 120);
+  EXPECT_EQ(f.rate_bpm(0, {}), 60) << "NaN: the scene's own rate";
+  EXPECT_FALSE(PulseField::valid_rate_bpm(19));
+  EXPECT_FALSE(PulseField::valid_rate_bpm(251));
+  EXPECT_FALSE(PulseField::valid_rate_bpm(std::nan("")));
+  settings.rate_bpm[0] = 251;  // out of range: the scene's rate stands
+  EXPECT_EQ(f.rate_bpm(0, settings), 60);
 }
 
 TEST(Artery, BroadPhaseRegionHoldsEveryPlaceThePulseIsFelt) {
@@ -175,23 +180,23 @@ TEST(Artery, BroadPhaseRegionHoldsEveryPlaceThePulseIsFelt) {
 TEST(Artery, ImpossibleArteriesAreRefused) {
   ArterySpec s = straight();
   s.depth_mm = 1;  // shallower than its radius
-  EXPECT_THROW(Artery(s, 8), std::invalid_argument);
+  EXPECT_THROW(Artery(s, 8), palprig::BadInput);
   s = straight();
   s.range_mm = 4;  // never reaches the skin from 5 mm down
-  EXPECT_THROW(Artery(s, 8), std::invalid_argument);
+  EXPECT_THROW(Artery(s, 8), palprig::BadInput);
   s = straight();
   s.rate_bpm = 300;
-  EXPECT_THROW(Artery(s, 8), std::invalid_argument);
+  EXPECT_THROW(Artery(s, 8), palprig::BadInput);
   s = straight();
   s.path = {{0, 0}};
-  EXPECT_THROW(Artery(s, 8), std::invalid_argument);
+  EXPECT_THROW(Artery(s, 8), palprig::BadInput);
   s = straight();
   s.force_window = {3, 1, 1};
-  EXPECT_THROW(Artery(s, 8), std::invalid_argument);
-  EXPECT_THROW(PulseField({straight("x"), straight("x")}, 8), std::invalid_argument);
+  EXPECT_THROW(Artery(s, 8), palprig::BadInput);
+  EXPECT_THROW(PulseField({straight("x"), straight("x")}, 8), palprig::BadInput);
   std::vector<ArterySpec> many(kMaxArteries + 1, straight());
   for (std::size_t i = 0; i < many.size(); ++i) many[i].name = "a" + std::to_string(i);
-  EXPECT_THROW(PulseField(many, 8), std::invalid_argument);
+  EXPECT_THROW(PulseField(many, 8), palprig::BadInput);
 }
 
 TEST(PulseLocalisation, MarkScoredByDistanceToTheCentreline) {
@@ -219,19 +224,18 @@ TEST(PulseLocalisation, MarkScoredByDistanceToTheCentreline) {
   EXPECT_FALSE(score_pulse_mark(none, {0, 0}, 4.0).hit);
 }
 
-TEST(Artery, AmplitudeRequestsFromAnotherThreadScaleThePulseFromTheNextTick) {
+TEST(Artery, AnOperatorsAmplitudeScalesThePulse) {
   const PulseField f({straight()}, 8);
   PulseActivation act{};
   const double full = peak(f, {50, 50}, 2, act);
   EXPECT_GT(full, 0);
-  EXPECT_EQ(f.requested_amplitude_kPa(0), 10);
-  std::thread gui([&] { EXPECT_TRUE(f.request_amplitude_kPa(0, 2.5)); });
-  gui.join();
+  EXPECT_EQ(f.amplitude_kPa(0, {}), 10);
+  PulseSettings settings;
+  settings.amplitude_kPa[0] = 2.5;
   PulseActivation act2{};
-  EXPECT_NEAR(peak(f, {50, 50}, 2, act2), full * 0.25, 1e-12);
-  EXPECT_FALSE(f.request_amplitude_kPa(0, -1));
-  EXPECT_FALSE(f.request_amplitude_kPa(0, 51));
-  EXPECT_FALSE(f.request_amplitude_kPa(0, std::nan("")));
-  EXPECT_FALSE(f.request_amplitude_kPa(1, 5));
-  EXPECT_EQ(f.requested_amplitude_kPa(0), 2.5);
+  EXPECT_NEAR(peak(f, {50, 50}, 2, act2, settings), full * 0.25, 1e-12);
+  EXPECT_FALSE(PulseField::valid_amplitude_kPa(-1));
+  EXPECT_FALSE(PulseField::valid_amplitude_kPa(51));
+  EXPECT_FALSE(PulseField::valid_amplitude_kPa(std::nan("")));
+  EXPECT_EQ(f.amplitude_kPa(1, settings), 0) << "no such artery";
 }

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.hpp"
 #include "models/pulse_waveform.hpp"
 
 using namespace palprig;
@@ -61,20 +62,20 @@ TEST(PulseWaveform, TableIsResampledAndNormalised) {
 }
 
 TEST(PulseWaveform, BadTablesAndParametersAreRefused) {
-  EXPECT_THROW(PulseWaveform::table({}, {}), std::invalid_argument);
-  EXPECT_THROW(PulseWaveform::table({0, 1, 2}, {1, 2, 1}), std::invalid_argument);               // too short
-  EXPECT_THROW(PulseWaveform::table({0, 1, 1, 2}, {1, 2, 3, 1}), std::invalid_argument);         // time not increasing
-  EXPECT_THROW(PulseWaveform::table({0, 1, 2, 3}, {5, 5, 5, 5}), std::invalid_argument);         // flat
-  EXPECT_THROW(PulseWaveform::table({0, 1, 2, 3}, {80, 120, 110, 100}), std::invalid_argument);  // does not close
+  EXPECT_THROW(PulseWaveform::table({}, {}), palprig::BadInput);
+  EXPECT_THROW(PulseWaveform::table({0, 1, 2}, {1, 2, 1}), palprig::BadInput);               // too short
+  EXPECT_THROW(PulseWaveform::table({0, 1, 1, 2}, {1, 2, 3, 1}), palprig::BadInput);         // time not increasing
+  EXPECT_THROW(PulseWaveform::table({0, 1, 2, 3}, {5, 5, 5, 5}), palprig::BadInput);         // flat
+  EXPECT_THROW(PulseWaveform::table({0, 1, 2, 3}, {80, 120, 110, 100}), palprig::BadInput);  // does not close
   try {
     PulseWaveform::table({0, 1, 2, 3}, {80, 120, 110, 100});
-  } catch (const std::invalid_argument& e) {
+  } catch (const palprig::BadInput& e) {
     EXPECT_NE(std::string(e.what()).find("not periodic"), std::string::npos);
   }
   EXPECT_NO_THROW(PulseWaveform::table({0, 1, 2, 3}, {80, 120, 110, 81}));  // within 5 % of the range
-  EXPECT_THROW(PulseWaveform::rectangular(0), std::invalid_argument);
-  EXPECT_THROW(PulseWaveform::rectangular(1), std::invalid_argument);
-  EXPECT_THROW(PulseWaveform::sawtooth(1.5), std::invalid_argument);
+  EXPECT_THROW(PulseWaveform::rectangular(0), palprig::BadInput);
+  EXPECT_THROW(PulseWaveform::rectangular(1), palprig::BadInput);
+  EXPECT_THROW(PulseWaveform::sawtooth(1.5), palprig::BadInput);
 }
 
 TEST(PulseClock, RateIsExactOverALongRunWhateverTheLoopTiming) {

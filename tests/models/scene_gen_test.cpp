@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.hpp"
 #include "models/case_generator.hpp"
 #include "models/stiffness_field.hpp"
 #include "models/tissue_scene.hpp"
@@ -127,5 +128,5 @@ TEST(SceneGenerator, HarderCasesAreHarderToFeel) {
 TEST(SceneGenerator, DifficultyWords) {
   EXPECT_EQ(parse_difficulty("hard"), CaseDifficulty::hard);
   EXPECT_STREQ(to_string(CaseDifficulty::medium), "medium");
-  EXPECT_THROW(parse_difficulty("extreme"), std::invalid_argument);
+  EXPECT_THROW(parse_difficulty("extreme"), palprig::BadInput);
 }

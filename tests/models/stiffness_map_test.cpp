@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "models/stiffness_map.hpp"
 
 using namespace palprig;

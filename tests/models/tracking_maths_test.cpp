@@ -1,4 +1,4 @@
-// The maths of tracked fingers (issue 26): rigid transforms and quaternions, point-based
+// The maths of tracked fingers: rigid transforms and quaternions, point-based
 // registration (Umeyama) with its FRE, pivot calibration and static digitization (paper 003
 // eqs. 1 and 2), the rest detector, finger placement, the load cell and its simulation.
 #include <gtest/gtest.h>
@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 
+#include "core/error.hpp"
 #include "models/finger_placement.hpp"
 #include "models/load_cell.hpp"
 #include "models/point_registration.hpp"
@@ -84,14 +85,14 @@ TEST(PointRegistration, RecoversAKnownTransformWithTheFiducialError) {
 }
 
 TEST(PointRegistration, RefusesWhatCannotFixARotation) {
-  EXPECT_THROW(register_points({{0, 0, 0}, {1, 0, 0}}, {{0, 0, 0}, {1, 0, 0}}), std::invalid_argument);
+  EXPECT_THROW(register_points({{0, 0, 0}, {1, 0, 0}}, {{0, 0, 0}, {1, 0, 0}}), palprig::BadInput);
   EXPECT_THROW(register_points({{0, 0, 0}, {10, 0, 0}, {20, 0, 0}}, {{0, 0, 0}, {10, 0, 0}, {20, 0.1, 0}}),
-               std::invalid_argument);
-  EXPECT_THROW(register_points({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 0}, {1, 0, 0}}), std::invalid_argument);
+               palprig::BadInput);
+  EXPECT_THROW(register_points({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 0}, {1, 0, 0}}), palprig::BadInput);
   try {
     register_points({{0, 0, 0}, {10, 0, 0}, {20, 0, 0}}, {{0, 0, 0}, {10, 0, 0}, {20, 0, 0}});
     FAIL();
-  } catch (const std::invalid_argument& e) {
+  } catch (const palprig::BadInput& e) {
     EXPECT_NE(std::string(e.what()).find("one line"), std::string::npos) << e.what();
   }
 }
@@ -135,15 +136,15 @@ TEST(TipCalibration, PivotFindsTheTipAndItsResidual) {
 
 TEST(TipCalibration, PivotRefusesTooFewOrOneAxisOrStillPoses) {
   std::vector<RigidTransform> still(10, RigidTransform{});
-  EXPECT_THROW(pivot_calibrate(still), std::invalid_argument);
-  EXPECT_THROW(pivot_calibrate({RigidTransform{}, RigidTransform{}, RigidTransform{}}), std::invalid_argument);
+  EXPECT_THROW(pivot_calibrate(still), palprig::BadInput);
+  EXPECT_THROW(pivot_calibrate({RigidTransform{}, RigidTransform{}, RigidTransform{}}), palprig::BadInput);
   // Turning about z only: the tip along z is free.
   std::vector<RigidTransform> one_axis;
   for (int k = 0; k < 20; ++k) one_axis.push_back(RigidTransform{rot(0, 0, 1, 5.0 * k), {0, 0, 0}});
   try {
     pivot_calibrate(one_axis);
     FAIL();
-  } catch (const std::invalid_argument& e) {
+  } catch (const palprig::BadInput& e) {
     EXPECT_NE(std::string(e.what()).find("more than one axis"), std::string::npos) << e.what();
   }
 }

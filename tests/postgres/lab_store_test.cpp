@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/host_identity.hpp"
 #include "store/postgres_schema.hpp"
 #include "store/postgres_trial_store.hpp"

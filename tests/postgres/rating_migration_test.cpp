@@ -116,7 +116,9 @@ TEST(PostgresRatingMigration, Version2ServerIsReadAsItIsThenMigratedAndRatingsTr
   int copied_rated = 0;
   for (const StoredTrial& t : copy.read_trials(true)) {
     copied_rated += t.confidence ? 1 : 0;
-    if (t.participant == "sim:33") EXPECT_TRUE(t.stimulus_end_s.has_value());
+    if (t.participant == "sim:33") {
+      EXPECT_TRUE(t.stimulus_end_s.has_value());
+    }
   }
   EXPECT_EQ(copied_rated, rated_trials);
   const std::string again = testing::fresh_database("rating_copy_up");

@@ -15,7 +15,7 @@
 
 #include "study/protocol.hpp"
 #include "study/session_plan.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/host_identity.hpp"
 #include "store/postgres_schema.hpp"
 #include "store/postgres_session_rows.hpp"

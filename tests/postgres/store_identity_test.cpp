@@ -80,7 +80,9 @@ TEST(postgres_store_identity, a_new_server_at_the_same_address_is_another_store)
   EXPECT_NE(id(first.out), id(second.out));
   const auto links = test_support::run_process("sqlite3 " + journal +
                                                " \"SELECT count(*), count(DISTINCT server) FROM lab_store_sessions\"");
-  if (links.exit_code == 0) EXPECT_EQ(links.out, "2|2\n");
+  if (links.exit_code == 0) {
+    EXPECT_EQ(links.out, "2|2\n");
+  }
 }
 
 TEST(postgres_store_identity, the_identity_names_the_cluster_and_the_store) {

@@ -8,11 +8,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.hpp"
 #include "formats/comedi_config.hpp"
 #include "rigs/comedi_conversion.hpp"
 #include "rigs/comedi_rig.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -52,7 +53,7 @@ TEST(ComediConversion, NominalLineMatchesHandComputedCounts) {
 }
 
 TEST(ComediConversion, ALoadCellInputReadsVolts) {
-  // A load cell's amplifier on an AI channel (issue 26): counts -> volts, comedilib's nominal line.
+  // A load cell's amplifier on an AI channel: counts -> volts, comedilib's nominal line.
   const ComediConversion c = bipolar_16bit_output();
   comedi_range range{-10.0, 10.0, UNIT_volt};
   // (comedi_to_phys says NaN at 0 and maxdata, its out-of-range marks: interior counts only.)
@@ -108,11 +109,11 @@ TEST(ComediConversion, RefusesAFallingPolynomialOrASpanOutsideTheRange) {
   EXPECT_THROW(make_comedi_conversion(linear_polynomial(10, -10, 65535, COMEDI_FROM_PHYSICAL),
                                       linear_polynomial(-10, 10, 65535, COMEDI_TO_PHYSICAL), 65535, -10, 10, 0, 10,
                                       regulator(10)),
-               std::invalid_argument);
+               palprig::BadInput);
   EXPECT_THROW(
       make_comedi_conversion(linear_polynomial(0, 5, 4095, COMEDI_FROM_PHYSICAL),
                              linear_polynomial(0, 5, 4095, COMEDI_TO_PHYSICAL), 4095, 0, 5, 6, 10, regulator(10)),
-      std::invalid_argument);
+      palprig::BadInput);
 }
 
 TEST(ComediRigFile, ExampleLoadsAndBadSectionsAreRefused) {

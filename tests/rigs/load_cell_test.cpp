@@ -1,4 +1,4 @@
-// Load cells on the rig's analog inputs (issue 26): a Modbus input register read by ModbusRig's
+// Load cells on the rig's analog inputs: a Modbus input register read by ModbusRig's
 // bus thread from the simulated rig served as a real Modbus TCP server on loopback, the
 // simulated rig's cells feeling the press, and the refusals of a rig without cells.
 #include <gtest/gtest.h>

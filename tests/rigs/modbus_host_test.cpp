@@ -1,4 +1,4 @@
-// Issue 24, part A, 3: Modbus TCP hosts are names or addresses. Names are resolved with
+// Modbus TCP hosts are names or addresses. Names are resolved with
 // getaddrinfo and libmodbus is given the numeric address (its own modbus_new_tcp truncates
 // anything over 15 characters and prints to stderr); a name that does not resolve is one
 // palprig line, exit 2; a host holding control characters is refused with them escaped.
@@ -8,7 +8,7 @@
 
 #include "formats/modbus_register_map.hpp"
 #include "formats/rig_file.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "rigs/modbus_link.hpp"
 #include "tests/support/modbus_process_support.hpp"
 

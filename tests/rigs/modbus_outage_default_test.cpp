@@ -1,4 +1,4 @@
-// Issue 24, part A, 4: with the shipped max_outage_s (2 s, formats/modbus_register_map.hpp and the
+// With the shipped max_outage_s (2 s, formats/modbus_register_map.hpp and the
 // example rig files), a Modbus peer that stops answering ends the run: vented, exit 1, saying
 // why, instead of running on vented to the end with exit 0.
 #include <gtest/gtest.h>

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/study_session.hpp"
 #include "store/trial_store.hpp"
 #include "tests/support/support.hpp"
@@ -58,7 +58,7 @@ TEST(experiments_session_telemetry, each_trials_stimulus_is_in_the_recording_at_
   ScratchDir dir;
   const StudySessionRequest request = request_in(dir);
   SessionListener quiet;
-  const SessionEnd end = run_study_session(request, {}, quiet, nullptr);
+  const SessionEnd end = run_study_session(request, {}, quiet, RunControl{});
   ASSERT_TRUE(end.completed) << end.fault;
   EXPECT_EQ(end.telemetry_file, request.telemetry_file);
   EXPECT_EQ(end.telemetry_dropped, 0u) << "simulated time waits for the writer";
@@ -101,7 +101,7 @@ TEST(experiments_session_telemetry, an_earlier_recording_is_never_overwritten) {
   }
   SessionListener quiet;
   try {
-    run_study_session(request, {}, quiet, nullptr);
+    run_study_session(request, {}, quiet, RunControl{});
     FAIL() << "an existing recording was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where(), "telemetry");

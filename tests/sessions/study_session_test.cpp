@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "experiments/terminal_participant.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/study_session.hpp"
 #include "store/trial_store.hpp"
 #include "tests/support/support.hpp"
@@ -22,14 +22,13 @@ using testing::ScratchDir;
 // Records what a front end would show; asks for a stop after `stop_after` commits.
 class RecordingListener final : public SessionListener {
  public:
-  explicit RecordingListener(std::atomic<int>* stop = nullptr, int stop_after = -1)
-      : stop_(stop), stop_after_(stop_after) {}
+  explicit RecordingListener(RunControl* stop = nullptr, int stop_after = -1) : stop_(stop), stop_after_(stop_after) {}
   void session_started(const SessionStart& s) override { starts.push_back(s); }
   void trial_started(const PlannedTrial& t, const Condition&) override { started.push_back(t.position); }
   void trial_committed(const TrialRecord& t, int total) override {
     committed.push_back(t.planned.position);
     total_trials = total;
-    if (stop_ && static_cast<int>(committed.size()) == stop_after_) stop_->store(SIGTERM);
+    if (stop_ && static_cast<int>(committed.size()) == stop_after_) stop_->request_stop();
   }
   void session_ended(const SessionEnd& e) override { ends.push_back(e); }
 
@@ -39,7 +38,7 @@ class RecordingListener final : public SessionListener {
   int total_trials = 0;
 
  private:
-  std::atomic<int>* stop_;
+  RunControl* stop_;
   int stop_after_;
 };
 
@@ -55,7 +54,7 @@ StudySessionRequest simulated_request(const ScratchDir& dir) {
 TEST(experiments_study_session, a_simulated_session_is_reported_and_stored_trial_by_trial) {
   ScratchDir dir;
   RecordingListener listener;
-  const SessionEnd end = run_study_session(simulated_request(dir), {}, listener, nullptr);
+  const SessionEnd end = run_study_session(simulated_request(dir), {}, listener, RunControl{});
   EXPECT_TRUE(end.completed);
   ASSERT_EQ(listener.starts.size(), 1u);
   EXPECT_TRUE(listener.starts[0].simulated);
@@ -82,21 +81,21 @@ TEST(experiments_study_session, a_simulated_session_is_reported_and_stored_trial
 
 TEST(experiments_study_session, a_stopped_session_resumes_where_it_stopped) {
   ScratchDir dir;
-  std::atomic<int> stop{0};
+  RunControl stop;
   RecordingListener first(&stop, 3);
-  const SessionEnd stopped = run_study_session(simulated_request(dir), {}, first, &stop);
+  const SessionEnd stopped = run_study_session(simulated_request(dir), {}, first, stop);
   EXPECT_FALSE(stopped.completed);
   EXPECT_TRUE(stopped.stopped);
   EXPECT_EQ(stopped.committed_trials, 3);
 
   // Starting anew over the unfinished session is refused; resuming continues at trial 4.
   RecordingListener refused;
-  EXPECT_THROW(run_study_session(simulated_request(dir), {}, refused, nullptr), InputError);
-  stop.store(0);
+  EXPECT_THROW(run_study_session(simulated_request(dir), {}, refused, RunControl{}), InputError);
+  stop.restart();
   StudySessionRequest again = simulated_request(dir);
   again.resume = true;
   RecordingListener second;
-  const SessionEnd end = run_study_session(again, {}, second, &stop);
+  const SessionEnd end = run_study_session(again, {}, second, stop);
   EXPECT_TRUE(end.completed);
   ASSERT_EQ(second.starts.size(), 1u);
   EXPECT_TRUE(second.starts[0].resumed);
@@ -112,7 +111,7 @@ TEST(experiments_study_session, a_person_needs_a_front_end_that_can_ask_them) {
   r.participant_code = "P01";
   RecordingListener listener;
   try {
-    run_study_session(r, {}, listener, nullptr);
+    run_study_session(r, {}, listener, RunControl{});
     FAIL() << "a person was accepted without a way to ask them";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where(), "participant");
@@ -126,7 +125,7 @@ TEST(experiments_terminal_participant, typed_lines_become_answers_and_q_stops) {
   int fds[2];
   ASSERT_EQ(::pipe(fds), 0);
   std::ostringstream prompts;
-  std::atomic<int> stop{0};
+  RunControl stop;
   TerminalParticipant person(p, prompts, stop, fds[0]);
   EXPECT_FALSE(person.ready(0));  // nothing typed yet: never blocks
   EXPECT_NE(prompts.str().find("Ready?"), std::string::npos);
@@ -141,9 +140,9 @@ TEST(experiments_terminal_participant, typed_lines_become_answers_and_q_stops) {
   const auto none = person.answer(0);
   ASSERT_TRUE(none.has_value());
   EXPECT_EQ(none->tumor_under, (FingerFlags{false, false, false}));
-  EXPECT_EQ(stop.load(), 0);
+  EXPECT_FALSE(stop.stop_requested());
   EXPECT_FALSE(person.answer(0).has_value());  // "q"
-  EXPECT_EQ(stop.load(), SIGTERM);
+  EXPECT_TRUE(stop.stopped_by_operator());
   ::close(fds[0]);
   ::close(fds[1]);
 }

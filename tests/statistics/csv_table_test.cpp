@@ -5,7 +5,7 @@
 
 #include "statistics/csv_groups.hpp"
 #include "statistics/csv_table.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 namespace {

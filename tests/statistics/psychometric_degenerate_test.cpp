@@ -102,6 +102,8 @@ TEST(PsychometricDegenerate, TheCommandLineSaysOneLineOfItsOwn) {
     EXPECT_EQ(r.err.find("Check failed"), std::string::npos) << r.err;
     EXPECT_FALSE(prints_inf(r.out)) << r.out;
     EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    if (r.exit_code == 2) EXPECT_EQ(r.err.rfind("palprig: " + f.string() + ": group 'all': ", 0), 0u) << r.err;
+    if (r.exit_code == 2) {
+      EXPECT_EQ(r.err.rfind("palprig: " + f.string() + ": group 'all': ", 0), 0u) << r.err;
+    }
   }
 }

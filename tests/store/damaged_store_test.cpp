@@ -131,7 +131,7 @@ TEST(DamagedStore, UnreadableStoredProtocolIsRefusedNotRenamed) {
   // The pages are sound; the stored protocol text of session 2 is not JSON any more.
   exec_sql(db, "UPDATE sessions SET protocol_json = substr(protocol_json, 1, 40) WHERE id = 2");
   const std::string out = (dir / "csv").string();
-  for (const std::string& format : {"csv", "bids"}) {
+  for (const char* format : {"csv", "bids"}) {
     const auto r = run_palprig({"export", db, "--format", format, "--out", out});
     EXPECT_EQ(r.exit_code, 2) << format << ": " << r.out << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << r.err;

@@ -14,7 +14,7 @@
 #include <string>
 #include <thread>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/integrity_check_cache.hpp"
 #include "store/sqlite_db.hpp"
 #include "store/sqlite_trial_store.hpp"

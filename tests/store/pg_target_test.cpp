@@ -2,7 +2,7 @@
 // never quoted, and an unreachable server named with host, port, database and libpq's reason.
 #include <gtest/gtest.h>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/pg_target.hpp"
 #include "store/postgres_trial_store.hpp"
 #include "tests/support/process_support.hpp"

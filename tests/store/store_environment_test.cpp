@@ -140,5 +140,7 @@ TEST(StoreEnvironment, AFullDiskIsOneLineOfPalprigsOwnAndKeepsWhatWasCommitted) 
   EXPECT_NE(r.err.find("the disk "), std::string::npos) << r.err;  // "is full" or "may be full", by SQLite's code
   const auto check =
       run_process("sqlite3 " + db.string() + " 'PRAGMA integrity_check; SELECT count(*) > 0 FROM trials'");
-  if (check.exit_code == 0) EXPECT_EQ(check.out, "ok\n1\n");
+  if (check.exit_code == 0) {
+    EXPECT_EQ(check.out, "ok\n1\n");
+  }
 }

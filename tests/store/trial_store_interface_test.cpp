@@ -2,7 +2,7 @@
 // implementation, and what one trial commits is what the readers get back.
 #include <gtest/gtest.h>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "sessions/session_setup.hpp"
 #include "store/trial_store.hpp"
 #include "tests/support/support.hpp"
@@ -26,7 +26,7 @@ TEST(experiments_trial_store_interface, a_path_opens_an_sqlite_file_and_a_server
 
   EXPECT_TRUE(is_server_store_location("postgresql://lab/palprig"));
   EXPECT_FALSE(is_server_store_location("postgresql.db"));
-  // Since issue 12 a server URI opens the PostgreSQL lab store; nothing listens on port 1, so
+  // A server URI opens the PostgreSQL lab store; nothing listens on port 1, so
   // both accesses are refused inputs naming the server, before any journal or file is made.
   for (const auto access : {TrialStore::Access::read_only, TrialStore::Access::read_write}) {
     try {

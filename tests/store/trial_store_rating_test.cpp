@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
@@ -165,10 +165,11 @@ TEST(store_rating_columns, confidence_and_stimulus_end_round_trip) {
   int rated = 0;
   reader.scan_scored_trials(TrialFamily::discrimination, true, [&](const ScoredTrial& t) {
     if (t.confidence) ++rated;
-    if (t.answered)
+    if (t.answered) {
       EXPECT_DOUBLE_EQ(t.rt_after_stimulus_s, t.response_time_s - 4.0);
-    else
+    } else {
       EXPECT_TRUE(std::isnan(t.rt_after_stimulus_s));
+    }
   });
   EXPECT_EQ(rated, static_cast<int>(plan.trials.size()) - 1);
   const TrialSummary s = summarise_trials(reader, {});

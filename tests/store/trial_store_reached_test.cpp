@@ -140,7 +140,9 @@ TEST(store_reached_column, exports_carry_the_reached_time_and_the_response_time_
     if (reached != "n/a") {
       ++with_time;
       EXPECT_NEAR(std::fmod(std::stod(reached), 10.0), 0.040, 1e-4) << line;
-      if (rt != "n/a") EXPECT_NEAR(std::stod(rt) - std::floor(std::stod(rt) * 10 + 1e-9) / 10, 0.06, 1e-4) << line;
+      if (rt != "n/a") {
+        EXPECT_NEAR(std::stod(rt) - std::floor(std::stod(rt) * 10 + 1e-9) / 10, 0.06, 1e-4) << line;
+      }
     } else {
       EXPECT_EQ(rt, "n/a") << line;
     }

@@ -6,7 +6,7 @@
 
 #include "sessions/session_setup.hpp"
 #include "store/sqlite_trial_store.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/discrimination_trials.hpp"
 #include "tests/support/support.hpp"
 

@@ -10,7 +10,7 @@
 #include "store/sqlite_trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "store/trial_summary_report.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/support.hpp"
 
 namespace palprig {

@@ -10,7 +10,7 @@
 #include "study/adaptive_track.hpp"
 #include "study/random_source.hpp"
 #include "study/threshold_protocol.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/support.hpp"
 
 namespace palprig {

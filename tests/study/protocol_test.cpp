@@ -6,7 +6,7 @@
 #include <set>
 
 #include "study/protocol.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig {
 namespace {

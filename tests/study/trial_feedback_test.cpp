@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "study/trial_feedback.hpp"
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"
 

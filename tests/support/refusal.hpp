@@ -4,7 +4,7 @@
 #include <functional>
 #include <string>
 
-#include "models/parse_error.hpp"
+#include "core/input_error.hpp"
 
 namespace palprig::test_support {
 

@@ -1,4 +1,4 @@
-// The tick allocates nothing (the real-time rules of docs/developing.md, "The tick"), the lag
+// The tick allocates nothing (docs/architecture.md, "The tick"), the lag
 // compensation stage, the pulse stage and tissue drag included: every operator new of this
 // program is counted on the thread that makes it, and a tick's thread must count none.
 //

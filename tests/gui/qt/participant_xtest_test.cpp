@@ -4,7 +4,7 @@
 // whichever window has the pointer or the focus. ctest runs each case under
 // `xvfb-run -a -s "-screen 0 1600x1000x24"` with QT_QPA_PLATFORM=xcb (gui.ParticipantXTest.*).
 //
-// One window runs what issue 22 reported: a localisation session (palpating by dragging the
+// One window runs what a user's crash report described: a localisation session (palpating by dragging the
 // mouse, marks by right-click and M, a wrong mark undone with Backspace, Done with Enter), then
 // a discrimination session of a new participant into a new database (the flow that corrupted
 // the heap): keys after a switch to the Live rig tab and back, Pause with Space pressed while
@@ -254,7 +254,7 @@ class ParticipantXTestTest : public QObject {
     QVERIFY(until([&] { return committed_rows(*page().trial_table()) == 1; }));
 
     // Trial 2: the experimenter looks at the Live rig tab and comes back; the participant's
-    // 0 then answers at once (keys were dead after a tab switch before issue 22).
+    // 0 then answers at once (keys were dead after a tab switch before that report's fix).
     QVERIFY(reach_trial(position));
     QTabWidget& tabs = *w_.window->pages();
     const auto tab_centre = [&](QWidget* page_widget) {

@@ -1,4 +1,4 @@
-// Qt Test suite for pulse localisation in the window (issue 15; ctest gui.PulseConsole.*),
+// Qt Test suite for pulse localisation in the window (ctest gui.PulseConsole.*),
 // offscreen: the Experiment tab with a "task": "pulse" protocol, the participant's marking
 // screen (gui/participant_screen_pulse.cpp), SessionRun running run_pulse_study, and the pulse
 // statistics in the statistics view. Sessions run for real against the default simulated rig

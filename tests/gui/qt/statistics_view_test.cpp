@@ -216,7 +216,7 @@ void StatisticsViewTest::measureWithNoCasesShowsNa() {
   QCOMPARE(measures->item(r, tn_column)->text(), QStringLiteral("n/a"));
   QVERIFY(measures->item(r, se_column)->text().contains("n="));
   const charts::Chart& chart = view.findChild<ChartView*>("conditionChart")->chart();
-  QCOMPARE(chart.series[0].bar_labels[1], std::string("n/a"));
+  QCOMPARE(chart.series[0].point_labels[1], std::string("n/a"));
   QVERIFY(std::isnan(chart.series[0].y[1]));
 
   // Per-tumor sensitivity: a row per tumor of the scene, on the detail chart too.

@@ -3,8 +3,8 @@
 // than its reader's bound. A FIFO would block the reader for ever, /dev/zero or a 3 GiB sparse
 // file would be read until memory runs out, a directory gives the library's raw text; each is
 // refused with one palprig line (InputError: the file, "file", "a regular file of at most N MiB
-// holding <what>, got <what it is>") before a byte is read. The only I/O in models/: every
-// floor's readers (formats, statistics, inputs, controller, calibration, store) share it.
+// holding <what>, got <what it is>") before a byte is read. Every floor's readers (formats,
+// statistics, inputs, controller, calibration, store) share it.
 #include <cstdint>
 #include <filesystem>
 #include <fstream>

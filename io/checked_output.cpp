@@ -1,4 +1,4 @@
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

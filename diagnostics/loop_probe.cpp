@@ -1,4 +1,5 @@
-#include "controller/loop_probe.hpp"
+#include "diagnostics/loop_probe.hpp"
+#include "controller/rig_lease.hpp"
 
 #include <vector>
 
@@ -36,7 +37,12 @@ LoopMeasurement measure_loop(double rate_hz, double seconds, const RealtimeOptio
   // The probe measures scheduling, so it must not stop at the first burst of overruns.
   config.safety.max_consecutive_overruns = 1 << 30;
   config.safety.max_lost_time_s = 1e9;
-  const RunSummary s = run_loop(config, scene, pen, backend, opt);
+  Rig probe_rig(backend, "the probe's simulated rig");
+  RunSummary s;
+  {
+    RigLease lease = probe_rig.lease("the loop probe");
+    s = run_loop(config, scene, pen, lease, opt);
+  }
   backend.close();
   LoopMeasurement m;
   m.rate_hz = rate_hz;

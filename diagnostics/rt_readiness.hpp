@@ -27,7 +27,7 @@ PreemptModel preempt_model_from_uname(std::string_view uname_version) noexcept;
 PreemptModel preempt_model_from_config(std::string_view config_text) noexcept;
 // /sys/kernel/debug/sched/preempt: "none voluntary (full) lazy" -> full (the one in brackets).
 PreemptModel preempt_model_from_debugfs(std::string_view text) noexcept;
-// A kernel CPU list ("", "3", "1-3,6"); throws std::invalid_argument on anything else.
+// A kernel CPU list ("", "3", "1-3,6"); throws BadInput on anything else.
 std::vector<int> parse_cpu_list(std::string_view text);
 
 struct IdleState {

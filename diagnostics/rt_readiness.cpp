@@ -1,4 +1,4 @@
-#include "runtime/rt_readiness.hpp"
+#include "diagnostics/rt_readiness.hpp"
 
 #include <pthread.h>
 #include <sched.h>
@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/error.hpp"
 #include "runtime/cpu_latency_request.hpp"
 
 namespace palprig {
@@ -156,7 +157,7 @@ std::vector<int> parse_cpu_list(std::string_view text) {
   std::string part;
   auto number = [&](const std::string& n) {
     if (n.empty() || n.size() > 5 || !std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; }))
-      throw std::invalid_argument("a CPU list like 1-3,6, got \"" + s + "\"");
+      throw BadInput("a CPU list like 1-3,6, got \"" + s + "\"");
     return std::stoi(n);
   };
   while (std::getline(ss, part, ',')) {
@@ -165,7 +166,7 @@ std::vector<int> parse_cpu_list(std::string_view text) {
       cpus.push_back(number(part));
     } else {
       const int a = number(part.substr(0, dash)), b = number(part.substr(dash + 1));
-      if (b < a) throw std::invalid_argument("a CPU list like 1-3,6, got \"" + s + "\"");
+      if (b < a) throw BadInput("a CPU list like 1-3,6, got \"" + s + "\"");
       for (int c = a; c <= b; ++c) cpus.push_back(c);
     }
   }
@@ -209,12 +210,12 @@ SystemFacts probe_system(const ProbeRoots& roots, int fifo_priority) {
   if (auto on = read_text(cpu_dir / "online")) {
     try {
       f.cpus_online = int(parse_cpu_list(*on).size());
-    } catch (const std::invalid_argument&) {}
+    } catch (const BadInput&) {}
   }
   if (auto iso = read_text(cpu_dir / "isolated")) {
     try {
       f.isolated_cpus = parse_cpu_list(*iso);
-    } catch (const std::invalid_argument&) {}
+    } catch (const BadInput&) {}
   }
   for (int c = 0; c < 4096; ++c) {
     const auto dir = cpu_dir / ("cpu" + std::to_string(c));

@@ -1,4 +1,4 @@
-// The one checked writer (models/checked_output.hpp): a file is written whole or not at all, an
+// The one checked writer (io/checked_output.hpp): a file is written whole or not at all, an
 // earlier file stays until the new one is complete, and a failure names the file and the reason.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "models/checked_output.hpp"
+#include "io/checked_output.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace palprig {

@@ -5,7 +5,8 @@
 
 #include <algorithm>
 
-#include "runtime/rt_readiness.hpp"
+#include "core/error.hpp"
+#include "diagnostics/rt_readiness.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig;
@@ -105,9 +106,9 @@ TEST(RtReadiness, CpuLists) {
   EXPECT_TRUE(parse_cpu_list("\n").empty());
   EXPECT_EQ(parse_cpu_list("3\n"), (std::vector<int>{3}));
   EXPECT_EQ(parse_cpu_list("1-3,6"), (std::vector<int>{1, 2, 3, 6}));
-  EXPECT_THROW(parse_cpu_list("a-b"), std::invalid_argument);
-  EXPECT_THROW(parse_cpu_list("3-1"), std::invalid_argument);
-  EXPECT_THROW(parse_cpu_list("1,,2"), std::invalid_argument);
+  EXPECT_THROW(parse_cpu_list("a-b"), palprig::BadInput);
+  EXPECT_THROW(parse_cpu_list("3-1"), palprig::BadInput);
+  EXPECT_THROW(parse_cpu_list("1,,2"), palprig::BadInput);
 }
 
 TEST(RtReadiness, ProbeReadsAFixtureLabPc) {

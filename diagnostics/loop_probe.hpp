@@ -3,11 +3,11 @@
 // runs) against the default simulated rig with a pen pressing still: what `palprig rt-check`
 // and the real-time benchmarks report as the machine's wake-up latency at a rate.
 #include "runtime/realtime.hpp"
-#include "runtime/rt_readiness.hpp"
+#include "diagnostics/rt_readiness.hpp"
 
 namespace palprig {
 
-// Throws std::invalid_argument for a rate or length run_loop refuses.
+// Throws BadInput for a rate or length run_loop refuses.
 LoopMeasurement measure_loop(double rate_hz, double seconds, const RealtimeOptions& options);
 
 }  // namespace palprig
