@@ -27,8 +27,8 @@ Bracket bracket(const std::vector<double>& positions, double q, double implicit)
     return {-1, 0, (q - implicit) / (positions[0] - implicit)};
   }
   int i = 0;
-  while (i + 1 < n && positions[std::size_t(i + 1)] < q) ++i;
-  return {i, i + 1, (q - positions[std::size_t(i)]) / (positions[std::size_t(i + 1)] - positions[std::size_t(i)])};
+  while (i + 1 < n && positions[std::size_t(i) + 1] < q) ++i;
+  return {i, i + 1, (q - positions[std::size_t(i)]) / (positions[std::size_t(i) + 1] - positions[std::size_t(i)])};
 }
 
 void check_axis(const std::vector<double>& axis, double lowest, bool strictly_above, const char* name) {
@@ -100,8 +100,8 @@ double FeStressTable::rise_kPa(double indentation_mm, double cover_mm, double di
       bk = {-1, 0, q / std::log(ks[0])};
     } else {
       int i = 0;
-      while (i + 1 < n && std::log(ks[std::size_t(i + 1)]) < q) ++i;
-      const double l0 = std::log(ks[std::size_t(i)]), l1 = std::log(ks[std::size_t(i + 1)]);
+      while (i + 1 < n && std::log(ks[std::size_t(i) + 1]) < q) ++i;
+      const double l0 = std::log(ks[std::size_t(i)]), l1 = std::log(ks[std::size_t(i) + 1]);
       bk = {i, i + 1, (q - l0) / (l1 - l0)};
     }
   }

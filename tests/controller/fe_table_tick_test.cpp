@@ -51,7 +51,9 @@ TEST(FeTableScene, DeeperTumorRendersWeaker) {
   EXPECT_GT(shallow, 1.5 * deep) << "the same tumor 15 mm down is felt much less";
   EXPECT_GE(deep, 0.0);
   EXPECT_NEAR(healthy, 0.0, 1e-9) << "healthy tissue is the actuator's passive stress: no air";
-  EXPECT_GT(held_pressure_kPa(*scene, 50, 40, 3.0), shallow) << "pressing harder sinks deeper: more stress";
+  // 1.5 N sinks 5.8 mm where 2 N sinks 7 (the shipped table's deepest step: a harder press is
+  // read at 7 mm).
+  EXPECT_LT(held_pressure_kPa(*scene, 50, 40, 1.5), shallow) << "pressing less sinks less: less stress";
   // The rise the tick used is the table's, for this tumor described as its nodule: its outline's
   // top depth and diameter, its modulus over the silicone's, at 2 N's 7 mm indentation.
   const InclusionOutline o = scene->outlines(InclusionKind::tumor).at(0);
