@@ -39,18 +39,18 @@ void run_actuator(const ActuatorArgs& a) {
   FeProgress progress("fe actuator");
   const mechanics::ContactRun run = mechanics::run_actuator(finger, actuator, o, std::ref(progress));
   std::vector<double> p, s;
-  std::printf("  %8s %9s %11s %7s\n", "air kPa", "peak kPa", "force N/m", "Newton");
+  print_out("  %8s %9s %11s %7s\n", "air kPa", "peak kPa", "force N/m", "Newton");
   for (const auto& step : run.steps) {
-    std::printf("  %8.1f %9.3f %11.2f %7d\n", step.load, step.peak_kPa, step.force_N_per_m, step.newton_iterations);
+    print_out("  %8.1f %9.3f %11.2f %7d\n", step.load, step.peak_kPa, step.force_N_per_m, step.newton_iterations);
     p.push_back(step.load);
     s.push_back(step.peak_kPa);
   }
   const mechanics::StressLine line = mechanics::fit_stress_line(p, s);
-  std::printf("  line: stress = %.5f x air + %.3f kPa, R^2 %.5f (%zu pressures)\n", line.slope, line.intercept_kPa,
-              line.r_squared, line.points);
+  print_out("  line: stress = %.5f x air + %.3f kPa, R^2 %.5f (%zu pressures)\n", line.slope, line.intercept_kPa,
+            line.r_squared, line.points);
   if (line.slope > 0)
-    std::printf("  %.3f kPa of fingertip stress needs %.2f kPa of air (%zu unknowns, %d step cuts)\n", a.target_kPa,
-                (a.target_kPa - line.intercept_kPa) / line.slope, run.unknowns, run.cuts);
+    print_out("  %.3f kPa of fingertip stress needs %.2f kPa of air (%zu unknowns, %d step cuts)\n", a.target_kPa,
+              (a.target_kPa - line.intercept_kPa) / line.slope, run.unknowns, run.cuts);
   std::cout << std::flush;
   std::fprintf(stderr, "palprig fe actuator: solved in %.1f s\n", run.wall_s);
   const std::filesystem::path out(a.out);

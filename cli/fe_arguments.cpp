@@ -1,5 +1,6 @@
 #include "cli/fe_arguments.hpp"
 
+#include <cstdarg>
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
@@ -80,6 +81,19 @@ std::vector<double> number_list(const std::string& text, const std::string& flag
 void write_output(const std::filesystem::path& path, const std::string& text) {
   write_file_checked(path, text);
   std::cout << "  wrote " << path.string() << "\n";
+}
+
+void print_out(const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  va_list again;
+  va_copy(again, args);
+  const int n = std::vsnprintf(nullptr, 0, format, args);
+  va_end(args);
+  std::string text(n > 0 ? std::size_t(n) : 0, '\0');
+  if (n > 0) std::vsnprintf(text.data(), text.size() + 1, format, again);
+  va_end(again);
+  std::cout << text;
 }
 
 void print_plots(const std::vector<std::filesystem::path>& files) {

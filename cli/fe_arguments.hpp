@@ -46,5 +46,8 @@ std::vector<double> number_list(const std::string& text, const std::string& flag
 void write_output(const std::filesystem::path& path, const std::string& text);
 // Print the figures' files as "  plot: FILE".
 void print_plots(const std::vector<std::filesystem::path>& files);
+// printf-style formatting onto std::cout (the command line's checked standard output,
+// cli/standard_output.hpp; std::printf would bypass it and come out of order).
+[[gnu::format(printf, 1, 2)]] void print_out(const char* format, ...);
 
 }  // namespace palprig::cli

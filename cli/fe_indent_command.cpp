@@ -44,13 +44,13 @@ void run_indent(const IndentArgs& a) {
     FeProgress progress("fe indent");
     runs.push_back(mechanics::run_indentation(finger, blocks[i], o, std::ref(progress)));
     const mechanics::ContactRun& run = runs.back();
-    std::printf("  %8s %9s %11s %11s %7s\n", "depth mm", "peak kPa", "force N/m", "contact mm", "Newton");
+    print_out("  %8s %9s %11s %11s %7s\n", "depth mm", "peak kPa", "force N/m", "contact mm", "Newton");
     for (const auto& s : run.steps)
-      std::printf("  %8.2f %9.3f %11.2f %11.2f %7d\n", s.load, s.peak_kPa, s.force_N_per_m, s.contact_length_mm,
-                  s.newton_iterations);
+      print_out("  %8.2f %9.3f %11.2f %11.2f %7d\n", s.load, s.peak_kPa, s.force_N_per_m, s.contact_length_mm,
+                s.newton_iterations);
     const auto& last = run.steps.back();
-    std::printf("  peak at %.2f mm: %.3f kPa, %.2f mm from the fingertip's lowest point (%zu unknowns, %d step cuts)\n",
-                last.load, last.peak_kPa, last.peak_s_mm, run.unknowns, run.cuts);
+    print_out("  peak at %.2f mm: %.3f kPa, %.2f mm from the fingertip's lowest point (%zu unknowns, %d step cuts)\n",
+              last.load, last.peak_kPa, last.peak_s_mm, run.unknowns, run.cuts);
     std::cout << std::flush;
     std::fprintf(stderr, "palprig fe indent: solved in %.1f s\n", run.wall_s);
     write_output(std::filesystem::path(a.out) / (stem + "_steps.csv"), mechanics::steps_csv(run, "depth_mm"));

@@ -73,11 +73,11 @@ void run_stress_model(const StressModelArgs& a) {
   m.actuator.intercept_kPa = line.intercept_kPa;
   m.r_squared = line.r_squared;
   m.nodule_pressure_kPa = line.slope > 0 ? (m.hard_stress_kPa - line.intercept_kPa) / line.slope : 0;
-  std::printf("  tissue at %.2f mm: soft %.3f kPa, over the nodule %.3f kPa (ratio %.3f)\n", a.depth_mm,
-              m.soft_stress_kPa, m.hard_stress_kPa, m.hard_stress_kPa / m.soft_stress_kPa);
-  std::printf("  actuator pressed %.2f mm: stress = %.5f x air + %.3f kPa, R^2 %.5f\n", a.press_mm, line.slope,
-              line.intercept_kPa, line.r_squared);
-  std::printf("  the nodule's %.3f kPa needs %.2f kPa of air\n", m.hard_stress_kPa, m.nodule_pressure_kPa);
+  print_out("  tissue at %.2f mm: soft %.3f kPa, over the nodule %.3f kPa (ratio %.3f)\n", a.depth_mm,
+            m.soft_stress_kPa, m.hard_stress_kPa, m.hard_stress_kPa / m.soft_stress_kPa);
+  print_out("  actuator pressed %.2f mm: stress = %.5f x air + %.3f kPa, R^2 %.5f\n", a.press_mm, line.slope,
+            line.intercept_kPa, line.r_squared);
+  print_out("  the nodule's %.3f kPa needs %.2f kPa of air\n", m.hard_stress_kPa, m.nodule_pressure_kPa);
   std::cout << std::flush;
   std::fprintf(stderr, "palprig fe stress-model: solved in %.1f s\n", soft.wall_s + hard.wall_s + act.wall_s);
   write_stress_model_file(a.out, m);  // refused (and nothing written) when calibration could not use it

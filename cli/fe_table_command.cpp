@@ -87,10 +87,10 @@ void run_table(const TableArgs& a) {
   file.solves = built.solves;
   file.wall_s = built.wall_s;
   file.workers = built.workers;
-  std::printf("  %zu solves in %.0f s with %d workers (block %.0f mm wide)\n", built.solves, built.wall_s,
-              built.workers, built.block_width_mm);
+  print_out("  %zu solves in %.0f s with %d workers (block %.0f mm wide)\n", built.solves, built.wall_s, built.workers,
+            built.block_width_mm);
   const double deepest = axes.indentation_mm.back();
-  std::printf("  healthy peak at %.2f mm: %.3f kPa\n", deepest, file.table->healthy_kPa(deepest));
+  print_out("  healthy peak at %.2f mm: %.3f kPa\n", deepest, file.table->healthy_kPa(deepest));
   std::cout << std::flush;
   if (!cached.empty()) {
     try {  // the cache is a convenience: a folder that cannot be written costs the next run the build
