@@ -1,6 +1,9 @@
 # palprig: the two set-up commands of the README.
-#   make demo   install missing Debian packages, configure, build, run the demo
-#   make test   same set-up, then the whole test suite
+#   make demo   install missing Debian packages, configure, build the palprig program only, run the demo
+#   make test   same set-up, then build everything (suites, benchmarks, fuzz targets) and run the whole test suite
+#   make package       the Debian package palprig_VERSION_ARCH.deb in build/ (CPack; docs/rig-pc.md)
+#   make test-package  build it, install it into a scratch root and run the installed program from there
+#   make test-package-system  install it with apt on this machine, run it as a lab user, purge it (root)
 #   make fuzz   run every fuzz target for a minute (make test runs each for a second)
 #   make test-tsan  the threaded suites under ThreadSanitizer
 #   make test-analyst  the analyst-only build (-DPALPRIG_RIG=OFF: stats, export, store) and its suites
@@ -20,7 +23,7 @@ CMAKE_ARGS ?=
 PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages.txt | tr '\n' ' ')
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build demo test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
+.PHONY: all deps configure build demo package test-package test-package-system test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
 
 all: build
 
@@ -42,8 +45,25 @@ configure: deps $(BUILD)/CMakeCache.txt
 build: configure
 	cmake --build $(BUILD) -j$(JOBS)
 
-demo: build
+# Only the program the demo runs (the window is part of it): the 140 objects of the suites, the
+# benchmarks and the fuzz targets' libraries are for make test.
+demo: configure
+	cmake --build $(BUILD) -j$(JOBS) --target palprig
 	$(BUILD)/bin/palprig demo
+
+# The Debian package: the installed targets only (not the suites), then CPack (packaging/packaging.cmake).
+package: configure
+	cmake --build $(BUILD) -j$(JOBS) --target palprig palprig_cli_docs palprig_changelog
+	cd $(BUILD) && cpack -G DEB
+
+# The package installed into a scratch root (dpkg -x) and run from a folder far from the clone.
+test-package: package
+	tests/package/install_and_run.sh $(BUILD) "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
+
+# For real, on this machine (root; it installs, adds a lab user, runs as that user, purges):
+# not part of make test, since it changes the system.
+test-package-system: package
+	tests/package/apt_install_as_lab_user.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
 
 test: build bids-validator
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS) --timeout 600

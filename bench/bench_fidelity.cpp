@@ -5,8 +5,10 @@
 //     data/calibration/sim-default.json), and
 //   - a heavier plant: hysteresis x1.7, dead time and lag x1.4, calibrated here by the documented
 //     recipe (palprig calibrate sweep --excitation staircase,random,sine,step,chirp, then
-//     calibrate fit; the palprig command itself, as a user types it).
-// Goals: RMS <= 0.5 kPa on both, monitor/target over tumors >= 0.97,
+//     calibrate fit; the palprig command itself, as a user types it), and
+//   - the shipped asymmetric regulator (data/rigs/simulated_asymmetric.json: 3 kPa play rising,
+//     1 kPa falling, separate fill and exhaust lags, a saturating gain), calibrated the same way.
+// Goals: RMS <= 0.5 kPa on every plant, monitor/target over tumors >= 0.97,
 // no setpoint above p_max, no overshoot over soft tissue above 0.5 kPa.
 //
 //   build/bin/bench_fidelity                        the table (Markdown), runs in a few seconds
@@ -185,6 +187,18 @@ void run_command(const std::string& command) {
     throw palprig::Error("failed (" + std::to_string(status) + "): " + command);
 }
 
+// A rig calibrated by the documented recipe with the palprig command; the calibration file.
+fs::path recipe_calibration(const fs::path& work, const fs::path& rig, const std::string& name) {
+  const std::string bin = PALPRIG_BIN;
+  const fs::path sweep = work / (name + "_sweep.csv"), cal = work / (name + "_cal.json");
+  run_command(bin + " calibrate sweep --rig " + rig.string() +
+              " --channels 1,2,3 --excitation staircase,random,sine,step,chirp --quiet --out " + sweep.string() +
+              " > " + (work / (name + "_sweep.txt")).string() + " 2>&1");
+  run_command(bin + " calibrate fit " + sweep.string() + " --out " + cal.string() + " > " +
+              (work / (name + "_fit.txt")).string() + " 2>&1");
+  return cal;
+}
+
 // The heavier plant, calibrated by the documented recipe with the palprig command.
 fs::path heavy_rig(const fs::path& work, fs::path& cal) {
   const fs::path data = fs::path(PALPRIG_SOURCE_DIR) / "data";
@@ -197,14 +211,7 @@ fs::path heavy_rig(const fs::path& work, fs::path& cal) {
   p["time_constant_s"] = p["time_constant_s"].get<double>() * 1.4;
   const fs::path path = work / "sim_heavy.json";
   std::ofstream(path) << rig.dump(2) << "\n";
-  const std::string bin = PALPRIG_BIN;
-  const fs::path sweep = work / "sim_heavy_sweep.csv";
-  cal = work / "sim_heavy_cal.json";
-  run_command(bin + " calibrate sweep --rig " + path.string() +
-              " --channels 1,2,3 --excitation staircase,random,sine,step,chirp --quiet --out " + sweep.string() +
-              " > " + (work / "sweep.txt").string() + " 2>&1");
-  run_command(bin + " calibrate fit " + sweep.string() + " --out " + cal.string() + " > " +
-              (work / "fit.txt").string() + " 2>&1");
+  cal = recipe_calibration(work, path, "sim_heavy");
   return path;
 }
 
@@ -370,6 +377,10 @@ int main(int argc, char** argv) {
     const fs::path heavy = heavy_rig(work, heavy_cal);
     cases.push_back(run_pass("hysteresis x1.7, lag x1.4", heavy, heavy_cal, false));
     cases.push_back(run_pass("hysteresis x1.7, lag x1.4", heavy, heavy_cal, true));
+    const fs::path asymmetric = data / "rigs" / "simulated_asymmetric.json";
+    const fs::path asymmetric_cal = recipe_calibration(work, asymmetric, "sim_asymmetric");
+    cases.push_back(run_pass("asymmetric regulator", asymmetric, asymmetric_cal, false));
+    cases.push_back(run_pass("asymmetric regulator", asymmetric, asymmetric_cal, true));
     if (json_out) {
       nlohmann::json all = nlohmann::json::array();
       for (const Case& c : cases) {
@@ -387,8 +398,8 @@ int main(int argc, char** argv) {
           "largest monitor - target over soft tissue kPa, goal <= 0.5 | largest setpoint / p_max kPa |\n");
       std::printf("|---|---|---|---|---|---|\n");
       for (const Case& c : cases) print_row(c.rig_name, c.compensated ? "on" : "off", c.metrics, c.p_max_kPa);
-      std::printf("\nIdentified dynamics (dead time + lag): shipped: %s\n  heavier plant: %s\n",
-                  cases[0].identified.c_str(), cases[2].identified.c_str());
+      std::printf("\nIdentified dynamics (dead time + lag): shipped: %s\n  heavier plant: %s\n  asymmetric: %s\n",
+                  cases[0].identified.c_str(), cases[2].identified.c_str(), cases[4].identified.c_str());
     }
     if (!figure.empty()) {
       const SceneFile scene = load_scene_file(data / "scenes" / "phantom_abc.json");

@@ -64,7 +64,11 @@ void report_percentiles(benchmark::State& state, std::vector<std::int64_t>& ns) 
 // rig as calibration identifies them: 4 ms dead time, 50 ms lag): the scene is also sampled
 // where the fingers will be (up to three more samples per finger), and every channel's
 // compensator runs; on the random map every tick is an edge, its worst case.
-void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering, bool lag_compensated = false) {
+// With asymmetric, the regulator is the shipped asymmetric one as calibration identifies it
+// (data/rigs/simulated_asymmetric.json: 3.7 ms dead time, 40 ms fill and 86 ms exhaust lag, five
+// asymmetric plays whose inverse the tick solves at the actuator's state).
+void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering, bool lag_compensated = false,
+               bool asymmetric = false) {
   const MapScene& scene = big_scene(sampling);
   TickConfig cfg;
   if (lag_compensated) {
@@ -72,7 +76,18 @@ void tick_cost(benchmark::State& state, MapSampling sampling, bool wandering, bo
     for (std::size_t i = 0; i < kFingerCount; ++i) {
       cfg.lag_compensation.identified[i] = true;
       cfg.lag_compensation.regulator[i] = {0.004, 0.050, 2000.0};
+      if (asymmetric) cfg.lag_compensation.regulator[i] = {0.0037, 0.040, 2000.0, 0.086};
     }
+  }
+  if (asymmetric) {
+    PrandtlIshlinskii h;
+    h.linear_weight = 0.037;
+    h.operator_count = 5;
+    h.asymmetric = true;
+    h.thresholds_kPa = {1.20, 2.95, 3.80, 42.99, 4.94};
+    h.falling_thresholds_kPa = {2.59, 1.00, 0.43, 0.05, 6.38};
+    h.weights = {0.005, 0.755, 0.184, 0.013, 0.008};
+    cfg.hysteresis_model.fill(h);
   }
   TickState st = make_tick_state(cfg);
   std::mt19937 rng(2);
@@ -107,11 +122,19 @@ void BM_TickBilinearWandering(benchmark::State& s) { tick_cost(s, MapSampling::b
 void BM_TickNearestHandSpeed(benchmark::State& s) { tick_cost(s, MapSampling::nearest, false); }
 void BM_TickNearestWanderingLagCompensated(benchmark::State& s) { tick_cost(s, MapSampling::nearest, true, true); }
 void BM_TickNearestHandSpeedLagCompensated(benchmark::State& s) { tick_cost(s, MapSampling::nearest, false, true); }
+void BM_TickNearestWanderingAsymmetricRegulator(benchmark::State& s) {
+  tick_cost(s, MapSampling::nearest, true, true, true);
+}
+void BM_TickNearestHandSpeedAsymmetricRegulator(benchmark::State& s) {
+  tick_cost(s, MapSampling::nearest, false, true, true);
+}
 BENCHMARK(BM_TickNearestWandering);
 BENCHMARK(BM_TickBilinearWandering);
 BENCHMARK(BM_TickNearestHandSpeed);
 BENCHMARK(BM_TickNearestWanderingLagCompensated);
 BENCHMARK(BM_TickNearestHandSpeedLagCompensated);
+BENCHMARK(BM_TickNearestWanderingAsymmetricRegulator);
+BENCHMARK(BM_TickNearestHandSpeedAsymmetricRegulator);
 
 // The bundled phantom (paper 002's tumors A, B, C: a 161 x 121 map) under the demo's recorded
 // pen pass at 1 kHz, with the shipped simulated rig's calibration (its identified regulator

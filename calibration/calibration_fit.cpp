@@ -16,6 +16,15 @@ const char* to_string(HysteresisSource s) noexcept {
   return "?";
 }
 
+const char* to_string(HysteresisModelClass c) noexcept {
+  switch (c) {
+    case HysteresisModelClass::automatic: return "auto";
+    case HysteresisModelClass::symmetric: return "symmetric";
+    case HysteresisModelClass::asymmetric: return "asymmetric";
+  }
+  return "?";
+}
+
 namespace {
 
 std::vector<HoldPoint> staircase_of(const std::vector<HoldPoint>& pts) {
@@ -193,6 +202,25 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
                             std::to_string(hysteresis.operator_count) + " need " +
                             std::to_string(4 * (1 + 2 * hysteresis.operator_count)) +
                             "; record more holds with --excitation staircase,random,sine, or set --operators)");
+        hysteresis.operator_count = supported;
+      }
+    }
+    // The model class: by held-out error over the runs (each from a vent), or as asked.
+    if (o.hysteresis_model == HysteresisModelClass::automatic) {
+      std::vector<std::size_t> run_starts;
+      for (std::size_t k = 0; k < pts.size(); ++k)
+        if (pts[k].segment == SweepSegment::vent) run_starts.push_back(k);
+      ch.hysteresis_selection = select_hysteresis_model(x, y, run_starts, hysteresis);
+      hysteresis.asymmetric = ch.hysteresis_selection->asymmetric_chosen;
+    } else {
+      hysteresis.asymmetric = o.hysteresis_model == HysteresisModelClass::asymmetric;
+    }
+    if (hysteresis.asymmetric) {
+      // 1 + 3n parameters, 4 samples each.
+      const std::size_t supported = x.size() >= 16 ? (x.size() / 4 - 1) / 3 : 1;
+      if (supported < hysteresis.operator_count) {
+        out.notes.push_back(name + ": " + std::to_string(supported) + " asymmetric play operators, the most its " +
+                            std::to_string(x.size()) + " quasi-static samples support");
         hysteresis.operator_count = supported;
       }
     }

@@ -12,6 +12,7 @@
 #include "calibration/dynamics_fit.hpp"
 #include "calibration/force_window.hpp"
 #include "calibration/hysteresis_fit.hpp"
+#include "calibration/hysteresis_selection.hpp"
 #include "calibration/stress_fit.hpp"
 #include "calibration/progress_meter.hpp"
 #include "calibration/sweep_csv.hpp"
@@ -26,8 +27,14 @@ namespace palprig {
 enum class HysteresisSource { monitor, sensor, none };
 const char* to_string(HysteresisSource s) noexcept;
 
+// Which hysteresis model class a channel gets: chosen by held-out error over the sweep's runs
+// (calibration/hysteresis_selection.hpp), or the one asked for.
+enum class HysteresisModelClass { automatic, symmetric, asymmetric };
+const char* to_string(HysteresisModelClass c) noexcept;
+
 struct CalibrationFitOptions {
   HysteresisFitOptions hysteresis;
+  HysteresisModelClass hysteresis_model = HysteresisModelClass::automatic;
   // When true (no --operators given), hysteresis.operator_count is the most a channel gets:
   // fewer when its quasi-static samples support fewer (4 per parameter), with a note saying so.
   bool operators_from_data = false;
@@ -59,6 +66,7 @@ struct ChannelCalibration {
   std::optional<RegulatorCheck> regulator_check;
   std::optional<BranchFits> response;  // sensor against command (staircase)
   std::optional<HysteresisFit> hysteresis;
+  std::optional<HysteresisSelection> hysteresis_selection;  // when the class was chosen by held-out error
   HysteresisSource hysteresis_source = HysteresisSource::none;
   ActuatorModel actuator;
   std::optional<LineFit> stress_line;     // when fitted from stress pairs

@@ -79,14 +79,17 @@ void print_fit_report(std::ostream& out, const CalibrationResult& r, const std::
     }
     const HysteresisFit& h = *ch.hysteresis;
     out << "from " << to_string(ch.hysteresis_source) << ", " << h.samples << " holds; w0 " << std::setprecision(3)
-        << h.model.linear_weight << ", plays";
-    for (std::size_t i = 0; i < h.model.operator_count; ++i)
-      out << " " << std::setprecision(2) << h.model.thresholds_kPa[i] << ":" << std::setprecision(3)
-          << h.model.weights[i];
-    out << " (kPa:weight); RMS " << std::setprecision(3) << h.rms_error_kPa << " kPa, max " << h.max_abs_error_kPa
-        << " kPa, R^2 " << std::setprecision(5) << h.r_squared << "; " << h.iterations << " iterations, "
-        << std::setprecision(3) << h.solve_seconds << " s, thresholds "
+        << h.model.linear_weight << ", " << (h.model.asymmetric ? "asymmetric plays" : "plays");
+    for (std::size_t i = 0; i < h.model.operator_count; ++i) {
+      out << " " << std::setprecision(2) << h.model.thresholds_kPa[i];
+      if (h.model.asymmetric) out << "/" << h.model.falling_thresholds_kPa[i];
+      out << ":" << std::setprecision(3) << h.model.weights[i];
+    }
+    out << (h.model.asymmetric ? " (rising/falling kPa:weight); RMS " : " (kPa:weight); RMS ") << std::setprecision(3)
+        << h.rms_error_kPa << " kPa, max " << h.max_abs_error_kPa << " kPa, R^2 " << std::setprecision(5) << h.r_squared
+        << "; " << h.iterations << " iterations, " << std::setprecision(3) << h.solve_seconds << " s, thresholds "
         << (h.thresholds_refined ? "refined" : "on the grid") << "\n";
+    if (ch.hysteresis_selection) out << "    model chosen: " << ch.hysteresis_selection->reason << "\n";
   }
   bool any_dynamics = false;
   for (const auto& ch : r.channels) any_dynamics = any_dynamics || ch.dynamics.has_value();
@@ -98,7 +101,11 @@ void print_fit_report(std::ostream& out, const CalibrationResult& r, const std::
       if (!ch.dynamics) continue;
       const DynamicsFit& d = *ch.dynamics;
       out << "  channel " << ch.channel << ": dead time " << std::setprecision(1) << d.dead_time_s * 1000 << " ms, lag "
-          << d.time_constant_s * 1000 << " ms; R^2 " << std::setprecision(5) << d.r_squared;
+          << d.time_constant_s * 1000 << " ms";
+      if (d.directional)
+        out << " filling, " << d.exhaust_time_constant_s * 1000 << " ms exhausting (one lag left "
+            << std::setprecision(3) << d.one_lag_rms_residual_kPa << " kPa RMS)";
+      out << "; R^2 " << std::setprecision(5) << d.r_squared;
       for (std::size_t k = 0; k < d.segments.size(); ++k)
         out << (k == 0 ? " (" : ", ") << to_string(d.segments[k].segment) << " " << d.segments[k].r_squared
             << (k + 1 == d.segments.size() ? ")" : "");

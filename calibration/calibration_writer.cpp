@@ -63,6 +63,11 @@ json calibration_json(const CalibrationResult& r) {
                          {"weights", weights},
                          {"rms_error_kPa", h.rms_error_kPa},
                          {"r_squared", h.r_squared}};
+      if (h.model.asymmetric) {
+        json falling = json::array();
+        for (std::size_t i = 0; i < h.model.operator_count; ++i) falling.push_back(h.model.falling_thresholds_kPa[i]);
+        c["hysteresis"]["falling_thresholds_kPa"] = falling;
+      }
       f["hysteresis_fit"] = {{"source", to_string(ch.hysteresis_source)},
                              {"samples", h.samples},
                              {"max_abs_error_kPa", h.max_abs_error_kPa},
@@ -71,7 +76,22 @@ json calibration_json(const CalibrationResult& r) {
                              {"converged", h.converged},
                              {"iterations", h.iterations},
                              {"solve_seconds", h.solve_seconds},
-                             {"solver", h.solver_report}};
+                             {"solver", h.solver_report},
+                             {"model", h.model.asymmetric ? "asymmetric" : "symmetric"}};
+      if (ch.hysteresis_selection) {
+        const HysteresisSelection& s = *ch.hysteresis_selection;
+        json sel{{"compared", s.compared}, {"reason", s.reason}};
+        if (s.compared) {
+          sel["folds"] = s.folds;
+          sel["held_out_samples"] = s.samples;
+          sel["symmetric_held_out_rms_kPa"] = s.symmetric.rms_kPa;
+          sel["symmetric_held_out_max_kPa"] = s.symmetric.max_kPa;
+          sel["asymmetric_held_out_rms_kPa"] = s.asymmetric.rms_kPa;
+          sel["asymmetric_held_out_max_kPa"] = s.asymmetric.max_kPa;
+          sel["min_gain"] = s.min_gain;
+        }
+        f["hysteresis_fit"]["selection"] = sel;
+      }
     }
     if (ch.dynamics) {
       const DynamicsFit& d = *ch.dynamics;
@@ -90,6 +110,10 @@ json calibration_json(const CalibrationResult& r) {
                        {"samples", d.samples},
                        {"rate_hz", d.rate_hz},
                        {"segments", segments}};
+      if (d.directional) {
+        c["dynamics"]["exhaust_time_constant_s"] = d.exhaust_time_constant_s;
+        c["dynamics"]["one_lag_rms_residual_kPa"] = d.one_lag_rms_residual_kPa;
+      }
       f["dynamics_fit"] = {{"grid_rms_residual_kPa", d.grid_rms_residual_kPa},
                            {"converged", d.converged},
                            {"iterations", d.iterations},

@@ -69,7 +69,7 @@ Trajectory make_trajectory(const EvaluationOptions& o, double lo, double hi) {
   return tr;
 }
 
-struct Accumulator {
+struct ChannelErrors {
   std::size_t n = 0, n_up = 0, n_down = 0;
   double sum_sq = 0, max_abs = 0, sum_up = 0, sum_down = 0, sum_y = 0, sum_yy = 0;
   void add(double target, double output, double slope) noexcept {
@@ -114,7 +114,7 @@ EvaluationRun drive(RigBackend& backend, const TickConfig& config, const Traject
   run.trace.reserve(std::size_t(ticks / record_every + 2));
   run.scored_from_t_s = t0 + tr.scored_from_s;
   RigStep rig(config, backend, RigStepOptions{o.rate_hz, false});
-  std::array<Accumulator, kFingerCount> acc{};
+  std::array<ChannelErrors, kFingerCount> acc{};
   if (rig.arm() != BackendStatus::ok) {
     run.faulted = true;
     run.fault = rig.fault().detail();
@@ -189,7 +189,7 @@ EvaluationResult evaluate_compensation(RigLease& lease, const RigConfig& rig, co
 
   TickConfig compensated = make_tick_config(rig, cal);
   TickConfig plain = compensated;
-  plain.hysteresis_inverse = {};  // identity: setpoint = target
+  plain.hysteresis_model = {};  // identity: setpoint = target
 
   EvaluationResult result;
   result.from_kPa = o.from_kPa;

@@ -100,6 +100,73 @@ void evaluate(const Prepared& p, double dead_time_s, double tau, double* residua
   }
 }
 
+// The same with a lag of its own while exhausting: each step uses tau_f when the input felt is
+// at or above the output (filling), else tau_e. Sensitivities in rows of 3 (d/dL, d/dtau_f,
+// d/dtau_e); the switch itself is not differentiated (it moves on a set of measure zero).
+void evaluate_directional(const Prepared& p, double dead_time_s, double tau_f, double tau_e, double* residuals,
+                          double* jac) {
+  const double T = p.period_s;
+  const double whole = std::floor(dead_time_s / T + 1e-12);
+  const auto d = static_cast<std::size_t>(std::max(0.0, whole));
+  const double theta = std::clamp(dead_time_s - double(d) * T, 0.0, T);
+  struct Coef {
+    double a, e, da, de, de_dtheta;
+  };
+  auto coef = [&](double tau) {
+    const double a = std::exp(-T / tau), e = std::exp(-(T - theta) / tau);
+    return Coef{a, e, a * T / (tau * tau), e * (T - theta) / (tau * tau), e / tau};
+  };
+  const Coef fill = coef(tau_f), exhaust = coef(tau_e);
+  std::size_t j = 0;
+  for (const Run& r : p.runs) {
+    double y = r.m[0], sl = 0, sf = 0, se = 0;
+    auto x_at = [&](std::size_t k, std::size_t back) { return k >= back ? r.x[k - back] : r.x[0]; };
+    for (std::size_t k = 0; k + 1 < r.x.size(); ++k) {
+      const double x1 = x_at(k, d), x2 = x_at(k, d + 1);
+      const bool filling = x1 >= y;
+      const Coef& c = filling ? fill : exhaust;
+      if (jac) {
+        const double own = c.da * y - c.de * x1 + (c.de - c.da) * x2;
+        sl = c.a * sl - c.de_dtheta * x1 + c.de_dtheta * x2;
+        sf = c.a * sf + (filling ? own : 0.0);
+        se = c.a * se + (filling ? 0.0 : own);
+        jac[3 * j] = sl;
+        jac[3 * j + 1] = sf;
+        jac[3 * j + 2] = se;
+      }
+      y = c.a * y + (1 - c.e) * x1 + (c.e - c.a) * x2;
+      residuals[j] = y - r.m[k + 1];
+      ++j;
+    }
+  }
+}
+
+double sse_directional(const Prepared& p, double dead_time_s, double tau_f, double tau_e, std::vector<double>& buffer) {
+  buffer.resize(p.residuals);
+  evaluate_directional(p, dead_time_s, tau_f, tau_e, buffer.data(), nullptr);
+  double s = 0;
+  for (double r : buffer) s += r * r;
+  return s;
+}
+
+class DirectionalCost final : public ceres::CostFunction {
+ public:
+  explicit DirectionalCost(const Prepared& p) : p_(p) {
+    set_num_residuals(static_cast<int>(p.residuals));
+    mutable_parameter_block_sizes()->push_back(3);
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const double L = parameters[0][0], tf = parameters[0][1], te = parameters[0][2];
+    if (!(tf > 0) || !(te > 0) || !(L >= 0) || !std::isfinite(L) || !std::isfinite(tf) || !std::isfinite(te))
+      return false;
+    evaluate_directional(p_, L, tf, te, residuals, jacobians && jacobians[0] ? jacobians[0] : nullptr);
+    return true;
+  }
+
+ private:
+  const Prepared& p_;
+};
+
 double sse(const Prepared& p, double dead_time_s, double tau, std::vector<double>& buffer) {
   buffer.resize(p.residuals);
   evaluate(p, dead_time_s, tau, buffer.data(), nullptr);
@@ -150,10 +217,13 @@ double best_tau(const Prepared& p, double dead_time_s, const DynamicsFitOptions&
 }  // namespace
 
 std::vector<double> simulate_dynamics(std::span<const DynamicsSample> samples, const PrandtlIshlinskii* hysteresis,
-                                      double dead_time_s, double time_constant_s) {
+                                      double dead_time_s, double time_constant_s, double exhaust_time_constant_s) {
   const Prepared p = prepare(samples, hysteresis, "(simulation)", "samples");
   std::vector<double> r(p.residuals);
-  evaluate(p, dead_time_s, time_constant_s, r.data(), nullptr);
+  if (exhaust_time_constant_s > 0)
+    evaluate_directional(p, dead_time_s, time_constant_s, exhaust_time_constant_s, r.data(), nullptr);
+  else
+    evaluate(p, dead_time_s, time_constant_s, r.data(), nullptr);
   std::vector<double> out;
   out.reserve(samples.size());
   std::size_t j = 0;
@@ -209,9 +279,41 @@ DynamicsFit fit_dynamics(std::span<const DynamicsSample> samples, const PrandtlI
     fit.time_constant_s = best_tau_s;
   }
 
+  fit.exhaust_time_constant_s = fit.time_constant_s;
+  const double one_lag_sse = sse(p, fit.dead_time_s, fit.time_constant_s, buffer);
+  fit.one_lag_rms_residual_kPa = std::sqrt(one_lag_sse / double(p.residuals));
+
+  // Stage 3: separate fill and exhaust lags from the one-lag point; kept when they pay.
+  if (o.directional) {
+    double q[3] = {fit.dead_time_s, fit.time_constant_s, fit.time_constant_s};
+    ceres::Problem directional;
+    directional.AddResidualBlock(new DirectionalCost(p), nullptr, q);
+    directional.SetParameterLowerBound(q, 0, 0.0);
+    directional.SetParameterUpperBound(q, 0, o.max_dead_time_s);
+    for (int i : {1, 2}) {
+      directional.SetParameterLowerBound(q, i, o.min_time_constant_s);
+      directional.SetParameterUpperBound(q, i, o.max_time_constant_s);
+    }
+    ceres::Solver::Summary s3;
+    ceres::Solve(so, &directional, &s3);
+    fit.iterations += static_cast<int>(s3.iterations.size());
+    const double two_lag_sse = sse_directional(p, q[0], q[1], q[2], buffer);
+    const double keep = (1 - o.min_directional_gain) * (1 - o.min_directional_gain);
+    if (s3.termination_type == ceres::CONVERGENCE && std::isfinite(two_lag_sse) && two_lag_sse <= keep * one_lag_sse) {
+      fit.directional = true;
+      fit.dead_time_s = q[0];
+      fit.time_constant_s = q[1];
+      fit.exhaust_time_constant_s = q[2];
+      fit.solver_report = s3.BriefReport();
+    }
+  }
+
   // Quality: R^2 of the monitor overall and per segment, residual RMS and maximum.
   std::vector<double> r(p.residuals);
-  evaluate(p, fit.dead_time_s, fit.time_constant_s, r.data(), nullptr);
+  if (fit.directional)
+    evaluate_directional(p, fit.dead_time_s, fit.time_constant_s, fit.exhaust_time_constant_s, r.data(), nullptr);
+  else
+    evaluate(p, fit.dead_time_s, fit.time_constant_s, r.data(), nullptr);
   struct Acc {
     std::size_t n = 0;
     double ss = 0, sum = 0, sum2 = 0, max_abs = 0;

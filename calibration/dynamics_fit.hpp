@@ -19,6 +19,12 @@
 // each. Stage 2: Ceres refines (L, tau) together from the best grid point, within bounds, with
 // exact derivatives propagated along the sequence (one residual per sample). Reported: R^2 of
 // the monitor, overall and per segment (step, chirp), and the residuals' RMS and maximum.
+//
+// Direction-dependent dynamics: a regulator fills through its supply valve and exhausts through
+// its exhaust, at different rates. Stage 3 frees a second lag, tau_f while the input felt is
+// above the output (filling), tau_e below it (exhausting), from stage 2's point; it is kept when
+// its residual RMS is at least min_directional_gain (10 %) lower than the one-lag model's, so a
+// symmetric regulator keeps its one lag (and the figures it always had).
 #include <span>
 #include <string>
 #include <vector>
@@ -32,6 +38,8 @@ struct DynamicsFitOptions {
   double max_dead_time_s = 0.3;
   double min_time_constant_s = 0.0005, max_time_constant_s = 2.0;
   int max_iterations = 100;
+  bool directional = true;             // try separate fill and exhaust lags (stage 3)
+  double min_directional_gain = 0.10;  // ... and keep them when the residual RMS drops by this much
 };
 
 struct DynamicsSegmentFit {
@@ -42,6 +50,10 @@ struct DynamicsSegmentFit {
 
 struct DynamicsFit {
   double dead_time_s = 0, time_constant_s = 0;
+  // Separate lags: time_constant_s while filling, this while exhausting (directional only).
+  bool directional = false;
+  double exhaust_time_constant_s = 0;
+  double one_lag_rms_residual_kPa = 0;  // stage 2's, for the report: what the second lag gained
   double r_squared = 0, rms_residual_kPa = 0, max_residual_kPa = 0;
   std::size_t samples = 0;  // residuals (every sample but each run's first)
   double rate_hz = 0;
@@ -55,8 +67,9 @@ struct DynamicsFit {
 
 // The model's monitor for the samples (runs of evenly spaced samples each start at their first
 // monitor reading and the hysteresis model relaxed at their first command): for tests, charts.
+// exhaust_time_constant_s > 0: the directional model (time_constant_s while filling).
 std::vector<double> simulate_dynamics(std::span<const DynamicsSample> samples, const PrandtlIshlinskii* hysteresis,
-                                      double dead_time_s, double time_constant_s);
+                                      double dead_time_s, double time_constant_s, double exhaust_time_constant_s = 0);
 
 // samples: one channel's step and chirp rows in time order. hysteresis: the channel's forward
 // model fitted on the monitor (nullptr: identity). Throws InputError(file, what, ...) for data

@@ -1,3 +1,5 @@
+// Over 400 lines: the symmetric and the asymmetric fit share their data checks, their evaluation
+// cache and both stages; split, each half would repeat the other.
 #include "calibration/hysteresis_fit.hpp"
 
 #include <algorithm>
@@ -28,7 +30,8 @@ namespace {
 // evaluate; the per-sample cost functions then only read from here.
 class PlaySequenceCache final : public ceres::EvaluationCallback {
  public:
-  PlaySequenceCache(std::span<const double> x, std::span<const double> y, std::size_t n) : x_(x), y_(y) {
+  PlaySequenceCache(std::span<const double> x, std::span<const double> y, std::size_t n, bool asymmetric = false)
+      : x_(x), y_(y), asymmetric_(asymmetric) {
     set_operators(n);
   }
   void set_operators(std::size_t n) {
@@ -36,15 +39,18 @@ class PlaySequenceCache final : public ceres::EvaluationCallback {
     prediction_.resize(x_.size());
     dy_dw_.resize(x_.size() * n);
     dy_dd_.resize(x_.size() * n);
+    dy_dfall_.resize(asymmetric_ ? x_.size() * n : 0);
     z_.resize(n);
     dz_dr_.resize(n);
+    dz_dfall_.resize(n);
     r_.resize(n);
     dy_dr_.resize(n);
   }
 
-  // Parameter storage the problem optimises (w0, w[n], d[n]).
+  // Parameter storage the problem optimises: w0, w[n], d[n] (symmetric: threshold increments;
+  // asymmetric: the rising thresholds themselves) and, asymmetric, fall[n] (falling thresholds).
   double w0 = 1.0;
-  std::vector<double> w, d;
+  std::vector<double> w, d, fall;
 
   void PrepareForEvaluation(bool evaluate_jacobians, bool new_evaluation_point) override {
     if (!new_evaluation_point && (have_jacobians_ || !evaluate_jacobians)) return;
@@ -55,27 +61,33 @@ class PlaySequenceCache final : public ceres::EvaluationCallback {
   double input(std::size_t k) const { return x_[k]; }
   const double* dy_dw(std::size_t k) const { return &dy_dw_[k * n_]; }
   const double* dy_dd(std::size_t k) const { return &dy_dd_[k * n_]; }
+  const double* dy_dfall(std::size_t k) const { return &dy_dfall_[k * n_]; }
   std::size_t operators() const { return n_; }
+  bool asymmetric() const { return asymmetric_; }
 
   void compute(bool with_jacobians) {
     double r_sum = 0;
     for (std::size_t i = 0; i < n_; ++i) {
       r_sum += d[i];
-      r_[i] = r_sum;
+      r_[i] = asymmetric_ ? d[i] : r_sum;
       z_[i] = x_[0];  // relaxed start
       dz_dr_[i] = 0;
+      dz_dfall_[i] = 0;
     }
     for (std::size_t k = 0; k < x_.size(); ++k) {
       const double xk = x_[k];
       double y = w0 * xk;
       for (std::size_t i = 0; i < n_; ++i) {
-        // play: z = clamp(z_prev, x - r, x + r); on a clamp the state follows x -/+ r.
+        // play: z = clamp(z_prev, x - r+, x + r-); on a clamp the state follows x - r+ or x + r-.
+        const double r_down = asymmetric_ ? fall[i] : r_[i];
         if (z_[i] < xk - r_[i]) {
           z_[i] = xk - r_[i];
           dz_dr_[i] = -1;
-        } else if (z_[i] > xk + r_[i]) {
-          z_[i] = xk + r_[i];
-          dz_dr_[i] = 1;
+          dz_dfall_[i] = 0;
+        } else if (z_[i] > xk + r_down) {
+          z_[i] = xk + r_down;
+          dz_dr_[i] = asymmetric_ ? 0 : 1;
+          dz_dfall_[i] = 1;
         }
         y += w[i] * z_[i];
       }
@@ -84,7 +96,12 @@ class PlaySequenceCache final : public ceres::EvaluationCallback {
         for (std::size_t i = 0; i < n_; ++i) {
           dy_dw_[k * n_ + i] = z_[i];
           dy_dr_[i] = w[i] * dz_dr_[i];
+          if (asymmetric_) {
+            dy_dd_[k * n_ + i] = dy_dr_[i];  // d holds the rising thresholds themselves
+            dy_dfall_[k * n_ + i] = w[i] * dz_dfall_[i];
+          }
         }
+        if (asymmetric_) continue;
         // r_i = d_1 + ... + d_i, so dy/dd_j = sum over i >= j of dy/dr_i.
         double suffix = 0;
         for (std::size_t i = n_; i-- > 0;) {
@@ -98,9 +115,10 @@ class PlaySequenceCache final : public ceres::EvaluationCallback {
 
  private:
   std::span<const double> x_, y_;
+  bool asymmetric_;
   std::size_t n_;
-  std::vector<double> prediction_, dy_dw_, dy_dd_;
-  std::vector<double> z_, dz_dr_, r_, dy_dr_;  // scratch for one pass
+  std::vector<double> prediction_, dy_dw_, dy_dd_, dy_dfall_;
+  std::vector<double> z_, dz_dr_, dz_dfall_, r_, dy_dr_;  // scratch for one pass
   bool have_jacobians_ = false;
 };
 
@@ -112,6 +130,7 @@ class PlaySampleCost final : public ceres::CostFunction {
     mutable_parameter_block_sizes()->push_back(1);
     mutable_parameter_block_sizes()->push_back(static_cast<int>(cache.operators()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(cache.operators()));
+    if (cache.asymmetric()) mutable_parameter_block_sizes()->push_back(static_cast<int>(cache.operators()));
   }
   bool Evaluate(double const* const*, double* residuals, double** jacobians) const override {
     residuals[0] = cache_.residual(k_);
@@ -120,6 +139,7 @@ class PlaySampleCost final : public ceres::CostFunction {
       if (jacobians[0]) jacobians[0][0] = cache_.input(k_);
       if (jacobians[1]) std::copy_n(cache_.dy_dw(k_), n, jacobians[1]);
       if (jacobians[2]) std::copy_n(cache_.dy_dd(k_), n, jacobians[2]);
+      if (cache_.asymmetric() && jacobians[3]) std::copy_n(cache_.dy_dfall(k_), n, jacobians[3]);
     }
     return true;
   }
@@ -169,7 +189,7 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
     throw InputError("loss_scale_kPa", std::to_string(o.loss_scale_kPa), "a positive scale in kPa");
   if (o.max_iterations < 1) throw InputError("hysteresis fit", "max_iterations", "at least 1 iteration");
   if (x.size() != y.size()) throw InputError(file, what, "as many inputs as outputs");
-  const std::size_t parameters = 1 + 2 * n;
+  const std::size_t parameters = 1 + (o.asymmetric ? 3 : 2) * n;
   if (x.size() < 4 * parameters)
     throw InputError(file, what,
                      "at least " + std::to_string(4 * parameters) + " quasi-static samples for " + std::to_string(n) +
@@ -207,24 +227,35 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
   const auto t0 = std::chrono::steady_clock::now();
 
   // Stage 1: thresholds on a grid, weights by exact non-negative least squares (reweighted
-  // for a robust loss). w0 = min_linear_weight + v with v >= 0 keeps w0's bound.
+  // for a robust loss). w0 = min_linear_weight + v with v >= 0 keeps w0's bound. Asymmetric:
+  // every rising threshold of the grid with every falling one (n x n candidate plays).
   std::vector<double> grid(n);
   for (std::size_t i = 0; i < n; ++i) grid[i] = r_max * double(i + 1) / double(n);
-  Eigen::MatrixXd A(Eigen::Index(x.size()), Eigen::Index(n + 1));
+  // Asymmetric: a grid twice as fine (at most 16 levels) for each threshold of a pair, since
+  // only n of its pairs go on to Ceres and they should start near where the data wants them.
+  std::vector<double> grid_rise, grid_fall;  // per candidate column
+  if (o.asymmetric) {
+    const std::size_t m = std::min<std::size_t>(2 * n, 16);
+    for (std::size_t i = 0; i < m; ++i)
+      for (std::size_t j = 0; j < m; ++j) {
+        grid_rise.push_back(r_max * double(i + 1) / double(m));
+        grid_fall.push_back(r_max * double(j + 1) / double(m));
+      }
+  } else {
+    grid_rise = grid_fall = grid;
+  }
+  const std::size_t columns = grid_rise.size();
+  Eigen::MatrixXd A(Eigen::Index(x.size()), Eigen::Index(columns + 1));
   Eigen::VectorXd b(Eigen::Index(x.size()));
   {
-    PrandtlIshlinskii plays;
-    plays.operator_count = n;
-    for (std::size_t i = 0; i < n; ++i) {
-      plays.thresholds_kPa[i] = grid[i];
-      plays.weights[i] = 0;
-    }
-    plays.reset(x[0]);
+    std::vector<double> z(columns, x[0]);  // relaxed start
     for (std::size_t k = 0; k < x.size(); ++k) {
       const auto row = Eigen::Index(k);
-      plays.apply(x[k]);
       A(row, 0) = x[k];
-      for (std::size_t i = 0; i < n; ++i) A(row, Eigen::Index(i + 1)) = plays.state_kPa[i];
+      for (std::size_t i = 0; i < columns; ++i) {
+        z[i] = std::max(x[k] - grid_rise[i], std::min(x[k] + grid_fall[i], z[i]));
+        A(row, Eigen::Index(i + 1)) = z[i];
+      }
       b[row] = y[k] - o.min_linear_weight * x[k];
     }
   }
@@ -247,32 +278,51 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
   fit.converged = stage1.converged;
 
   // Keep the operators the data uses; unused ones only make stage 2 ill-conditioned.
-  PlaySequenceCache cache(x, y, 0);
+  PlaySequenceCache cache(x, y, 0, o.asymmetric);
   cache.w0 = o.min_linear_weight + stage1.w[0];
   double total_slope = cache.w0;
-  for (std::size_t i = 0; i < n; ++i) total_slope += stage1.w[Eigen::Index(i + 1)];
+  for (std::size_t i = 0; i < columns; ++i) total_slope += stage1.w[Eigen::Index(i + 1)];
+  std::vector<std::size_t> used;
+  for (std::size_t i = 0; i < columns; ++i)
+    if (stage1.w[Eigen::Index(i + 1)] > 1e-6 * total_slope) used.push_back(i);
+  if (used.size() > n) {
+    // Asymmetric: at most n plays go on (the heaviest), so the data still has 4 samples per
+    // parameter; Ceres moves their thresholds to take over what the dropped ones did.
+    std::stable_sort(used.begin(), used.end(), [&](std::size_t a, std::size_t c) {
+      return stage1.w[Eigen::Index(a + 1)] > stage1.w[Eigen::Index(c + 1)];
+    });
+    used.resize(n);
+    std::sort(used.begin(), used.end());
+  }
   std::vector<double> kept_r;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double wi = stage1.w[Eigen::Index(i + 1)];
-    if (wi > 1e-6 * total_slope) {
-      cache.w.push_back(wi);
-      kept_r.push_back(grid[i]);
+  for (std::size_t i : used) {
+    cache.w.push_back(stage1.w[Eigen::Index(i + 1)]);
+    kept_r.push_back(grid_rise[i]);
+    if (o.asymmetric) {
+      cache.d.push_back(grid_rise[i]);
+      cache.fall.push_back(grid_fall[i]);
     }
   }
-  for (std::size_t i = 0; i < kept_r.size(); ++i) cache.d.push_back(kept_r[i] - (i ? kept_r[i - 1] : 0.0));
+  if (!o.asymmetric)
+    for (std::size_t i = 0; i < kept_r.size(); ++i) cache.d.push_back(kept_r[i] - (i ? kept_r[i - 1] : 0.0));
   cache.set_operators(kept_r.size());
   fit.stage1_rms_error_kPa = std::sqrt((A * stage1.w - b).squaredNorm() / double(x.size()));
 
   // Stage 2 (Ceres): thresholds and weights together, bounded, with the robust loss.
   if (o.refine_thresholds && !kept_r.empty() && fit.converged) {
     const std::size_t p = kept_r.size();
-    const std::vector<double> w_start = cache.w, d_start = cache.d;
+    const std::vector<double> w_start = cache.w, d_start = cache.d, fall_start = cache.fall;
     const double w0_start = cache.w0;
     ceres::Problem::Options po;
     po.evaluation_callback = &cache;
     ceres::Problem problem(po);
-    for (std::size_t k = 0; k < x.size(); ++k)
-      problem.AddResidualBlock(new PlaySampleCost(cache, k), make_loss(o), &cache.w0, cache.w.data(), cache.d.data());
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      if (o.asymmetric)
+        problem.AddResidualBlock(new PlaySampleCost(cache, k), make_loss(o), &cache.w0, cache.w.data(), cache.d.data(),
+                                 cache.fall.data());
+      else
+        problem.AddResidualBlock(new PlaySampleCost(cache, k), make_loss(o), &cache.w0, cache.w.data(), cache.d.data());
+    }
     // Stage 1's active set carries over: a linear weight stage 1 left on its bound stays there
     // (the exact solution says the data wants less), so the bound is not active in stage 2,
     // where Ceres' projected steps would crawl along it.
@@ -284,6 +334,10 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
       problem.SetParameterLowerBound(cache.w.data(), static_cast<int>(i), 0.0);
       problem.SetParameterLowerBound(cache.d.data(), static_cast<int>(i), o.min_threshold_step_kPa);
       problem.SetParameterUpperBound(cache.d.data(), static_cast<int>(i), x_range);
+      if (o.asymmetric) {
+        problem.SetParameterLowerBound(cache.fall.data(), static_cast<int>(i), o.min_threshold_step_kPa);
+        problem.SetParameterUpperBound(cache.fall.data(), static_cast<int>(i), x_range);
+      }
     }
     // The cost moves over the kinks of the play operators and, with noise, along flat valleys
     // (thresholds trade off against each other): Ceres' default stops (relative cost change
@@ -302,6 +356,7 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
     if (!fit.thresholds_refined) {  // keep stage 1's exact solution
       cache.w = w_start;
       cache.d = d_start;
+      cache.fall = fall_start;
       cache.w0 = w0_start;
     }
   } else if (!o.refine_thresholds) {
@@ -312,10 +367,12 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
   PrandtlIshlinskii& m = fit.model;
   m.linear_weight = cache.w0;
   m.operator_count = cache.w.size();
+  m.asymmetric = o.asymmetric;
   double r_sum = 0;
   for (std::size_t i = 0; i < m.operator_count; ++i) {
     r_sum += cache.d[i];
-    m.thresholds_kPa[i] = r_sum;
+    m.thresholds_kPa[i] = o.asymmetric ? cache.d[i] : r_sum;
+    if (o.asymmetric) m.falling_thresholds_kPa[i] = cache.fall[i];
     m.weights[i] = std::max(cache.w[i], 0.0);  // bounds hold; this only removes -0.0
   }
   m.reset(0.0);

@@ -13,6 +13,12 @@
 // derivatives of the play operators propagated along the sequence. The play states depend on the whole history, so
 // they are computed once per evaluation point in a ceres::EvaluationCallback and every sample
 // is its own residual block, which keeps a robust loss per sample possible.
+//
+// With `asymmetric` the model is the generalised PI model of models/hysteresis.hpp, each play
+// with a rising threshold r+_i and a falling one r-_i: stage 1 puts the pairs on a grid (every
+// rising threshold with every falling one, NNLS keeps the few the data uses), stage 2 frees both
+// thresholds of each kept play, bounded to [min_threshold_step_kPa, the input's range] (no order
+// is needed: the model is inverted numerically at the actuator's state, not analytically).
 #include <span>
 #include <string>
 
@@ -28,6 +34,7 @@ struct HysteresisFitOptions {
   // band around a straight line, between 2 % and 50 % of the input range).
   double max_threshold_kPa = 0;
   bool refine_thresholds = true;
+  bool asymmetric = false;          // separate rising and falling thresholds (generalised PI)
   double min_linear_weight = 0.01;  // keeps the inverse's gain at most 1/0.01
   double min_threshold_step_kPa = 0.05;
   RobustLoss loss = RobustLoss::none;

@@ -24,7 +24,7 @@ using namespace palprig::cli;
 namespace {
 
 struct FitArgs {
-  std::string data, out, rig_id, stress, presses, base, plot_dir, loss = "none", source, stress_model;
+  std::string data, out, rig_id, stress, presses, base, plot_dir, loss = "none", source, model = "auto", stress_model;
   double regulator_tolerance_kPa = 3.0, diastolic_mmHg = 60, systolic_mmHg = 120;
   HysteresisFitOptions hysteresis;
   bool no_refine = false, json = false, lag_compensation = false, svg = false;
@@ -47,6 +47,10 @@ void run_fit(const FitArgs& a) {
     o.hysteresis_from = HysteresisSource::sensor;
   else if (a.source == "none")
     o.hysteresis_from = HysteresisSource::none;
+  if (a.model == "symmetric")
+    o.hysteresis_model = HysteresisModelClass::symmetric;
+  else if (a.model == "asymmetric")
+    o.hysteresis_model = HysteresisModelClass::asymmetric;
   o.regulator_tolerance_kPa = a.regulator_tolerance_kPa;
   o.lag_compensation.enabled = a.lag_compensation;
   o.lag_compensation.max_lead_kPa = a.max_lead_kPa;
@@ -126,6 +130,10 @@ void register_calibrate_fit(CLI::App* cal) {
   fit->add_option("--robust-scale-kPa", fa->hysteresis.loss_scale_kPa, "Where the robust loss bends")->default_val(1.0);
   fit->add_option("--hysteresis-from", fa->source, "monitor, sensor or none (default: monitor when recorded)")
       ->check(CLI::IsMember({"monitor", "sensor", "none"}));
+  fit->add_option("--hysteresis-model", fa->model,
+                  "auto (the class with the lower held-out error over the sweep's runs), symmetric or asymmetric")
+      ->default_val("auto")
+      ->check(CLI::IsMember({"auto", "symmetric", "asymmetric"}));
   fit->add_option("--regulator-tolerance-kPa", fa->regulator_tolerance_kPa,
                   "Refuse a regulator whose monitor line is off the command by more")
       ->default_val(3.0);

@@ -21,7 +21,12 @@ inline std::string counted(long long n, const std::string& one, const std::strin
   return std::to_string(n) + ' ' + (n == 1 ? one : many);
 }
 
-// Where the shipped data (scenes, rigs, traces) lives: $PALPRIG_DATA or the source tree's data/.
+// The git commit the program was built from ("1a2b3c4d5e6f", "-dirty" added for uncommitted
+// changes, "unknown" outside a clone): build/generated/palprig_git_commit.cpp, written at build time.
+const char* git_commit() noexcept;
+
+// Where the shipped data (scenes, rigs, traces) is taken from: the first existing place of
+// cli/data_files.hpp's data_places() ($PALPRIG_DATA_DIR, the installed share/palprig, the source tree).
 std::filesystem::path data_dir();
 
 }  // namespace palprig::cli
@@ -50,6 +55,10 @@ void register_tracking_command(CLI::App& app);
 void register_load_cell_command(CLI::App& app);
 // The fingertip finite-element model (fe_command.cpp and fe_*_command.cpp; needs GetFEM, so a rig command).
 void register_fe_command(CLI::App& app);
+// palprig data list / data dir: the shipped files found by name (data_command.cpp, data_files.cpp).
+void register_data_command(CLI::App& app);
+// Training programmes (train_command.cpp): enrol, next, status, benchmark.
+void register_train_command(CLI::App& app);
 // Every command that needs the rig stack: rig_commands.cpp, or rig_commands_absent.cpp in the
 // analyst-only build (-DPALPRIG_RIG=OFF).
 void register_rig_commands(CLI::App& app);

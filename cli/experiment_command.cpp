@@ -48,11 +48,15 @@ std::string trial_line(const TrialRecord& t, int total) {
     line += t.answered ? ", answer " + finger_numbers_text(t.answer) + " (" + to_string(t.finger_outcomes[0]) + " " +
                              to_string(t.finger_outcomes[1]) + " " + to_string(t.finger_outcomes[2]) + ")"
                        : ", no answer";
-  } else if (t.answered) {
-    line += ", " + std::to_string(t.marks.size()) + " marks:";
-    for (const auto& s : t.localisation.tumors) line += std::string(" ") + s.tumor + (s.hit ? " found" : " missed");
   } else {
-    line += ", no answer";
+    if (!t.case_name.empty()) line += " " + t.case_name;
+    if (!t.answered) {
+      line += ", no answer";
+    } else {
+      line += ", " + std::to_string(t.marks.size()) + " marks:";
+      for (const auto& s : t.localisation.tumors) line += std::string(" ") + s.tumor + (s.hit ? " found" : " missed");
+      if (t.case_tumors == 0) line += t.marks.empty() ? " no tumor (TN)" : " no tumor (FP)";
+    }
   }
   if (t.answered) {
     char rt[32];

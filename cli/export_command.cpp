@@ -13,6 +13,7 @@
 #include "store/trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "core/input_error.hpp"
+#include "charts/learning_charts.hpp"
 #include "charts/store_plots.hpp"
 
 using namespace palprig;
@@ -21,7 +22,7 @@ void register_export_command(CLI::App& app) {
   struct Args {
     std::string db, format = "csv", out;
     bool no_practice = false, svg = false;
-    std::string plot_dir, name;
+    std::string plot_dir, name, curriculum;
     std::vector<std::string> authors;
   };
   auto a = std::make_shared<Args>();
@@ -43,6 +44,10 @@ void register_export_command(CLI::App& app) {
                   "psychometric_<track>.png (threshold tracks with reversals; fit with bootstrap interval), "
                   "pulse_hits_by_condition.png; practice trials left out as in stats trials");
   sub->add_flag("--svg", a->svg, "With --plot: an SVG beside every PNG");
+  sub->add_option("--curriculum", a->curriculum,
+                  "With --plot: also each trainee of this curriculum's learning curves "
+                  "(learning_<trainee>_<measure>.png, the benchmark line per level) and CUSUM charts "
+                  "(cusum_<trainee>.png, lc_cusum_<trainee>.png)");
   sub->add_option("--author", a->authors, "BIDS: an author of the dataset (repeat for each; dataset_description.json)");
   sub->add_option("--name", a->name, "BIDS: the dataset's name (default: palprig trial export)");
   sub->callback([a] {
@@ -54,6 +59,10 @@ void register_export_command(CLI::App& app) {
     options.dataset_name = a->name;
     if (a->svg && a->plot_dir.empty())
       throw InputError("command line", "--svg", "--plot DIR as well (SVG files go beside its PNGs)");
+    if (!a->curriculum.empty() && a->plot_dir.empty())
+      throw InputError("command line", "--curriculum", "--plot DIR as well (the learning figures go there)");
+    const std::optional<Curriculum> curriculum =
+        a->curriculum.empty() ? std::nullopt : std::optional(load_curriculum(a->curriculum));
     const ExportResult r =
         a->format == "bids" ? export_bids(store, a->out, options) : export_long_csv(store, a->out, options);
     std::cout << "palprig export: " << r.trials << " trials";
@@ -71,6 +80,11 @@ void register_export_command(CLI::App& app) {
       charts::StorePlotOptions plot;
       plot.svg = a->svg;
       for (const auto& file : charts::plot_store(store, a->plot_dir, plot)) std::cout << "  " << file.string() << "\n";
+      if (curriculum) {
+        const auto trainees = curriculum_standings(a->db, *curriculum);
+        for (const auto& file : charts::plot_learning(*curriculum, trainees, a->plot_dir, a->svg))
+          std::cout << "  " << file.string() << "\n";
+      }
     }
   });
 }

@@ -56,6 +56,8 @@ void register_gui_command(CLI::App& app) {
                   "Show the participant screen full screen on display N (1 = the first) from the start; "
                   "0 (default): inside the console")
       ->check(CLI::Range(0, 16));
+  sub->add_option("--curriculum", o->gui.curriculum,
+                  "Open the Training tab on this curriculum with --db (and the trainee --participant picked)");
   sub->add_flag("--json", o->gui.json, "At exit, print the loop's summary (ticks, overruns, wake-up latency) as JSON");
   sub->callback([o, sub]() {
     gui::GuiOptions g = o->gui;
@@ -63,6 +65,11 @@ void register_gui_command(CLI::App& app) {
     if (!session.protocol.empty() && (session.participant.empty() || session.store.empty())) {
       throw InputError("command line", session.participant.empty() ? "participant" : "store",
                        "a value with --protocol (the session needs a participant code and a trial database)");
+    }
+    if (!g.curriculum.empty() && (!session.protocol.empty() || session.store.empty())) {
+      throw InputError("command line", session.store.empty() ? "db" : "curriculum",
+                       session.store.empty() ? "a trial database with --curriculum (the trainees' store)"
+                                             : "either --curriculum (the Training tab) or --protocol, not both");
     }
     if (session.participant_display > 0 && session.protocol.empty()) {
       throw InputError("command line", "participant-display",

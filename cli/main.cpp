@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cli/data_files.hpp"
 #include "cli/field_flags.hpp"
 #include "cli/standard_output.hpp"
 #include "core/error.hpp"
@@ -12,7 +13,9 @@ namespace {
 int run_command(int argc, char** argv) {
   CLI::App app{"palprig: drive a pneumatic multi-finger palpation rig and run the studies done on it"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "palprig " PALPRIG_VERSION);
+  // One version, project(palprig VERSION ...) in CMakeLists.txt, and the commit built from.
+  app.set_version_flag("--version",
+                       std::string("palprig " PALPRIG_VERSION " (commit ") + palprig::cli::git_commit() + ")");
   // The rig's commands (run, demo, experiment, calibrate, ...) come from rig_commands.cpp, or in an
   // analyst-only build from rig_commands_absent.cpp, which names them and refuses them.
   register_rig_commands(app);
@@ -21,6 +24,9 @@ int run_command(int argc, char** argv) {
   register_export_command(app);
   register_scene_command(app);
   register_store_command(app);
+  register_data_command(app);
+  // Last: every registered option that takes a shipped file also takes its name (data_files.hpp).
+  palprig::cli::resolve_data_names(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

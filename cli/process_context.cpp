@@ -3,12 +3,10 @@
 #include <cstdlib>
 
 #include "cli/commands.hpp"
+#include "cli/data_files.hpp"
 
 namespace palprig::cli {
 
-std::filesystem::path data_dir() {
-  if (const char* env = std::getenv("PALPRIG_DATA")) return env;
-  return PALPRIG_SOURCE_DATA_DIR;
-}
+std::filesystem::path data_dir() { return shipped_data_place().dir; }
 
 }  // namespace palprig::cli

@@ -15,4 +15,5 @@ void register_rig_commands(CLI::App& app) {
   register_tracking_command(app);
   register_load_cell_command(app);
   register_fe_command(app);
+  register_train_command(app);
 }

@@ -1,7 +1,8 @@
 // palprig rt-check: is this machine ready to run the real-time loop at the configured rate?
 // Reports the kernel's preemption model, whether SCHED_FIFO, mlockall and the PM QoS request
 // are permitted, the CPU frequency governor, isolated CPUs, and a measured run of palprig's
-// own loop beside the period it must fit in, with advice lines. Exit 0 when the machine held
+// own loop beside the period it must fit in, with advice lines; and what the user running it
+// lacks to drive the rig without root (the palprig group, its limits, the devices). Exit 0 when the machine held
 // the rate, 1 when it did not, 2 on a bad argument.
 #include <iomanip>
 #include <iostream>
@@ -12,6 +13,7 @@
 #include "cli/commands.hpp"
 #include "diagnostics/loop_probe.hpp"
 #include "core/input_error.hpp"
+#include "diagnostics/rig_user_access.hpp"
 #include "diagnostics/rt_readiness.hpp"
 
 using namespace palprig;
@@ -104,9 +106,18 @@ void register_rt_check_command(CLI::App& app) {
                 << std::endl;
     const LoopMeasurement m = measure_loop(o->rate_hz, o->seconds, o->rt);
     const Readiness r = assess(facts, m, o->rt.fifo_priority);
+    const RigUserAccess access = check_rig_user_access(this_process_probe());
     if (o->json) {
-      std::cout << to_json(facts, m, r).dump(2) << "\n";
+      nlohmann::json j = to_json(facts, m, r);
+      for (const auto& f : access.findings)
+        j["user_access"].push_back({{"level", to_string(f.level)}, {"topic", f.topic}, {"text", f.text}});
+      for (const auto& advice : access.advice) j["advice"].push_back(advice);
+      std::cout << j.dump(2) << "\n";
     } else {
+      for (const auto& f : access.findings)
+        std::cout << "  " << std::left << std::setw(5) << to_string(f.level) << " " << std::setw(11) << f.topic
+                  << f.text << "\n";
+      for (const auto& a : access.advice) std::cout << "  advice: " << a << "\n";
       for (const auto& f : r.findings)
         std::cout << "  " << std::left << std::setw(5) << to_string(f.level) << " " << std::setw(11) << f.topic
                   << f.text << "\n";

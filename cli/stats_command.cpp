@@ -25,6 +25,7 @@ using namespace palprig::cli;
 
 void register_stats_rank_tests(CLI::App* stats_app);
 void register_stats_trials(CLI::App* stats_app);
+void register_stats_learning(CLI::App* stats_app);
 
 namespace {
 
@@ -152,5 +153,6 @@ void register_stats_command(CLI::App& app) {
   register_ttest(stats_app);
   register_stats_rank_tests(stats_app);
   register_stats_trials(stats_app);
+  register_stats_learning(stats_app);
   register_psychometric_command(*stats_app);  // stats psychometric
 }

@@ -12,14 +12,11 @@ LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompen
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     // The identified model where calibration has one that fits, else the rig file's plant.
     plan.model[i] = setting.identified[i] ? setting.regulator[i] : pulse_lag[i];
-    if (!on)
-      plan.part[i] = CompensatedPart::none;
-    else if (setting.whole(i))
+    plan.part[i] = CompensatedPart::none;  // switched off, or nothing to compensate
+    if (on && setting.whole(i))
       plan.part[i] = CompensatedPart::total;
-    else if (has_pulse && pulse_compensation)
+    else if (on && has_pulse && pulse_compensation)
       plan.part[i] = CompensatedPart::pulse;
-    else
-      plan.part[i] = CompensatedPart::none;
     if (plan.part[i] == CompensatedPart::none) continue;
     // A command issued now reaches the regulator one tick later and acts a dead time after that.
     plan.lead_s[i] = plan.model[i].dead_time_s + period_s;
@@ -38,11 +35,14 @@ double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y
                               const void* context, const WindowCache& window) noexcept {
   if (samples_ahead < 1) return sample(context, 0.0);
   const double at_lead = sample(context, lead_s);
-  const double tau = model.time_constant_s;
-  if (!anticipate || samples_ahead < 2 || !(tau > 0) || !std::isfinite(at_lead) || !std::isfinite(y_kPa))
+  // A rise goes at the filling lag, a fall at the exhausting one (the same for one lag).
+  const double tau = model.time_constant_s, tau_fall = model.exhaust_tau_s();
+  if (!anticipate || samples_ahead < 2 || !(tau > 0) || !(tau_fall > 0) || !std::isfinite(at_lead) ||
+      !std::isfinite(y_kPa))
     return at_lead;
-  constexpr double kEdge_kPa = 0.25;                 // smaller changes are followed as they come
-  const double window_s = tau * 0.6931471805599453;  // the half-life: a whole fall's half-way time
+  constexpr double kEdge_kPa = 0.25;  // smaller changes are followed as they come
+  // The half-life: a whole fall's half-way time (the slower lag's, so both edges are seen).
+  const double window_s = std::max(tau, tau_fall) * 0.6931471805599453;
   double later;
   if (window.target_kPa && window.sampled && *window.sampled && !window.fresh) {
     later = *window.target_kPa;
@@ -54,7 +54,7 @@ double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y
   const double y = std::max(y_kPa, 0.0);
   if (later < at_lead - kEdge_kPa && later < y) {
     const double b = std::max(later, 0.0);
-    const double half_way_s = y > 0 ? std::clamp(tau * std::log(2 * y / (y + b)), 0.0, window_s) : 0.0;
+    const double half_way_s = y > 0 ? std::clamp(tau_fall * std::log(2 * y / (y + b)), 0.0, window_s) : 0.0;
     const double there = samples_ahead >= 3 ? sample(context, lead_s + half_way_s) : later;
     return std::isfinite(there) ? std::min(at_lead, there) : at_lead;
   }

@@ -95,7 +95,8 @@ LagPlan plan_lag_compensation(const LagCompensationState& state, const LagCompen
 // half-way at the edge (the least squared error for a step). `sample(context, s)` is the target
 // s seconds from now (the scene where the fingers will be); y the compensator's model output
 // (where the regulator is heading one dead time ahead). A fall can only let the output decay
-// (0 kPa commanded): its half-way time from y to the level B it falls to is tau ln(2y / (y + B)),
+// (0 kPa commanded): its half-way time from y to the level B it falls to is tau ln(2y / (y + B))
+// (tau: the exhausting lag for a fall, the filling one for a rise, where they differ),
 // at most the half-life tau ln 2, the window looked into for B; a rise is pushed with the command
 // at its bound hi (at most max_lead_kPa above B, and at most twice B): tau ln((hi - y) / (hi -
 // (y + B) / 2)). With an edge in the window, what is asked for is the target that half-way time

@@ -94,14 +94,33 @@ Rig::~Rig() {
 
 RigLease Rig::lease(std::string holder, LeaseKind kind, std::chrono::milliseconds wait) {
   std::unique_lock<std::mutex> lock(mutex_);
+  // A taker already waiting for a yielding holder to give way comes first: the window's live
+  // loop, restarting on its own timer in the moment between the old lease going back and the
+  // waiter waking, would otherwise take the rig again with nobody left to ask it to give way,
+  // and the waiter would time out (seen under load in CI: a study session refused after 5 s).
+  if (kind == LeaseKind::yielding && waiting_ > 0)
+    throw RigBusy(name_ + " is wanted by a taker waiting for it: " + holder + " cannot take it now");
   if (ticket_ != 0) {
     if (kind_ != LeaseKind::yielding)
       throw RigBusy(name_ + " is held by " + holder_ + ": " + holder + " cannot take it until that ends");
-    // The window's live loop runs whenever nothing else needs the rig: ask it to give way.
-    release_requested_.store(true, std::memory_order_release);
-    if (!returned_.wait_for(lock, wait, [this] { return ticket_ == 0; }))
-      throw RigBusy(name_ + " is held by " + holder_ + ", which did not give it up within " +
-                    std::to_string(wait.count()) + " ms: " + holder + " cannot take it");
+    ++waiting_;
+    const auto deadline = std::chrono::steady_clock::now() + wait;
+    while (ticket_ != 0) {
+      // Another waiter got it first and does not yield: refused as any second taker is.
+      if (kind_ != LeaseKind::yielding) {
+        --waiting_;
+        throw RigBusy(name_ + " is held by " + holder_ + ": " + holder + " cannot take it until that ends");
+      }
+      // The window's live loop runs whenever nothing else needs the rig: ask it to give way
+      // (again, each time round: the holder may have changed while this taker slept).
+      release_requested_.store(true, std::memory_order_release);
+      if (returned_.wait_until(lock, deadline) == std::cv_status::timeout && ticket_ != 0) {
+        --waiting_;
+        throw RigBusy(name_ + " is held by " + holder_ + ", which did not give it up within " +
+                      std::to_string(wait.count()) + " ms: " + holder + " cannot take it");
+      }
+    }
+    --waiting_;
   }
   static std::atomic<std::uint64_t> next_ticket{1};
   ticket_ = next_ticket.fetch_add(1);
@@ -113,7 +132,7 @@ RigLease Rig::lease(std::string holder, LeaseKind kind, std::chrono::millisecond
 
 bool Rig::leased() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return ticket_ != 0;
+  return ticket_ != 0 || waiting_ > 0;
 }
 
 std::string Rig::holder() const {

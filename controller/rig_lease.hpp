@@ -58,12 +58,17 @@ class Rig {
   void open();
 
   // The exclusive right to drive the rig. Throws RigBusy when another lease is out and does not
-  // yield (or did not give way within `wait`).
+  // yield (or did not give way within `wait`), and refuses a yielding taker while another taker
+  // waits (the waiter comes first).
   RigLease lease(std::string holder, LeaseKind kind = LeaseKind::exclusive,
                  std::chrono::milliseconds wait = std::chrono::seconds(5));
 
+  // A lease is out, or a taker is waiting for a yielding holder to give way (promised to it).
   bool leased() const;
   std::string holder() const;  // "" when free
+  // Asks a yielding holder to give way (its loop ends vented at its next tick and gives the
+  // lease back from its own thread). Any thread, lock-free; nothing when none is out.
+  void request_release() noexcept { release_requested_.store(true, std::memory_order_release); }
   const std::string& name() const noexcept { return name_; }
   // Reading what the rig is (describe, capabilities, state, linked) is allowed without a lease;
   // moving air is not: write through a lease.
@@ -80,6 +85,7 @@ class Rig {
   std::condition_variable returned_;
   std::string holder_;        // guarded by mutex_
   std::uint64_t ticket_ = 0;  // the lease out now (0: none); guarded by mutex_
+  int waiting_ = 0;           // takers waiting for a yielding holder to give way; guarded by mutex_
   LeaseKind kind_ = LeaseKind::exclusive;
   std::atomic<bool> release_requested_{false};
   class DeviceLock;

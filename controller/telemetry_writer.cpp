@@ -124,8 +124,8 @@ void TelemetryWriter::run() noexcept {
         else
           write_telemetry_csv_row(chunk, batch[i]);
       }
-      const std::string bytes = std::move(chunk).str();
-      chunk.str({});
+      const std::string bytes = std::move(chunk).str();  // C++20: the buffer moves out, no copy
+      chunk.str({});  // NOLINT(bugprone-use-after-move): str() after the move resets the stream, as the standard says
       if (!bytes.empty()) {
         check_room(bytes.size());
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

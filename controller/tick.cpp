@@ -7,8 +7,7 @@ namespace palprig {
 TickState make_tick_state(const TickConfig& config) noexcept {
   TickState s;
   for (std::size_t i = 0; i < kFingerCount; ++i) {
-    const PrandtlIshlinskii& inverse = config.hysteresis_inverse[i];
-    s.hysteresis_model[i] = inverse.is_identity() ? PrandtlIshlinskii{} : inverse.forward_of_inverse();
+    s.hysteresis_model[i] = config.hysteresis_model[i];
     s.hysteresis_model[i].reset(0.0);
   }
   return s;

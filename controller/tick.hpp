@@ -50,10 +50,11 @@ struct TickConfig {
   FingerLayout layout;
   StressModel stress;
   std::array<ActuatorModel, kFingerCount> actuators{};
-  // Per channel, the inverse of the hysteresis model calibration fitted (identity: no
-  // compensation). The hysteresis inverse stage inverts the model it came from
-  // (TickState::hysteresis_model) at each point of the actuator's history.
-  std::array<PrandtlIshlinskii, kFingerCount> hysteresis_inverse{};
+  // Per channel, the forward hysteresis model calibration fitted (identity: no compensation),
+  // symmetric or asymmetric. The hysteresis inverse stage inverts it exactly
+  // (TickState::hysteresis_model, its copy driven by the setpoints sent) at each point of the
+  // actuator's history, on either branch.
+  std::array<PrandtlIshlinskii, kFingerCount> hysteresis_model{};
   SafetyLimits safety;
   double contact_force_N = 0.05;  // below this the pen is lifted: targets go to 0 kPa
   // Nominal time between ticks (1 / loop rate). The first tick of a run has no previous time,
@@ -74,7 +75,7 @@ struct TickState {
   bool started = false;               // a tick has run: last_t_s is a time
   FaultCode fault = FaultCode::none;  // latched: once set, every later tick vents
   std::uint64_t ticks = 0;
-  // Per channel, the hysteresis model TickConfig::hysteresis_inverse inverts (identity: none),
+  // Per channel, the hysteresis model of TickConfig::hysteresis_model (identity: none),
   // its play states driven by the setpoints actually sent, with the regulator's exhaust near
   // 0 kPa: the actuator's state as the inverse stage needs it.
   std::array<PrandtlIshlinskii, kFingerCount> hysteresis_model{};

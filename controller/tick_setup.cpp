@@ -35,7 +35,10 @@ std::vector<std::string> describe_lag_compensation(const CalibrationModels& cal)
     if (why.empty()) {
       const RegulatorDynamics& d = *cal.dynamics[i];
       on += (on.empty() ? "" : ", ") + std::to_string(i + 1) + " (dead time " + fixed(d.dead_time_s * 1000, 1) +
-            " ms, lag " + fixed(d.time_constant_s * 1000, 1) + " ms)";
+            " ms, lag " + fixed(d.time_constant_s * 1000, 1) +
+            (d.exhaust_time_constant_s > 0
+                 ? " ms filling, " + fixed(d.exhaust_time_constant_s * 1000, 1) + " ms exhausting)"
+                 : " ms)");
       ++channels_on;
     } else {
       out.push_back("lag compensation stays off on channel " + std::to_string(i + 1) + ": " + why);
@@ -54,8 +57,15 @@ TickConfig make_tick_config(const RigConfig& rig, const CalibrationModels& cal) 
   cfg.contact_force_N = rig.contact_force_N;
   cfg.stress = cal.stress;
   cfg.actuators = cal.actuators;
-  for (std::size_t i = 0; i < kFingerCount; ++i)
-    cfg.hysteresis_inverse[i] = cal.hysteresis[i].is_identity() ? PrandtlIshlinskii{} : cal.hysteresis[i].inverse();
+  // A symmetric model goes through its analytic inverse and back, as the tick always took it (the
+  // stored study figures were made so, to the last bit); an asymmetric one has no PI inverse and
+  // is taken as fitted.
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    const PrandtlIshlinskii& h = cal.hysteresis[i];
+    cfg.hysteresis_model[i] = h.is_identity() ? PrandtlIshlinskii{}
+                              : h.asymmetric  ? h
+                                              : h.inverse().forward_of_inverse();
+  }
   // The pulse stage pre-compensates each regulator's lag as the rig file's plant describes it,
   // or as calibration identified it where the fit is good.
   for (std::size_t i = 0; i < kFingerCount; ++i)
@@ -69,7 +79,8 @@ TickConfig make_tick_config(const RigConfig& rig, const CalibrationModels& cal) 
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     if (!lag_compensation_refusal(cal, i).empty()) continue;
     lag.identified[i] = true;
-    lag.regulator[i] = {cal.dynamics[i]->dead_time_s, cal.dynamics[i]->time_constant_s, rig.plants[i].slew_kPa_per_s};
+    lag.regulator[i] = {cal.dynamics[i]->dead_time_s, cal.dynamics[i]->time_constant_s, rig.plants[i].slew_kPa_per_s,
+                        cal.dynamics[i]->exhaust_time_constant_s};
   }
   // Arteries whose scene gives no force window use the one measured on this rig (paper 003).
   if (cal.force_window) {

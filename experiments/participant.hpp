@@ -31,6 +31,8 @@ class Participant {
   virtual void session_clock(const SessionClock&) {}
   // In `ready` (session start, after a break): true when the participant wants to go on.
   virtual bool ready(double t_s) = 0;
+  // A localisation trial's scene, just before trial_started: each trial may present a new case.
+  virtual void scene_presented(const Scene&) {}
   // A trial begins (stimulus onset at t_s).
   virtual void trial_started(const PlannedTrial& trial, const Condition& condition, double t_s) = 0;
   // Every loop pass while the trial runs (present and respond).

@@ -60,7 +60,8 @@ PulseSessionResult run_pulse_session(const PulseProtocol& protocol, const std::v
       r.condition = condition.name;
       SceneFile generated;
       if (condition.generated) {
-        r.scene_seed = trial_seed(options.seed, position, 3) >> 1;  // the generator takes 0..2^63-1
+        r.scene_seed = condition.generated_seed ? *condition.generated_seed
+                                                : trial_seed(options.seed, position, 3) >> 1;  // 0..2^63-1
         generated = generated_pulse_scene(*r.scene_seed, *condition.generated);
       }
       const Scene& scene = condition.generated ? *generated.scene : *scenes.at(c).scene;

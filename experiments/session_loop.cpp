@@ -46,6 +46,8 @@ SessionLoopResult run_session_loop(TrialRunner& runner, Participant& participant
           started_position = runner.next_position();
           pending.reset();  // an answer belongs to the trial it was given in
           const PlannedTrial& trial = *runner.current_trial();
+          if (const Scene* scene = runner.current_scene(); scene && runner.protocol().task == TaskKind::localisation)
+            participant.scene_presented(*scene);
           participant.trial_started(trial, runner.protocol().conditions.at(static_cast<std::size_t>(trial.condition)),
                                     t);
         }

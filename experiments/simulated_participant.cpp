@@ -12,13 +12,15 @@ namespace {
 constexpr double kSameBumpMm = 10.0;
 // The pressure needs this long after touching down to settle before it sets a baseline.
 constexpr double kSettleS = 0.3;
+// The deep pass compares each finger's pressure with its lowest of this long before.
+constexpr double kDeepWindowS = 0.6;
 
 double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 
 }  // namespace
 
 nlohmann::json to_json(const SimulatedObserverModel& m) {
-  return {
+  nlohmann::json j = {
       {"kind", "model observer"},
       {"seed", m.seed},
       {"noise_kPa", m.noise_kPa},
@@ -30,6 +32,12 @@ nlohmann::json to_json(const SimulatedObserverModel& m) {
       {"detection_noise_kPa", m.detection_noise_kPa},
       {"mark_noise_mm", m.mark_noise_mm},
   };
+  if (m.skill.learns()) {
+    j["learning"] = {{"initial_skill", m.skill.pilot.initial_skill},
+                     {"learning_rate_per_case", m.skill.pilot.learning_rate_per_case},
+                     {"cases_practised_before", m.skill.cases_practised}};
+  }
+  return j;
 }
 
 int confidence_from_margin(double margin_in_noise_units, int levels) noexcept {
@@ -53,8 +61,9 @@ SimulatedParticipant::SimulatedParticipant(const SimulatedObserverModel& model, 
                                            const Scene* scene, FingerLayout layout)
     : model_(model), protocol_(protocol), scene_(scene), layout_(layout), random_(model.seed) {}
 
-void SimulatedParticipant::trial_started(const PlannedTrial&, const Condition& condition, double t_s) {
+void SimulatedParticipant::trial_started(const PlannedTrial& trial, const Condition& condition, double t_s) {
   mode_ = condition.mode;
+  position_ = trial.position;
   answered_ = false;
   felt_sum_.fill(0.0);
   felt_count_.fill(0);
@@ -74,19 +83,28 @@ void SimulatedParticipant::trial_started(const PlannedTrial&, const Condition& c
       break;
     }
     case PresentationMode::scene: {
-      // A fresh raster with a random row offset: which small tumors the fingers pass over varies.
-      RasterPlan plan;
-      plan.speed_mm_per_s = model_.raster_speed_mm_per_s;
-      plan.row_step_mm = model_.raster_row_step_mm;
-      plan.force_N = model_.press_force_N;
-      plan.margin_mm = 2.0 + random_.uniform() * model_.raster_row_step_mm;
-      auto raster = std::make_unique<RasterInput>(scene_->bounds(), plan);
-      const double raster_s = raster->duration_s();
-      pen_.restart(std::move(raster), t_s);
-      answer_at_s_ = t_s + raster_s + random_.lognormal_with_mean_sd(2.0, 1.0);
+      deep_pass_ = false;
+      threshold_kPa_ = model_.detection_threshold_kPa;
+      start_raster(model_.press_force_N, t_s);
+      answer_at_s_ = t_s + raster_s_ + random_.lognormal_with_mean_sd(2.0, 1.0);
       break;
     }
   }
+}
+
+void SimulatedParticipant::start_raster(double force_N, double t_s) {
+  // A fresh raster with a random row offset: which small tumors the fingers pass over varies.
+  RasterPlan plan;
+  plan.speed_mm_per_s = model_.raster_speed_mm_per_s;
+  plan.row_step_mm = model_.raster_row_step_mm;
+  plan.force_N = force_N;
+  plan.margin_mm = 2.0 + random_.uniform() * model_.raster_row_step_mm;
+  auto raster = std::make_unique<RasterInput>(scene_->bounds(), plan);
+  raster_s_ = raster->duration_s();
+  pen_.restart(std::move(raster), t_s);
+  baseline_kPa_.fill(std::numeric_limits<double>::infinity());
+  for (auto& w : recent_) w.clear();
+  contact_since_s_ = -1;
 }
 
 void SimulatedParticipant::feel(const FeltSample& sample) {
@@ -108,9 +126,19 @@ void SimulatedParticipant::watch_for_bumps(const FeltSample& sample) {
   if (sample.t_s - contact_since_s_ < kSettleS) return;
   const auto fingers = layout_.centres(sample.record->x_mm, sample.record->y_mm);
   for (std::size_t f = 0; f < kFingerCount; ++f) {
-    baseline_kPa_[f] = std::min(baseline_kPa_[f], sample.felt_kPa[f]);
+    if (deep_pass_) {
+      // Against the pressure of the last moments (a monotonic window minimum): the regulator's
+      // play holds a steady offset along a row, which a small deep bump must not be lost in.
+      auto& w = recent_[f];
+      while (!w.empty() && w.back().second >= sample.felt_kPa[f]) w.pop_back();
+      w.emplace_back(sample.t_s, sample.felt_kPa[f]);
+      while (w.front().first < sample.t_s - kDeepWindowS) w.pop_front();
+      baseline_kPa_[f] = w.front().second;
+    } else {
+      baseline_kPa_[f] = std::min(baseline_kPa_[f], sample.felt_kPa[f]);
+    }
     const double excess = sample.felt_kPa[f] - baseline_kPa_[f];
-    if (excess < model_.detection_threshold_kPa) continue;
+    if (excess < threshold_kPa_) continue;
     auto near = std::find_if(candidates_.begin(), candidates_.end(), [&](const Candidate& c) {
       return std::hypot(c.x_mm - fingers[f].x_mm, c.y_mm - fingers[f].y_mm) < kSameBumpMm;
     });
@@ -124,6 +152,14 @@ void SimulatedParticipant::watch_for_bumps(const FeltSample& sample) {
 
 std::optional<Response> SimulatedParticipant::answer(double t_s) {
   if (answered_ || t_s < answer_at_s_) return std::nullopt;
+  if (mode_ == PresentationMode::scene && candidates_.empty() && !deep_pass_ && model_.deep_press_force_N > 0) {
+    // Nothing felt: again, pressing harder, heeding smaller bumps.
+    deep_pass_ = true;
+    threshold_kPa_ = model_.deep_detection_threshold_kPa;
+    start_raster(model_.deep_press_force_N, t_s);
+    answer_at_s_ = t_s + raster_s_ + 1.0;
+    return std::nullopt;
+  }
   answered_ = true;
   return protocol_.task == TaskKind::discrimination ? discrimination_answer() : localisation_answer();
 }
@@ -154,8 +190,10 @@ Response SimulatedParticipant::discrimination_answer() {
 
 Response SimulatedParticipant::localisation_answer() {
   Response r;
+  // A learning trainee reports what it felt with the probability of its skill at this case.
+  const double skill = model_.skill.learns() ? model_.skill.at(position_) : 1.0;
   for (const Candidate& c : candidates_) {
-    const double p = normal_cdf((c.peak_kPa - model_.detection_threshold_kPa) / model_.detection_noise_kPa);
+    const double p = skill * normal_cdf((c.peak_kPa - threshold_kPa_) / model_.detection_noise_kPa);
     if (random_.uniform() < p) {
       r.marks.push_back(
           {c.x_mm + model_.mark_noise_mm * random_.normal(), c.y_mm + model_.mark_noise_mm * random_.normal()});

@@ -18,7 +18,13 @@
 // above the detection threshold becomes a candidate at its peak; it is reported with
 // probability Phi((peak - threshold) / detection_noise_kPa), marked with Gaussian position
 // noise. Small tumors that fall between the fingers' paths are missed, as people miss them.
+// When the first pass felt nothing, it palpates again pressing harder (deep_press_force_N) and
+// heeding smaller bumps (deep_detection_threshold_kPa), as a clinician does for a deep lesion:
+// the tumors of generated medium and hard cases lie too deep to raise 3 kPa under a 2 N press.
+// A first pass that felt something ends the trial as before (the phantom's figures unchanged).
 #include <cstdint>
+#include <deque>
+#include <utility>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,6 +32,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiments/observer_skill.hpp"
 #include "experiments/participant.hpp"
 #include "study/random_source.hpp"
 #include "experiments/shifted_input.hpp"
@@ -53,6 +60,10 @@ struct SimulatedObserverModel {
   double raster_speed_mm_per_s = 40.0;
   double raster_row_step_mm = 20.0;  // fingers pass 16 mm apart: paths 4 and 16 mm apart
   double press_force_N = 2.0;
+  // The second, deeper pass when the first felt nothing (0 N: none).
+  double deep_press_force_N = 5.0;
+  double deep_detection_threshold_kPa = 1.0;
+  ObserverSkill skill;  // a learning pilot trainee (experiments/observer_skill.hpp); default: skilled
 };
 
 nlohmann::json to_json(const SimulatedObserverModel& m);
@@ -62,6 +73,10 @@ int confidence_from_margin(double margin_in_noise_units, int levels) noexcept;
 
 // "sim:SEED" -> true and the seed; anything else -> false.
 bool parse_simulated_participant(const std::string& spec, std::uint64_t& seed);
+inline bool is_simulated_participant(const std::string& spec) {
+  std::uint64_t seed = 0;
+  return parse_simulated_participant(spec, seed);
+}
 
 class SimulatedParticipant final : public Participant {
  public:
@@ -70,10 +85,11 @@ class SimulatedParticipant final : public Participant {
                        FingerLayout layout = {});
 
   bool ready(double) override { return true; }
+  void scene_presented(const Scene& scene) override { scene_ = &scene; }
   void trial_started(const PlannedTrial& trial, const Condition& condition, double t_s) override;
   void feel(const FeltSample& sample) override;
   std::optional<Response> answer(double t_s) override;
-  InputSource* pen() override { return scene_ ? &pen_ : nullptr; }
+  InputSource* pen() override { return protocol_.task == TaskKind::localisation ? &pen_ : nullptr; }
 
  private:
   struct Candidate {
@@ -82,6 +98,8 @@ class SimulatedParticipant final : public Participant {
   Response discrimination_answer();
   Response localisation_answer();
   void watch_for_bumps(const FeltSample& sample);
+  void start_raster(double force_N, double t_s);  // returns through raster_s_
+  double raster_s_ = 0;
 
   SimulatedObserverModel model_;
   const Protocol& protocol_;
@@ -91,6 +109,7 @@ class SimulatedParticipant final : public Participant {
   ShiftedInput pen_;
 
   PresentationMode mode_ = PresentationMode::simultaneous;
+  int position_ = 0;  // the trial's position: the learner's case index
   double answer_at_s_ = 0;
   bool answered_ = false;
   std::array<double, kFingerCount> felt_sum_{};
@@ -98,6 +117,9 @@ class SimulatedParticipant final : public Participant {
   std::array<double, kFingerCount> baseline_kPa_{};
   double contact_since_s_ = -1;
   std::vector<Candidate> candidates_;
+  bool deep_pass_ = false;                                                  // palpating again, pressing harder
+  std::array<std::deque<std::pair<double, double>>, kFingerCount> recent_;  // deep pass: (t, kPa), rising
+  double threshold_kPa_ = 0;
 };
 
 }  // namespace palprig

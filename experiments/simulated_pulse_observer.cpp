@@ -5,7 +5,10 @@
 
 namespace palprig {
 
-InputSource& SimulatedPulseObserver::trial_started(int, const PulseCondition&, const Scene& scene, double t_s) {
+InputSource& SimulatedPulseObserver::trial_started(int position, const PulseCondition&, const Scene& scene,
+                                                   double t_s) {
+  position_ = position;
+  bounds_ = scene.bounds();
   // A pen raster (the model's sweep_* fields keep their stored names).
   RasterPlan plan;
   plan.speed_mm_per_s = model_.sweep_speed_mm_per_s;
@@ -47,6 +50,11 @@ void SimulatedPulseObserver::feel(const FeltSample& s) {
 std::optional<Mark> SimulatedPulseObserver::answer(double t_s) {
   if (t_s < done_at_s_ + 1.0) return std::nullopt;
   if (best_swing_kPa_ <= 0) return std::nullopt;  // felt nothing: no mark (the trial times out)
+  if (model_.skill.learns() && random_.uniform() >= model_.skill.at(position_)) {
+    // A learner who did not recognise the pulse marks somewhere else.
+    const double x = bounds_.x0_mm + random_.uniform() * (bounds_.x1_mm - bounds_.x0_mm);
+    return Mark{x, bounds_.y0_mm + random_.uniform() * (bounds_.y1_mm - bounds_.y0_mm)};
+  }
   return Mark{best_.x_mm + model_.mark_noise_mm * random_.normal(),
               best_.y_mm + model_.mark_noise_mm * random_.normal()};
 }

@@ -4,6 +4,7 @@
 #include <deque>
 #include <optional>
 
+#include "experiments/observer_skill.hpp"
 #include "experiments/pulse_session.hpp"
 #include "experiments/shifted_input.hpp"
 #include "models/finger_layout.hpp"
@@ -22,6 +23,7 @@ struct PulseObserverModel {
   double sweep_speed_mm_per_s = 20.0;
   double sweep_row_step_mm = 12.0;
   double mark_noise_mm = 2.0;
+  ObserverSkill skill;  // a learning pilot trainee (experiments/observer_skill.hpp); default: skilled
 };
 
 class SimulatedPulseObserver final : public PulseParticipant {
@@ -44,6 +46,8 @@ class SimulatedPulseObserver final : public PulseParticipant {
   std::array<std::deque<Felt>, kFingerCount> history_;
   double best_swing_kPa_ = 0;
   Mark best_{};
+  int position_ = 0;    // the trial's position: the learner's case index
+  SceneBounds bounds_;  // where a learner that missed the pulse marks at random
 };
 
 }  // namespace palprig

@@ -21,18 +21,18 @@ const char* to_string(RunnerState s) noexcept {
 }
 
 TrialRunner::TrialRunner(const Protocol& protocol, const SessionPlan& plan, int start_position, StimulusOutput& output,
-                         RunnerListener& listener, const Scene* scene, InputSource* pen)
+                         RunnerListener& listener, CaseSource* cases, InputSource* pen)
     : protocol_(protocol),
       plan_(plan),
       output_(output),
       listener_(listener),
-      scene_(scene),
+      cases_(cases),
       pen_(pen),
       position_(start_position),
       reached_s_(std::numeric_limits<double>::quiet_NaN()),
       felt_prev_t_s_(std::numeric_limits<double>::quiet_NaN()) {
-  if (protocol.task == TaskKind::localisation && (scene == nullptr || pen == nullptr)) {
-    throw BadInput("a localisation session needs a scene and a pen input");
+  if (protocol.task == TaskKind::localisation && (cases == nullptr || pen == nullptr)) {
+    throw BadInput("a localisation session needs its cases and a pen input");
   }
   if (position_ >= total_trials()) state_ = RunnerState::done;
 }
@@ -99,6 +99,10 @@ void TrialRunner::start_trial(double t_s) {
   state_ = RunnerState::present;  // set before enter() so set_active sees the presenting state
   const PlannedTrial& t = *current_trial();
   const PresentationMode mode = protocol_.conditions.at(static_cast<std::size_t>(t.condition)).mode;
+  if (mode == PresentationMode::scene) {
+    case_ = &cases_->case_of(t);
+    scene_ = &cases_->scene_of(t);
+  }
   enter(RunnerState::present, t_s);
   switch (mode) {
     case PresentationMode::simultaneous: set_active({true, true, true}, t_s); break;
@@ -292,9 +296,15 @@ void TrialRunner::finish_trial(const Response* response, double t_s) {
       r.answer = response->tumor_under;
       r.finger_outcomes = score_discrimination(r.truth, r.answer);
     }
-  } else if (response) {
-    r.marks = response->marks;
-    r.localisation = score_localisation(protocol_.localisation.tumors, r.marks, protocol_.localisation.tolerance_mm);
+  } else {
+    r.case_name = case_->name;
+    r.case_seed = case_->seed;
+    r.case_difficulty = case_->difficulty;
+    r.case_tumors = static_cast<int>(case_->tumors.size());
+    if (response) {
+      r.marks = response->marks;
+      r.localisation = score_localisation(case_->tumors, r.marks, protocol_.localisation.tolerance_mm);
+    }
   }
   active_ = {};
   output_.vent(t_s);

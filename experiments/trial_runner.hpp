@@ -70,12 +70,23 @@ class RunnerListener {
   virtual void on_trial_completed(const TrialRecord& trial) = 0;
 };
 
+// Localisation: the case each trial palpates and its scene (experiments/trial_cases.hpp makes
+// each one once: a listed scene, or a generated case made again from its seed).
+class CaseSource {
+ public:
+  virtual ~CaseSource() = default;
+  // Valid until the next call (the session presents one trial at a time).
+  virtual const LocalisationCase& case_of(const PlannedTrial& trial) = 0;
+  virtual const Scene& scene_of(const PlannedTrial& trial) = 0;
+};
+
 class TrialRunner {
  public:
   // Runs plan.trials from start_position (a resumed session starts past the committed ones).
-  // For localisation, `scene` and `pen` are what the participant palpates.
+  // For localisation, `cases` gives each trial's scene and `pen` is what the participant
+  // palpates with.
   TrialRunner(const Protocol& protocol, const SessionPlan& plan, int start_position, StimulusOutput& output,
-              RunnerListener& listener, const Scene* scene = nullptr, InputSource* pen = nullptr);
+              RunnerListener& listener, CaseSource* cases = nullptr, InputSource* pen = nullptr);
 
   RunnerState state() const noexcept { return state_; }
   const PlannedTrial* current_trial() const noexcept;  // the trial presented or next; null when done
@@ -85,6 +96,10 @@ class TrialRunner {
   // What the fingers felt at the last advance() (the regulators' monitor readings).
   const ChannelPressures& felt_kPa() const noexcept { return felt_now_; }
   const Protocol& protocol() const noexcept { return protocol_; }
+  // Localisation: the scene and case of the trial presented (null before the first, and for
+  // discrimination).
+  const Scene* current_scene() const noexcept { return scene_; }
+  const LocalisationCase* current_case() const noexcept { return case_; }
 
   // The participant is ready: leaves `ready` and presents the next trial.
   void begin(double t_s);
@@ -123,7 +138,9 @@ class TrialRunner {
   const SessionPlan& plan_;
   StimulusOutput& output_;
   RunnerListener& listener_;
-  const Scene* scene_;
+  CaseSource* cases_;
+  const Scene* scene_ = nullptr;
+  const LocalisationCase* case_ = nullptr;
   InputSource* pen_;
 
   RunnerState state_ = RunnerState::ready;

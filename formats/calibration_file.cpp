@@ -122,8 +122,20 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
         pi.thresholds_kPa[k] = r[k];
         pi.weights[k] = w[k];
       }
+      // An asymmetric model (calibrate fit chose it): thresholds_kPa are then the rising ones and
+      // these the falling ones. A file without them is the symmetric model, as files always were.
+      if (h.has("falling_thresholds_kPa")) {
+        const auto f = h.numbers("falling_thresholds_kPa", -1e6, 1e6);
+        if (f.size() != r.size())
+          h.fail("falling_thresholds_kPa",
+                 "as many falling thresholds as thresholds_kPa (" + std::to_string(r.size()) + ")");
+        pi.asymmetric = true;
+        for (std::size_t k = 0; k < f.size(); ++k) pi.falling_thresholds_kPa[k] = f[k];
+      }
       if (!pi.valid())
-        h.fail("weights", "an invertible model: linear_weight > 0, weights >= 0, thresholds > 0 and increasing");
+        h.fail("weights", pi.asymmetric ? "an invertible model: linear_weight > 0, weights >= 0, thresholds > 0"
+                                        : "an invertible model: linear_weight > 0, weights >= 0, thresholds > 0 and "
+                                          "increasing");
       // A regulator's output follows its command about one to one; a gain far from it is a
       // degenerate fit (or a model in other units) that would drive the inverse wild.
       double gain = pi.linear_weight;
@@ -148,7 +160,11 @@ CalibrationModels load_calibration_file(const std::filesystem::path& path) {
       dyn.max_residual_kPa = d.number_or("max_residual_kPa", 0, 0, 1e6);
       dyn.samples = static_cast<std::size_t>(d.integer_or("samples", 0, 0, 1000000000));
       dyn.rate_hz = d.number_or("rate_hz", 0, 0, 100000);
+      // Separate fill and exhaust lags (absent: one lag, as every earlier file).
+      if (d.has("exhaust_time_constant_s"))
+        dyn.exhaust_time_constant_s = d.number("exhaust_time_constant_s", 0.0005, 2);
       if (d.has("segments")) (void)d.raw("segments");  // per-segment R^2 and residuals, for people
+      if (d.has("one_lag_rms_residual_kPa")) (void)d.number("one_lag_rms_residual_kPa", 0, 1e6);
       d.refuse_unknown();
       cal.dynamics[i] = dyn;
     }

@@ -9,7 +9,7 @@ namespace palprig {
 
 namespace {
 
-std::size_t find_link(const JsonObject& o, const std::vector<ModbusLinkConfig>& links) {
+std::size_t load_cell_link(const JsonObject& o, const std::vector<ModbusLinkConfig>& links) {
   if (!o.has("link")) {
     if (links.size() == 1) return 0;
     o.fail("link", "the name of one of the " + std::to_string(links.size()) + " Modbus links (several are defined)");
@@ -28,7 +28,7 @@ std::pair<double, double> volts_span(const JsonObject& o) {
 
 ModbusRegisterRef modbus_input(const JsonObject& o, const ModbusRigConfig& modbus) {
   ModbusRegisterRef r;
-  r.link = find_link(o, modbus.links);
+  r.link = load_cell_link(o, modbus.links);
   r.address = static_cast<int>(o.integer("register", 0, 65535));
   r.kind =
       o.choice_or("function", "input", {"input", "holding"}) == "input" ? RegisterKind::input : RegisterKind::holding;

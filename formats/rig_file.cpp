@@ -16,6 +16,15 @@ PlantParams parse_plant(const JsonObject& o, const PlantParams& base) {
   p.hysteresis_kPa = o.number_or("hysteresis_kPa", p.hysteresis_kPa, 0, 100);
   p.noise_sd_kPa = o.number_or("noise_sd_kPa", p.noise_sd_kPa, 0, 100);
   p.seed = static_cast<std::uint64_t>(o.integer_or("seed", static_cast<std::int64_t>(p.seed), 0, INT64_MAX));
+  // A regulator that is not symmetric (each key absent: the symmetric regulator above).
+  if (o.has("hysteresis_rising_kPa")) p.hysteresis_rising_kPa = o.number("hysteresis_rising_kPa", 0, 100);
+  if (o.has("hysteresis_falling_kPa")) p.hysteresis_falling_kPa = o.number("hysteresis_falling_kPa", 0, 100);
+  if (o.has("exhaust_time_constant_s")) p.exhaust_time_constant_s = o.number("exhaust_time_constant_s", 0, 10);
+  p.exhaust_lag_factor_at_0 = o.number_or("exhaust_lag_factor_at_0", p.exhaust_lag_factor_at_0, 1, 100);
+  p.exhaust_lag_scale_kPa = o.number_or("exhaust_lag_scale_kPa", p.exhaust_lag_scale_kPa, 0.01, 1000);
+  p.gain_saturation_kPa = o.number_or("gain_saturation_kPa", p.gain_saturation_kPa, 0, 10000);
+  if (p.gain_saturation_kPa > 0 && p.gain_saturation_kPa < 1)
+    o.fail("gain_saturation_kPa", "0 (a linear gain) or a saturation pressure of at least 1 kPa");
   if (p.min_kPa >= p.max_kPa) o.fail("max_kPa", "a value above min_kPa");
   o.refuse_unknown();
   return p;

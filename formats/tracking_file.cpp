@@ -24,7 +24,7 @@ const TrackedTool* TrackingConfig::tool_named(const std::string& name) const noe
 
 namespace {
 
-Vec3_mm point3(const JsonObject& o, const std::string& key, double limit) {
+Vec3_mm vec3(const JsonObject& o, const std::string& key, double limit) {
   const std::vector<double> v = o.numbers(key, -limit, limit);
   if (v.size() != 3) o.fail(key, "3 numbers [x, y, z] in mm, got " + std::to_string(v.size()));
   return {v[0], v[1], v[2]};
@@ -89,7 +89,7 @@ TrackingConfig parse_tracking(const nlohmann::json& doc, const std::string& file
     }
     if (o.has("tip")) {
       const JsonObject tip = o.object("tip");
-      tool.tip.offset_mm = point3(tip, "offset_mm", 1000);
+      tool.tip.offset_mm = vec3(tip, "offset_mm", 1000);
       if (tip.has("method")) tool.tip.method = tip.choice("method", {"pivot", "digitized", "measured"});
       if (tip.has("rms_mm")) tool.tip.rms_mm = tip.number("rms_mm", 0, 1000);
       tip.refuse_unknown();
@@ -100,7 +100,7 @@ TrackingConfig parse_tracking(const nlohmann::json& doc, const std::string& file
   if (root.has("tracker_to_scene")) {
     const JsonObject r = root.object("tracker_to_scene");
     t.registration.tracker_to_scene.rotation = rotation(r, "rotation");
-    t.registration.tracker_to_scene.translation_mm = point3(r, "translation_mm", 1e5);
+    t.registration.tracker_to_scene.translation_mm = vec3(r, "translation_mm", 1e5);
     if (r.has("fre_mm")) t.registration.fre_mm = r.number("fre_mm", 0, 1000);
     t.registration.fiducials = static_cast<int>(r.integer_or("fiducials", 0, 0, 1000));
     r.refuse_unknown();

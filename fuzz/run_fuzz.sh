@@ -23,6 +23,7 @@ seeds_for() {
     fuzz_protocol) echo "data/protocols/discrimination_*.json data/protocols/localisation_*.json" ;;
     fuzz_threshold_protocol) echo "data/protocols/threshold_*.json" ;;
     fuzz_pulse_protocol) echo "data/protocols/pulse_*.json" ;;
+    fuzz_curriculum) echo "data/curricula/*.json" ;;
     fuzz_trace_csv) echo "data/traces/*.csv" ;;
     fuzz_map_csv) echo "" ;;
     fuzz_pgm) echo "data/scenes/*.pgm" ;;

@@ -29,6 +29,7 @@
 #include "charts/calibration_charts.hpp"
 #include "calibration/sweep_plan.hpp"
 #include "gui/free_file_name.hpp"
+#include "gui/counted_text.hpp"
 
 namespace palprig::gui {
 
@@ -43,8 +44,6 @@ QDoubleSpinBox* kPa_box(double value, double lo, double hi, const char* name) {
   b->setValue(value);
   return b;
 }
-
-QString number(double v, int decimals) { return std::isfinite(v) ? QString::number(v, 'f', decimals) : "n/a"; }
 
 }  // namespace
 
@@ -352,12 +351,12 @@ void CalibrationPage::show_table() {
                                response,
                                name,
                                QString::number(line->n),
-                               number(line->slope, 4),
-                               number(line->intercept, 3),
-                               number(line->r_squared, 4),
-                               number(line->residual_sd, 3),
-                               number(f.gap, 3),
-                               number(f.repeat_sd_percent, 2)};
+                               number_text(line->slope, 4),
+                               number_text(line->intercept, 3),
+                               number_text(line->r_squared, 4),
+                               number_text(line->residual_sd, 3),
+                               number_text(f.gap, 3),
+                               number_text(f.repeat_sd_percent, 2)};
       for (int c = 0; c < 10; ++c) table_->setItem(r, c, new QTableWidgetItem(cells[c]));
     }
   };

@@ -15,14 +15,9 @@
 #include "formats/calibration_file.hpp"
 #include "charts/calibration_charts.hpp"
 #include "gui/calibration_page.hpp"
+#include "gui/counted_text.hpp"
 
 namespace palprig::gui {
-
-namespace {
-
-QString number(double v, int decimals) { return std::isfinite(v) ? QString::number(v, 'f', decimals) : "n/a"; }
-
-}  // namespace
 
 void CalibrationPage::fit() {
   if (job_ || fit_watcher_.isRunning()) return;
@@ -163,9 +158,10 @@ void CalibrationPage::evaluation_done(const CalibrationJob& job) {
     if (!job.evaluated_channels()[c]) continue;
     lines << QString("channel %1: RMS %2 -> %3 kPa (%4x), gap %5 -> %6 kPa")
                  .arg(c + 1)
-                 .arg(number(r.uncompensated.channels[c].rms_error_kPa, 3),
-                      number(r.compensated.channels[c].rms_error_kPa, 3), number(r.improvement[c], 1),
-                      number(r.uncompensated.channels[c].gap_kPa, 2), number(r.compensated.channels[c].gap_kPa, 2));
+                 .arg(number_text(r.uncompensated.channels[c].rms_error_kPa, 3),
+                      number_text(r.compensated.channels[c].rms_error_kPa, 3), number_text(r.improvement[c], 1),
+                      number_text(r.uncompensated.channels[c].gap_kPa, 2),
+                      number_text(r.compensated.channels[c].gap_kPa, 2));
   }
   QString text = "Evaluated (as `palprig calibrate evaluate`): " + lines.join("; ") + ".";
   const EvaluationRun& bad = r.uncompensated.stopped || r.uncompensated.faulted ? r.uncompensated : r.compensated;

@@ -47,11 +47,6 @@ QString stored_flags_text(const std::string& bits) {
   return s.isEmpty() ? "none" : s;
 }
 
-bool is_simulated_code(const std::string& code) {
-  std::uint64_t seed = 0;
-  return parse_simulated_participant(code, seed);
-}
-
 }  // namespace
 
 ExperimentPage::ExperimentPage(ExperimentHost host, QWidget* parent)
@@ -133,7 +128,7 @@ void ExperimentPage::connect_session() {
     apply_answer_key();
     // A session that stopped or faulted is resumable: offer it at once (the list keeps its
     // ticks, read back from the store). A completed one stays on show as it ended.
-    if (!last_completed_ && refusal_text().isEmpty()) {
+    if (!last_completed_ && refusal_text().isEmpty() && !training_) {
       const QStringList files = files_written_;
       const QString status = status_->text();
       update_plan();
@@ -142,6 +137,10 @@ void ExperimentPage::connect_session() {
       status_->setText(status);
     }
     set_buttons();
+    if (training_) {
+      training_ = false;  // `train next` (or the Training view) continues a stopped one
+      emit trainingFinished();
+    }
   });
 }
 
@@ -183,7 +182,7 @@ void ExperimentPage::update_plan() {
   if (!refusal_text().isEmpty()) status_->setText("No session.");
   status_->setStyleSheet("");
   status_->setProperty("refusal", QString());
-  speed_->setEnabled(is_simulated_code(f.participant));
+  speed_->setEnabled(is_simulated_participant(f.participant));
   table_->setRowCount(0);
   set_table_columns(false);
   if (f.protocol.empty()) {

@@ -67,6 +67,12 @@ class ExperimentPage final : public QWidget {
   // Begin (resume=false) or resume the unfinished session. False when refused at once (the
   // line is in refusal_text()); a refusal from the session thread comes as sessionRefused.
   bool begin(bool resume);
+  // A trainee's next session of a curriculum (the Training view's Start next session): the
+  // participant screen set up with its cases, then run as begin() runs a protocol, scored at its
+  // end (experiment_page_training.cpp). request.participant: empty for the trainee themself (a
+  // person), sim:SEED for a simulated pilot. False when refused at once (refusal_text()).
+  bool begin_training(const TrainingRequest& request, const PreparedTraining& prepared);
+  bool training_running() const noexcept { return training_ && run_.running(); }
   void pause();
   void resume();
   void abort();
@@ -101,6 +107,8 @@ class ExperimentPage final : public QWidget {
   void trialCommitted(int position);
   void sessionEnded(const palprig::SessionEnd& end);
   void sessionRefused(const QString& line, int exit_code);
+  // A training session's thread has ended (completed and scored, stopped, faulted or refused).
+  void trainingFinished();
 
  private:
   // The trial table's columns. kResponseTime: from onset (paper 002's measure, its t-test); kRtAfterStimulus: from the
@@ -143,6 +151,9 @@ class ExperimentPage final : public QWidget {
   void connect_pulse();
   std::vector<int> answer_key_columns() const;  // of the table's current task (experiment_page_pulse.cpp)
   void apply_answer_key();                      // hides or shows those columns for the state above
+  // A session has just started (begin() or a trainee's session): the participant's keys on a
+  // person's session, the key hidden from them (their own display when there is a second one).
+  void session_started_for_participant();
 
   ExperimentHost host_;
   SessionRun run_;
@@ -154,6 +165,7 @@ class ExperimentPage final : public QWidget {
   bool simulated_ = false;
   bool pause_held_ = false;
   bool person_session_ = false;  // a person (not sim:SEED) answers in the session running
+  bool training_ = false;        // the session running is a trainee's (begin_training)
   bool answer_key_hidden_ = false;
   bool last_completed_ =
       false;  // the last session ended completed  // the session loop reported the pause (vented, holding)

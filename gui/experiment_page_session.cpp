@@ -37,17 +37,9 @@
 
 namespace palprig::gui {
 
-namespace {
-
-bool is_simulated_code(const std::string& code) {
-  std::uint64_t seed = 0;
-  return parse_simulated_participant(code, seed);
-}
-
-}  // namespace
-
 bool ExperimentPage::begin(bool resume) {
   if (run_.running()) return false;
+  training_ = false;
   update_plan();
   const ExperimentFields f = fields();
   if (!protocol_ && !pulse_protocol_) {
@@ -68,7 +60,7 @@ bool ExperimentPage::begin(bool resume) {
   request.telemetry_file = f.telemetry;
   request.tick_observer = host_.tick_observer ? host_.tick_observer() : nullptr;
   request.rig = host_.opened_rig ? &host_.opened_rig() : nullptr;
-  simulated_ = is_simulated_code(f.participant);
+  simulated_ = is_simulated_participant(f.participant);
   request.speed = simulated_ ? f.speed : 0;
   request.person_palpates = true;  // the window gives a person a pen
   channel_ = simulated_ ? nullptr : std::make_shared<ParticipantChannel>();
@@ -97,6 +89,11 @@ bool ExperimentPage::begin(bool resume) {
     start_pulse_run(request);
   else
     run_.start(request, person);
+  session_started_for_participant();
+  return true;
+}
+
+void ExperimentPage::session_started_for_participant() {
   if (!simulated_) participant_keys_->install();
   // The participant never sees the answer key: on its own display when there is a second one
   // (as PsychoPy opens its window there), else the key columns are hidden in this window.
@@ -109,10 +106,10 @@ bool ExperimentPage::begin(bool resume) {
   }
   apply_answer_key();
   set_buttons();
-  return true;
 }
 
 void ExperimentPage::on_started(const SessionStart& s) {
+  screen_->set_session_seed(s.seed);
   resume_note_->clear();
   offered_session_.reset();
   // The order being run, as stored (a new participant's number is known only now).
@@ -244,7 +241,7 @@ void ExperimentPage::set_buttons() {
   abort_->setEnabled(running);
   for (QWidget* w : std::initializer_list<QWidget*>{protocol_edit_, participant_edit_, store_edit_, telemetry_edit_})
     w->setEnabled(!running);
-  speed_->setEnabled(!running && is_simulated_code(participant_edit_->text().trimmed().toStdString()));
+  speed_->setEnabled(!running && is_simulated_participant(participant_edit_->text().trimmed().toStdString()));
   full_screen_->setEnabled(QGuiApplication::screens().size() > 1 || full_screen_->isChecked());
 }
 

@@ -10,11 +10,12 @@ namespace palprig::gui {
 FingerGauge::FingerGauge(int finger, QWidget* parent) : QWidget(parent), finger_(finger) {
   // Tall enough for the bar and its three lines of figures (at 160 px the last line was clipped
   // when the live page's column was squeezed).
-  setMinimumSize(90, 200);
+  setMinimumSize(90, 216);
   setObjectName(QString("finger_gauge_%1").arg(finger + 1));
 }
 
-void FingerGauge::set_values(double target_kPa, double setpoint_kPa, double monitor_kPa, double p_max_kPa) {
+void FingerGauge::set_values(double target_kPa, double setpoint_kPa, double monitor_kPa, double p_max_kPa, double t_s) {
+  if (std::isfinite(t_s)) error_.push(t_s, monitor_kPa - target_kPa);
   target_ = target_kPa;
   setpoint_ = setpoint_kPa;
   monitor_ = monitor_kPa;
@@ -26,7 +27,7 @@ void FingerGauge::set_values(double target_kPa, double setpoint_kPa, double moni
 void FingerGauge::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.setRenderHint(QPainter::Antialiasing);
-  const int text_h = 58;
+  const int text_h = 74;
   const QRectF bar(width() * 0.30, 18, width() * 0.40, height() - 18 - text_h);
   auto y_of = [&](double kPa) {
     const double f = std::isfinite(kPa) ? std::clamp(kPa / scale_max_, 0.0, 1.0) : 0.0;
@@ -51,9 +52,14 @@ void FingerGauge::paintEvent(QPaintEvent*) {
   }
   p.setPen(Qt::black);
   const QString mon = std::isfinite(monitor_) ? QString::number(monitor_, 'f', 1) : QString("--");
-  p.drawText(
-      QRectF(0, height() - text_h, width(), text_h), Qt::AlignCenter,
-      QString("target %1\nsetpoint %2\nmonitor %3 kPa").arg(target_, 0, 'f', 1).arg(setpoint_, 0, 'f', 1).arg(mon));
+  const double rms = error_.rms_kPa();
+  const QString err = std::isfinite(rms) ? QString::number(rms, 'f', 2) : QString("--");
+  p.drawText(QRectF(0, height() - text_h, width(), text_h), Qt::AlignCenter,
+             QString("target %1\nsetpoint %2\nmonitor %3 kPa\nRMS err %4 kPa")
+                 .arg(target_, 0, 'f', 1)
+                 .arg(setpoint_, 0, 'f', 1)
+                 .arg(mon)
+                 .arg(err));
 }
 
 }  // namespace palprig::gui

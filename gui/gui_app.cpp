@@ -14,6 +14,7 @@
 #include "gui/experiment_page.hpp"
 #include "gui/participant_screen.hpp"
 #include "gui/main_window.hpp"
+#include "gui/training_view.hpp"
 #include "gui/statistics_view.hpp"
 #include "sessions/session_telemetry.hpp"
 #include "experiments/simulated_participant.hpp"
@@ -160,6 +161,22 @@ int run_gui(int argc, char** argv, const GuiOptions& o) {
     if ((pilot || o.session.resume) && !page.begin(o.session.resume)) {
       window.set_close_without_asking(true);
       return refuse(page.refusal_text().toStdString(), 2, interactive);
+    }
+  }
+  if (!o.curriculum.empty()) {
+    TrainingView& training = *window.training_view();
+    window.pages()->setCurrentWidget(&training);
+    training.set_files(QString::fromStdString(o.curriculum), QString::fromStdString(o.session.store));
+    QString refusal = training.refusal_text();
+    if (refusal.isEmpty() && !o.session.participant.empty() &&
+        !training.select_trainee(QString::fromStdString(o.session.participant))) {
+      refusal =
+          QString::fromStdString(o.session.store + ": trainee '" + o.session.participant +
+                                 "': a trainee enrolled in this curriculum (enrol them with: palprig train enrol)");
+    }
+    if (!refusal.isEmpty()) {
+      window.set_close_without_asking(true);
+      return refuse(refusal.toStdString(), 2, interactive);
     }
   }
   if (!o.screenshot_path.empty()) {

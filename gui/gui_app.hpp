@@ -30,7 +30,10 @@ struct GuiOptions {
   double after_s = 2.0;         // with a screenshot: seconds of live operation first (a session:
                                 // the screenshot is taken when it ends or after_s passed)
   GuiSessionOptions session;    // protocol empty: no session
-  bool json = false;            // print the loop's summary as JSON at exit
+  // A course: the Training tab opened on this curriculum and session.store (the trainee
+  // session.participant picked, when given). Empty: none.
+  std::string curriculum;
+  bool json = false;  // print the loop's summary as JSON at exit
 };
 
 // Exit codes as the CLI's: 0 done, 1 the rig faulted (vented), 2 a file was refused. With a

@@ -19,7 +19,7 @@
 
 namespace palprig::gui {
 
-LivePage::LivePage(LiveRun& run, QWidget* parent)
+LivePage::LivePage(LiveRun& run, bool reveal_answer, QWidget* parent)
     // 60 s (the longest window) at the loop's rate.
     : QWidget(parent), run_(run), history_(std::size_t(std::lround(60.0 * 1000.0)) + 1000) {
   auto* outer = new QVBoxLayout(this);
@@ -46,9 +46,13 @@ LivePage::LivePage(LiveRun& run, QWidget* parent)
   auto* force_text = new QLabel(QString("%1 N").arg(scene_view_->mouse_force_N(), 0, 'f', 1));
   pen_row->addWidget(force_, 1);
   pen_row->addWidget(force_text);
-  tumors_ = new QCheckBox("Tumor outlines (Ctrl+T)");
+  // The answer: tumor outlines and the stiffness colours (which show the tumors as plainly).
+  tumors_ = new QCheckBox("Show the tumors (Ctrl+T)");
   tumors_->setObjectName("tumor_outlines");
-  tumors_->setChecked(true);
+  tumors_->setToolTip("Tumor outlines and stiffness colours; a trainee palpates plain tissue");
+  tumors_->setChecked(reveal_answer);
+  scene_view_->set_tumors_visible(reveal_answer);
+  scene_view_->set_map_visible(reveal_answer);
   pen_row->addWidget(tumors_);
   left_col->addLayout(pen_row);
   if (!run.window_pen())
@@ -60,7 +64,10 @@ LivePage::LivePage(LiveRun& run, QWidget* parent)
   });
   connect(scene_view_, &SceneView::mouseForceChanged, this,
           [this](double f) { force_->setValue(int(std::lround(f * 10))); });
-  connect(tumors_, &QCheckBox::toggled, scene_view_, &SceneView::set_tumors_visible);
+  connect(tumors_, &QCheckBox::toggled, scene_view_, [this](bool on) {
+    scene_view_->set_tumors_visible(on);
+    scene_view_->set_map_visible(on);
+  });
 
   // Right: the rig and the pulse.
   auto* right = new QWidget;

@@ -23,13 +23,17 @@ class TrackerPanel;
 class LivePage final : public QWidget {
   Q_OBJECT
  public:
-  LivePage(LiveRun& run, QWidget* parent = nullptr);
+  // `reveal_answer`: the tumors shown (outlines and stiffness colours) from the start, as for the
+  // bundled demo phantom; otherwise (a rehearsal case opened with --scene or from the File menu)
+  // the trainee's view is plain tissue until the trainer reveals it (Ctrl+T) for the debriefing.
+  LivePage(LiveRun& run, bool reveal_answer, QWidget* parent = nullptr);
   FeedStatus poll();  // take new telemetry, refresh every panel; returns the feed's status
 
   RigPanel* rig_panel() const noexcept { return rig_panel_; }
   SceneView* scene_view() const noexcept { return scene_view_; }
   StripChart* strip_chart() const noexcept { return chart_; }
   TrackerPanel* tracker_panel() const noexcept { return tracker_; }  // null unless the input is a tracker
+  // "Show the tumors (Ctrl+T)": outlines and stiffness colours together.
   QCheckBox* tumor_outlines() const noexcept { return tumors_; }
   const TraceHistory& history() const noexcept { return history_; }
   void toggle_pause();

@@ -82,7 +82,11 @@ LiveRun::~LiveRun() {
 void LiveRun::start_loop() {
   // The rig may be lent (a session, a sweep): the loop starts when it comes back.
   if (rig_->leased()) return;
-  lease_.emplace(rig_->lease("the window's live loop", LeaseKind::yielding));
+  try {
+    lease_.emplace(rig_->lease("the window's live loop", LeaseKind::yielding));
+  } catch (const RigBusy&) {
+    return;  // a session or a sweep took it (or waits for it) since: the loop starts when it comes back
+  }
   // As on opening: hardware starts connected and vented, and the operator arms it; the
   // in-process simulation needs no such care and starts ready to press.
   control_->restart();
@@ -119,13 +123,17 @@ void LiveRun::start_loop() {
       loop_summary_ = RunSummary{};
       loop_summary_.fault.latch(FaultCode::thread_exception, 0, e.what());
     }
+    // Given back here, on the loop's own thread, not at the GUI thread's join: a session or a
+    // sweep that asked for the rig waits for it on the GUI thread (Rig::lease), which then
+    // cannot get to the join.
+    lease_->release();
     loop_done_.store(true, std::memory_order_release);
   });
 }
 
 void LiveRun::join_loop() {
   if (loop_.joinable()) loop_.join();
-  lease_.reset();  // vented; the rig is free for whoever asked for it
+  lease_.reset();  // already given back by the loop's thread (vented)
   if (loop_running_) {
     last_summary_ = loop_summary_;
     loop_running_ = false;
@@ -177,7 +185,7 @@ void LiveRun::acknowledge_fault() {
 }
 
 void LiveRun::stop() {
-  if (lease_) lease_->request_release();  // the loop ends at its next tick, vented
+  if (loop_running_) rig_->request_release();  // the loop ends at its next tick, vented
   join_loop();
   stopped_ = true;
 }
@@ -185,7 +193,10 @@ void LiveRun::stop() {
 RigLifecycle LiveRun::state() const noexcept {
   if (fault_pending_) return RigLifecycle::fault;
   if (stopped_) return RigLifecycle::stopped;
-  if (!loop_running_) return rig_->leased() ? RigLifecycle::lent : RigLifecycle::stopped;
+  // A loop that gave way has ended (and given the rig back from its thread) before the GUI
+  // thread's poll joins it: it no longer drives the rig.
+  if (!loop_running_ || loop_done_.load(std::memory_order_acquire))
+    return rig_->leased() ? RigLifecycle::lent : RigLifecycle::stopped;
   if (!control_->vent_held()) return RigLifecycle::armed;
   return vented_by_operator_ ? RigLifecycle::vented : RigLifecycle::connected;
 }

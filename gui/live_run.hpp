@@ -137,7 +137,7 @@ class LiveRun {
   WindowPenInput* window_pen_ = nullptr;
   IgtlInput* tracker_ = nullptr;
   std::unique_ptr<Rig> rig_;
-  std::optional<RigLease> lease_;  // the loop's, while it runs (GUI thread: taken, asked back, dropped)
+  std::optional<RigLease> lease_;  // the loop's: taken on the GUI thread, given back by the loop's thread as it ends
   RunControl own_control_;         // when the options give none
   RunControl* control_;
   TelemetryFeed feed_;

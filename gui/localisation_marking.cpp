@@ -8,6 +8,7 @@
 #include <QVBoxLayout>
 
 #include "gui/scene_view.hpp"
+#include "study/localisation_case.hpp"
 
 namespace palprig::gui {
 
@@ -45,7 +46,17 @@ void LocalisationMarking::detach_pen() {
 
 void LocalisationMarking::start_session(const Protocol& protocol, WindowPenInput* pen) {
   single_mark_ = false;
-  show_scene(load_scene_file(protocol.localisation.scene_file), pen);
+  pen_ = pen;
+  case_key_.clear();
+  if (!protocol.localisation.generate && !protocol.localisation.cases.empty())
+    show_case(protocol.localisation.cases.front());
+}
+
+void LocalisationMarking::show_case(const LocalisationCase& c) {
+  const std::string key = case_key(c);
+  if (key == case_key_ && view_) return;
+  show_scene(case_scene(c), pen_);
+  case_key_ = key;
 }
 
 void LocalisationMarking::show_scene(SceneFile scene, WindowPenInput* pen) {

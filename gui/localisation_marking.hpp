@@ -32,8 +32,11 @@ class LocalisationMarking final : public QWidget {
   explicit LocalisationMarking(QWidget* parent = nullptr);
   ~LocalisationMarking() override;
 
-  // The protocol's scene (loaded here; the protocol was validated) and the pen to palpate with.
+  // The pen to palpate with, and the protocol's first case when it has a fixed one (a protocol
+  // that generates a case per trial shows each trial's with show_case).
   void start_session(const Protocol& protocol, WindowPenInput* pen);
+  // The trial's case (study/localisation_case.hpp), made or loaded unless it is the one shown.
+  void show_case(const LocalisationCase& c);
   // One scene to palpate (a pulse trial's): shown without map, tumor outlines or arteries; the
   // marks are cleared.
   void show_scene(SceneFile scene, WindowPenInput* pen);
@@ -63,6 +66,8 @@ class LocalisationMarking final : public QWidget {
   void show_marks();
 
   std::optional<SceneFile> scene_;
+  std::string case_key_;  // the case shown
+  WindowPenInput* pen_ = nullptr;
   SceneView* view_ = nullptr;
   QVBoxLayout* layout_ = nullptr;
   QTimer* heartbeat_ = nullptr;

@@ -19,6 +19,7 @@
 #include "gui/live_page.hpp"
 #include "gui/rig_panel.hpp"
 #include "core/input_error.hpp"
+#include "gui/training_view.hpp"
 
 namespace palprig::gui {
 
@@ -30,6 +31,7 @@ MainWindow::MainWindow(std::unique_ptr<LiveRun> run, LiveRunFiles files, LiveRun
   build_live_page();
   build_calibration_page();
   build_experiment_page();
+  build_training_view();
 
   status_ = new QLabel;
   status_->setObjectName("loop_status");
@@ -123,13 +125,33 @@ void MainWindow::build_experiment_page() {
   tabs_->addTab(experiment_page_, "Experiment");
 }
 
+void MainWindow::build_training_view() {
+  TrainingHost host;
+  // The session runs on the experiment console, where the participant screen is; the window
+  // shows it there.
+  host.start = [this](const TrainingRequest& request, const PreparedTraining& prepared, QString& refusal) {
+    if (!experiment_page_->begin_training(request, prepared)) {
+      refusal = experiment_page_->refusal_text();
+      return false;
+    }
+    tabs_->setCurrentWidget(experiment_page_);
+    return true;
+  };
+  host.session_running = [this] { return experiment_page_->session_running(); };
+  training_view_ = new TrainingView(std::move(host));
+  connect(&experiment_page_->session_run(), &SessionRun::trainingScored, training_view_, &TrainingView::show_outcome);
+  connect(experiment_page_, &ExperimentPage::trainingFinished, training_view_, &TrainingView::session_finished);
+  tabs_->addTab(training_view_, "Training");
+}
+
 void MainWindow::build_live_page() {
   const int index = live_page_ ? tabs_->indexOf(live_page_) : -1;
   if (live_page_) {
     tabs_->removeTab(index);
     delete live_page_;
   }
-  live_page_ = new LivePage(*run_);
+  // The bundled phantom is the demo (its tumors shown); any other scene is a case to palpate.
+  live_page_ = new LivePage(*run_, files_.scene_path.empty());
   // VENT during a session vents the session's rig: the session pauses (it vents and holds the
   // trial, as Esc does).
   connect(live_page_->rig_panel(), &RigPanel::vented, this, [this] {

@@ -1,6 +1,7 @@
 #pragma once
 // MainWindow: the palprig application window. One page per job in a QTabWidget ("Live rig",
-// "Calibration" and "Experiment", the study session console), a status bar with the
+// "Calibration", "Experiment", the study session console, and "Training", a course's trainees
+// whose sessions run on the experiment console), a status bar with the
 // loop's rate, overruns and wake-up latency, and the window-wide shortcuts (Esc is VENT).
 // It owns the LiveRun; closing the window stops the loop, which vents every channel.
 #include <QMainWindow>
@@ -20,6 +21,7 @@ namespace palprig::gui {
 class CalibrationPage;
 class ExperimentPage;
 class LivePage;
+class TrainingView;
 
 class MainWindow final : public QMainWindow {
   Q_OBJECT
@@ -31,6 +33,7 @@ class MainWindow final : public QMainWindow {
   LivePage* live_page() const noexcept { return live_page_; }
   CalibrationPage* calibration_page() const noexcept { return calibration_page_; }
   ExperimentPage* experiment_page() const noexcept { return experiment_page_; }
+  TrainingView* training_view() const noexcept { return training_view_; }
   // Closing during a study session asks first (the session is aborted, vented, and every
   // committed trial kept); scripted runs (screenshot, signals) close without asking.
   void set_close_without_asking(bool on) noexcept { close_without_asking_ = on; }
@@ -53,6 +56,7 @@ class MainWindow final : public QMainWindow {
   void build_live_page();
   void build_calibration_page();
   void build_experiment_page();
+  void build_training_view();
   void choose_file(const QString& what, std::string LiveRunFiles::*field, const QString& filter);
 
   std::unique_ptr<LiveRun> run_;
@@ -63,6 +67,7 @@ class MainWindow final : public QMainWindow {
   LivePage* live_page_ = nullptr;
   CalibrationPage* calibration_page_ = nullptr;
   ExperimentPage* experiment_page_ = nullptr;
+  TrainingView* training_view_ = nullptr;
   QShortcut* live_pause_ = nullptr;  // Space on the Live tab only (the participant's Space is Ready)
   bool close_without_asking_ = false;
   QMessageBox* close_question_ = nullptr;

@@ -14,6 +14,7 @@
 
 #include "gui/confidence_row.hpp"
 #include "gui/localisation_marking.hpp"
+#include "study/localisation_case.hpp"
 
 namespace palprig::gui {
 
@@ -120,6 +121,8 @@ void ParticipantScreen::show_ready() {
 
 void ParticipantScreen::show_trial(const PlannedTrial& trial, const Condition& condition) {
   ready_->setVisible(false);
+  // Each trial palpates its own case: the participant's screen shows it (plain tissue).
+  if (localisation_ && protocol_) marking_->show_case(trial_case(*protocol_, trial, session_seed_));
   if (!channel_) {
     prompt_->setText(QString("Simulated participant (pilot run): trial %1").arg(trial.position + 1));
     return;

@@ -44,6 +44,9 @@ class ParticipantScreen final : public QWidget {
   // A new session: its protocol (finger names, task) and the channel answers go through; null
   // channel: a simulated participant answers (the screen only shows what happens).
   void start_session(const Protocol& protocol, std::shared_ptr<ParticipantChannel> channel);
+  // The session's seed, once it is known (a localisation protocol that generates a case per
+  // trial makes each trial's case from it).
+  void set_session_seed(std::uint64_t seed) noexcept { session_seed_ = seed; }
   void show_ready();  // waiting for the participant's go-ahead
   void show_trial(const PlannedTrial& trial, const Condition& condition);
   // The runner left `present` for `respond` at this trial: discrimination answers are taken now.
@@ -100,6 +103,7 @@ class ParticipantScreen final : public QWidget {
 
   std::shared_ptr<ParticipantChannel> channel_;
   std::optional<Protocol> protocol_;  // the discrimination/localisation session's (answer timing)
+  std::uint64_t session_seed_ = 0;    // the running session's (generated localisation cases)
   std::array<std::string, kFingerCount> finger_names_{};
   bool localisation_ = false;
   bool pulse_ = false;

@@ -1,4 +1,5 @@
 #include "gui/pulse_statistics.hpp"
+#include "gui/counted_text.hpp"
 
 #include <QHeaderView>
 #include <QTableWidget>
@@ -7,8 +8,6 @@
 namespace palprig::gui {
 
 namespace {
-
-QString number(double v, int decimals) { return std::isfinite(v) ? QString::number(v, 'f', decimals) : QString("n/a"); }
 
 std::string percent(double confidence) { return std::to_string(static_cast<int>(std::lround(confidence * 100))); }
 
@@ -28,10 +27,10 @@ void fill_pulse_table(QTableWidget& table, const std::vector<PulseConditionSumma
         QString::number(r.trials),
         QString::number(r.answered),
         QString::number(r.hits),
-        QString("%1 [%2, %3]").arg(number(r.hit_rate, 3), number(r.hit_low, 3), number(r.hit_high, 3)),
-        number(r.distance_mean_mm, 2),
-        number(r.distance_median_mm, 2),
-        number(r.distance_iqr_mm, 2)};
+        QString("%1 [%2, %3]").arg(number_text(r.hit_rate, 3), number_text(r.hit_low, 3), number_text(r.hit_high, 3)),
+        number_text(r.distance_mean_mm, 2),
+        number_text(r.distance_median_mm, 2),
+        number_text(r.distance_iqr_mm, 2)};
     for (int c = 0; c < pulse_column_count; ++c) table.setItem(i, c, new QTableWidgetItem(cells[c]));
   }
   table.horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);

@@ -125,7 +125,7 @@ void RigPanel::refresh(const FeedStatus& st) {
   if (st.have_record)
     for (int i = 0; i < kFingerCount; ++i)
       gauges_[std::size_t(i)]->set_values(st.latest.target_kPa[i], st.latest.setpoint_kPa[i], st.latest.monitor_kPa[i],
-                                          p_max);
+                                          p_max, st.latest.t_s);
 }
 
 }  // namespace palprig::gui

@@ -40,6 +40,7 @@ class SceneView final : public QWidget {
   // The participant's view: the stiffness map hidden too (it would show the tumors), and the
   // marks placed so far (x, y in mm; drawn numbered). Right-click asks for a mark there.
   void set_map_visible(bool on);
+  bool map_visible() const noexcept { return map_visible_; }
   void set_marks(const std::vector<QPointF>& marks_mm);
   // The pulse-localisation participant's view hides the arteries (and their names) too.
   void set_arteries_visible(bool on);

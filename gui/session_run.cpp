@@ -96,6 +96,23 @@ void SessionRun::start_pulse(const StudySessionRequest& request, PulsePersonFact
   });
 }
 
+void SessionRun::start_training(const TrainingRequest& request, const PreparedTraining& prepared, PersonFactory person,
+                                PulsePersonFactory pulse_person) {
+  launch([this, request, prepared, person = std::move(person), pulse_person = std::move(pulse_person)] {
+    QueuedListener listener(this);
+    QueuedPulseListener pulse_listener(this);
+    TrainingFrontEnd front;
+    front.person = person;
+    front.pulse_person = pulse_person;
+    front.listener = &listener;
+    front.pulse_listener = &pulse_listener;
+    const TrainingOutcome out = run_training_session(request, prepared, front, *control_);
+    if (out.scored)
+      QMetaObject::invokeMethod(
+          this, [this, out] { emit trainingScored(out); }, Qt::QueuedConnection);
+  });
+}
+
 void SessionRun::launch(std::function<void()> session) {
   abort_and_wait();
   control_->restart();

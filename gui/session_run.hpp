@@ -14,6 +14,7 @@
 
 #include "sessions/pulse_study.hpp"
 #include "sessions/study_session.hpp"
+#include "sessions/training_session.hpp"
 
 namespace palprig::gui {
 
@@ -31,6 +32,11 @@ class SessionRun final : public QObject {
   // while waiting for the participant or holding a pause), ended, refused and finished as above,
   // and the pulse trials as pulseTrialStarted / pulseTrialCommitted.
   void start_pulse(const StudySessionRequest& request, PulsePersonFactory person);
+  // A trainee's next session (sessions/training_session's run_training_session, prepared on the
+  // GUI thread so the participant screen knows its cases): the signals of start() or start_pulse()
+  // as its level's task is, then trainingScored (a completed session) before finished.
+  void start_training(const TrainingRequest& request, const PreparedTraining& prepared, PersonFactory person,
+                      PulsePersonFactory pulse_person);
   bool running() const noexcept { return running_; }
   bool paused() const noexcept { return control_->paused(); }
 
@@ -50,6 +56,8 @@ class SessionRun final : public QObject {
   void ended(const palprig::SessionEnd& end);
   void pulseTrialStarted(const palprig::PulseTrialStart& start, const palprig::PulseCondition& condition);
   void pulseTrialCommitted(const palprig::PulseTrialRecord& trial, int total);
+  // A training session completed and was scored: its benchmark and the trainee's standing after.
+  void trainingScored(const palprig::TrainingOutcome& outcome);
   void refused(const QString& line, int exit_code);  // the CLI's one line; 2 input, 1 rig
   void finished();                                   // after ended() or refused(): the thread is gone
 

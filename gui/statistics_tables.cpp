@@ -1,4 +1,5 @@
 #include "gui/statistics_tables.hpp"
+#include "gui/counted_text.hpp"
 
 #include <QHeaderView>
 #include <QTableWidget>
@@ -7,10 +8,6 @@
 namespace palprig::gui {
 
 namespace {
-
-QString number(double v, int decimals = 3) {
-  return std::isfinite(v) ? QString::number(v, 'f', decimals) : QStringLiteral("n/a");
-}
 
 void set_cell(QTableWidget& table, int row, int column, const QString& text, const QString& tip = {}) {
   auto* item = new QTableWidgetItem(text);
@@ -38,19 +35,22 @@ void add_rows(QTableWidget& table, const TrialSummary& summary, const QString& p
     set_cell(table, row, ppv_column, measure_text(r.measures.ppv));
     set_cell(table, row, acc_column, measure_text(r.measures.acc));
     set_cell(table, row, rt_column,
-             std::isfinite(r.mean_rt_s) ? number(r.mean_rt_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_s, 2)
-                                        : QStringLiteral("n/a"));
+             std::isfinite(r.mean_rt_s)
+                 ? number_text(r.mean_rt_s, 2) + QStringLiteral(" ± ") + number_text(r.sd_rt_s, 2)
+                 : QStringLiteral("n/a"));
     set_cell(table, row, rt_after_column,
              std::isfinite(r.mean_rt_after_stimulus_s)
-                 ? number(r.mean_rt_after_stimulus_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_after_stimulus_s, 2)
-                 : QStringLiteral("n/a"));
-    set_cell(table, row, rt_reached_column,
-             std::isfinite(r.mean_rt_from_reached_s)
-                 ? number(r.mean_rt_from_reached_s, 2) + QStringLiteral(" ± ") + number(r.sd_rt_from_reached_s, 2)
+                 ? number_text(r.mean_rt_after_stimulus_s, 2) + QStringLiteral(" ± ") +
+                       number_text(r.sd_rt_after_stimulus_s, 2)
                  : QStringLiteral("n/a"));
     set_cell(
-        table, row, confidence_column,
-        r.rated > 0 ? number(r.mean_confidence, 2) + QStringLiteral(" (n=%1)").arg(r.rated) : QStringLiteral("n/a"));
+        table, row, rt_reached_column,
+        std::isfinite(r.mean_rt_from_reached_s)
+            ? number_text(r.mean_rt_from_reached_s, 2) + QStringLiteral(" ± ") + number_text(r.sd_rt_from_reached_s, 2)
+            : QStringLiteral("n/a"));
+    set_cell(table, row, confidence_column,
+             r.rated > 0 ? number_text(r.mean_confidence, 2) + QStringLiteral(" (n=%1)").arg(r.rated)
+                         : QStringLiteral("n/a"));
   }
 }
 
@@ -58,7 +58,9 @@ void add_rows(QTableWidget& table, const TrialSummary& summary, const QString& p
 
 QString measure_text(const Measure& m) {
   if (!m.defined) return QStringLiteral("n/a");
-  return QStringLiteral("%1 [%2, %3] n=%4").arg(number(m.value), number(m.lower), number(m.upper)).arg(m.n);
+  return QStringLiteral("%1 [%2, %3] n=%4")
+      .arg(number_text(m.value), number_text(m.lower), number_text(m.upper))
+      .arg(m.n);
 }
 
 void fill_measures_table(QTableWidget& table, const TrialStatistics& s) {
@@ -101,12 +103,12 @@ void fill_comparisons_table(QTableWidget& table, const TrialStatistics& s) {
     const auto& t = *c.test;
     set_cell(table, row, 2,
              QStringLiteral("%1 s (n=%2) vs %3 s (n=%4)")
-                 .arg(number(t.mean_x, 3))
+                 .arg(number_text(t.mean_x, 3))
                  .arg(t.n_x)
-                 .arg(number(t.mean_y, 3))
+                 .arg(number_text(t.mean_y, 3))
                  .arg(t.n_y));
-    const QString p_text = t.p < 1e-4 ? QStringLiteral("p < 0.0001") : QStringLiteral("p = ") + number(t.p, 4);
-    set_cell(table, row, 3, QStringLiteral("t(%1) = %2, %3").arg(number(t.df, 0), number(t.t, 3), p_text));
+    const QString p_text = t.p < 1e-4 ? QStringLiteral("p < 0.0001") : QStringLiteral("p = ") + number_text(t.p, 4);
+    set_cell(table, row, 3, QStringLiteral("t(%1) = %2, %3").arg(number_text(t.df, 0), number_text(t.t, 3), p_text));
     set_cell(table, row, 4, t.p < alpha ? QObject::tr("different (p < %1)").arg(alpha) : QObject::tr("not different"));
   }
   for (const MeasureComparison& c : s.measures) {
@@ -115,13 +117,13 @@ void fill_comparisons_table(QTableWidget& table, const TrialStatistics& s) {
     const auto& p = c.comparison;
     set_cell(table, row, 0, QString::fromStdString(c.measure) + QObject::tr(" (combined interval, eq. 10)"));
     set_cell(table, row, 1, QString::fromStdString(c.first + " vs " + c.second));
-    set_cell(
-        table, row, 2,
-        QStringLiteral("%1 vs %2, difference %3").arg(number(p.first.p), number(p.second.p), number(p.difference)));
+    set_cell(table, row, 2,
+             QStringLiteral("%1 vs %2, difference %3")
+                 .arg(number_text(p.first.p), number_text(p.second.p), number_text(p.difference)));
     // Eq. 10: different when |difference| exceeds the combined interval; say which way it went.
     set_cell(table, row, 3,
              QStringLiteral("|difference| %1 combined CI %2")
-                 .arg(p.significant ? QStringLiteral(">") : QStringLiteral("<="), number(p.combined_interval)));
+                 .arg(p.significant ? QStringLiteral(">") : QStringLiteral("<="), number_text(p.combined_interval)));
     set_cell(table, row, 4, p.significant ? QObject::tr("different") : QObject::tr("not different"));
   }
   table.resizeColumnsToContents();

@@ -17,7 +17,7 @@ namespace palprig {
 
 namespace {
 
-constexpr int kHeartbeatMs = 10;
+constexpr int kIgtlHeartbeatMs = 10;
 const char* const kSpecForm = "igtl:HOST:PORT (an OpenIGTLink server: PlusServer, 3D Slicer, palprig igtl-replay)";
 
 }  // namespace
@@ -79,7 +79,7 @@ void IgtlInput::reader_main() noexcept {
     int other_names = 0;
     while (!stop_.load(std::memory_order_acquire)) {
       poses.clear();
-      const IgtlPoseReader::Status got = reader_socket_->poll(poses, kHeartbeatMs);
+      const IgtlPoseReader::Status got = reader_socket_->poll(poses, kIgtlHeartbeatMs);
       const std::int64_t now = mono_ns();
       if (got != IgtlPoseReader::Status::ok) {
         st.connected = false;

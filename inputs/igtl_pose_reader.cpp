@@ -45,7 +45,7 @@ std::string connect_failure(const std::string& host, int port) {
 }  // namespace
 
 IgtlPoseReader::IgtlPoseReader(const std::string& host, int port, const std::string& what)
-    : client_(std::make_unique<Client>()), buffer_(16 * 1024) {
+    : client_(std::make_unique<Client>()), buffer_(std::size_t{16} * 1024) {
   // The library prints its failure to std::cerr in four lines of its own; palprig says it in one.
   std::ostringstream library_says;
   std::streambuf* cerr_buffer = std::cerr.rdbuf(library_says.rdbuf());

@@ -17,7 +17,7 @@ struct IgtlStreamDecoder::Messages {
   igtl::PositionMessage::Pointer position = igtl::PositionMessage::New();
 };
 
-IgtlStreamDecoder::IgtlStreamDecoder() : msg_(new Messages) { pending_.reserve(64 * 1024); }
+IgtlStreamDecoder::IgtlStreamDecoder() : msg_(new Messages) { pending_.reserve(std::size_t{64} * 1024); }
 IgtlStreamDecoder::~IgtlStreamDecoder() { delete msg_; }
 
 namespace {

@@ -51,7 +51,7 @@ void TabletInput::reader_main() noexcept {
       events.clear();
       if (duration_s_ > 0 && !started_.load(std::memory_order_acquire)) {
         // A recording starts playing with the loop, not when it was loaded.
-        timespec pause{0, kHeartbeatMs * 1'000'000};
+        timespec pause{0, long{kHeartbeatMs} * 1'000'000};
         nanosleep(&pause, nullptr);
         out.heartbeat_ns = mono_ns();
         published_.publish(out);

@@ -145,7 +145,7 @@ namespace {
 
 constexpr std::size_t kMaxRecordingBytes = kMaxRecordingFileBytes;  // ~10 hours of a busy pen; also if it grows
 
-std::string seconds_text(double s) {
+std::string duration_text(double s) {
   std::ostringstream o;
   o << s << " s";
   return o.str();
@@ -284,7 +284,8 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
       }
       if (!line.empty() && line[0] != '#') {
         if (const std::string problem = description_problem(line, format_minor, last_tag); !problem.empty())
-          throw InputError(file, "line " + std::to_string(line_no), problem + ", got '" + line + "'");
+          throw InputError(file, "line " + std::to_string(line_no),
+                           std::string(problem).append(", got '").append(line).append("'"));
         if (line[0] == 'A') ranged_axes.insert(std::stoul(line.substr(2), nullptr, 16));  // checked hex above
       }
       description += line + "\n";
@@ -365,12 +366,12 @@ PenRecording read_pen_recording(const std::filesystem::path& path, const PenReco
       if (gap_s > limits.max_gap_s)
         throw PenRecordingBoundError(
             file, where,
-            "events at most " + seconds_text(limits.max_gap_s) + " apart, got a gap of " + seconds_text(gap_s));
+            "events at most " + duration_text(limits.max_gap_s) + " apart, got a gap of " + duration_text(gap_s));
       const double length_s = event_time_s(ev) - event_time_s(r.events.front());
       if (length_s > limits.max_length_s)
         throw PenRecordingBoundError(file, where,
-                                     "a recording at most " + seconds_text(limits.max_length_s) +
-                                         " long (times count from the first event), got " + seconds_text(length_s));
+                                     "a recording at most " + duration_text(limits.max_length_s) +
+                                         " long (times count from the first event), got " + duration_text(length_s));
     }
     pressure_seen = pressure_seen || (ev.type == EV_ABS && ev.code == ABS_PRESSURE);
     touch_seen = touch_seen || (ev.type == EV_KEY && ev.code == BTN_TOUCH && ev.value != 0);

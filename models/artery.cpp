@@ -12,7 +12,7 @@ namespace palprig {
 
 namespace {
 
-void need(bool ok, const std::string& what) {
+void need_artery(bool ok, const std::string& what) {
   if (!ok) throw BadInput(what);
 }
 
@@ -27,32 +27,34 @@ double segment_distance(const Point2_mm& p, const Point2_mm& a, const Point2_mm&
 
 Artery::Artery(ArterySpec spec, double pad_radius_mm) : spec_(std::move(spec)) {
   const std::string who = "artery '" + spec_.name + "': ";
-  need(spec_.path.size() >= 2, who + "its path needs at least 2 points");
+  need_artery(spec_.path.size() >= 2, who + "its path needs at least 2 points");
   for (const Point2_mm& p : spec_.path)
-    need(std::isfinite(p.x_mm) && std::isfinite(p.y_mm), who + "path points must be finite");
-  need(std::isfinite(spec_.radius_mm) && spec_.radius_mm > 0, who + "radius must be > 0");
-  need(std::isfinite(spec_.depth_mm) && spec_.depth_mm >= spec_.radius_mm,
-       who + "depth of the centreline must be at least the radius (the artery lies under the skin)");
-  need(std::isfinite(spec_.amplitude_kPa) && spec_.amplitude_kPa >= 0, who + "amplitude must be >= 0");
-  need(std::isfinite(spec_.rate_bpm) && spec_.rate_bpm >= kMinPulseRateBpm && spec_.rate_bpm <= kMaxPulseRateBpm,
-       who + "rate must lie in 20..250 BPM");
-  need(std::isfinite(spec_.phase_offset), who + "phase offset must be finite");
+    need_artery(std::isfinite(p.x_mm) && std::isfinite(p.y_mm), who + "path points must be finite");
+  need_artery(std::isfinite(spec_.radius_mm) && spec_.radius_mm > 0, who + "radius must be > 0");
+  need_artery(std::isfinite(spec_.depth_mm) && spec_.depth_mm >= spec_.radius_mm,
+              who + "depth of the centreline must be at least the radius (the artery lies under the skin)");
+  need_artery(std::isfinite(spec_.amplitude_kPa) && spec_.amplitude_kPa >= 0, who + "amplitude must be >= 0");
+  need_artery(std::isfinite(spec_.rate_bpm) && spec_.rate_bpm >= kMinPulseRateBpm && spec_.rate_bpm <= kMaxPulseRateBpm,
+              who + "rate must lie in 20..250 BPM");
+  need_artery(std::isfinite(spec_.phase_offset), who + "phase offset must be finite");
   const ForceWindow& fw = spec_.force_window;
-  need(std::isfinite(fw.min_N) && std::isfinite(fw.max_N) && fw.min_N >= 0 && fw.min_N < fw.max_N,
-       who + "force window needs 0 <= min < max");
-  need(std::isfinite(fw.gain) && fw.gain > 0, who + "force window gain must be > 0");
-  need(std::isfinite(pad_radius_mm) && pad_radius_mm > 0, who + "fingertip pad radius must be > 0");
-  need(std::isfinite(spec_.release_margin_mm) && spec_.release_margin_mm >= 0, who + "release margin must be >= 0");
+  need_artery(std::isfinite(fw.min_N) && std::isfinite(fw.max_N) && fw.min_N >= 0 && fw.min_N < fw.max_N,
+              who + "force window needs 0 <= min < max");
+  need_artery(std::isfinite(fw.gain) && fw.gain > 0, who + "force window gain must be > 0");
+  need_artery(std::isfinite(pad_radius_mm) && pad_radius_mm > 0, who + "fingertip pad radius must be > 0");
+  need_artery(std::isfinite(spec_.release_margin_mm) && spec_.release_margin_mm >= 0,
+              who + "release margin must be >= 0");
 
   const double depth = spec_.depth_mm;
   const double delta =
       spec_.activation_margin_mm >= 0 ? spec_.activation_margin_mm : std::hypot(depth, pad_radius_mm) - depth;
-  need(std::isfinite(delta), who + "activation margin must be finite");
+  need_artery(std::isfinite(delta), who + "activation margin must be finite");
   on_mm_ = depth + delta;  // R + h + delta
   off_mm_ = on_mm_ + spec_.release_margin_mm;
   range_mm_ = spec_.range_mm > 0 ? spec_.range_mm : off_mm_;
-  need(std::isfinite(range_mm_) && range_mm_ > depth,
-       who + "source range must exceed the depth (" + std::to_string(depth) + " mm), or the pulse is never felt");
+  need_artery(
+      std::isfinite(range_mm_) && range_mm_ > depth,
+      who + "source range must exceed the depth (" + std::to_string(depth) + " mm), or the pulse is never felt");
 
   // Sources at both ends and evenly between, no further apart than one range radius (000).
   std::vector<double> cumulative{0.0};
@@ -60,9 +62,10 @@ Artery::Artery(ArterySpec spec, double pad_radius_mm) : spec_(std::move(spec)) {
     cumulative.push_back(cumulative.back() + std::hypot(spec_.path[i].x_mm - spec_.path[i - 1].x_mm,
                                                         spec_.path[i].y_mm - spec_.path[i - 1].y_mm));
   length_mm_ = cumulative.back();
-  need(length_mm_ > 0, who + "path has zero length");
+  need_artery(length_mm_ > 0, who + "path has zero length");
   const std::size_t n = static_cast<std::size_t>(std::ceil(length_mm_ / range_mm_)) + 1;
-  need(n <= kMaxSourcesPerArtery, who + "too many pulse sources (" + std::to_string(n) + "); use a larger range");
+  need_artery(n <= kMaxSourcesPerArtery,
+              who + "too many pulse sources (" + std::to_string(n) + "); use a larger range");
   std::size_t seg = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const double s = length_mm_ * static_cast<double>(k) / static_cast<double>(n - 1);

@@ -33,6 +33,8 @@ struct RegulatorDynamics {
   double max_residual_kPa = 0;
   std::size_t samples = 0;
   double rate_hz = 0;  // the rate the samples were taken at
+  // A lag of its own while exhausting (time_constant_s is then the filling one); 0: one lag.
+  double exhaust_time_constant_s = 0;
 };
 
 // Below this R^2 a channel's identified dynamics are not trusted: its lag compensation stays off

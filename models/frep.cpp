@@ -15,7 +15,7 @@ namespace {
 
 constexpr double kOutside = -1.0;  // value reported for points outside a node's box
 
-void need(bool ok, const char* what) {
+void need_shape(bool ok, const char* what) {
   if (!ok) throw BadInput(std::string("FrepShape: ") + what);
 }
 
@@ -52,8 +52,8 @@ FrepShape::Node FrepShape::add(const NodeData& n) {
 }
 
 FrepShape::Node FrepShape::sphere(const Point3_mm& centre, double radius_mm) {
-  need(finite(centre), "sphere centre must be finite");
-  need(std::isfinite(radius_mm) && radius_mm > 0, "sphere radius must be > 0");
+  need_shape(finite(centre), "sphere centre must be finite");
+  need_shape(std::isfinite(radius_mm) && radius_mm > 0, "sphere radius must be > 0");
   NodeData n{};
   n.kind = Kind::sphere;
   n.a = centre;
@@ -63,8 +63,8 @@ FrepShape::Node FrepShape::sphere(const Point3_mm& centre, double radius_mm) {
 }
 
 FrepShape::Node FrepShape::ellipsoid(const Point3_mm& centre, const std::array<double, 3>& r, double yaw_deg) {
-  need(finite(centre) && std::isfinite(yaw_deg), "ellipsoid centre and yaw must be finite");
-  for (double v : r) need(std::isfinite(v) && v > 0, "ellipsoid radii must be > 0");
+  need_shape(finite(centre) && std::isfinite(yaw_deg), "ellipsoid centre and yaw must be finite");
+  for (double v : r) need_shape(std::isfinite(v) && v > 0, "ellipsoid radii must be > 0");
   NodeData n{};
   n.kind = Kind::ellipsoid;
   n.a = centre;
@@ -79,9 +79,9 @@ FrepShape::Node FrepShape::ellipsoid(const Point3_mm& centre, const std::array<d
 
 FrepShape::Node FrepShape::superellipsoid(const Point3_mm& centre, const std::array<double, 3>& r, double exponent,
                                           double yaw_deg) {
-  need(finite(centre) && std::isfinite(yaw_deg), "super-ellipsoid centre and yaw must be finite");
-  for (double v : r) need(std::isfinite(v) && v > 0, "super-ellipsoid radii must be > 0");
-  need(std::isfinite(exponent) && exponent >= 2, "super-ellipsoid exponent must be >= 2");
+  need_shape(finite(centre) && std::isfinite(yaw_deg), "super-ellipsoid centre and yaw must be finite");
+  for (double v : r) need_shape(std::isfinite(v) && v > 0, "super-ellipsoid radii must be > 0");
+  need_shape(std::isfinite(exponent) && exponent >= 2, "super-ellipsoid exponent must be >= 2");
   NodeData n{};
   n.kind = Kind::superellipsoid;
   n.a = centre;
@@ -97,8 +97,8 @@ FrepShape::Node FrepShape::superellipsoid(const Point3_mm& centre, const std::ar
 }
 
 FrepShape::Node FrepShape::tube(const Point3_mm& a, const Point3_mm& b, double radius_mm) {
-  need(finite(a) && finite(b), "tube ends must be finite");
-  need(std::isfinite(radius_mm) && radius_mm > 0, "tube radius must be > 0");
+  need_shape(finite(a) && finite(b), "tube ends must be finite");
+  need_shape(std::isfinite(radius_mm) && radius_mm > 0, "tube radius must be > 0");
   NodeData n{};
   n.kind = Kind::tube;
   n.a = a;
@@ -109,8 +109,8 @@ FrepShape::Node FrepShape::tube(const Point3_mm& a, const Point3_mm& b, double r
 }
 
 FrepShape::Node FrepShape::blobs(const std::vector<Blob>& terms, double threshold) {
-  need(!terms.empty(), "a blobby object needs at least one blob");
-  need(std::isfinite(threshold) && threshold > 0, "blob threshold must be > 0");
+  need_shape(!terms.empty(), "a blobby object needs at least one blob");
+  need_shape(std::isfinite(threshold) && threshold > 0, "blob threshold must be > 0");
   NodeData n{};
   n.kind = Kind::blobs;
   n.p0 = threshold;
@@ -121,9 +121,9 @@ FrepShape::Node FrepShape::blobs(const std::vector<Blob>& terms, double threshol
   Box3_mm box = empty_box();
   const double per_blob = threshold / static_cast<double>(terms.size());
   for (const Blob& t : terms) {
-    need(finite(t.centre), "blob centre must be finite");
-    need(std::isfinite(t.k) && t.k > 0, "blob weight k must be > 0");
-    for (double s : t.inverse_scale_per_mm2) need(std::isfinite(s) && s > 0, "blob inverse scales must be > 0");
+    need_shape(finite(t.centre), "blob centre must be finite");
+    need_shape(std::isfinite(t.k) && t.k > 0, "blob weight k must be > 0");
+    for (double s : t.inverse_scale_per_mm2) need_shape(std::isfinite(s) && s > 0, "blob inverse scales must be > 0");
     terms_.push_back(t);
     if (t.k <= per_blob) continue;  // this blob can never carry a point on its own share
     const double q_max = std::log(t.k / per_blob);
@@ -135,14 +135,14 @@ FrepShape::Node FrepShape::blobs(const std::vector<Blob>& terms, double threshol
 }
 
 FrepShape::Node FrepShape::unite(const std::vector<Node>& parts) {
-  need(!parts.empty(), "a union needs at least one part");
+  need_shape(!parts.empty(), "a union needs at least one part");
   NodeData n{};
   n.kind = Kind::unite;
   n.first = static_cast<std::int32_t>(children_.size());
   n.count = static_cast<std::int32_t>(parts.size());
   n.box = empty_box();
   for (Node c : parts) {
-    need(c >= 0 && c < static_cast<Node>(nodes_.size()), "union part is not a node of this shape");
+    need_shape(c >= 0 && c < static_cast<Node>(nodes_.size()), "union part is not a node of this shape");
     children_.push_back(c);
     n.box = merge(n.box, nodes_[c].box);
   }
@@ -201,14 +201,14 @@ void FrepShape::index_union(NodeData& n) {
 }
 
 FrepShape::Node FrepShape::intersect(const std::vector<Node>& parts) {
-  need(!parts.empty(), "an intersection needs at least one part");
+  need_shape(!parts.empty(), "an intersection needs at least one part");
   NodeData n{};
   n.kind = Kind::intersect;
   n.first = static_cast<std::int32_t>(children_.size());
   n.count = static_cast<std::int32_t>(parts.size());
   bool first = true;
   for (Node c : parts) {
-    need(c >= 0 && c < static_cast<Node>(nodes_.size()), "intersection part is not a node of this shape");
+    need_shape(c >= 0 && c < static_cast<Node>(nodes_.size()), "intersection part is not a node of this shape");
     children_.push_back(c);
     n.box = first ? nodes_[c].box : overlap(n.box, nodes_[c].box);
     first = false;
@@ -218,7 +218,7 @@ FrepShape::Node FrepShape::intersect(const std::vector<Node>& parts) {
 
 FrepShape::Node FrepShape::subtract(Node from, Node cut) {
   const Node count = static_cast<Node>(nodes_.size());
-  need(from >= 0 && from < count && cut >= 0 && cut < count, "difference parts must be nodes of this shape");
+  need_shape(from >= 0 && from < count && cut >= 0 && cut < count, "difference parts must be nodes of this shape");
   NodeData n{};
   n.kind = Kind::subtract;
   n.first = static_cast<std::int32_t>(children_.size());
@@ -230,9 +230,9 @@ FrepShape::Node FrepShape::subtract(Node from, Node cut) {
 }
 
 FrepShape::Node FrepShape::scaled(Node child, const Point3_mm& about, const std::array<double, 3>& f) {
-  need(child >= 0 && child < static_cast<Node>(nodes_.size()), "scaled shape is not a node of this shape");
-  need(finite(about), "scaling centre must be finite");
-  for (double v : f) need(std::isfinite(v) && v > 0, "scale factors must be > 0");
+  need_shape(child >= 0 && child < static_cast<Node>(nodes_.size()), "scaled shape is not a node of this shape");
+  need_shape(finite(about), "scaling centre must be finite");
+  for (double v : f) need_shape(std::isfinite(v) && v > 0, "scale factors must be > 0");
   NodeData n{};
   n.kind = Kind::scaled;
   n.a = about;
@@ -252,7 +252,7 @@ FrepShape::Node FrepShape::scaled(Node child, const Point3_mm& about, const std:
 }
 
 void FrepShape::set_root(Node n) {
-  need(n >= 0 && n < static_cast<Node>(nodes_.size()), "root is not a node of this shape");
+  need_shape(n >= 0 && n < static_cast<Node>(nodes_.size()), "root is not a node of this shape");
   root_ = n;
 }
 

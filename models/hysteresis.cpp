@@ -14,8 +14,7 @@ void PrandtlIshlinskii::reset(double x_kPa) noexcept {
 double PrandtlIshlinskii::apply(double x_kPa) noexcept {
   double y = linear_weight * x_kPa;
   for (std::size_t i = 0; i < operator_count; ++i) {
-    const double r = thresholds_kPa[i];
-    state_kPa[i] = std::max(x_kPa - r, std::min(x_kPa + r, state_kPa[i]));
+    state_kPa[i] = std::max(x_kPa - thresholds_kPa[i], std::min(x_kPa + falling_threshold_kPa(i), state_kPa[i]));
     y += weights[i] * state_kPa[i];
   }
   return y;
@@ -25,8 +24,8 @@ double PrandtlIshlinskii::apply_exhausting(double x_kPa, double bottom_kPa) noex
   double y = linear_weight * x_kPa;
   const double room = std::max(x_kPa - bottom_kPa, 0.0);
   for (std::size_t i = 0; i < operator_count; ++i) {
-    const double r = thresholds_kPa[i];
-    state_kPa[i] = std::max(x_kPa - r, std::min(x_kPa + std::min(r, room), state_kPa[i]));
+    state_kPa[i] =
+        std::max(x_kPa - thresholds_kPa[i], std::min(x_kPa + std::min(falling_threshold_kPa(i), room), state_kPa[i]));
     y += weights[i] * state_kPa[i];
   }
   return y;
@@ -36,7 +35,12 @@ bool PrandtlIshlinskii::valid() const noexcept {
   if (!(linear_weight > 0) || !std::isfinite(linear_weight) || operator_count > kMaxPlayOperators) return false;
   double prev = 0.0;
   for (std::size_t i = 0; i < operator_count; ++i) {
-    if (!std::isfinite(thresholds_kPa[i]) || !(thresholds_kPa[i] > prev)) return false;
+    if (asymmetric) {
+      if (!std::isfinite(thresholds_kPa[i]) || !(thresholds_kPa[i] > 0)) return false;
+      if (!std::isfinite(falling_thresholds_kPa[i]) || !(falling_thresholds_kPa[i] > 0)) return false;
+    } else if (!std::isfinite(thresholds_kPa[i]) || !(thresholds_kPa[i] > prev)) {
+      return false;
+    }
     if (!std::isfinite(weights[i]) || weights[i] < 0) return false;
     prev = thresholds_kPa[i];
   }
@@ -86,19 +90,20 @@ double PrandtlIshlinskii::input_for(double y_kPa, double bottom_kPa) const noexc
     double y = linear_weight * x;
     const double room = std::max(x - bottom_kPa, 0.0);
     for (std::size_t i = 0; i < operator_count; ++i)
-      y += weights[i] * std::max(x - thresholds_kPa[i], std::min(x + std::min(thresholds_kPa[i], room), state_kPa[i]));
+      y += weights[i] *
+           std::max(x - thresholds_kPa[i], std::min(x + std::min(falling_threshold_kPa(i), room), state_kPa[i]));
     return y;
   };
-  // The kinks: where a play's lower edge (x - r) or upper edge (x + r, or 2x - bottom near the
-  // bottom) meets its state, and where the upper edge's slope changes (x = bottom + r).
+  // The kinks: where a play's lower edge (x - r+) or upper edge (x + r-, or 2x - bottom near the
+  // bottom) meets its state, and where the upper edge's slope changes (x = bottom + r-).
   std::array<double, 3 * kMaxPlayOperators + 1> kink{};
   std::size_t n = 0;
   kink[n++] = bottom_kPa;
   for (std::size_t i = 0; i < operator_count; ++i) {
-    const double r = thresholds_kPa[i], z = state_kPa[i];
-    kink[n++] = z + r;
-    kink[n++] = bottom_kPa + r;
-    kink[n++] = z - r >= bottom_kPa + r ? z - r : 0.5 * (z + bottom_kPa);
+    const double r_up = thresholds_kPa[i], r_down = falling_threshold_kPa(i), z = state_kPa[i];
+    kink[n++] = z + r_up;
+    kink[n++] = bottom_kPa + r_down;
+    kink[n++] = z - r_down >= bottom_kPa + r_down ? z - r_down : 0.5 * (z + bottom_kPa);
   }
   std::sort(kink.begin(), kink.begin() + std::ptrdiff_t(n));
   double x0 = bottom_kPa, y0 = output(bottom_kPa);

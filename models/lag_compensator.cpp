@@ -8,12 +8,18 @@ namespace palprig {
 namespace {
 
 struct LagStep {
-  double alpha;   // first-order step fraction this tick
+  double alpha;   // first-order step fraction this tick, in the direction being solved for
   double max_dy;  // regulator output slew allowance this tick
   double max_du;  // command slew allowance this tick (<= 0: unlimited)
   double lo, hi;  // command bounds
+  // The step fractions filling (command above the output) and exhausting (below it): the same
+  // for a regulator with one lag.
+  double alpha_fill, alpha_exhaust;
 
-  double advance(double y, double u) const noexcept { return y + std::clamp(alpha * (u - y), -max_dy, max_dy); }
+  double advance(double y, double u) const noexcept {
+    const double a = u >= y ? alpha_fill : alpha_exhaust;
+    return y + std::clamp(a * (u - y), -max_dy, max_dy);
+  }
 };
 
 constexpr int kBrakeHorizon = 400;  // ticks simulated to check a command (0.4 s at 1 kHz)
@@ -87,15 +93,19 @@ double LagCompensator::command(const RegulatorLag& lag, double want_ahead_kPa, d
     last_command_kPa_ = u;
     return u;
   }
-  const double tau = lag.time_constant_s;
+  const double tau = lag.time_constant_s, tau_exhaust = lag.exhaust_tau_s();
   LagStep s;
-  s.alpha = tau > 0 ? -std::expm1(-dt_s / tau) : 1.0;
+  s.alpha_fill = tau > 0 ? -std::expm1(-dt_s / tau) : 1.0;
+  s.alpha_exhaust = tau_exhaust > 0 ? -std::expm1(-dt_s / tau_exhaust) : 1.0;
+  s.alpha = s.alpha_fill;
   s.max_dy = lag.slew_kPa_per_s > 0 ? lag.slew_kPa_per_s * dt_s : 1e300;
   s.max_du = max_step_kPa;
   s.lo = lo_kPa;
   s.hi = hi_kPa;
   const double want = std::clamp(want_ahead_kPa, lo_kPa, hi_kPa);
   const double y = predicted_kPa_;
+  // A fall is pushed by the exhaust, a rise by the supply: the lag of the way the output goes.
+  if (want < y) s.alpha = s.alpha_exhaust;
 
   // The reachable commands this tick, and the one that lands the model on `want` next tick.
   double u_min = lo_kPa, u_max = hi_kPa;

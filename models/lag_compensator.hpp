@@ -28,6 +28,12 @@ struct RegulatorLag {
   double dead_time_s = 0.005;
   double time_constant_s = 0.050;
   double slew_kPa_per_s = 2000.0;
+  // A regulator that exhausts at another rate than it fills: time_constant_s is then the
+  // filling lag and this the exhausting one; 0: one lag both ways.
+  double exhaust_time_constant_s = 0.0;
+  double exhaust_tau_s() const noexcept {
+    return exhaust_time_constant_s > 0 ? exhaust_time_constant_s : time_constant_s;
+  }
 };
 
 class LagCompensator {

@@ -10,13 +10,13 @@
 namespace palprig {
 
 namespace {
-void need(bool ok, const std::string& what) {
+void need_waveform(bool ok, const std::string& what) {
   if (!ok) throw BadInput(what);
 }
 }  // namespace
 
 PulseWaveform PulseWaveform::rectangular(double duty) {
-  need(std::isfinite(duty) && duty > 0 && duty < 1, "duty cycle must lie strictly between 0 and 1");
+  need_waveform(std::isfinite(duty) && duty > 0 && duty < 1, "duty cycle must lie strictly between 0 and 1");
   PulseWaveform w;
   w.shape_ = WaveShape::rectangular;
   w.param_ = duty;
@@ -24,8 +24,8 @@ PulseWaveform PulseWaveform::rectangular(double duty) {
 }
 
 PulseWaveform PulseWaveform::sawtooth(double rise_fraction) {
-  need(std::isfinite(rise_fraction) && rise_fraction > 0 && rise_fraction < 1,
-       "saw-tooth rise fraction must lie strictly between 0 and 1");
+  need_waveform(std::isfinite(rise_fraction) && rise_fraction > 0 && rise_fraction < 1,
+                "saw-tooth rise fraction must lie strictly between 0 and 1");
   PulseWaveform w;
   w.shape_ = WaveShape::sawtooth;
   w.param_ = rise_fraction;
@@ -33,20 +33,23 @@ PulseWaveform PulseWaveform::sawtooth(double rise_fraction) {
 }
 
 PulseWaveform PulseWaveform::table(const std::vector<double>& t_s, const std::vector<double>& value) {
-  need(!t_s.empty() && t_s.size() == value.size(), "waveform table is empty");
-  need(t_s.size() >= 4, "waveform table needs at least 4 samples over one beat, got " + std::to_string(t_s.size()));
+  need_waveform(!t_s.empty() && t_s.size() == value.size(), "waveform table is empty");
+  need_waveform(t_s.size() >= 4,
+                "waveform table needs at least 4 samples over one beat, got " + std::to_string(t_s.size()));
   for (std::size_t i = 0; i < t_s.size(); ++i) {
-    need(std::isfinite(t_s[i]) && std::isfinite(value[i]),
-         "waveform table row " + std::to_string(i + 1) + " is not finite");
+    need_waveform(std::isfinite(t_s[i]) && std::isfinite(value[i]),
+                  "waveform table row " + std::to_string(i + 1) + " is not finite");
     if (i > 0)
-      need(t_s[i] > t_s[i - 1], "waveform table times must increase strictly (row " + std::to_string(i + 1) + ")");
+      need_waveform(t_s[i] > t_s[i - 1],
+                    "waveform table times must increase strictly (row " + std::to_string(i + 1) + ")");
   }
   const auto [lo_it, hi_it] = std::minmax_element(value.begin(), value.end());
   const double lo = *lo_it, hi = *hi_it, range = hi - lo;
-  need(range > 0, "waveform table is flat (no pulse in it)");
-  need(std::abs(value.back() - value.front()) <= 0.05 * range,
-       "waveform table is not periodic: its last value must return to its first (within 5 % of the range) to close "
-       "the beat");
+  need_waveform(range > 0, "waveform table is flat (no pulse in it)");
+  need_waveform(
+      std::abs(value.back() - value.front()) <= 0.05 * range,
+      "waveform table is not periodic: its last value must return to its first (within 5 % of the range) to close "
+      "the beat");
   PulseWaveform w;
   w.shape_ = WaveShape::table;
   w.param_ = 0;

@@ -48,7 +48,7 @@ constexpr std::array<LateralPoint, 5> kLateral{{
     {0.0, -0.75, 0.0875, kRingBearing},
 }};
 
-void need(bool ok, const std::string& what) {
+void need_field(bool ok, const std::string& what) {
   if (!ok) throw BadInput("StiffnessField: " + what);
 }
 
@@ -87,31 +87,32 @@ double PressModel::reach_mm(double force_N) const noexcept { return kReachInCont
 
 StiffnessField::StiffnessField(TissueDefinition d) : def_(std::move(d)) {
   const BodyOutline& b = def_.body;
-  need(std::isfinite(b.centre.x_mm) && std::isfinite(b.centre.y_mm), "body centre must be finite");
-  need(positive(b.half_width_mm) && positive(b.half_height_mm), "body half sizes must be > 0");
-  need(std::isfinite(b.exponent) && b.exponent >= 2, "body exponent must be >= 2");
-  need(!def_.layers.empty(), "at least one tissue layer is needed");
-  need(def_.layers.size() <= kMaxLayers, "at most " + std::to_string(kMaxLayers) + " layers");
-  need(def_.inclusions.size() <= kMaxInclusions, "at most " + std::to_string(kMaxInclusions) + " inclusions");
-  need(positive(def_.felt.soft_kPa) && positive(def_.felt.hard_kPa) && def_.felt.soft_kPa < def_.felt.hard_kPa,
-       "felt range needs 0 < soft < hard");
-  need(def_.support_kPa == 0 || positive(def_.support_kPa), "support modulus must be > 0 (or 0: none)");
-  need(std::isfinite(def_.respiration.period_s) && def_.respiration.period_s >= 0, "breathing period must be >= 0");
+  need_field(std::isfinite(b.centre.x_mm) && std::isfinite(b.centre.y_mm), "body centre must be finite");
+  need_field(positive(b.half_width_mm) && positive(b.half_height_mm), "body half sizes must be > 0");
+  need_field(std::isfinite(b.exponent) && b.exponent >= 2, "body exponent must be >= 2");
+  need_field(!def_.layers.empty(), "at least one tissue layer is needed");
+  need_field(def_.layers.size() <= kMaxLayers, "at most " + std::to_string(kMaxLayers) + " layers");
+  need_field(def_.inclusions.size() <= kMaxInclusions, "at most " + std::to_string(kMaxInclusions) + " inclusions");
+  need_field(positive(def_.felt.soft_kPa) && positive(def_.felt.hard_kPa) && def_.felt.soft_kPa < def_.felt.hard_kPa,
+             "felt range needs 0 < soft < hard");
+  need_field(def_.support_kPa == 0 || positive(def_.support_kPa), "support modulus must be > 0 (or 0: none)");
+  need_field(std::isfinite(def_.respiration.period_s) && def_.respiration.period_s >= 0,
+             "breathing period must be >= 0");
   const PressModel& pm = def_.press;
-  need(positive(pm.finger_radius_mm) && positive(pm.reference_force_N) && positive(pm.reference_indentation_mm) &&
-           positive(pm.min_contact_radius_mm),
-       "press model values must be > 0");
+  need_field(positive(pm.finger_radius_mm) && positive(pm.reference_force_N) && positive(pm.reference_indentation_mm) &&
+                 positive(pm.min_contact_radius_mm),
+             "press model values must be > 0");
 
   log_soft_ = std::log(def_.felt.soft_kPa);
   inv_log_span_ = 1.0 / (std::log(def_.felt.hard_kPa) - log_soft_);
   double depth = 0;
   for (std::size_t i = 0; i < def_.layers.size(); ++i) {
     const TissueLayer& l = def_.layers[i];
-    need(positive(l.thickness_mm) && positive(l.stiffness_kPa),
-         "layer '" + l.name + "' needs thickness and modulus > 0");
-    need(std::isfinite(l.drag.f_stick_N) && l.drag.f_stick_N >= 0 && std::isfinite(l.drag.d_lat_max_mm) &&
-             l.drag.d_lat_max_mm >= 0 && std::isfinite(l.drag.relax_s) && l.drag.relax_s >= 0,
-         "layer '" + l.name + "' needs a drag with f_stick_N, d_lat_max_mm and relax_s >= 0");
+    need_field(positive(l.thickness_mm) && positive(l.stiffness_kPa),
+               "layer '" + l.name + "' needs thickness and modulus > 0");
+    need_field(std::isfinite(l.drag.f_stick_N) && l.drag.f_stick_N >= 0 && std::isfinite(l.drag.d_lat_max_mm) &&
+                   l.drag.d_lat_max_mm >= 0 && std::isfinite(l.drag.relax_s) && l.drag.relax_s >= 0,
+               "layer '" + l.name + "' needs a drag with f_stick_N, d_lat_max_mm and relax_s >= 0");
     depth += l.thickness_mm;
     layer_bottom_mm_[i] = depth;
     layer_level_[i] = normalised(l.stiffness_kPa);
@@ -119,11 +120,11 @@ StiffnessField::StiffnessField(TissueDefinition d) : def_(std::move(d)) {
   support_level_ = def_.support_kPa > 0 ? normalised(def_.support_kPa) : layer_level_[def_.layers.size() - 1];
   for (std::size_t i = 0; i < def_.inclusions.size(); ++i) {
     const Inclusion& inc = def_.inclusions[i];
-    need(inc.shape.defined(), "inclusion '" + inc.name + "' has no shape");
-    need(positive(inc.stiffness_kPa), "inclusion '" + inc.name + "' needs a modulus > 0");
+    need_field(inc.shape.defined(), "inclusion '" + inc.name + "' has no shape");
+    need_field(positive(inc.stiffness_kPa), "inclusion '" + inc.name + "' needs a modulus > 0");
     const Point3_mm& e = inc.breathing_excursion_mm;
-    need(std::isfinite(e.x_mm) && std::isfinite(e.y_mm) && std::isfinite(e.z_mm),
-         "inclusion '" + inc.name + "' breathing excursion must be finite");
+    need_field(std::isfinite(e.x_mm) && std::isfinite(e.y_mm) && std::isfinite(e.z_mm),
+               "inclusion '" + inc.name + "' breathing excursion must be finite");
     inclusion_level_[i] = normalised(inc.stiffness_kPa);
     inclusion_rigid_[i] = inc.kind == InclusionKind::bone || inc.kind == InclusionKind::ligament;
     inclusion_box_[i] = inc.shape.bounds();

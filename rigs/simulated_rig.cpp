@@ -16,7 +16,10 @@ BackendCapabilities SimulatedRig::capabilities() const {
 }
 
 void SimulatedRig::do_open() {
-  for (auto& p : plants_) p.reset(0.0);
+  // A fresh regulator each time the rig opens, its noise from the seed again: a session that
+  // opens the window's simulated rig after the live loop ran on it gives what `experiment run`
+  // gives on a rig opened for it (same seeds, same trials).
+  for (auto& p : plants_) p = PneumaticPlant(p.params());
   command_kPa_ = {};
   started_ = false;
   cells_.clear();

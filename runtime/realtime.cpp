@@ -16,7 +16,7 @@ namespace {
 // mlockall, locked) before the first tick needs them. noinline + the volatile buffer keep the
 // compiler from dropping the touches.
 __attribute__((noinline)) void prefault_stack(std::size_t bytes) noexcept {
-  constexpr std::size_t kChunk = 16 * 1024;
+  constexpr std::size_t kChunk = std::size_t{16} * 1024;
   volatile unsigned char buf[kChunk];
   for (std::size_t i = 0; i < kChunk; i += 4096) buf[i] = 0;
   asm volatile("" : : "r"(buf) : "memory");  // the touches are the point: keep them

@@ -21,10 +21,10 @@ struct RealtimeOptions {
   bool fifo = true;
   int fifo_priority = 80;
   bool lock_memory = true;
-  bool pm_qos = true;                             // off: a laptop on battery
-  long timer_slack_ns = 1;                        // 0: leave the thread's slack alone
-  std::size_t prefault_stack_bytes = 256 * 1024;  // 0: no prefault
-  int cpu = -1;                                   // -1: no pinning
+  bool pm_qos = true;                                          // off: a laptop on battery
+  long timer_slack_ns = 1;                                     // 0: leave the thread's slack alone
+  std::size_t prefault_stack_bytes = std::size_t{256} * 1024;  // 0: no prefault
+  int cpu = -1;                                                // -1: no pinning
 };
 
 struct RealtimeSetup {

@@ -32,6 +32,7 @@ OpenedPulseSession open_pulse_session(SqliteTrialStore& store, const PulseProtoc
   opened.participant = head.participant;
   opened.seed = head.seed;
   opened.start_position = head.start_position;
+  opened.ordinal = head.ordinal;
   opened.resumed = head.resumed;
   return opened;
 }

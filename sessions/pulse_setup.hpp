@@ -20,6 +20,7 @@ struct OpenedPulseSession {
   ParticipantRecord participant;
   std::uint64_t seed = 0;
   int start_position = 0;
+  int ordinal = 1;  // the participant's n-th session with the protocol
   bool resumed = false;
 };
 

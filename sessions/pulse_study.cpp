@@ -14,9 +14,16 @@ namespace palprig {
 SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactory& person,
                            PulseSessionListener& listener, const RunControl& control) {
   refuse_server_store_for_task_session(r.store_location);
-  const PulseProtocol from_file = load_pulse_protocol(r.protocol_file);
+  const PulseProtocol from_file =
+      r.protocol_document
+          ? parse_pulse_protocol(*r.protocol_document, r.protocol_file.string(), r.protocol_file.parent_path())
+          : load_pulse_protocol(r.protocol_file);
   std::uint64_t sim_seed = 0;
-  const bool simulated = simulated_participant(r.participant_code, sim_seed);
+  bool simulated = simulated_participant(r.participant_code, sim_seed);
+  if (r.simulated_seed) {
+    simulated = true;
+    sim_seed = *r.simulated_seed;
+  }
   if (!simulated && !person) {
     throw InputError("command line", "participant",
                      "sim:SEED for a pulse protocol (a person palpates with pen input, which the terminal session does "
@@ -35,6 +42,7 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
   SqliteTrialStore store(r.store_location, TrialStore::Access::read_write);
   PulseObserverModel model;
   model.seed = sim_seed;
+  model.skill = r.model.skill;
   PulseSessionRequest opening;
   opening.participant_code = r.participant_code;
   opening.simulated = simulated;
@@ -53,7 +61,7 @@ SessionEnd run_pulse_study(const StudySessionRequest& r, const PulsePersonFactor
   PulseStore pulse_store(store);
   std::unique_ptr<PulseParticipant> participant;
   if (simulated) {
-    model.seed = resumed_simulation_seed(sim_seed, session.start_position);
+    model.seed = resumed_simulation_seed(session_simulation_seed(sim_seed, session.ordinal), session.start_position);
     participant = std::make_unique<SimulatedPulseObserver>(model, rig.config.layout);
   } else {
     participant = person(session.protocol);

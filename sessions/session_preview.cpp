@@ -21,6 +21,7 @@ bool store_exists(const std::string& location) {
 SessionPreview preview_session(const std::string& store_location, const Protocol& protocol,
                                const std::string& participant_code) {
   SessionPreview preview;
+  int ordinal = 1;
   if (store_exists(store_location)) {
     preview.store_found = true;
     const auto store = open_trial_store(store_location, TrialStore::Access::read_only);
@@ -36,11 +37,12 @@ SessionPreview preview_session(const std::string& store_location, const Protocol
         preview.committed = store->read_session_trials(*id);
         return preview;
       }
+      ordinal = sessions_with_protocol(*store, participant_code, protocol.name) + 1;
     } else {
       preview.participant_number = store->next_participant_number();
     }
   }
-  preview.seed = default_session_seed(participant_code, protocol.name);
+  preview.seed = default_session_seed(participant_code, protocol.name, ordinal);
   preview.plan = make_session_plan(protocol, preview.participant_number, preview.seed);
   return preview;
 }
@@ -48,9 +50,11 @@ SessionPreview preview_session(const std::string& store_location, const Protocol
 PulseSessionPreview preview_pulse_session(const std::string& store_location, const PulseProtocol& protocol,
                                           const std::string& participant_code) {
   PulseSessionPreview preview;
+  int ordinal = 1;
   if (store_exists(store_location) && !is_server_store_location(store_location)) {
     SqliteTrialStore store(store_location, TrialStore::Access::read_only);
     const auto who = store.find_participant(participant_code);
+    if (who) ordinal = sessions_with_protocol(store, participant_code, protocol.name) + 1;
     if (const auto id = who ? store.find_unfinished_session(*who, protocol.name) : std::nullopt) {
       // The order a resumed session continues with: the stored protocol and seed.
       PulseStore pulse(store, false);
@@ -65,7 +69,7 @@ PulseSessionPreview preview_pulse_session(const std::string& store_location, con
     }
   }
   preview.protocol = protocol;
-  preview.seed = default_session_seed(participant_code, protocol.name);
+  preview.seed = default_session_seed(participant_code, protocol.name, ordinal);
   preview.order = pulse_trial_order(protocol, preview.seed);
   return preview;
 }

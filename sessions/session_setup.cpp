@@ -5,8 +5,26 @@
 
 namespace palprig {
 
-std::uint64_t default_session_seed(const std::string& participant_code, const std::string& protocol_name) {
-  return stable_hash(participant_code + '\n' + protocol_name);
+std::uint64_t default_session_seed(const std::string& participant_code, const std::string& protocol_name, int ordinal) {
+  const std::uint64_t first = stable_hash(participant_code + '\n' + protocol_name);
+  if (ordinal <= 1) return first;
+  return stable_hash(std::to_string(first) + '\n' + std::to_string(ordinal));
+}
+
+int sessions_with_protocol(TrialStore& store, const std::string& participant_code, const std::string& protocol_name,
+                           std::optional<std::int64_t> up_to_session) {
+  int n = 0;
+  for (const SessionOverview& s : store.list_sessions()) {
+    if (s.participant.code == participant_code && s.protocol_name == protocol_name &&
+        (!up_to_session || s.id <= *up_to_session))
+      ++n;
+  }
+  return n;
+}
+
+std::uint64_t session_simulation_seed(std::uint64_t sim_seed, int ordinal) noexcept {
+  if (ordinal <= 1) return sim_seed;
+  return sim_seed ^ (0xD1B54A32D192ED03ULL * static_cast<std::uint64_t>(ordinal));
 }
 
 void refuse_server_store_for_task_session(const std::string& store_location) {
@@ -65,10 +83,13 @@ OpenedSessionHead open_task_session(TrialStore& store, const std::string& protoc
     opened.seed = stored.seed;
     opened.start_position = stored.completed_trials;
     opened.resumed = true;
+    opened.ordinal = sessions_with_protocol(store, request.participant_code, protocol_name, stored.id);
     return opened;
   }
   opened.participant = store.enrol(request.participant_code, request.simulated);
-  opened.seed = request.seed ? *request.seed : default_session_seed(request.participant_code, protocol_name);
+  opened.ordinal = sessions_with_protocol(store, request.participant_code, protocol_name) + 1;
+  opened.seed =
+      request.seed ? *request.seed : default_session_seed(request.participant_code, protocol_name, opened.ordinal);
   opened.session_id = steps.create(opened.participant, opened.seed);
   return opened;
 }
@@ -102,6 +123,7 @@ OpenedSession open_session(TrialStore& store, const Protocol& protocol, const Se
   opened.participant = head.participant;
   opened.start_position = head.start_position;
   opened.resumed = head.resumed;
+  opened.ordinal = head.ordinal;
   return opened;
 }
 

@@ -27,6 +27,7 @@ struct OpenedSession {
   ParticipantRecord participant;
   int start_position = 0;
   bool resumed = false;
+  int ordinal = 1;  // this participant's n-th session with this protocol (session_ordinal)
 };
 
 struct SessionRequest {
@@ -61,6 +62,7 @@ struct OpenedSessionHead {
   std::uint64_t seed = 0;
   int start_position = 0;
   bool resumed = false;
+  int ordinal = 1;
 };
 // Resume (claimed; a changed protocol file refused) or start anew (participant enrolled, seed
 // given or derived, session created); every refusal is an InputError.
@@ -85,8 +87,19 @@ void refuse_changed_protocol(std::int64_t session_id, const nlohmann::json& stor
 // `store` field) before anything is opened, rather than creating a local file named after it.
 void refuse_server_store_for_task_session(const std::string& store_location);
 
-// The default seed of a participant's session with a protocol.
-std::uint64_t default_session_seed(const std::string& participant_code, const std::string& protocol_name);
+// The default seed of a participant's `ordinal`-th session with a protocol: the first is a hash
+// of code and protocol name (the same pair always gets the same first order), each later one a
+// different seed derived from it, so a trainee's second session of a rehearsal protocol is not
+// the first again, and a fresh store gives the same sequence of sessions.
+std::uint64_t default_session_seed(const std::string& participant_code, const std::string& protocol_name,
+                                   int ordinal = 1);
+// How many sessions (any status) this participant has in the store with this protocol name, of
+// ids up to `up_to_session` when given: a new session's ordinal is this plus one.
+int sessions_with_protocol(TrialStore& store, const std::string& participant_code, const std::string& protocol_name,
+                           std::optional<std::int64_t> up_to_session = std::nullopt);
+// The simulated participant's seed in its `ordinal`-th session with a protocol (the first keeps
+// sim:SEED's seed, so stored pilots and documented figures stay as they were).
+std::uint64_t session_simulation_seed(std::uint64_t sim_seed, int ordinal) noexcept;
 
 // Commits each completed trial in its own transaction and forwards events to the UI.
 class SessionRecorder final : public RunnerListener {

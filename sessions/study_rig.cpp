@@ -23,6 +23,10 @@ SessionRig::SessionRig(Rig* given, const RigConfig& config, const std::string& h
     rig = opened_.get();
   }
   lease_.emplace(rig->lease(holder));
+  // The window's simulated rig, which its live loop drove until now: opened again, so the
+  // session starts from a regulator at rest with its noise seeded afresh, as on a rig opened for
+  // it (the command line's). Hardware is what it is and is not touched.
+  if (given && config.backend == "simulated") lease_->backend().open();
 }
 
 std::string save_session_fault_record(const RigStimulus& output, const std::string& what_ran,

@@ -8,6 +8,7 @@
 #include "experiments/rig_stimulus.hpp"
 #include "experiments/session_clock.hpp"
 #include "experiments/session_loop.hpp"
+#include "experiments/trial_cases.hpp"
 #include "study/trial_feedback.hpp"
 #include "formats/calibration_file.hpp"
 #include "formats/rig_file.hpp"
@@ -75,9 +76,16 @@ std::uint64_t resumed_simulation_seed(std::uint64_t seed, int start_position) no
 SessionEnd run_study_session(const StudySessionRequest& request, const PersonFactory& person, SessionListener& listener,
                              const RunControl& control) {
   // Everything is loaded and validated before the rig is opened.
-  const Protocol from_file = load_protocol(request.protocol_file);
+  const Protocol from_file = request.protocol_document
+                                 ? parse_protocol(*request.protocol_document, request.protocol_file.string(),
+                                                  request.protocol_file.parent_path())
+                                 : load_protocol(request.protocol_file);
   std::uint64_t sim_seed = 0;
-  const bool simulated = parse_simulated_participant(request.participant_code, sim_seed);
+  bool simulated = parse_simulated_participant(request.participant_code, sim_seed);
+  if (request.simulated_seed) {
+    simulated = true;
+    sim_seed = *request.simulated_seed;
+  }
   if (!simulated && request.participant_code.rfind("sim:", 0) == 0) {
     throw InputError("command line", "participant",
                      "sim:SEED with a decimal seed, got '" + request.participant_code + "'");
@@ -137,14 +145,13 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   const OpenedSession session = open_session(*store, from_file, opening);
   const Protocol& protocol = session.protocol;
 
-  std::optional<SceneFile> scene;
-  if (protocol.task == TaskKind::localisation) scene = load_scene_file(protocol.localisation.scene_file);
+  // Localisation: each trial's case (a listed scene, or a generated case made from its seed).
+  TrialCases cases(protocol, session.plan.seed);
 
   std::unique_ptr<Participant> participant;
   if (simulated) {
-    model.seed = resumed_simulation_seed(sim_seed, session.start_position);
-    participant =
-        std::make_unique<SimulatedParticipant>(model, protocol, scene ? scene->scene.get() : nullptr, config.layout);
+    model.seed = resumed_simulation_seed(session_simulation_seed(sim_seed, session.ordinal), session.start_position);
+    participant = std::make_unique<SimulatedParticipant>(model, protocol, nullptr, config.layout);
   } else {
     participant = person(protocol);
   }
@@ -164,7 +171,7 @@ SessionEnd run_study_session(const StudySessionRequest& request, const PersonFac
   output.observe_with(request.tick_observer);
   ListenerBridge bridge(*store, session.session_id, session.plan, protocol, listener);
   TrialRunner runner(protocol, session.plan, session.start_position, output, bridge,
-                     scene ? scene->scene.get() : nullptr, participant->pen());
+                     protocol.task == TaskKind::localisation ? &cases : nullptr, participant->pen());
 
   SessionTelemetry telemetry(request.telemetry_file, output, *clock);
 

@@ -32,6 +32,10 @@ class Rig;           // controller/rig_lease.hpp
 
 struct StudySessionRequest {
   std::filesystem::path protocol_file;
+  // The protocol as a document instead of read from protocol_file (which then names it in
+  // messages and resolves its relative paths): a training session's protocol, made for it
+  // (sessions/training_session.hpp).
+  std::optional<nlohmann::json> protocol_document;
   std::string participant_code;            // a person's code, or sim:SEED for the simulated observer
   std::string store_location;              // trial store (open_trial_store): SQLite file, created when missing,
                                            // or the lab's postgresql:// server
@@ -42,6 +46,9 @@ struct StudySessionRequest {
   std::optional<std::uint64_t> seed;       // of the generated order; default: derived from participant and protocol
   double speed = 0;  // simulated participant: 0 = as fast as possible on simulated time, else times real time
   SimulatedObserverModel model;  // simulated participant's parameters (its seed comes from sim:SEED)
+  // The simulated observer answers for participant_code (a pilot trainee's code) with this
+  // seed, as sim:SEED would; none: only a sim:SEED code is simulated.
+  std::optional<std::uint64_t> simulated_seed;
   bool person_palpates = false;  // the front end gives a person a pen (GUI); a terminal does not
   // Every rig tick of the session (target, setpoint, monitor per finger, pen, faults) as
   // `palprig run --telemetry` writes it (.bin: binary, else CSV), on the session clock that

@@ -43,6 +43,7 @@ OpenedThresholdSession open_threshold_session(SqliteTrialStore& store, const Thr
   opened.participant = head.participant;
   opened.seed = head.seed;
   opened.start_position = head.start_position;
+  opened.ordinal = head.ordinal;
   opened.resumed = head.resumed;
   return opened;
 }

@@ -57,7 +57,7 @@ ThresholdEnd run_threshold_study(const ThresholdStudyRequest& request, const Thr
 
   std::unique_ptr<ThresholdParticipant> participant;
   if (simulated) {
-    model.seed = resumed_simulation_seed(sim_seed, session.start_position);
+    model.seed = resumed_simulation_seed(session_simulation_seed(sim_seed, session.ordinal), session.start_position);
     participant = std::make_unique<SimulatedThresholdObserver>(model);
   } else {
     participant = person(session.protocol.method);

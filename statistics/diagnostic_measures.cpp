@@ -4,9 +4,7 @@
 
 namespace palprig {
 
-namespace {
-
-Measure measure(std::int64_t k, std::int64_t n, double confidence) {
+Measure proportion_measure(std::int64_t k, std::int64_t n, double confidence) {
   Measure m;
   m.k = k;
   m.n = n;
@@ -20,14 +18,12 @@ Measure measure(std::int64_t k, std::int64_t n, double confidence) {
   return m;
 }
 
-}  // namespace
-
 DiagnosticMeasures diagnostic_measures(const ConfusionCounts& c, double confidence) {
   DiagnosticMeasures d;
-  d.se = measure(c.tp, c.tp + c.fn, confidence);
-  d.sp = measure(c.tn, c.tn + c.fp, confidence);
-  d.ppv = measure(c.tp, c.tp + c.fp, confidence);
-  d.acc = measure(c.tp + c.tn, c.total(), confidence);
+  d.se = proportion_measure(c.tp, c.tp + c.fn, confidence);
+  d.sp = proportion_measure(c.tn, c.tn + c.fp, confidence);
+  d.ppv = proportion_measure(c.tp, c.tp + c.fp, confidence);
+  d.acc = proportion_measure(c.tp + c.tn, c.total(), confidence);
   return d;
 }
 

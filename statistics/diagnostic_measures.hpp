@@ -39,5 +39,7 @@ struct DiagnosticMeasures {
 };
 
 DiagnosticMeasures diagnostic_measures(const ConfusionCounts& counts, double confidence = 0.95);
+// k of n with its Wilson interval (undefined when n is 0): a measure with another denominator.
+Measure proportion_measure(std::int64_t k, std::int64_t n, double confidence = 0.95);
 
 }  // namespace palprig

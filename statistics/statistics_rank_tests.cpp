@@ -18,12 +18,6 @@ constexpr std::size_t kExactLimit = 50;
 // Forced exact p: the counting tables grow as m * m * n (rank sum) and n^3 (signed rank).
 constexpr double kMaxExactTableCells = 5e7;
 
-void require_finite(std::span<const double> values) {
-  for (double v : values) {
-    if (!std::isfinite(v)) throw StatisticsError("a value is not a finite number");
-  }
-}
-
 double sign(double x) noexcept { return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0); }
 
 double two_sided_normal_p(double z) {

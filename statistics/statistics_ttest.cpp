@@ -29,12 +29,6 @@ double two_sided_t_p(double t, double df) {
 
 namespace {
 
-void require_finite(std::span<const double> values) {
-  for (double v : values) {
-    if (!std::isfinite(v)) throw StatisticsError("a value is not a finite number");
-  }
-}
-
 // Fill t, p and the interval from estimate, standard error and df.
 void finish(TTestResult& r) {
   if (!(r.standard_error > 0.0)) {

@@ -160,4 +160,22 @@ void JournaledTrialStore::commit_trials(std::int64_t session_id, std::span<const
   pusher_->committed();
 }
 
+void JournaledTrialStore::begin_training_session(const TrainingSessionRecord& record) {
+  server_.begin_training_session(record);
+  TrainingSessionRecord local = record;
+  local.session_id = journal_session(record.session_id);
+  journal_.begin_training_session(local);
+}
+
+void JournaledTrialStore::complete_training_session(std::int64_t session_id, const nlohmann::json& scores,
+                                                    bool met_benchmark) {
+  const std::int64_t local = journal_session(session_id);
+  journal_.complete_training_session(local, scores, met_benchmark);
+  // The session may be marked synced already (it completed a moment ago): pushed once more, for
+  // its training row (the trials are there; pushes are idempotent).
+  auto again = journal_.database().prepare("UPDATE lab_store_sessions SET synced = 0 WHERE session_id = ?1");
+  again.bind(1, local).run();
+  pusher_->committed();
+}
+
 }  // namespace palprig

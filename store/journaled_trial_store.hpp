@@ -67,6 +67,19 @@ class JournaledTrialStore final : public TrialStore {
   }
   int next_participant_number() override { return server_.next_participant_number(); }
 
+  // Training: enrolments and history are read from and reserved on the server (every rig sees
+  // them; the server refuses a case given on another rig), and mirrored into the journal; a
+  // session's completion goes through the journal and is pushed with it.
+  void enrol_trainee(const std::string& code, const std::string& curriculum) override {
+    server_.enrol_trainee(code, curriculum);
+  }
+  std::vector<TraineeRecord> trainees() override { return server_.trainees(); }
+  std::vector<TrainingSessionRecord> training_sessions(const std::string& trainee) override {
+    return server_.training_sessions(trainee);
+  }
+  void begin_training_session(const TrainingSessionRecord& record) override;
+  void complete_training_session(std::int64_t session_id, const nlohmann::json& scores, bool met_benchmark) override;
+
   // Waits up to `timeout` for the pushes; returns the journal commits still pending.
   std::int64_t flush(std::chrono::milliseconds timeout) { return pusher_->flush(timeout); }
   const std::filesystem::path& journal_file() const noexcept { return journal_file_; }

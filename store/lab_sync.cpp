@@ -49,6 +49,12 @@ PushReport push_file_to_server(Database& file, PgConnection& server, const PushO
   if (options.journal_only) {
     wanted = [&](std::int64_t id) { return is_journal_session(id) && !links.at(id).synced; };
   }
+  // Trainees enrolled in this file (a rig that trained them offline, or a copied file).
+  if (const std::vector<SqlRow> trainees = read_sqlite_trainees(file); !trainees.empty()) {
+    PgTransaction tx(server);
+    pg_write_trainees(server, trainees);
+    tx.commit();
+  }
   for (LocalSession& local : read_sqlite_sessions(file, options.study, wanted)) {
     const bool journal_session = is_journal_session(local.id);
     ++report.sessions;
@@ -115,8 +121,17 @@ CopyReport copy_study(const std::string& from, const std::string& to, const std:
     for (LocalSession& s : read_sqlite_sessions(sqlite_source->database(), study))
       sessions.emplace_back(s.id, std::move(s.rows));
   }
+  // Trainees enrolled in the source go with their sessions (their training rows go with each
+  // session's rows).
+  const std::vector<SqlRow> trainees =
+      from_server ? pg_read_trainees(server_source->connection()) : read_sqlite_trainees(sqlite_source->database());
   if (to_server) {
     PostgresTrialStore target(*to_target, TrialStore::Access::read_write);
+    if (!trainees.empty()) {
+      PgTransaction tx(target.connection());
+      pg_write_trainees(target.connection(), trainees);
+      tx.commit();
+    }
     for (auto& [id, rows] : sessions) {
       rows.trials = from_server ? pg_read_trials(server_source->connection(), id, 0)
                                 : read_sqlite_trials(sqlite_source->database(), id, 0);
@@ -139,6 +154,11 @@ CopyReport copy_study(const std::string& from, const std::string& to, const std:
     const bool created = !std::filesystem::exists(to, ec);
     try {
       SqliteTrialStore target(to, TrialStore::Access::read_write);
+      if (!trainees.empty()) {
+        Transaction tx(target.database());
+        write_sqlite_trainees(target.database(), trainees);
+        tx.commit();
+      }
       for (auto& [id, rows] : sessions) {
         rows.trials = from_server ? pg_read_trials(server_source->connection(), id, 0)
                                   : read_sqlite_trials(sqlite_source->database(), id, 0);

@@ -14,7 +14,7 @@ namespace {
 
 // libpq's messages span lines ("...failed: Connection refused\n\tIs the server running...");
 // a refusal is one line.
-std::string trim(const char* text) {
+std::string one_line(const char* text) {
   std::string s;
   for (const char* p = text ? text : ""; *p; ++p) {
     if (*p == '\n' || *p == '\t') {
@@ -123,7 +123,7 @@ PgConnection::PgConnection(const PgTarget& target, int connect_timeout_s) : targ
   const char* values[] = {target.conninfo.c_str(), timeout.c_str(), nullptr, "palprig", nullptr};
   conn_ = PQconnectdbParams(keys, values, 1);
   if (!conn_ || PQstatus(conn_) != CONNECTION_OK) {
-    const std::string reason = conn_ ? trim(PQerrorMessage(conn_)) : std::string("out of memory");
+    const std::string reason = conn_ ? one_line(PQerrorMessage(conn_)) : std::string("out of memory");
     PQfinish(conn_);
     conn_ = nullptr;
     throw PgError("cannot connect to PostgreSQL at " + target_.describe() + ": " + reason, "", true, reason);
@@ -143,8 +143,8 @@ bool PgConnection::ok() const noexcept { return conn_ && PQstatus(conn_) == CONN
 void PgConnection::fail(std::string_view what, pg_result* r) {
   const char* state = r ? PQresultErrorField(r, PG_DIAG_SQLSTATE) : nullptr;
   std::string sqlstate = state ? state : "";
-  std::string reason = r ? trim(PQresultErrorMessage(r)) : std::string();
-  if (reason.empty()) reason = trim(PQerrorMessage(conn_));
+  std::string reason = r ? one_line(PQresultErrorMessage(r)) : std::string();
+  if (reason.empty()) reason = one_line(PQerrorMessage(conn_));
   PQclear(r);
   // Class 08 is "connection exception"; a broken socket gives no SQLSTATE at all.
   const bool lost = PQstatus(conn_) != CONNECTION_OK || sqlstate.rfind("08", 0) == 0 || sqlstate.rfind("57P", 0) == 0;

@@ -53,7 +53,7 @@ std::string scrub(std::string message, const std::string& secret) {
   return message;
 }
 
-std::string trim(std::string s) {
+std::string trim_end(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
   return s;
 }
@@ -78,7 +78,7 @@ PgTarget parse_pg_target(const std::string& uri) {
   char* error = nullptr;
   Options parsed(PQconninfoParse(uri.c_str(), &error));
   if (!parsed) {
-    std::string reason = error ? trim(error) : std::string("out of memory");
+    std::string reason = error ? trim_end(error) : std::string("out of memory");
     PQfreemem(error);
     throw InputError(
         shown.text, "URI",

@@ -133,6 +133,42 @@ INSERT INTO palprig_store (store_id)
       R"sql(
 ALTER TABLE trials ADD COLUMN stimulus_reached_s double precision;
 )sql",
+      // 6: the localisation case of each trial, as the SQLite store's schema 5 (existing trials
+      // keep NULL: they palpated their session's one scene), and the training tables: trainees
+      // enrolled in a curriculum, each training session's level, cases and scores, and the
+      // cases given to a trainee (never the same one twice, whichever rig gave it).
+      R"sql(
+ALTER TABLE trials ADD COLUMN case_name text;
+ALTER TABLE trials ADD COLUMN case_seed bigint;
+ALTER TABLE trials ADD COLUMN case_difficulty text;
+ALTER TABLE trials ADD COLUMN case_tumors integer;
+CREATE TABLE trainees (
+  code         text NOT NULL,
+  curriculum   text NOT NULL,
+  enrolled_utc text NOT NULL,
+  PRIMARY KEY (code, curriculum)
+);
+CREATE TABLE training_sessions (
+  session_id    bigint PRIMARY KEY REFERENCES sessions(id),
+  trainee       text NOT NULL,
+  curriculum    text NOT NULL,
+  level         integer NOT NULL,
+  level_name    text NOT NULL,
+  cases         text NOT NULL,
+  status        text NOT NULL CHECK (status IN ('running', 'completed')),
+  scores        text,
+  met_benchmark integer CHECK (met_benchmark IN (0, 1)),
+  started_utc   text NOT NULL,
+  finished_utc  text
+);
+CREATE INDEX training_sessions_by_trainee ON training_sessions (trainee);
+CREATE TABLE training_cases (
+  trainee    text NOT NULL,
+  case_key   text NOT NULL,
+  session_id bigint NOT NULL REFERENCES sessions(id),
+  PRIMARY KEY (trainee, case_key)
+);
+)sql",
   };
   return steps;
 }
@@ -150,7 +186,8 @@ void refuse_newer(PgConnection& db, int found) {
 }  // namespace
 
 std::size_t pg_trial_column_count(int schema_version) noexcept {
-  if (schema_version >= kPgSchemaReachedColumnFrom) return kTrialColumns.size();
+  if (schema_version >= kPgSchemaCaseColumnsFrom) return kTrialColumns.size();
+  if (schema_version >= kPgSchemaReachedColumnFrom) return kTrialColumnsBeforeCase;
   if (schema_version >= kPgSchemaRatingColumnsFrom) return kTrialColumnsBeforeReached;
   return kTrialColumnsBeforeRating;
 }

@@ -15,12 +15,15 @@
 namespace palprig {
 
 // 1: the trial store's tables; 2: session_locks; 3: trials.confidence, trials.stimulus_end_s;
-// 4: palprig_store (the store's own id); 5: trials.stimulus_reached_s.
-inline constexpr int kPgSchemaVersion = 5;
+// 4: palprig_store (the store's own id); 5: trials.stimulus_reached_s; 6: the trials' case
+// columns and the training tables (trainees, training_sessions, training_cases).
+inline constexpr int kPgSchemaVersion = 6;
 // The first version whose trials have the rating columns; older servers read them as NULL.
 inline constexpr int kPgSchemaRatingColumnsFrom = 3;
 // The first version whose trials have stimulus_reached_s; older servers read it as NULL.
 inline constexpr int kPgSchemaReachedColumnFrom = 5;
+// The first version with the trials' case columns and the training tables.
+inline constexpr int kPgSchemaCaseColumnsFrom = 6;
 // How many of kTrialColumns (store/session_rows.hpp) a server of this schema version has.
 std::size_t pg_trial_column_count(int schema_version) noexcept;
 // Readers (stats, export, copy from) need only the tables of version 1: an older lab server is

@@ -2,6 +2,7 @@
 
 #include "core/input_error.hpp"
 #include "store/postgres_schema.hpp"
+#include "store/training_rows.hpp"
 
 #include <algorithm>
 #include <functional>
@@ -19,7 +20,7 @@ PgParam param_of(const SqlValue& v) {
   return std::nullopt;
 }
 
-SqlValue read_value(const PgResult& r, int row, int column, char type) {
+SqlValue pg_read_value(const PgResult& r, int row, int column, char type) {
   if (r.is_null(row, column)) return std::monostate{};
   switch (type) {
     case 'i': return r.integer(row, column);
@@ -29,16 +30,16 @@ SqlValue read_value(const PgResult& r, int row, int column, char type) {
 }
 
 template <std::size_t N>
-SqlRow read_row(const PgResult& r, int row, int first_column, const std::array<SqlColumn, N>& columns) {
+SqlRow pg_read_row(const PgResult& r, int row, int first_column, const std::array<SqlColumn, N>& columns) {
   SqlRow out;
   out.reserve(N);
   for (std::size_t i = 0; i < N; ++i)
-    out.push_back(read_value(r, row, first_column + static_cast<int>(i), columns[i].type));
+    out.push_back(pg_read_value(r, row, first_column + static_cast<int>(i), columns[i].type));
   return out;
 }
 
 template <std::size_t N>
-std::string placeholders(std::size_t first) {
+std::string pg_placeholders(std::size_t first) {
   std::string s;
   for (std::size_t i = 0; i < N; ++i) s += (i ? ", $" : "$") + std::to_string(first + i);
   return s;
@@ -116,7 +117,7 @@ std::int64_t pg_push_session(PgConnection& db, const SessionRows& in, bool* adde
     PgResult ins =
         db.exec("INSERT INTO sessions (participant_id, session_uid, host_name, origin, " +
                     column_list(kSessionColumns) + ") VALUES ($1, $2, $3, $4, " +
-                    placeholders<kSessionColumns.size()>(5) + ") ON CONFLICT (session_uid) DO NOTHING RETURNING id",
+                    pg_placeholders<kSessionColumns.size()>(5) + ") ON CONFLICT (session_uid) DO NOTHING RETURNING id",
                 params);
     if (ins.rows() == 0) {
       id = db.exec("SELECT id FROM sessions WHERE session_uid = $1", {in.session_uid}).integer(0, 0);
@@ -133,6 +134,7 @@ std::int64_t pg_push_session(PgConnection& db, const SessionRows& in, bool* adde
     db.exec("UPDATE sessions SET status = 'completed', finished_utc = $2 WHERE id = $1 AND status <> 'completed'",
             {pg_text(id), param_of(in.session[kSessionFinishedUtc])});
   }
+  if (in.training) pg_write_training_row(db, id, *in.training, false);
   return id;
 }
 
@@ -188,6 +190,7 @@ namespace {
 
 std::vector<ServerSession> read_sessions_where(PgConnection& db, const std::string& where,
                                                const std::vector<PgParam>& params) {
+  const bool training = pg_has_training_tables(db);
   const PgResult r =
       db.exec("SELECT s.id, p.code, p.simulated, p.created_utc, s.session_uid, s.host_name, s.origin, " +
                   column_list(kSessionColumns, "s.") +
@@ -203,11 +206,12 @@ std::vector<ServerSession> read_sessions_where(PgConnection& db, const std::stri
     s.rows.session_uid = r.text(i, 4);
     s.rows.host_name = r.text(i, 5);
     s.rows.origin = r.text(i, 6);
-    s.rows.session = read_row(r, i, 7, kSessionColumns);
+    s.rows.session = pg_read_row(r, i, 7, kSessionColumns);
     const PgResult p = db.exec(
         "SELECT " + column_list(kPlannedColumns) + " FROM planned_trials WHERE session_id = $1 ORDER BY position",
         {pg_text(s.id)});
-    for (int j = 0; j < p.rows(); ++j) s.rows.planned.push_back(read_row(p, j, 0, kPlannedColumns));
+    for (int j = 0; j < p.rows(); ++j) s.rows.planned.push_back(pg_read_row(p, j, 0, kPlannedColumns));
+    if (training) s.rows.training = pg_read_training_row(db, s.id);
     sessions.push_back(std::move(s));
   }
   return sessions;
@@ -234,7 +238,7 @@ std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id,
   std::map<std::int64_t, std::size_t> index;
   for (int i = 0; i < r.rows(); ++i) {
     index[r.integer(i, 0)] = trials.size();
-    trials.push_back(TrialRows{read_row(r, i, 1, kTrialColumns), {}, {}});
+    trials.push_back(TrialRows{pg_read_row(r, i, 1, kTrialColumns), {}, {}});
   }
   const std::vector<PgParam> p{pg_text(session_id), pg_text(from_position)};
   const PgResult ts =
@@ -243,15 +247,68 @@ std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id,
                   "WHERE t.session_id = $1 AND t.position >= $2 ORDER BY ts.trial_id, ts.tumor COLLATE \"C\"",
               p);
   for (int i = 0; i < ts.rows(); ++i) {
-    trials[index.at(ts.integer(i, 0))].tumor_scores.push_back(read_row(ts, i, 1, kTumorScoreColumns));
+    trials[index.at(ts.integer(i, 0))].tumor_scores.push_back(pg_read_row(ts, i, 1, kTumorScoreColumns));
   }
   const PgResult mk = db.exec("SELECT m.trial_id, " + column_list(kMarkColumns, "m.") +
                                   " FROM marks m JOIN trials t ON t.id = m.trial_id "
                                   "WHERE t.session_id = $1 AND t.position >= $2 ORDER BY m.trial_id, m.mark",
                               p);
   for (int i = 0; i < mk.rows(); ++i)
-    trials[index.at(mk.integer(i, 0))].marks.push_back(read_row(mk, i, 1, kMarkColumns));
+    trials[index.at(mk.integer(i, 0))].marks.push_back(pg_read_row(mk, i, 1, kMarkColumns));
   return trials;
+}
+
+bool pg_has_training_tables(PgConnection& db) {
+  return !db.exec("SELECT to_regclass('training_sessions')").is_null(0, 0);
+}
+
+std::optional<SqlRow> pg_read_training_row(PgConnection& db, std::int64_t session_id) {
+  const PgResult r =
+      db.exec("SELECT " + column_list(kTrainingColumns) + " FROM training_sessions WHERE session_id = $1",
+              {pg_text(session_id)});
+  if (r.rows() == 0) return std::nullopt;
+  return pg_read_row(r, 0, 0, kTrainingColumns);
+}
+
+void pg_write_training_row(PgConnection& db, std::int64_t session_id, const SqlRow& row, bool refuse_repeats) {
+  const std::string trainee = std::get<std::string>(row.at(0));
+  for (const std::string& key : training_row_cases(row)) {
+    // The server's primary key keeps one session per (trainee, case), whichever rig asks.
+    const PgResult given = db.exec(
+        "INSERT INTO training_cases (trainee, case_key, session_id) VALUES ($1, $2, $3) "
+        "ON CONFLICT (trainee, case_key) DO UPDATE SET session_id = training_cases.session_id RETURNING session_id",
+        {trainee, key, pg_text(session_id)});
+    const std::int64_t holder = given.integer(0, 0);
+    if (holder != session_id && refuse_repeats) {
+      throw InputError(db.target().describe(), "training_cases",
+                       "a case trainee '" + trainee + "' was not given before (" + key + " was given in session " +
+                           std::to_string(holder) + ")");
+    }
+  }
+  std::vector<PgParam> params{pg_text(session_id)};
+  append_params(params, row);
+  db.exec("INSERT INTO training_sessions (session_id, " + column_list(kTrainingColumns) + ") VALUES ($1, " +
+              pg_placeholders<kTrainingColumns.size()>(2) +
+              ") ON CONFLICT (session_id) DO UPDATE SET status = excluded.status, scores = excluded.scores, "
+              "met_benchmark = excluded.met_benchmark, finished_utc = excluded.finished_utc "
+              "WHERE training_sessions.status <> 'completed'",
+          params);
+}
+
+std::vector<SqlRow> pg_read_trainees(PgConnection& db) {
+  std::vector<SqlRow> rows;
+  if (!pg_has_training_tables(db)) return rows;
+  const PgResult r =
+      db.exec("SELECT " + column_list(kTraineeColumns) + " FROM trainees ORDER BY code COLLATE \"C\", curriculum");
+  for (int i = 0; i < r.rows(); ++i) rows.push_back(pg_read_row(r, i, 0, kTraineeColumns));
+  return rows;
+}
+
+void pg_write_trainees(PgConnection& db, const std::vector<SqlRow>& rows) {
+  std::vector<PgParam> params;
+  for (const SqlRow& row : rows) append_params(params, row);
+  insert_many(db, "INSERT INTO trainees (" + column_list(kTraineeColumns) + ")", " ON CONFLICT DO NOTHING", {},
+              kTraineeColumns.size(), params);
 }
 
 }  // namespace palprig

@@ -33,4 +33,12 @@ std::vector<ServerSession> pg_read_sessions(PgConnection& db, const std::optiona
 std::optional<ServerSession> pg_read_session(PgConnection& db, std::int64_t session_id);
 std::vector<TrialRows> pg_read_trials(PgConnection& db, std::int64_t session_id, std::int64_t from_position);
 
+// Training (schema 6; an older server read as it is has none): as the SQLite file's
+// (store/sqlite_session_rows.hpp). The caller holds the transaction for the writes.
+bool pg_has_training_tables(PgConnection& db);
+std::optional<SqlRow> pg_read_training_row(PgConnection& db, std::int64_t session_id);
+void pg_write_training_row(PgConnection& db, std::int64_t session_id, const SqlRow& row, bool refuse_repeats);
+std::vector<SqlRow> pg_read_trainees(PgConnection& db);
+void pg_write_trainees(PgConnection& db, const std::vector<SqlRow>& rows);
+
 }  // namespace palprig

@@ -20,7 +20,7 @@ namespace palprig {
 
 namespace {
 
-SqlValue finite_or_null(double x) {
+SqlValue finite_or_sql_null(double x) {
   if (std::isfinite(x)) return x;
   return std::monostate{};
 }
@@ -76,9 +76,15 @@ TrialRows trial_rows_of(const TrialRecord& r) {
   t[11] = std::int64_t{r.answered ? 1 : 0};
   t[14] = r.onset_s;
   t[22] = utc_now_text();
-  t[kTrialStimulusEnd] = finite_or_null(r.stimulus_end_s);
-  t[kTrialStimulusReached] = finite_or_null(r.stimulus_reached_s);
+  t[kTrialStimulusEnd] = finite_or_sql_null(r.stimulus_end_s);
+  t[kTrialStimulusReached] = finite_or_sql_null(r.stimulus_reached_s);
   if (r.answered && r.confidence) t[kTrialConfidence] = std::int64_t{*r.confidence};
+  if (!discrimination && !r.case_name.empty()) {  // a case named by the runner (not a hand-made record)
+    t[kTrialCaseName] = r.case_name;
+    if (r.case_seed) t[kTrialCaseSeed] = static_cast<std::int64_t>(*r.case_seed);
+    if (r.case_difficulty) t[kTrialCaseDifficulty] = std::string(to_string(*r.case_difficulty));
+    t[kTrialCaseTumors] = std::int64_t{r.case_tumors};
+  }
   if (discrimination) {
     t[6] = r.combination_label;
     for (int f = 0; f < kFingerCount; ++f)
@@ -86,7 +92,7 @@ TrialRows trial_rows_of(const TrialRecord& r) {
     t[10] = trial_rows::flags_text(r.truth);
   }
   for (int f = 0; f < kFingerCount; ++f) {
-    t[static_cast<std::size_t>(15 + f)] = finite_or_null(r.felt_kPa[static_cast<std::size_t>(f)]);
+    t[static_cast<std::size_t>(15 + f)] = finite_or_sql_null(r.felt_kPa[static_cast<std::size_t>(f)]);
   }
   if (r.answered) {
     t[13] = r.response_time_s;

@@ -61,6 +61,13 @@ class PostgresTrialStore final : public TrialStore {
   std::vector<StoredTrial> read_session_trials(std::int64_t session_id) override;
   int next_participant_number() override;
 
+  // Training (store/postgres_training.cpp).
+  void enrol_trainee(const std::string& code, const std::string& curriculum) override;
+  std::vector<TraineeRecord> trainees() override;
+  std::vector<TrainingSessionRecord> training_sessions(const std::string& trainee) override;
+  void begin_training_session(const TrainingSessionRecord& record) override;
+  void complete_training_session(std::int64_t session_id, const nlohmann::json& scores, bool met_benchmark) override;
+
   // The session's global identity (what the journal and copies key on).
   std::string session_uid(std::int64_t session_id);
   PgConnection& connection() noexcept { return db_; }

@@ -48,9 +48,10 @@ inline constexpr std::array<SqlColumn, 7> kPlannedColumns{{{"position", 'i'},
 
 // trials without id and session_id; position first. Later schemas appended columns at the end:
 // confidence and stimulus_end_s with schema 2 (SQLite) / 3 (PostgreSQL), stimulus_reached_s
-// with schema 4 / 5. A store older than a column has the ones before it only (trial_column_count)
-// and reads the rest as NULL (trial_select_list).
-inline constexpr std::array<SqlColumn, 26> kTrialColumns{{{"position", 'i'},
+// with schema 4 / 5, the localisation case (case_name, case_seed, case_difficulty, case_tumors)
+// with schema 5 / 6. A store older than a column has the ones before it only
+// (trial_column_count) and reads the rest as NULL (trial_select_list).
+inline constexpr std::array<SqlColumn, 30> kTrialColumns{{{"position", 'i'},
                                                           {"block", 'i'},
                                                           {"condition", 't'},
                                                           {"mode", 't'},
@@ -75,11 +76,33 @@ inline constexpr std::array<SqlColumn, 26> kTrialColumns{{{"position", 'i'},
                                                           {"completed_utc", 't'},
                                                           {"confidence", 'i'},
                                                           {"stimulus_end_s", 'r'},
-                                                          {"stimulus_reached_s", 'r'}}};
-inline constexpr std::size_t kTrialConfidence = 23, kTrialStimulusEnd = 24, kTrialStimulusReached = 25;
+                                                          {"stimulus_reached_s", 'r'},
+                                                          {"case_name", 't'},
+                                                          {"case_seed", 'i'},
+                                                          {"case_difficulty", 't'},
+                                                          {"case_tumors", 'i'}}};
+inline constexpr std::size_t kTrialConfidence = 23, kTrialStimulusEnd = 24, kTrialStimulusReached = 25,
+                             kTrialCaseName = 26, kTrialCaseSeed = 27, kTrialCaseDifficulty = 28, kTrialCaseTumors = 29;
 // How many of kTrialColumns a store of each generation has.
 inline constexpr std::size_t kTrialColumnsBeforeRating = kTrialConfidence,
-                             kTrialColumnsBeforeReached = kTrialStimulusReached;
+                             kTrialColumnsBeforeReached = kTrialStimulusReached,
+                             kTrialColumnsBeforeCase = kTrialCaseName;
+
+// A training session's row (training_sessions without session_id), moved with its session: a
+// trainee's history travels wherever the session goes (store copy, journal pushes).
+inline constexpr std::array<SqlColumn, 10> kTrainingColumns{{{"trainee", 't'},
+                                                             {"curriculum", 't'},
+                                                             {"level", 'i'},
+                                                             {"level_name", 't'},
+                                                             {"cases", 't'},
+                                                             {"status", 't'},
+                                                             {"scores", 't'},
+                                                             {"met_benchmark", 'i'},
+                                                             {"started_utc", 't'},
+                                                             {"finished_utc", 't'}}};
+inline constexpr std::size_t kTrainingCases = 4, kTrainingStatus = 5;
+// A trainee's enrolment in a curriculum (trainees).
+inline constexpr std::array<SqlColumn, 3> kTraineeColumns{{{"code", 't'}, {"curriculum", 't'}, {"enrolled_utc", 't'}}};
 
 inline constexpr std::array<SqlColumn, 3> kTumorScoreColumns{
     {{"tumor", 't'}, {"outcome", 't'}, {"nearest_mark_mm", 'r'}}};
@@ -99,7 +122,8 @@ struct SessionRows {
   bool simulated = false;
   SqlRow session;  // kSessionColumns
   std::vector<SqlRow> planned;
-  std::vector<TrialRows> trials;  // by position; may start after 0 (a partial push)
+  std::vector<TrialRows> trials;   // by position; may start after 0 (a partial push)
+  std::optional<SqlRow> training;  // kTrainingColumns, when the session is a trainee's
 
   const std::string& text(std::size_t column) const { return std::get<std::string>(session.at(column)); }
 };

@@ -14,7 +14,7 @@ bool exists(const std::string& path) {
   return ::lstat(path.c_str(), &st) == 0;
 }
 
-bool writable(const std::filesystem::path& p) { return ::access(p.c_str(), W_OK) == 0; }
+bool is_writable(const std::filesystem::path& p) { return ::access(p.c_str(), W_OK) == 0; }
 
 }  // namespace
 
@@ -46,7 +46,7 @@ ReadAccess plan_read_access(const std::filesystem::path& file) {
   const bool sidecars = exists(name + "-wal") || exists(name + "-shm");
   const std::filesystem::path folder = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
   ReadAccess a;
-  if (!sidecars && !(writable(folder) && writable(file))) {
+  if (!sidecars && !(is_writable(folder) && is_writable(file))) {
     a.immutable = true;
     a.uri = sqlite_file_uri(file, "mode=ro&immutable=1");
     return a;

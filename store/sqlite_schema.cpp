@@ -74,6 +74,10 @@ CREATE TABLE trials (
   confidence        INTEGER CHECK (confidence BETWEEN 1 AND 9),  -- NULL: not asked or not answered
   stimulus_end_s    REAL,                      -- when the stimulus ended (onset_s's clock)
   stimulus_reached_s REAL,                     -- when it reached the fingers (half the level; onset_s's clock)
+  case_name         TEXT,                      -- localisation: the case palpated
+  case_seed         INTEGER,                   -- a generated case's seed
+  case_difficulty   TEXT,                      -- a generated case's difficulty
+  case_tumors       INTEGER,                   -- tumors in the case (0: a normal case)
   UNIQUE (session_id, position)
 );
 CREATE TABLE tumor_scores (
@@ -90,6 +94,33 @@ CREATE TABLE marks (
   y_mm     REAL NOT NULL,
   tumor    TEXT,                               -- the tumor it hit; NULL for a false mark
   PRIMARY KEY (trial_id, mark)
+) WITHOUT ROWID;
+)sql"
+                                R"sql(
+CREATE TABLE trainees (                        -- a trainee enrolled in a curriculum
+  code         TEXT NOT NULL,                  -- the participant code they train under
+  curriculum   TEXT NOT NULL,                  -- the curriculum's name
+  enrolled_utc TEXT NOT NULL,
+  PRIMARY KEY (code, curriculum)
+) WITHOUT ROWID;
+CREATE TABLE training_sessions (               -- a trainee's session at a level
+  session_id    INTEGER PRIMARY KEY REFERENCES sessions(id),
+  trainee       TEXT NOT NULL,
+  curriculum    TEXT NOT NULL,
+  level         INTEGER NOT NULL,              -- 0-based, in the curriculum's order
+  level_name    TEXT NOT NULL,
+  cases         TEXT NOT NULL,                 -- JSON array of case keys
+  status        TEXT NOT NULL CHECK (status IN ('running', 'completed')),
+  scores        TEXT,                          -- JSON: the session's measures, once completed
+  met_benchmark INTEGER CHECK (met_benchmark IN (0, 1)),
+  started_utc   TEXT NOT NULL,
+  finished_utc  TEXT
+);
+CREATE TABLE training_cases (                  -- never the same case twice for one trainee
+  trainee    TEXT NOT NULL,
+  case_key   TEXT NOT NULL,
+  session_id INTEGER NOT NULL REFERENCES sessions(id),
+  PRIMARY KEY (trainee, case_key)
 ) WITHOUT ROWID;
 )sql";
 
@@ -116,6 +147,28 @@ void migrate_to_4(Database& db) {
   column.step();
   if (column.integer(0) == 0) db.exec("ALTER TABLE trials ADD COLUMN stimulus_reached_s REAL");
   db.exec("PRAGMA user_version = 4");
+}
+
+// Schema 5: the localisation case of each trial (appended, as in kSchema; NULL for the trials
+// stored before: they palpated their session's one scene) and the training tables.
+void migrate_to_5(Database& db) {
+  auto column = db.prepare("SELECT count(*) FROM pragma_table_info('trials') WHERE name = ?1");
+  for (const char* spec : {"case_name TEXT", "case_seed INTEGER", "case_difficulty TEXT", "case_tumors INTEGER"}) {
+    const std::string name = std::string(spec).substr(0, std::string(spec).find(' '));
+    column.bind(1, name);
+    column.step();
+    const bool present = column.integer(0) > 0;
+    column.reset();
+    if (!present) db.exec(std::string("ALTER TABLE trials ADD COLUMN ") + spec);
+  }
+  // The training tables as a new file has them (a file that already has them, e.g. set back to an
+  // older version number by hand, keeps them).
+  std::string tables = std::string(kSchema).substr(std::string(kSchema).find("CREATE TABLE trainees"));
+  for (std::size_t at = tables.find("CREATE TABLE "); at != std::string::npos;
+       at = tables.find("CREATE TABLE ", at + 1))
+    tables.replace(at, 13, "CREATE TABLE IF NOT EXISTS ");
+  db.exec(tables);
+  db.exec("PRAGMA user_version = 5");
 }
 
 }  // namespace
@@ -146,7 +199,7 @@ void SqliteTrialStore::migrate_if_older() {
   Transaction tx(db_);
   const std::int64_t version = db_.pragma_integer("user_version");
   if (version >= kTrialStoreSchemaVersion) return;
-  std::string step = "trials (schema 3 -> 4 migration)";
+  std::string step = "trials and training tables (schema 4 -> 5 migration)";
   try {
     if (version < 2) {
       step = "trials (schema 1 -> 2 migration)";
@@ -156,8 +209,12 @@ void SqliteTrialStore::migrate_if_older() {
       step = "threshold_trials (schema 2 -> 3 migration)";
       migrate_to_3(db_);
     }
-    step = "trials (schema 3 -> 4 migration)";
-    migrate_to_4(db_);
+    if (version < 4) {
+      step = "trials (schema 3 -> 4 migration)";
+      migrate_to_4(db_);
+    }
+    step = "trials and training tables (schema 4 -> 5 migration)";
+    migrate_to_5(db_);
   } catch (const SqliteError& e) {
     // Busy: another writer; try again later (not the file's fault). Anything else: the file's
     // tables are not what the older schema says (hand-edited, or a foreign tool): refused, unchanged.

@@ -2,6 +2,9 @@
 
 #include <sqlite3.h>
 
+#include "core/input_error.hpp"
+#include "store/training_rows.hpp"
+
 namespace palprig {
 
 namespace {
@@ -85,6 +88,7 @@ bool has_lab_sessions_table(Database& db) {
 std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional<std::string>& study,
                                                const std::function<bool(std::int64_t)>& wanted) {
   const bool lab = has_lab_sessions_table(db);
+  const bool training = has_training_tables(db);
   const std::string sql = "SELECT s.id, p.code, p.simulated, p.created_utc, " +
                           std::string(lab ? "l.session_uid, l.host_name" : "NULL, NULL") + ", " +
                           column_list(kSessionColumns, "s.") +
@@ -116,6 +120,7 @@ std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional
                         " FROM planned_trials WHERE session_id = ?1 ORDER BY position");
     p.bind(1, s.id);
     while (p.step()) s.rows.planned.push_back(read_row(p, 0, kPlannedColumns));
+    if (training) s.rows.training = read_sqlite_training_row(db, s.id);
     sessions.push_back(std::move(s));
   }
   return sessions;
@@ -215,8 +220,67 @@ SqliteWriteResult write_sqlite_session(Database& db, const SessionRows& in) {
       mk.run();
     }
   }
+  if (in.training) write_sqlite_training_row(db, result.session_id, *in.training, false);
   tx.commit();
   return result;
+}
+
+bool has_training_tables(Database& db) {
+  auto s = db.prepare("SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'training_sessions'");
+  s.step();
+  return s.integer(0) > 0;
+}
+
+std::optional<SqlRow> read_sqlite_training_row(Database& db, std::int64_t session_id) {
+  auto q = db.prepare("SELECT " + column_list(kTrainingColumns) + " FROM training_sessions WHERE session_id = ?1");
+  q.bind(1, session_id);
+  if (!q.step()) return std::nullopt;
+  return read_row(q, 0, kTrainingColumns);
+}
+
+void write_sqlite_training_row(Database& db, std::int64_t session_id, const SqlRow& row, bool refuse_repeats) {
+  const std::string trainee = text_of(row.at(0));
+  auto given = db.prepare("SELECT session_id FROM training_cases WHERE trainee = ?1 AND case_key = ?2");
+  auto reserve = db.prepare("INSERT OR IGNORE INTO training_cases (trainee, case_key, session_id) VALUES (?1, ?2, ?3)");
+  for (const std::string& key : training_row_cases(row)) {
+    given.bind(1, trainee).bind(2, key);
+    const bool before = given.step() && given.integer(0) != session_id;
+    const std::int64_t other = before ? given.integer(0) : 0;
+    given.reset();
+    if (before && refuse_repeats) {
+      throw InputError(db.file(), "training_cases",
+                       "a case trainee '" + trainee + "' was not given before (" + key + " was given in session " +
+                           std::to_string(other) + ")");
+    }
+    reserve.bind(1, trainee).bind(2, key).bind(3, session_id).run();
+  }
+  // Added, or brought forward: a completed row replaces a running one, never the other way.
+  auto upsert =
+      db.prepare("INSERT INTO training_sessions (session_id, " + column_list(kTrainingColumns) + ") VALUES (?1, " +
+                 placeholders<kTrainingColumns.size()>(2) +
+                 ") ON CONFLICT (session_id) DO UPDATE SET status = excluded.status, scores = excluded.scores, "
+                 "met_benchmark = excluded.met_benchmark, finished_utc = excluded.finished_utc "
+                 "WHERE training_sessions.status <> 'completed'");
+  upsert.bind(1, session_id);
+  for (std::size_t i = 0; i < row.size(); ++i) bind_value(upsert, static_cast<int>(i + 2), row[i]);
+  upsert.run();
+}
+
+std::vector<SqlRow> read_sqlite_trainees(Database& db) {
+  std::vector<SqlRow> rows;
+  if (!has_training_tables(db)) return rows;
+  auto q = db.prepare("SELECT " + column_list(kTraineeColumns) + " FROM trainees ORDER BY code, curriculum");
+  while (q.step()) rows.push_back(read_row(q, 0, kTraineeColumns));
+  return rows;
+}
+
+void write_sqlite_trainees(Database& db, const std::vector<SqlRow>& rows) {
+  auto ins = db.prepare("INSERT OR IGNORE INTO trainees (" + column_list(kTraineeColumns) + ") VALUES (" +
+                        placeholders<kTraineeColumns.size()>(1) + ")");
+  for (const SqlRow& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) bind_value(ins, static_cast<int>(i + 1), row[i]);
+    ins.run();
+  }
 }
 
 }  // namespace palprig

@@ -35,6 +35,19 @@ std::vector<LocalSession> read_sqlite_sessions(Database& db, const std::optional
 // Trials of a local session at positions >= from_position, by position.
 std::vector<TrialRows> read_sqlite_trials(Database& db, std::int64_t session_id, std::int64_t from_position);
 
+// Training (schema 5): the tables exist (an older file read as it is has none).
+bool has_training_tables(Database& db);
+// The session's training_sessions row (kTrainingColumns), if it is a trainee's.
+std::optional<SqlRow> read_sqlite_training_row(Database& db, std::int64_t session_id);
+// Inside a transaction: the session's training row added, or brought forward (running to
+// completed, never back), and its cases reserved for the trainee in training_cases. A case the
+// trainee was given in another session is refused (InputError naming it) when `refuse_repeats`
+// (a new session), else kept as it is (a copy or push of history that already happened).
+void write_sqlite_training_row(Database& db, std::int64_t session_id, const SqlRow& row, bool refuse_repeats);
+// trainees rows (kTraineeColumns); written inside a transaction, those already there kept.
+std::vector<SqlRow> read_sqlite_trainees(Database& db);
+void write_sqlite_trainees(Database& db, const std::vector<SqlRow>& rows);
+
 struct SqliteWriteResult {
   std::int64_t session_id = 0;
   bool session_added = false;

@@ -288,9 +288,9 @@ void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& 
         "INSERT INTO trials (session_id, position, block, condition, mode, practice, combination, combination_label, "
         "stimulus1_kPa, stimulus2_kPa, stimulus3_kPa, truth, answered, answer, response_time_s, onset_s, felt1_kPa, "
         "felt2_kPa, felt3_kPa, outcome1, outcome2, outcome3, false_marks, completed_utc, confidence, stimulus_end_s, "
-        "stimulus_reached_s) "
+        "stimulus_reached_s, case_name, case_seed, case_difficulty, case_tumors) "
         "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, "
-        "?23, ?24, ?25, ?26, ?27)");
+        "?23, ?24, ?25, ?26, ?27, ?28, ?29, ?30, ?31)");
   }
   Statement& ins = *insert_trial_;
   ins.bind(1, session_id)
@@ -306,6 +306,12 @@ void SqliteTrialStore::insert_trial(std::int64_t session_id, const TrialRecord& 
   if (auto end = finite_or_null(r.stimulus_end_s)) ins.bind(26, *end);
   if (auto reached = finite_or_null(r.stimulus_reached_s)) ins.bind(27, *reached);
   if (r.answered && r.confidence) ins.bind(25, static_cast<std::int64_t>(*r.confidence));
+  if (!discrimination && !r.case_name.empty()) {  // a case named by the runner (not a hand-made record)
+    ins.bind(28, r.case_name);
+    if (r.case_seed) ins.bind(29, static_cast<std::int64_t>(*r.case_seed));
+    if (r.case_difficulty) ins.bind(30, std::string(to_string(*r.case_difficulty)));
+    ins.bind(31, r.case_tumors);
+  }
   if (discrimination) {
     ins.bind(8, r.combination_label);
     for (int f = 0; f < kFingerCount; ++f) ins.bind(9 + f, r.stimulus_kPa[static_cast<std::size_t>(f)]);

@@ -46,7 +46,10 @@ inline constexpr std::int64_t kTrialStoreApplicationId = 0x50616C50;  // "PalP"
 // replayed from the trial rows, so a row has constant size); migrated the same way.
 // 4: trials.stimulus_reached_s (when the stimulus reached the fingers); migrated the same way,
 // NULL for the trials stored before.
-inline constexpr std::int64_t kTrialStoreSchemaVersion = 4;
+// 5: the localisation case of each trial (trials.case_name, case_seed, case_difficulty,
+// case_tumors; NULL for the trials stored before) and the training tables (trainees,
+// training_sessions, training_cases); migrated the same way.
+inline constexpr std::int64_t kTrialStoreSchemaVersion = 5;
 
 class SqliteTrialStore final : public TrialStore {
  public:
@@ -87,6 +90,13 @@ class SqliteTrialStore final : public TrialStore {
   std::vector<StoredTrial> read_trials(bool include_practice) override;
   std::vector<StoredTrial> read_session_trials(std::int64_t session_id) override;
   int next_participant_number() override;
+
+  // Training (store/sqlite_training.cpp).
+  void enrol_trainee(const std::string& code, const std::string& curriculum) override;
+  std::vector<TraineeRecord> trainees() override;
+  std::vector<TrainingSessionRecord> training_sessions(const std::string& trainee) override;
+  void begin_training_session(const TrainingSessionRecord& record) override;
+  void complete_training_session(std::int64_t session_id, const nlohmann::json& scores, bool met_benchmark) override;
 
   // The SQL connection, for tests and tools that check the file itself.
   Database& database() noexcept { return db_; }

@@ -190,8 +190,10 @@ void write_trials_run(const std::vector<const ExportTrial*>& rows, const std::st
       side["detected_" + tumor] = column("Tumor " + tumor + " detected: a mark within its outline plus the tolerance",
                                          "", {{"TP", "detected"}, {"FN", "missed"}});
     }
-    tsv << "\tfalse_marks";
+    tsv << "\tfalse_marks\tcase\tcase_tumors";
     side["false_marks"] = column("Marks near no tumor");
+    side["case"] = column("The case palpated: a scene's name, or a generated case (case-<difficulty>-<seed>)");
+    side["case_tumors"] = column("Tumors in the case (0: a normal case, where no mark is the right answer)");
   }
   tsv << "\tresponse_time\tonset\trt_after_stimulus\tstimulus_reached\trt_from_reached";
   side["response_time"] = column(
@@ -249,7 +251,9 @@ void write_trials_run(const std::vector<const ExportTrial*>& rows, const std::st
         }
         tsv << "\t" << value;
       }
-      tsv << "\t" << (t->false_marks ? std::to_string(*t->false_marks) : "n/a");
+      tsv << "\t" << (t->false_marks ? std::to_string(*t->false_marks) : "n/a") << "\t"
+          << (t->case_name ? tsv_field(*t->case_name) : std::string("n/a")) << "\t"
+          << (t->case_tumors ? std::to_string(*t->case_tumors) : std::string("n/a"));
     }
     tsv << "\t" << number(t->response_time_s) << "\t" << number(t->onset_s) << "\t" << number(t->rt_after_stimulus_s)
         << "\t" << number(t->stimulus_reached_s) << "\t" << number(t->rt_from_reached_s);
@@ -272,7 +276,7 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
     ExportFile out(long_path);
     out << "participant,simulated,session,protocol,task,trial,block,condition,mode,practice,combination,unit,finger,"
            "finger_name,tumor,stimulus_kPa,felt_kPa,tumor_present,answered,answered_tumor,outcome,response_time_s,"
-           "onset_s,completed_utc,rt_after_stimulus_s,confidence,stimulus_reached_s,rt_from_reached_s\n";
+           "onset_s,completed_utc,rt_after_stimulus_s,confidence,stimulus_reached_s,rt_from_reached_s,case\n";
     for (const ExportTrial& t : c.trials) {
       const std::string head = csv_field(t.participant) + "," + (t.simulated ? "1" : "0") + "," +
                                std::to_string(t.session) + "," + csv_field(t.protocol) + "," + t.task + "," +
@@ -284,9 +288,12 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
       // column existed); confidence: empty when the protocol did not ask or no answer was given;
       // stimulus_reached_s and rt_from_reached_s: n/a when unknown (appended last, so the earlier
       // columns keep their places).
+      // case: the localisation case palpated (n/a for discrimination and for trials stored
+      // before the column), appended last.
       const std::string times = number(t.response_time_s) + "," + number(t.onset_s) + "," + t.completed_utc + "," +
                                 number(t.rt_after_stimulus_s) + "," + rating_text(t.confidence, "") + "," +
-                                number(t.stimulus_reached_s) + "," + number(t.rt_from_reached_s);
+                                number(t.stimulus_reached_s) + "," + number(t.rt_from_reached_s) + "," +
+                                (t.case_name ? csv_field(*t.case_name) : std::string("n/a"));
       if (t.mode != "scene") {
         for (int f = 0; f < kFingerCount; ++f) {
           const auto fi = static_cast<std::size_t>(f);
@@ -300,7 +307,12 @@ ExportResult export_long_csv(TrialStore& store, const std::filesystem::path& out
           out << head << ",tumor " << csv_field(tumor) << ",n/a,n/a," << csv_field(tumor) << ",n/a,n/a,1," << tail
               << "," << (outcome == "TP" ? "1" : "0") << "," << outcome << "," << times << "\n";
         }
-        if (!t.answered || t.tumor_outcomes.empty()) {
+        if (t.case_tumors && *t.case_tumors == 0) {
+          // A normal case: one value, TN when left unmarked, FP when marked.
+          const bool marked = t.false_marks && *t.false_marks > 0;
+          out << head << ",case,n/a,n/a,n/a,n/a,n/a,0," << tail << "," << (t.answered ? (marked ? "1" : "0") : "n/a")
+              << "," << (t.answered ? (marked ? "FP" : "TN") : "n/a") << "," << times << "\n";
+        } else if (!t.answered || t.tumor_outcomes.empty()) {
           out << head << ",trial,n/a,n/a,n/a,n/a,n/a,n/a," << tail << ",n/a,n/a," << times << "\n";
         }
       }

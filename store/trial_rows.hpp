@@ -103,6 +103,8 @@ class LocalisationGatherer {
       t_.false_marks = q.is_null(7) ? 0 : q.integer(7);
       t_.rt_after_stimulus_s = response_time_after_stimulus_s(q.real(8), t_.response_time_s, real_or_nan(q, 10));
       t_.rt_from_reached_s = response_time_from_reached_s(q.real(8), t_.response_time_s, real_or_nan(q, 11));
+      case_name_.assign(q.is_null(12) ? std::string_view() : q.text_view(12));
+      t_.case_tumors = q.is_null(15) ? std::nullopt : std::optional<int>(static_cast<int>(q.integer(15)));
     }
     if (q.is_null(5)) return;
     const auto outcome = outcome_from_string(q.text_view(6));
@@ -120,6 +122,7 @@ class LocalisationGatherer {
     tumors_.resize(tumor_count_);
     for (std::size_t i = 0; i < tumor_count_; ++i) tumors_[i].tumor = tumor_names_[i];
     t_.condition = condition_;
+    t_.case_name = case_name_;
     t_.tumors = std::span<const ScoredTumor>(tumors_.data(), tumor_count_);
     visit_(t_);
     pending_ = false;
@@ -128,7 +131,7 @@ class LocalisationGatherer {
  private:
   const Visit& visit_;
   ScoredTrial t_;
-  std::string condition_;
+  std::string condition_, case_name_;
   std::vector<std::string> tumor_names_;  // the views in tumors_ point into it
   std::vector<ScoredTumor> tumors_;
   std::size_t tumor_count_ = 0;
@@ -175,6 +178,10 @@ StoredTrial decode_stored_trial(const Row& q) {
   if (t.answered && t.response_time_s && t.stimulus_reached_s) {
     t.rt_from_reached_s = response_time_from_reached_s(t.onset_s, *t.response_time_s, *t.stimulus_reached_s);
   }
+  if (!q.is_null(34)) t.case_name = std::string(q.text_view(34));
+  if (!q.is_null(35)) t.case_seed = static_cast<std::uint64_t>(q.integer(35));
+  if (!q.is_null(36)) t.case_difficulty = std::string(q.text_view(36));
+  if (!q.is_null(37)) t.case_tumors = static_cast<int>(q.integer(37));
   return t;
 }
 

@@ -13,10 +13,14 @@ TrialSummary summary_by(TrialStore& store, SummaryOptions options, SummaryKey ke
   return summarise_trials(store, options);
 }
 
-// Rows keyed "-" belong to the other task (a localisation trial has no finger value, a false
-// mark no tumor); the view leaves them out of these two tables.
+// Rows keyed "-" belong to the other task (a localisation trial has no finger value, a
+// discrimination trial no tumor), a case's "elsewhere" row to no tumor (its false marks, a normal
+// case's answer); the view leaves them out of these two tables.
 void drop_placeholder_rows(TrialSummary& summary) {
-  std::erase_if(summary.rows, [](const SummaryRow& r) { return !r.key.empty() && r.key[0] == "-"; });
+  const std::string elsewhere = std::string("/") + kElsewhereKey;
+  std::erase_if(summary.rows, [&](const SummaryRow& r) {
+    return !r.key.empty() && (r.key[0] == "-" || r.key[0].ends_with(elsewhere));
+  });
 }
 
 }  // namespace

@@ -26,6 +26,7 @@
 #include "study/protocol.hpp"
 #include "study/session_plan.hpp"
 #include "study/trial_record.hpp"
+#include "study/training_record.hpp"
 #include "statistics/outcome.hpp"
 
 namespace palprig {
@@ -83,6 +84,10 @@ struct ScoredTrial {
   std::array<std::optional<Outcome>, kFingerCount> finger_outcomes{};  // discrimination, when answered
   std::span<const ScoredTumor> tumors;                                 // localisation, when answered
   std::int64_t false_marks = 0;                                        // localisation, when answered
+  // Localisation: the case palpated ("" in trials stored before the column: the session's one
+  // scene) and how many tumors it holds (none: unknown, stored before the column).
+  std::string_view case_name;
+  std::optional<int> case_tumors;
 };
 
 struct StoredMark {
@@ -120,6 +125,10 @@ struct StoredTrial {
   std::string completed_utc;
   std::vector<std::pair<std::string, std::string>> tumor_outcomes;  // localisation: (tumor, TP|FN), by tumor
   std::vector<StoredMark> marks;                                    // localisation, by mark
+  // Localisation: the case (none in trials stored before the columns).
+  std::optional<std::string> case_name, case_difficulty;
+  std::optional<std::uint64_t> case_seed;
+  std::optional<int> case_tumors;
 };
 
 class TrialStore {
@@ -180,6 +189,17 @@ class TrialStore {
   virtual std::vector<StoredTrial> read_session_trials(std::int64_t session_id) = 0;
   // The number the next enrolled participant gets (1 in an empty store).
   virtual int next_participant_number() = 0;
+
+  // --- training (a store older than schema 5 / 6 read as it is has none)
+  // Enrols the trainee in the curriculum (again: nothing changes).
+  virtual void enrol_trainee(const std::string& code, const std::string& curriculum) = 0;
+  virtual std::vector<TraineeRecord> trainees() = 0;
+  // The trainee's training sessions (every curriculum), in the order they were started.
+  virtual std::vector<TrainingSessionRecord> training_sessions(const std::string& trainee) = 0;
+  // In one transaction: the session noted as the trainee's (running) and its cases reserved for
+  // them; refuses (InputError) a case this trainee was given before.
+  virtual void begin_training_session(const TrainingSessionRecord& record) = 0;
+  virtual void complete_training_session(std::int64_t session_id, const nlohmann::json& scores, bool met_benchmark) = 0;
 };
 
 // Opens the store at `location`. Today: a path is an SQLite file (created with its schema when

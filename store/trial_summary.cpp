@@ -1,6 +1,7 @@
 #include "store/trial_summary.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -68,8 +69,9 @@ struct Accumulator {
   RunningMoments rt_reached;    // from when the stimulus reached the fingers
   std::int64_t rated = 0;
   double confidence_sum = 0;
-  std::int64_t last_trial = -1;  // a trial adds its response time once per group
-  bool localisation = false;     // holds localisation values (no true negatives)
+  std::int64_t last_trial = -1;   // a trial adds its response time once per group
+  bool localisation = false;      // holds localisation values
+  std::int64_t normal_cases = 0;  // localisation: answered normal cases (TN: those left unmarked)
 
   void add_trial(const ScoredTrial& t) {
     if (t.trial_id == last_trial) return;
@@ -181,6 +183,22 @@ const std::pair<int, int>& session_of(const std::unordered_map<std::int64_t, std
   return it->second;
 }
 
+// Per session, the name its trials' case had before trials stored it (schema 5): the stem of the
+// protocol's one scene file.
+std::unordered_map<std::int64_t, std::string> session_scene_names(TrialStore& store) {
+  std::unordered_map<std::int64_t, std::string> names;
+  for (const SessionOverview& s : store.list_sessions()) {
+    if (s.task != "localisation") continue;
+    const nlohmann::json snapshot = store.protocol_snapshot(s.id);
+    const auto loc = snapshot.find("localisation");
+    if (loc == snapshot.end() || !loc->is_object()) continue;
+    const auto scene = loc->find("scene");
+    if (scene != loc->end() && scene->is_string())
+      names[s.id] = std::filesystem::path(scene->get<std::string>()).stem().string();
+  }
+  return names;
+}
+
 }  // namespace
 
 TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) {
@@ -234,9 +252,18 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     });
   }
 
-  // Localisation: one value per tumor, plus one FP per false mark.
+  // Localisation: one value per tumor of each case (TP found, FN missed), keyed by case and
+  // tumor (a "T1" of one generated case is not the "T1" of another); one FP per false mark; a
+  // normal case answered without a mark is a TN. False marks and a normal case's answer are the
+  // case's "elsewhere" row when grouping by tumor (never a tumor row of their own).
+  const auto scene_names = session_scene_names(store);
   store.scan_scored_trials(TrialFamily::localisation, options.include_practice, [&](const ScoredTrial& t) {
     const auto& [participant, session] = session_of(session_ids, t.session_id, store.location(), t.trial_id);
+    std::string case_name(t.case_name);
+    if (case_name.empty()) {
+      const auto it = scene_names.find(t.session_id);
+      case_name = it == scene_names.end() ? std::string("scene") : it->second;
+    }
     std::array<int, kKeyKinds> ids{};
     ids[static_cast<std::size_t>(SummaryKey::condition)] = conditions.id(t.condition);
     ids[static_cast<std::size_t>(SummaryKey::participant)] = participant;
@@ -244,19 +271,25 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     ids[static_cast<std::size_t>(SummaryKey::finger)] = no_finger;
     ids[static_cast<std::size_t>(SummaryKey::combination)] = no_combination;
     for (const ScoredTumor& score : t.tumors) {
-      ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(score.tumor);
+      ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(case_name + "/" + std::string(score.tumor));
       Accumulator& a = grouper.group(ids);
       a.localisation = true;
       a.add_trial(t);
       a.counts.add(score.outcome);
     }
-    // The trial's false marks, and an unanswered trial, once.
-    ids[static_cast<std::size_t>(SummaryKey::tumor)] = no_tumor;
-    if (!t.answered || t.false_marks > 0) {
+    // A normal case (known to hold no tumor; stored before the column: had tumor scores), the
+    // trial's false marks, and an unanswered trial, once.
+    const bool normal = t.case_tumors ? *t.case_tumors == 0 : false;
+    ids[static_cast<std::size_t>(SummaryKey::tumor)] = tumors.id(case_name + "/" + kElsewhereKey);
+    if (!t.answered || t.false_marks > 0 || normal) {
       Accumulator& a = grouper.group(ids);
       a.localisation = true;
       a.add_trial(t);
       a.counts.fp += t.false_marks;
+      if (normal && t.answered) {
+        ++a.normal_cases;
+        if (t.false_marks == 0) ++a.counts.tn;
+      }
     }
   });
 
@@ -270,8 +303,13 @@ TrialSummary summarise_trials(TrialStore& store, const SummaryOptions& options) 
     row.counts = a.counts;
     row.measures = diagnostic_measures(a.counts, options.confidence);
     if (a.localisation) {
-      row.negatives_counted = false;
-      row.measures.sp = Measure{};  // undefined: TN + FP would be 0 + FP, Sp a meaningless 0
+      // Specificity over the normal cases (a case correctly called normal); false marks count
+      // against PPV. Without normal cases there is no denominator: n/a, never 0. ACC would add
+      // tumors to cases: n/a.
+      row.negatives_counted = a.normal_cases > 0;
+      row.normal_cases = a.normal_cases;
+      row.measures.sp =
+          a.normal_cases > 0 ? proportion_measure(a.counts.tn, a.normal_cases, options.confidence) : Measure{};
       row.measures.acc = Measure{};
     }
     row.trials = a.trials;

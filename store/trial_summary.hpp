@@ -3,11 +3,13 @@
 // measures (Se, Sp, PPV, ACC, each with its Wilson interval) and response times.
 //
 // Units scored: every finger value of a discrimination trial (3 per trial, as in the paper);
-// every tumor of a localisation trial (TP detected / FN missed), plus one FP per false mark
-// (tumor "-"). Unanswered (timed-out) trials are counted, not scored. Practice trials are left
-// out unless asked for. Response times: mean and sd over answered trials, each trial counted
-// once per group it contributes to, from onset (paper 002's measure) and from the stimulus end;
-// the mean confidence rating and the count rated when any trial has one.
+// every tumor of a localisation trial's case (TP detected / FN missed; grouped by tumor, keyed
+// "case/tumor": tumors of different cases are never pooled), one FP per false mark, and one TN
+// per normal case (no tumor) answered without a mark; Sp = TN / normal cases. False marks and a
+// normal case's answer are the row "case/elsewhere" when grouping by tumor. Unanswered (timed-out) trials are counted,
+// not scored. Practice trials are left out unless asked for. Response times: mean and sd over answered trials, each
+// trial counted once per group it contributes to, from onset (paper 002's measure) and from the stimulus end; the mean
+// confidence rating and the count rated when any trial has one.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,6 +18,9 @@
 #include "store/trial_store.hpp"
 
 namespace palprig {
+
+// The tumor key of a case's marks away from every tumor and of a normal case's answer.
+inline constexpr const char* kElsewhereKey = "elsewhere";
 
 enum class SummaryKey { condition, participant, finger, tumor, combination, session };
 
@@ -45,9 +50,11 @@ struct SummaryRow {
   double mean_rt_from_reached_s = 0, sd_rt_from_reached_s = 0;
   std::int64_t rated = 0;      // answered trials with a confidence rating
   double mean_confidence = 0;  // NaN when none was rated
-  // False for localisation: true negatives are not counted (every tumor-free spot would be
-  // one), so TN, Sp and ACC have no denominator and are n/a, never 0.
+  // Localisation: true negatives are normal cases left unmarked (a tumor-free spot of an
+  // abnormal case is none); without normal cases TN and Sp have no denominator and are n/a,
+  // never 0; ACC is always n/a (it would add tumors to cases).
   bool negatives_counted = true;
+  std::int64_t normal_cases = 0;  // localisation: answered normal cases (Sp's denominator)
 };
 
 struct TrialSummary {

@@ -1,6 +1,7 @@
 #include "store/trial_summary_report.hpp"
 
 #include "core/input_error.hpp"
+#include "store/export_text.hpp"
 #include "store/pulse_store.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "store/threshold_summary.hpp"
@@ -14,6 +15,8 @@ namespace palprig {
 
 namespace {
 
+constexpr const char* kTableNotAvailable = "n/a";
+
 struct NamedMeasure {
   const char* name;
   const Measure& m;
@@ -23,18 +26,13 @@ std::array<NamedMeasure, 4> measures_of(const SummaryRow& r) {
   return {{{"Se", r.measures.se}, {"Sp", r.measures.sp}, {"PPV", r.measures.ppv}, {"ACC", r.measures.acc}}};
 }
 
-std::string fixed(double x, int decimals) {
-  if (!std::isfinite(x)) return "NA";
+// Not available: "n/a" in the table (one spelling for the reader), "NA" in the CSV (R's
+// read.csv and pandas read it as missing).
+std::string fixed(double x, int decimals, const char* not_available = "NA") {
+  if (!std::isfinite(x)) return not_available;
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
   return buf;
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 nlohmann::ordered_json number_or_null(double x) {
@@ -62,19 +60,19 @@ std::string summary_table(const TrialSummary& s) {
     for (std::int64_t v : {r.trials, r.unanswered, r.counts.tp, r.counts.fn, r.counts.tn, r.counts.fp}) {
       line.push_back(std::to_string(v));
     }
-    if (!r.negatives_counted) line[line.size() - 2] = "n/a";  // TN
+    if (!r.negatives_counted) line[line.size() - 2] = kTableNotAvailable;  // TN
     for (const auto& nm : measures_of(r)) {
       line.push_back(nm.m.defined
                          ? fixed(nm.m.value, 3) + " [" + fixed(nm.m.lower, 3) + ", " + fixed(nm.m.upper, 3) + "]"
-                         : std::string("n/a"));
+                         : std::string(kTableNotAvailable));
     }
-    line.push_back(fixed(r.mean_rt_s, 2));
-    line.push_back(fixed(r.sd_rt_s, 2));
-    line.push_back(fixed(r.mean_rt_after_stimulus_s, 2));
-    line.push_back(fixed(r.sd_rt_after_stimulus_s, 2));
+    line.push_back(fixed(r.mean_rt_s, 2, kTableNotAvailable));
+    line.push_back(fixed(r.sd_rt_s, 2, kTableNotAvailable));
+    line.push_back(fixed(r.mean_rt_after_stimulus_s, 2, kTableNotAvailable));
+    line.push_back(fixed(r.sd_rt_after_stimulus_s, 2, kTableNotAvailable));
     if (s.any_rated) {
       line.push_back(std::to_string(r.rated));
-      line.push_back(fixed(r.mean_confidence, 2));
+      line.push_back(fixed(r.mean_confidence, 2, kTableNotAvailable));
     }
     cells.push_back(line);
   }
@@ -102,7 +100,7 @@ std::string summary_csv(const TrialSummary& s) {
   out << ",rt_from_reached_mean_s,rt_from_reached_sd_s";  // last: the earlier columns keep their places
   out << "\n";
   for (const SummaryRow& r : s.rows) {
-    for (const auto& k : r.key) out << csv_field(k) << ",";
+    for (const auto& k : r.key) out << export_text::csv_field(k) << ",";
     out << r.trials << "," << r.unanswered << "," << r.counts.tp << "," << r.counts.fn << ","
         << (r.negatives_counted ? std::to_string(r.counts.tn) : std::string("NA")) << "," << r.counts.fp;
     for (const auto& nm : measures_of(r)) {
@@ -125,7 +123,8 @@ nlohmann::ordered_json summary_json(const TrialSummary& s, double confidence, Re
   j["task"] = "discrimination/localisation";
   j["convention"] =
       "per finger value (discrimination) or per tumor (localisation): Se = TP/(TP+FN), "
-      "Sp = TN/(TN+FP), PPV = TP/(TP+FP), ACC = (TP+TN)/all (paper 002 eq. 5-8); Wilson score "
+      "Sp = TN/(TN+FP), PPV = TP/(TP+FP), ACC = (TP+TN)/all (paper 002 eq. 5-8); localisation: FP per false "
+      "mark, TN per normal case left unmarked, Sp = TN/normal cases, ACC n/a; Wilson score "
       "intervals without continuity correction";
   j["confidence"] = confidence;
   j["by"] = nlohmann::ordered_json::array();

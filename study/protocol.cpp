@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "formats/json_file.hpp"
+#include "study/localisation_case.hpp"
 #include "study/trial_order.hpp"
 #include "core/input_error.hpp"
 #include "study/session_bounds.hpp"
@@ -187,12 +188,71 @@ void read_confidence(const JsonObject& root, Protocol& p) {
   c.refuse_unknown();
 }
 
+// "localisation": exactly one of "scene" (one case), "cases" (a set: file names or
+// {"difficulty", "seed"} generated cases) or "generate" ({"difficulty"}: a new case per trial).
+// A case without tumors is a normal case and is scored too ("nothing there" is its answer).
+void read_localisation(const JsonObject& root, const std::filesystem::path& base_dir, Protocol& p) {
+  const JsonObject loc = root.object("localisation");
+  p.localisation.tolerance_mm = loc.number_or("tolerance_mm", 5.0, 0.0, 1000.0);
+  const int given = (loc.has("scene") ? 1 : 0) + (loc.has("cases") ? 1 : 0) + (loc.has("generate") ? 1 : 0);
+  if (given != 1) {
+    loc.fail("scene",
+             "exactly one of `scene` (a scene file), `cases` (a list of cases) or `generate` "
+             "({\"difficulty\": ...}: a new generated case per trial)");
+  }
+  const auto resolve = [&](const std::filesystem::path& scene) {
+    return scene.is_absolute() ? scene : base_dir / scene;
+  };
+  const auto difficulty_of = [&](const JsonObject& o) {
+    return parse_difficulty(o.choice("difficulty", {"easy", "medium", "hard"}));
+  };
+  if (loc.has("scene")) {
+    p.localisation.cases.push_back(file_localisation_case(resolve(loc.string("scene"))));
+  } else if (loc.has("generate")) {
+    const JsonObject g = loc.object("generate");
+    p.localisation.generate = difficulty_of(g);
+    g.refuse_unknown();
+  } else {
+    p.localisation.listed = true;
+    const auto& list = loc.raw("cases");
+    const std::string where = loc.path("cases");
+    if (!list.is_array() || list.empty()) {
+      throw InputError(root.file(), where,
+                       "a non-empty array of cases: scene file names, or {\"difficulty\": ..., \"seed\": N} for a "
+                       "generated case");
+    }
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string at = where + "[" + std::to_string(i) + "]";
+      LocalisationCase c;
+      if (list[i].is_string()) {
+        c = file_localisation_case(resolve(list[i].get<std::string>()));
+      } else if (list[i].is_object()) {
+        const JsonObject o(list[i], root.file(), at);
+        const CaseDifficulty difficulty = difficulty_of(o);
+        const auto seed = static_cast<std::uint64_t>(o.integer("seed", 0, 999999999999LL));
+        o.refuse_unknown();
+        c = generated_localisation_case(seed, difficulty);
+      } else {
+        throw InputError(root.file(), at,
+                         "a scene file name or {\"difficulty\": ..., \"seed\": N}, got " + list[i].dump());
+      }
+      if (!names.insert(c.name).second) throw InputError(root.file(), at, "each case once (" + c.name + " repeats)");
+      p.localisation.cases.push_back(std::move(c));
+    }
+  }
+  loc.refuse_unknown();
+}
+
 // Refuse ordering constraints that no order of one condition's trials can meet.
 void check_order_feasible(const Protocol& p) {
-  const std::size_t kinds = p.task == TaskKind::discrimination ? p.combinations.size() : 1;
+  const std::size_t kinds = static_cast<std::size_t>(order_items(p));
   const OrderConstraints constraints{p.randomisation.max_repeats_in_a_row, p.randomisation.min_distance};
   std::vector<std::string> names;
   for (const auto& c : p.combinations) names.push_back(c.label);
+  if (p.localisation.listed) {
+    for (const auto& c : p.localisation.cases) names.push_back(c.name);
+  }
   if (names.empty()) names.push_back("the scene");
   const std::string where = "randomisation";
   const int reps = p.repetitions;
@@ -243,6 +303,11 @@ std::string bids_label(const std::string& text) {
 }
 
 }  // namespace
+
+int order_items(const Protocol& p) noexcept {
+  if (p.task == TaskKind::discrimination) return static_cast<int>(p.combinations.size());
+  return p.localisation.listed ? static_cast<int>(p.localisation.cases.size()) : 1;
+}
 
 bool classify_by_tumor_rule(const std::array<double, kFingerCount>& pressure_kPa,
                             const std::vector<std::pair<int, int>>& adjacent_fingers, FingerFlags& tumor,
@@ -295,24 +360,13 @@ Protocol parse_protocol(const nlohmann::json& document, const std::string& sourc
     if (distinct.size() != p.levels_kPa.size()) root.fail("levels_kPa", "each level once");
     read_combinations(root, p);
   } else {
-    const JsonObject loc = root.object("localisation");
-    const std::filesystem::path scene = loc.string("scene");
-    p.localisation.scene_file = scene.is_absolute() ? scene : base_dir / scene;
-    p.localisation.tolerance_mm = loc.number_or("tolerance_mm", 5.0, 0.0, 1000.0);
-    loc.refuse_unknown();
-    const SceneFile scene_file = load_scene_file(p.localisation.scene_file);
-    p.localisation.tumors = scene_file.tumors;
-    if (p.localisation.tumors.empty()) {
-      loc.fail("scene",
-               "a scene that lists its tumors' outlines (" + p.localisation.scene_file.string() + " has none)");
-    }
+    read_localisation(root, base_dir, p);
   }
 
   read_conditions(root, p);
   p.repetitions = static_cast<int>(root.integer_or("repetitions", 1, 1, kMaxSessionTrials));
   p.blocks_per_condition = static_cast<int>(root.integer_or("blocks_per_condition", 1, 1, 1000));
-  const std::size_t per_condition =
-      static_cast<std::size_t>(p.repetitions) * (p.task == TaskKind::discrimination ? p.combinations.size() : 1);
+  const std::size_t per_condition = static_cast<std::size_t>(p.repetitions) * static_cast<std::size_t>(order_items(p));
   if (per_condition % static_cast<std::size_t>(p.blocks_per_condition) != 0) {
     root.fail("blocks_per_condition",
               "a divisor of the " + std::to_string(per_condition) + " trials of each condition");

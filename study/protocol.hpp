@@ -17,7 +17,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
+#include <optional>
+
 #include "formats/scene_file.hpp"
+#include "models/case_generator.hpp"
 #include "models/finger_layout.hpp"
 
 namespace palprig {
@@ -67,10 +71,30 @@ struct Randomisation {
   int min_distance = 0;          // 0/1: none; d: identical trials at least d apart
 };
 
+// One case a localisation trial palpates: a scene file, or a generated rehearsal case
+// (models/case_generator: the same seed and difficulty always give the same case), with its
+// ground truth. A case without tumors is a normal case: "nothing there" is its right answer.
+struct LocalisationCase {
+  std::string name;                          // the scene's own name ("case-medium-42", "phantom-abc")
+  std::filesystem::path scene_file;          // a file's case (resolved against the protocol's folder)
+  std::optional<std::uint64_t> seed;         // a generated case's seed
+  std::optional<CaseDifficulty> difficulty;  // a generated case's difficulty
+  std::vector<TumorTruth> tumors;            // outlines; empty: a normal case
+  bool generated() const noexcept { return seed.has_value(); }
+  bool normal() const noexcept { return tumors.empty(); }
+};
+
+// What a localisation protocol presents (study/localisation_case.hpp gives each trial's case):
+//   "scene": one case, every trial                        (cases.size() == 1, listed false)
+//   "cases": a set, each case one item of the order (as combinations are for discrimination;
+//            PlannedTrial::combination is its index)         (listed true)
+//   "generate": {"difficulty"}: every trial a new generated case, seeded by the session seed and
+//            the trial's position, its seed stored with the trial   (generate set, cases empty)
 struct LocalisationTask {
-  std::filesystem::path scene_file;  // resolved against the protocol file's folder
-  std::vector<TumorTruth> tumors;    // outlines from the scene file
-  double tolerance_mm = 5.0;         // a mark within radius + tolerance of a tumor's centre hits it
+  std::vector<LocalisationCase> cases;
+  bool listed = false;
+  std::optional<CaseDifficulty> generate;
+  double tolerance_mm = 5.0;  // a mark within radius + tolerance of a tumor's centre hits it
 };
 
 // The optional confidence rating after each discrimination answer ("confidence" in the file).
@@ -112,6 +136,10 @@ struct Protocol {
   Feedback feedback = Feedback::none;  // "feedback": none (default), practice trials only, all
   nlohmann::json snapshot;             // the file as read, stored with every session
 };
+
+// How many different items the order draws from: the combinations (discrimination), the listed
+// cases (localisation "cases"), else 1.
+int order_items(const Protocol& protocol) noexcept;
 
 // Throws InputError (file, field, what was expected).
 Protocol load_protocol(const std::filesystem::path& path);

@@ -48,6 +48,7 @@ PulseProtocol parse_pulse_protocol(const nlohmann::json& document, const std::st
     if (c.has("generate")) {
       const JsonObject g = c.object("generate");
       pc.generated = parse_difficulty(g.choice("difficulty", {"easy", "medium", "hard"}));
+      if (g.has("seed")) pc.generated_seed = static_cast<std::uint64_t>(g.integer("seed", 0, 999999999999LL));
       g.refuse_unknown();
       c.refuse_unknown();
       p.conditions.push_back(pc);

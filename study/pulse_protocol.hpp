@@ -27,6 +27,9 @@ struct PulseCondition {
   // "generate": {"difficulty"}: every trial a new generated case (models/case_generator) with a
   // random artery crossing it (generated_pulse_scene), seeded by the session seed and position.
   std::optional<CaseDifficulty> generated;
+  // "generate": {"difficulty", "seed"}: that one generated case every trial of the condition (a
+  // training session's cases, chosen so a trainee never gets one twice).
+  std::optional<std::uint64_t> generated_seed;
 };
 
 struct PulseProtocol {

@@ -28,7 +28,7 @@ std::vector<int> williams_row(int k, int row) {
 }
 
 std::vector<int> condition_sequence(const Protocol& p, RandomSource& random) {
-  const int kinds = p.task == TaskKind::discrimination ? static_cast<int>(p.combinations.size()) : 1;
+  const int kinds = order_items(p);
   const OrderConstraints constraints{p.randomisation.max_repeats_in_a_row, p.randomisation.min_distance};
   std::vector<int> order;
   switch (p.randomisation.scheme) {
@@ -56,13 +56,15 @@ std::vector<int> condition_sequence(const Protocol& p, RandomSource& random) {
 }
 
 std::vector<int> practice_sequence(const Protocol& p, RandomSource& random) {
-  if (p.task != TaskKind::discrimination) return std::vector<int>(static_cast<std::size_t>(p.practice_trials), -1);
-  // Practice draws the combinations without replacement (reshuffled when more are needed).
+  const bool itemised = p.task == TaskKind::discrimination || p.localisation.listed;
+  if (!itemised) return std::vector<int>(static_cast<std::size_t>(p.practice_trials), -1);
+  // Practice draws the combinations (or listed cases) without replacement (reshuffled when more
+  // are needed).
   std::vector<int> out;
   std::vector<int> deck;
   while (static_cast<int>(out.size()) < p.practice_trials) {
     if (deck.empty()) {
-      deck.resize(p.combinations.size());
+      deck.resize(static_cast<std::size_t>(order_items(p)));
       std::iota(deck.begin(), deck.end(), 0);
     }
     const auto pick = static_cast<std::ptrdiff_t>(random.below(deck.size()));
@@ -146,7 +148,12 @@ void write_plan_csv(std::ostream& out, const Protocol& p, const SessionPlan& pla
   for (const PlannedTrial& t : plan.trials) {
     const Condition& c = p.conditions[static_cast<std::size_t>(t.condition)];
     std::string stimulus = "scene", tumor = "";
-    if (t.combination >= 0) {
+    if (p.task == TaskKind::localisation) {
+      if (p.localisation.listed && t.combination >= 0)
+        stimulus = p.localisation.cases.at(static_cast<std::size_t>(t.combination)).name;
+      else if (p.localisation.generate)
+        stimulus = std::string("generated ") + to_string(*p.localisation.generate);
+    } else if (t.combination >= 0) {
       const auto& combination = p.combinations[static_cast<std::size_t>(t.combination)];
       stimulus = combination.label;
       tumor = finger_numbers_text(combination.tumor);

@@ -25,6 +25,11 @@ std::string discrimination_feedback(const Protocol& protocol, const TrialRecord&
 }
 
 std::string localisation_feedback(const TrialRecord& trial) {
+  if (trial.case_tumors == 0 && !trial.case_name.empty()) {
+    // A normal case: "nothing there" is the right answer.
+    if (trial.localisation.false_marks == 0) return "Correct: there was no tumor.";
+    return "There was no tumor; marks on no tumor: " + std::to_string(trial.localisation.false_marks) + ".";
+  }
   std::string found, missed;
   for (const TumorScore& t : trial.localisation.tumors) {
     std::string& list = t.hit ? found : missed;

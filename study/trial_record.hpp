@@ -2,6 +2,7 @@
 // TrialRecord: everything one completed trial leaves behind. The runner fills it, the store
 // commits it in one transaction, stats and export read it back.
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -39,6 +40,12 @@ struct TrialRecord {
   std::array<double, kFingerCount> felt_kPa{};          // mean actuator pressure while the stimulus was on
   std::array<Outcome, kFingerCount> finger_outcomes{};  // discrimination, when answered
   LocalisationScore localisation;                       // localisation, when answered
+  // Localisation: the case palpated (study/localisation_case.hpp). A normal case (no tumor)
+  // answered without a mark is a true negative; every mark on it a false mark.
+  std::string case_name;
+  std::optional<std::uint64_t> case_seed;         // a generated case's seed
+  std::optional<CaseDifficulty> case_difficulty;  // a generated case's difficulty
+  int case_tumors = 0;                            // tumors in the case; 0: a normal case
 };
 
 // The response time measured from the end of the stimulus (what the experimenter's console

@@ -162,10 +162,10 @@ TEST(CalibrationFit, WrittenFileIsWhatTheControllerLoads) {
   bool noted = false;
   for (const auto& n : r.notes) noted = noted || n == "channel 3 was not swept: no hysteresis model (identity)";
   EXPECT_TRUE(noted);
-  // The tick gets the inverse of each fitted model.
+  // The tick gets each fitted model, which it inverts.
   RigConfig rig_config;
   const TickConfig tick = make_tick_config(rig_config, again);
-  PrandtlIshlinskii model = again.hysteresis[0], inverse = tick.hysteresis_inverse[0];
+  PrandtlIshlinskii model = again.hysteresis[0], inverse = tick.hysteresis_model[0].inverse();
   model.reset(0);
   inverse.reset(0);
   for (double t : {10.0, 25.0, 18.0, 40.0, 12.0, 33.0}) EXPECT_NEAR(model.apply(inverse.apply(t)), t, 1e-9);

@@ -125,6 +125,7 @@ TEST(DynamicsFit, RecoversTheSimulatedPlantsDeadTimeAndLag) {
     EXPECT_EQ(d.segments[1].segment, SweepSegment::chirp);
     EXPECT_TRUE(d.converged) << d.solver_report;
     EXPECT_TRUE(ch.dynamics_usable());
+    EXPECT_FALSE(d.directional);  // one lag both ways: a second one would not pay
   }
   // Written to the calibration file and read back by the controller's loader.
   const auto path = dir.path() / "cal.json";
@@ -215,4 +216,34 @@ TEST(CalibrationFile, DynamicsAndLagCompensationAreValidatedAndOlderFilesLoad) {
     EXPECT_FALSE(cal.lag_compensation.enabled) << shipped;
   }
   EXPECT_EQ(load(ch, ""), "accepted");
+}
+
+TEST(DynamicsFit, SeparateFillAndExhaustLagsAreIdentified) {
+  // A regulator that fills through its supply in 40 ms and exhausts in 90 ms.
+  TempDir dir;
+  PlantParams plant;
+  plant.time_constant_s = 0.040;
+  plant.exhaust_time_constant_s = 0.090;
+  const SweepData data = recorded_sweep(dir, plant);
+  CalibrationFitOptions o;
+  o.date = "2026-11-27";
+  const CalibrationResult r = fit_calibration(data, o);
+  for (const ChannelCalibration& ch : r.channels) {
+    ASSERT_TRUE(ch.dynamics.has_value()) << ch.channel;
+    const DynamicsFit& d = *ch.dynamics;
+    ASSERT_TRUE(d.directional) << ch.channel;
+    EXPECT_NEAR(d.time_constant_s, 0.040, 0.03 * 0.040) << ch.channel;
+    EXPECT_NEAR(d.exhaust_time_constant_s, 0.090, 0.03 * 0.090) << ch.channel;
+    EXPECT_NEAR(d.dead_time_s, plant.dead_time_s - 0.001, 0.0005) << ch.channel;
+    EXPECT_GT(d.r_squared, 0.999);
+    EXPECT_LT(d.rms_residual_kPa, 0.5 * d.one_lag_rms_residual_kPa);  // what one lag could not explain
+  }
+  // The file carries the exhaust lag; the tick's compensator gets both.
+  const CalibrationModels cal = write_calibration_file(dir.path() / "cal.json", calibration_json(r));
+  ASSERT_TRUE(cal.dynamics[1].has_value());
+  EXPECT_EQ(cal.dynamics[1]->exhaust_time_constant_s, r.channels[1].dynamics->exhaust_time_constant_s);
+  const TickConfig cfg =
+      make_tick_config(load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/simulated.json"), cal);
+  EXPECT_EQ(cfg.lag_compensation.regulator[1].exhaust_time_constant_s, cal.dynamics[1]->exhaust_time_constant_s);
+  EXPECT_EQ(cfg.lag_compensation.regulator[1].time_constant_s, cal.dynamics[1]->time_constant_s);
 }

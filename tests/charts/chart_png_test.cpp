@@ -13,6 +13,7 @@
 
 #include "charts/chart_png.hpp"
 #include "charts/chart_svg.hpp"
+#include "core/error.hpp"
 #include "tests/support/temp_dir.hpp"
 
 using namespace palprig::charts;
@@ -96,8 +97,8 @@ TEST(Charts, PngAndSvgAtPrintSize) {
 TEST(Charts, RefusesChartsWithNothingToDrawAndUnwritablePaths) {
   TempDir dir;
   Chart empty;
-  EXPECT_THROW(write_chart_png(empty, dir.path() / "e.png"), std::invalid_argument);
-  EXPECT_THROW(write_chart_svg(empty, dir.path() / "e.svg"), std::invalid_argument);
+  EXPECT_THROW(write_chart_png(empty, dir.path() / "e.png"), palprig::BadInput);
+  EXPECT_THROW(write_chart_svg(empty, dir.path() / "e.svg"), palprig::BadInput);
   Chart mismatched;
   ChartSeries s;
   s.x = {1, 2};

@@ -12,7 +12,7 @@
 #include "store/sqlite_trial_store.hpp"
 #include "study/protocol.hpp"
 #include "study/session_plan.hpp"
-#include "tests/support/discrimination_trials.hpp"
+#include "tests/support/analyst_store.hpp"
 #include "tests/support/standard_output_support.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -22,18 +22,9 @@ using palprig::test_support::run_to_dev_full;
 
 namespace {
 
+// The answers: exact on every trial but every fifth (all fingers).
 std::filesystem::path write_store(const std::filesystem::path& dir) {
-  const Protocol p =
-      load_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data/protocols/discrimination_002.json");
-  const auto db = dir / "analyst.db";
-  SqliteTrialStore store(db, TrialStore::Access::read_write);
-  const ParticipantRecord who = store.enrol("P01", false);
-  const SessionPlan plan = make_session_plan(p, who.number, 7);
-  const std::int64_t id = store.create_session(who, p, plan, SessionSetup{});
-  for (const PlannedTrial& planned : plan.trials)
-    store.commit_trial(id, palprig::testing::discrimination_trial(p, planned, planned.position % 5 == 0));
-  store.complete_session(id);
-  return db;
+  return palprig::testing::write_analyst_store(dir, [](int position) { return position % 5 == 0; });
 }
 
 int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }

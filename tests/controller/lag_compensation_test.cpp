@@ -52,8 +52,9 @@ struct Drive {
 // The stage alone on channel 0: base_at(t) is the target at time t (known ahead, as the scene
 // sampled where the finger will be), the plant stepped at 1 kHz under each command.
 template <typename Target>
-Drive drive_stage(Target base_at, bool compensate, const RegulatorLag& model, double max_lead_kPa, double seconds) {
-  PneumaticPlant plant(lag_only());
+Drive drive_stage(Target base_at, bool compensate, const RegulatorLag& model, double max_lead_kPa, double seconds,
+                  const PlantParams& plant_params = lag_only()) {
+  PneumaticPlant plant(plant_params);
   LagCompensationState st;
   LagPlan plan;
   plan.part[0] = compensate ? CompensatedPart::total : CompensatedPart::none;
@@ -368,4 +369,33 @@ TEST(LagCompensation, ARestartFromVentedStartsTheCompensatorsFromZero) {
   st.restart_from_vented();
   EXPECT_EQ(st.lag.compensator[0].predicted_kPa(), 0.0);
   EXPECT_EQ(st.lag.compensator[0].last_command_kPa(), 0.0);
+}
+
+TEST(LagCompensation, FillAndExhaustLagsEachLeadTheirOwnEdges) {
+  // A regulator that fills in 40 ms and exhausts in 90 ms, stepping 10 -> 20 -> 12 kPa: the
+  // compensator with both lags lands both edges without overshoot; with one lag (either) it
+  // overshoots the edge whose lag it overestimates or arrives late on the one it underestimates.
+  PlantParams plant = lag_only();
+  plant.time_constant_s = 0.040;
+  plant.exhaust_time_constant_s = 0.090;
+  auto steps = [](double t) { return t < 0.1 ? 10.0 : t < 0.5 ? 20.0 : 12.0; };
+  const RegulatorLag both{0.004, 0.040, 2000, 0.090}, fill_only{0.004, 0.040, 2000}, exhaust_only{0.004, 0.090, 2000};
+  const Drive d = drive_stage(steps, true, both, 10, 1.0, plant);
+  const Drive f = drive_stage(steps, true, fill_only, 10, 1.0, plant);
+  const Drive e = drive_stage(steps, true, exhaust_only, 10, 1.0, plant);
+  double over_rise = 0, under_fall = 0;
+  for (std::size_t k = 100; k < 500; ++k) over_rise = std::max(over_rise, d.output[k] - 20.0);
+  for (std::size_t k = 500; k < d.output.size(); ++k) under_fall = std::max(under_fall, 12.0 - d.output[k]);
+  EXPECT_LT(over_rise, 0.15);
+  EXPECT_LT(under_fall, 0.15);
+  // Rising with the exhaust's slower lag assumed: pushed too hard, overshoots.
+  double over_e = 0;
+  for (std::size_t k = 100; k < 500; ++k) over_e = std::max(over_e, e.output[k] - 20.0);
+  EXPECT_GT(over_e, 3 * std::max(over_rise, 0.05));
+  // Falling with the fill's faster lag assumed: released too early, late.
+  // Falling with the fill's faster lag assumed: released too early, it drags on for long after.
+  // With both lags the fall lands 55 ms after the edge (dead time, then the command at 0 kPa).
+  EXPECT_LT(std::abs(d.output[560] - 12.0), 0.1);
+  EXPECT_GT(f.output[560] - 12.0, 1.0);
+  EXPECT_LT(rms_error(d), std::min(rms_error(f), rms_error(e)));
 }

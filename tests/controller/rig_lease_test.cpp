@@ -3,6 +3,7 @@
 // lease back vents every channel. Real loops on real threads against the simulated rig.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <optional>
 #include <thread>
@@ -105,6 +106,35 @@ TEST(RigLease, ANonYieldingHolderIsNotAskedToGiveWay) {
   RigLease sweep = rig.lease("the calibration sweep", LeaseKind::exclusive);
   EXPECT_THROW(rig.lease("the window's live loop", LeaseKind::yielding), RigBusy);
   EXPECT_FALSE(sweep.release_requested()) << "an exclusive holder is never asked to give way";
+}
+
+// The window restarts its live loop on a timer whenever the rig is free. In the moment between
+// the yielding lease going back and the waiting session waking, the loop must not take the rig
+// again: nobody would be left to ask it to give way, and the session would time out (CI saw a
+// study session refused after 5 s under load).
+TEST(RigLease, AWaitingTakerComesBeforeAYieldingLoopRestartingInTheGap) {
+  SimulatedRig backend(std::array<PlantParams, kFingerCount>{}, 60.0);
+  backend.open();
+  Rig rig(backend, "rig");
+  std::optional<RigLease> live;
+  live.emplace(rig.lease("the window's live loop", LeaseKind::yielding));
+  std::atomic<bool> session_got_it{false};
+  std::thread taker([&] {
+    RigLease session = rig.lease("a study session", LeaseKind::exclusive, std::chrono::seconds(20));
+    session_got_it = true;
+    EXPECT_EQ(rig.holder(), "a study session");
+  });
+  while (!live->release_requested()) std::this_thread::yield();
+  live.reset();  // the loop gave way ...
+  // ... and restarts at once, before the session's thread has woken: refused, the rig is promised.
+  EXPECT_TRUE(rig.leased()) << "a rig a taker waits for is not free";
+  EXPECT_THROW(rig.lease("the window's live loop", LeaseKind::yielding), RigBusy);
+  taker.join();
+  EXPECT_TRUE(session_got_it);
+  EXPECT_FALSE(rig.leased());
+  // Free again: the live loop may have it.
+  RigLease again = rig.lease("the window's live loop", LeaseKind::yielding);
+  EXPECT_EQ(rig.holder(), "the window's live loop");
 }
 
 TEST(RunControl, AStopBySignalIsKeptWhileAnOperatorsStopIsForgottenByRestart) {

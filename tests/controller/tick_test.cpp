@@ -132,7 +132,7 @@ TEST(Tick, StaleInputVents) {
 TEST(Tick, DeterministicForTheSameInputs) {
   const auto scene = half_hard_scene();
   TickConfig cfg;
-  cfg.hysteresis_inverse[0].linear_weight = 1 / 0.7;  // exercise the compensation stage too
+  cfg.hysteresis_model[0].linear_weight = 0.7;  // exercise the compensation stage too
   TickState a = make_tick_state(cfg), b = make_tick_state(cfg);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> pos(0, 100), force(0, 5);
@@ -151,7 +151,7 @@ TEST(Tick, HysteresisInverseIsApplied) {
   cfg.safety.slew_kPa_per_s = 1e9;
   PrandtlIshlinskii forward;
   forward.linear_weight = 0.5;  // the actuator gives half of what is commanded
-  cfg.hysteresis_inverse.fill(forward.inverse());
+  cfg.hysteresis_model.fill(forward);
   TickState st = make_tick_state(cfg);
   const TickResult r = tick(st, cfg, scene, press(0, 50, 20), 0);
   EXPECT_NEAR(r.setpoint_kPa[1], 2 * 11.75, 1e-9);
@@ -209,7 +209,7 @@ TEST(TickStages, HysteresisInverseThenSafetyAreTwoStages) {
   cfg.safety.slew_kPa_per_s = 1e9;
   PrandtlIshlinskii forward;
   forward.linear_weight = 0.5;
-  cfg.hysteresis_inverse.fill(forward.inverse());
+  cfg.hysteresis_model.fill(forward);
   TickState st = make_tick_state(cfg);
   // The inverse doubles the target; it does not clamp (that is the safety stage's job).
   const ChannelPressures command = hysteresis_inverse_stage(st, {5, 10, 20});

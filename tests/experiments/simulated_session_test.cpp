@@ -13,6 +13,7 @@
 #include "experiments/session_loop.hpp"
 #include "sessions/session_setup.hpp"
 #include "experiments/simulated_participant.hpp"
+#include "experiments/trial_cases.hpp"
 #include "store/sqlite_trial_store.hpp"
 #include "store/trial_summary.hpp"
 #include "tests/support/support.hpp"
@@ -105,20 +106,20 @@ TEST(experiments_simulated_session, observer_without_noise_is_perfect_and_noise_
 
 TEST(experiments_simulated_session, localisation_sweeps_the_scene_and_marks_tumors) {
   const Protocol p = load_protocol(testing::protocols_dir() / "localisation_002.json");
-  const SceneFile scene = load_scene_file(p.localisation.scene_file);
   SimulatedRigSetup rig;
   RigStimulus output(rig.config, *rig.backend);
   SimulatedObserverModel model;
   model.seed = 2;
   model.raster_row_step_mm = 6.0;  // a thorough raster finds every tumor
-  SimulatedParticipant participant(model, p, scene.scene.get(), rig.config.layout);
+  SimulatedParticipant participant(model, p, nullptr, rig.config.layout);
   const SessionPlan plan = make_session_plan(p, 1, 2);
+  TrialCases cases(p, plan.seed);
   class Keep final : public RunnerListener {
    public:
     void on_trial_completed(const TrialRecord& t) override { trials.push_back(t); }
     std::vector<TrialRecord> trials;
   } keep;
-  TrialRunner runner(p, plan, 0, output, keep, scene.scene.get(), participant.pen());
+  TrialRunner runner(p, plan, 0, output, keep, &cases, participant.pen());
   SimulatedClock clock;
   SessionLoopOptions options;
   options.output = &output;

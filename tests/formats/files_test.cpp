@@ -52,6 +52,34 @@ TEST(Files, RigFileFieldsAndDefaults) {
   EXPECT_EQ(rig.plants[0].time_constant_s, 0.04);
   EXPECT_EQ(rig.plants[0].dead_time_s, PlantParams{}.dead_time_s);
   EXPECT_NE(rig.plants[0].seed, rig.plants[1].seed);  // independent noise per channel
+  // Without the asymmetric keys the regulator is the symmetric one.
+  EXPECT_FALSE(rig.plants[0].hysteresis_rising_kPa || rig.plants[0].hysteresis_falling_kPa ||
+               rig.plants[0].exhaust_time_constant_s);
+  EXPECT_EQ(rig.plants[0].exhaust_lag_factor_at_0, 1.0);
+  EXPECT_EQ(rig.plants[0].gain_saturation_kPa, 0.0);
+}
+
+TEST(Files, AsymmetricRegulatorKeys) {
+  const RigConfig rig = load_rig_file(kData / "rigs" / "simulated_asymmetric.json");
+  EXPECT_EQ(rig.id, "sim-asymmetric");
+  for (const PlantParams& p : rig.plants) {
+    EXPECT_EQ(p.rising_play_kPa(), 3.0);
+    EXPECT_EQ(p.falling_play_kPa(), 1.0);
+    EXPECT_EQ(p.time_constant_s, 0.04);
+    EXPECT_EQ(p.exhaust_time_constant(), 0.07);
+    EXPECT_EQ(p.exhaust_lag_factor_at_0, 2.5);
+    EXPECT_EQ(p.exhaust_lag_scale_kPa, 5.0);
+    EXPECT_EQ(p.gain_saturation_kPa, 300.0);
+  }
+  TempDir dir;
+  auto with_plant = [&](const std::string& plant) {
+    const auto path = dir.write("asym.json", R"({"version": 1, "id": "r1", "plant": {)" + plant + "}}");
+    return refusal([&] { load_rig_file(path); });
+  };
+  EXPECT_NE(with_plant(R"("hysteresis_rising_kPa": -1)").find("hysteresis_rising_kPa"), std::string::npos);
+  EXPECT_NE(with_plant(R"("exhaust_lag_factor_at_0": 0.5)").find("exhaust_lag_factor_at_0"), std::string::npos);
+  EXPECT_NE(with_plant(R"("gain_saturation_kPa": 0.5)").find("gain_saturation_kPa"), std::string::npos);
+  EXPECT_EQ(with_plant(R"("hysteresis_falling_kPa": 0.5, "exhaust_time_constant_s": 0.1)"), "accepted");
 }
 
 TEST(Files, BadRigFilesAreRefusedWithFieldAndReason) {

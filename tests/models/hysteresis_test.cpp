@@ -130,3 +130,90 @@ TEST(PrandtlIshlinskii, InputForNearTheBottomLandsTheExhaustingActuatorWithoutVe
   EXPECT_NEAR(m.apply_exhausting(x), 1.0, 1e-9);
   EXPECT_EQ(m.input_for(-3), 0.0);  // below what 0 kPa gives: the bottom
 }
+
+// The asymmetric (generalised) model: rising and falling plays of their own widths.
+namespace {
+PrandtlIshlinskii asymmetric_model() {
+  PrandtlIshlinskii m;
+  m.linear_weight = 0.3;
+  m.operator_count = 3;
+  m.asymmetric = true;
+  m.thresholds_kPa = {3.0, 1.2, 5.0};  // rising: any order
+  m.falling_thresholds_kPa = {1.0, 0.4, 2.0};
+  m.weights = {0.45, 0.15, 0.1};
+  return m;
+}
+}  // namespace
+
+TEST(PrandtlIshlinskii, AsymmetricPlayLagsRisingAndFallingByItsOwnThresholds) {
+  PrandtlIshlinskii m;
+  m.linear_weight = 1e-12;
+  m.operator_count = 1;
+  m.asymmetric = true;
+  m.thresholds_kPa[0] = 3.0;
+  m.falling_thresholds_kPa[0] = 1.0;
+  m.weights[0] = 1.0;
+  ASSERT_TRUE(m.valid());
+  m.reset(0);
+  EXPECT_NEAR(m.apply(20), 17, 1e-9);  // rising: x - r+
+  EXPECT_NEAR(m.apply(17.5), 17, 1e-9);
+  EXPECT_NEAR(m.apply(10), 11, 1e-9);  // falling: x + r-
+  EXPECT_NEAR(m.apply(14), 11, 1e-9);  // reversal: flat across r+ + r-
+  // Exhausting: the band above narrows near 0, as the simulated regulator's.
+  EXPECT_NEAR(m.apply_exhausting(0.5), 1.0, 1e-9);
+  EXPECT_NEAR(m.apply_exhausting(0.0), 0.0, 1e-9);
+}
+
+TEST(PrandtlIshlinskii, AsymmetricWithEqualThresholdsIsTheSymmetricModel) {
+  PrandtlIshlinskii sym = example_model(), asym = example_model();
+  asym.asymmetric = true;
+  asym.falling_thresholds_kPa = asym.thresholds_kPa;
+  sym.reset(0);
+  asym.reset(0);
+  for (double x : reversal_trajectory()) ASSERT_EQ(sym.apply_exhausting(x), asym.apply_exhausting(x));
+}
+
+TEST(PrandtlIshlinskii, AsymmetricInverseLandsOnTargetOnBothBranches) {
+  // The tick's use: the input for the target from the actuator's present state, then the
+  // actuator (the same model, exhausting at 0) follows that input. Every target is met, rising
+  // and falling, near 0 kPa too.
+  PrandtlIshlinskii model = asymmetric_model(), actuator = asymmetric_model();
+  ASSERT_TRUE(model.valid());
+  model.reset(0);
+  actuator.reset(0);
+  std::vector<double> targets;
+  for (double t : reversal_trajectory()) targets.push_back(t);
+  for (int k = 0; k <= 200; ++k) targets.push_back(0.05 * (200 - k));  // down to 0
+  for (int k = 0; k <= 100; ++k) targets.push_back(0.1 * k);           // and up from it
+  double worst = 0, previous = 0;
+  int rising = 0, falling = 0;
+  for (double t : targets) {
+    const double u = model.input_for(t);
+    model.apply_exhausting(u);
+    const double y = actuator.apply_exhausting(u);
+    worst = std::max(worst, std::abs(y - t));
+    (t > previous ? rising : falling) += t != previous;
+    previous = t;
+  }
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_GT(rising, 1000);
+  EXPECT_GT(falling, 1000);
+  // Without the inverse the same targets miss by the plays' widths, differently by branch.
+  PrandtlIshlinskii plain = asymmetric_model();
+  plain.reset(0);
+  double worst_plain = 0;
+  for (double t : targets) worst_plain = std::max(worst_plain, std::abs(plain.apply_exhausting(t) - t));
+  EXPECT_GT(worst_plain, 1.0);
+}
+
+TEST(PrandtlIshlinskii, AsymmetricValidityRules) {
+  PrandtlIshlinskii m = asymmetric_model();
+  EXPECT_TRUE(m.valid());  // rising thresholds not in order: fine for the asymmetric model
+  m.asymmetric = false;
+  EXPECT_FALSE(m.valid());  // the symmetric model needs them increasing
+  m = asymmetric_model();
+  m.falling_thresholds_kPa[1] = 0;
+  EXPECT_FALSE(m.valid());
+  m.falling_thresholds_kPa[1] = NAN;
+  EXPECT_FALSE(m.valid());
+}

@@ -53,7 +53,7 @@ TEST(experiments_trial_store_interface, readers_get_back_what_a_trial_committed)
   r.mode = PresentationMode::scene;
   r.answered = true;
   r.response_time_s = 42.5;
-  const auto& t = p.localisation.tumors;
+  const auto& t = p.localisation.cases.at(0).tumors;
   r.marks = {{t[0].x_mm, t[0].y_mm}, {5, 5}};  // one hit, one false mark
   r.localisation = score_localisation(t, r.marks, p.localisation.tolerance_mm);
   store->commit_trial(s.session_id, r);

@@ -138,7 +138,7 @@ TEST(experiments_trial_summary, localisation_is_scored_per_tumor) {
     r.mode = PresentationMode::scene;
     r.answered = true;
     r.response_time_s = 60;
-    const auto& t = p.localisation.tumors;
+    const auto& t = p.localisation.cases.at(0).tumors;
     if (i < 6) r.marks.push_back({t[0].x_mm, t[0].y_mm});
     r.marks.push_back({t[1].x_mm + 3, t[1].y_mm});
     if (i != 4) r.marks.push_back({t[2].x_mm, t[2].y_mm - 2});
@@ -149,15 +149,19 @@ TEST(experiments_trial_summary, localisation_is_scored_per_tumor) {
   SummaryOptions by_tumor;
   by_tumor.by = {SummaryKey::tumor};
   const TrialSummary s = summarise_trials(store, by_tumor);
-  ASSERT_EQ(s.rows.size(), 4u);  // "-", A, B, C
-  EXPECT_EQ(s.rows[0].key[0], "-");
-  EXPECT_EQ(s.rows[0].counts.fp, 1);
-  EXPECT_EQ(s.rows[1].counts.tp, 6);
-  EXPECT_EQ(s.rows[1].counts.fn, 3);
-  EXPECT_NEAR(s.rows[1].measures.se.value * 100, 66.7, 0.05);
-  EXPECT_NEAR(s.rows[2].measures.se.value * 100, 100.0, 0.05);
-  EXPECT_NEAR(s.rows[3].measures.se.value * 100, 88.9, 0.05);
-  EXPECT_NEAR(s.rows[1].measures.se.lower, 0.35420213558, 1e-10);  // Wilson of 6/9
+  // Keyed by case and tumor (these trials were stored without a case: their session's one
+  // scene, phantom_abc); the false mark is the case's "elsewhere" row, not a tumor row "-".
+  ASSERT_EQ(s.rows.size(), 4u);
+  EXPECT_EQ(s.rows[0].key[0], "phantom_abc/A");
+  EXPECT_EQ(s.rows[3].key[0], "phantom_abc/elsewhere");
+  EXPECT_EQ(s.rows[3].counts.fp, 1);
+  EXPECT_FALSE(s.rows[3].negatives_counted);  // no normal case: TN and Sp n/a
+  EXPECT_EQ(s.rows[0].counts.tp, 6);
+  EXPECT_EQ(s.rows[0].counts.fn, 3);
+  EXPECT_NEAR(s.rows[0].measures.se.value * 100, 66.7, 0.05);
+  EXPECT_NEAR(s.rows[1].measures.se.value * 100, 100.0, 0.05);
+  EXPECT_NEAR(s.rows[2].measures.se.value * 100, 88.9, 0.05);
+  EXPECT_NEAR(s.rows[0].measures.se.lower, 0.35420213558, 1e-10);  // Wilson of 6/9
 }
 
 TEST(experiments_trial_summary, unknown_grouping_word_is_refused) {

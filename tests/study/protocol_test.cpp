@@ -67,9 +67,10 @@ TEST(experiments_protocol, paper_002_discrimination_set) {
 TEST(experiments_protocol, paper_002_localisation_has_tumors_a_b_c) {
   const Protocol p = load_protocol(kProtocols / "localisation_002.json");
   EXPECT_EQ(p.task, TaskKind::localisation);
-  ASSERT_EQ(p.localisation.tumors.size(), 3u);
-  EXPECT_EQ(p.localisation.tumors[0].name, "A");
-  EXPECT_EQ(p.localisation.tumors[2].name, "C");
+  ASSERT_EQ(p.localisation.cases.size(), 1u);
+  ASSERT_EQ(p.localisation.cases[0].tumors.size(), 3u);
+  EXPECT_EQ(p.localisation.cases[0].tumors[0].name, "A");
+  EXPECT_EQ(p.localisation.cases[0].tumors[2].name, "C");
   EXPECT_EQ(p.conditions[0].mode, PresentationMode::scene);
 }
 

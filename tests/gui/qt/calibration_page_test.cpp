@@ -67,6 +67,12 @@ T* child(QWidget* page, const char* name) {
   return c;
 }
 
+// The window's poll timer (16 ms) starts the live loop again once the rig is free: wait for one.
+void wait_for_poll(Window& w) {
+  QSignalSpy polled(w.window.get(), &MainWindow::polled);
+  QVERIFY(polled.wait(5000));
+}
+
 void set_staircase(CalibrationPage* p, double from, double to, double step, int repeats) {
   child<QDoubleSpinBox>(p, "cal_from")->setValue(from);
   child<QDoubleSpinBox>(p, "cal_to")->setValue(to);
@@ -95,14 +101,16 @@ class CalibrationPageTest : public QObject {
     child<QCheckBox>(p, "cal_channel_3")->setChecked(false);
     QSignalSpy finished(p, &CalibrationPage::sweep_finished);
     QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
-    QVERIFY(p->sweeping());
-    QCOMPARE(w.window->run().state(), RigLifecycle::stopped);  // the live loop gave the rig up
+    QVERIFY2(p->sweeping(), qPrintable(child<QLabel>(p, "cal_status")->text()));
+    QCOMPARE(w.window->run().state(), RigLifecycle::lent);  // the live loop gave the rig up
+    wait_for_poll(w);                                       // the window disables the live page on its next poll
     QVERIFY(!w.window->live_page()->isEnabled());
     QVERIFY(finished.wait(120000));
     QVERIFY(!p->sweeping());
     auto* progress = child<QProgressBar>(p, "cal_progress");
     QCOMPARE(progress->value(), progress->maximum());
     QVERIFY2(progress->maximum() > 10, qPrintable(QString::number(progress->maximum())));
+    wait_for_poll(w);  // the window starts the live loop again on its next poll
     QVERIFY(w.window->run().state() != RigLifecycle::stopped);  // the live loop runs again
     QVERIFY(w.window->live_page()->isEnabled());
     QCOMPARE(w.window->pages()->currentWidget(), static_cast<QWidget*>(p));
@@ -207,6 +215,7 @@ class CalibrationPageTest : public QObject {
     const SweepData data = read_sweep_csv(p->data_path().toStdString());
     QVERIFY(data.points.size() >= 20);
     QVERIFY(child<QPushButton>(p, "cal_fit")->isEnabled());
+    wait_for_poll(w);  // the window starts the live loop again on its next poll
     QVERIFY(w.window->run().state() != RigLifecycle::stopped);
   }
 
@@ -289,11 +298,12 @@ class CalibrationPageTest : public QObject {
     QSignalSpy evaluated(p, &CalibrationPage::evaluation_finished);
     QTest::mouseClick(child<QPushButton>(p, "cal_evaluate"), Qt::LeftButton);
     QVERIFY(p->sweeping());  // the evaluation holds the rig as a sweep does
-    QCOMPARE(w.window->run().state(), RigLifecycle::stopped);
+    QCOMPARE(w.window->run().state(), RigLifecycle::lent);
     QVERIFY(!child<QPushButton>(p, "cal_evaluate")->isEnabled());
     QVERIFY(!child<QPushButton>(p, "cal_fit")->isEnabled());
     QVERIFY(evaluated.wait(300000));
     QVERIFY(!p->sweeping());
+    wait_for_poll(w);  // the window starts the live loop again on its next poll
     QVERIFY(w.window->run().state() != RigLifecycle::stopped);  // the live loop has the rig again
     const QString status = child<QLabel>(p, "cal_status")->text();
     QVERIFY2(p->evaluation().has_value(), qPrintable(status));

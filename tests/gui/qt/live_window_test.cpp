@@ -9,6 +9,7 @@
 #include <QFrame>
 #include <QImage>
 #include <QLabel>
+#include <cmath>
 #include <cstdlib>
 #include <QMessageBox>
 #include <QPushButton>
@@ -29,7 +30,9 @@
 #include "gui/rig_panel.hpp"
 #include "gui/scene_view.hpp"
 #include "gui/tracker_panel.hpp"
+#include "formats/function_scene_file.hpp"
 #include "inputs/igtl_pose_server.hpp"
+#include "models/case_generator.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -209,6 +212,11 @@ class LiveWindowTest : public QObject {
     QVERIFY(wait_until(win, [&] { return (view->finger_pixels()[0] - QPointF(tumor)).manhattanLength() < 3; }));
     QVERIFY2(wait_until(win, [&] { return setpoint(win, 0) > 11.0; }), "finger 1 never reached the tumor's pressure");
     QVERIFY(win.live_page()->rig_panel()->gauge(0)->target_kPa() > 11.0);
+    // The gauge shows the rendering error over the last seconds: the regulator's monitor against
+    // the target, a few kPa at most on the simulated rig while it follows the drag (the lag).
+    const double error_rms = win.live_page()->rig_panel()->gauge(0)->rendering_error_rms_kPa();
+    QVERIFY2(std::isfinite(error_rms) && error_rms > 0.0 && error_rms < 6.0,
+             qPrintable(QString("rendering error %1 kPa RMS").arg(error_rms)));
     // Its circle is coloured by that pressure, unlike the soft-tissue fingers.
     QVERIFY(view->finger_colours()[0] != view->finger_colours()[2] || setpoint(win, 2) > 11.0);
     QTest::mouseRelease(view, Qt::LeftButton, {}, tumor);
@@ -456,6 +464,54 @@ class LiveWindowTest : public QObject {
     busy = false;
     for (auto& t : load) t.join();
     QVERIFY2(missed == 0, (std::to_string(missed) + " of 50 runs missed:\n" + misses).c_str());
+  }
+
+  // A rehearsal case opened with --scene: the trainee palpates plain tissue (no outlines, no
+  // stiffness colours) until the trainer reveals the tumors with Ctrl+T for the debriefing. (It
+  // opened with "Tumor outlines" checked and the map painting the tumors: the answer shown.)
+  void rehearsalCaseShowsPlainTissueUntilTheTrainerRevealsIt() {
+    TempDir dir;
+    Window w;
+    w.files.data_dir = data_dir();
+    w.files.rig_path = patient_rig(dir);
+    w.files.scene_path = (dir.path() / "case.json").string();
+    write_scene_json(w.files.scene_path, generated_case_json(generate_case(7, CaseDifficulty::easy)));
+    LiveRunOptions opt;
+    w.window = std::make_unique<MainWindow>(std::make_unique<LiveRun>(load_live_run(w.files), opt), w.files, opt);
+    w.window->resize(1280, 800);
+    w.window->show();
+    MainWindow& win = *w.window;
+    win.activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(&win));  // a window-wide shortcut needs the active window
+    SceneView* view = win.live_page()->scene_view();
+    QVERIFY(!win.live_page()->tumor_outlines()->isChecked());
+    QVERIFY(!view->tumors_visible());
+    QVERIFY(!view->map_visible());
+    // At a tumor's centre the picture is the plain tissue colour: nothing gives it away.
+    const auto& tumors = win.run().setup().scene.tumors;
+    QVERIFY(!tumors.empty());
+    const QPoint at = view->pixel_of(tumors[0].x_mm + 1.3, tumors[0].y_mm + 1.3).toPoint();  // off the 10 mm grid
+    const auto colour_at = [&] { return view->grab().toImage().pixelColor(at); };
+    const auto fingers = view->finger_pixels();
+    for (const QPointF& f : fingers) {
+      if (QLineF(f, QPointF(at)).length() < 60) QSKIP("a finger is drawn over the tumor");
+    }
+    QCOMPARE(colour_at(), QColor(222, 184, 160));
+    // Ctrl+T, window-wide (pressed here on the checkbox, as the Esc test presses Esc on it):
+    // outlines and stiffness colours for the debriefing.
+    win.live_page()->tumor_outlines()->setFocus();
+    QTest::keyClick(win.live_page()->tumor_outlines(), Qt::Key_T, Qt::ControlModifier);
+    QVERIFY(win.live_page()->tumor_outlines()->isChecked());
+    QVERIFY(view->tumors_visible());
+    QVERIFY(view->map_visible());
+    QVERIFY(colour_at() != QColor(222, 184, 160));
+    // And hidden again.
+    QTest::keyClick(win.live_page()->tumor_outlines(), Qt::Key_T, Qt::ControlModifier);
+    QVERIFY(!view->map_visible());
+    // The bundled demo phantom (no --scene) is the experimenter's view: shown from the start.
+    Window demo = open_window(dir);
+    QVERIFY(demo.window->live_page()->tumor_outlines()->isChecked());
+    QVERIFY(demo.window->live_page()->scene_view()->map_visible());
   }
 
   void realWindowUnderXvfb() {

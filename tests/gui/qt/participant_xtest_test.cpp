@@ -36,6 +36,8 @@
 #include "gui/participant_screen.hpp"
 #include "gui/scene_view.hpp"
 #include "gui/session_run.hpp"
+#include "gui/training_view.hpp"
+#include "store/training_history.hpp"
 #include "store/trial_store.hpp"
 #include "tests/gui/qt/console_support.hpp"
 #include "tests/support/run_process.hpp"
@@ -371,6 +373,76 @@ class ParticipantXTestTest : public QObject {
     }
     QVERIFY(reached > 0);  // the sequences are answered after they end
     QVERIFY(screen().last_input_source() == EventClock::Source::monotonic);  // Xvfb stamps with CLOCK_MONOTONIC
+  }
+
+  // A trainer starts a trainee's session from the Training tab by keys alone: the tab is reached
+  // with Ctrl+Tab presses, the trainee picked by typing their code's first letter, the session
+  // started with Alt+S; the trainee (a person) says Ready with Space, marks with M and ends the
+  // case with Enter; the session is scored and the tab shows the trainee's first session.
+  void trainingTabStartsATraineesSessionByKeys() {
+    TempDir dir;
+    const nlohmann::json course = {{"version", 1},
+                                   {"kind", "curriculum"},
+                                   {"name", "key-course"},
+                                   {"levels",
+                                    {{{"name", "easy"},
+                                      {"cases", {{"generate", "easy"}}},
+                                      {"cases_per_session", 1},
+                                      {"feedback", "none"},
+                                      {"benchmark", {{"found_min", 0.5}, {"consecutive_sessions", 2}}}}}}};
+    const std::string course_file = dir.write("course.json", course.dump(2)).string();
+    const std::string db = (dir.path() / "course.db").string();
+    const Curriculum curriculum = load_curriculum(course_file);
+    enrol_trainee(db, curriculum, "A01");
+    enrol_trainee(db, curriculum, "T01");
+    w_ = open_window();
+    w_.window->resize(1280, 800);
+    QVERIFY(QTest::qWaitForWindowExposed(w_.window.get()));
+    TrainingView& training = *w_.window->training_view();
+    training.set_files(QString::fromStdString(course_file), QString::fromStdString(db));
+    QVERIFY2(training.refusal_text().isEmpty(), qPrintable(training.refusal_text()));
+    QVERIFY(focus_console());
+    QTabWidget& tabs = *w_.window->pages();
+    tabs.tabBar()->setFocus();
+    for (int presses = 0; tabs.currentWidget() != &training && presses < tabs.count(); ++presses) {
+      const int before = tabs.currentIndex();
+      x_->key_down("Control_L");
+      x_->key("Tab");
+      x_->key_up("Control_L");
+      QVERIFY(until([&] { return tabs.currentIndex() != before; }));
+    }
+    QCOMPARE(tabs.currentWidget(), static_cast<QWidget*>(&training));
+    training.trainee_table()->setFocus();
+    QVERIFY(until([&] { return training.trainee_table()->hasFocus(); }));
+    x_->key("t");  // the list finds the trainee by the first letters of their code
+    QVERIFY(until([&] { return training.selected_trainee() == "T01"; }));
+    QVERIFY(until([&] { return training.start_button()->isEnabled(); }));
+    keep_screen(*w_.window, "training_tab.png");
+    x_->key_down("Alt_L");
+    x_->key("s");
+    x_->key_up("Alt_L");
+    QVERIFY(until([&] { return page().training_running(); }));
+    QCOMPARE(tabs.currentWidget(), static_cast<QWidget*>(&page()));
+    QSignalSpy finished(&page(), &ExperimentPage::trainingFinished);
+    QVERIFY(say_ready());
+    QVERIFY(until([&] { return screen().answering_position() == 0; }));
+    // No outline on the trainee's screen: the case's tumors are what is to be found.
+    SceneView& view = *screen().marking()->scene_view();
+    QVERIFY(!view.tumors_visible() && !view.map_visible());
+    const QPoint mark = view.mapToGlobal(view.rect().center());
+    x_->move(mark.x(), mark.y());
+    x_->sync();
+    x_->key("m");
+    QVERIFY(until([&] { return screen().marking()->marks().size() == 1; }));
+    x_->key("Return");
+    QVERIFY(until([&] { return finished.count() == 1; }));
+    const TraineeStanding t = trainee_standing(db, curriculum, "T01");
+    QCOMPARE(t.sessions.size(), std::size_t(1));
+    QVERIFY(t.sessions[0].completed());
+    QCOMPARE(t.scores[0].cases.size(), std::size_t(1));
+    QVERIFY(t.scores[0].cases[0].answered);
+    QCOMPARE(training.session_table()->rowCount(), 1);
+    QVERIFY(training.findChild<QLabel*>("training_status")->text().contains("completed"));
   }
 };
 
