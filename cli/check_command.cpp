@@ -152,53 +152,54 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
   if (kind == "fe-table") {
     const FeTableFile t = load_fe_table_file(path);
     return "finite-element table, " + count(t.table->axes().values(), "value") + " from " + count(t.solves, "solve");
-    if (kind == "curriculum") {
-      const Curriculum c = load_curriculum(path);
-      std::string out = "curriculum '" + c.name + "', " + count(c.levels.size(), "level");
-      // What the pilot section predicts for a simulated trainee (train next --participant sim:SEED).
-      const auto first = predict_pilot_sessions(c, 200);
-      std::string at;
-      for (std::size_t i = 1; i < first.size(); ++i) {
-        at += (at.empty() ? "" : ", ") + std::string("level ") + std::to_string(i + 1) + " at " +
-              (first[i] ? "session " + std::to_string(*first[i]) : std::string("none of 200 sessions"));
-      }
-      if (!at.empty()) out += "; a pilot trainee who would find every tumor once skilled reaches " + at;
-      return out;
-    }
-    if (kind == "trace") {
-      const auto samples = load_trace_csv(path);
-      return "pen trace, " + count(samples.size(), "row");
-    }
-    if (kind == "map") {
-      // The size in mm belongs to the scene that lays the map out; the values are what is checked.
-      const StiffnessMap map = load_stiffness_map_file(path, 100.0, 100.0);
-      return "stiffness map, " + std::to_string(map.cols()) + " x " + std::to_string(map.rows()) + " vertices";
-    }
-    if (kind == "tracking") {
-      const TrackingConfig t = load_tracking_file(path);
-      std::string names;
-      for (const auto& tool : t.tools)
-        names += (names.empty() ? "" : ", ") + tool.name +
-                 (t.placement == TrackedPlacement::per_finger ? " -> finger " + std::to_string(tool.finger + 1) : "");
-      return std::string("tracking file, ") +
-             (t.placement == TrackedPlacement::per_finger ? "one tool per finger ("
-                                                          : "one tool, the fingers around it (") +
-             names + ")" +
-             (t.registration.fiducials > 0 ? ", registered on " + count(t.registration.fiducials, "fiducial") : "");
-    }
-    if (kind == "poses") {
-      const auto poses = load_pose_recording(path);
-      return "tracker pose recording, " + count(recorded_tools(poses).size(), "tool") + ", " +
-             count(poses.size(), "pose");
-    }
-    if (kind == "fiducials") return "fiducials, " + count(load_fiducials(path).size(), "point");
-    if (kind == "waveform") {
-      (void)load_waveform_csv(path);
-      return "waveform table";
-    }
-    const PenRecording rec = read_pen_recording(path);
-    return "evemu pen recording '" + rec.device_name + "', " + count(rec.events.size(), "event");
   }
+  if (kind == "curriculum") {
+    const Curriculum c = load_curriculum(path);
+    std::string out = "curriculum '" + c.name + "', " + count(c.levels.size(), "level");
+    // What the pilot section predicts for a simulated trainee (train next --participant sim:SEED).
+    const auto first = predict_pilot_sessions(c, 200);
+    std::string at;
+    for (std::size_t i = 1; i < first.size(); ++i) {
+      at += (at.empty() ? "" : ", ") + std::string("level ") + std::to_string(i + 1) + " at " +
+            (first[i] ? "session " + std::to_string(*first[i]) : std::string("none of 200 sessions"));
+    }
+    if (!at.empty()) out += "; a pilot trainee who would find every tumor once skilled reaches " + at;
+    return out;
+  }
+  if (kind == "trace") {
+    const auto samples = load_trace_csv(path);
+    return "pen trace, " + count(samples.size(), "row");
+  }
+  if (kind == "map") {
+    // The size in mm belongs to the scene that lays the map out; the values are what is checked.
+    const StiffnessMap map = load_stiffness_map_file(path, 100.0, 100.0);
+    return "stiffness map, " + std::to_string(map.cols()) + " x " + std::to_string(map.rows()) + " vertices";
+  }
+  if (kind == "tracking") {
+    const TrackingConfig t = load_tracking_file(path);
+    std::string names;
+    for (const auto& tool : t.tools)
+      names += (names.empty() ? "" : ", ") + tool.name +
+               (t.placement == TrackedPlacement::per_finger ? " -> finger " + std::to_string(tool.finger + 1) : "");
+    return std::string("tracking file, ") +
+           (t.placement == TrackedPlacement::per_finger ? "one tool per finger ("
+                                                        : "one tool, the fingers around it (") +
+           names + ")" +
+           (t.registration.fiducials > 0 ? ", registered on " + count(t.registration.fiducials, "fiducial") : "");
+  }
+  if (kind == "poses") {
+    const auto poses = load_pose_recording(path);
+    return "tracker pose recording, " + count(recorded_tools(poses).size(), "tool") + ", " +
+           count(poses.size(), "pose");
+  }
+  if (kind == "fiducials") return "fiducials, " + count(load_fiducials(path).size(), "point");
+  if (kind == "waveform") {
+    (void)load_waveform_csv(path);
+    return "waveform table";
+  }
+  const PenRecording rec = read_pen_recording(path);
+  return "evemu pen recording '" + rec.device_name + "', " + count(rec.events.size(), "event");
+}
 
 }  // namespace
 
