@@ -190,7 +190,8 @@ void run_command(const std::string& command) {
 // A rig calibrated by the documented recipe with the palprig command; the calibration file.
 fs::path recipe_calibration(const fs::path& work, const fs::path& rig, const std::string& name) {
   const std::string bin = PALPRIG_BIN;
-  const fs::path sweep = work / (name + "_sweep.csv"), cal = work / (name + "_cal.json");
+  const fs::path sweep = work / (name + "_sweep.csv");
+  fs::path cal = work / (name + "_cal.json");
   run_command(bin + " calibrate sweep --rig " + rig.string() +
               " --channels 1,2,3 --excitation staircase,random,sine,step,chirp --quiet --out " + sweep.string() +
               " > " + (work / (name + "_sweep.txt")).string() + " 2>&1");
@@ -209,7 +210,7 @@ fs::path heavy_rig(const fs::path& work, fs::path& cal) {
   p["hysteresis_kPa"] = p["hysteresis_kPa"].get<double>() * 1.7;
   p["dead_time_s"] = p["dead_time_s"].get<double>() * 1.4;
   p["time_constant_s"] = p["time_constant_s"].get<double>() * 1.4;
-  const fs::path path = work / "sim_heavy.json";
+  fs::path path = work / "sim_heavy.json";
   std::ofstream(path) << rig.dump(2) << "\n";
   cal = recipe_calibration(work, path, "sim_heavy");
   return path;

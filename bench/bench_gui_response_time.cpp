@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -249,6 +250,7 @@ void run_under_xvfb(int argc, char** argv) {
       "xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", "env", "QT_QPA_PLATFORM=xcb", "PALPRIG_BENCH_UNDER_XVFB=1"};
   for (int i = 0; i < argc; ++i) args.emplace_back(argv[i]);
   std::vector<char*> c;
+  c.reserve(args.size() + 1);
   for (auto& a : args) c.push_back(a.data());
   c.push_back(nullptr);
   execvp("xvfb-run", c.data());
@@ -256,9 +258,7 @@ void run_under_xvfb(int argc, char** argv) {
   std::exit(1);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_benchmark(int argc, char** argv) {
   int trials = 40;
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) == "--trials") trials = std::max(4, std::atoi(argv[i + 1]));
@@ -313,4 +313,17 @@ int main(int argc, char** argv) {
       "class: sub-millisecond sd)\n");
   std::filesystem::remove_all(dir);
   return 0;
+}
+
+}  // namespace
+
+// A failure (a file, the simulator, the rig) ends the benchmark with one line and exit 1, not
+// with std::terminate.
+int main(int argc, char** argv) {
+  try {
+    return run_benchmark(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_gui_response_time: %s\n", e.what());
+    return 1;
+  }
 }

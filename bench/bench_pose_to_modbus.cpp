@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -98,6 +99,7 @@ Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
   std::vector<std::string> args = {"chrt",     "-f",          "50",          PALPRIG_BIN, "sim-rig",  "--rig", rig,
                                    "--listen", "127.0.0.1:0", "--write-log", write_log,   "--load-N", "2"};
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   Child c;
@@ -128,9 +130,7 @@ std::string rig_text(int port) {
   return text;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_benchmark(int argc, char** argv) {
   // bench/run_all.sh passes Google Benchmark flags to every program: only a number is a length.
   const double seconds = argc > 1 && std::atof(argv[1]) > 0 ? std::atof(argv[1]) : 20.0;
   const std::string dir = "/tmp/palprig-bench-pose-" + std::to_string(getpid());
@@ -239,4 +239,17 @@ int main(int argc, char** argv) {
               s.wake_latency.p50_us, s.wake_latency.p99_us, to_string(s.fault), s.fault.detail().c_str());
   std::filesystem::remove_all(dir);
   return unmatched == 0 && s.fault == FaultCode::none ? 0 : 1;
+}
+
+}  // namespace
+
+// A failure (a file, the simulator, the rig) ends the benchmark with one line and exit 1, not
+// with std::terminate.
+int main(int argc, char** argv) {
+  try {
+    return run_benchmark(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_pose_to_modbus: %s\n", e.what());
+    return 1;
+  }
 }

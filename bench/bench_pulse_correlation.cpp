@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -132,9 +133,7 @@ std::string cpu_model() {
   return "unknown";
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_benchmark(int argc, char** argv) {
   const bool json_out = argc > 1 && std::strcmp(argv[1], "--json") == 0;
   const std::string data = std::string(PALPRIG_SOURCE_DIR) + "/data/";
   const RigConfig rig = load_rig_file(data + "rigs/simulated.json");
@@ -186,4 +185,17 @@ int main(int argc, char** argv) {
     }
   if (json_out) std::printf("%s\n", nlohmann::json{{"machine", cpu_model()}, {"results", all}}.dump(2).c_str());
   return 0;
+}
+
+}  // namespace
+
+// A failure (a file, the simulator, the rig) ends the benchmark with one line and exit 1, not
+// with std::terminate.
+int main(int argc, char** argv) {
+  try {
+    return run_benchmark(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_pulse_correlation: %s\n", e.what());
+    return 1;
+  }
 }

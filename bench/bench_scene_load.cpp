@@ -20,9 +20,10 @@ namespace {
 std::filesystem::path sphere_union_scene(int n) {
   nlohmann::json parts = nlohmann::json::array();
   const int side = static_cast<int>(std::ceil(std::sqrt(double(n))));
-  for (int i = 0; i < n; ++i)
-    parts.push_back(
-        {{"type", "sphere"}, {"centre_mm", {10 + 2.5 * (i % side), 10 + 2.5 * (i / side), 5}}, {"radius_mm", 1.0}});
+  for (int i = 0; i < n; ++i) {
+    const int column = i % side, row = i / side;  // the spheres on a square grid, 2.5 mm apart
+    parts.push_back({{"type", "sphere"}, {"centre_mm", {10 + 2.5 * column, 10 + 2.5 * row, 5}}, {"radius_mm", 1.0}});
+  }
   const nlohmann::json doc = {
       {"version", 1},
       {"kind", "function"},
@@ -30,8 +31,8 @@ std::filesystem::path sphere_union_scene(int n) {
       {"layers", {{{"name", "skin"}, {"thickness_mm", 40}, {"stiffness_kPa", 10}}}},
       {"felt_range_kPa", {{"soft", 10}, {"hard", 100}}},
       {"inclusions", {{{"name", "many"}, {"stiffness_kPa", 100}, {"shape", {{"type", "union"}, {"of", parts}}}}}}};
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("palprig-bench-union-" + std::to_string(::getpid()) + "-" + std::to_string(n) + ".json");
+  auto path = std::filesystem::temp_directory_path() /
+              ("palprig-bench-union-" + std::to_string(::getpid()) + "-" + std::to_string(n) + ".json");
   std::ofstream(path) << doc.dump();
   return path;
 }

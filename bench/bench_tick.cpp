@@ -35,7 +35,7 @@ std::int64_t now_ns() {
 
 const MapScene& big_scene(MapSampling sampling) {
   static std::vector<float> values = [] {
-    std::vector<float> v(4096u * 4096u);
+    std::vector<float> v(std::size_t{4096} * 4096);
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> u(0.f, 1.f);
     for (auto& x : v) x = u(rng);
@@ -231,8 +231,8 @@ void BM_Replay60s(benchmark::State& state) {
     opt.duration_s = 60;
     opt.mode = LoopMode::replay;
     if (with_telemetry) opt.telemetry_path = std::filesystem::temp_directory_path() / "palprig-bench-telemetry.bin";
-    Rig rig(backend, "the benchmark's simulated rig");
-    RigLease lease = rig.lease("the replay benchmark");
+    Rig bench_rig(backend, "the benchmark's simulated rig");
+    RigLease lease = bench_rig.lease("the replay benchmark");
     const RunSummary s = run_loop(cfg, *scene.scene, raster, lease, opt);
     speedup_sum += s.sim_time_s / s.wall_time_s;
     ++runs;

@@ -80,8 +80,8 @@ void BM_LoopWakeup1kHz(benchmark::State& state) {
     CpuLoad load(loaded);
     TickConfig config;
     config.safety.max_lost_time_s = 1e9;  // a measurement: the lost-time fault must not end it
-    Rig rig(backend, "the benchmark's simulated rig");
-    RigLease lease = rig.lease("the wake-up benchmark");
+    Rig bench_rig(backend, "the benchmark's simulated rig");
+    RigLease lease = bench_rig.lease("the wake-up benchmark");
     s = run_loop(config, scene, pen, lease, opt);
   }
   // Back to ordinary scheduling, every CPU and the default slack for the next case.

@@ -33,8 +33,9 @@ Prepared prepare(std::span<const DynamicsSample> s, const PrandtlIshlinskii* hys
   for (std::size_t k = 1; k < s.size(); ++k)
     if (s[k].t_s > s[k - 1].t_s) gaps.push_back(s[k].t_s - s[k - 1].t_s);
   if (gaps.empty()) throw InputError(file, what, "step and chirp rows over time (at least 200 samples)");
-  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
-  p.period_s = gaps[gaps.size() / 2];
+  const auto middle = gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2);
+  std::nth_element(gaps.begin(), middle, gaps.end());
+  p.period_s = *middle;
   PrandtlIshlinskii h = hysteresis ? *hysteresis : PrandtlIshlinskii{};
   for (std::size_t k = 0; k < s.size(); ++k) {
     if (!std::isfinite(s[k].monitor_kPa) || !std::isfinite(s[k].command_kPa))

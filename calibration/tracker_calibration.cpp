@@ -90,7 +90,6 @@ std::vector<Fiducial> load_fiducials(const std::filesystem::path& path) {
       cells.push_back(cell);
     }
     if (columns == 0) {
-      const std::string h = line;
       if (cells == std::vector<std::string>{"name", "x_mm", "y_mm", "z_mm"})
         columns = 4;
       else if (cells ==
@@ -99,7 +98,8 @@ std::vector<Fiducial> load_fiducials(const std::filesystem::path& path) {
       else
         throw InputError(
             file, where,
-            "the header name,x_mm,y_mm,z_mm (and optionally ,tracker_x_mm,tracker_y_mm,tracker_z_mm), got '" + h + "'");
+            "the header name,x_mm,y_mm,z_mm (and optionally ,tracker_x_mm,tracker_y_mm,tracker_z_mm), got '" + line +
+                "'");
       continue;
     }
     if (static_cast<int>(cells.size()) != columns)
@@ -176,6 +176,7 @@ std::vector<Vec3_mm> touch_fiducials(IgtlPoseReader& tracker, const TrackedTool&
 PointRegistration register_fiducials(const std::vector<Fiducial>& fiducials, const std::vector<Vec3_mm>& touched,
                                      const std::string& fiducials_file) {
   std::vector<Vec3_mm> scene;
+  scene.reserve(fiducials.size());
   for (const auto& f : fiducials) scene.push_back(f.scene_mm);
   try {
     return register_points(touched, scene);
@@ -242,9 +243,12 @@ Vec3_mm digitize_from_tracker(IgtlPoseReader& tracker, const std::string& finger
         return hold.mean();
       }
     }
-    if (seconds_since(t0) > rules.timeout_s)
-      throw Error("no rest of " + digitizer_tool + " on " + finger_tool + " within " +
-                  std::to_string(int(rules.timeout_s)) + " s (the tracker sent " + seen.text() + ")");
+    if (seconds_since(t0) > rules.timeout_s) {
+      std::string why = "no rest of ";
+      why.append(digitizer_tool).append(" on ").append(finger_tool).append(" within ");
+      why.append(std::to_string(int(rules.timeout_s))).append(" s (the tracker sent ").append(seen.text()).append(")");
+      throw Error(why);
+    }
   }
 }
 

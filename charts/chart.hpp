@@ -54,6 +54,8 @@ struct Chart {
   // When set, x = 0, 1, ... are these categories; the points and bars of several series sit side
   // by side (dodged) within a category.
   std::vector<std::string> x_categories;
+  // x counts things (cases, sessions): ticks only at whole numbers, never at 2.5.
+  bool x_whole_numbers = false;
   std::optional<double> x_min, x_max, y_min, y_max;  // default: the data's range, padded
   std::vector<ChartText> annotations;
   // Logical size in pixels: the SVG's size (at 100 px per inch: 7 x 4.4 in by default, a

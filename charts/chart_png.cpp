@@ -163,7 +163,9 @@ class ChartBuilder {
 
  private:
   double slot() const { return 0.8 / double(std::max(dodged_count_, 1)); }
-  double dodge_offset(int i) const { return dodged_count_ > 1 ? -0.4 + slot() * (i + 0.5) : 0.0; }
+  double dodge_offset(std::size_t i) const {
+    return dodged_count_ > 1 ? -0.4 + slot() * (static_cast<double>(i) + 0.5) : 0.0;
+  }
 
   void axes() {
     for (QCPAxis* a : {plot_.xAxis, plot_.yAxis}) {
@@ -193,6 +195,13 @@ class ChartBuilder {
       plot_.xAxis->setTicker(ticker);
       plot_.xAxis->setSubTicks(false);
       plot_.xAxis->grid()->setVisible(false);
+    } else if (c_.x_whole_numbers) {
+      // Steps of 1, 2, 5, 10, ... cases: QCustomPlot's fixed ticker scaled by whole multiples.
+      QSharedPointer<QCPAxisTickerFixed> ticker(new QCPAxisTickerFixed);
+      ticker->setTickStep(1.0);
+      ticker->setScaleStrategy(QCPAxisTickerFixed::ssMultiples);
+      plot_.xAxis->setTicker(ticker);
+      plot_.xAxis->setSubTicks(false);
     }
   }
 

@@ -44,7 +44,7 @@ const char* title_of(LearningMeasure m) {
   return "";
 }
 
-std::string file_label(const std::string& code) {
+std::string trainee_file_label(const std::string& code) {
   std::string out;
   for (char ch : code) out += std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' ? ch : '_';
   return out.empty() ? std::string("trainee") : out;
@@ -66,6 +66,7 @@ Chart learning_curve_chart(const TrainingCurves& curves, LearningMeasure measure
   Chart chart;
   chart.title = std::string(title_of(measure)) + ": " + trainee;
   chart.x_label = "session";
+  chart.x_whole_numbers = true;
   chart.y_label = measure == LearningMeasure::time_per_case ? "s per case"
                   : measure == LearningMeasure::false_marks ? "false marks per case"
                                                             : "proportion (95 % interval)";
@@ -122,24 +123,25 @@ Chart cusum_chart(const TrainingCurves& curves, stats::CusumChart which, const s
       std::string(learning ? "LC-CUSUM (competence declared at the limit): " : "CUSUM (an alarm at the limit): ") +
       trainee;
   chart.x_label = "case";
+  chart.x_whole_numbers = true;
   // Short enough for the Training tab's chart at 1280 x 800; the title says which hypotheses.
   chart.y_label = learning ? "S (log likelihood ratio)" : "C (log likelihood ratio)";
   ChartSeries value;
   value.label = learning ? "LC-CUSUM" : "CUSUM";
   value.color_rgb = kCurveRgb;
-  ChartSeries signals;
-  signals.label = learning ? "competence declared" : "alarm";
-  signals.style = ChartSeries::Style::points;
-  signals.color_rgb = kSignalRgb;
-  signals.width_px = 3.0;
+  ChartSeries signal_points;
+  signal_points.label = learning ? "competence declared" : "alarm";
+  signal_points.style = ChartSeries::Style::points;
+  signal_points.color_rgb = kSignalRgb;
+  signal_points.width_px = 3.0;
   value.x.push_back(0);
   value.y.push_back(0);
   for (const auto& p : points) {
     value.x.push_back(p.case_number);
     value.y.push_back(p.value);
     if (p.signal) {
-      signals.x.push_back(p.case_number);
-      signals.y.push_back(p.value);
+      signal_points.x.push_back(p.case_number);
+      signal_points.y.push_back(p.value);
     }
   }
   const double last = points.empty() ? 1.0 : static_cast<double>(points.back().case_number);
@@ -152,7 +154,7 @@ Chart cusum_chart(const TrainingCurves& curves, stats::CusumChart which, const s
   h.y = {limit.limit, limit.limit};
   chart.series.push_back(std::move(value));
   chart.series.push_back(std::move(h));
-  if (!signals.x.empty()) chart.series.push_back(std::move(signals));
+  if (!signal_points.x.empty()) chart.series.push_back(std::move(signal_points));
   chart.x_min = 0.0;
   chart.x_max = last;
   chart.y_min = 0.0;
@@ -179,7 +181,7 @@ std::vector<std::filesystem::path> plot_learning(const Curriculum& curriculum,
   for (const TraineeStanding& t : trainees) {
     const TrainingCurves curves = training_curves(curriculum, t);
     if (curves.level.empty()) continue;  // no completed session: nothing to draw
-    const std::string who = file_label(t.trainee);
+    const std::string who = trainee_file_label(t.trainee);
     for (LearningMeasure m : {LearningMeasure::found, LearningMeasure::false_marks, LearningMeasure::time_per_case,
                               LearningMeasure::normal_called}) {
       const Chart chart = learning_curve_chart(curves, m, t.trainee);

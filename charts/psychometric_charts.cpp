@@ -130,9 +130,12 @@ std::vector<SessionTrackChart> track_charts(const std::vector<ThresholdTrialRow>
       }
       chart.series.push_back(line);
       if (!reversals.x.empty()) chart.series.push_back(reversals);
-      const auto estimate = std::find_if(estimates.begin(), estimates.end(), [&](const ThresholdTrackSummary& e) {
-        return e.session == session && e.track == name;
-      });
+      // Named captures: a lambda may not capture a structured binding in clang 14 (C++20 allows
+      // it; GCC does), and the style gate parses this file with clang.
+      const auto estimate = std::find_if(estimates.begin(), estimates.end(),
+                                         [session_id = session, &track = name](const ThresholdTrackSummary& e) {
+                                           return e.session == session_id && e.track == track;
+                                         });
       if (estimate != estimates.end() && std::isfinite(estimate->estimate.threshold_kPa)) {
         const double t = estimate->estimate.threshold_kPa;
         ChartSeries threshold;

@@ -20,7 +20,7 @@ namespace palprig::charts {
 
 namespace {
 
-std::string file_label(const std::string& text) {
+std::string group_file_label(const std::string& text) {
   std::string s;
   for (char c : text) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
   return s;
@@ -99,7 +99,7 @@ std::vector<std::filesystem::path> plot_store(TrialStore& store, const std::file
           throw InputError(store.location(), "threshold trials of track '" + g.label + "'", e.what());
         }
         write(psychometric_chart(g.label, fit, "level_kPa", fit_options.guess ? "correct" : "yes"), dir,
-              "psychometric_" + file_label(g.label), options, written);
+              "psychometric_" + group_file_label(g.label), options, written);
       }
     }
     PulseStore pulse(*sqlite, false);

@@ -81,7 +81,7 @@ std::string rate(const stats::Report& x) {
 }
 
 std::string with_interval(const stats::Report& g, const char* value, const char* interval) {
-  const std::string v = figure(g[value]);
+  std::string v = figure(g[value]);
   const auto& ci = g[interval];
   if (!ci.is_object() || !ci["low"].is_number() || !std::isfinite(ci["low"].get<double>())) return v;
   return v + " [" + figure(ci["low"]) + ", " + figure(ci["high"]) + "]";

@@ -127,8 +127,9 @@ void info(const std::string& path) {
     std::cout << "\n";
     for (const Inclusion& i : d.inclusions)
       std::cout << "  inclusion " << i.name << " (" << to_string(i.kind) << ", " << i.stiffness_kPa << " kPa"
-                << (d.respiration.breathing() && (i.breathing_excursion_mm.x_mm || i.breathing_excursion_mm.y_mm ||
-                                                  i.breathing_excursion_mm.z_mm)
+                << (d.respiration.breathing() &&
+                            (i.breathing_excursion_mm.x_mm != 0.0 || i.breathing_excursion_mm.y_mm != 0.0 ||
+                             i.breathing_excursion_mm.z_mm != 0.0)
                         ? ", moves with breathing"
                         : "")
                 << ")\n";

@@ -17,7 +17,7 @@ namespace {
 // errno and drops everything after it (a reader that went away reads nothing more).
 class CheckedOutputBuffer final : public std::streambuf {
  public:
-  CheckedOutputBuffer() : buffer_(64 * 1024), line_buffered_(::isatty(STDOUT_FILENO) == 1) {
+  CheckedOutputBuffer() : buffer_(std::size_t{64} * 1024), line_buffered_(::isatty(STDOUT_FILENO) == 1) {
     setp(buffer_.data(), buffer_.data() + buffer_.size());
   }
 

@@ -23,12 +23,16 @@ struct TelemetryRecord {
   float io_us = 0;                        // time spent in the backend this tick
   FaultCode fault = FaultCode::none;
   std::uint8_t flags = 0;  // TelemetryFlag bits
+  // Where the compiler would otherwise pad: the binary file holds each record's bytes as they
+  // are, so every byte is a field and none is left undefined. Always 0.
+  std::uint8_t reserved_after_flags[2] = {};
   // Where each finger was and how hard it pressed (the pen's triangle, or each tracked
   // fingertip with its own load cell), and why a tracked finger was vented.
   float finger_x_mm[kFingerCount] = {};
   float finger_y_mm[kFingerCount] = {};
   float finger_force_N[kFingerCount] = {};
   FingerVent finger_vent[kFingerCount] = {};
+  std::uint8_t reserved_after_vents = 0;  // as reserved_after_flags
   // How far the tissue under each finger is carried by tissue dragging (paper 000's stick/slip;
   // 0 where the scene does not drag): the finger feels the tissue at its centre minus this.
   float drag_x_mm[kFingerCount] = {};

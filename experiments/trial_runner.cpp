@@ -224,9 +224,11 @@ void TrialRunner::pause(double t_s) {
     case RunnerState::done: return;
     // Waiting for the participant: nothing to drop, but the pause is still entered (vent, and
     // the state event that tells a front end the loop holds).
-    case RunnerState::ready: break;
+    case RunnerState::ready:
+    // Presenting or waiting for the answer: the trial is dropped, the same position is presented
+    // again.
     case RunnerState::present:
-    case RunnerState::respond: break;  // dropped: the same position is presented again
+    case RunnerState::respond: break;
     case RunnerState::inter_trial:
       ++position_;  // committed on entry to inter_trial: go on with the next one
       break;

@@ -4,6 +4,16 @@
 
 namespace palprig::gui {
 
+namespace {
+// The window's simulated rig, which its live loop drove until now: opened again, so a sweep or
+// an evaluation starts from regulators at rest with their noise seeded afresh, as on the rig
+// `palprig calibrate` opens for itself (sessions do the same: sessions/study_rig.cpp). Without
+// it the figures depended on how long the live loop had run. Hardware is not touched.
+void start_fresh_if_simulated(RigLease& lease, const RigConfig& rig) {
+  if (rig.backend == "simulated") lease.backend().open();
+}
+}  // namespace
+
 CalibrationJob::CalibrationJob(RigLease lease, RunControl& control, RigConfig rig, SweepSchedule schedule,
                                SweepRunOptions options, std::filesystem::path data_path)
     : lease_(std::move(lease)), control_(control), data_path_(std::move(data_path)), total_(schedule.holds.size()) {
@@ -11,6 +21,7 @@ CalibrationJob::CalibrationJob(RigLease lease, RunControl& control, RigConfig ri
   options.control = &control_;
   worker_ = std::thread([this, rig = std::move(rig), schedule = std::move(schedule), options] {
     try {
+      start_fresh_if_simulated(lease_, rig);
       recording_ = record_calibration_sweep(
           lease_, rig, schedule, options, data_path_,
           [this](std::size_t done, std::size_t, const SweepHold&, const HoldOutcome&) { done_.store(done); });
@@ -32,6 +43,7 @@ CalibrationJob::CalibrationJob(RigLease lease, RunControl& control, RigConfig ri
   options.control = &control_;
   worker_ = std::thread([this, rig = std::move(rig), cal = std::move(cal), options] {
     try {
+      start_fresh_if_simulated(lease_, rig);
       evaluation_ = evaluate_compensation(lease_, rig, cal, options);
       // As data only: QCustomPlot draws on the GUI thread (CalibrationPage::evaluation_done).
       charts_ = charts::evaluation_charts(*evaluation_, options.channels);

@@ -19,7 +19,8 @@ std::vector<GridVertex> tiered_grid(double x_mm, double y_mm, double depth_mm, i
   if (!std::isfinite(drag_x_mm) || !std::isfinite(drag_y_mm)) drag_x_mm = drag_y_mm = 0;
   std::vector<GridVertex> v;
   if (n < 1) return v;
-  v.reserve(std::size_t((2 * n + 1) * (2 * n + 1)));
+  const std::size_t side = 2 * static_cast<std::size_t>(n) + 1;  // n >= 1 here
+  v.reserve(side * side);
   for (int r = -n; r <= n; ++r)
     for (int c = -n; c <= n; ++c) {
       const int tier = std::max(std::abs(r), std::abs(c));

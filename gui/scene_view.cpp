@@ -205,7 +205,7 @@ void SceneView::draw_indentation(QPainter& p, const Point2_mm& c, double depth_m
   const double drag = std::isfinite(drag_x_mm) && std::isfinite(drag_y_mm) ? std::hypot(drag_x_mm, drag_y_mm) : 0.0;
   const double cell = std::max(2.0 * kFingerRadius_mm, kFingerRadius_mm + 1.5 * drag) / n;
   const auto grid = tiered_grid(c.x_mm, c.y_mm, depth_mm, n, cell, drag_x_mm, drag_y_mm);
-  const int side = 2 * n + 1;
+  const std::size_t side = 2 * n + 1;
   // A sunk vertex is drawn pulled toward the contact (the surface stretches into the dimple),
   // a quarter of its depth, and the cells darken with depth.
   std::vector<QPointF> px(grid.size());
@@ -217,9 +217,9 @@ void SceneView::draw_indentation(QPainter& p, const Point2_mm& c, double depth_m
     const double pull = r > 0 ? std::min(0.25 * grid[i].depth_mm, r * 0.5) / r : 0.0;
     px[i] = pixel_of(x - dx * pull, y - dy * pull);
   }
-  for (int r = 0; r + 1 < side; ++r)
-    for (int col = 0; col + 1 < side; ++col) {
-      const std::size_t a = std::size_t(r * side + col);
+  for (std::size_t r = 0; r + 1 < side; ++r)
+    for (std::size_t col = 0; col + 1 < side; ++col) {
+      const std::size_t a = r * side + col;
       const double d =
           (grid[a].depth_mm + grid[a + 1].depth_mm + grid[a + side].depth_mm + grid[a + side + 1].depth_mm) / 4;
       QPolygonF quad({px[a], px[a + 1], px[a + side + 1], px[a + side]});

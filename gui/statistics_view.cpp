@@ -79,7 +79,7 @@ bool has_bars(const charts::Chart& chart) {
 // Runs on the worker (charts: on the GUI thread); the same library calls as `palprig export` and
 // `palprig stats trials --json`.
 StatisticsExport run_export(StatisticsView::ExportKind kind, const std::string& location,
-                            const std::filesystem::path& dir, std::shared_ptr<const TrialStatistics> shown) {
+                            const std::filesystem::path& dir, const std::shared_ptr<const TrialStatistics>& shown) {
   using Kind = StatisticsView::ExportKind;
   StatisticsExport out;
   try {

@@ -56,7 +56,7 @@ void StripChart::render_to(QPainter& p, const QRect& area) {
   double seen_max = 0;
   for (int f = 0; f < kFingerCount; ++f)
     for (int k = 0; k < kTraceKinds; ++k) {
-      auto& cols = columns_[std::size_t(f * kTraceKinds + k)];
+      auto& cols = columns_[f][k];
       history_->columns_min_max(TraceKind(k), f, t0, t1, columns, cols);
       for (const ColumnExtent& e : cols)
         if (!e.empty) seen_max = std::max(seen_max, double(e.max));
@@ -83,7 +83,7 @@ void StripChart::render_to(QPainter& p, const QRect& area) {
     p.drawText(QRectF(area.left(), lane_top, 40, 14), Qt::AlignRight, QString::number(top_kPa, 'f', 0));
     p.drawText(QRectF(area.left(), lane_bottom - 14, 40, 14), Qt::AlignRight, "0");
     for (int k = 0; k < kTraceKinds; ++k) {
-      const auto& cols = columns_[std::size_t(f * kTraceKinds + k)];
+      const auto& cols = columns_[f][k];
       lines_.clear();
       bool have_prev = false;
       float prev_min = 0, prev_max = 0;

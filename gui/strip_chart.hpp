@@ -39,7 +39,8 @@ class StripChart final : public QWidget {
   bool paused_ = false;
   double paused_end_s_ = 0;
   double p_max_kPa_ = 60.0;
-  std::array<std::vector<ColumnExtent>, kFingerCount * kTraceKinds> columns_;  // reused between frames
+  // Per finger, per trace kind: reused between frames.
+  std::array<std::array<std::vector<ColumnExtent>, kTraceKinds>, kFingerCount> columns_;
   std::vector<QLineF> lines_;
 };
 

@@ -43,11 +43,11 @@ QTableWidget* table(const QStringList& headers, const char* name) {
   return t;
 }
 
-void set_row(QTableWidget* t, int row, const QStringList& cells) {
+}  // namespace
+
+void TrainingView::set_row(QTableWidget* t, int row, const QStringList& cells) {
   for (int c = 0; c < cells.size(); ++c) t->setItem(row, c, new QTableWidgetItem(cells[c]));
 }
-
-}  // namespace
 
 TrainingView::TrainingView(TrainingHost host, QWidget* parent) : QWidget(parent), host_(std::move(host)) {
   setObjectName("training_view");
@@ -116,7 +116,8 @@ QWidget* TrainingView::build_trainee_side() {
   standing_->setObjectName("trainee_standing");
   standing_->setWordWrap(true);
   v->addWidget(standing_);
-  sessions_ = table({"#", "Level", "Cases", "Found", "Marks/case", "s/case", "Normal", "Benchmark"}, "session_table");
+  sessions_ =
+      table({"#", "Level", "Cases", "Found", "False marks/case", "s/case", "Normal", "Benchmark"}, "session_table");
   sessions_->setSelectionMode(QAbstractItemView::NoSelection);
   sessions_->setMinimumHeight(120);
   v->addWidget(sessions_, 3);

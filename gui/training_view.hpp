@@ -12,6 +12,7 @@
 // The store is read on the GUI thread: a course's records are a few rows per session (a read
 // takes milliseconds on an SQLite file); a session's trials are never read here.
 #include <QString>
+#include <QStringList>
 #include <QWidget>
 #include <functional>
 #include <optional>
@@ -77,6 +78,8 @@ class TrainingView final : public QWidget {
   void sessionStarted();  // the console took the session (the window shows it)
 
  private:
+  // One row of a table: its cells left to right (the trainee and session tables).
+  static void set_row(QTableWidget* t, int row, const QStringList& cells);
   QWidget* build_form();
   QWidget* build_trainee_side();
   QWidget* build_charts();

@@ -27,10 +27,6 @@ QString benchmark_text(const LevelBenchmark& b) {
   return parts.join(", ");
 }
 
-void set_row(QTableWidget* t, int row, const QStringList& cells) {
-  for (int c = 0; c < cells.size(); ++c) t->setItem(row, c, new QTableWidgetItem(cells[c]));
-}
-
 }  // namespace
 
 void TrainingView::show_trainee() {

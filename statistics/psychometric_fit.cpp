@@ -398,6 +398,7 @@ PsychometricFit fit_psychometric(const std::vector<LevelCounts>& data, const Psy
   // as a QUEST track's may, are steps like any other and pass.)
   {
     std::vector<double> levels;
+    levels.reserve(used.size());
     for (const LevelCounts& c : used) levels.push_back(c.level);
     std::sort(levels.begin(), levels.end());
     double widest = 0, others = 0;

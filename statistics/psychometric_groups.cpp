@@ -75,6 +75,7 @@ std::vector<PsychometricGroup> psychometric_groups(const std::vector<std::string
     y[labels[i]].push_back(responses.at(i));
   }
   std::vector<PsychometricGroup> out;
+  out.reserve(order.size());
   for (const auto& label : order) out.push_back({label, counts_per_level(x[label], y[label])});
   return out;
 }

@@ -137,7 +137,8 @@ std::string comparisons_table(const ConditionComparisons& c) {
   for (const ComparisonStratum& s : c.strata) {
     auto add = [&](const std::string& first, const std::string& second, std::vector<std::string> rest) {
       std::vector<std::string> line = s.key;
-      line.push_back(first + " vs " + second);
+      line.push_back(first);
+      line.back().append(" vs ").append(second);
       line.insert(line.end(), rest.begin(), rest.end());
       cells.push_back(std::move(line));
     };

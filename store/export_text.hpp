@@ -17,6 +17,21 @@ inline std::string number(const std::optional<double>& x, int decimals = 4) {
   return buf;
 }
 
+// A number with fixed decimals, or `not_available` when it is not finite (a table says "n/a"; a
+// CSV for R or pandas says "NA").
+inline std::string fixed(double x, int decimals, const char* not_available = "n/a") {
+  if (!std::isfinite(x)) return not_available;
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
+  return buf;
+}
+
+// A JSON number, or null when it is not finite (JSON has no NaN).
+inline nlohmann::ordered_json number_or_null(double x) {
+  if (std::isfinite(x)) return x;
+  return nullptr;
+}
+
 inline std::string csv_field(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string out = "\"";

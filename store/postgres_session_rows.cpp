@@ -280,9 +280,7 @@ void pg_write_training_row(PgConnection& db, std::int64_t session_id, const SqlR
         {trainee, key, pg_text(session_id)});
     const std::int64_t holder = given.integer(0, 0);
     if (holder != session_id && refuse_repeats) {
-      throw InputError(db.target().describe(), "training_cases",
-                       "a case trainee '" + trainee + "' was not given before (" + key + " was given in session " +
-                           std::to_string(holder) + ")");
+      throw InputError(db.target().describe(), "training_cases", case_not_given_before(trainee, key, holder));
     }
   }
   std::vector<PgParam> params{pg_text(session_id)};

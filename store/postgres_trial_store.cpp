@@ -87,20 +87,15 @@ TrialRows trial_rows_of(const TrialRecord& r) {
   }
   if (discrimination) {
     t[6] = r.combination_label;
-    for (int f = 0; f < kFingerCount; ++f)
-      t[static_cast<std::size_t>(7 + f)] = r.stimulus_kPa[static_cast<std::size_t>(f)];
+    for (std::size_t f = 0; f < kFingerCount; ++f) t[7 + f] = r.stimulus_kPa[f];
     t[10] = trial_rows::flags_text(r.truth);
   }
-  for (int f = 0; f < kFingerCount; ++f) {
-    t[static_cast<std::size_t>(15 + f)] = finite_or_sql_null(r.felt_kPa[static_cast<std::size_t>(f)]);
-  }
+  for (std::size_t f = 0; f < kFingerCount; ++f) t[15 + f] = finite_or_sql_null(r.felt_kPa[f]);
   if (r.answered) {
     t[13] = r.response_time_s;
     if (discrimination) {
       t[12] = trial_rows::flags_text(r.answer);
-      for (int f = 0; f < kFingerCount; ++f) {
-        t[static_cast<std::size_t>(18 + f)] = std::string(to_string(r.finger_outcomes[static_cast<std::size_t>(f)]));
-      }
+      for (std::size_t f = 0; f < kFingerCount; ++f) t[18 + f] = std::string(to_string(r.finger_outcomes[f]));
     } else {
       t[21] = std::int64_t{r.localisation.false_marks};
     }
@@ -288,6 +283,7 @@ std::vector<SessionOverview> PostgresTrialStore::list_sessions() {
       "SELECT s.id, p.id, p.code, p.number, p.simulated, s.protocol_name, s.task, s.bids_task, s.status "
       "FROM sessions s JOIN participants p ON p.id = s.participant_id ORDER BY s.id");
   std::vector<SessionOverview> sessions;
+  sessions.reserve(static_cast<std::size_t>(q.rows()));
   for (int i = 0; i < q.rows(); ++i) {
     sessions.push_back(SessionOverview{
         q.integer(i, 0),

@@ -248,9 +248,7 @@ void write_sqlite_training_row(Database& db, std::int64_t session_id, const SqlR
     const std::int64_t other = before ? given.integer(0) : 0;
     given.reset();
     if (before && refuse_repeats) {
-      throw InputError(db.file(), "training_cases",
-                       "a case trainee '" + trainee + "' was not given before (" + key + " was given in session " +
-                           std::to_string(other) + ")");
+      throw InputError(db.file(), "training_cases", case_not_given_before(trainee, key, other));
     }
     reserve.bind(1, trainee).bind(2, key).bind(3, session_id).run();
   }

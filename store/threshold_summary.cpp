@@ -6,23 +6,15 @@
 #include <map>
 #include <utility>
 
+#include "store/export_text.hpp"
 #include "store/threshold_export.hpp"
 
 namespace palprig {
 
 namespace {
 
-std::string fixed(double x, int decimals) {
-  if (!std::isfinite(x)) return "n/a";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
-  return buf;
-}
-
-nlohmann::ordered_json number_or_null(double x) {
-  if (std::isfinite(x)) return x;
-  return nullptr;
-}
+using export_text::fixed;
+using export_text::number_or_null;
 
 }  // namespace
 

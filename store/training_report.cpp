@@ -1,4 +1,5 @@
 #include "store/training_report.hpp"
+#include "store/export_text.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -8,12 +9,7 @@ namespace palprig {
 
 namespace {
 
-std::string fixed(double x, int decimals) {
-  if (!std::isfinite(x)) return "n/a";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
-  return buf;
-}
+using export_text::fixed;
 
 std::string point_text(const stats::LearningPoint& p, int decimals, bool interval) {
   if (!p.defined) return "n/a";

@@ -58,4 +58,14 @@ inline TrainingSessionRecord training_record_of(std::int64_t session_id, const S
 // The case keys of a training row (its `cases` JSON), for training_cases.
 inline std::vector<std::string> training_row_cases(const SqlRow& row) { return training_record_of(0, row).cases; }
 
+// What both stores expected when they refuse a case given to the trainee before (in the session
+// given_in_session): the third part of their InputError on training_cases.
+inline std::string case_not_given_before(const std::string& trainee, const std::string& key,
+                                         std::int64_t given_in_session) {
+  std::string expected = "a case trainee '";
+  expected.append(trainee).append("' was not given before (").append(key).append(" was given in session ");
+  expected.append(std::to_string(given_in_session)).append(")");
+  return expected;
+}
+
 }  // namespace palprig

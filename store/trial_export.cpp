@@ -173,7 +173,9 @@ void write_trials_run(const std::vector<const ExportTrial*>& rows, const std::st
       const std::string name = rows.front()->finger_names[static_cast<std::size_t>(f - 1)];
       tsv << "\tstimulus_finger" << n << "\tfelt_finger" << n << "\ttumor_finger" << n << "\tresponse_finger" << n
           << "\toutcome_finger" << n;
-      side["stimulus_finger" + n] = column("Air pressure commanded under finger " + n + " (" + name + ")", "kPa");
+      std::string stimulus = "Air pressure commanded under finger " + n;
+      stimulus.append(" (").append(name).append(")");
+      side["stimulus_finger" + n] = column(stimulus, "kPa");
       side["felt_finger" + n] =
           column("Mean regulator monitor pressure under finger " + n + " while its stimulus was on", "kPa");
       side["tumor_finger" + n] = column("Ground truth: tumor under finger " + n + " by paper 002's rule", "",
@@ -433,7 +435,8 @@ ExportResult export_bids(TrialStore& store, const std::filesystem::path& out_dir
     const auto dir = out_dir / ("sub-" + label) / "beh";
     make_export_dir(dir);
     for (std::size_t run = 0; run < sessions.size(); ++run) {
-      std::string stem = "sub-" + label + "_task-" + task;
+      std::string stem = "sub-" + label;
+      stem.append("_task-").append(task);
       if (sessions.size() > 1) stem += "_run-" + std::to_string(run + 1);
       const std::int64_t session = sessions[run];
       std::vector<const ExportTrial*> rows;

@@ -15,7 +15,12 @@ namespace palprig {
 
 namespace {
 
+// Not available: "n/a" in the table (one spelling for the reader), "NA" in the CSV (R's
+// read.csv and pandas read it as missing).
 constexpr const char* kTableNotAvailable = "n/a";
+constexpr const char* kCsvNotAvailable = "NA";
+using export_text::fixed;
+using export_text::number_or_null;
 
 struct NamedMeasure {
   const char* name;
@@ -25,21 +30,6 @@ struct NamedMeasure {
 std::array<NamedMeasure, 4> measures_of(const SummaryRow& r) {
   return {{{"Se", r.measures.se}, {"Sp", r.measures.sp}, {"PPV", r.measures.ppv}, {"ACC", r.measures.acc}}};
 }
-
-// Not available: "n/a" in the table (one spelling for the reader), "NA" in the CSV (R's
-// read.csv and pandas read it as missing).
-std::string fixed(double x, int decimals, const char* not_available = "NA") {
-  if (!std::isfinite(x)) return not_available;
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
-  return buf;
-}
-
-nlohmann::ordered_json number_or_null(double x) {
-  if (std::isfinite(x)) return x;
-  return nullptr;
-}
-
 }  // namespace
 
 std::string summary_table(const TrialSummary& s) {
@@ -63,7 +53,8 @@ std::string summary_table(const TrialSummary& s) {
     if (!r.negatives_counted) line[line.size() - 2] = kTableNotAvailable;  // TN
     for (const auto& nm : measures_of(r)) {
       line.push_back(nm.m.defined
-                         ? fixed(nm.m.value, 3) + " [" + fixed(nm.m.lower, 3) + ", " + fixed(nm.m.upper, 3) + "]"
+                         ? fixed(nm.m.value, 3, kCsvNotAvailable) + " [" + fixed(nm.m.lower, 3, kCsvNotAvailable) +
+                               ", " + fixed(nm.m.upper, 3, kCsvNotAvailable) + "]"
                          : std::string(kTableNotAvailable));
     }
     line.push_back(fixed(r.mean_rt_s, 2, kTableNotAvailable));
@@ -105,14 +96,17 @@ std::string summary_csv(const TrialSummary& s) {
         << (r.negatives_counted ? std::to_string(r.counts.tn) : std::string("NA")) << "," << r.counts.fp;
     for (const auto& nm : measures_of(r)) {
       if (nm.m.defined)
-        out << "," << fixed(nm.m.value, 6) << "," << fixed(nm.m.lower, 6) << "," << fixed(nm.m.upper, 6);
+        out << "," << fixed(nm.m.value, 6, kCsvNotAvailable) << "," << fixed(nm.m.lower, 6, kCsvNotAvailable) << ","
+            << fixed(nm.m.upper, 6, kCsvNotAvailable);
       else
         out << ",NA,NA,NA";
     }
-    out << "," << fixed(r.mean_rt_s, 4) << "," << fixed(r.sd_rt_s, 4) << "," << fixed(r.mean_rt_after_stimulus_s, 4)
-        << "," << fixed(r.sd_rt_after_stimulus_s, 4);
-    if (s.any_rated) out << "," << r.rated << "," << fixed(r.mean_confidence, 4);
-    out << "," << fixed(r.mean_rt_from_reached_s, 4) << "," << fixed(r.sd_rt_from_reached_s, 4);
+    out << "," << fixed(r.mean_rt_s, 4, kCsvNotAvailable) << "," << fixed(r.sd_rt_s, 4, kCsvNotAvailable) << ","
+        << fixed(r.mean_rt_after_stimulus_s, 4, kCsvNotAvailable) << ","
+        << fixed(r.sd_rt_after_stimulus_s, 4, kCsvNotAvailable);
+    if (s.any_rated) out << "," << r.rated << "," << fixed(r.mean_confidence, 4, kCsvNotAvailable);
+    out << "," << fixed(r.mean_rt_from_reached_s, 4, kCsvNotAvailable) << ","
+        << fixed(r.sd_rt_from_reached_s, 4, kCsvNotAvailable);
     out << "\n";
   }
   return out.str();

@@ -3,20 +3,27 @@
 (.clang-tidy) clean on every .cpp the build compiles. Python 3 from Debian, no other package.
 
     python3 tools/check_style.py format [--repo ROOT] [--fix]
-    python3 tools/check_style.py tidy   [--repo ROOT] --build BUILD [--jobs N] [FILE.cpp ...]
+    python3 tools/check_style.py tidy   [--repo ROOT] --build BUILD [--jobs N] [--folders A,B] [FILE.cpp ...]
 
 ctest runs them as style.ClangFormat and style.ClangTidy (tests/CMakeLists.txt); `make format`
 runs `format --fix`. Each prints one line per offending file (clang-format's or clang-tidy's own
 words below it) and exits 1 when there is any; 0 when the tree is clean.
 
 clang-tidy parses each translation unit as a compiler does (several seconds each with Qt, Eigen
-or Ceres), so `tidy` runs the build's own compile commands (BUILD/compile_commands.json), `--jobs`
-at a time, reports only palprig's own files (the header filter is the source folders), and
-remembers a clean result per translation unit in BUILD/style-cache/: the key is a hash of
-everything its preprocessed text depends on (its compile command, the source, every header the
-compiler read for it, from the build's dependency file), of .clang-tidy and of clang-tidy's
-version. A second run after a one-file change re-checks only the translation units that include
-that file. Findings are never cached: a unit with findings is checked again on the next run.
+or Ceres), so `tidy` runs the build's own compile commands (BUILD/compile_commands.json) for every
+.cpp of the repository the build compiles (libraries, programs, suites and benchmarks; `--folders`
+for a subset of the top folders, FILE.cpp for single files), `--jobs` at a time. In a unity build
+a target's batches are joined into one translation unit (BUILD/style-cache/batches/TARGET.cxx),
+so the headers its sources share are parsed and walked once: clang-tidy spends most of a unit's
+time walking the headers' syntax tree (Qt's, Eigen's, GoogleTest's), although it reports only
+palprig's (the whole tree, cold: 437 sources one at a time about 2,000 s of CPU by sampling,
+96 batches of eight 934 s, 62 targets 652 s; docs/benchmarks.md "The style gate"). It reports only
+palprig's own files (the header filter is the source folders), and remembers a clean result per
+translation unit in BUILD/style-cache/: the key is a hash of everything its preprocessed text
+depends on (its compile command, the source, every header the compiler read for it, from the
+build's dependency file), of .clang-tidy and of clang-tidy's version. A second run after a
+one-file change re-checks only the translation units that include that file. Findings are never
+cached: a unit with findings is checked again on the next run.
 """
 from __future__ import annotations
 
@@ -36,13 +43,6 @@ import time
 HERE = pathlib.Path(__file__).resolve().parent.parent
 # Folders of the tree that hold no C++ of palprig's (build folders are found by their CMakeCache).
 NOT_CODE = {".git", "data", "docs", "tools"}
-# The folders whose translation units `tidy` checks by default (make test's style.ClangTidy):
-# the floors that drive the rig, where a bug moves air (the tick, the loop, the backends, the
-# inputs, the models and the files they read). A cold run over all of the build's units (over
-# 400, most of them Qt-, Eigen- or GoogleTest-heavy) costs more than make test's whole budget on
-# a 2-core CI machine (docs/benchmarks.md, "The style gate"); `--folders all` checks the whole
-# tree (docs/developing.md, "Style").
-RIG_FLOORS = ("core", "io", "models", "runtime", "formats", "rigs", "inputs", "controller", "diagnostics")
 
 
 def source_folders(repo: pathlib.Path) -> list[str]:
@@ -109,10 +109,11 @@ def check_format(repo: pathlib.Path, fix: bool) -> int:
 PCH_ARGS = re.compile(r"^(-Winvalid-pch|-fpch-preprocess)$")
 
 
-def compile_entries(repo: pathlib.Path, build: pathlib.Path) -> dict[pathlib.Path, dict]:
-    """The build's compile command for each of palprig's .cpp files, by file. A unity build's
-    sources get their unity file's command with the source put back; a precompiled header of
-    GCC's (which clang cannot read) is taken out of the command, its header included instead."""
+def compile_entries(repo: pathlib.Path, build: pathlib.Path, unity: bool = True) -> dict[pathlib.Path, dict]:
+    """The build's translation units of palprig's sources, by file: each .cpp compiled on its own,
+    and each unity file of a unity build (CMake's UNITY_BUILD) as one unit, or, with unity=False,
+    each of its sources on its own with the unity file's command. A precompiled header of GCC's
+    (which clang cannot read) is taken out of the command, its header included instead."""
     db = json.loads((build / "compile_commands.json").read_text())
     folders = tuple(str(repo / f) + os.sep for f in source_folders(repo))
     out: dict[pathlib.Path, dict] = {}
@@ -138,28 +139,73 @@ def compile_entries(repo: pathlib.Path, build: pathlib.Path) -> dict[pathlib.Pat
             obj = pathlib.Path(e["directory"], kept[kept.index("-o") + 1])
         entry = {"directory": e["directory"], "arguments": kept, "object": obj}
         if str(source).startswith(folders):
-            out.setdefault(source, dict(entry, file=str(source)))
+            out.setdefault(source, dict(entry, file=str(source), members=[source]))
         elif "unity_" in source.name:  # CMake's UNITY_BUILD: one file including several sources
-            for inc in re.findall(r'#include\s+"([^"]+)"', source.read_text(errors="replace")):
-                member = pathlib.Path(inc).resolve()
-                if str(member).startswith(folders):
+            members = [pathlib.Path(inc).resolve()
+                       for inc in re.findall(r'#include\s+"([^"]+)"', source.read_text(errors="replace"))]
+            members = [m for m in members if str(m).startswith(folders)]
+            if not members:
+                continue
+            if not unity:  # each source on its own, with the unity file's command
+                for member in members:
                     args_m = [str(member) if a in (e["file"], str(source)) else a for a in kept]
-                    out.setdefault(member, dict(entry, arguments=args_m, file=str(member)))
+                    out.setdefault(member, dict(entry, arguments=args_m, file=str(member), members=[member]))
+                continue
+            # The batch as the compiler sees it: its headers parsed and walked once for all its
+            # sources (about five times less work than one source at a time). The unity file's
+            # own `#include "x.cpp"` lines are what bugprone-suspicious-include flags: off for it.
+            out.setdefault(source, dict(entry, file=str(source), members=members, objects=[obj], unity_files=[source],
+                                        checks="-bugprone-suspicious-include"))
+    return out
+
+
+def whole_targets(entries: dict[pathlib.Path, dict], folder: pathlib.Path) -> dict[pathlib.Path, dict]:
+    """A target's unity batches joined into one translation unit for clang-tidy (FOLDER/NAME.cxx
+    including every source of the target): clang-tidy spends most of a unit's time walking the
+    syntax tree of the headers (Qt's, Eigen's, GoogleTest's), so the fewer the units the less the
+    work (the whole tree: 96 units of eight sources took 900 s of CPU, cold). The sources of a
+    target already share a unit in the build, and their file-local names are unique within it."""
+    groups: dict[str, list[pathlib.Path]] = {}
+    for unit, e in entries.items():
+        if e.get("unity_files") and e["objects"][0] is not None:
+            groups.setdefault(str(e["objects"][0].parent.parent), []).append(unit)
+    folder.mkdir(parents=True, exist_ok=True)
+    out = {u: e for u, e in entries.items() if not e.get("unity_files")}
+    for target_dir, units in sorted(groups.items()):
+        units.sort(key=lambda u: int(re.search(r"unity_(\d+)_", u.name).group(1)))
+        first = entries[units[0]]
+        if len(units) == 1:
+            out[units[0]] = first
+            continue
+        members = [m for u in units for m in entries[u]["members"]]
+        batch = folder / (pathlib.Path(target_dir).name.removesuffix(".dir") + ".cxx")
+        text = "// generated by tools/check_style.py: one target's unity batches as one unit\n" + "".join(
+            f'#include "{m}"\n' for m in members)
+        if not batch.exists() or batch.read_text() != text:  # unchanged keeps its time stamp
+            batch.write_text(text)
+        args = [str(batch) if a in (first["file"], str(units[0])) else a for a in first["arguments"]]
+        out[batch] = dict(first, arguments=args, file=str(batch), members=members,
+                          objects=[o for u in units for o in entries[u]["objects"]],
+                          unity_files=[f for u in units for f in entries[u]["unity_files"]])
     return out
 
 
 def depfile_inputs(entry: dict) -> list[pathlib.Path] | None:
     """The files the compiler read for this unit, from the build's dependency file (NAME.o.d)."""
-    obj = entry["object"]
-    if obj is None:
-        return None
-    dep = pathlib.Path(str(obj) + ".d")
-    if not dep.exists() or dep.stat().st_mtime < pathlib.Path(entry["file"]).stat().st_mtime:
-        return None
-    text = dep.read_text(errors="replace").replace("\\\n", " ")
-    _, _, rest = text.partition(": ")
-    names = re.findall(r"(?:\\ |[^\s])+", rest)
-    return [pathlib.Path(entry["directory"], n.replace("\\ ", " ")) for n in names]
+    objects = entry.get("objects") or [entry["object"]]
+    sources = entry.get("unity_files") or [pathlib.Path(entry["file"])]
+    names: list[pathlib.Path] = []
+    for obj, source in zip(objects, sources):
+        if obj is None:
+            return None
+        dep = pathlib.Path(str(obj) + ".d")
+        if not dep.exists() or dep.stat().st_mtime < pathlib.Path(source).stat().st_mtime:
+            return None
+        text = dep.read_text(errors="replace").replace("\\\n", " ")
+        _, _, rest = text.partition(": ")
+        names += [pathlib.Path(entry["directory"], n.replace("\\ ", " "))
+                  for n in re.findall(r"(?:\\ |[^\s])+", rest)]
+    return names
 
 
 def preprocessed_inputs(entry: dict) -> list[pathlib.Path]:
@@ -198,17 +244,21 @@ def check_tidy(repo: pathlib.Path, build: pathlib.Path, jobs: int, only: list[st
         print(f"style: no {build}/compile_commands.json (configure the build first)")
         return 1
     started = time.monotonic()
-    entries = compile_entries(repo, build)
+    # Named files are checked one by one (a quick look at a file being edited); otherwise a unity
+    # build's batches are checked as the compiler builds them.
+    entries = compile_entries(repo, build, unity=not only)
+    cache = build / "style-cache"
+    if not only:
+        entries = whole_targets(entries, cache / "batches")
     if only:
         wanted = {pathlib.Path(f).resolve() for f in only}
         entries = {f: e for f, e in entries.items() if f in wanted}
     elif folders != "all":
         chosen = tuple(str(repo / f) + os.sep for f in folders.split(","))
-        entries = {f: e for f, e in entries.items() if str(f).startswith(chosen)}
+        entries = {f: e for f, e in entries.items() if any(str(m).startswith(chosen) for m in e["members"])}
     if not entries:
         print("style: no translation unit of palprig's in the compile commands")
         return 1
-    cache = build / "style-cache"
     (cache / "tidy").mkdir(parents=True, exist_ok=True)
     # The commands clang-tidy sees: the build's, without what only GCC can read.
     (cache / "compile_commands.json").write_text(json.dumps(
@@ -223,8 +273,12 @@ def check_tidy(repo: pathlib.Path, build: pathlib.Path, jobs: int, only: list[st
         mark = cache / "tidy" / key
         if mark.exists():
             return path, True, 0, ""
-        r = subprocess.run([clang_tidy, "-p", str(cache), "--quiet", f"--header-filter={header_filter}", str(path)],
-                           capture_output=True, text=True)
+        extra = [f"--checks={entry['checks']}"] if entry.get("checks") else []
+        # The project's .clang-tidy by name: clang-tidy looks for one above the checked file, and
+        # a unity file lives in the build folder, outside the repository.
+        r = subprocess.run([clang_tidy, "-p", str(cache), "--quiet", f"--config-file={repo / '.clang-tidy'}",
+                            f"--header-filter={header_filter}", *extra,
+                            str(path)], capture_output=True, text=True)
         findings = [l for l in r.stdout.splitlines() if re.search(r": (warning|error): ", l)]
         if r.returncode == 0 and not findings:
             mark.write_text(str(path) + "\n")
@@ -240,10 +294,14 @@ def check_tidy(repo: pathlib.Path, build: pathlib.Path, jobs: int, only: list[st
             if n:
                 failed.append((path, n, text))
     for path, n, text in failed:
-        print(f"{path.relative_to(repo)}: {n} clang-tidy finding(s):")
+        members = entries[path]["members"]
+        name = (str(path.relative_to(repo)) if path.is_relative_to(repo) and members == [path]
+                else "unity batch of " + ", ".join(str(m.relative_to(repo)) for m in members))
+        print(f"{name}: {n} clang-tidy finding(s):")
         lines = [l for l in text.splitlines() if not re.match(r"^\d+ warnings? (generated|treated)", l)]
         print("\n".join("  " + l for l in lines if l.strip()))
-    print(f"style: clang-tidy on {len(entries)} translation units ({cached} unchanged since a clean check, "
+    sources = sum(len(e["members"]) for e in entries.values())
+    print(f"style: clang-tidy on {len(entries)} translation units of {sources} sources ({cached} unchanged since a clean check, "
           f"{ran} checked, -j{jobs}) in {time.monotonic() - started:.0f} s: {len(failed)} with findings")
     return 1 if failed else 0
 
@@ -254,8 +312,8 @@ def main() -> int:
     ap.add_argument("--repo", type=pathlib.Path, default=HERE)
     ap.add_argument("--build", type=pathlib.Path, default=None, help="the build folder (tidy; default REPO/build)")
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--folders", default=",".join(RIG_FLOORS),
-                    help="tidy: comma-separated top folders to check, or 'all' (default: the rig floors)")
+    ap.add_argument("--folders", default="all",
+                    help="tidy: comma-separated top folders to check (default 'all': every unit of the tree)")
     ap.add_argument("--fix", action="store_true", help="format: rewrite the files instead of checking")
     ap.add_argument("files", nargs="*", help="tidy: only these .cpp files")
     a = ap.parse_intermixed_args()

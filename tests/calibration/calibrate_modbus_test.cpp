@@ -14,7 +14,7 @@ using namespace palprig::test_support;
 TEST(CalibrateOverModbus, StaircaseThroughARealTcpServerSettlesOnThePlantsHysteresis) {
   TempDir dir;
   const std::string rig_src = source_dir() + "/data/rigs/wago_750_559.json";
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const std::string writes = (dir.path() / "writes.csv").string();
   const int port = start_sim_rig(sim, palprig_bin(), rig_src, 0, writes, (dir.path() / "sim.err").string());
   const auto rig = dir.path() / "rig.json";

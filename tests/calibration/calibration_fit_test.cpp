@@ -48,7 +48,7 @@ struct SyntheticRig {
   }
 
   // Paper 002 staircase 10..60 kPa, `repeats` times, then random levels for the PI fit.
-  SweepData sweep(std::vector<int> channels, int repeats = 5, int random_levels = 80) {
+  SweepData sweep(const std::vector<int>& channels, int repeats = 5, int random_levels = 80) {
     SweepData d;
     d.file = "DATA.csv";
     d.info.rig_id = "bench-3";

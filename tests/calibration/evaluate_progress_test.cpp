@@ -22,7 +22,7 @@ using namespace palprig::test_support;
 TEST(EvaluateOverModbus, ProgressAtLeastEveryFiveSecondsAndADipIsReportedWithItsTime) {
   TempDir dir;
   const std::string rig_src = source_dir() + "/data/rigs/wago_750_559.json";
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const int port = start_sim_rig(sim, palprig_bin(), rig_src, 0, (dir.path() / "writes.csv").string(),
                                  (dir.path() / "sim.err").string(), {"--watchdog-ms", "40"});
   const auto rig = dir.path() / "rig.json";
@@ -37,7 +37,7 @@ TEST(EvaluateOverModbus, ProgressAtLeastEveryFiveSecondsAndADipIsReportedWithIts
   const std::string command = "exec " + palprig_bin() + " calibrate evaluate --rig " + rig.string() + " --cal " +
                               cal_file.string() +
                               " --channels 2,3 --from-kPa 10 --ramp-kPa-per-s 5 --duration-s 8 2>&1";
-  ChildProcess evaluate({"/bin/sh", "-c", command}, (dir.path() / "sh.err").string());
+  WatchedProcess evaluate({"/bin/sh", "-c", command}, (dir.path() / "sh.err").string());
   const std::regex progress("^evaluate: (uncompensated|compensated) run, ([0-9]+) % done");
   std::vector<double> arrivals;
   const auto start = std::chrono::steady_clock::now();

@@ -117,7 +117,7 @@ TEST(CompensationEvaluation, RefusesWhatCannotBeEvaluated) {
   const RigConfig rig = default_rig_file();
   auto backend = make_backend(rig);
   backend->open();
-  auto refusal = [&](const CalibrationModels& cal, EvaluationOptions o) -> std::string {
+  auto refusal = [&](const CalibrationModels& cal, const EvaluationOptions& o) -> std::string {
     try {
       palprig::testing::LeasedRig leased5(*backend);
       evaluate_compensation(leased5.lease, rig, cal, o);

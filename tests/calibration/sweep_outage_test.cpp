@@ -41,7 +41,7 @@ bool poll_until(Ready ready, double timeout_s) {
 TEST(SweepOverAFailingLink, AHoldThatSpansAnOutageIsRedoneAndTheFileFits) {
   TempDir dir;
   const std::string rig_src = source_dir() + "/data/rigs/wago_750_559.json";
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const int port = start_sim_rig(sim, palprig_bin(), rig_src, 0, (dir.path() / "writes.csv").string(),
                                  (dir.path() / "sim.err").string());
   auto rig_json = rig_on_port(read_json(rig_src), port);

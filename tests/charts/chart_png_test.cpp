@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <regex>
 #include <string>
 
 #include "charts/chart_png.hpp"
@@ -217,4 +219,40 @@ TEST(Charts, ALegendNeverLiesOverTheData) {
       legend_text += p.red() < 80 && p.green() < 80 && p.blue() < 80;
     }
   EXPECT_GT(legend_text, 100) << "the legend's text under the plot";
+}
+
+// A chart whose x counts cases (a CUSUM over 3 cases) has ticks at whole numbers only; left to
+// itself QCustomPlot puts them at halves. Read off the SVG: one vertical grid line per x tick.
+TEST(Charts, CountedAxesTickAtWholeNumbersOnly) {
+  auto vertical_grid_lines = [](bool whole) {
+    Chart c;
+    c.x_label = "case";
+    c.y_label = "S";
+    c.x_min = 0.0;
+    c.x_max = 3.0;
+    c.x_whole_numbers = whole;
+    ChartSeries s;
+    for (int i = 0; i <= 3; ++i) {
+      s.x.push_back(i);
+      s.y.push_back(0.1 * i);
+    }
+    c.series.push_back(s);
+    TempDir dir;
+    write_chart_svg(c, dir.path() / "c.svg");
+    std::ifstream in(dir.path() / "c.svg");
+    const std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // The grid is drawn in its own light grey group; a vertical line has the same x at both ends.
+    int lines = 0;
+    std::size_t at = 0;
+    while ((at = svg.find("stroke=\"#e1e1e1\"", at)) != std::string::npos) {
+      const std::size_t end = svg.find("</g>", at);
+      const std::regex line(R"re(points="([0-9.]+),[0-9.]+ ([0-9.]+),[0-9.]+ ")re");
+      const std::string group = svg.substr(at, end - at);
+      for (std::sregex_iterator m(group.begin(), group.end(), line), none; m != none; ++m) lines += (*m)[1] == (*m)[2];
+      at = end;
+    }
+    return lines;
+  };
+  EXPECT_GT(vertical_grid_lines(false), 4) << "the default ticker's half-case ticks (the test's premise)";
+  EXPECT_EQ(vertical_grid_lines(true), 4) << "ticks at 0, 1, 2 and 3 cases";
 }

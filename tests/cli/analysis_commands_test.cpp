@@ -22,6 +22,7 @@
 #include "store/sqlite_trial_store.hpp"
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -37,8 +38,6 @@ void run_session(const std::string& protocol_file, const std::string& who, const
       {"experiment", "run", "--protocol", protocol(protocol_file), "--participant", who, "--db", db, "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
 }
-
-int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
 
 TEST(AnalysisCommands, StatsTrialsGivesAThresholdStoresThresholds) {
   ScratchDir dir;
@@ -75,7 +74,7 @@ TEST(AnalysisCommands, StatsTrialsRefusesAStoreWithoutTrials) {
   { SqliteTrialStore store(db, TrialStore::Access::read_write); }
   const auto r = run_palprig({"stats", "trials", db});
   EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_EQ(palprig::testing::count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("holds none"), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
 }
@@ -142,7 +141,7 @@ TEST(AnalysisCommands, StatsPsychometricPrintsATableAndSaysWhereEachThresholdIsT
   run_session("threshold_1up3down.json", "sim:1", db);
   const auto r = run_palprig({"stats", "psychometric", db, "--by", "track_name", "--bootstrap", "50"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_LE(lines(r.out), 10) << r.out;
+  EXPECT_LE(palprig::testing::count_lines(r.out), 10) << r.out;
   EXPECT_EQ(r.out.find("levels:"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("threshold: the level where F = 0.5"), std::string::npos) << r.out;
   EXPECT_TRUE(std::regex_search(r.out, std::regex("three-finger +103 "))) << r.out;
@@ -164,7 +163,7 @@ TEST(AnalysisCommands, AbsurdPsychometricLevelsAreRefusedWithTheRangeExpected) {
   const auto r =
       run_palprig({"stats", "psychometric", csv.string(), "--level", "level", "--response", "k", "--n", "n"});
   EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_EQ(palprig::testing::count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("levels within 1e9 times the other steps of each other: the step from 3 to 1e+308"),
             std::string::npos)
       << r.err;

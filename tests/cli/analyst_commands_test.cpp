@@ -23,7 +23,7 @@ using palprig::test_support::run_process;
 namespace {
 
 // The answers: exact on every trial but the first (all fingers).
-std::filesystem::path write_store(const std::filesystem::path& dir) {
+std::filesystem::path store_first_answer_wrong(const std::filesystem::path& dir) {
   return palprig::testing::write_analyst_store(dir, [](int position) { return position == 0; });
 }
 
@@ -36,7 +36,7 @@ std::string slurp(const std::filesystem::path& file) {
 
 TEST(AnalystCommands, StatsTrialsReadsAStoreWrittenWithoutARig) {
   palprig::test_support::TempDir dir;
-  const auto db = write_store(dir.path());
+  const auto db = store_first_answer_wrong(dir.path());
   const auto r = run_process(palprig_bin() + " stats trials " + db.string() + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\"ACC\""), std::string::npos) << r.out;
@@ -45,7 +45,7 @@ TEST(AnalystCommands, StatsTrialsReadsAStoreWrittenWithoutARig) {
 
 TEST(AnalystCommands, ExportWritesEveryTrialAsLongCsvAndBids) {
   palprig::test_support::TempDir dir;
-  const auto db = write_store(dir.path());
+  const auto db = store_first_answer_wrong(dir.path());
   const auto csv =
       run_process(palprig_bin() + " export " + db.string() + " --format csv --out " + (dir.path() / "csv").string());
   ASSERT_EQ(csv.exit_code, 0) << csv.err;
@@ -63,7 +63,7 @@ TEST(AnalystCommands, ExportWritesEveryTrialAsLongCsvAndBids) {
 
 TEST(AnalystCommands, StoreCopyKeepsEveryTrial) {
   palprig::test_support::TempDir dir;
-  const auto db = write_store(dir.path());
+  const auto db = store_first_answer_wrong(dir.path());
   const auto copy = dir.path() / "copy.db";
   const auto r = run_process(palprig_bin() + " store copy --from " + db.string() + " --to " + copy.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;

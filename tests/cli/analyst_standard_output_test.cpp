@@ -15,6 +15,7 @@
 #include "tests/support/analyst_store.hpp"
 #include "tests/support/standard_output_support.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 using namespace palprig;
 using palprig::test_support::run_into_closed_pipe;
@@ -23,17 +24,15 @@ using palprig::test_support::run_to_dev_full;
 namespace {
 
 // The answers: exact on every trial but every fifth (all fingers).
-std::filesystem::path write_store(const std::filesystem::path& dir) {
+std::filesystem::path store_every_fifth_answer_wrong(const std::filesystem::path& dir) {
   return palprig::testing::write_analyst_store(dir, [](int position) { return position % 5 == 0; });
 }
-
-int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
 
 }  // namespace
 
 TEST(AnalystStandardOutput, AFailedWriteIsExitOneWithTheReasonForEveryCommand) {
   palprig::test_support::TempDir dir;
-  const std::string db = write_store(dir.path()).string();
+  const std::string db = store_every_fifth_answer_wrong(dir.path()).string();
   const auto csv = dir.write("times.csv", "mode,rt\na,1\na,2\na,3\nb,4\nb,5\nb,7\n");
   const std::string data = std::string(PALPRIG_SOURCE_DIR) + "/data";
   for (const std::string& args :
@@ -44,7 +43,7 @@ TEST(AnalystStandardOutput, AFailedWriteIsExitOneWithTheReasonForEveryCommand) {
         std::string("--version")}) {
     const auto r = run_to_dev_full(args);
     EXPECT_EQ(r.exit_code, 1) << args << ": " << r.err;
-    EXPECT_EQ(lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_EQ(palprig::testing::count_lines(r.err), 1) << args << ": " << r.err;
     EXPECT_NE(r.err.find("palprig: standard output: cannot write: No space left on device"), std::string::npos)
         << args << ": " << r.err;
   }
@@ -52,7 +51,7 @@ TEST(AnalystStandardOutput, AFailedWriteIsExitOneWithTheReasonForEveryCommand) {
 
 TEST(AnalystStandardOutput, AClosedPipeEndsQuietlyBySigpipe) {
   palprig::test_support::TempDir dir;
-  const std::string db = write_store(dir.path()).string();
+  const std::string db = store_every_fifth_answer_wrong(dir.path()).string();
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"stats", "trials", db}, std::vector<std::string>{"stats", "trials", db, "--json"},
         std::vector<std::string>{"stats", "proportion", "--k", "6", "--n", "9"}, std::vector<std::string>{"--help"}}) {
@@ -68,5 +67,5 @@ TEST(AnalystStandardOutput, ARefusalKeepsItsExitCodeWhenNothingCouldBePrinted) {
   const auto r = run_into_closed_pipe({"stats", "trials", "/nonexistent/store.db"});
   EXPECT_FALSE(r.signalled);
   EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_EQ(palprig::testing::count_lines(r.err), 1) << r.err;
 }

@@ -6,21 +6,25 @@
 
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 using namespace palprig::test_support;
 
-namespace {
-std::string data(const std::string& rel) { return source_dir() + "/data/" + rel; }
-}  // namespace
+namespace {}  // namespace
 
 TEST(CheckCommand, EveryShippedFileIsReadAndNamedByItsKind) {
   const ProcessResult r =
-      run_process(palprig_bin() + " check " + data("rigs/wago_750_559.json") + " " +
-                  data("rigs/ni_pcie_6259_comedi.json") + " " + data("scenes/phantom_abc.json") + " " +
-                  data("scenes/brachial_pulse.json") + " " + data("protocols/discrimination_002.json") + " " +
-                  data("protocols/threshold_quest.json") + " " + data("protocols/pulse_generated.json") + " " +
-                  data("calibration/sim-default.json") + " " + data("traces/phantom_abc_pass.csv") + " " +
-                  data("waveforms/brachial_pressure.csv") + " " + data("scenes/phantom_abc.pgm"));
+      run_process(palprig_bin() + " check " + palprig::testing::shipped_data("rigs/wago_750_559.json") + " " +
+                  palprig::testing::shipped_data("rigs/ni_pcie_6259_comedi.json") + " " +
+                  palprig::testing::shipped_data("scenes/phantom_abc.json") + " " +
+                  palprig::testing::shipped_data("scenes/brachial_pulse.json") + " " +
+                  palprig::testing::shipped_data("protocols/discrimination_002.json") + " " +
+                  palprig::testing::shipped_data("protocols/threshold_quest.json") + " " +
+                  palprig::testing::shipped_data("protocols/pulse_generated.json") + " " +
+                  palprig::testing::shipped_data("calibration/sim-default.json") + " " +
+                  palprig::testing::shipped_data("traces/phantom_abc_pass.csv") + " " +
+                  palprig::testing::shipped_data("waveforms/brachial_pressure.csv") + " " +
+                  palprig::testing::shipped_data("scenes/phantom_abc.pgm"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* said :
        {"rig 'wago-750-559', backend modbus", "rig 'ni-pcie-6259-comedi', backend comedi",
@@ -45,8 +49,10 @@ TEST(CheckCommand, ARefusedFileIsOneLineAndExitTwo) {
 }
 
 TEST(CheckCommand, KindCanBeGivenAndIsThenEnforced) {
-  const ProcessResult r = run_process(palprig_bin() + " check --kind rig " + data("scenes/phantom_abc.json"));
+  const ProcessResult r =
+      run_process(palprig_bin() + " check --kind rig " + palprig::testing::shipped_data("scenes/phantom_abc.json"));
   EXPECT_EQ(r.exit_code, 2) << r.out;
-  const ProcessResult bad = run_process(palprig_bin() + " check --kind nonsense " + data("rigs/simulated.json"));
+  const ProcessResult bad =
+      run_process(palprig_bin() + " check --kind nonsense " + palprig::testing::shipped_data("rigs/simulated.json"));
   EXPECT_NE(bad.exit_code, 0);
 }

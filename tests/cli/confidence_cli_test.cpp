@@ -14,6 +14,7 @@
 #include "store/sqlite_trial_store.hpp"
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -42,24 +43,15 @@ std::string read_text(const std::filesystem::path& p) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::stringstream s(line);
-  std::string cell;
-  while (std::getline(s, cell, sep)) out.push_back(cell);
-  if (!line.empty() && line.back() == sep) out.emplace_back();
-  return out;
-}
-
 // Rows of a CSV/TSV as header -> value maps.
 std::vector<std::map<std::string, std::string>> table(const std::string& text, char sep) {
   std::stringstream in(text);
   std::string line;
   std::getline(in, line);
-  const auto header = split(line, sep);
+  const auto header = palprig::testing::split_cells(line, sep);
   std::vector<std::map<std::string, std::string>> rows;
   while (std::getline(in, line)) {
-    const auto cells = split(line, sep);
+    const auto cells = palprig::testing::split_cells(line, sep);
     std::map<std::string, std::string> row;
     for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
     rows.push_back(row);

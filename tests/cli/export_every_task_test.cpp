@@ -26,6 +26,7 @@
 #include "tests/support/process_support.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -39,7 +40,7 @@ const std::vector<std::string> kProtocols = {
     "threshold_quest.json",    "pulse_localisation_000.json",        "pulse_generated.json"};
 const std::vector<std::string> kParticipants = {"sim:1", "sim:2"};
 
-std::string read_text(const fs::path& p) {
+std::string file_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
@@ -53,15 +54,7 @@ std::vector<std::string> lines_of(const std::string& text) {
   return out;
 }
 
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::stringstream s(line);
-  for (std::string cell; std::getline(s, cell, sep);) out.push_back(cell);
-  if (!line.empty() && line.back() == sep) out.emplace_back();
-  return out;
-}
-
-std::int64_t scalar(const fs::path& db, const std::string& sql) {
+std::int64_t store_scalar(const fs::path& db, const std::string& sql) {
   SqliteTrialStore store = open_sqlite_trial_store_for_reading(db);
   auto q = store.database().prepare(sql);
   return q.step() ? q.integer(0) : -1;
@@ -112,10 +105,10 @@ class ExportEveryTask : public ::testing::Test {
         for (const std::string& protocol : kProtocols) {
           const auto r = run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / protocol).string(),
                                       "--participant", participant, "--db", making.string()});
-          if (r.exit_code != 0)
-            throw std::runtime_error(protocol + " " + participant + ": exit " + std::to_string(r.exit_code) + ": " +
-                                     r.err);
-          printed[protocol + " " + participant] = r.out;
+          std::string run = protocol;
+          run.append(" ").append(participant);
+          if (r.exit_code != 0) throw std::runtime_error(run + ": exit " + std::to_string(r.exit_code) + ": " + r.err);
+          printed[run] = r.out;
         }
       }
       fs::rename(making, cached_db);
@@ -124,7 +117,7 @@ class ExportEveryTask : public ::testing::Test {
       if (!out.flush()) throw std::runtime_error("cannot write " + cached_runs.string());
     }
     fs::copy_file(cached_db, db_);
-    const nlohmann::json printed = nlohmann::json::parse(read_text(cached_runs));
+    const nlohmann::json printed = nlohmann::json::parse(file_text(cached_runs));
     for (auto it = printed.begin(); it != printed.end(); ++it) runs_[it.key()] = it.value().get<std::string>();
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
@@ -141,9 +134,9 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
   const fs::path out = dir_ / "csv";
   const auto r = run_palprig({"export", db_.string(), "--format", "csv", "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::int64_t threshold = scalar(db_, "SELECT count(*) FROM threshold_trials");
-  const std::int64_t pulse = scalar(db_, "SELECT count(*) FROM pulse_trials");
-  const std::int64_t other = scalar(db_, "SELECT count(*) FROM trials");
+  const std::int64_t threshold = store_scalar(db_, "SELECT count(*) FROM threshold_trials");
+  const std::int64_t pulse = store_scalar(db_, "SELECT count(*) FROM pulse_trials");
+  const std::int64_t other = store_scalar(db_, "SELECT count(*) FROM trials");
   ASSERT_GT(threshold, 0);
   ASSERT_GT(pulse, 0);
   EXPECT_NE(r.out.find(std::to_string(threshold + pulse + other) + " trials (" + std::to_string(other) +
@@ -152,9 +145,9 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
             std::string::npos)
       << r.out;
 
-  const auto threshold_lines = lines_of(read_text(out / "threshold_trials.csv"));
+  const auto threshold_lines = lines_of(file_text(out / "threshold_trials.csv"));
   ASSERT_EQ(static_cast<std::int64_t>(threshold_lines.size()), threshold + 1);
-  const auto header = split(threshold_lines[0], ',');
+  const auto header = palprig::testing::split_cells(threshold_lines[0], ',');
   const auto column = [&](const std::string& name) {
     const auto it = std::find(header.begin(), header.end(), name);
     EXPECT_NE(it, header.end()) << name;
@@ -163,7 +156,7 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
   // The track's estimate after its last trial is the threshold the session printed at its end.
   std::map<std::string, std::string> last_estimate;  // "participant track_name" -> estimate
   for (std::size_t i = 1; i < threshold_lines.size(); ++i) {
-    const auto cells = split(threshold_lines[i], ',');
+    const auto cells = palprig::testing::split_cells(threshold_lines[i], ',');
     ASSERT_EQ(cells.size(), header.size()) << threshold_lines[i];
     if (cells[column("protocol")].rfind("threshold_1up3down", 0) != 0) continue;
     last_estimate[cells[column("participant")] + " " + cells[column("track_name")]] = cells[column("estimate_kPa")];
@@ -182,14 +175,14 @@ TEST_F(ExportEveryTask, LongCsvHoldsEveryTrialOfEveryKind) {
     EXPECT_EQ(matched, 2) << printed;
   }
 
-  const auto pulse_lines = lines_of(read_text(out / "pulse_trials.csv"));
+  const auto pulse_lines = lines_of(file_text(out / "pulse_trials.csv"));
   ASSERT_EQ(static_cast<std::int64_t>(pulse_lines.size()), pulse + 1);
-  const auto pulse_header = split(pulse_lines[0], ',');
+  const auto pulse_header = palprig::testing::split_cells(pulse_lines[0], ',');
   for (const char* name : {"mark_x_mm", "distance_mm", "hit", "hit_radius_mm", "artery"}) {
     EXPECT_NE(std::find(pulse_header.begin(), pulse_header.end(), name), pulse_header.end()) << name;
   }
   for (std::size_t i = 1; i < pulse_lines.size(); ++i)
-    EXPECT_EQ(split(pulse_lines[i], ',').size(), pulse_header.size());
+    EXPECT_EQ(palprig::testing::split_cells(pulse_lines[i], ',').size(), pulse_header.size());
   EXPECT_TRUE(fs::exists(out / "trials_long.csv"));
   EXPECT_TRUE(fs::exists(out / "marks.csv"));
   for (const auto& e : fs::recursive_directory_iterator(out)) {
@@ -202,7 +195,7 @@ TEST_F(ExportEveryTask, BidsHasARunPerSessionWithEveryTrialAndEveryColumnDescrib
   const auto r =
       run_palprig({"export", db_.string(), "--format", "bids", "--out", out.string(), "--author", "A. Tester"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto description = nlohmann::json::parse(read_text(out / "dataset_description.json"));
+  const auto description = nlohmann::json::parse(file_text(out / "dataset_description.json"));
   EXPECT_EQ(description["Authors"], nlohmann::json::array({"A. Tester"}));
   EXPECT_TRUE(fs::exists(out / "README"));
   std::int64_t rows = 0;
@@ -211,21 +204,22 @@ TEST_F(ExportEveryTask, BidsHasARunPerSessionWithEveryTrialAndEveryColumnDescrib
     const std::string name = e.path().filename().string();
     if (name.size() < 8 || name.substr(name.size() - 8) != "_beh.tsv") continue;
     ++runs;
-    const auto lines = lines_of(read_text(e.path()));
+    const auto lines = lines_of(file_text(e.path()));
     ASSERT_GE(lines.size(), 2u) << e.path();
     rows += static_cast<std::int64_t>(lines.size()) - 1;
-    const auto header = split(lines[0], '\t');
-    for (const auto& line : lines) EXPECT_EQ(split(line, '\t').size(), header.size()) << e.path() << ": " << line;
+    const auto header = palprig::testing::split_cells(lines[0], '\t');
+    for (const auto& line : lines)
+      EXPECT_EQ(palprig::testing::split_cells(line, '\t').size(), header.size()) << e.path() << ": " << line;
     fs::path sidecar = e.path();
     sidecar.replace_extension(".json");
-    const auto side = nlohmann::json::parse(read_text(sidecar));
+    const auto side = nlohmann::json::parse(file_text(sidecar));
     for (const std::string& column : header) EXPECT_TRUE(side.contains(column)) << sidecar << " describes " << column;
   }
-  EXPECT_EQ(runs, scalar(db_, "SELECT count(*) FROM sessions"));
-  EXPECT_EQ(rows, scalar(db_,
-                         "SELECT (SELECT count(*) FROM trials) + (SELECT count(*) FROM threshold_trials) + "
-                         "(SELECT count(*) FROM pulse_trials)"));
-  const std::string participants = read_text(out / "participants.tsv");
+  EXPECT_EQ(runs, store_scalar(db_, "SELECT count(*) FROM sessions"));
+  EXPECT_EQ(rows, store_scalar(db_,
+                               "SELECT (SELECT count(*) FROM trials) + (SELECT count(*) FROM threshold_trials) + "
+                               "(SELECT count(*) FROM pulse_trials)"));
+  const std::string participants = file_text(out / "participants.tsv");
   EXPECT_EQ(lines_of(participants).size(), kParticipants.size() + 1) << participants;
 }
 
@@ -261,7 +255,7 @@ TEST_F(ExportEveryTask, PlotDrawsEveryKindAsPngAndSvg) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* stem : {"measures_by_condition", "pulse_hits_by_condition", "psychometric_one_finger"}) {
     EXPECT_GT(fs::file_size(plots / (std::string(stem) + ".png")), 2000u) << stem;
-    EXPECT_NE(read_text(plots / (std::string(stem) + ".svg")).find("<svg"), std::string::npos) << stem;
+    EXPECT_NE(file_text(plots / (std::string(stem) + ".svg")).find("<svg"), std::string::npos) << stem;
   }
   int tracks = 0;
   for (const auto& e : fs::directory_iterator(plots))

@@ -66,7 +66,7 @@ void expect_the_ticks_before_the_fault(const FaultFile& f) {
 TEST(FaultRecordCli, AModbusPeerKilledMidRunLeavesTheTicksBeforeTheFaultBesideTheTelemetry) {
   TempDir dir;
   ::setenv("PALPRIG_LOCK_DIR", dir.path().c_str(), 1);
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const int port = start_sim_rig(sim, palprig_bin(), kWagoRig, 0, (dir.path() / "writes.csv").string(),
                                  (dir.path() / "sim.err").string());
   auto run = start_palprig_run(dir, short_outage_rig(dir, port), 60.0);
@@ -85,7 +85,7 @@ TEST(FaultRecordCli, AModbusPeerKilledMidRunLeavesTheTicksBeforeTheFaultBesideTh
 TEST(FaultRecordCli, WithoutTelemetryTheRecordGoesToTheWorkingFolder) {
   TempDir dir;
   ::setenv("PALPRIG_LOCK_DIR", dir.path().c_str(), 1);
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const int port = start_sim_rig(sim, palprig_bin(), kWagoRig, 0, (dir.path() / "writes.csv").string(),
                                  (dir.path() / "sim.err").string());
   const std::string rig = short_outage_rig(dir, port);

@@ -9,13 +9,12 @@
 #include "formats/scene_file.hpp"
 #include "models/stiffness_map.hpp"
 #include "tests/support/run_process.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 using namespace palprig;
 using namespace palprig::test_support;
 
-namespace {
-std::string data(const std::string& rel) { return source_dir() + "/data/" + rel; }
-}  // namespace
+namespace {}  // namespace
 
 TEST(SceneCommand, GenerateIsReproducibleFromTheSeed) {
   TempDir dir;
@@ -46,8 +45,9 @@ TEST(SceneCommand, RenderBakesTheFeltStiffnessIntoAMap) {
   TempDir dir;
   const auto pgm = dir.path() / "phantom.pgm";
   const auto map_scene = dir.path() / "phantom_map.json";
-  const ProcessResult r = run_process(palprig_bin() + " scene render " + data("scenes/phantom_abc_function.json") +
-                                      " --out " + pgm.string() + " --res-mm 2 --map-scene " + map_scene.string());
+  const ProcessResult r = run_process(palprig_bin() + " scene render " +
+                                      palprig::testing::shipped_data("scenes/phantom_abc_function.json") + " --out " +
+                                      pgm.string() + " --res-mm 2 --map-scene " + map_scene.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("81 x 61 vertices"), std::string::npos) << r.out;
   std::ifstream in(pgm, std::ios::binary);
@@ -65,15 +65,17 @@ TEST(SceneCommand, RenderBakesTheFeltStiffnessIntoAMap) {
 
   // CSV, a harder press and a time in the breathing cycle.
   const auto csv = dir.path() / "liver.csv";
-  const ProcessResult l = run_process(palprig_bin() + " scene render " + data("scenes/liver_edge.json") + " --out " +
-                                      csv.string() + " --res-mm 5 --force-N 4 --t-s 2");
+  const ProcessResult l =
+      run_process(palprig_bin() + " scene render " + palprig::testing::shipped_data("scenes/liver_edge.json") +
+                  " --out " + csv.string() + " --res-mm 5 --force-N 4 --t-s 2");
   ASSERT_EQ(l.exit_code, 0) << l.err;
   std::ifstream lin(csv);
   EXPECT_EQ(parse_stiffness_csv(lin, csv.string(), 160, 120).cols(), 33u);
 }
 
 TEST(SceneCommand, InfoDescribesLayersInclusionsAndArteries) {
-  const ProcessResult r = run_process(palprig_bin() + " scene info " + data("scenes/groin_femoral.json"));
+  const ProcessResult r =
+      run_process(palprig_bin() + " scene info " + palprig::testing::shipped_data("scenes/groin_femoral.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("artery femoral"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("inguinal ligament (ligament"), std::string::npos) << r.out;
@@ -96,8 +98,8 @@ TEST(SceneCommand, BadInputExitsTwoWithOneClearLine) {
   r = run_process(palprig_bin() + " scene generate --seed 1 --difficulty extreme --out " +
                   (dir.path() / "c.json").string());
   EXPECT_EQ(r.exit_code, 2);
-  r = run_process(palprig_bin() + " scene render " + data("scenes/brachial_pulse.json") + " --out " +
-                  (dir.path() / "x.png").string());
+  r = run_process(palprig_bin() + " scene render " + palprig::testing::shipped_data("scenes/brachial_pulse.json") +
+                  " --out " + (dir.path() / "x.png").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find(".pgm"), std::string::npos) << r.err;
   r = run_process(palprig_bin() + " run --scene " + bad.string() + " --input sweep --duration-s 1");
@@ -106,8 +108,9 @@ TEST(SceneCommand, BadInputExitsTwoWithOneClearLine) {
 
 TEST(SceneCommand, RunDrivesTheRigFromAFunctionSceneWithAPulse) {
   // The pen sweeps the arm; where fingers cross the brachial artery the pulse rides on top.
-  const ProcessResult r = run_process(palprig_bin() + " run --scene " + data("scenes/brachial_pulse.json") +
-                                      " --input sweep --duration-s 6 --json");
+  const ProcessResult r =
+      run_process(palprig_bin() + " run --scene " + palprig::testing::shipped_data("scenes/brachial_pulse.json") +
+                  " --input sweep --duration-s 6 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["ticks"], 6000);

@@ -20,7 +20,7 @@ namespace ts = palprig::test_support;
 
 TEST(experiments_hardware_clock, simulated_participant_on_a_modbus_rig_runs_in_real_time) {
   ts::TempDir dir;
-  std::unique_ptr<ts::ChildProcess> sim;
+  std::unique_ptr<ts::WatchedProcess> sim;
   const std::string wago = std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/wago_750_559.json";
   const int port = ts::start_sim_rig(sim, ts::palprig_bin(), wago, 0, (dir.path() / "writes.csv").string(),
                                      (dir.path() / "sim.err").string());
@@ -33,9 +33,9 @@ TEST(experiments_hardware_clock, simulated_participant_on_a_modbus_rig_runs_in_r
   const std::string db = (dir.path() / "hw.db").string();
   const std::string protocol = std::string(PALPRIG_SOURCE_DIR) + "/data/protocols/discrimination_002.json";
 
-  ts::ChildProcess run({ts::palprig_bin(), "experiment", "run", "--protocol", protocol, "--participant", "sim:3",
-                        "--db", db, "--rig", rig_file},
-                       (dir.path() / "run.err").string());
+  ts::WatchedProcess run({ts::palprig_bin(), "experiment", "run", "--protocol", protocol, "--participant", "sim:3",
+                          "--db", db, "--rig", rig_file},
+                         (dir.path() / "run.err").string());
   run.wait_for_line(std::regex("real time \\(hardware rig\\)"), 20.0);
   const auto started = std::chrono::steady_clock::now();
   // Still running after 4 s of wall time (on simulated time the whole session took < 1 s).

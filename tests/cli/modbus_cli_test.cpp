@@ -49,16 +49,16 @@ struct RunResult {
   std::string err;
 };
 
-std::unique_ptr<ChildProcess> start_run(const TempDir& dir, const std::string& rig, const std::string& trace,
-                                        double seconds) {
-  return std::make_unique<ChildProcess>(
+std::unique_ptr<WatchedProcess> start_run(const TempDir& dir, const std::string& rig, const std::string& trace,
+                                          double seconds) {
+  return std::make_unique<WatchedProcess>(
       std::vector<std::string>{palprig_bin(), "run", "--realtime", "--no-fifo", "--rig", rig, "--scene", kScene,
                                "--input", "trace:" + trace, "--duration-s", std::to_string(seconds), "--telemetry",
                                (dir.path() / "telemetry.csv").string(), "--json"},
       (dir.path() / "run.err").string());
 }
 
-RunResult finish_run(ChildProcess& run, const TempDir& dir) {
+RunResult finish_run(WatchedProcess& run, const TempDir& dir) {
   RunResult r;
   r.exit_code = run.wait();
   r.err = read_file(dir.path() / "run.err");
@@ -101,7 +101,7 @@ int word_unsigned(double volts, double lo, double hi, int full_scale) {
 
 TEST(ModbusEndToEnd, RunDrivesSimRigWithTheExactWordsOfTheMap) {
   TempDir dir;
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const std::string log = (dir.path() / "writes.csv").string();
   // The simulator serves the same map (its own address in the file is overridden by --listen).
   const auto sim_rig = dir.write("sim_rig.json", mixed_map_rig(1).dump(2)).string();
@@ -170,7 +170,7 @@ TEST(ModbusEndToEnd, RunDrivesSimRigWithTheExactWordsOfTheMap) {
 
 TEST(ModbusEndToEnd, KilledServerVentsReportsAndReconnectsWithoutSpike) {
   TempDir dir;
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const std::string rig_file = PALPRIG_SOURCE_DIR + std::string("/data/rigs/wago_750_559.json");
   const auto writes1 = dir.path() / "writes1.csv", writes2 = dir.path() / "writes2.csv";
   const int port = start_sim_rig(sim, palprig_bin(), rig_file, 0, writes1.string(), (dir.path() / "sim1.err").string());
@@ -188,7 +188,7 @@ TEST(ModbusEndToEnd, KilledServerVentsReportsAndReconnectsWithoutSpike) {
   // The scenario: the module stays away for half a second (a deliberate outage, not a wait for
   // an event), so the run spends hundreds of ticks unlinked and retries with its backoff.
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  std::unique_ptr<ChildProcess> back;
+  std::unique_ptr<WatchedProcess> back;
   start_sim_rig(back, palprig_bin(), rig_file, port, writes2.string(), (dir.path() / "sim2.err").string());
   ASSERT_TRUE(poll_until([&] { return max_kPa_written(writes2) >= 23.5 - 0.01; }, 60.0))
       << "the run never pressurised the returning module: " << read_file(dir.path() / "run.err");
@@ -256,7 +256,7 @@ TEST(ModbusEndToEnd, KilledServerVentsReportsAndReconnectsWithoutSpike) {
 
 TEST(ModbusEndToEnd, SilentServerIsDetectedByTimeoutWithoutStallingTheLoop) {
   TempDir dir;
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const auto writes = dir.path() / "writes.csv";
   const auto run_err = dir.path() / "run.err";
   const int port = start_sim_rig(sim, palprig_bin(), PALPRIG_SOURCE_DIR + std::string("/data/rigs/wago_750_559.json"),

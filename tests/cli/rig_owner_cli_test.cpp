@@ -22,7 +22,7 @@ TEST(RigOwnerCli, ASecondProgramOnTheSameModbusModuleIsRefusedUntilTheFirstIsGon
   TempDir dir;
   // The machine-wide locks in this test's own folder, not /run/lock (parallel tests, CI).
   ::setenv("PALPRIG_LOCK_DIR", dir.path().c_str(), 1);
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const int port = start_sim_rig(sim, palprig_bin(), kWagoRig, 0, (dir.path() / "writes.csv").string(),
                                  (dir.path() / "sim.err").string());
   const std::string rig = dir.write("rig.json", wago_on_port(port).dump(2)).string();

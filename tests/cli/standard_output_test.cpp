@@ -12,33 +12,31 @@
 #include "store/sqlite_trial_store.hpp"
 #include "tests/support/standard_output_support.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 using namespace palprig;
 using palprig::test_support::run_into_closed_pipe;
 using palprig::test_support::run_to_dev_full;
 
-namespace {
-
-std::string data(const std::string& relative) { return std::string(PALPRIG_SOURCE_DIR) + "/data/" + relative; }
-
-int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
-
-}  // namespace
+namespace {}  // namespace
 
 TEST(StandardOutput, TheRigsCommandsExitOneWhenTheirOutputCannotBeWritten) {
   palprig::test_support::TempDir dir;
   for (const std::string& args :
-       {"experiment plan --protocol " + data("protocols/discrimination_002.json") + " --participant P01",
-        "check " + data("rigs/simulated.json") + " " + data("scenes/phantom_abc.json"), std::string("demo"),
-        "experiment run --protocol " + data("protocols/discrimination_002.json") + " --participant sim:1 --db " +
-            (dir.path() / "s.db").string() + " --quiet"}) {
+       {"experiment plan --protocol " + palprig::testing::shipped_data("protocols/discrimination_002.json") +
+            " --participant P01",
+        "check " + palprig::testing::shipped_data("rigs/simulated.json") + " " +
+            palprig::testing::shipped_data("scenes/phantom_abc.json"),
+        std::string("demo"),
+        "experiment run --protocol " + palprig::testing::shipped_data("protocols/discrimination_002.json") +
+            " --participant sim:1 --db " + (dir.path() / "s.db").string() + " --quiet"}) {
     const auto r = run_to_dev_full(args);
     EXPECT_EQ(r.exit_code, 1) << args << ": " << r.err;
     // The one line, last (plan's note on the participant number comes before it).
     const std::string line = "palprig: standard output: cannot write: No space left on device\n";
     EXPECT_TRUE(r.err.size() >= line.size() && r.err.compare(r.err.size() - line.size(), line.size(), line) == 0)
         << args << ": " << r.err;
-    EXPECT_LE(lines(r.err), 2) << args << ": " << r.err;
+    EXPECT_LE(palprig::testing::count_lines(r.err), 2) << args << ": " << r.err;
   }
 }
 
@@ -46,9 +44,10 @@ TEST(StandardOutput, AReaderThatGoesAwayNeverStopsASessionMidRun) {
   for (bool parent_ignores_sigpipe : {false, true}) {
     palprig::test_support::TempDir dir;
     const auto db = dir.path() / "s.db";
-    const auto r = run_into_closed_pipe({"experiment", "run", "--protocol", data("protocols/discrimination_002.json"),
-                                         "--participant", "sim:1", "--db", db.string()},
-                                        parent_ignores_sigpipe);
+    const auto r = run_into_closed_pipe(
+        {"experiment", "run", "--protocol", palprig::testing::shipped_data("protocols/discrimination_002.json"),
+         "--participant", "sim:1", "--db", db.string()},
+        parent_ignores_sigpipe);
     EXPECT_TRUE(r.signalled) << "exit " << r.code << ": " << r.err;
     EXPECT_EQ(r.code, SIGPIPE) << r.err;
     EXPECT_EQ(r.err, "");

@@ -11,6 +11,7 @@
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -33,8 +34,6 @@ std::string course(const ScratchDir& dir) {
   std::ofstream(path) << doc.dump(2);
   return path.string();
 }
-
-int lines(const std::string& s) { return testing::count_lines(s); }
 
 TEST(TrainCommand, APilotTraineeTrainsAndTheTrainerReadsTheirCurves) {
   ScratchDir dir;
@@ -87,7 +86,7 @@ TEST(TrainCommand, RefusalsAreOneLineExitTwoAndKeepTheStore) {
   const auto refused = [&](const std::vector<std::string>& args, const std::string& says) {
     const auto r = run_palprig(args);
     EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
-    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_EQ(palprig::testing::count_lines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
   };
   refused({"train", "next", "--curriculum", c, "--trainee", "nobody", "--db", db, "--participant", "sim:1"},

@@ -46,7 +46,7 @@ void expect_failed_write(const ProcessResult& r, const std::string& file, const 
 
 // A folder nobody may write (mode 0555, owned by root).
 std::filesystem::path read_only_folder(const TempDir& dir) {
-  const auto folder = dir.path() / "read-only";
+  auto folder = dir.path() / "read-only";
   std::filesystem::create_directory(folder);
   ::chmod(dir.path().c_str(), 0755);
   ::chmod(folder.c_str(), 0555);
@@ -68,7 +68,7 @@ std::string scene_generate(const std::filesystem::path& out) {
 }
 
 std::filesystem::path telemetry_bin(const TempDir& dir) {
-  const auto bin = dir.path() / "run.bin";
+  auto bin = dir.path() / "run.bin";
   const auto r = run_process(palprig_bin() + " run --scene " + source("data/scenes/phantom_abc.json") +
                              " --input sweep --duration-s 0.5 --telemetry " + bin.string());
   EXPECT_EQ(r.exit_code, 0) << r.err;

@@ -21,7 +21,7 @@ using namespace palprig;
 
 namespace {
 
-const std::string kData = std::string(PALPRIG_SOURCE_DIR) + "/data/";
+const std::string kLagCompensationData = std::string(PALPRIG_SOURCE_DIR) + "/data/";
 
 // The simulated regulator without play or noise: the lag alone, as the stage sees it once the
 // hysteresis inverse has done its work.
@@ -272,7 +272,7 @@ TEST(LagCompensation, UsesPastPenSamplesOnly) {
 }
 
 TEST(LagCompensation, AChannelWhoseModelFitsPoorlyKeepsItOffAndSaysWhy) {
-  const RigConfig rig = load_rig_file(kData + "rigs/simulated.json");
+  const RigConfig rig = load_rig_file(kLagCompensationData + "rigs/simulated.json");
   CalibrationModels cal;
   cal.lag_compensation.enabled = true;
   cal.dynamics[0] = RegulatorDynamics{0.004, 0.05, 0.9991, 0.1, 0.4, 12000, 1000};
@@ -311,7 +311,7 @@ TEST(LagCompensation, AChannelWhoseModelFitsPoorlyKeepsItOffAndSaysWhy) {
 TEST(LagCompensation, ThePulseRidesOnTheSameMechanism) {
   // A brachial pulse with the whole target compensated: the compensator that now stands for the
   // stiffness and the pulse together still delivers the pulse on time.
-  const RigConfig rig = load_rig_file(kData + "rigs/simulated.json");
+  const RigConfig rig = load_rig_file(kLagCompensationData + "rigs/simulated.json");
   TissueDefinition t;
   t.body = {{80, 60}, 80, 60, 6};
   t.layers = {{"skin", 1.5, 40}, {"fat", 3.5, 4}, {"muscle", 50, 15}};

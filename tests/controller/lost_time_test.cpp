@@ -33,6 +33,7 @@ std::unique_ptr<FunctionScene> slow_function_scene() {
     inc.name = "slow-" + std::to_string(i);
     inc.stiffness_kPa = 21.9;
     std::vector<FrepShape::Node> parts;
+    parts.reserve(2000);
     for (int k = 0; k < 2000; ++k) parts.push_back(inc.shape.sphere({100 - 350 + 0.001 * k, 60 - 350, -350}, 400));
     inc.shape.intersect(parts);
     t.inclusions.push_back(std::move(inc));

@@ -61,7 +61,7 @@ class FlakyLinkRig final : public RigBackend {
   bool linked_at_write_ = true;
 };
 
-class Recorder final : public TickObserver {
+class SafetyRecorder final : public TickObserver {
  public:
   std::vector<TelemetryRecord> records;
   void on_tick(const TelemetryRecord& r) noexcept override { records.push_back(r); }
@@ -95,7 +95,7 @@ TEST(RealtimeSafety, ALinkOutageIsAnAlarmThatVentsAndRampsBackFromZero) {
   PressingPen pen;
   const MapScene scene = uniform_scene(1.0f);
   TickConfig config;  // slew 2000 kPa/s: 2 kPa per 1 ms tick
-  Recorder rec;
+  SafetyRecorder rec;
   RunOptions opt;
   opt.mode = LoopMode::replay;
   opt.duration_s = 0.6;

@@ -17,7 +17,7 @@
 namespace palprig {
 namespace {
 
-class StillPen final : public InputSource {
+class PressingPen final : public InputSource {
  public:
   TouchSample latest(double t_s) noexcept override { return TouchSample{t_s, 50, 50, 4.0, true}; }
   double duration_s() const noexcept override { return 0; }
@@ -71,7 +71,7 @@ TEST(RigLease, AYieldingLoopGivesWayToASecondTakerAndEndsVentedWithoutAFault) {
   backend.open();
   Rig rig(backend, "rig");
   const MapScene scene = stiff_scene();
-  StillPen pen;
+  PressingPen pen;
   RunControl control;
   RunOptions opt;
   opt.mode = LoopMode::realtime;
@@ -119,16 +119,19 @@ TEST(RigLease, AWaitingTakerComesBeforeAYieldingLoopRestartingInTheGap) {
   std::optional<RigLease> live;
   live.emplace(rig.lease("the window's live loop", LeaseKind::yielding));
   std::atomic<bool> session_got_it{false};
+  std::atomic<bool> checked{false};
   std::thread taker([&] {
     RigLease session = rig.lease("a study session", LeaseKind::exclusive, std::chrono::seconds(20));
     session_got_it = true;
     EXPECT_EQ(rig.holder(), "a study session");
+    while (!checked) std::this_thread::yield();  // the session runs until the checks below are made
   });
   while (!live->release_requested()) std::this_thread::yield();
   live.reset();  // the loop gave way ...
   // ... and restarts at once, before the session's thread has woken: refused, the rig is promised.
   EXPECT_TRUE(rig.leased()) << "a rig a taker waits for is not free";
   EXPECT_THROW(rig.lease("the window's live loop", LeaseKind::yielding), RigBusy);
+  checked = true;
   taker.join();
   EXPECT_TRUE(session_got_it);
   EXPECT_FALSE(rig.leased());

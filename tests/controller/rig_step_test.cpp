@@ -22,7 +22,7 @@ using test_rigs::RestingPen;
 
 namespace {
 
-class Recorder final : public TickObserver {
+class StepRecorder final : public TickObserver {
  public:
   std::vector<TelemetryRecord> records;
   void on_tick(const TelemetryRecord& r) noexcept override { records.push_back(r); }
@@ -38,7 +38,7 @@ TEST(RigStep, APenAlreadyPressedWhenTheRunStartsRampsFromVented) {
   SimulatedRig rig(quiet_plants(), 60);
   rig.open();
   RestingPen pen;
-  Recorder rec;
+  StepRecorder rec;
   RunOptions opt;
   opt.duration_s = 0.05;
   opt.observer = &rec;

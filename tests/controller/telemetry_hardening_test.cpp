@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -138,7 +139,7 @@ TEST(TelemetryHardening, CommandLineConvertsAFileOfHugeFloats) {
 TEST(TelemetryHardening, WriterStopsAtItsByteBudget) {
   TempDir dir;
   TelemetryLimits limits;
-  limits.max_bytes = 64 * 1024;
+  limits.max_bytes = std::uint64_t{64} * 1024;
   TelemetryWriter w(dir.path() / "t.bin", TelemetryFormat::binary, 1024, limits);
   TelemetryRecord r;
   for (int i = 0; i < 10000 && !w.failed(); ++i) w.push_wait(r);

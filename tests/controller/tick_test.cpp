@@ -13,7 +13,7 @@ namespace {
 
 // Left half soft (0), right half hard (1), 100 x 100 mm.
 MapScene half_hard_scene() {
-  std::vector<float> v(11 * 11);
+  std::vector<float> v(std::size_t{11} * 11);
   for (int r = 0; r < 11; ++r)
     for (int c = 0; c < 11; ++c) v[r * 11 + c] = c >= 6 ? 1.0f : 0.0f;
   return MapScene(StiffnessMap(11, 11, 100, 100, v), MapSampling::nearest);
@@ -129,6 +129,12 @@ TEST(Tick, StaleInputVents) {
   for (double p : r.setpoint_kPa) EXPECT_EQ(p, 0.0);
 }
 
+// No padding in a record: its size is the sum of its fields' (tick, t_s, pen, the four per-finger
+// pressures, wake-up and I/O times, fault, flags, reserved, finger positions and forces, vents,
+// reserved, drag), so two records with the same fields have the same bytes.
+static_assert(sizeof(TelemetryRecord) == 8 + 8 + 3 * 4 + 4 * kFingerCount * 4 + 2 * 4 + 1 + 1 + 2 +
+                                             3 * kFingerCount * 4 + kFingerCount + 1 + 2 * kFingerCount * 4);
+
 TEST(Tick, DeterministicForTheSameInputs) {
   const auto scene = half_hard_scene();
   TickConfig cfg;
@@ -141,6 +147,9 @@ TEST(Tick, DeterministicForTheSameInputs) {
     const TickResult ra = tick(a, cfg, scene, s, k * 1e-3);
     const TickResult rb = tick(b, cfg, scene, s, k * 1e-3);
     ASSERT_EQ(ra.setpoint_kPa, rb.setpoint_kPa);
+    // Bit for bit: a record has no padding (the static_assert above), and its floats compared by
+    // their bits, not by ==, is what "deterministic" means here.
+    // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): the floats' bits are the point
     ASSERT_EQ(0, std::memcmp(&ra.record, &rb.record, sizeof ra.record));
   }
 }

@@ -39,7 +39,7 @@ using namespace std::chrono_literals;
 
 namespace {
 
-const std::filesystem::path kData = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
+const std::filesystem::path kTrackedData = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
 
 TouchSample tracked(double t, std::array<FingerTouch, kFingerCount> fingers) {
   TouchSample s;
@@ -62,9 +62,9 @@ LoadCellConfig quiet_cells(bool per_finger) {
 }
 
 // Records every tick of a run (preallocated: the observer runs on the loop thread).
-class Recorder final : public TickObserver {
+class FirstRecords final : public TickObserver {
  public:
-  explicit Recorder(std::size_t capacity) { records.reserve(capacity); }
+  explicit FirstRecords(std::size_t capacity) { records.reserve(capacity); }
   void on_tick(const TelemetryRecord& r) noexcept override {
     if (records.size() < records.capacity()) records.push_back(r);
   }
@@ -137,7 +137,7 @@ std::vector<RecordedPose> three_fingers(double seconds, Path path) {
 }
 
 RigConfig load_cell_rig() {
-  RigConfig rig = load_rig_file(kData / "rigs" / "simulated_load_cells.json");
+  RigConfig rig = load_rig_file(kTrackedData / "rigs" / "simulated_load_cells.json");
   rig.load_cells->simulated.noise_sd_V = 0.002;
   return rig;
 }
@@ -272,7 +272,7 @@ TEST(TrackedRigStep, ATrackerWithoutLoadCellsFaultsWithTheReason) {
 
 TEST(TrackedEndToEnd, FingersFollowAKnownPathAndTumorBGetsThePressure) {
   clear_worker_faults();
-  const SceneFile scene = load_scene_file(kData / "scenes" / "phantom_abc.json");
+  const SceneFile scene = load_scene_file(kTrackedData / "scenes" / "phantom_abc.json");
   // Finger 2 slides from soft tissue onto tumor B (110, 50) and presses there 4 mm deep;
   // fingers 1 and 3 stay 16 mm to the sides, on soft tissue.
   auto path = [](double t) -> Vec3_mm {
@@ -291,7 +291,7 @@ TEST(TrackedEndToEnd, FingersFollowAKnownPathAndTumorBGetsThePressure) {
   rig.open();
   IgtlInput input({"127.0.0.1", server.port()}, three_finger_tracking(reg.from_to), rig_cfg.safety.max_input_age_s);
   ASSERT_TRUE(eventually([&] { return input.latest(0).fingers[1].vent == FingerVent::none; }));
-  Recorder rec(4000);
+  FirstRecords rec(4000);
   const RunSummary s =
       palprig::testing::run_loop_leased(patient(rig_cfg), *scene.scene, input, rig, realtime(2.0, &rec));
   EXPECT_EQ(s.fault, FaultCode::none) << s.fault.detail();
@@ -337,7 +337,7 @@ TEST(TrackedEndToEnd, LagCompensationFollowsEachTrackedFingerOverTheStream) {
   // simulated regulators as calibration identifies them (4 ms + 50 ms) against the same run
   // without: each finger is extrapolated from its own poses, so the tumor's edges arrive nearer
   // their time, and nothing goes above p_max.
-  const SceneFile scene = load_scene_file(kData / "scenes" / "phantom_abc.json");
+  const SceneFile scene = load_scene_file(kTrackedData / "scenes" / "phantom_abc.json");
   auto path = [](double t) -> Vec3_mm { return {150 - 40 * t, 50, -4.0}; };
   const PointRegistration reg = estimated_registration();
   auto run = [&](bool compensate, double& rms_kPa, double& tumor_ratio, double& max_setpoint_kPa, bool& flagged) {
@@ -358,7 +358,7 @@ TEST(TrackedEndToEnd, LagCompensationFollowsEachTrackedFingerOverTheStream) {
       cfg.lag_compensation.identified[i] = true;
       cfg.lag_compensation.regulator[i] = {0.004, 0.050, 2000};
     }
-    Recorder rec(4000);
+    FirstRecords rec(4000);
     const RunSummary s = palprig::testing::run_loop_leased(cfg, *scene.scene, input, rig, realtime(2.0, &rec));
     EXPECT_EQ(s.fault, FaultCode::none) << s.fault.detail();
     double sq = 0, mon = 0, tgt = 0;
@@ -402,7 +402,7 @@ TEST(TrackedEndToEnd, LagCompensationFollowsEachTrackedFingerOverTheStream) {
 
 TEST(TrackedEndToEnd, ThePulseIsFeltOverTheBrachialArtery) {
   clear_worker_faults();
-  const SceneFile scene = load_scene_file(kData / "scenes" / "brachial_pulse.json");
+  const SceneFile scene = load_scene_file(kTrackedData / "scenes" / "brachial_pulse.json");
   // Finger 2 over the artery (45, 59), pressing 3.6 mm (1.8 N: inside the 0.6..2.4 N window);
   // finger 3 on the triceps 16 mm away, out of the artery's range.
   auto path = [](double t) -> Vec3_mm { return {45, 59, t < 0.2 ? 3.0 : -3.6}; };
@@ -416,7 +416,7 @@ TEST(TrackedEndToEnd, ThePulseIsFeltOverTheBrachialArtery) {
   rig.open();
   IgtlInput input({"127.0.0.1", server.port()}, three_finger_tracking(scene_to_tracker().inverse()), 0.1);
   ASSERT_TRUE(eventually([&] { return input.latest(0).fingers[1].vent == FingerVent::none; }));
-  Recorder rec(4000);
+  FirstRecords rec(4000);
   const RunSummary s =
       palprig::testing::run_loop_leased(patient(rig_cfg), *scene.scene, input, rig, realtime(2.5, &rec));
   EXPECT_EQ(s.fault, FaultCode::none) << s.fault.detail();
@@ -463,14 +463,14 @@ TEST(TrackedEndToEnd, ATrackerProcessKilledForRealVentsEveryFinger) {
       10000ms))
       << tracker.out() << tracker.err();
   const int port = std::stoi(m[1]);
-  const SceneFile scene = load_scene_file(kData / "scenes" / "phantom_abc.json");
+  const SceneFile scene = load_scene_file(kTrackedData / "scenes" / "phantom_abc.json");
   const RigConfig rig_cfg = load_cell_rig();
   SimulatedRig rig(rig_cfg.plants, rig_cfg.safety.p_max_kPa);
   rig.attach_load_cells(*rig_cfg.load_cells);
   rig.open();
   IgtlInput input({"127.0.0.1", port}, three_finger_tracking(scene_to_tracker().inverse()), 0.1);
   ASSERT_TRUE(eventually([&] { return input.latest(0).fingers[1].vent == FingerVent::none; }));
-  Recorder rec(20000);
+  FirstRecords rec(20000);
   std::atomic<bool> pressing{false};
   // Kill the tracker once finger 2 presses tumor B: the loop must vent on its own.
   std::thread killer([&] {
@@ -478,9 +478,9 @@ TEST(TrackedEndToEnd, ATrackerProcessKilledForRealVentsEveryFinger) {
     ::kill(tracker.pid(), SIGKILL);
   });
   struct Watch final : TickObserver {
-    Recorder& rec;
+    FirstRecords& rec;
     std::atomic<bool>& pressing;
-    Watch(Recorder& r, std::atomic<bool>& p) : rec(r), pressing(p) {}
+    Watch(FirstRecords& r, std::atomic<bool>& p) : rec(r), pressing(p) {}
     void on_tick(const TelemetryRecord& r) noexcept override {
       rec.on_tick(r);
       if (r.setpoint_kPa[1] > 5) pressing.store(true);

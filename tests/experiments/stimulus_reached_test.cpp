@@ -15,7 +15,7 @@
 namespace palprig {
 namespace {
 
-class Collector final : public RunnerListener {
+class ReachedCollector final : public RunnerListener {
  public:
   void on_trial_completed(const TrialRecord& t) override { trials.push_back(t); }
   std::vector<TrialRecord> trials;
@@ -68,7 +68,7 @@ Protocol protocol_with(const char* combination, bool answer_during_stimulus = tr
   return parse_protocol(doc, "reached.json", ".");
 }
 
-int first_of_condition(const SessionPlan& plan, int condition) {
+int first_reached_of_condition(const SessionPlan& plan, int condition) {
   int start = 0;
   while (plan.trials[static_cast<std::size_t>(start)].condition != condition) ++start;
   return start;
@@ -79,8 +79,8 @@ int first_of_condition(const SessionPlan& plan, int condition) {
 TrialRecord run_one(const Protocol& p, int condition, double answer_s, double tau_s = 0.05) {
   const SessionPlan plan = make_session_plan(p, 1, 1);
   LaggingOutput out(tau_s);
-  Collector c;
-  TrialRunner r(p, plan, first_of_condition(plan, condition), out, c);
+  ReachedCollector c;
+  TrialRunner r(p, plan, first_reached_of_condition(plan, condition), out, c);
   r.advance(0.995);  // a vented sample before the onset, as the loop gives
   r.begin(1.0);
   for (int i = 0; 1.0 + i * 0.005 < answer_s; ++i) r.advance(1.0 + i * 0.005);
@@ -131,7 +131,7 @@ TEST(experiments_stimulus_reached, a_presentation_again_after_a_pause_is_timed_a
   const Protocol p = protocol_with("[30, 30, 30]");
   const SessionPlan plan = make_session_plan(p, 1, 1);
   LaggingOutput out(0.05);
-  Collector c;
+  ReachedCollector c;
   TrialRunner r(p, plan, 0, out, c);
   r.begin(1.0);
   for (double t = 1.0; t < 1.5; t += 0.005) r.advance(t);

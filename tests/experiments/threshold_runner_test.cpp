@@ -30,7 +30,7 @@ class ScriptedParticipant final : public ThresholdParticipant {
   }
   std::optional<int> answer(double) override {
     if (silent_) return std::nullopt;
-    return info.method == ThresholdMethod::two_afc ? (felt_[1] > felt_[0] ? 1 : 0) : (felt_[1] > felt_[0] ? 1 : 0);
+    return felt_[1] > felt_[0] ? 1 : 0;
   }
   ThresholdTrialInfo info;
 

@@ -42,14 +42,14 @@ ThresholdProtocol quick(const std::string& file) {
   return p;
 }
 
-struct Outcome {
+struct ObserverOutcome {
   std::vector<double> mean_estimate;    // per track, over observers
   double mean_trials = 0;               // per track and observer
   double worst_delivery_error_kPa = 0;  // felt increment vs commanded level, mean per observer
 };
 
-Outcome run_observers(const ThresholdProtocol& p, double noise_kPa, int observers) {
-  Outcome out;
+ObserverOutcome run_observers(const ThresholdProtocol& p, double noise_kPa, int observers) {
+  ObserverOutcome out;
   out.mean_estimate.assign(p.tracks.size(), 0.0);
   for (int seed = 1; seed <= observers; ++seed) {
     SimulatedRig rig;
@@ -89,7 +89,7 @@ void expect_recovery(const std::string& file, double target_p) {
   const ThresholdProtocol p = quick(file);
   ThresholdObserverModel model;
   model.noise_kPa = 0.8;
-  const Outcome base = run_observers(p, model.noise_kPa, 20);
+  const ObserverOutcome base = run_observers(p, model.noise_kPa, 20);
   // The rig delivered the commanded increments (hysteresis compensation and the safety stage in the path).
   EXPECT_LT(base.worst_delivery_error_kPa, 0.1);
   for (std::size_t t = 0; t < p.tracks.size(); ++t) {
@@ -97,7 +97,7 @@ void expect_recovery(const std::string& file, double target_p) {
     EXPECT_NEAR(base.mean_estimate[t] / truth, 1.0, 0.10)
         << file << " " << p.tracks[t].name << ": " << base.mean_estimate[t] << " kPa vs analytic " << truth;
   }
-  const Outcome doubled = run_observers(p, 2 * model.noise_kPa, 20);
+  const ObserverOutcome doubled = run_observers(p, 2 * model.noise_kPa, 20);
   for (std::size_t t = 0; t < p.tracks.size(); ++t) {
     EXPECT_NEAR(doubled.mean_estimate[t] / base.mean_estimate[t], 2.0, 0.30) << file << " " << p.tracks[t].name;
   }

@@ -12,7 +12,7 @@ namespace {
 
 using testing::RecordingOutput;
 
-class Collector final : public RunnerListener {
+class RatingCollector final : public RunnerListener {
  public:
   void on_trial_completed(const TrialRecord& t) override { trials.push_back(t); }
   std::vector<TrialRecord> trials;
@@ -32,7 +32,7 @@ Protocol rated_protocol(bool with_confidence) {
   return parse_protocol(doc, "rated.json", ".");
 }
 
-int first_of_condition(const SessionPlan& plan, int condition) {
+int first_rated_of_condition(const SessionPlan& plan, int condition) {
   int start = 0;
   while (plan.trials[static_cast<std::size_t>(start)].condition != condition) ++start;
   return start;
@@ -43,8 +43,8 @@ int first_of_condition(const SessionPlan& plan, int condition) {
 TrialRecord run_one(const Protocol& p, int condition, double answer_s, const Response& answer) {
   const SessionPlan plan = make_session_plan(p, 1, 1);
   RecordingOutput out;
-  Collector c;
-  TrialRunner r(p, plan, first_of_condition(plan, condition), out, c);
+  RatingCollector c;
+  TrialRunner r(p, plan, first_rated_of_condition(plan, condition), out, c);
   r.begin(1.0);
   for (double t = 1.0; t < answer_s; t += 0.01) r.advance(t);
   EXPECT_TRUE(r.respond(answer, answer_s));
@@ -75,7 +75,7 @@ TEST(experiments_trial_runner_rating, coarse_steps_record_the_planned_end_not_th
   const Protocol p = rated_protocol(false);
   const SessionPlan plan = make_session_plan(p, 1, 1);
   RecordingOutput out;
-  Collector c;
+  RatingCollector c;
   TrialRunner r(p, plan, 0, out, c);
   r.begin(1.0);
   r.advance(6.8);  // noticed 0.8 s late
@@ -107,8 +107,8 @@ TEST(experiments_trial_runner_rating, answers_are_taken_during_the_stimulus_only
     for (int condition : {0, 1}) {
       const SessionPlan plan = make_session_plan(p, 1, 1);
       RecordingOutput out;
-      Collector c;
-      TrialRunner r(p, plan, first_of_condition(plan, condition), out, c);
+      RatingCollector c;
+      TrialRunner r(p, plan, first_rated_of_condition(plan, condition), out, c);
       r.begin(1.0);
       r.advance(2.0);
       ASSERT_EQ(r.state(), RunnerState::present);
@@ -130,7 +130,7 @@ TEST(experiments_trial_runner_rating, unanswered_trial_has_no_after_stimulus_tim
   const Protocol p = rated_protocol(true);
   const SessionPlan plan = make_session_plan(p, 1, 1);
   RecordingOutput out;
-  Collector c;
+  RatingCollector c;
   TrialRunner r(p, plan, 0, out, c);
   r.begin(0.0);
   for (double t = 0.0; t <= 8.5; t += 0.1) r.advance(t);  // 5 s stimulus + 3 s timeout
@@ -154,7 +154,7 @@ TEST(experiments_trial_runner_rating, out_of_range_confidence_is_refused_and_nev
   const Protocol p = rated_protocol(true);
   const SessionPlan plan = make_session_plan(p, 1, 1);
   RecordingOutput out;
-  Collector c;
+  RatingCollector c;
   TrialRunner r(p, plan, 0, out, c);
   r.begin(0.0);
   r.advance(6.0);
@@ -172,7 +172,7 @@ TEST(experiments_trial_runner_rating, a_rating_the_protocol_does_not_ask_for_is_
   const Protocol p = rated_protocol(false);
   const SessionPlan plan = make_session_plan(p, 1, 1);
   RecordingOutput out;
-  Collector c;
+  RatingCollector c;
   TrialRunner r(p, plan, 0, out, c);
   r.begin(0.0);
   EXPECT_FALSE(r.respond(Response{{false, true, false}, {}, 2, std::nullopt}, 1.0));
@@ -221,8 +221,8 @@ TEST(experiments_trial_runner_rating, a_slow_rating_neither_lengthens_the_respon
   const Protocol p = rated_protocol(true);
   const SessionPlan plan = make_session_plan(p, 1, 1);
   RecordingOutput out;
-  Collector c;
-  TrialRunner r(p, plan, first_of_condition(plan, 1), out, c);  // sequential: 4 s, then respond
+  RatingCollector c;
+  TrialRunner r(p, plan, first_rated_of_condition(plan, 1), out, c);  // sequential: 4 s, then respond
   r.begin(0.0);
   r.advance(4.0);
   ASSERT_EQ(r.state(), RunnerState::respond);
@@ -239,7 +239,7 @@ TEST(experiments_trial_runner_rating, a_slow_rating_neither_lengthens_the_respon
   EXPECT_DOUBLE_EQ(response_time_after_stimulus_s(c.trials[0]), 1.0);
   EXPECT_EQ(c.trials[0].confidence, 3);
   // A given_at_s before this presentation's onset (a stale clock) is clamped to the onset.
-  TrialRunner again(p, plan, first_of_condition(plan, 0), out, c);
+  TrialRunner again(p, plan, first_rated_of_condition(plan, 0), out, c);
   again.begin(20.0);
   Response early;
   early.given_at_s = 1.0;

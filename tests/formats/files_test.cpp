@@ -7,22 +7,13 @@
 #include "formats/rig_file.hpp"
 #include "formats/scene_file.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/refusal.hpp"
 
 using namespace palprig;
 using palprig::test_support::TempDir;
 
 namespace {
 const std::filesystem::path kData = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
-
-template <class F>
-std::string refusal(F&& load) {
-  try {
-    load();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
 
 const char* kGoodRig = R"({"version": 1, "id": "r1", "backend": "simulated",
   "safety": {"p_max_kPa": 50}, "plant": {"time_constant_s": 0.04}})";
@@ -74,7 +65,7 @@ TEST(Files, AsymmetricRegulatorKeys) {
   TempDir dir;
   auto with_plant = [&](const std::string& plant) {
     const auto path = dir.write("asym.json", R"({"version": 1, "id": "r1", "plant": {)" + plant + "}}");
-    return refusal([&] { load_rig_file(path); });
+    return palprig::test_support::refusal([&] { load_rig_file(path); });
   };
   EXPECT_NE(with_plant(R"("hysteresis_rising_kPa": -1)").find("hysteresis_rising_kPa"), std::string::npos);
   EXPECT_NE(with_plant(R"("exhaust_lag_factor_at_0": 0.5)").find("exhaust_lag_factor_at_0"), std::string::npos);
@@ -86,7 +77,7 @@ TEST(Files, BadRigFilesAreRefusedWithFieldAndReason) {
   TempDir dir;
   auto rig = [&](const std::string& text) {
     const auto p = dir.write("rig.json", text);
-    return refusal([&] { load_rig_file(p); });
+    return palprig::test_support::refusal([&] { load_rig_file(p); });
   };
   const std::string f = (dir.path() / "rig.json").string();
   EXPECT_EQ(rig(R"({"id": "r"})"), f + ": version: a value (field is missing)");
@@ -110,7 +101,7 @@ TEST(Files, BadRigFilesAreRefusedWithFieldAndReason) {
             f + ": plant.max_kPa: a value above min_kPa");
   EXPECT_EQ(rig("{\"version\": 1,\n \"id\": }"), f + ": at line 2, column 8: valid JSON (syntax error while parsing "
                                                      "value - unexpected '}'; expected '[', '{', or a literal)");
-  EXPECT_EQ(refusal([&] { load_rig_file(dir.path() / "missing.json"); }),
+  EXPECT_EQ(palprig::test_support::refusal([&] { load_rig_file(dir.path() / "missing.json"); }),
             (dir.path() / "missing.json").string() +
                 ": file: a regular file of at most 16 MiB holding a JSON document, got no such file");
 }
@@ -120,7 +111,7 @@ TEST(Files, BadScenesAreRefused) {
   dir.write("m.csv", "0,0.5\n1,0\n");
   auto scene = [&](const std::string& text) {
     const auto p = dir.write("s.json", text);
-    return refusal([&] { load_scene_file(p); });
+    return palprig::test_support::refusal([&] { load_scene_file(p); });
   };
   const std::string f = (dir.path() / "s.json").string();
   EXPECT_EQ(scene(R"({"version": 1, "map": {"file": "m.csv", "width_mm": 10, "height_mm": 10}})"), "accepted");
@@ -148,7 +139,7 @@ TEST(Files, BadCalibrationIsRefused) {
   TempDir dir;
   auto cal = [&](const std::string& text) {
     const auto p = dir.write("c.json", text);
-    return refusal([&] { load_calibration_file(p); });
+    return palprig::test_support::refusal([&] { load_calibration_file(p); });
   };
   const std::string f = (dir.path() / "c.json").string();
   const std::string ch = R"({"actuator": {"slope": 0.5, "intercept_kPa": 1}})";
@@ -166,16 +157,16 @@ TEST(Files, BadCalibrationIsRefused) {
   const auto ok =
       dir.write("ok.json", R"({"version": 1, "rig_id": "bench-A", "channels": [)" + ch + "," + ch + "," + ch + "]}");
   const CalibrationModels c = load_calibration_file(ok);
-  EXPECT_EQ(refusal([&] { check_calibration_matches(c, "bench-B", "rig.json"); }),
+  EXPECT_EQ(palprig::test_support::refusal([&] { check_calibration_matches(c, "bench-B", "rig.json"); }),
             ok.string() + ": rig_id: the id of the rig in use (\"bench-B\" from rig.json), got \"bench-A\"");
-  EXPECT_EQ(refusal([&] { check_calibration_matches(c, "bench-A", "rig.json"); }), "accepted");
+  EXPECT_EQ(palprig::test_support::refusal([&] { check_calibration_matches(c, "bench-A", "rig.json"); }), "accepted");
 }
 
 TEST(Files, BadTracesAreRefusedWithTheLine) {
   TempDir dir;
   auto trace = [&](const std::string& text) {
     const auto p = dir.write("t.csv", text);
-    return refusal([&] { load_trace_csv(p); });
+    return palprig::test_support::refusal([&] { load_trace_csv(p); });
   };
   const std::string f = (dir.path() / "t.csv").string();
   EXPECT_EQ(trace("t,x,y,f\n0,0,0,0\n"), f + ": line 1: the header 't_s,x_mm,y_mm,force_N', got 't,x,y,f'");

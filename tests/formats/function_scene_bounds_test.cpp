@@ -25,9 +25,10 @@ namespace {
 nlohmann::json sphere_union_scene(int n) {
   nlohmann::json parts = nlohmann::json::array();
   const int side = static_cast<int>(std::ceil(std::sqrt(double(n))));
-  for (int i = 0; i < n; ++i)
-    parts.push_back(
-        {{"type", "sphere"}, {"centre_mm", {10 + 2.5 * (i % side), 10 + 2.5 * (i / side), 5}}, {"radius_mm", 1.0}});
+  for (int i = 0; i < n; ++i) {
+    const int column = i % side, row = i / side;
+    parts.push_back({{"type", "sphere"}, {"centre_mm", {10 + 2.5 * column, 10 + 2.5 * row, 5}}, {"radius_mm", 1.0}});
+  }
   return {{"version", 1},
           {"kind", "function"},
           {"body", {{"centre_mm", {100, 100}}, {"half_size_mm", {100, 100}}}},
@@ -36,7 +37,7 @@ nlohmann::json sphere_union_scene(int n) {
           {"inclusions", {{{"name", "many"}, {"stiffness_kPa", 100}, {"shape", {{"type", "union"}, {"of", parts}}}}}}};
 }
 
-std::string refusal(const std::filesystem::path& f) {
+std::string bounds_refusal(const std::filesystem::path& f) {
   try {
     load_scene_file(f);
   } catch (const InputError& e) {
@@ -50,7 +51,8 @@ std::string refusal(const std::filesystem::path& f) {
 TEST(FunctionSceneBounds, TooManyShapesInOneUnionAreRefused) {
   TempDir dir;
   const auto f = dir.write("many.json", sphere_union_scene(5000).dump());
-  EXPECT_EQ(refusal(f), f.string() + ": inclusions[0].shape.of: at most 4096 shapes in one inclusion, got 5000 here");
+  EXPECT_EQ(bounds_refusal(f),
+            f.string() + ": inclusions[0].shape.of: at most 4096 shapes in one inclusion, got 5000 here");
 }
 
 TEST(FunctionSceneBounds, TooManyShapesAcrossNestedUnionsAreRefused) {
@@ -60,7 +62,7 @@ TEST(FunctionSceneBounds, TooManyShapesAcrossNestedUnionsAreRefused) {
   nlohmann::json second = {{"type", "union"}, {"of", of}};
   of.push_back(second);  // 3000 + a union of 3000 more
   const auto f = dir.write("nested.json", doc.dump());
-  const std::string why = refusal(f);
+  const std::string why = bounds_refusal(f);
   EXPECT_NE(why.find(".type: at most 4096 shapes in one inclusion"), std::string::npos) << why;
 }
 
@@ -71,7 +73,7 @@ TEST(FunctionSceneBounds, TooManyBlobsAreRefused) {
   for (int i = 0; i < 300; ++i) blobs.push_back({{"centre_mm", {50, 50, 5}}, {"radii_mm", {2, 2, 2}}});
   doc["inclusions"][0]["shape"] = {{"type", "blobs"}, {"threshold", 0.5}, {"blobs", blobs}};
   const auto f = dir.write("blobs.json", doc.dump());
-  EXPECT_EQ(refusal(f), f.string() + ": inclusions[0].shape.blobs: at most 256 blobs in one shape, got 300");
+  EXPECT_EQ(bounds_refusal(f), f.string() + ": inclusions[0].shape.blobs: at most 256 blobs in one shape, got 300");
 }
 
 TEST(FunctionSceneBounds, ALargeUnionLoadsAndFindsItsTumor) {
@@ -141,9 +143,11 @@ TEST(FunctionSceneBounds, AWaveformFileThatIsNotASmallRegularFileIsRefused) {
                           {"rate_bpm", 72},
                           {"waveform", {{"shape", "table"}, {"file", file}}}}};
     const auto f = dir.write("scene.json", scene.dump());
-    const std::string why = refusal(f);
+    const std::string why = bounds_refusal(f);
     EXPECT_EQ(why.rfind(f.string() + ": arteries[0].waveform.file: a regular file of at most 1024 KiB", 0), 0u) << why;
-    EXPECT_NE(why.find(file + " (" + kind + ")"), std::string::npos) << why;
+    std::string named = file;  // the table file and what it holds, as the refusal names them
+    named.append(" (").append(kind).append(")");
+    EXPECT_NE(why.find(named), std::string::npos) << why;
     EXPECT_EQ(why.find('\n'), std::string::npos) << why;
   }
   // The same scene with a real table loads: the refusals above are the file's doing.
@@ -157,5 +161,5 @@ TEST(FunctionSceneBounds, AWaveformFileThatIsNotASmallRegularFileIsRefused) {
        {"rate_bpm", 72},
        {"waveform",
         {{"shape", "table"}, {"file", std::string(PALPRIG_SOURCE_DIR) + "/data/waveforms/brachial_pressure.csv"}}}}};
-  EXPECT_EQ(refusal(dir.write("good.json", scene.dump())), "accepted");
+  EXPECT_EQ(bounds_refusal(dir.write("good.json", scene.dump())), "accepted");
 }

@@ -13,21 +13,12 @@
 #include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/refusal.hpp"
 
 using namespace palprig;
 using palprig::test_support::TempDir;
 
 namespace {
-
-template <class F>
-std::string refusal(F&& load) {
-  try {
-    load();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
 
 std::string nested(std::size_t levels) { return std::string(levels, '[') + std::string(levels, ']'); }
 
@@ -42,7 +33,7 @@ TEST(JsonHardening, DeepNestingIsRefusedWhileParsingInEveryFile) {
   for (auto load :
        {+[](const std::string& p) { load_rig_file(p); }, +[](const std::string& p) { load_scene_file(p); },
         +[](const std::string& p) { load_calibration_file(p); }, +[](const std::string& p) { load_protocol(p); }}) {
-    const std::string why = refusal([&] { load(f); });
+    const std::string why = palprig::test_support::refusal([&] { load(f); });
     EXPECT_NE(why.find("nested at most 64 deep"), std::string::npos) << why;
     EXPECT_EQ(why.rfind(f + ": id", 0), 0u) << why;
     EXPECT_LT(why.size(), 700u);
@@ -61,10 +52,11 @@ TEST(JsonHardening, OverflowingNumberNamesFileAndField) {
   TempDir dir;
   const auto f = dir.write("rig.json", R"({"version": 1, "id": "r", "backend": "simulated",
     "safety": {"p_max_kPa": 1e400}})");
-  EXPECT_EQ(refusal([&] { load_rig_file(f); }),
+  EXPECT_EQ(palprig::test_support::refusal([&] { load_rig_file(f); }),
             f.string() + ": safety.p_max_kPa: a number within +-1.8e308, got 1e400");
   const auto g = dir.write("arr.json", R"({"version": 1, "list": [1, 2, -1e999]})");
-  EXPECT_EQ(refusal([&] { read_json_file(g); }), g.string() + ": list[2]: a number within +-1.8e308, got -1e999");
+  EXPECT_EQ(palprig::test_support::refusal([&] { read_json_file(g); }),
+            g.string() + ": list[2]: a number within +-1.8e308, got -1e999");
 }
 
 TEST(JsonHardening, OverflowingNumberExitsTwoFromTheCommandLine) {
@@ -82,7 +74,7 @@ TEST(JsonHardening, HugeValueInARefusalIsCut) {
   for (int i = 0; i < 1000000; ++i) million += (i ? ",1" : "1");
   million += "]";
   const auto f = dir.write("rig.json", "{\"version\": 1, \"id\": " + million + "}");
-  const std::string why = refusal([&] { load_rig_file(f); });
+  const std::string why = palprig::test_support::refusal([&] { load_rig_file(f); });
   EXPECT_EQ(why.rfind(f.string() + ": id: a string, got [1, 1, 1", 0), 0u) << why.substr(0, 200);
   EXPECT_LT(why.size(), 500u);
   EXPECT_EQ(why.substr(why.size() - 3), "...");
@@ -93,10 +85,10 @@ TEST(JsonHardening, ControlCharactersInRefusalsAreEscaped) {
   // A key with an escape sequence and a newline: the refusal must stay one printable line.
   const auto f =
       dir.write("rig.json", "{\"version\": 1, \"id\": \"r\", \"backend\": \"simulated\", \"\\u001b[2Jp_max\\n\": 1}");
-  const std::string why = refusal([&] { load_rig_file(f); });
+  const std::string why = palprig::test_support::refusal([&] { load_rig_file(f); });
   EXPECT_EQ(why, f.string() + ": \\x1b[2Jp_max\\n: no such field here (unknown field; check its spelling)");
   const auto g = dir.write("choice.json", "{\"version\": 1, \"kind\": \"map\\u0007\\t\"}");
-  const std::string why2 = refusal([&] { load_scene_file(g); });
+  const std::string why2 = palprig::test_support::refusal([&] { load_scene_file(g); });
   EXPECT_EQ(why2, g.string() + ": kind: one of \"map\", \"function\", got \"map\\x07\\t\"");
 }
 

@@ -41,7 +41,7 @@ nlohmann::json overlapping_intersections(int n, int parts) {
           {"inclusions", incs}};
 }
 
-std::string refusal(const std::filesystem::path& f) {
+std::string cost_refusal(const std::filesystem::path& f) {
   try {
     load_scene_file(f);
   } catch (const InputError& e) {
@@ -60,7 +60,7 @@ TEST(SceneCostBound, ASceneTooSlowForTheTickIsRefusedAtLoadNamingTheFile) {
   // The bound is counted from the scene's shapes, not measured by sampling it (no wall-clock
   // bound here: under a sanitizer on a busy machine reading the 32,000 spheres alone takes
   // seconds).
-  const std::string why = refusal(f);
+  const std::string why = cost_refusal(f);
   EXPECT_EQ(why.rfind(f.string() + ": inclusions: ", 0), 0u) << why;
   EXPECT_NE(why.find("at most 30000 shape evaluations per tick, got "), std::string::npos) << why;
   EXPECT_EQ(why.find('\n'), std::string::npos);
@@ -84,7 +84,7 @@ TEST(SceneCostBound, TheRunCommandRefusesItWithExitTwoBeforeAnythingMoves) {
 TEST(SceneCostBound, ScenesThatFitStillLoad) {
   TempDir dir;
   // Fewer of the same shapes: 4 x 11 evaluations at each of 360 points.
-  EXPECT_EQ(refusal(dir.write("fast.json", overlapping_intersections(4, 10).dump())), "accepted");
+  EXPECT_EQ(cost_refusal(dir.write("fast.json", overlapping_intersections(4, 10).dump())), "accepted");
   // Every shipped function scene.
   int function_scenes = 0;
   for (const auto& e : std::filesystem::directory_iterator(std::string(PALPRIG_SOURCE_DIR) + "/data/scenes")) {
@@ -92,7 +92,7 @@ TEST(SceneCostBound, ScenesThatFitStillLoad) {
     const auto doc = nlohmann::json::parse(palprig::test_support::read_file(e.path()));
     if (doc.value("kind", "") != "function") continue;
     ++function_scenes;
-    EXPECT_EQ(refusal(e.path()), "accepted") << e.path();
+    EXPECT_EQ(cost_refusal(e.path()), "accepted") << e.path();
   }
   EXPECT_GT(function_scenes, 0);
   // Generated rehearsal cases of every difficulty.
@@ -100,7 +100,7 @@ TEST(SceneCostBound, ScenesThatFitStillLoad) {
     for (std::uint64_t seed = 1; seed <= 40; ++seed) {
       const auto path = dir.path() / "case.json";
       write_scene_json(path, generated_case_json(generate_case(seed, d)));
-      EXPECT_EQ(refusal(path), "accepted") << to_string(d) << " seed " << seed;
+      EXPECT_EQ(cost_refusal(path), "accepted") << to_string(d) << " seed " << seed;
     }
 }
 
@@ -109,11 +109,16 @@ TEST(SceneCostBound, TheBoundCountsTheFullestGridCellOfAUnionNotAllItsParts) {
   // few spheres per point through the union's grid.
   FrepShape shape;
   std::vector<FrepShape::Node> parts;
-  for (int i = 0; i < 4000; ++i) parts.push_back(shape.sphere({10 + 2.5 * (i % 64), 10 + 2.5 * (i / 64), 5}, 1.0));
+  parts.reserve(4000);
+  for (int i = 0; i < 4000; ++i) {
+    const int column = i % 64, row = i / 64;
+    parts.push_back(shape.sphere({10 + 2.5 * column, 10 + 2.5 * row, 5}, 1.0));
+  }
   shape.unite(parts);
   EXPECT_LT(shape.worst_case_cost(), 20.0);
   FrepShape scan;
   std::vector<FrepShape::Node> all;
+  all.reserve(100);
   for (int i = 0; i < 100; ++i) all.push_back(scan.sphere({100, 60, 0}, 30));
   scan.intersect(all);
   EXPECT_EQ(scan.worst_case_cost(), 101.0);

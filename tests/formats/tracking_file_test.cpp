@@ -15,7 +15,7 @@ using palprig::test_support::TempDir;
 
 namespace {
 
-const std::filesystem::path kData = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
+const std::filesystem::path kTrackingData = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
 
 std::string refusal(const std::string& json, const std::string& name = "t.json") {
   TempDir dir;
@@ -48,7 +48,7 @@ const std::string kTools =
 }  // namespace
 
 TEST(TrackingFile, ShippedFilesLoad) {
-  const TrackingConfig t = load_tracking_file(kData / "tracking" / "tracking_three_fingers.json");
+  const TrackingConfig t = load_tracking_file(kTrackingData / "tracking" / "tracking_three_fingers.json");
   EXPECT_EQ(t.placement, TrackedPlacement::per_finger);
   ASSERT_EQ(t.tools.size(), 3u);
   EXPECT_EQ(t.tools[2].name, "Finger3ToTracker");
@@ -57,11 +57,11 @@ TEST(TrackingFile, ShippedFilesLoad) {
   EXPECT_EQ(t.tools[0].tip.method, "pivot");
   EXPECT_NEAR(t.registration.tracker_to_scene.rotation[2][2], -1, 1e-12);
   EXPECT_EQ(t.tool_for_finger(1)->name, "Finger2ToTracker");
-  const TrackingConfig s = load_tracking_file(kData / "tracking" / "tracking_stylus.json");
+  const TrackingConfig s = load_tracking_file(kTrackingData / "tracking" / "tracking_stylus.json");
   EXPECT_EQ(s.placement, TrackedPlacement::triangle);
   EXPECT_EQ(s.tools[0].finger, 0);
   EXPECT_EQ(s.registration.fiducials, 0);
-  const RigConfig rig = load_rig_file(kData / "rigs" / "simulated_load_cells.json");
+  const RigConfig rig = load_rig_file(kTrackingData / "rigs" / "simulated_load_cells.json");
   ASSERT_TRUE(rig.load_cells.has_value());
   EXPECT_TRUE(rig.load_cells->per_finger);
   EXPECT_EQ(rig.load_cells->channels.size(), 3u);
@@ -70,7 +70,7 @@ TEST(TrackingFile, ShippedFilesLoad) {
 
 TEST(TrackingFile, WrittenFilesReadBackTheSame) {
   TempDir dir;
-  TrackingConfig t = load_tracking_file(kData / "tracking" / "tracking_three_fingers.json");
+  TrackingConfig t = load_tracking_file(kTrackingData / "tracking" / "tracking_three_fingers.json");
   t.tools[1].tip = {{1.25, -2.5, -11.75}, "digitized", std::nan("")};
   t.tools[0].tip.rms_mm = 0.31;
   t.registration.fre_mm = 0.42;
@@ -137,7 +137,7 @@ TEST(RigLoadCells, HardwareInputsAreCheckedAgainstTheRegulatorsOwn) {
   // on AI 1 is refused; the WAGO module's monitors use input registers 0..2.
   auto with_cells = [](const std::string& rig_file, const std::string& cells) {
     TempDir dir;
-    std::ifstream in(kData / "rigs" / rig_file);
+    std::ifstream in(kTrackingData / "rigs" / rig_file);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     text.replace(text.rfind('}'), 1, ",\"load_cells\": " + cells + "}");
     try {

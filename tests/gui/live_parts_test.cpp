@@ -97,15 +97,16 @@ TEST(Indentation, DepthFromForceAndStiffness) {
 
 TEST(Indentation, TieredGridFallsTierByTierToZeroAtTheBorder) {
   const int n = 4;
+  const std::size_t side = 2 * n + 1;
   const auto g = tiered_grid(50, 20, 6.0, n, 2.0);
-  ASSERT_EQ(g.size(), std::size_t((2 * n + 1) * (2 * n + 1)));
-  const auto& centre = g[std::size_t(n * (2 * n + 1) + n)];
+  ASSERT_EQ(g.size(), side * side);
+  const auto& centre = g[n * side + n];
   EXPECT_EQ(centre.tier, 0);
   EXPECT_EQ(centre.depth_mm, 6.0);
   EXPECT_EQ(centre.x_mm, 50.0);
   EXPECT_EQ(centre.y_mm, 20.0);
   for (const GridVertex& v : g) {
-    EXPECT_EQ(v.tier, int(std::max(std::abs(v.x_mm - 50), std::abs(v.y_mm - 20)) / 2.0 + 0.5));
+    EXPECT_EQ(v.tier, std::lround(std::max(std::abs(v.x_mm - 50), std::abs(v.y_mm - 20)) / 2.0));
     EXPECT_NEAR(v.depth_mm, 6.0 * (n - v.tier) / n, 1e-12);
     if (v.tier == n) {
       EXPECT_EQ(v.depth_mm, 0.0);  // joins the undeformed surface
@@ -118,8 +119,9 @@ TEST(Indentation, ADraggedContactCarriesTheGridTierByTier) {
   // dragging): the grid rests around where that tissue was, its centre vertex is drawn under the
   // finger and its border, carried by nothing, stays where the skin was.
   const int n = 4;
+  const std::size_t side = 2 * n + 1;
   const auto g = tiered_grid(50, 20, 6.0, n, 2.0, 3.0, 1.0);
-  const auto& centre = g[std::size_t(n * (2 * n + 1) + n)];
+  const auto& centre = g[n * side + n];
   EXPECT_EQ(centre.tier, 0);
   EXPECT_DOUBLE_EQ(centre.x_mm + centre.dx_mm, 50.0);
   EXPECT_DOUBLE_EQ(centre.y_mm + centre.dy_mm, 20.0);

@@ -312,6 +312,7 @@ TEST(IgtlInput, RefusesAServerThatIsNotThereAndReportsOneThatGoes) {
   EXPECT_EQ(parse_igtl_spec("igtl:127.0.0.1:18944").port, 18944);
 
   std::vector<RecordedPose> rec;
+  rec.reserve(400);
   for (int k = 0; k < 400; ++k) rec.push_back(at(k * 0.01, "Finger1ToTracker", {0, 0, 0}));
   IgtlPoseServer server(rec, PoseServerOptions{0, false, false});
   server.start();

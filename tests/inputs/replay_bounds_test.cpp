@@ -14,6 +14,7 @@
 #include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 using namespace palprig;
 using palprig::test_support::palprig_bin;
@@ -33,13 +34,10 @@ std::string refusal(F&& load) {
 }
 
 std::string data(const std::string& rel) { return std::string(PALPRIG_SOURCE_DIR) + "/data/" + rel; }
-std::string fixture(const std::string& name) {
-  return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name;
-}
 
 // The shipped stroke recording with its event lines passed through `edit`.
 std::string edited_recording(const std::function<std::string(const std::string&, int)>& edit) {
-  std::ifstream in(fixture("pen_stroke.evemu"));
+  std::ifstream in(palprig::testing::evemu_fixture("pen_stroke.evemu"));
   std::string line, out;
   int event = 0;
   while (std::getline(in, line)) out += (line.rfind("E:", 0) == 0 ? edit(line, event++) : line) + "\n";
@@ -167,6 +165,6 @@ TEST(RecordingBounds, LongGapsAreRefusedUnlessTheRunLengthIsGiven) {
 }
 
 TEST(RecordingBounds, TheShippedRecordingsStillLoad) {
-  EXPECT_EQ(read_pen_recording(fixture("pen_stroke.evemu")).events.size() > 100, true);
-  EXPECT_NO_THROW(read_pen_recording(fixture("pen_syn_dropped.evemu")));
+  EXPECT_EQ(read_pen_recording(palprig::testing::evemu_fixture("pen_stroke.evemu")).events.size() > 100, true);
+  EXPECT_NO_THROW(read_pen_recording(palprig::testing::evemu_fixture("pen_syn_dropped.evemu")));
 }

@@ -11,14 +11,11 @@
 #include "inputs/tablet_source.hpp"
 #include "core/input_error.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 using namespace palprig;
 
 namespace {
-
-std::string fixture(const std::string& name) {
-  return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name;
-}
 
 const PenFrame& frame_at(const std::vector<PenFrame>& frames, double t_s) {
   for (const auto& f : frames)
@@ -39,7 +36,7 @@ input_event ev(double t, int type, int code, int value) {
 }  // namespace
 
 TEST(TabletRecording, ReadsTheDeviceDescription) {
-  const PenRecording r = read_pen_recording(fixture("pen_stroke.evemu"));
+  const PenRecording r = read_pen_recording(palprig::testing::evemu_fixture("pen_stroke.evemu"));
   EXPECT_EQ(r.device_name, "Wacom Intuos S Pen");
   EXPECT_EQ(r.axes.x_max, 15200);
   EXPECT_EQ(r.axes.x_resolution, 100);
@@ -54,7 +51,7 @@ TEST(TabletRecording, RefusesFilesThatAreNotPenRecordings) {
   EXPECT_THROW(read_pen_recording(dir.write("x.evemu", "hello\n")), InputError);
   EXPECT_THROW(read_pen_recording(dir.path() / "absent.evemu"), InputError);
   // A device description without ABS_PRESSURE (a mouse, say).
-  std::string text = palprig::test_support::read_file(fixture("pen_stroke.evemu"));
+  std::string text = palprig::test_support::read_file(palprig::testing::evemu_fixture("pen_stroke.evemu"));
   const auto at = text.find("A: 18 0 4095");
   text.replace(text.find("B: 03 03 00 00 0f"), 17, "B: 03 03 00 00 00");
   text.erase(at, text.find('\n', at) - at + 1);
@@ -62,7 +59,7 @@ TEST(TabletRecording, RefusesFilesThatAreNotPenRecordings) {
 }
 
 TEST(TabletDecoder, StrokeInMillimetresAndNewtons) {
-  const PenRecording r = read_pen_recording(fixture("pen_stroke.evemu"));
+  const PenRecording r = read_pen_recording(palprig::testing::evemu_fixture("pen_stroke.evemu"));
   const auto frames = decode_pen_events(r.axes, TabletConfig{}, r.events);
   // Hovering: in proximity, no contact, no force; 5000 units at 100 units/mm = 50 mm.
   const PenFrame& hover = frame_at(frames, 0.0);
@@ -80,7 +77,7 @@ TEST(TabletDecoder, StrokeInMillimetresAndNewtons) {
 }
 
 TEST(TabletDecoder, LiftOffAndProximityOutPressWithZeroNewtons) {
-  const PenRecording r = read_pen_recording(fixture("pen_stroke.evemu"));
+  const PenRecording r = read_pen_recording(palprig::testing::evemu_fixture("pen_stroke.evemu"));
   const auto frames = decode_pen_events(r.axes, TabletConfig{}, r.events);
   const PenFrame& lift = frame_at(frames, 0.65);
   EXPECT_FALSE(lift.in_contact);
@@ -101,7 +98,7 @@ TEST(TabletDecoder, LiftOffAndProximityOutPressWithZeroNewtons) {
 }
 
 TEST(TabletDecoder, OriginAndPressureCurveFromTheRigFile) {
-  const PenRecording r = read_pen_recording(fixture("pen_stroke.evemu"));
+  const PenRecording r = read_pen_recording(palprig::testing::evemu_fixture("pen_stroke.evemu"));
   TabletConfig cfg;
   cfg.origin_mm = {10.0, 5.0};
   cfg.pressure.points = {{0.0, 0.0}, {0.5, 1.0}, {1.0, 5.0}};
@@ -114,7 +111,7 @@ TEST(TabletDecoder, OriginAndPressureCurveFromTheRigFile) {
 }
 
 TEST(TabletDecoder, SynDroppedDiscardsTheLostReportAndReportsLiftedUntilResynced) {
-  const PenRecording r = read_pen_recording(fixture("pen_syn_dropped.evemu"));
+  const PenRecording r = read_pen_recording(palprig::testing::evemu_fixture("pen_syn_dropped.evemu"));
   const auto frames = decode_pen_events(r.axes, TabletConfig{}, r.events);
   const PenFrame& before = frame_at(frames, 0.295);
   EXPECT_TRUE(before.in_contact);
@@ -138,7 +135,7 @@ TEST(TabletDecoder, SynDroppedDiscardsTheLostReportAndReportsLiftedUntilResynced
 }
 
 TEST(TabletDecoder, ResyncFromTheDeviceStateEndsTheUnknownAtOnce) {
-  const PenRecording r = read_pen_recording(fixture("pen_syn_dropped.evemu"));
+  const PenRecording r = read_pen_recording(palprig::testing::evemu_fixture("pen_syn_dropped.evemu"));
   TabletDecoder d(r.axes, TabletConfig{});
   d.feed(ev(0.0, EV_SYN, SYN_DROPPED, 0));
   d.feed(ev(0.0, EV_ABS, ABS_PRESSURE, 4000));

@@ -18,15 +18,12 @@
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/leased_run.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 using namespace palprig;
 using namespace std::chrono_literals;
 
 namespace {
-
-std::string fixture(const std::string& name) {
-  return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name;
-}
 
 MapScene uniform_scene(float stiffness) {
   return MapScene(StiffnessMap(11, 11, 200, 200, std::vector<float>(121, stiffness)), MapSampling::nearest);
@@ -35,7 +32,8 @@ MapScene uniform_scene(float stiffness) {
 }  // namespace
 
 TEST(TabletInput, TheLoopSeesTheRecordedStrokeAndASilentPenStaysFresh) {
-  TabletInput input(std::make_unique<EvemuPenSource>(fixture("pen_stroke.evemu")), TabletConfig{});
+  TabletInput input(std::make_unique<EvemuPenSource>(palprig::testing::evemu_fixture("pen_stroke.evemu")),
+                    TabletConfig{});
   EXPECT_NEAR(input.duration_s(), 0.95, 1e-9);
   EXPECT_NE(input.describe().find("pen_stroke.evemu"), std::string::npos);
   double max_force = 0, max_age = 0;
@@ -70,7 +68,8 @@ TEST(TabletInput, TheLoopSeesTheRecordedStrokeAndASilentPenStaysFresh) {
 
 TEST(TabletInput, AnInputThatStopsIsStaleAndTheLoopVents) {
   clear_worker_faults();
-  TabletInput input(std::make_unique<EvemuPenSource>(fixture("pen_stroke.evemu")), TabletConfig{});
+  TabletInput input(std::make_unique<EvemuPenSource>(palprig::testing::evemu_fixture("pen_stroke.evemu")),
+                    TabletConfig{});
   const RigConfig rig = default_rig();
   SimulatedRig backend(rig.plants, rig.safety.p_max_kPa);
   backend.open();
@@ -101,8 +100,8 @@ TEST(TabletInput, RunReplaysARecordingThroughTheLiveReader) {
   rig.replace(rig.find(limit), limit.size(), "\"max_consecutive_overruns\": 1000000, \"max_lost_time_s\": 10");
   const auto rig_path = dir.write("rig.json", rig);
   const auto r = run_process(palprig::test_support::palprig_bin() + " run --no-fifo --rig " + rig_path.string() +
-                             " --scene " + PALPRIG_SOURCE_DIR +
-                             "/data/scenes/phantom_abc.json --input tablet:" + fixture("pen_stroke.evemu") + " --json");
+                             " --scene " + PALPRIG_SOURCE_DIR + "/data/scenes/phantom_abc.json --input tablet:" +
+                             palprig::testing::evemu_fixture("pen_stroke.evemu") + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["mode"], "realtime");  // live input always runs on the wall clock

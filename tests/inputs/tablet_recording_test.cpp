@@ -10,16 +10,13 @@
 #include "inputs/tablet_source.hpp"
 #include "core/input_error.hpp"
 #include "tests/support/run_process.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 using namespace palprig;
 using palprig::test_support::palprig_bin;
 using palprig::test_support::run_process;
 
 namespace {
-
-std::string fixture(const std::string& name) {
-  return std::string(PALPRIG_SOURCE_DIR) + "/tests/fixtures/evemu/" + name;
-}
 
 std::string refusal(const std::string& file) {
   try {
@@ -41,7 +38,7 @@ void expect_one_line_exit_two(const std::string& file, const std::string& expect
 }  // namespace
 
 TEST(TabletRecordingRefusals, APressureAxisWithoutItsRangeLineIsRefused) {
-  const std::string f = fixture("refused_pressure_without_range.evemu");
+  const std::string f = palprig::testing::evemu_fixture("refused_pressure_without_range.evemu");
   const std::string expected =
       f +
       ": device description: a range line for every pen axis ('A: 18 <min> <max> <fuzz> <flat> "
@@ -51,7 +48,7 @@ TEST(TabletRecordingRefusals, APressureAxisWithoutItsRangeLineIsRefused) {
 }
 
 TEST(TabletRecordingRefusals, ARecordingWithoutPenToolAndTouchKeysIsRefused) {
-  const std::string f = fixture("refused_no_pen_keys.evemu");
+  const std::string f = palprig::testing::evemu_fixture("refused_no_pen_keys.evemu");
   const std::string expected = f +
                                ": device description: a pen tablet with a pen tool key (BTN_TOOL_PEN, RUBBER, BRUSH, "
                                "PENCIL or AIRBRUSH) and BTN_TOUCH in its 'B: 01' lines, got neither";
@@ -60,8 +57,8 @@ TEST(TabletRecordingRefusals, ARecordingWithoutPenToolAndTouchKeysIsRefused) {
 }
 
 TEST(TabletRecordingRefusals, TheShippedRecordingsStillLoadWithTheirPressureRange) {
-  const PenRecording r = read_pen_recording(fixture("pen_stroke.evemu"));
+  const PenRecording r = read_pen_recording(palprig::testing::evemu_fixture("pen_stroke.evemu"));
   EXPECT_EQ(r.axes.pressure_min, 0);
   EXPECT_EQ(r.axes.pressure_max, 4095);
-  EXPECT_NO_THROW(read_pen_recording(fixture("pen_syn_dropped.evemu")));
+  EXPECT_NO_THROW(read_pen_recording(palprig::testing::evemu_fixture("pen_syn_dropped.evemu")));
 }

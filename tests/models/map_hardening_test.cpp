@@ -51,7 +51,7 @@ TEST(MapHardening, MapDimensionsAreBounded) {
 }
 
 TEST(MapHardening, ASmallValidPgmStillLoads) {
-  std::istringstream in(std::string("P5\n2 2\n255\n\x00\xff\x80\x40", 16));
+  std::istringstream in(std::string("P5\n2 2\n255\n\x00\xff\x80\x40", 15));
   const auto m = parse_stiffness_pgm(in, "m.pgm", 10, 10);
   EXPECT_EQ(m.cols(), 2u);
   EXPECT_NEAR(m.at(1, 0), 1.0, 1e-6);

@@ -80,6 +80,7 @@ TEST(PointRegistration, RecoversAKnownTransformWithTheFiducialError) {
   }
   // Exact data: exact transform.
   std::vector<Vec3_mm> exact;
+  exact.reserve(scene.size());
   for (const auto& s : scene) exact.push_back(to_tracker.apply(s));
   EXPECT_LT(register_points(exact, scene).fre_mm, 1e-9);
 }
@@ -140,6 +141,7 @@ TEST(TipCalibration, PivotRefusesTooFewOrOneAxisOrStillPoses) {
   EXPECT_THROW(pivot_calibrate({RigidTransform{}, RigidTransform{}, RigidTransform{}}), palprig::BadInput);
   // Turning about z only: the tip along z is free.
   std::vector<RigidTransform> one_axis;
+  one_axis.reserve(20);
   for (int k = 0; k < 20; ++k) one_axis.push_back(RigidTransform{rot(0, 0, 1, 5.0 * k), {0, 0, 0}});
   try {
     pivot_calibrate(one_axis);

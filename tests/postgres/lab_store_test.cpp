@@ -20,6 +20,7 @@
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"
 #include "tests/postgres/pg_test_support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -28,8 +29,6 @@ using testing::ChildProcess;
 using testing::ScratchDir;
 
 constexpr int kTrialsPerSession = 32;  // data/protocols/discrimination_002.json
-
-std::string protocol() { return (testing::protocols_dir() / "discrimination_002.json").string(); }
 
 int reported_trials(const std::string& out) {
   int n = 0;
@@ -48,8 +47,9 @@ std::string stats_json(const std::string& store) {
 
 std::vector<std::string> session_args(const std::string& participant, const std::string& db,
                                       const std::string& journal) {
-  return {"experiment", "run",  "--protocol", protocol(),  "--participant",
-          participant,  "--db", db,           "--journal", journal};
+  return {"experiment",    "run",       "--protocol", palprig::testing::discrimination_protocol_file(),
+          "--participant", participant, "--db",       db,
+          "--journal",     journal};
 }
 
 void wait_for_trials(ChildProcess& child, int n) {
@@ -94,12 +94,13 @@ TEST(postgres_lab_store, same_seed_gives_the_same_statistics_in_sqlite_and_postg
   const std::string uri = testing::fresh_database("same_stats");
   const std::string file = (dir / "bench.db").string();
   for (const std::string participant : {"sim:11", "sim:12"}) {
-    const auto to_file = testing::run_palprig(
-        {"experiment", "run", "--protocol", protocol(), "--participant", participant, "--db", file, "--quiet"});
+    const auto to_file =
+        testing::run_palprig({"experiment", "run", "--protocol", palprig::testing::discrimination_protocol_file(),
+                              "--participant", participant, "--db", file, "--quiet"});
     ASSERT_EQ(to_file.exit_code, 0) << to_file.err;
-    const auto to_server =
-        testing::run_palprig({"experiment", "run", "--protocol", protocol(), "--participant", participant, "--db", uri,
-                              "--journal", (dir / "journal.db").string(), "--quiet"});
+    const auto to_server = testing::run_palprig(
+        {"experiment", "run", "--protocol", palprig::testing::discrimination_protocol_file(), "--participant",
+         participant, "--db", uri, "--journal", (dir / "journal.db").string(), "--quiet"});
     ASSERT_EQ(to_server.exit_code, 0) << to_server.err;
     EXPECT_EQ(to_server.err, "");
   }
@@ -189,8 +190,9 @@ TEST(postgres_lab_store, kill_9_mid_session_and_resume_loses_and_duplicates_noth
     reported = reported_trials(child.out());
   }
   ASSERT_LT(reported, kTrialsPerSession) << "the kill came too late to test anything";
-  const auto resumed = testing::run_palprig({"experiment", "run", "--protocol", protocol(), "--participant", "sim:31",
-                                             "--db", uri, "--journal", journal, "--resume", "--quiet"});
+  const auto resumed =
+      testing::run_palprig({"experiment", "run", "--protocol", palprig::testing::discrimination_protocol_file(),
+                            "--participant", "sim:31", "--db", uri, "--journal", journal, "--resume", "--quiet"});
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   // It resumed after the last trial the bench ran, journal included.
   const auto at = resumed.out.find("resumed at trial ");
@@ -225,8 +227,9 @@ TEST(postgres_lab_store, kill_9_while_the_server_is_down_then_resume_pushes_the_
   ASSERT_EQ(testing::server_ctl("start"), 0);
   const std::int64_t on_server_before = testing::pg_scalar(uri, "SELECT count(*) FROM trials");
   EXPECT_LT(on_server_before, reported) << "the journal had nothing unpushed: the test tests nothing";
-  const auto resumed = testing::run_palprig({"experiment", "run", "--protocol", protocol(), "--participant", "sim:32",
-                                             "--db", uri, "--journal", journal, "--resume", "--quiet"});
+  const auto resumed =
+      testing::run_palprig({"experiment", "run", "--protocol", palprig::testing::discrimination_protocol_file(),
+                            "--participant", "sim:32", "--db", uri, "--journal", journal, "--resume", "--quiet"});
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_NE(resumed.out.find("trials left in the journal"), std::string::npos) << resumed.out;
   const auto at = resumed.out.find("resumed at trial ");
@@ -244,8 +247,9 @@ TEST(postgres_lab_store, copy_sqlite_to_postgresql_and_back_keeps_every_trial_on
   const std::string uri = testing::fresh_database("copy_both_ways");
   const std::string file = (dir / "bench.db").string(), back = (dir / "back.db").string();
   for (const std::string participant : {"sim:41", "sim:42"}) {
-    const auto r = testing::run_palprig(
-        {"experiment", "run", "--protocol", protocol(), "--participant", participant, "--db", file, "--quiet"});
+    const auto r =
+        testing::run_palprig({"experiment", "run", "--protocol", palprig::testing::discrimination_protocol_file(),
+                              "--participant", participant, "--db", file, "--quiet"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   const auto up = testing::run_palprig({"store", "copy", "--from", file, "--to", uri});

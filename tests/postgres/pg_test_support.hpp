@@ -57,7 +57,7 @@ inline std::int64_t pg_scalar(const std::string& uri, const std::string& sql) {
 // session and trial of the SQLite file `bench_file` as that version's push leaves them (the
 // columns it has no place for left out). Returns its URI. The migration suites start here.
 inline std::string old_server_holding(const std::string& name, int version, const std::string& bench_file) {
-  const std::string uri = fresh_database(name);
+  std::string uri = fresh_database(name);
   PgConnection server(parse_pg_target(uri));
   ensure_pg_schema(server, version);
   Database bench(bench_file, Database::Mode::read_only);

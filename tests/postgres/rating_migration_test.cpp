@@ -28,14 +28,14 @@ using testing::ScratchDir;
 std::string plain_protocol() { return (testing::protocols_dir() / "discrimination_002.json").string(); }
 std::string rated_protocol() { return (testing::protocols_dir() / "discrimination_002_confidence.json").string(); }
 
-std::string stats(const std::string& store) {
+std::string rating_stats(const std::string& store) {
   const auto r = testing::run_palprig({"stats", "trials", store, "--by", "participant,condition,finger", "--json"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return r.out;
 }
 
 // Every value of the schema-1/2 columns of the given participants' trials.
-std::string digest(const std::string& uri, const std::string& codes) {
+std::string rating_digest(const std::string& uri, const std::string& codes) {
   std::string columns;
   for (std::size_t i = 0; i < kTrialConfidence; ++i) columns += ", t." + std::string(kTrialColumns[i].name);
   return PgConnection(parse_pg_target(uri))
@@ -62,11 +62,11 @@ TEST(PostgresRatingMigration, Version2ServerIsReadAsItIsThenMigratedAndRatingsTr
                                "SELECT count(*) FROM information_schema.columns WHERE table_name = 'trials' "
                                "AND column_name IN ('confidence', 'stimulus_end_s')"),
             0);
-  const std::string old_trials = digest(uri, "'sim:31', 'sim:32'");
+  const std::string old_trials = rating_digest(uri, "'sim:31', 'sim:32'");
   // A reader opens it as it is: the same statistics as the file's, nothing migrated. (The
   // file has stimulus ends and reached times the version-2 server could not take, so only the onset figures and
   // the measures are compared.)
-  const auto without_after = [](std::string json) {
+  const auto without_after = [](const std::string& json) {
     auto j = nlohmann::json::parse(json);
     for (auto& row : j["rows"]) {
       row.erase("rt_after_stimulus_mean_s");
@@ -76,8 +76,8 @@ TEST(PostgresRatingMigration, Version2ServerIsReadAsItIsThenMigratedAndRatingsTr
     }
     return j.dump();
   };
-  const std::string before = stats(uri);
-  EXPECT_EQ(without_after(before), without_after(stats(file)));
+  const std::string before = rating_stats(uri);
+  EXPECT_EQ(without_after(before), without_after(rating_stats(file)));
   EXPECT_TRUE(nlohmann::json::parse(before)["rows"][0]["rt_after_stimulus_mean_s"].is_null()) << before;
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 2);
 
@@ -86,7 +86,7 @@ TEST(PostgresRatingMigration, Version2ServerIsReadAsItIsThenMigratedAndRatingsTr
                                          "--db", uri, "--journal", (dir / "journal.db").string(), "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), kPgSchemaVersion);
-  EXPECT_EQ(digest(uri, "'sim:31', 'sim:32'"), old_trials);  // every older trial, value for value
+  EXPECT_EQ(rating_digest(uri, "'sim:31', 'sim:32'"), old_trials);  // every older trial, value for value
   EXPECT_EQ(testing::pg_scalar(uri,
                                "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id "
                                "JOIN participants p ON p.id = s.participant_id WHERE p.code IN ('sim:31', 'sim:32') "
@@ -111,7 +111,7 @@ TEST(PostgresRatingMigration, Version2ServerIsReadAsItIsThenMigratedAndRatingsTr
   const std::string back = (dir / "back.db").string();
   const auto down = testing::run_palprig({"store", "copy", "--from", uri, "--to", back});
   ASSERT_EQ(down.exit_code, 0) << down.err;
-  EXPECT_EQ(stats(back), stats(uri));
+  EXPECT_EQ(rating_stats(back), rating_stats(uri));
   SqliteTrialStore copy(back, TrialStore::Access::read_only);
   int copied_rated = 0;
   for (const StoredTrial& t : copy.read_trials(true)) {
@@ -124,7 +124,7 @@ TEST(PostgresRatingMigration, Version2ServerIsReadAsItIsThenMigratedAndRatingsTr
   const std::string again = testing::fresh_database("rating_copy_up");
   const auto up = testing::run_palprig({"store", "copy", "--from", back, "--to", again});
   ASSERT_EQ(up.exit_code, 0) << up.err;
-  EXPECT_EQ(stats(again), stats(uri));
+  EXPECT_EQ(rating_stats(again), rating_stats(uri));
   EXPECT_EQ(testing::pg_scalar(again, "SELECT count(*) FROM trials WHERE confidence IS NOT NULL"), rated_trials);
 }
 

@@ -19,22 +19,21 @@
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"
 #include "tests/postgres/pg_test_support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
 
 using testing::ScratchDir;
 
-std::string protocol() { return (testing::protocols_dir() / "discrimination_002.json").string(); }
-
-std::string stats(const std::string& store) {
+std::string reached_stats(const std::string& store) {
   const auto r = testing::run_palprig({"stats", "trials", store, "--by", "participant,condition,finger", "--json"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return r.out;
 }
 
 // Every value of the columns before stimulus_reached_s of the given participants' trials.
-std::string digest(const std::string& uri, const std::string& codes) {
+std::string reached_digest(const std::string& uri, const std::string& codes) {
   std::string columns;
   for (std::size_t i = 0; i < kTrialColumnsBeforeReached; ++i) columns += ", t." + std::string(kTrialColumns[i].name);
   return PgConnection(parse_pg_target(uri))
@@ -57,8 +56,9 @@ TEST(PostgresReachedMigration, Version4ServerIsReadAsItIsThenMigratedAndReachedT
   ScratchDir dir;
   const std::string file = (dir / "bench.db").string();
   for (const std::string participant : {"sim:41", "sim:42"}) {
-    const auto run = testing::run_palprig(
-        {"experiment", "run", "--protocol", protocol(), "--participant", participant, "--db", file, "--quiet"});
+    const auto run =
+        testing::run_palprig({"experiment", "run", "--protocol", palprig::testing::discrimination_protocol_file(),
+                              "--participant", participant, "--db", file, "--quiet"});
     ASSERT_EQ(run.exit_code, 0) << run.err;
   }
   // A server the palprig before this column made (schema 4), holding those trials: the push
@@ -71,7 +71,7 @@ TEST(PostgresReachedMigration, Version4ServerIsReadAsItIsThenMigratedAndReachedT
             0);
   const std::int64_t old_count = testing::pg_scalar(uri, "SELECT count(*) FROM trials");
   ASSERT_GT(old_count, 0);
-  const std::string old_trials = digest(uri, "'sim:41', 'sim:42'");
+  const std::string old_trials = reached_digest(uri, "'sim:41', 'sim:42'");
   // A reader reads it as it is: the same statistics as the file's but for the reached times.
   const auto without_reached = [](const std::string& json) {
     auto j = nlohmann::json::parse(json);
@@ -81,14 +81,15 @@ TEST(PostgresReachedMigration, Version4ServerIsReadAsItIsThenMigratedAndReachedT
     }
     return j.dump();
   };
-  const std::string before = stats(uri);
-  EXPECT_EQ(without_reached(before), without_reached(stats(file)));
+  const std::string before = reached_stats(uri);
+  EXPECT_EQ(without_reached(before), without_reached(reached_stats(file)));
   EXPECT_TRUE(nlohmann::json::parse(before)["rows"][0]["rt_from_reached_mean_s"].is_null()) << before;
-  EXPECT_FALSE(nlohmann::json::parse(stats(file))["rows"][0]["rt_from_reached_mean_s"].is_null());
+  EXPECT_FALSE(nlohmann::json::parse(reached_stats(file))["rows"][0]["rt_from_reached_mean_s"].is_null());
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 4) << "a reader never migrates";
 
   // A writer migrates it: a session through the bench journal.
-  const auto run = testing::run_palprig({"experiment", "run", "--protocol", protocol(), "--participant", "sim:43",
+  const auto run = testing::run_palprig({"experiment", "run", "--protocol",
+                                         palprig::testing::discrimination_protocol_file(), "--participant", "sim:43",
                                          "--db", uri, "--journal", (dir / "journal.db").string(), "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), kPgSchemaVersion);
@@ -96,7 +97,7 @@ TEST(PostgresReachedMigration, Version4ServerIsReadAsItIsThenMigratedAndReachedT
                                "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id JOIN "
                                "participants p ON p.id = s.participant_id WHERE p.code IN ('sim:41', 'sim:42')"),
             old_count);
-  EXPECT_EQ(digest(uri, "'sim:41', 'sim:42'"), old_trials);  // every older trial, value for value
+  EXPECT_EQ(reached_digest(uri, "'sim:41', 'sim:42'"), old_trials);  // every older trial, value for value
   EXPECT_EQ(reached_count(uri, "sim:41") + reached_count(uri, "sim:42"), 0);
   const std::int64_t reached = reached_count(uri, "sim:43");
   ASSERT_GT(reached, 0);
@@ -110,11 +111,11 @@ TEST(PostgresReachedMigration, Version4ServerIsReadAsItIsThenMigratedAndReachedT
   const std::string back = (dir / "back.db").string();
   const auto down = testing::run_palprig({"store", "copy", "--from", uri, "--to", back});
   ASSERT_EQ(down.exit_code, 0) << down.err;
-  EXPECT_EQ(stats(back), stats(uri));
+  EXPECT_EQ(reached_stats(back), reached_stats(uri));
   const std::string again = testing::fresh_database("reached_copy_up");
   const auto up = testing::run_palprig({"store", "copy", "--from", back, "--to", again});
   ASSERT_EQ(up.exit_code, 0) << up.err;
-  EXPECT_EQ(stats(again), stats(uri));
+  EXPECT_EQ(reached_stats(again), reached_stats(uri));
   EXPECT_EQ(reached_count(again, "sim:43"), reached);
 }
 

@@ -25,6 +25,7 @@
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"
 #include "tests/postgres/pg_test_support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -32,7 +33,7 @@ namespace {
 using testing::ChildProcess;
 using testing::ScratchDir;
 
-constexpr int kTrialsPerSession = 32;  // data/protocols/discrimination_002.json
+constexpr int kLockTrialsPerSession = 32;  // data/protocols/discrimination_002.json
 
 std::string protocol_file() { return (testing::protocols_dir() / "discrimination_002.json").string(); }
 
@@ -50,12 +51,6 @@ bool wait_for_output(ChildProcess& child, const std::string& text, double timeou
     if (!child.pump(50)) break;
   }
   return child.out().find(text) != std::string::npos;
-}
-
-int count_lines(const std::string& text) {
-  int n = 0;
-  for (char c : text) n += c == '\n';
-  return n;
 }
 
 // A session created through the store (enrolled, planned, claimed), as open_session does.
@@ -141,7 +136,7 @@ TEST(PostgresSessionLock, ASecondBenchIsRefusedWhileTheFirstRunsAndTakesOverAfte
   for (const std::vector<std::string>& extra : {std::vector<std::string>{}, std::vector<std::string>{"--resume"}}) {
     const auto second = testing::run_palprig(run_args("sim:9", uri, journal2, extra));
     EXPECT_EQ(second.exit_code, 2) << second.out << second.err;
-    EXPECT_EQ(count_lines(second.err), 1) << second.err;
+    EXPECT_EQ(palprig::testing::count_lines(second.err), 1) << second.err;
     EXPECT_NE(second.err.find("process " + std::to_string(first.pid()) + " on " + this_host_name()), std::string::npos)
         << second.err;
   }
@@ -150,8 +145,8 @@ TEST(PostgresSessionLock, ASecondBenchIsRefusedWhileTheFirstRunsAndTakesOverAfte
   // The same bench resumes (its journal holds what the server may not have yet).
   const auto resumed = testing::run_palprig(run_args("sim:9", uri, journal1, {"--resume", "--quiet"}));
   EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), kTrialsPerSession);
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(DISTINCT position) FROM trials"), kTrialsPerSession);
+  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), kLockTrialsPerSession);
+  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(DISTINCT position) FROM trials"), kLockTrialsPerSession);
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM sessions WHERE status = 'completed'"), 1);
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM session_locks"), 0);
 }
@@ -177,7 +172,7 @@ TEST(PostgresSchemaMigration, Version1ServerHoldingTrialsMigratesToVersion2AndKe
   // ... pushed onto a server whose schema is still version 1 (what an older palprig created).
   const std::string uri = testing::old_server_holding("migrate_1_2", 1, file);
   ASSERT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), 1);
-  ASSERT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), 2 * kTrialsPerSession);
+  ASSERT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), 2 * kLockTrialsPerSession);
   ASSERT_EQ(
       testing::pg_scalar(uri, "SELECT count(*) FROM information_schema.tables WHERE table_name = 'session_locks'"), 0);
   const auto stats = [](const std::string& store) {
@@ -217,11 +212,11 @@ TEST(PostgresSchemaMigration, Version1ServerHoldingTrialsMigratesToVersion2AndKe
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT max(version) FROM palprig_schema"), kPgSchemaVersion);
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM palprig_schema"), kPgSchemaVersion);
-  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), 3 * kTrialsPerSession);
+  EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM trials"), 3 * kLockTrialsPerSession);
   EXPECT_EQ(testing::pg_scalar(uri,
                                "SELECT count(*) FROM trials t JOIN sessions s ON s.id = t.session_id "
                                "JOIN participants p ON p.id = s.participant_id WHERE p.code IN ('sim:21', 'sim:22')"),
-            2 * kTrialsPerSession);
+            2 * kLockTrialsPerSession);
   EXPECT_EQ(testing::pg_scalar(uri, "SELECT count(*) FROM session_locks"), 0);  // released at completion
   EXPECT_EQ(digest(), old_trials);                                              // the older trials, value for value
 }

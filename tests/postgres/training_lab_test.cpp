@@ -38,7 +38,7 @@ std::filesystem::path write_course(const ScratchDir& dir, bool pulse_second = fa
        {"cases_per_session", 2},
        {"benchmark", {{"found_min", 0.5}, {"consecutive_sessions", 1}}}});
   doc["pilot"] = {{"initial_skill", 1.0}, {"learning_rate_per_case", 0.0}};
-  const auto path = dir / "course.json";
+  auto path = dir / "course.json";
   std::ofstream(path) << doc.dump(2);
   return path;
 }

@@ -49,7 +49,7 @@ TEST(ModbusHost, SyntaxIsCheckedBeforeAnyLookup) {
 
 TEST(ModbusHost, ARunThroughAHostNameReachesTheModule) {
   TempDir dir;
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const int port = start_sim_rig(sim, palprig_bin(), kWagoRig, 0, (dir.path() / "writes.csv").string(),
                                  (dir.path() / "sim.err").string());
   auto rig = wago_on_port(port);

@@ -24,11 +24,11 @@ using palprig::test_support::TempDir;
 
 namespace {
 
-RigConfig shipped_rig(const std::string& name) {
+RigConfig loopback_rig(const std::string& name) {
   return load_rig_file(std::string(PALPRIG_SOURCE_DIR) + "/data/rigs/" + name);
 }
 
-std::array<PlantParams, kFingerCount> quiet_plants() {
+std::array<PlantParams, kFingerCount> loopback_plants() {
   PlantParams p;
   p.noise_sd_kPa = 0;
   p.hysteresis_kPa = 0;
@@ -90,8 +90,8 @@ struct Quiet {  // collects the rig's log lines instead of printing them
 }  // namespace
 
 TEST(ModbusLoopback, WritesTheExactWordsOfTheMapAndReadsMonitorsBack) {
-  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
-  ModbusSimServer server(map, quiet_plants());
+  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
+  ModbusSimServer server(map, loopback_plants());
   server.set_log_sink(nullptr);
   const auto ports = serve(server, 1);
   ModbusRig rig(client_map(map, ports));
@@ -120,8 +120,8 @@ TEST(ModbusLoopback, WritesTheExactWordsOfTheMapAndReadsMonitorsBack) {
 }
 
 TEST(ModbusLoopback, ServesSeveralClientsAtOnce) {
-  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
-  ModbusSimServer server(map, quiet_plants());
+  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
+  ModbusSimServer server(map, loopback_plants());
   server.set_log_sink(nullptr);
   const auto ports = serve(server, 1);
   ModbusRig rig(client_map(map, ports));
@@ -148,8 +148,8 @@ TEST(ModbusLoopback, ServesSeveralClientsAtOnce) {
 
 TEST(ModbusLoopback, LostPeerVentsAlarmsReconnectsAndRampsFromZero) {
   TempDir dir;
-  ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
-  auto server = std::make_unique<ModbusSimServer>(map, quiet_plants());
+  ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
+  auto server = std::make_unique<ModbusSimServer>(map, loopback_plants());
   server->set_log_sink(nullptr);
   const auto ports = serve(*server, 1);
   ModbusRigConfig cmap = client_map(map, ports);
@@ -172,7 +172,7 @@ TEST(ModbusLoopback, LostPeerVentsAlarmsReconnectsAndRampsFromZero) {
   EXPECT_FALSE(drive(rig, setpoint, 150ms, [&] { return rig.linked(); }));
 
   // The module returns on the same port.
-  ModbusSimServer back(map, quiet_plants());
+  ModbusSimServer back(map, loopback_plants());
   back.set_log_sink(nullptr);
   const auto log_path = dir.path() / "writes.csv";
   back.set_write_log(log_path);
@@ -211,8 +211,8 @@ TEST(ModbusLoopback, LostPeerVentsAlarmsReconnectsAndRampsFromZero) {
 
 TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
   TempDir dir;
-  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
-  ModbusSimServer server(map, quiet_plants());
+  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
+  ModbusSimServer server(map, loopback_plants());
   server.set_log_sink(nullptr);
   const auto log_path = dir.path() / "writes.csv";
   server.set_write_log(log_path);
@@ -242,8 +242,8 @@ TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
 }
 
 TEST(ModbusLoopback, TheBusThreadVentsWhenTheLoopFallsSilent) {
-  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
-  ModbusSimServer server(map, quiet_plants());
+  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
+  ModbusSimServer server(map, loopback_plants());
   server.set_log_sink(nullptr);
   const auto ports = serve(server, 1);
   ModbusRig rig(client_map(map, ports));
@@ -259,8 +259,8 @@ TEST(ModbusLoopback, TheBusThreadVentsWhenTheLoopFallsSilent) {
 }
 
 TEST(ModbusLoopback, AnOutageLongerThanTheLimitIsABackendError) {
-  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
-  auto server = std::make_unique<ModbusSimServer>(map, quiet_plants());
+  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
+  auto server = std::make_unique<ModbusSimServer>(map, loopback_plants());
   server->set_log_sink(nullptr);
   ModbusRigConfig cmap = client_map(map, serve(*server, 1));
   cmap.max_outage_s = 0.2;
@@ -276,8 +276,8 @@ TEST(ModbusLoopback, AnOutageLongerThanTheLimitIsABackendError) {
 }
 
 TEST(ModbusLoopback, ADeviceThatRefusesTheMapIsRefusedAtOpen) {
-  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
-  ModbusSimServer server(map, quiet_plants());  // serves holding registers 0..2 only
+  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
+  ModbusSimServer server(map, loopback_plants());  // serves holding registers 0..2 only
   server.set_log_sink(nullptr);
   ModbusRigConfig wrong = client_map(map, serve(server, 1));
   wrong.channels[2].output.address = 7;
@@ -293,10 +293,10 @@ TEST(ModbusLoopback, ADeviceThatRefusesTheMapIsRefusedAtOpen) {
 }
 
 TEST(ModbusLoopback, NothingListeningIsRefusedAtOpenWithTheReason) {
-  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
+  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
   int port;
   {
-    ModbusSimServer probe(map, quiet_plants());
+    ModbusSimServer probe(map, loopback_plants());
     probe.set_log_sink(nullptr);
     port = serve(probe, 1)[0];
   }  // closed again: nothing listens there now
@@ -313,8 +313,8 @@ TEST(ModbusLoopback, NothingListeningIsRefusedAtOpenWithTheReason) {
 
 TEST(ModbusLoopback, TwoModuleMapsWriteEachRegisterOnItsOwnLink) {
   // Moxa: outputs on the E1241 at 1024..1026 (12 bit), monitors on the E1240 at 0..2 (16 bit).
-  const ModbusRigConfig map = shipped_rig("moxa_iologik_e1241.json").modbus.value();
-  ModbusSimServer server(map, quiet_plants());
+  const ModbusRigConfig map = loopback_rig("moxa_iologik_e1241.json").modbus.value();
+  ModbusSimServer server(map, loopback_plants());
   server.set_log_sink(nullptr);
   const auto ports = serve(server, 2);
   ModbusRig rig(client_map(map, ports));
@@ -347,12 +347,12 @@ TEST(ModbusLoopback, TwoModuleMapsWriteEachRegisterOnItsOwnLink) {
 
 TEST(ModbusLoopback, RtuOnAPseudoTerminalCarriesTheSameMap) {
   // The map as a lab would wire it on RS-485: one RTU link, unit 7, 115200 8E1.
-  ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
+  ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
   map.links[0].rtu = true;
   map.links[0].baud = 115200;
   map.links[0].parity = 'E';
   map.links[0].unit_id = 7;
-  ModbusSimServer server(map, quiet_plants());
+  ModbusSimServer server(map, loopback_plants());
   server.set_log_sink(nullptr);
   ListenAddress pty;
   pty.pty = true;
@@ -387,8 +387,8 @@ TEST(ModbusLoopback, RtuOnAPseudoTerminalCarriesTheSameMap) {
 }
 
 TEST(ModbusLoopback, SimulatedModuleWatchdogZeroesOutputsOfASilentLink) {
-  const ModbusRigConfig map = shipped_rig("wago_750_559.json").modbus.value();
-  ModbusSimServer server(map, quiet_plants());
+  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
+  ModbusSimServer server(map, loopback_plants());
   Quiet log;
   server.set_log_sink(log.sink());
   server.set_watchdog_s(0.1);

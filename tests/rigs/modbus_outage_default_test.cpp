@@ -18,7 +18,7 @@ namespace {
 // run end on its own. Returns the finished run; `stopped_at_s` is the run's telemetry time of
 // the last fresh monitor reading.
 FinishedRun run_with_stopped_peer(TempDir& dir, nlohmann::json rig, double seconds) {
-  std::unique_ptr<ChildProcess> sim;
+  std::unique_ptr<WatchedProcess> sim;
   const auto writes = dir.path() / "writes.csv";
   const int port = start_sim_rig(sim, palprig_bin(), kWagoRig, 0, writes.string(), (dir.path() / "sim.err").string());
   rig = rig_on_port(rig, port);

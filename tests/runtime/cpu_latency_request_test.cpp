@@ -55,7 +55,7 @@ TEST(CpuLatencyRequest, MovedRequestStaysHeldOnce) {
   CpuLatencyRequest a(0, path.string());
   ASSERT_TRUE(a.held());
   CpuLatencyRequest b(std::move(a));
-  EXPECT_FALSE(a.held());
+  EXPECT_FALSE(a.held());  // NOLINT(bugprone-use-after-move): the moved-from request's state is what is tested
   EXPECT_TRUE(b.held());
   b.release();
   EXPECT_FALSE(b.held());

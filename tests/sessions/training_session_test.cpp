@@ -30,12 +30,12 @@ std::filesystem::path write_course(const ScratchDir& dir, double rate, double in
                           {"time_limit_s", 90},
                           {"benchmark", {{"found_min", 0.6}, {"consecutive_sessions", 2}}}};
   nlohmann::json doc = {{"version", 1}, {"kind", "curriculum"}, {"name", name}, {"levels", nlohmann::json::array()}};
-  for (const char* name : {"one", "two", "three"}) {
-    level["name"] = name;
+  for (const char* level_name : {"one", "two", "three"}) {
+    level["name"] = level_name;
     doc["levels"].push_back(level);
   }
   doc["pilot"] = {{"initial_skill", initial}, {"learning_rate_per_case", rate}};
-  const auto path = dir / (name + ".json");
+  auto path = dir / (name + ".json");
   std::ofstream(path) << doc.dump(2);
   return path;
 }
@@ -65,7 +65,11 @@ std::optional<int> sessions_until_level(const std::filesystem::path& course, con
     if (out.plan.level >= level) reached = session;
   }
   for (const auto& r : trainee_standing(db.string(), c, trainee).sessions) {
-    for (const auto& k : r.cases) EXPECT_TRUE(cases.insert(trainee + " " + k).second) << k << " given twice";
+    for (const auto& k : r.cases) {
+      std::string given = trainee;
+      given.append(" ").append(k);
+      EXPECT_TRUE(cases.insert(given).second) << k << " given twice";
+    }
   }
   return reached;
 }
@@ -172,7 +176,7 @@ TEST(TrainingSession, RefusalsAreOneLineAndLoseNothingStored) {
     try {
       f();
     } catch (const InputError& e) {
-      const std::string line = e.what();
+      std::string line = e.what();
       EXPECT_EQ(line.find('\n'), std::string::npos) << line;
       return line;
     }

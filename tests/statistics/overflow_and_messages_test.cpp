@@ -25,16 +25,17 @@ using testing::ScratchDir;
 
 std::vector<double> times(const std::vector<double>& v, double k) {
   std::vector<double> out;
+  out.reserve(v.size());
   for (double x : v) out.push_back(x * k);
   return out;
 }
 
-const std::vector<double> kX{5.1, 4.9, 6.2, 5.8, 6.0, 5.5, 5.3};
-const std::vector<double> kY{4.2, 4.8, 4.5, 5.0, 4.1, 4.6};
+const std::vector<double> kOverflowX{5.1, 4.9, 6.2, 5.8, 6.0, 5.5, 5.3};
+const std::vector<double> kOverflowY{4.2, 4.8, 4.5, 5.0, 4.1, 4.6};
 
 TEST(StatisticsOverflow, WelchOnHugeValuesEqualsWelchInOtherUnits) {
-  const auto small = stats::two_sample_t_test(kX, kY, false);
-  const auto huge = stats::two_sample_t_test(times(kX, 1e200), times(kY, 1e200), false);
+  const auto small = stats::two_sample_t_test(kOverflowX, kOverflowY, false);
+  const auto huge = stats::two_sample_t_test(times(kOverflowX, 1e200), times(kOverflowY, 1e200), false);
   EXPECT_NEAR(huge.t, small.t, 1e-9 * std::fabs(small.t));
   EXPECT_NEAR(huge.df, small.df, 1e-9 * small.df);
   EXPECT_NEAR(huge.p, small.p, 1e-9 * small.p);
@@ -43,8 +44,8 @@ TEST(StatisticsOverflow, WelchOnHugeValuesEqualsWelchInOtherUnits) {
 }
 
 TEST(StatisticsOverflow, StudentPairedAndOneSampleOnHugeValues) {
-  const auto s = stats::two_sample_t_test(times(kX, 1e300), times(kY, 1e300), true);
-  EXPECT_NEAR(s.t, stats::two_sample_t_test(kX, kY, true).t, 1e-9);
+  const auto s = stats::two_sample_t_test(times(kOverflowX, 1e300), times(kOverflowY, 1e300), true);
+  EXPECT_NEAR(s.t, stats::two_sample_t_test(kOverflowX, kOverflowY, true).t, 1e-9);
   const std::vector<double> a{1, 2, 4, 3, 5}, b{0.5, 2.5, 3, 2, 4};
   const auto paired = stats::paired_t_test(times(a, 1e307), times(b, -1e307));
   std::vector<double> sum(a.size());
@@ -76,8 +77,8 @@ TEST(StatisticsOverflow, PearsonOnExtremeValuesIsTheSameR) {
 }
 
 TEST(StatisticsOverflow, DescribeKeepsAFiniteSdOfHugeValues) {
-  const auto d = stats::describe(times(kX, 1e300), stats::QuantileRule::r_type7);
-  const auto plain = stats::describe(kX, stats::QuantileRule::r_type7);
+  const auto d = stats::describe(times(kOverflowX, 1e300), stats::QuantileRule::r_type7);
+  const auto plain = stats::describe(kOverflowX, stats::QuantileRule::r_type7);
   EXPECT_TRUE(std::isfinite(d.sd));
   EXPECT_NEAR(d.sd / 1e300, plain.sd, 1e-12);
   EXPECT_THROW(stats::describe(std::vector<double>{-1.7e308, 1.7e308, 1.7e308, -1.7e308}, stats::QuantileRule::r_type7),

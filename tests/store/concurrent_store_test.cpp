@@ -12,6 +12,7 @@
 #include "store/sqlite_trial_store.hpp"
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -21,12 +22,11 @@ using testing::CommandResult;
 using testing::count_lines;
 using testing::ScratchDir;
 
-std::string protocol_file() { return (testing::protocols_dir() / "discrimination_002.json").string(); }
-
 std::vector<std::string> run_args(const std::string& participant, const std::string& db,
                                   const std::vector<std::string>& extra = {}, bool quiet = true) {
-  std::vector<std::string> args{"experiment",    "run",       "--protocol", protocol_file(),
-                                "--participant", participant, "--db",       db};
+  std::vector<std::string> args{
+      "experiment",    "run",       "--protocol", palprig::testing::discrimination_protocol_file(),
+      "--participant", participant, "--db",       db};
   if (quiet) args.push_back("--quiet");
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
@@ -41,8 +41,10 @@ std::int64_t scalar(const std::string& db, const std::string& sql) {
 // Starts all children before waiting on any, so they race for real.
 std::vector<CommandResult> run_together(const std::vector<std::vector<std::string>>& commands) {
   std::vector<std::unique_ptr<ChildProcess>> children;
+  children.reserve(commands.size());
   for (const auto& args : commands) children.push_back(std::make_unique<ChildProcess>(args));
   std::vector<CommandResult> results;
+  results.reserve(children.size());
   for (auto& child : children) results.push_back(child->finish());
   return results;
 }

@@ -27,7 +27,7 @@ using testing::ScratchDir;
 
 // README's study: paper 002's discrimination protocol, sim:1 and sim:2.
 std::string make_study(const ScratchDir& dir) {
-  const std::string db = (dir / "study.db").string();
+  std::string db = (dir / "study.db").string();
   for (const char* who : {"sim:1", "sim:2"}) {
     const auto run =
         run_palprig({"experiment", "run", "--protocol", (testing::protocols_dir() / "discrimination_002.json").string(),

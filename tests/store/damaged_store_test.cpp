@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -12,6 +13,7 @@
 
 #include "tests/support/process_support.hpp"
 #include "tests/support/support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -21,14 +23,12 @@ using testing::count_lines;
 using testing::run_palprig;
 using testing::ScratchDir;
 
-std::string protocol_file() { return (testing::protocols_dir() / "discrimination_002.json").string(); }
-
 // A real database of `sessions` completed simulated sessions (32 trials each).
 std::string make_store(const ScratchDir& dir, int sessions) {
-  const std::string db = (dir / "study.db").string();
+  std::string db = (dir / "study.db").string();
   for (int i = 1; i <= sessions; ++i) {
-    const auto r = run_palprig({"experiment", "run", "--protocol", protocol_file(), "--participant",
-                                "sim:" + std::to_string(i), "--db", db, "--quiet"});
+    const auto r = run_palprig({"experiment", "run", "--protocol", palprig::testing::discrimination_protocol_file(),
+                                "--participant", "sim:" + std::to_string(i), "--db", db, "--quiet"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
   }
   // The last writer checkpointed and removed the WAL, so the damage below hits the only copy.
@@ -78,8 +78,8 @@ void expect_every_command_refuses(const ScratchDir& dir, const std::string& db) 
 
   // A new session would be written into the damaged file: refused, and the file is untouched.
   const std::string before = bytes_of(db);
-  const auto run = run_palprig(
-      {"experiment", "run", "--protocol", protocol_file(), "--participant", "sim:99", "--db", db, "--quiet"});
+  const auto run = run_palprig({"experiment", "run", "--protocol", palprig::testing::discrimination_protocol_file(),
+                                "--participant", "sim:99", "--db", db, "--quiet"});
   expect_refused_as_damaged(run, db);
   EXPECT_EQ(run.out.find("session"), std::string::npos) << "a session was started: " << run.out;
   EXPECT_TRUE(bytes_of(db) == before) << "the damaged database was written to";
@@ -98,7 +98,7 @@ TEST(DamagedStore, TruncatedMidPageIsRefusedNotHalfCounted) {
 TEST(DamagedStore, TruncatedByWholePagesIsRefused) {
   ScratchDir dir;
   const std::string db = make_store(dir, 4);
-  std::filesystem::resize_file(db, std::filesystem::file_size(db) - 2 * 4096);
+  std::filesystem::resize_file(db, std::filesystem::file_size(db) - std::uintmax_t{2} * 4096);
   expect_every_command_refuses(dir, db);
 }
 

@@ -47,7 +47,7 @@ class CacheHere {
 };
 
 std::filesystem::path make_store(const ScratchDir& dir) {
-  const auto db = dir / "trials.db";
+  auto db = dir / "trials.db";
   SqliteTrialStore store(db, TrialStore::Access::read_write);
   for (int i = 0; i < 50; ++i) store.enrol("p" + std::to_string(i), false);
   return db;

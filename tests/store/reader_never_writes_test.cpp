@@ -18,6 +18,7 @@
 #include "tests/support/process_support.hpp"
 #include "tests/support/run_process.hpp"
 #include "tests/support/support.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 namespace palprig {
 namespace {
@@ -37,7 +38,6 @@ std::filesystem::path shm_of(const std::filesystem::path& db) { return db.string
 
 // Root reads and writes through permission bits: as in store_environment_test.cpp, the reader
 // then runs as nobody, for whom a folder of mode 0555 is read-only.
-std::string as_unprivileged() { return ::geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : ""; }
 
 void make_store(const std::filesystem::path& db) {
   const auto run =
@@ -121,12 +121,13 @@ TEST(ReaderNeverWrites, AStoreInAReadOnlyFolderIsRead) {
   ::chmod(out.c_str(), 0777);
   const std::string before = bytes_of(db);
 
-  const auto stats =
-      test_support::run_process(as_unprivileged() + test_support::palprig_bin() + " stats trials " + db.string());
+  const auto stats = test_support::run_process(palprig::testing::as_unprivileged() + test_support::palprig_bin() +
+                                               " stats trials " + db.string());
   EXPECT_EQ(stats.exit_code, 0) << stats.err;
   EXPECT_EQ(stats.out, expected.out);
-  const auto csv = test_support::run_process(as_unprivileged() + test_support::palprig_bin() + " export " +
-                                             db.string() + " --format csv --out " + (out / "csv").string());
+  const auto csv =
+      test_support::run_process(palprig::testing::as_unprivileged() + test_support::palprig_bin() + " export " +
+                                db.string() + " --format csv --out " + (out / "csv").string());
   EXPECT_EQ(csv.exit_code, 0) << csv.err;
   EXPECT_TRUE(present(out / "csv" / "trials_long.csv"));
   EXPECT_FALSE(present(wal_of(db)) || present(shm_of(db)));
@@ -144,8 +145,8 @@ TEST(ReaderNeverWrites, ACrashedWriterInAReadOnlyFolderIsReadWithItsWal) {
   ::chmod(folder.c_str(), 0555);
   const std::string db_before = bytes_of(db), wal_before = bytes_of(wal_of(db));
 
-  const auto stats =
-      test_support::run_process(as_unprivileged() + test_support::palprig_bin() + " stats trials " + db.string());
+  const auto stats = test_support::run_process(palprig::testing::as_unprivileged() + test_support::palprig_bin() +
+                                               " stats trials " + db.string());
   EXPECT_EQ(stats.exit_code, 0) << stats.err;
   EXPECT_NE(stats.out.find("single-finger"), std::string::npos) << stats.out;
   EXPECT_EQ(stats.out.find("three-finger"), std::string::npos) << "the -wal's commit was not read: " << stats.out;

@@ -19,6 +19,7 @@
 
 #include "tests/support/run_process.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_and_paths.hpp"
 
 using palprig::test_support::palprig_bin;
 using palprig::test_support::read_file;
@@ -27,15 +28,12 @@ using palprig::test_support::TempDir;
 
 namespace {
 
-std::string protocol() { return std::string(PALPRIG_SOURCE_DIR) + "/data/protocols/discrimination_002.json"; }
-
 // Root writes through permission bits: the child then runs as nobody (setpriv), so a folder or
 // file it does not own and may not write is what a user meets.
-std::string as_unprivileged() { return ::geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : ""; }
 
 std::string session(const std::filesystem::path& db) {
-  return palprig_bin() + " experiment run --protocol " + protocol() + " --participant sim:3 --quiet --db " +
-         db.string();
+  return palprig_bin() + " experiment run --protocol " + palprig::testing::discrimination_protocol_file() +
+         " --participant sim:3 --quiet --db " + db.string();
 }
 
 int line_count(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
@@ -82,7 +80,7 @@ TEST(StoreEnvironment, AReadOnlyFolderIsOneLineExitTwoAndNothingIsWritten) {
   std::filesystem::create_directory(folder);
   ::chmod(folder.c_str(), 0555);
   const auto db = folder / "trials.db";
-  const auto r = run_process(as_unprivileged() + session(db));
+  const auto r = run_process(palprig::testing::as_unprivileged() + session(db));
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(line_count(r.err), 1) << r.err;
   EXPECT_EQ(r.err, "palprig: " + db.string() + ": file: a trial database palprig can open and write (its folder " +
@@ -98,8 +96,9 @@ TEST(StoreEnvironment, AReadOnlyFileIsOneLineExitTwoAndKeptAsItWas) {
   ASSERT_EQ(run_process(session(db)).exit_code, 0);
   ::chmod(db.c_str(), 0444);
   const std::string before = read_file(db);
-  const auto r = run_process(as_unprivileged() + palprig_bin() + " experiment run --protocol " + protocol() +
-                             " --participant sim:4 --quiet --db " + db.string());
+  const auto r = run_process(palprig::testing::as_unprivileged() + palprig_bin() + " experiment run --protocol " +
+                             palprig::testing::discrimination_protocol_file() + " --participant sim:4 --quiet --db " +
+                             db.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(line_count(r.err), 1) << r.err;
   EXPECT_EQ(r.err,
@@ -107,13 +106,15 @@ TEST(StoreEnvironment, AReadOnlyFileIsOneLineExitTwoAndKeptAsItWas) {
                 ": file: a trial database palprig can open and write (the file is read-only; nothing was written)\n");
   EXPECT_EQ(read_file(db), before);
   // Readers still read it.
-  EXPECT_EQ(run_process(as_unprivileged() + palprig_bin() + " stats trials " + db.string()).exit_code, 0);
+  EXPECT_EQ(run_process(palprig::testing::as_unprivileged() + palprig_bin() + " stats trials " + db.string()).exit_code,
+            0);
 }
 
 TEST(StoreEnvironment, AFullDiskIsOneLineOfPalprigsOwnAndKeepsWhatWasCommitted) {
   TempDir dir;
-  const std::vector<std::string> args = {"experiment",    "run",   "--protocol", protocol(),
-                                         "--participant", "sim:5", "--quiet",    "--db"};
+  const std::vector<std::string> args = {
+      "experiment",    "run",   "--protocol", palprig::testing::discrimination_protocol_file(),
+      "--participant", "sim:5", "--quiet",    "--db"};
   // Too small for the empty store: nothing was written, exit 2.
   {
     auto a = args;
@@ -133,7 +134,7 @@ TEST(StoreEnvironment, AFullDiskIsOneLineOfPalprigsOwnAndKeepsWhatWasCommitted) 
   auto a = args;
   const auto db = dir.path() / "full.db";
   a.push_back(db.string());
-  const Result r = run_with_file_size_limit(a, 160 * 1024, dir.path());
+  const Result r = run_with_file_size_limit(a, rlim_t{160} * 1024, dir.path());
   EXPECT_NE(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("database or disk is full\n"), std::string::npos) << r.err;  // not SQLite's text alone
   EXPECT_NE(r.err.find("palprig: " + db.string() + ": "), std::string::npos) << r.err;

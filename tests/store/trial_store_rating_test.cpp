@@ -96,7 +96,7 @@ CREATE TABLE marks (
 ) WITHOUT ROWID;
 )sql";
 
-void raw_sql(const std::filesystem::path& file, const std::string& sql) {
+void rating_raw_sql(const std::filesystem::path& file, const std::string& sql) {
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(file.c_str(), &db), SQLITE_OK);
   char* error = nullptr;
@@ -113,7 +113,7 @@ Protocol rated_protocol() {
   return parse_protocol(doc, "rated.json", ".");
 }
 
-TrialRecord trial_of(const Protocol& p, const PlannedTrial& planned) {
+TrialRecord rated_trial_of(const Protocol& p, const PlannedTrial& planned) {
   TrialRecord r;
   r.planned = planned;
   r.condition = p.conditions[static_cast<std::size_t>(planned.condition)].name;
@@ -143,13 +143,13 @@ TEST(store_rating_columns, confidence_and_stimulus_end_round_trip) {
     SqliteTrialStore store(dir / "t.db", TrialStore::Access::read_write);
     const auto who = store.enrol("P01", false);
     const auto session = store.create_session(who, p, plan, {});
-    for (const PlannedTrial& t : plan.trials) store.commit_trial(session, trial_of(p, t));
+    for (const PlannedTrial& t : plan.trials) store.commit_trial(session, rated_trial_of(p, t));
   }
   SqliteTrialStore reader(dir / "t.db", TrialStore::Access::read_only);
   const auto trials = reader.read_trials(true);
   ASSERT_EQ(trials.size(), plan.trials.size());
   for (const StoredTrial& t : trials) {
-    const TrialRecord want = trial_of(p, plan.trials[static_cast<std::size_t>(t.position)]);
+    const TrialRecord want = rated_trial_of(p, plan.trials[static_cast<std::size_t>(t.position)]);
     EXPECT_EQ(t.confidence, want.confidence) << t.position;
     ASSERT_TRUE(t.stimulus_end_s.has_value());
     EXPECT_DOUBLE_EQ(*t.stimulus_end_s, want.stimulus_end_s);
@@ -184,7 +184,7 @@ TEST(store_rating_columns, the_check_refuses_a_rating_outside_1_to_9) {
   const SessionPlan plan = make_session_plan(p, 1, 7);
   SqliteTrialStore store(dir / "t.db", TrialStore::Access::read_write);
   const auto session = store.create_session(store.enrol("P01", false), p, plan, {});
-  TrialRecord bad = trial_of(p, plan.trials[0]);
+  TrialRecord bad = rated_trial_of(p, plan.trials[0]);
   bad.confidence = 12;
   EXPECT_ANY_THROW(store.commit_trial(session, bad));
   EXPECT_TRUE(store.read_trials(true).empty());
@@ -203,7 +203,7 @@ void make_version1_file(const std::filesystem::path& file, const Protocol& p, co
         std::to_string(session) + ", " + std::to_string(session) + ", 'rated', 'discrimination', 'rated', '" +
         p.snapshot.dump() + "', '.', 7, '[0,1]', 'rig', 'simulated', 'cal', 'completed', '2026-01-01T00:00:00Z');";
     for (const PlannedTrial& t : plan.trials) {
-      const TrialRecord r = trial_of(p, t);
+      const TrialRecord r = rated_trial_of(p, t);
       const auto flags = [](const FingerFlags& f) {
         std::string s;
         for (bool b : f) s += b ? '1' : '0';
@@ -229,7 +229,7 @@ void make_version1_file(const std::filesystem::path& file, const Protocol& p, co
           ", '2026-01-01T00:00:00Z');";
     }
   }
-  raw_sql(file, sql);
+  rating_raw_sql(file, sql);
 }
 
 TEST(store_rating_columns, a_version1_file_is_read_as_it_is_then_migrated_keeping_every_trial) {
@@ -281,7 +281,7 @@ TEST(store_rating_columns, a_version1_file_is_read_as_it_is_then_migrated_keepin
   // The migrated file takes rated trials.
   const auto who = writer.enrol("P03", false);
   const auto session = writer.create_session(who, p, plan, {});
-  writer.commit_trial(session, trial_of(p, plan.trials[0]));
+  writer.commit_trial(session, rated_trial_of(p, plan.trials[0]));
   auto q = writer.database().prepare("SELECT confidence, stimulus_end_s FROM trials WHERE session_id = ?1");
   q.bind(1, session);
   ASSERT_TRUE(q.step());
@@ -295,7 +295,7 @@ TEST(store_rating_columns, a_failed_migration_leaves_the_file_as_it_was) {
   const Protocol p = rated_protocol();
   make_version1_file(file, p, make_session_plan(p, 1, 7));
   // A column of that name already there (an edited file): the ALTER fails half-way.
-  raw_sql(file, "ALTER TABLE trials ADD COLUMN stimulus_end_s REAL;");
+  rating_raw_sql(file, "ALTER TABLE trials ADD COLUMN stimulus_end_s REAL;");
   try {
     SqliteTrialStore refused(file, TrialStore::Access::read_write);
     ADD_FAILURE() << "a file that cannot be migrated was opened";

@@ -23,7 +23,7 @@ namespace {
 
 using testing::ScratchDir;
 
-void raw_sql(const std::filesystem::path& file, const std::string& sql) {
+void reached_raw_sql(const std::filesystem::path& file, const std::string& sql) {
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(file.c_str(), &db), SQLITE_OK);
   char* error = nullptr;
@@ -31,7 +31,7 @@ void raw_sql(const std::filesystem::path& file, const std::string& sql) {
   sqlite3_close(db);
 }
 
-Protocol protocol() {
+Protocol reached_protocol() {
   auto doc = nlohmann::json::parse(R"({
     "version": 1, "name": "reached", "task": "discrimination", "levels_kPa": [0, 30],
     "combinations": {"how_chosen": "test", "list_kPa": [[0, 30, 0], [0, 0, 0]]},
@@ -42,7 +42,7 @@ Protocol protocol() {
 
 // Onset 10 s x position, answered 1.5 s + position/10 later; reached 40 ms after the onset
 // where a finger carries a level (0/30/0), never for 0/0/0; position 2 times out.
-TrialRecord trial_of(const Protocol& p, const PlannedTrial& planned) {
+TrialRecord reached_trial_of(const Protocol& p, const PlannedTrial& planned) {
   TrialRecord r = testing::discrimination_trial(p, planned, false);  // answered with the truth
   if (planned.position == 2) {                                       // timed out
     r.answered = false;
@@ -56,16 +56,16 @@ TrialRecord trial_of(const Protocol& p, const PlannedTrial& planned) {
 }
 
 std::filesystem::path store_with_one_session(const ScratchDir& dir, const Protocol& p, const SessionPlan& plan) {
-  const auto file = dir / "t.db";
+  auto file = dir / "t.db";
   SqliteTrialStore store(file, TrialStore::Access::read_write);
   const auto session = store.create_session(store.enrol("P01", false), p, plan, {});
-  for (const PlannedTrial& t : plan.trials) store.commit_trial(session, trial_of(p, t));
+  for (const PlannedTrial& t : plan.trials) store.commit_trial(session, reached_trial_of(p, t));
   return file;
 }
 
 TEST(store_reached_column, stimulus_reached_round_trips_through_reads_scans_and_statistics) {
   ScratchDir dir;
-  const Protocol p = protocol();
+  const Protocol p = reached_protocol();
   const SessionPlan plan = make_session_plan(p, 1, 7);
   const auto file = store_with_one_session(dir, p, plan);
   SqliteTrialStore reader(file, TrialStore::Access::read_only);
@@ -73,7 +73,7 @@ TEST(store_reached_column, stimulus_reached_round_trips_through_reads_scans_and_
   ASSERT_EQ(trials.size(), plan.trials.size());
   int reached = 0;
   for (const StoredTrial& t : trials) {
-    const TrialRecord want = trial_of(p, plan.trials[static_cast<std::size_t>(t.position)]);
+    const TrialRecord want = reached_trial_of(p, plan.trials[static_cast<std::size_t>(t.position)]);
     if (std::isnan(want.stimulus_reached_s)) {
       EXPECT_FALSE(t.stimulus_reached_s.has_value()) << t.position;
       EXPECT_FALSE(t.rt_from_reached_s.has_value()) << t.position;
@@ -117,7 +117,7 @@ TEST(store_reached_column, stimulus_reached_round_trips_through_reads_scans_and_
 
 TEST(store_reached_column, exports_carry_the_reached_time_and_the_response_time_from_it) {
   ScratchDir dir;
-  const Protocol p = protocol();
+  const Protocol p = reached_protocol();
   const SessionPlan plan = make_session_plan(p, 1, 7);
   const auto file = store_with_one_session(dir, p, plan);
   SqliteTrialStore reader(file, TrialStore::Access::read_only);
@@ -186,11 +186,11 @@ std::string digest(const std::filesystem::path& file) {
 
 TEST(store_reached_column, a_schema3_file_is_read_as_it_is_then_migrated_keeping_every_trial) {
   ScratchDir dir;
-  const Protocol p = protocol();
+  const Protocol p = reached_protocol();
   const SessionPlan plan = make_session_plan(p, 1, 7);
   const auto file = store_with_one_session(dir, p, plan);
   // What the palprig before schema 4 wrote: the same tables without the last column.
-  raw_sql(file, "ALTER TABLE trials DROP COLUMN stimulus_reached_s; PRAGMA user_version = 3;");
+  reached_raw_sql(file, "ALTER TABLE trials DROP COLUMN stimulus_reached_s; PRAGMA user_version = 3;");
   const std::string before = digest(file);
   const std::size_t n = plan.trials.size();
   std::string stats_before;
@@ -224,11 +224,11 @@ TEST(store_reached_column, a_schema3_file_is_read_as_it_is_then_migrated_keeping
   EXPECT_EQ(summary_json(summarise_trials(writer, all), 0.95).dump(), stats_before);
   // The migrated file takes the new column.
   const auto session = writer.create_session(writer.enrol("P02", false), p, plan, {});
-  writer.commit_trial(session, trial_of(p, plan.trials[0]));
+  writer.commit_trial(session, reached_trial_of(p, plan.trials[0]));
   auto q = writer.database().prepare("SELECT stimulus_reached_s FROM trials WHERE session_id = ?1");
   q.bind(1, session);
   ASSERT_TRUE(q.step());
-  EXPECT_EQ(q.is_null(0), std::isnan(trial_of(p, plan.trials[0]).stimulus_reached_s));
+  EXPECT_EQ(q.is_null(0), std::isnan(reached_trial_of(p, plan.trials[0]).stimulus_reached_s));
 }
 
 }  // namespace

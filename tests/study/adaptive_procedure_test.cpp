@@ -107,6 +107,7 @@ TEST(experiments_adaptive_track, state_round_trip_resumes_the_same_track) {
     AdaptiveTrack whole(spec), first(spec);
     RandomSource answers(5);
     std::vector<bool> sequence;
+    sequence.reserve(40);
     for (int i = 0; i < 40; ++i) sequence.push_back(answers.uniform() < 0.8);
     for (int i = 0; i < 15; ++i) {
       whole.record(whole.next_level_kPa(), sequence[static_cast<std::size_t>(i)]);

@@ -13,7 +13,7 @@ namespace {
 
 const std::filesystem::path kCurricula = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "curricula";
 
-nlohmann::json minimal() {
+nlohmann::json minimal_curriculum() {
   return nlohmann::json::parse(R"({
     "version": 1, "kind": "curriculum", "name": "mini",
     "levels": [{"name": "easy", "cases": {"generate": "easy"}, "benchmark": {"found_min": 0.9}}]
@@ -21,7 +21,7 @@ nlohmann::json minimal() {
 }
 
 // "file: field: expected" of the refusal, or "accepted".
-std::string refusal(const nlohmann::json& doc) {
+std::string curriculum_refusal(const nlohmann::json& doc) {
   try {
     parse_curriculum(doc, "course.json", kCurricula);
   } catch (const InputError& e) {
@@ -54,7 +54,7 @@ TEST(Curriculum, ShippedExampleLoadsEveryKindOfLevel) {
 }
 
 TEST(Curriculum, MinimalFileTakesTheDefaults) {
-  const Curriculum c = parse_curriculum(minimal(), "course.json", kCurricula);
+  const Curriculum c = parse_curriculum(minimal_curriculum(), "course.json", kCurricula);
   EXPECT_EQ(c.levels[0].cases_per_session, 4);
   EXPECT_EQ(c.levels[0].feedback, Feedback::all);
   EXPECT_DOUBLE_EQ(c.tolerance_mm, 5.0);
@@ -62,49 +62,49 @@ TEST(Curriculum, MinimalFileTakesTheDefaults) {
 }
 
 TEST(Curriculum, BadFilesAreRefusedNamingTheField) {
-  auto doc = minimal();
+  auto doc = minimal_curriculum();
   doc["version"] = 2;
-  EXPECT_NE(refusal(doc).find("version"), std::string::npos);
+  EXPECT_NE(curriculum_refusal(doc).find("version"), std::string::npos);
 
-  doc = minimal();
+  doc = minimal_curriculum();
   doc["levels"] = nlohmann::json::array();
-  EXPECT_EQ(refusal(doc), "levels: at least one level");
+  EXPECT_EQ(curriculum_refusal(doc), "levels: at least one level");
 
-  doc = minimal();
+  doc = minimal_curriculum();
   doc["levels"][0]["cases"] = {{"generate", "tricky"}};
-  EXPECT_NE(refusal(doc).find("levels[0].cases.generate"), std::string::npos);
+  EXPECT_NE(curriculum_refusal(doc).find("levels[0].cases.generate"), std::string::npos);
 
-  doc = minimal();
+  doc = minimal_curriculum();
   doc["levels"][0]["cases"] = {{"generate", "easy"}, {"pulse", "easy"}};
-  EXPECT_NE(refusal(doc).find("exactly one of"), std::string::npos);
+  EXPECT_NE(curriculum_refusal(doc).find("exactly one of"), std::string::npos);
 
-  doc = minimal();
+  doc = minimal_curriculum();
   doc["levels"][0]["cases"] = {{"scenes", {"no_such_scene.json"}}};
-  EXPECT_NE(refusal(doc).find("no_such_scene.json"), std::string::npos);
+  EXPECT_NE(curriculum_refusal(doc).find("no_such_scene.json"), std::string::npos);
 
-  doc = minimal();
+  doc = minimal_curriculum();
   doc["levels"][0]["benchmark"] = {{"found_min", 1.5}};
-  EXPECT_NE(refusal(doc).find("levels[0].benchmark.found_min"), std::string::npos);
+  EXPECT_NE(curriculum_refusal(doc).find("levels[0].benchmark.found_min"), std::string::npos);
 
-  doc = minimal();
+  doc = minimal_curriculum();
   doc["levels"][0]["benchmark"] = {{"consecutive_sessions", 2}};
-  EXPECT_NE(refusal(doc).find("at least one measure"), std::string::npos);
+  EXPECT_NE(curriculum_refusal(doc).find("at least one measure"), std::string::npos);
 
-  doc = minimal();
+  doc = minimal_curriculum();
   doc["levels"].push_back(doc["levels"][0]);
-  EXPECT_NE(refusal(doc).find("levels[1].name"), std::string::npos);
+  EXPECT_NE(curriculum_refusal(doc).find("levels[1].name"), std::string::npos);
 
-  doc = minimal();
+  doc = minimal_curriculum();
   doc["cusum"] = {{"acceptable_failure_rate", 0.3}, {"unacceptable_failure_rate", 0.2}};
-  EXPECT_NE(refusal(doc).find("cusum.unacceptable_failure_rate"), std::string::npos);
+  EXPECT_NE(curriculum_refusal(doc).find("cusum.unacceptable_failure_rate"), std::string::npos);
 
-  doc = minimal();
+  doc = minimal_curriculum();
   doc["levels"][0]["cases_per_sesion"] = 3;  // a typo is refused, not ignored
-  EXPECT_NE(refusal(doc).find("cases_per_sesion"), std::string::npos);
+  EXPECT_NE(curriculum_refusal(doc).find("cases_per_sesion"), std::string::npos);
 
-  doc = minimal();
+  doc = minimal_curriculum();
   doc["kind"] = "scene";
-  EXPECT_NE(refusal(doc).find("kind"), std::string::npos);
+  EXPECT_NE(curriculum_refusal(doc).find("kind"), std::string::npos);
 }
 
 TEST(Curriculum, UnknownLevelNameIsRefusedListingTheLevels) {

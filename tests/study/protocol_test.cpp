@@ -13,7 +13,7 @@ namespace {
 
 const std::filesystem::path kProtocols = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "protocols";
 
-nlohmann::json minimal() {
+nlohmann::json minimal_protocol() {
   return nlohmann::json::parse(R"({
     "version": 1, "name": "mini", "task": "discrimination",
     "levels_kPa": [0, 30],
@@ -23,7 +23,7 @@ nlohmann::json minimal() {
 }
 
 // The field path an InputError names, or "" when parsing succeeds.
-std::string refusal(const nlohmann::json& doc) {
+std::string protocol_refusal(const nlohmann::json& doc) {
   try {
     parse_protocol(doc, "test.json", ".");
   } catch (const InputError& e) {
@@ -91,7 +91,7 @@ TEST(experiments_protocol, tumor_rule_classifies_and_refuses) {
 }
 
 TEST(experiments_protocol, minimal_file_gets_defaults) {
-  const Protocol p = parse_protocol(minimal(), "test.json", ".");
+  const Protocol p = parse_protocol(minimal_protocol(), "test.json", ".");
   EXPECT_EQ(p.repetitions, 1);
   EXPECT_EQ(p.bids_task, "mini");
   EXPECT_EQ(p.randomisation.scheme, RandomScheme::full);
@@ -99,78 +99,78 @@ TEST(experiments_protocol, minimal_file_gets_defaults) {
 }
 
 TEST(experiments_protocol, refuses_bad_files_naming_the_field) {
-  auto doc = minimal();
+  auto doc = minimal_protocol();
   doc["levels_kpa"] = {0, 30};  // typo of a real field
-  EXPECT_EQ(refusal(doc), "levels_kpa");
+  EXPECT_EQ(protocol_refusal(doc), "levels_kpa");
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["levels_kPa"] = nlohmann::json::array();
   doc["combinations"]["list_kPa"] = {{0, 0, 0}};
-  EXPECT_EQ(refusal(doc), "levels_kPa");
+  EXPECT_EQ(protocol_refusal(doc), "levels_kPa");
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["combinations"]["list_kPa"][1] = {30, 10, 0};
-  EXPECT_EQ(refusal(doc), "combinations.list_kPa[1][1]");  // 10 is not a level
+  EXPECT_EQ(protocol_refusal(doc), "combinations.list_kPa[1][1]");  // 10 is not a level
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["levels_kPa"] = {0, 10, 30};
   doc["combinations"]["list_kPa"][1] = {30, 10, 0};
-  EXPECT_EQ(refusal(doc), "combinations.list_kPa[1]");  // three different pressures
+  EXPECT_EQ(protocol_refusal(doc), "combinations.list_kPa[1]");  // three different pressures
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["combinations"]["list_kPa"][2] = {30, 0, 30};
-  EXPECT_EQ(refusal(doc), "combinations.list_kPa[2]");  // fingers 1 and 3 are not adjacent
+  EXPECT_EQ(protocol_refusal(doc), "combinations.list_kPa[2]");  // fingers 1 and 3 are not adjacent
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["combinations"]["list_kPa"][2] = {30, 0, 0};
-  EXPECT_EQ(refusal(doc), "combinations.list_kPa[2]");  // duplicate
+  EXPECT_EQ(protocol_refusal(doc), "combinations.list_kPa[2]");  // duplicate
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["version"] = 2;
-  EXPECT_EQ(refusal(doc), "version");
+  EXPECT_EQ(protocol_refusal(doc), "version");
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["conditions"][1]["mode"] = "scene";
-  EXPECT_EQ(refusal(doc), "conditions[1].mode");
+  EXPECT_EQ(protocol_refusal(doc), "conditions[1].mode");
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["conditions"] = nlohmann::json::array();
-  EXPECT_EQ(refusal(doc), "conditions");
+  EXPECT_EQ(protocol_refusal(doc), "conditions");
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["timing"] = {{"inter_trial_s", -1}};
-  EXPECT_EQ(refusal(doc), "timing.inter_trial_s");
+  EXPECT_EQ(protocol_refusal(doc), "timing.inter_trial_s");
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["repetitions"] = 2;
   doc["blocks_per_condition"] = 4;  // 6 trials per condition do not split into 4 blocks
-  EXPECT_EQ(refusal(doc), "blocks_per_condition");
+  EXPECT_EQ(protocol_refusal(doc), "blocks_per_condition");
 }
 
 TEST(experiments_protocol, refuses_impossible_ordering_constraints) {
-  auto doc = minimal();
+  auto doc = minimal_protocol();
   doc["repetitions"] = 4;
   doc["randomisation"] = {{"scheme", "full"}, {"min_distance", 3}};
-  EXPECT_EQ(refusal(doc), "");               // 3 kinds x 4: a b c a b c ... works
+  EXPECT_EQ(protocol_refusal(doc), "");      // 3 kinds x 4: a b c a b c ... works
   doc["randomisation"]["min_distance"] = 4;  // needs (4 - 1) * 4 + 3 = 15 > 12 positions
-  EXPECT_EQ(refusal(doc), "randomisation");
+  EXPECT_EQ(protocol_refusal(doc), "randomisation");
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["repetitions"] = 2;
   doc["randomisation"] = {{"scheme", "blocked"}, {"min_distance", 4}};  // blocked runs of 3 kinds
-  EXPECT_EQ(refusal(doc), "randomisation.min_distance");
+  EXPECT_EQ(protocol_refusal(doc), "randomisation.min_distance");
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["combinations"]["list_kPa"] = {{0, 0, 0}};
   doc["repetitions"] = 3;
   doc["randomisation"] = {{"scheme", "full"}, {"max_repeats_in_a_row", 2}};  // one kind, 3 in a row
-  EXPECT_EQ(refusal(doc), "randomisation");
+  EXPECT_EQ(protocol_refusal(doc), "randomisation");
 
-  doc = minimal();
+  doc = minimal_protocol();
   doc["repetitions"] = 2;
   doc["combinations"]["list_kPa"] = {{0, 0, 0}};
   doc["randomisation"] = {{"scheme", "fixed"}, {"max_repeats_in_a_row", 1}};
-  EXPECT_EQ(refusal(doc), "randomisation");
+  EXPECT_EQ(protocol_refusal(doc), "randomisation");
 }
 
 }  // namespace

@@ -12,10 +12,10 @@
 namespace palprig {
 namespace {
 
-const std::filesystem::path kProtocols = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "protocols";
+const std::filesystem::path kPlanProtocols = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "protocols";
 
 TEST(experiments_session_plan, paper_002_session_layout) {
-  const Protocol p = load_protocol(kProtocols / "discrimination_002.json");
+  const Protocol p = load_protocol(kPlanProtocols / "discrimination_002.json");
   const SessionPlan first = make_session_plan(p, 1, 99);
   const SessionPlan second = make_session_plan(p, 2, 99);
   // 2 conditions x (2 practice + 14 trials).
@@ -50,7 +50,7 @@ TEST(experiments_session_plan, paper_002_session_layout) {
 }
 
 TEST(experiments_session_plan, same_seed_same_plan_other_seed_other_order) {
-  const Protocol p = load_protocol(kProtocols / "discrimination_002.json");
+  const Protocol p = load_protocol(kPlanProtocols / "discrimination_002.json");
   auto combos = [](const SessionPlan& s) {
     std::vector<int> v;
     for (const auto& t : s.trials) v.push_back(t.combination);
@@ -67,8 +67,7 @@ TEST(experiments_session_plan, latin_square_is_balanced_for_four_conditions) {
   for (int participant = 1; participant <= 4; ++participant) {
     const auto order = counterbalanced_order(Counterbalancing::latin_square, 4, participant, unused);
     for (int i = 0; i < 4; ++i) ++position_counts[{order[static_cast<std::size_t>(i)], i}];
-    for (int i = 0; i + 1 < 4; ++i)
-      ++follows[{order[static_cast<std::size_t>(i)], order[static_cast<std::size_t>(i + 1)]}];
+    for (std::size_t i = 0; i + 1 < 4; ++i) ++follows[{order[i], order[i + 1]}];
   }
   // Every condition once in every position, and every ordered pair exactly once (Williams).
   EXPECT_EQ(position_counts.size(), 16u);
@@ -92,7 +91,7 @@ TEST(experiments_session_plan, blocked_repetitions_and_breaks_inside_blocks) {
     std::vector<int> order;
     for (const auto& t : s.trials) order.push_back(t.combination);
     EXPECT_TRUE(order_satisfies(order, {1, 0}));
-    for (int rep = 0; rep < 3; ++rep) {
+    for (std::ptrdiff_t rep = 0; rep < 3; ++rep) {
       std::vector<int> run(order.begin() + rep * 4, order.begin() + rep * 4 + 4);
       std::sort(run.begin(), run.end());
       EXPECT_EQ(run, (std::vector<int>{0, 1, 2, 3})) << "each repetition holds every combination once";

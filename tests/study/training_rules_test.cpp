@@ -13,9 +13,9 @@
 namespace palprig {
 namespace {
 
-const std::filesystem::path kCurricula = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "curricula";
+const std::filesystem::path kRulesCurricula = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data" / "curricula";
 
-Curriculum shipped() { return load_curriculum(kCurricula / "palpation_basics.json"); }
+Curriculum shipped() { return load_curriculum(kRulesCurricula / "palpation_basics.json"); }
 
 TrainingSessionRecord done(const Curriculum& c, int level, bool met, std::int64_t id) {
   TrainingSessionRecord r;
@@ -94,7 +94,7 @@ TEST(TrainingRules, TheSessionsProtocolIsAValidLocalisationProtocolOfExactlyItsC
   const Curriculum c = shipped();
   const PlannedTrainingSession plan = plan_training_session(c, 1, "T1", {}, 1);
   EXPECT_EQ(plan.protocol_name, "palpation-basics / medium tumors");
-  const Protocol p = parse_protocol(plan.protocol, "plan", kCurricula);
+  const Protocol p = parse_protocol(plan.protocol, "plan", kRulesCurricula);
   EXPECT_EQ(p.task, TaskKind::localisation);
   ASSERT_EQ(p.localisation.cases.size(), 5u);
   for (std::size_t i = 0; i < plan.cases.size(); ++i) {
@@ -111,7 +111,7 @@ TEST(TrainingRules, PulseLevelsRunAPulseProtocolWithTheChosenSeeds) {
   const Curriculum c = shipped();
   const PlannedTrainingSession plan = plan_training_session(c, 4, "T1", {}, 1);
   EXPECT_TRUE(plan.pulse);
-  const PulseProtocol p = parse_pulse_protocol(plan.protocol, "plan", kCurricula);
+  const PulseProtocol p = parse_pulse_protocol(plan.protocol, "plan", kRulesCurricula);
   ASSERT_EQ(p.conditions.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) {
     EXPECT_EQ(p.conditions[i].generated_seed, plan.cases[i].seed);
@@ -121,7 +121,7 @@ TEST(TrainingRules, PulseLevelsRunAPulseProtocolWithTheChosenSeeds) {
 
 TEST(TrainingRules, ASceneSetGivesTheScenesNotHadFirst) {
   Curriculum c = shipped();
-  c.levels[2].scenes.push_back(kCurricula / ".." / "scenes" / "phantom_abc.json");
+  c.levels[2].scenes.push_back(kRulesCurricula / ".." / "scenes" / "phantom_abc.json");
   c.levels[2].cases_per_session = 1;
   const PlannedTrainingSession first = plan_training_session(c, 2, "T1", {}, 1);
   ASSERT_EQ(first.cases.size(), 1u);

@@ -31,7 +31,7 @@ TEST(experiments_random_source, same_seed_same_stream_and_unbiased_bounds) {
   std::array<int, 6> faces{};
   const int n = 60000;
   for (int i = 0; i < n; ++i) ++faces[r.below(6)];
-  for (int f : faces) EXPECT_NEAR(f, n / 6, 5 * std::sqrt(n * (1.0 / 6) * (5.0 / 6)));
+  for (int f : faces) EXPECT_NEAR(f, n / 6.0, 5 * std::sqrt(n * (1.0 / 6) * (5.0 / 6)));
 }
 
 TEST(experiments_random_source, lognormal_has_the_requested_mean_and_sd) {

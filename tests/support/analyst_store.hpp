@@ -18,7 +18,7 @@ inline std::filesystem::path write_analyst_store(const std::filesystem::path& di
                                                  const std::function<bool(int position)>& answer_all) {
   const Protocol p =
       load_protocol(std::filesystem::path(PALPRIG_SOURCE_DIR) / "data/protocols/discrimination_002.json");
-  const auto db = dir / "analyst.db";
+  auto db = dir / "analyst.db";
   SqliteTrialStore store(db, TrialStore::Access::read_write);
   const ParticipantRecord who = store.enrol("P01", false);
   const SessionPlan plan = make_session_plan(p, who.number, 7);

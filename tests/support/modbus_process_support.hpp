@@ -49,8 +49,8 @@ bool poll_until(Ready ready, double timeout_s) {
   return ready();
 }
 
-inline std::unique_ptr<ChildProcess> start_palprig_run(const TempDir& dir, const std::string& rig, double seconds) {
-  return std::make_unique<ChildProcess>(
+inline std::unique_ptr<WatchedProcess> start_palprig_run(const TempDir& dir, const std::string& rig, double seconds) {
+  return std::make_unique<WatchedProcess>(
       std::vector<std::string>{palprig_bin(), "run", "--realtime", "--no-fifo", "--rig", rig, "--scene", kPhantom,
                                "--input", "sweep", "--duration-s", std::to_string(seconds), "--telemetry",
                                (dir.path() / "telemetry.csv").string(), "--json"},
@@ -63,7 +63,7 @@ struct FinishedRun {
   std::string err;
 };
 
-inline FinishedRun finish_palprig_run(ChildProcess& run, const TempDir& dir) {
+inline FinishedRun finish_palprig_run(WatchedProcess& run, const TempDir& dir) {
   FinishedRun r;
   r.exit_code = run.wait();
   r.err = read_file(dir.path() / "run.err");

@@ -23,9 +23,9 @@
 namespace palprig::test_support {
 
 // A child process with its stdout on a pipe (stderr to a file), killed on destruction.
-class ChildProcess {
+class WatchedProcess {
  public:
-  ChildProcess(const std::vector<std::string>& argv, const std::string& stderr_path) {
+  WatchedProcess(const std::vector<std::string>& argv, const std::string& stderr_path) {
     int out[2];
     if (pipe(out) != 0) throw std::runtime_error("pipe failed");
     pid_ = fork();
@@ -37,6 +37,7 @@ class ChildProcess {
       ::close(out[0]);
       ::close(out[1]);
       std::vector<char*> args;
+      args.reserve(argv.size() + 1);
       for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
       args.push_back(nullptr);
       execv(args[0], args.data());
@@ -45,15 +46,15 @@ class ChildProcess {
     ::close(out[1]);
     out_fd_ = out[0];
   }
-  ~ChildProcess() {
+  ~WatchedProcess() {
     if (pid_ > 0 && !reaped_) {
       ::kill(pid_, SIGKILL);
       waitpid(pid_, nullptr, 0);
     }
     if (out_fd_ >= 0) ::close(out_fd_);
   }
-  ChildProcess(const ChildProcess&) = delete;
-  ChildProcess& operator=(const ChildProcess&) = delete;
+  WatchedProcess(const WatchedProcess&) = delete;
+  WatchedProcess& operator=(const WatchedProcess&) = delete;
 
   // Read stdout until a line matches `pattern` (returns its match) or the timeout passes.
   std::smatch wait_for_line(const std::regex& pattern, double timeout_s) {
@@ -105,13 +106,13 @@ class ChildProcess {
 };
 
 // Start `palprig sim-rig` on 127.0.0.1:port (0: any free port) and return the port it got.
-inline int start_sim_rig(std::unique_ptr<ChildProcess>& child, const std::string& palprig, const std::string& rig,
+inline int start_sim_rig(std::unique_ptr<WatchedProcess>& child, const std::string& palprig, const std::string& rig,
                          int port, const std::string& write_log, const std::string& stderr_path,
                          const std::vector<std::string>& extra = {}) {
   std::vector<std::string> argv = {
       palprig, "sim-rig", "--rig", rig, "--listen", "127.0.0.1:" + std::to_string(port), "--write-log", write_log};
   argv.insert(argv.end(), extra.begin(), extra.end());
-  child = std::make_unique<ChildProcess>(argv, stderr_path);
+  child = std::make_unique<WatchedProcess>(argv, stderr_path);
   const auto m = child->wait_for_line(std::regex("listening on 127\\.0\\.0\\.1:([0-9]+)"), 10.0);
   const int got = std::stoi(m[1].str());
   child->wait_for_line(std::regex("serving 3 channels"), 10.0);

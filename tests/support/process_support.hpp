@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/text_and_paths.hpp"
+
 namespace palprig::testing {
 
 struct CommandResult {
@@ -111,12 +113,6 @@ class ChildProcess {
 inline CommandResult run_palprig(const std::vector<std::string>& args, const std::string& stdin_text = "") {
   ChildProcess child(args, stdin_text);
   return child.finish();
-}
-
-inline int count_lines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
 }
 
 }  // namespace palprig::testing

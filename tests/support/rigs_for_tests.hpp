@@ -15,7 +15,7 @@ namespace palprig::test_rigs {
 
 // Finger 2 (16 mm along x from the pen) over hard tissue when the pen is at x = 50.
 inline MapScene hard_right_scene() {
-  std::vector<float> v(11 * 11);
+  std::vector<float> v(std::size_t{11} * 11);
   for (int r = 0; r < 11; ++r)
     for (int c = 0; c < 11; ++c) v[r * 11 + c] = c >= 6 ? 1.0f : 0.0f;
   return MapScene(StiffnessMap(11, 11, 100, 100, v), MapSampling::nearest);

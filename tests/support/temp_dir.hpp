@@ -24,7 +24,7 @@ class TempDir {
   }
   const std::filesystem::path& path() const { return path_; }
   std::filesystem::path write(const std::string& name, const std::string& text) const {
-    const auto p = path_ / name;
+    auto p = path_ / name;
     std::ofstream(p, std::ios::binary) << text;
     return p;
   }

@@ -321,13 +321,17 @@ class CalibrationPageTest : public QObject {
       const std::size_t c = ch["channel"].get<std::size_t>() - 1;
       const double off = ch["uncompensated"]["rms_error_kPa"].get<double>();
       const double on = ch["compensated"]["rms_error_kPa"].get<double>();
-      // The same call with the same defaults on the same simulated rig. Not bit for bit: the
-      // window's plant has been through the live loop and the sweep before its vented rest, the
-      // CLI's starts new (measured: 1.93684 vs 1.93685 kPa); other options would differ by far more.
-      QVERIFY2(std::abs(r.uncompensated.channels[c].rms_error_kPa - off) <= 1e-3 * off,
-               qPrintable(QString("%1 vs %2").arg(r.uncompensated.channels[c].rms_error_kPa).arg(off)));
-      QVERIFY2(std::abs(r.compensated.channels[c].rms_error_kPa - on) <= 1e-3 * on,
-               qPrintable(QString("%1 vs %2").arg(r.compensated.channels[c].rms_error_kPa).arg(on)));
+      // The same call with the same defaults on the same simulated rig, which the job opens
+      // afresh as the command line does: the same figures to the printed digits, however long
+      // the live loop ran before (before the job opened it afresh, a loaded machine made them
+      // differ by 0.1 %).
+      QVERIFY2(
+          std::abs(r.uncompensated.channels[c].rms_error_kPa - off) <= 1e-9 * off,
+          qPrintable(
+              QString("%1 vs %2").arg(r.uncompensated.channels[c].rms_error_kPa, 0, 'g', 17).arg(off, 0, 'g', 17)));
+      QVERIFY2(
+          std::abs(r.compensated.channels[c].rms_error_kPa - on) <= 1e-9 * on,
+          qPrintable(QString("%1 vs %2").arg(r.compensated.channels[c].rms_error_kPa, 0, 'g', 17).arg(on, 0, 'g', 17)));
       QVERIFY(r.improvement[c] > 3.0);  // compensation helps on the simulated plant
     }
     QVERIFY(r.compensated.channels[2].samples == 0);  // channel 3 was not calibrated: not driven

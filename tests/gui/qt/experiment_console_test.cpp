@@ -488,7 +488,7 @@ class ExperimentConsoleTest : public QObject {
     QVERIFY2(p.at("display_geometry") == (nlohmann::json{1600, 0, 1280, 800}), r.out.c_str());
     QVERIFY2(p.at("window_geometry") == p.at("display_geometry"), r.out.c_str());  // covers exactly the second display
     QCOMPARE(p.at("console_display").get<int>(), 1);
-    const auto console = p.at("console_window_geometry");
+    const auto& console = p.at("console_window_geometry");
     QVERIFY2(console.at(0).get<int>() + console.at(2).get<int>() <= 1600, r.out.c_str());  // within the first display
     // A display the server does not have (A, B and the whole screen's own monitor: 3): one line, exit 2.
     const auto bad = under_two_displays("4");

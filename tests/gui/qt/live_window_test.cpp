@@ -446,6 +446,7 @@ class LiveWindowTest : public QObject {
   void sigtermUnderLoadWritesTheVentedRecordFiftyTimesOutOfFifty() {
     std::atomic<bool> busy{true};
     std::vector<std::thread> load;
+    load.reserve(2);
     for (int i = 0; i < 2; ++i)
       load.emplace_back([&busy] {
         volatile double x = 1;

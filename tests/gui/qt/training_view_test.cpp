@@ -100,6 +100,9 @@ class TrainingViewTest : public QObject {
     }
     QVERIFY2(view(w).standing_text().contains("every level passed"), qPrintable(view(w).standing_text()));
     QVERIFY(sessions >= 2);
+    // The column counts marks where no tumor is: its header says so (a session that found every
+    // tumor reads 0.00 there).
+    QCOMPARE(view(w).session_table()->horizontalHeaderItem(4)->text(), QString("False marks/case"));
     QVERIFY(!view(w).start_button()->isEnabled());  // nothing left to run
     QVERIFY(!view(w).start_next());
     QVERIFY2(view(w).refusal_text().contains("passed every level"), qPrintable(view(w).refusal_text()));
