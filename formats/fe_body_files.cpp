@@ -8,7 +8,7 @@ namespace palprig {
 
 namespace {
 
-std::string text(double v) {
+std::string body_number_text(double v) {
   std::ostringstream o;
   o << v;
   return o.str();
@@ -86,8 +86,8 @@ FingertipBody parse_fingertip(const nlohmann::json& doc, const std::string& file
         std::pow(std::abs(x) / a, f.outline_exponent) + std::pow(std::abs(y - f.height_mm / 2) / b, f.outline_exponent);
     if (!(a > 0 && b > 0 && level < 1))
       bone.fail("centre_height_mm", "a bone inside the tissue, at least 0.5 mm from the skin (outline " +
-                                        text(f.width_mm) + " x " + text(f.height_mm) + " mm, skin " +
-                                        text(f.skin_thickness_mm) + " mm)");
+                                        body_number_text(f.width_mm) + " x " + body_number_text(f.height_mm) +
+                                        " mm, skin " + body_number_text(f.skin_thickness_mm) + " mm)");
   }
   if (root.has("nail")) {
     const JsonObject nail = root.object("nail");
@@ -128,15 +128,15 @@ TissueBlock parse_tissue(const nlohmann::json& doc, const std::string& file) {
       const double r = inc.diameter_mm / 2;
       inc.x_mm = o.number_or("x_mm", 0, -t.width_mm / 2, t.width_mm / 2);
       if (std::abs(inc.x_mm) + r > t.width_mm / 2 - 0.5)
-        o.fail("x_mm", "an inclusion at least 0.5 mm inside the block's sides (half width " + text(t.width_mm / 2) +
-                           " mm, radius " + text(r) + " mm)");
+        o.fail("x_mm", "an inclusion at least 0.5 mm inside the block's sides (half width " +
+                           body_number_text(t.width_mm / 2) + " mm, radius " + body_number_text(r) + " mm)");
       inc.centre_depth_mm = o.number("centre_depth_mm", 0, t.height_mm);
       if (inc.centre_depth_mm - r < 0.5)
-        o.fail("centre_depth_mm", "a centre at least 0.5 mm deeper than the radius (" + text(r) +
+        o.fail("centre_depth_mm", "a centre at least 0.5 mm deeper than the radius (" + body_number_text(r) +
                                       " mm): the inclusion must stay under the surface");
       if (inc.centre_depth_mm + r > t.height_mm - 0.5)
         o.fail("centre_depth_mm",
-               "an inclusion at least 0.5 mm above the block's bottom (" + text(t.height_mm) + " mm)");
+               "an inclusion at least 0.5 mm above the block's bottom (" + body_number_text(t.height_mm) + " mm)");
       inc.law = material_or(o, "material", inc.law);
       o.refuse_unknown();
       for (const BlockInclusion& other : t.inclusions) {
@@ -144,7 +144,7 @@ TissueBlock parse_tissue(const nlohmann::json& doc, const std::string& file) {
             std::hypot(other.x_mm - inc.x_mm, other.centre_depth_mm - inc.centre_depth_mm) - r - other.diameter_mm / 2;
         if (gap < 0.5)
           o.fail("centre_depth_mm",
-                 "inclusions at least 0.5 mm apart (" + other.name + " is " + text(gap) + " mm away)");
+                 "inclusions at least 0.5 mm apart (" + other.name + " is " + body_number_text(gap) + " mm away)");
       }
       t.inclusions.push_back(inc);
     }

@@ -10,7 +10,7 @@ namespace palprig {
 
 namespace {
 
-std::string text(double v) {
+std::string result_number_text(double v) {
   std::ostringstream o;
   o << v;
   return o.str();
@@ -85,7 +85,8 @@ FeStressModelFile parse_stress_model(const nlohmann::json& doc, const std::strin
   m.soft_stress_kPa = t.number("soft_stress_kPa", 1e-6, 1000);
   m.hard_stress_kPa = t.number("hard_stress_kPa", 1e-6, 1000);
   if (!(m.hard_stress_kPa > m.soft_stress_kPa))
-    t.fail("hard_stress_kPa", "a nodule stress above the soft-tissue stress (" + text(m.soft_stress_kPa) + " kPa)");
+    t.fail("hard_stress_kPa",
+           "a nodule stress above the soft-tissue stress (" + result_number_text(m.soft_stress_kPa) + " kPa)");
   t.refuse_unknown();
   const JsonObject a = root.object("actuator");
   m.press_mm = a.number("press_mm", 0.01, 100);
@@ -93,7 +94,8 @@ FeStressModelFile parse_stress_model(const nlohmann::json& doc, const std::strin
   // The calibration file's rule: an intercept at or above the hard stress makes every target 0 kPa.
   m.actuator.intercept_kPa = a.number("intercept_kPa", kMinActuatorIntercept_kPa, 1000);
   if (!(m.actuator.intercept_kPa < m.hard_stress_kPa))
-    a.fail("intercept_kPa", "the uninflated actuator's stress below the nodule stress (" + text(m.hard_stress_kPa) +
+    a.fail("intercept_kPa", "the uninflated actuator's stress below the nodule stress (" +
+                                result_number_text(m.hard_stress_kPa) +
                                 " kPa): otherwise no air pressure renders a nodule");
   m.r_squared = a.number("r_squared", -1e9, 1);
   m.pressures_kPa = a.numbers("pressures_kPa", 0, 1000);
