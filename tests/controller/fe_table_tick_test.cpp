@@ -19,12 +19,12 @@ using namespace palprig;
 
 namespace {
 
-const std::filesystem::path kData = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
+const std::filesystem::path kFeTableData = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
 
 // The pressure finger 1 asks for, held still at (x, y) pressing force_N (enough ticks for the
 // slew limit to let the target through).
 double held_pressure_kPa(const Scene& scene, double x, double y, double force_N) {
-  const TickConfig cfg = make_tick_config(load_rig_file(kData / "rigs" / "simulated.json"), CalibrationModels{});
+  const TickConfig cfg = make_tick_config(load_rig_file(kFeTableData / "rigs" / "simulated.json"), CalibrationModels{});
   TickState st = make_tick_state(cfg);
   TouchSample s;
   s.x_mm = x;
@@ -40,7 +40,7 @@ double held_pressure_kPa(const Scene& scene, double x, double y, double force_N)
 }
 
 TEST(FeTableScene, DeeperTumorRendersWeaker) {
-  const SceneFile sf = load_scene_file(kData / "scenes" / "fe_depths.json");
+  const SceneFile sf = load_scene_file(kFeTableData / "scenes" / "fe_depths.json");
   const auto* scene = dynamic_cast<const FunctionScene*>(sf.scene.get());
   ASSERT_NE(scene, nullptr);
   ASSERT_NE(scene->fe_table(), nullptr);
@@ -66,12 +66,12 @@ TEST(FeTableScene, DeeperTumorRendersWeaker) {
 TEST(FeTableScene, WithoutTheKeyTheStiffnessRuleApplies) {
   palprig::testing::ScratchDir dir;
   nlohmann::json doc;
-  std::ifstream(kData / "scenes" / "fe_depths.json") >> doc;
+  std::ifstream(kFeTableData / "scenes" / "fe_depths.json") >> doc;
   doc.erase("fe_stress_table");
   const auto path = dir / "rule.json";
   std::ofstream(path) << doc.dump();
   const SceneFile rule = load_scene_file(path);
-  const SceneFile table = load_scene_file(kData / "scenes" / "fe_depths.json");
+  const SceneFile table = load_scene_file(kFeTableData / "scenes" / "fe_depths.json");
   EXPECT_FALSE(rule.scene->sample({50, 40}, 2.0, 0).fe_stress);
   EXPECT_TRUE(table.scene->sample({50, 40}, 2.0, 0).fe_stress);
   EXPECT_NE(held_pressure_kPa(*rule.scene, 50, 40, 2.0), held_pressure_kPa(*table.scene, 50, 40, 2.0));
