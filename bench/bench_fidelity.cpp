@@ -1,3 +1,4 @@
+// Over 400 lines: both plants, their calibration by the recipe and the report in one program.
 // Haptic fidelity: does a fingertip get the pressure the model asks for while the pen moves?
 // RMS(monitor - target) over the demo pass (the bundled phantom, the recorded pen pass, fingers 1
 // and 2, every tick the pen pressed), with and without lag compensation, on

@@ -11,7 +11,7 @@
 // the bus thread reads) -> ModbusRig bus thread at the rig's io_rate_hz (FIFO 70) -> FC16 over
 // TCP -> sim-rig. The tracked finger 1 presses on tumor B of the phantom throughout (sim-rig
 // serves its load cell with 2 N resting on it); every 125 ms, at a pseudo-random phase, the
-// tracker moves it between tumor B and the soft tissue 30 mm beside it. Each move onto B is
+// tracker moves it between tumor B and the soft tissue that lies 30 mm beside it. Each move onto B is
 // matched with the first write of finger 1's output above the soft-tissue value after it,
 // each move off with the first write below the value held at the move (the setpoint then
 // ramps under the slew limit, 2000 kPa/s).

@@ -118,7 +118,7 @@ void info(const std::string& path) {
     std::cout << "  kind: function; felt 0 at " << d.felt.soft_kPa << " kPa, 1 at " << d.felt.hard_kPa << " kPa\n";
     std::cout << "  layers:";
     for (const TissueLayer& l : d.layers) {
-      std::cout << " " << l.name << " " << l.thickness_mm << " mm " << l.stiffness_kPa << " kPa";
+      std::cout << " " << l.name << ": " << l.thickness_mm << " mm, " << l.stiffness_kPa << " kPa";
       if (l.drag.drags())
         std::cout << " (drags from " << l.drag.f_stick_N << " N up to " << l.drag.d_lat_max_mm << " mm, relaxes in "
                   << l.drag.relax_s << " s)";

@@ -84,9 +84,13 @@ void check_standard_output() {
   if (checked_buffer) return;
   // A closed pipe is seen as EPIPE at the write, handled at the end (see the header).
   std::signal(SIGPIPE, SIG_IGN);
-  static CheckedOutputBuffer buffer;
-  checked_buffer = &buffer;
-  std::cout.rdbuf(&buffer);
+  // Never destroyed: std::cout outlives every static of the program (its last flush runs in
+  // std::ios_base::Init's destructor, at the end of exit(), after the function-local statics
+  // are gone; a shared library such as libOpenIGTLink holds such an Init too). A buffer
+  // destroyed before that flush is a use after free: every palprig process crashed at exit under
+  // AddressSanitizer. The pointer above keeps it reachable, so LeakSanitizer does not count it.
+  checked_buffer = new CheckedOutputBuffer;
+  std::cout.rdbuf(checked_buffer);
 }
 
 int finish_standard_output(int exit_code) {

@@ -3,6 +3,7 @@
 // the events take the path a keyboard's and a mouse's take, stamped by the server, delivered to
 // whichever window has the pointer or the focus. ctest runs each case under
 // `xvfb-run -a -s "-screen 0 1600x1000x24"` with QT_QPA_PLATFORM=xcb (gui.ParticipantXTest.*).
+// Over 400 lines: each case is a whole session typed and clicked through, step by step.
 //
 // One window runs what a user's crash report described: a localisation session (palpating by dragging the
 // mouse, marks by right-click and M, a wrong mark undone with Backspace, Done with Enter), then
