@@ -79,7 +79,7 @@ std::string detect_kind(const std::filesystem::path& path) {
   }
   const nlohmann::json doc = read_json_file(path);
   if (!doc.is_object()) throw InputError(path.string(), "(root)", "a JSON object");
-  if (const std::string fe = fe_body_kind(doc); !fe.empty()) return fe;
+  if (std::string fe = fe_body_kind(doc); !fe.empty()) return fe;
   if (const std::string fe = fe_result_kind(doc); !fe.empty())
     return fe == "stress_model" ? "stress-model" : "fe-table";
   if (is_curriculum(doc)) return "curriculum";

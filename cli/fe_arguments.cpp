@@ -54,7 +54,7 @@ std::string fe_inputs_hash(const std::vector<std::filesystem::path>& files, cons
     h ^= 0xff;  // a separator, so that moving bytes between parts changes the hash
     h *= 1099511628211ull;
   };
-  for (const auto& f : files) mix(read_regular_file(f, 16 * 1024 * 1024, "an input file"));
+  for (const auto& f : files) mix(read_regular_file(f, std::uintmax_t{16} * 1024 * 1024, "an input file"));
   mix(settings);
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));

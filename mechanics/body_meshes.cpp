@@ -40,7 +40,8 @@ NodeGrid add_grid(QuadMesh& mesh, int cols, int rows, bool wrap, Point point) {
 std::array<std::uint32_t, 9> element_nodes(const NodeGrid& g, int ei, int ej) {
   std::array<std::uint32_t, 9> n{};
   for (int b = 0; b < 3; ++b)
-    for (int a = 0; a < 3; ++a) n[std::size_t(3 * b + a)] = g.at(2 * ei + a, 2 * ej + b);
+    for (int a = 0; a < 3; ++a)
+      n[static_cast<std::size_t>(b) * 3 + static_cast<std::size_t>(a)] = g.at(2 * ei + a, 2 * ej + b);
   return n;
 }
 
@@ -184,7 +185,8 @@ QuadMesh mesh_block(const TissueBlock& block, const BlockMeshSizes& sizes) {
   const std::vector<double> ys = graded_coordinates(-block.height_mm, 0.0, yb, size_y);
   const int ex = int(xs.size()) - 1, ey = int(ys.size()) - 1;
   auto coordinate = [](const std::vector<double>& c, int i) {
-    return i % 2 == 0 ? c[std::size_t(i / 2)] : (c[std::size_t(i / 2)] + c[std::size_t(i / 2 + 1)]) / 2;
+    const auto k = static_cast<std::size_t>(i / 2);
+    return i % 2 == 0 ? c[k] : (c[k] + c[k + 1]) / 2;
   };
   auto squircle = [&](MeshNode p) {
     for (const Box& bx : boxes) {
@@ -203,8 +205,8 @@ QuadMesh mesh_block(const TissueBlock& block, const BlockMeshSizes& sizes) {
   });
   for (int ej = 0; ej < ey; ++ej)
     for (int ei = 0; ei < ex; ++ei) {
-      const double cx = (xs[std::size_t(ei)] + xs[std::size_t(ei + 1)]) / 2;
-      const double cy = (ys[std::size_t(ej)] + ys[std::size_t(ej + 1)]) / 2;
+      const double cx = (xs[std::size_t(ei)] + xs[std::size_t(ei) + 1]) / 2;
+      const double cy = (ys[std::size_t(ej)] + ys[std::size_t(ej) + 1]) / 2;
       int material = 0;
       for (std::size_t k = 0; k < boxes.size(); ++k)
         if (std::max(std::abs(cx - boxes[k].cx), std::abs(cy - boxes[k].cy)) < boxes[k].r) material = int(k) + 1;
@@ -232,7 +234,8 @@ QuadMesh mesh_actuator(const ActuatorBody& act, double element_mm) {
   for (int k = 1; k <= layer_rows; ++k) ys.push_back(-act.layer_thickness_mm * (1 - double(k) / layer_rows));
   const int ex = int(xs.size()) - 1, ey = int(ys.size()) - 1;
   auto coordinate = [](const std::vector<double>& c, int i) {
-    return i % 2 == 0 ? c[std::size_t(i / 2)] : (c[std::size_t(i / 2)] + c[std::size_t(i / 2 + 1)]) / 2;
+    const auto k = static_cast<std::size_t>(i / 2);
+    return i % 2 == 0 ? c[k] : (c[k] + c[k + 1]) / 2;
   };
   QuadMesh mesh;
   const NodeGrid g = add_grid(mesh, 2 * ex + 1, 2 * ey + 1, false, [&](int i, int j) {
@@ -240,7 +243,7 @@ QuadMesh mesh_actuator(const ActuatorBody& act, double element_mm) {
   });
   for (int ej = 0; ej < ey; ++ej)
     for (int ei = 0; ei < ex; ++ei) {
-      const double cx = (xs[std::size_t(ei)] + xs[std::size_t(ei + 1)]) / 2;
+      const double cx = (xs[std::size_t(ei)] + xs[std::size_t(ei) + 1]) / 2;
       const std::uint32_t e = mesh.add_element(element_nodes(g, ei, ej), ej < membrane_rows ? 0 : 1, 0);
       if (ej == 0) mesh.add_side(std::abs(cx) < half ? "chamber" : "bonded", e, g.at(2 * ei, 0), g.at(2 * ei + 2, 0));
       if (ej == ey - 1) mesh.add_side("actuator_top", e, g.at(2 * ei, 2 * ey), g.at(2 * ei + 2, 2 * ey));

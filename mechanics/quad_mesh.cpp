@@ -36,7 +36,7 @@ std::vector<MeshSide>& QuadMesh::boundary_for(const std::string& name) {
 std::uint32_t QuadMesh::add_element(std::array<std::uint32_t, 9> n, int material, int body) {
   const double area = cross(nodes[n[0]], nodes[n[2]], nodes[n[8]]) + cross(nodes[n[0]], nodes[n[8]], nodes[n[6]]);
   if (area < 0) {  // clockwise: mirror in u
-    for (int row = 0; row < 3; ++row) std::swap(n[std::size_t(3 * row)], n[std::size_t(3 * row + 2)]);
+    for (std::size_t row = 0; row < 3; ++row) std::swap(n[3 * row], n[3 * row + 2]);
   }
   elements.push_back({n, material, body});
   return std::uint32_t(elements.size() - 1);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <ostream>
 
 #include "mechanics/body_meshes.hpp"
 #include "mechanics/contact_problems.hpp"
@@ -63,6 +64,10 @@ struct PatchCase {
   PlaneMode mode;
 };
 
+// Its name as the test's parameter (GoogleTest would print the struct's bytes, a pointer among
+// them, into every test's name that ctest lists).
+void PrintTo(const PatchCase& c, std::ostream* os) { *os << c.name; }
+
 class PatchTest : public ::testing::TestWithParam<PatchCase> {};
 
 TEST_P(PatchTest, HomogeneousCompressionIsExact) {
@@ -85,8 +90,8 @@ INSTANTIATE_TEST_SUITE_P(
         PatchCase{"Ogden tissue, plane stress", table1::finger_tissue(), PlaneMode::plane_stress},
         PatchCase{"linear elastic, plane strain", MaterialLaw::linear_elastic(100, 0.3), PlaneMode::plane_strain},
         PatchCase{"linear elastic, plane stress", MaterialLaw::linear_elastic(100, 0.3), PlaneMode::plane_stress}),
-    [](const auto& info) {
-      std::string n = info.param.name;
+    [](const ::testing::TestParamInfo<PatchCase>& case_info) {
+      std::string n = case_info.param.name;
       std::replace_if(
           n.begin(), n.end(), [](char ch) { return !std::isalnum(static_cast<unsigned char>(ch)); }, '_');
       return n;
