@@ -7,6 +7,8 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cmath>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -19,6 +21,7 @@
 #include "controller/tick.hpp"
 #include "inputs/input_source.hpp"
 #include "controller/rig_lease.hpp"
+#include "models/tissue_scene.hpp"
 
 using namespace palprig;
 
@@ -183,6 +186,44 @@ void BM_TickPhantomPass(benchmark::State& s) { phantom_pass_cost(s, false); }
 void BM_TickPhantomPassLagCompensated(benchmark::State& s) { phantom_pass_cost(s, true); }
 BENCHMARK(BM_TickPhantomPass);
 BENCHMARK(BM_TickPhantomPassLagCompensated);
+
+// A function scene rendered from the finite-element table (data/scenes/fe_depths.json: two tumors
+// 5 and 15 mm down) against the same scene with the stiffness rule: the pen sweeps across both
+// tumors and back at hand speed (120 mm in 2 s), pressing 2 N, shipped calibration.
+void fe_table_cost(benchmark::State& state, bool table) {
+  const std::filesystem::path data = std::filesystem::path(PALPRIG_SOURCE_DIR) / "data";
+  static SceneFile scene = load_scene_file(data / "scenes" / "fe_depths.json");
+  // A copy of the shipped table: the scene's own goes when the rule is switched on.
+  static const FeStressTable kept = *dynamic_cast<FunctionScene&>(*scene.scene).fe_table();
+  auto& fs = dynamic_cast<FunctionScene&>(*scene.scene);
+  fs.use_fe_table(table ? std::make_shared<const FeStressTable>(kept) : nullptr);
+  const TickConfig cfg = make_tick_config(load_rig_file(data / "rigs" / "simulated.json"),
+                                          load_calibration_file(data / "calibration" / "sim-default.json"));
+  TickState st = make_tick_state(cfg);
+  std::vector<std::int64_t> ns;
+  ns.reserve(4'000'000);
+  double t = 0;
+  for (auto _ : state) {
+    const double u = std::fmod(t, 4.0) / 4.0;  // there and back in 4 s
+    TouchSample s;
+    s.t_s = t;
+    s.x_mm = 20 + 120 * (u < 0.5 ? 2 * u : 2 - 2 * u);
+    s.y_mm = 40;
+    s.force_N = 2.0;
+    s.in_contact = true;
+    const std::int64_t a = now_ns();
+    TickResult r = tick(st, cfg, *scene.scene, s, t);
+    const std::int64_t b = now_ns();
+    benchmark::DoNotOptimize(r);
+    if (ns.size() < ns.capacity()) ns.push_back(b - a);
+    t += 1e-3;
+  }
+  report_percentiles(state, ns);
+}
+void BM_TickFunctionSceneFeTable(benchmark::State& s) { fe_table_cost(s, true); }
+void BM_TickFunctionSceneStiffnessRule(benchmark::State& s) { fe_table_cost(s, false); }
+BENCHMARK(BM_TickFunctionSceneFeTable);
+BENCHMARK(BM_TickFunctionSceneStiffnessRule);
 
 // Replay: the bundled phantom rastered for 60 s of loop time at 1 kHz on the simulated rig.
 void BM_Replay60s(benchmark::State& state) {

@@ -254,11 +254,10 @@ CalibrationResult fit_calibration(const SweepData& data, const CalibrationFitOpt
     }
   }
   if (o.stress_pairs.empty()) {
-    // The base is paper 002's built-in models unless --base named a file.
+    // The base is paper 002's built-in models unless --base or --stress-model named a file.
     const bool built_in = o.base.source == CalibrationModels{}.source;
     out.notes.push_back(built_in ? "actuator stress lines kept from paper 002's regression (no --stress pairs given)"
-                                 : "actuator stress lines kept from " + o.base.source +
-                                       " (--base; no --stress pairs given)");
+                                 : "actuator stress lines kept from " + o.base.source + " (no --stress pairs given)");
   }
   meter.finish();
   return out;

@@ -14,6 +14,7 @@
 #include "cli/calibrate_arguments.hpp"
 #include "cli/commands.hpp"
 #include "formats/calibration_file.hpp"
+#include "formats/fe_result_files.hpp"
 #include "core/input_error.hpp"
 #include "charts/calibration_charts.hpp"
 
@@ -23,7 +24,7 @@ using namespace palprig::cli;
 namespace {
 
 struct FitArgs {
-  std::string data, out, rig_id, stress, presses, base, plot_dir, loss = "none", source, model = "auto";
+  std::string data, out, rig_id, stress, presses, base, plot_dir, loss = "none", source, model = "auto", stress_model;
   double regulator_tolerance_kPa = 3.0, diastolic_mmHg = 60, systolic_mmHg = 120;
   HysteresisFitOptions hysteresis;
   bool no_refine = false, json = false, lag_compensation = false, svg = false;
@@ -58,6 +59,13 @@ void run_fit(const FitArgs& a) {
   o.date = utc_timestamp_now();
   o.progress = [](const ProgressReport& r) { std::cerr << progress_line(r) << "\n"; };
   if (!a.base.empty()) o.base = load_calibration_file(a.base);
+  if (!a.stress_model.empty()) {  // the stress model from physics (`palprig fe stress-model`)
+    const FeStressModelFile fe = load_stress_model_file(a.stress_model);
+    o.base.stress.soft_stress_kPa = fe.soft_stress_kPa;
+    o.base.stress.hard_stress_kPa = fe.hard_stress_kPa;
+    o.base.actuators.fill(fe.actuator);
+    o.base.source = "the finite-element stress model " + a.stress_model;
+  }
   if (!a.stress.empty()) {
     o.stress_pairs = read_stress_pairs_csv(a.stress);
     o.stress_file = a.stress;
@@ -67,7 +75,13 @@ void run_fit(const FitArgs& a) {
     o.force_file = a.presses;
   }
   const SweepData data = read_sweep_csv(a.data);
-  const CalibrationResult result = fit_calibration(data, o);
+  CalibrationResult result = fit_calibration(data, o);
+  if (!a.stress_model.empty()) {
+    std::ostringstream note;
+    note << "stress model from " << a.stress_model << ": soft " << o.base.stress.soft_stress_kPa << " kPa, nodule "
+         << o.base.stress.hard_stress_kPa << " kPa (finite elements)";
+    result.notes.push_back(note.str());
+  }
   const nlohmann::json doc = calibration_json(result);
   write_calibration_file(a.out, doc);
   if (a.json)
@@ -90,6 +104,10 @@ void register_calibrate_fit(CLI::App* cal) {
   fit->add_option("--out", fa->out, "Calibration file to write (JSON)")->required();
   fit->add_option("--rig-id", fa->rig_id, "Rig id (default: the data file's)");
   fit->add_option("--base", fa->base, "Calibration whose stress model and actuator lines are kept (default: paper 002)")
+      ->check(CLI::ExistingFile);
+  fit->add_option("--stress-model", fa->stress_model,
+                  "Stress model file from `palprig fe stress-model`: its soft and nodule stresses and its actuator "
+                  "line, instead of paper 002's constants (--stress pairs still refit the lines)")
       ->check(CLI::ExistingFile);
   fit->add_option("--stress", fa->stress, "Stress pairs CSV pressure_kPa,stress_kPa[,channel] for the actuator lines")
       ->check(CLI::ExistingFile);

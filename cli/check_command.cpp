@@ -4,7 +4,8 @@
 // rig, scene, calibration or protocol file, a pen trace, a stiffness map, a waveform table or
 // an evemu recording without running anything.
 //
-// The kind is read from the file (JSON: "kind" -> scene, "task" -> protocol, "stress_model" or
+// The kind is read from the file (JSON: "kind" fingertip, tissue, actuator, stress_model or
+// fe_stress_table -> those finite-element files, any other "kind" -> scene, "task" -> protocol, "stress_model" or
 // "rig_id" -> calibration, "tools" -> tracking file, otherwise rig; CSV: the header
 // t_s,x_mm,y_mm,force_N -> pen trace, t_s,tool,... -> tracker pose recording, name,x_mm,... ->
 // fiducials, t_s and one more column -> waveform, otherwise a stiffness map; .pgm -> map;
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,8 @@
 
 #include "cli/commands.hpp"
 #include "formats/calibration_file.hpp"
+#include "formats/fe_body_files.hpp"
+#include "formats/fe_result_files.hpp"
 #include "formats/function_scene_file.hpp"
 #include "formats/json_file.hpp"
 #include "formats/rig_file.hpp"
@@ -40,8 +44,9 @@ using namespace palprig;
 
 namespace {
 
-const std::vector<std::string> kKinds = {"rig",      "scene", "calibration", "protocol", "trace",     "map",
-                                         "waveform", "evemu", "tracking",    "poses",    "fiducials", "curriculum"};
+const std::vector<std::string> kKinds = {
+    "rig",   "scene",     "calibration", "protocol",  "trace",  "map",      "waveform",     "evemu",   "tracking",
+    "poses", "fiducials", "curriculum",  "fingertip", "tissue", "actuator", "stress-model", "fe-table"};
 
 std::string count(std::size_t n, const std::string& noun) {
   return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
@@ -74,6 +79,9 @@ std::string detect_kind(const std::filesystem::path& path) {
   }
   const nlohmann::json doc = read_json_file(path);
   if (!doc.is_object()) throw InputError(path.string(), "(root)", "a JSON object");
+  if (std::string fe = fe_body_kind(doc); !fe.empty()) return fe;
+  if (const std::string fe = fe_result_kind(doc); !fe.empty())
+    return fe == "stress_model" ? "stress-model" : "fe-table";
   if (is_curriculum(doc)) return "curriculum";
   if (doc.contains("kind")) return "scene";
   if (doc.contains("task")) return "protocol";
@@ -113,6 +121,38 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
     return "calibration for rig '" + cal.rig_id + "'";
   }
   if (kind == "protocol") return check_protocol(path);
+  if (kind == "fingertip") {
+    const FingertipBody f = load_fingertip_file(path);
+    std::ostringstream o;
+    o << "fingertip, " << f.width_mm << " x " << f.height_mm << " mm, skin " << f.skin_thickness_mm << " mm ("
+      << f.skin.describe() << "), tissue " << f.tissue.describe();
+    return o.str();
+  }
+  if (kind == "tissue") {
+    const TissueBlock t = load_tissue_file(path);
+    std::ostringstream o;
+    o << "tissue block '" << t.name << "', " << t.width_mm << " x " << t.height_mm << " mm, " << t.tissue.describe()
+      << ", " << count(t.inclusions.size(), "inclusion");
+    return o.str();
+  }
+  if (kind == "actuator") {
+    const ActuatorBody a = load_actuator_file(path);
+    std::ostringstream o;
+    o << "actuator '" << a.name << "', chamber " << a.chamber_width_mm << " mm, membrane " << a.membrane_thickness_mm
+      << " mm (E " << a.membrane.youngs_kPa / 1000 << " MPa), layer " << a.layer_thickness_mm << " mm";
+    return o.str();
+  }
+  if (kind == "stress-model") {
+    const FeStressModelFile m = load_stress_model_file(path);
+    std::ostringstream o;
+    o << "finite-element stress model, soft " << m.soft_stress_kPa << " / nodule " << m.hard_stress_kPa
+      << " kPa, actuator line " << m.actuator.slope << " x air + " << m.actuator.intercept_kPa << " kPa";
+    return o.str();
+  }
+  if (kind == "fe-table") {
+    const FeTableFile t = load_fe_table_file(path);
+    return "finite-element table, " + count(t.table->axes().values(), "value") + " from " + count(t.solves, "solve");
+  }
   if (kind == "curriculum") {
     const Curriculum c = load_curriculum(path);
     std::string out = "curriculum '" + c.name + "', " + count(c.levels.size(), "level");
@@ -172,7 +212,8 @@ void register_check_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "check",
       "Load files through palprig's readers and say what each is (rig, scene, calibration, protocol, curriculum, "
-      "trace, map, waveform, evemu, tracking, poses, fiducials); a refused file is one line, exit 2");
+      "trace, map, waveform, evemu, tracking, poses, fiducials, fingertip, tissue, actuator, stress-model, "
+      "fe-table); a refused file is one line, exit 2");
   sub->add_option("files", a->files, "files to check")->required();
   sub->add_option("--kind", a->kind, "the kind, instead of reading it from the file")->check(CLI::IsMember(kKinds));
   sub->callback([a] {

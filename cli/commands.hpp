@@ -53,6 +53,8 @@ void register_check_command(CLI::App& app);
 void register_igtl_replay_command(CLI::App& app);
 void register_tracking_command(CLI::App& app);
 void register_load_cell_command(CLI::App& app);
+// The fingertip finite-element model (fe_command.cpp and fe_*_command.cpp; needs GetFEM, so a rig command).
+void register_fe_command(CLI::App& app);
 // palprig data list / data dir: the shipped files found by name (data_command.cpp, data_files.cpp).
 void register_data_command(CLI::App& app);
 // Training programmes (train_command.cpp): enrol, next, status, benchmark.

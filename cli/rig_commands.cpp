@@ -14,5 +14,6 @@ void register_rig_commands(CLI::App& app) {
   register_igtl_replay_command(app);
   register_tracking_command(app);
   register_load_cell_command(app);
+  register_fe_command(app);
   register_train_command(app);
 }

@@ -7,7 +7,7 @@
 
 void register_rig_commands(CLI::App& app) {
   for (const char* name : {"run", "demo", "telemetry", "experiment", "sim-rig", "calibrate", "rt-check", "check",
-                           "igtl-replay", "tracking", "load-cell", "train"}) {
+                           "igtl-replay", "tracking", "load-cell", "train", "fe"}) {
     CLI::App* sub = app.add_subcommand(name, "(not in this analyst-only build: configure with -DPALPRIG_RIG=ON)");
     sub->allow_extras();
     sub->callback([name] {

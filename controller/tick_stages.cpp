@@ -63,12 +63,16 @@ void tissue_drag_stage(TickState& state, const Scene& scene, FingersOnSkin& fing
 namespace {
 
 // The target of one finger pressing `felt_at` (the tissue point under it) with force_N: the
-// scene's stiffness there, the stress model and the channel's actuator line.
+// scene's stiffness there, the stress model and the channel's actuator line. A scene rendering
+// from the finite-element table gives the stress its nodules add instead: the healthy tissue's
+// stress at this press (the stress model's soft stress, which the actuator's passive part
+// renders) plus that rise.
 double finger_target_kPa(const TickConfig& config, const Scene& scene, std::size_t i, const Point2_mm& felt_at,
                          double force_N, double t_s, TissueSample* felt_out = nullptr) noexcept {
   const TissueSample felt = scene.sample(felt_at, force_N, t_s);
   if (felt_out) *felt_out = felt;
-  const double stress_kPa = config.stress.target_stress_kPa(felt.stiffness, force_N);
+  const double stress_kPa = felt.fe_stress ? config.stress.target_stress_kPa(0.0, force_N) + felt.stress_rise_kPa
+                                           : config.stress.target_stress_kPa(felt.stiffness, force_N);
   return config.actuators[i].pressure_kPa(stress_kPa, config.stress.force_ratio(force_N));
 }
 

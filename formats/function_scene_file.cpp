@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/error.hpp"
+#include "formats/fe_result_files.hpp"
 #include "models/decimal_number.hpp"
 #include "io/regular_file.hpp"
 #include "models/tissue_scene.hpp"
@@ -384,6 +385,16 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
     (void)g.choice("difficulty", {"easy", "medium", "hard"});
     g.refuse_unknown();
   }
+  // Render from the finite-element table (`palprig fe table`) instead of the stiffness rule:
+  // the table file's path, relative to this scene file.
+  std::shared_ptr<const FeStressTable> fe_table;
+  if (root.has("fe_stress_table")) {
+    const std::string name = root.string("fe_stress_table");
+    if (name.empty()) root.fail("fe_stress_table", "the path of a table written by `palprig fe table`");
+    std::filesystem::path table_path(name);
+    if (table_path.is_relative()) table_path = path.parent_path() / table_path;
+    fe_table = load_fe_table_file(table_path).table;
+  }
   root.refuse_unknown();
 
   std::unique_ptr<FunctionScene> scene;
@@ -416,6 +427,7 @@ void load_function_scene(const JsonObject& root, const std::filesystem::path& pa
     }
     out.tumors.push_back({o.name, o.x_mm, o.y_mm, o.radius_mm});
   }
+  scene->use_fe_table(std::move(fe_table));
   out.scene = std::move(scene);
 }
 

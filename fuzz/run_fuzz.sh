@@ -36,6 +36,10 @@ seeds_for() {
     fuzz_tracking_file) echo "data/tracking/*.json" ;;
     fuzz_pose_recording) echo "data/tracking/*.csv" ;;
     fuzz_igtl_stream) echo "" ;;
+    fuzz_fe_fingertip) echo "data/fe/fingertip_*.json" ;;
+    fuzz_fe_tissue) echo "data/fe/soft_tissue_*.json" ;;
+    fuzz_fe_actuator) echo "data/fe/actuator_*.json" ;;
+    fuzz_fe_results) echo "data/fe/stress_model_*.json data/fe/stress_table_*.json" ;;
   esac
 }
 

@@ -15,6 +15,11 @@ class PulseField;  // models/artery.hpp
 struct TissueSample {
   double stiffness = 0.0;  // normalised 0..1
   int layer = -1;          // index of the layer felt, -1 when the scene has no layers
+  // Scenes that render from the finite-element table (function scenes with "fe_stress_table"):
+  // the stress the nodules under the finger add to the healthy tissue's at this press, which
+  // the tick uses instead of the stiffness rule (controller/tick.cpp).
+  bool fe_stress = false;
+  double stress_rise_kPa = 0.0;
 };
 
 struct SceneBounds {

@@ -9,6 +9,42 @@ namespace palprig {
 FunctionScene::FunctionScene(TissueDefinition tissue, std::vector<ArterySpec> arteries)
     : field_(std::move(tissue)), arteries_(std::move(arteries), field_.definition().press.finger_radius_mm) {}
 
+TissueSample FunctionScene::sample(const Point2_mm& at, double force_N, double t_s) const noexcept {
+  TissueSample s = field_.sample(at, force_N, t_s);
+  if (table_) {
+    s.fe_stress = true;
+    s.stress_rise_kPa = fe_stress_rise_kPa(at, force_N);
+  }
+  return s;
+}
+
+void FunctionScene::use_fe_table(std::shared_ptr<const FeStressTable> table) {
+  table_ = std::move(table);
+  nodule_count_ = 0;
+  if (!table_) return;
+  const auto& layers = field_.definition().layers;
+  for (const InclusionOutline& o : outlines(InclusionKind::tumor)) {
+    if (nodule_count_ == nodules_.size()) break;
+    const double centre_depth = (o.top_depth_mm + o.bottom_depth_mm) / 2;
+    const double around = layers[std::size_t(field_.layer_at(centre_depth))].stiffness_kPa;
+    nodules_[nodule_count_++] = {o.x_mm, o.y_mm, o.top_depth_mm, 2 * o.radius_mm, o.stiffness_kPa / around};
+  }
+}
+
+double FunctionScene::fe_stress_rise_kPa(const Point2_mm& at, double force_N) const noexcept {
+  if (!table_ || !(force_N > 0)) return 0.0;
+  const double indentation = field_.definition().press.indentation_mm(force_N);
+  const double far = table_->axes().offset_mm.back();
+  double rise = 0;
+  for (std::size_t i = 0; i < nodule_count_; ++i) {
+    const TableNodule& n = nodules_[i];
+    const double offset = std::hypot(at.x_mm - n.x_mm, at.y_mm - n.y_mm);
+    if (offset > far) continue;  // beyond the table (whose last offset is where the rise has died out)
+    rise = std::max(rise, table_->rise_kPa(indentation, n.cover_mm, n.diameter_mm, n.contrast, offset));
+  }
+  return rise;
+}
+
 DragSetting FunctionScene::drag(int layer) const noexcept {
   const auto& layers = field_.definition().layers;
   if (layers.empty()) return {0, 0, 0};

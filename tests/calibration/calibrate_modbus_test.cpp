@@ -27,7 +27,9 @@ TEST(CalibrateOverModbus, StaircaseThroughARealTcpServerSettlesOnThePlantsHyster
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("rig wago-750-559 (modbus"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("real time"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("8 of 8 holds (0 not settled)"), std::string::npos) << r.out;
+  // Every hold settled; on a loaded machine a hold may be redone after a link outage, which the
+  // same parenthesis then says (", 2 redone after a link outage"): still eight settled holds.
+  EXPECT_NE(r.out.find("8 of 8 holds (0 not settled"), std::string::npos) << r.out;
 
   const SweepData d = read_sweep_csv(data);
   EXPECT_EQ(d.info.rig_id, "wago-750-559");

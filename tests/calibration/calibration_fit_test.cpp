@@ -205,7 +205,7 @@ TEST(CalibrationFit, TheNoteSaysWhereTheActuatorLinesComeFrom) {
   const CalibrationResult based = fit_calibration(rig.sweep({1}), o);
   noted = false;
   for (const auto& n : based.notes)
-    noted = noted || n == "actuator stress lines kept from lab_rig.json (--base; no --stress pairs given)";
+    noted = noted || n == "actuator stress lines kept from lab_rig.json (no --stress pairs given)";
   EXPECT_TRUE(noted);
 }
 

@@ -102,9 +102,10 @@ TEST(DataFiles, DataListNamesEveryKindFromTheSourceTree) {
   const ProcessResult r = palprig_in(dir.path(), "data list");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(first_line(r.out), "palprig data: " + source_dir() + "/data (source tree)");
-  for (const char* line : {"  protocols: discrimination_002 discrimination_002_confidence localisation_002",
-                           "  scenes: brachial_pulse groin_femoral liver_edge phantom_abc phantom_abc_function",
-                           "  traces: phantom_abc_pass", "  waveforms: brachial_pressure"})
+  for (const char* line :
+       {"  protocols: discrimination_002 discrimination_002_confidence localisation_002",
+        "  scenes: brachial_pulse fe_depths groin_femoral liver_edge phantom_abc phantom_abc_function",
+        "  traces: phantom_abc_pass", "  waveforms: brachial_pressure"})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
   const ProcessResult rigs = palprig_in(dir.path(), "data list rigs");
   ASSERT_EQ(rigs.exit_code, 0) << rigs.err;

@@ -96,10 +96,10 @@ TEST(TickAllocations, TheDemoPassWithLagCompensationAllocatesNothing) {
       << "the pass crosses three tumors: the compensator should lead their edges";
 }
 
-// Function scenes: a pulsing artery (the pulse stage) and a skin that drags (tissue drag), swept
-// by a pressing pen back and forth across the scene.
+// Function scenes: a pulsing artery (the pulse stage), a skin that drags (tissue drag) and two
+// tumors rendered from the finite-element table, swept by a pressing pen back and forth.
 TEST(TickAllocations, PulseAndDraggingScenesWithLagCompensationAllocateNothing) {
-  for (const char* name : {"brachial_pulse", "liver_edge"}) {
+  for (const char* name : {"brachial_pulse", "liver_edge", "fe_depths"}) {
     SCOPED_TRACE(name);
     const SceneFile scene = load_scene_file(kData / "scenes" / (std::string(name) + ".json"));
     const SceneBounds b = scene.scene->bounds();
