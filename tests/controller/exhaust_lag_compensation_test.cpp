@@ -11,8 +11,11 @@
 
 #include "controller/lag_compensation_stage.hpp"
 #include "models/pneumatic_plant.hpp"
+#include "tests/support/lag_stage_drive.hpp"
 
 using namespace palprig;
+using palprig::testing::drive_stage;
+using palprig::testing::StageDrive;
 
 namespace {
 
@@ -29,40 +32,7 @@ PlantParams exhaust_slowing_plant() {
   return p;
 }
 
-struct ExhaustDrive {
-  std::vector<double> target, output, command;
-};
-
-// The stage alone on channel 0 at 1 kHz, the target known ahead, the plant stepped under each
-// command a tick later.
-template <typename Target>
-ExhaustDrive drive_exhaust(Target base_at, const RegulatorLag& model, double seconds) {
-  PneumaticPlant plant(exhaust_slowing_plant());
-  LagCompensationState st;
-  LagPlan plan;
-  plan.part[0] = CompensatedPart::total;
-  plan.model[0] = model;
-  const double dt = 0.001;
-  plan.lead_s[0] = model.dead_time_s + dt;
-  const LagLimits limits{60, 2000, 10};
-  ExhaustDrive d;
-  double previous = 0;
-  for (int k = 0; k * dt < seconds; ++k) {
-    const double t = k * dt;
-    LagTargets in;
-    in.base_now_kPa[0] = base_at(t);
-    in.base_ahead_kPa[0] = base_at(t + plan.lead_s[0]);
-    const ChannelPressures u = lag_compensation_stage(st, plan, in, limits, k > 0 ? dt : 0.0);
-    if (k > 0) plant.step(previous, dt);
-    previous = u[0];
-    d.target.push_back(in.base_now_kPa[0]);
-    d.output.push_back(plant.output_kPa());
-    d.command.push_back(u[0]);
-  }
-  return d;
-}
-
-double exhaust_rms(const ExhaustDrive& d, std::size_t from, std::size_t to) {
+double exhaust_rms(const StageDrive& d, std::size_t from, std::size_t to) {
   double s = 0;
   for (std::size_t k = from; k < to; ++k) s += std::pow(d.output[k] - d.target[k], 2);
   return std::sqrt(s / double(to - from));
@@ -77,9 +47,9 @@ TEST(ExhaustLagCompensation, AFallTowardZeroIsLedWithTheLagItMeetsThere) {
   // One exhaust lag: the plant's far from 0 kPa, and the one a fit without the pressure
   // dependence found on this plant's steps (86 ms).
   const RegulatorLag far{0.004, 0.040, 2000, 0.070}, averaged{0.004, 0.040, 2000, 0.086};
-  const ExhaustDrive d = drive_exhaust(fall, exact, 1.0);
-  const ExhaustDrive f = drive_exhaust(fall, far, 1.0);
-  const ExhaustDrive a = drive_exhaust(fall, averaged, 1.0);
+  const StageDrive d = drive_stage(fall, true, exact, 10, 1.0, exhaust_slowing_plant());
+  const StageDrive f = drive_stage(fall, true, far, 10, 1.0, exhaust_slowing_plant());
+  const StageDrive a = drive_stage(fall, true, averaged, 10, 1.0, exhaust_slowing_plant());
   // Within [0, p_max]; the fall is pushed with the command at 0 kPa, then released to the target.
   for (double u : d.command) ASSERT_TRUE(u >= 0 && u <= 60) << u;
   EXPECT_EQ(*std::min_element(d.command.begin() + 300, d.command.end()), 0.0);

@@ -17,21 +17,17 @@
 #include "models/pneumatic_plant.hpp"
 #include "models/tissue_scene.hpp"
 #include "rigs/simulated_rig.hpp"
+#include "tests/support/lag_stage_drive.hpp"
 
 using namespace palprig;
+using palprig::testing::drive_stage;
+using palprig::testing::lag_only_plant;
+using palprig::testing::StageDrive;
 
 namespace {
 
 const std::string kLagCompensationData = std::string(PALPRIG_SOURCE_DIR) + "/data/";
 
-// The simulated regulator without play or noise: the lag alone, as the stage sees it once the
-// hysteresis inverse has done its work.
-PlantParams lag_only() {
-  PlantParams p;
-  p.hysteresis_kPa = 0;
-  p.noise_sd_kPa = 0;
-  return p;
-}
 // What calibration identifies on that plant at 1 kHz (calibration/dynamics_fit.hpp: the plant
 // feels a command at the end of the step one dead time after it, so 1 ms less dead time).
 constexpr RegulatorLag kIdentified{0.004, 0.050, 2000};
@@ -46,41 +42,7 @@ void identify_every_channel(TickConfig& cfg, const RegulatorLag& model, bool who
   }
 }
 
-struct Drive {
-  std::vector<double> target, output, command;
-};
-
-// The stage alone on channel 0: base_at(t) is the target at time t (known ahead, as the scene
-// sampled where the finger will be), the plant stepped at 1 kHz under each command.
-template <typename Target>
-Drive drive_stage(Target base_at, bool compensate, const RegulatorLag& model, double max_lead_kPa, double seconds,
-                  const PlantParams& plant_params = lag_only()) {
-  PneumaticPlant plant(plant_params);
-  LagCompensationState st;
-  LagPlan plan;
-  plan.part[0] = compensate ? CompensatedPart::total : CompensatedPart::none;
-  plan.model[0] = model;
-  const double dt = 0.001;
-  plan.lead_s[0] = model.dead_time_s + dt;
-  const LagLimits limits{60, 2000, max_lead_kPa};
-  Drive d;
-  double previous = 0;
-  for (int k = 0; k * dt < seconds; ++k) {
-    const double t = k * dt;
-    LagTargets in;
-    in.base_now_kPa[0] = base_at(t);
-    in.base_ahead_kPa[0] = base_at(t + plan.lead_s[0]);
-    const ChannelPressures u = lag_compensation_stage(st, plan, in, limits, k > 0 ? dt : 0.0);
-    if (k > 0) plant.step(previous, dt);
-    previous = u[0];
-    d.target.push_back(in.base_now_kPa[0]);
-    d.output.push_back(plant.output_kPa());
-    d.command.push_back(u[0]);
-  }
-  return d;
-}
-
-double rms_error(const Drive& d, std::size_t from = 0, std::size_t to = SIZE_MAX) {
+double rms_error(const StageDrive& d, std::size_t from = 0, std::size_t to = SIZE_MAX) {
   double s = 0;
   std::size_t n = 0;
   for (std::size_t k = from; k < std::min(to, d.target.size()); ++k, ++n) s += std::pow(d.output[k] - d.target[k], 2);
@@ -88,7 +50,7 @@ double rms_error(const Drive& d, std::size_t from = 0, std::size_t to = SIZE_MAX
 }
 
 // Ticks from the step: the first where the output reaches `fraction` of the final 10 kPa.
-std::size_t time_to(const Drive& d, double level) {
+std::size_t time_to(const StageDrive& d, double level) {
   for (std::size_t k = 100; k < d.output.size(); ++k)
     if (d.output[k] >= level) return k - 100;
   return SIZE_MAX;
@@ -98,8 +60,8 @@ std::size_t time_to(const Drive& d, double level) {
 
 TEST(LagCompensation, StepArrivesOnTimeWithoutOvershootWithinItsLimits) {
   auto step = [](double t) { return t >= 0.1 ? 10.0 : 0.0; };
-  const Drive plain = drive_stage(step, false, kIdentified, 10, 0.6);
-  const Drive comp = drive_stage(step, true, kIdentified, 10, 0.6);
+  const StageDrive plain = drive_stage(step, false, kIdentified, 10, 0.6);
+  const StageDrive comp = drive_stage(step, true, kIdentified, 10, 0.6);
   // Uncompensated: a dead time, then 50 ms to 63 %, over 100 ms to 90 %. Compensated, with the
   // command at most 10 kPa above the 10 kPa target (twice the target), the lag's 90 % comes in
   // tau ln(20 / 11), a third of the time.
@@ -124,8 +86,8 @@ TEST(LagCompensation, StepArrivesOnTimeWithoutOvershootWithinItsLimits) {
 
 TEST(LagCompensation, RampIsTrackedWithoutTheLagsOffset) {
   auto ramp = [](double t) { return std::clamp((t - 0.1) * 50.0, 0.0, 20.0); };  // 50 kPa/s to 20 kPa
-  const Drive plain = drive_stage(ramp, false, kIdentified, 10, 0.8);
-  const Drive comp = drive_stage(ramp, true, kIdentified, 10, 0.8);
+  const StageDrive plain = drive_stage(ramp, false, kIdentified, 10, 0.8);
+  const StageDrive comp = drive_stage(ramp, true, kIdentified, 10, 0.8);
   // Mid-ramp (0.3-0.45 s), the uncompensated output lags by rate x (dead time + lag) = 2.75 kPa.
   EXPECT_NEAR(rms_error(plain, 300, 450), 50 * 0.055, 0.3);
   EXPECT_LT(rms_error(comp, 300, 450), 0.1);
@@ -137,7 +99,7 @@ TEST(LagCompensation, AWrongModelPushesNoHarderThanTheLeadBound) {
   // The model says the regulator is four times slower and later than it is: it boosts too long.
   const RegulatorLag wrong{0.012, 0.200, 2000};
   for (double lead : {0.0, 3.0}) {
-    const Drive d = drive_stage(step, true, wrong, lead, 0.7);
+    const StageDrive d = drive_stage(step, true, wrong, lead, 0.7);
     double worst_command = 0, worst_output = 0;
     for (std::size_t k = 0; k < d.command.size(); ++k) {
       // Never more than the lead above what is asked now or one lead ahead...
@@ -182,7 +144,7 @@ Crossing cross_tumor(bool compensate, const RegulatorLag& model, double max_lead
                      bool tracked = false) {
   const MapScene scene = tumor_map();
   RigConfig rig;
-  for (auto& p : rig.plants) p = lag_only();
+  for (auto& p : rig.plants) p = lag_only_plant();
   CalibrationModels cal;
   TickConfig cfg = make_tick_config(rig, cal);
   identify_every_channel(cfg, model, compensate);
@@ -328,7 +290,7 @@ TEST(LagCompensation, ThePulseRidesOnTheSameMechanism) {
   const FunctionScene scene(t, std::vector<ArterySpec>{a});
   auto correlation = [&](bool whole) {
     RigConfig r = rig;
-    for (auto& p : r.plants) p = lag_only();
+    for (auto& p : r.plants) p = lag_only_plant();
     TickConfig cfg = make_tick_config(r, CalibrationModels{});
     identify_every_channel(cfg, kIdentified, whole);
     SimulatedRig backend(r.plants, r.safety.p_max_kPa);
@@ -376,14 +338,14 @@ TEST(LagCompensation, FillAndExhaustLagsEachLeadTheirOwnEdges) {
   // A regulator that fills in 40 ms and exhausts in 90 ms, stepping 10 -> 20 -> 12 kPa: the
   // compensator with both lags lands both edges without overshoot; with one lag (either) it
   // overshoots the edge whose lag it overestimates or arrives late on the one it underestimates.
-  PlantParams plant = lag_only();
+  PlantParams plant = lag_only_plant();
   plant.time_constant_s = 0.040;
   plant.exhaust_time_constant_s = 0.090;
   auto steps = [](double t) { return t < 0.1 ? 10.0 : t < 0.5 ? 20.0 : 12.0; };
   const RegulatorLag both{0.004, 0.040, 2000, 0.090}, fill_only{0.004, 0.040, 2000}, exhaust_only{0.004, 0.090, 2000};
-  const Drive d = drive_stage(steps, true, both, 10, 1.0, plant);
-  const Drive f = drive_stage(steps, true, fill_only, 10, 1.0, plant);
-  const Drive e = drive_stage(steps, true, exhaust_only, 10, 1.0, plant);
+  const StageDrive d = drive_stage(steps, true, both, 10, 1.0, plant);
+  const StageDrive f = drive_stage(steps, true, fill_only, 10, 1.0, plant);
+  const StageDrive e = drive_stage(steps, true, exhaust_only, 10, 1.0, plant);
   double over_rise = 0, under_fall = 0;
   for (std::size_t k = 100; k < 500; ++k) over_rise = std::max(over_rise, d.output[k] - 20.0);
   for (std::size_t k = 500; k < d.output.size(); ++k) under_fall = std::max(under_fall, 12.0 - d.output[k]);
