@@ -7,11 +7,12 @@
 # no rig, the sanitizer build no docs tests) is ignored. The COST is the case's wall time in
 # seconds as last measured under the sanitizers (docs/benchmarks.md, "Build time"), where the order
 # matters most.
-# The FE stress-model round trip solves the actuator's press and three pressures: 53 s in the release
-# build beside the style gate, over the suites' 300 s limit under the sanitizers with three other
-# tests beside it (it was killed at 300 s in a cold make test-asan on 2026-11-27); 900 s as for
-# the sanitizer run's other cases.
-set_tests_properties(cli.FeCommand.StressModelRoundTripsThroughCalibrateFitAndRunsTheDemo PROPERTIES COST 250
+# The FE stress-model round trip solves two indentations and the actuator's press at two pressures:
+# with the paper's depth and three pressures it took 53 s in the release build beside the style
+# gate and 324 s under the sanitizers (killed once at the suites' 300 s limit, 2026-11-27); with
+# the coarser settings it has now (tests/cli/fe_command_test.cpp) 12 s alone in the release build.
+# 900 s as for the sanitizer run's other cases.
+set_tests_properties(cli.FeCommand.StressModelRoundTripsThroughCalibrateFitAndRunsTheDemo PROPERTIES COST 100
   TIMEOUT 900)
 set_tests_properties(mechanics.MeshConvergence.HalvingTheElementsChangesThePeakByLessThanThreePercent PROPERTIES COST 31)
 set_tests_properties(mechanics.Hertz.CylinderOnHalfSpace PROPERTIES COST 18)
