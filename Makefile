@@ -24,6 +24,12 @@ JOBS       ?= 2
 # compute hard say so with ctest's PROCESSORS, so two of them never share the two cores with more.
 TEST_JOBS  ?= $(shell echo $$(( $(JOBS) * 2 )))
 CMAKE_ARGS ?=
+# ccache (tools/debian-packages.txt; CMakeLists.txt makes it the compiler launcher) keyed by paths
+# relative to the clone and not by the build folder: the analyst-only build (make test-analyst)
+# then takes the objects it shares with the release build (the study-data floor's libraries and
+# suites, compiled with the same flags) from the cache instead of compiling them again.
+export CCACHE_BASEDIR := $(CURDIR)
+export CCACHE_NOHASHDIR := 1
 
 # Debian 12 packages, one per line: tools/debian-packages.txt what the program's build needs (make
 # demo installs only these), tools/debian-packages-test.txt what the suites, the style gate, the
