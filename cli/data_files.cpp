@@ -14,8 +14,17 @@ namespace fs = std::filesystem;
 // The option (long name) -> the kind of shipped file it takes.
 const std::map<std::string, std::string>& option_kinds() {
   static const std::map<std::string, std::string> kinds{
-      {"--protocol", "protocols"}, {"--scene", "scenes"},      {"--rig", "rigs"},
-      {"--cal", "calibration"},    {"--tracking", "tracking"},
+      {"--protocol", "protocols"},
+      {"--scene", "scenes"},
+      {"--rig", "rigs"},
+      {"--cal", "calibration"},
+      {"--tracking", "tracking"},
+      {"--curriculum", "curricula"},
+      // palprig fe's inputs and calibrate fit's finite-element stress model (data/fe).
+      {"--fingertip", "fe"},
+      {"--tissue", "fe"},
+      {"--actuator", "fe"},
+      {"--stress-model", "fe"},
   };
   return kinds;
 }
@@ -75,8 +84,8 @@ std::optional<fs::path> find_data_file(const std::string& given, const std::stri
 }
 
 const std::vector<std::string>& data_kinds() {
-  static const std::vector<std::string> kinds{"protocols", "scenes",   "rigs",     "calibration",
-                                              "traces",    "tracking", "waveforms"};
+  static const std::vector<std::string> kinds{"protocols", "scenes",    "rigs",      "calibration", "traces",
+                                              "tracking",  "waveforms", "curricula", "fe"};
   return kinds;
 }
 

@@ -22,7 +22,8 @@ SECTION = re.compile(r"^([A-Z][A-Za-z ]*):\s*$")
 ENTRY = re.compile(r"^  (\S.*?)(?:\s{2,}(\S.*))?$")
 # Options whose value is a shipped file, by the kind palprig data list takes (cli/data_files.cpp).
 DATA_OPTIONS = {"--protocol": "protocols", "--scene": "scenes", "--rig": "rigs", "--cal": "calibration",
-                "--tracking": "tracking"}
+                "--tracking": "tracking", "--curriculum": "curricula", "--fingertip": "fe", "--tissue": "fe",
+                "--actuator": "fe", "--stress-model": "fe"}
 
 
 class Command:
@@ -140,9 +141,11 @@ def main_page(root: Command, version: str, date: str) -> str:
         lines += [".TP", f"\\fBpalprig {roff(name)}\\fR", roff(desc), f"See \\fBpalprig\\-{roff(name)}\\fR(1)."]
     lines += [
         ".SH FILES",
-        roff("Protocols, scenes, rig files, calibrations, pen traces and tracking examples ship in "
+        roff("Protocols, scenes, rig files, calibrations, pen traces, tracking examples, curricula and the "
+             "finite-element model's files ship in "
              "/usr/share/palprig (share/palprig beside the program's bin folder). Options that take one "
-             "(--protocol, --scene, --rig, --cal, --tracking, --input trace:NAME) also take its name: "
+             "(--protocol, --scene, --rig, --cal, --tracking, --curriculum, --fingertip, --tissue, --actuator, "
+             "--stress-model, --input trace:NAME) also take its name: "
              "palprig experiment run --protocol discrimination_002 --participant sim:1 --db s.db. "
              "palprig data list shows the names."),
         ".TP", "\\fB/etc/security/limits.d/palprig.conf\\fR",

@@ -105,12 +105,39 @@ TEST(DataFiles, DataListNamesEveryKindFromTheSourceTree) {
   for (const char* line :
        {"  protocols: discrimination_002 discrimination_002_confidence localisation_002",
         "  scenes: brachial_pulse fe_depths groin_femoral liver_edge phantom_abc phantom_abc_function",
-        "  traces: phantom_abc_pass", "  waveforms: brachial_pressure"})
+        "  traces: phantom_abc_pass", "  waveforms: brachial_pressure", "  curricula: palpation_basics",
+        "  fe: actuator_002 fingertip_002 soft_tissue_002 soft_tissue_002_nodule stress_model_002 stress_table_002"})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
   const ProcessResult rigs = palprig_in(dir.path(), "data list rigs");
   ASSERT_EQ(rigs.exit_code, 0) << rigs.err;
   EXPECT_NE(rigs.out.find(source_dir() + "/data/rigs/simulated.json"), std::string::npos) << rigs.out;
   EXPECT_EQ(palprig_in(dir.path(), "data list recipes").exit_code, 2);
+}
+
+// The finite-element model's files by name too (data/fe): palprig check reads the shipped fingertip,
+// and an unknown one is the same one line naming the kind to list.
+TEST(DataFiles, FiniteElementFilesAndCurriculaByName) {
+  TempDir dir;
+  const ProcessResult fe =
+      palprig_in(dir.path(), "fe indent --fingertip fingertip_00 --tissue soft_tissue_002 --out o");
+  EXPECT_EQ(fe.exit_code, 2);
+  EXPECT_NE(fe.err.find("--fingertip: 'fingertip_00' is neither a file nor the name of a shipped file in "),
+            std::string::npos)
+      << fe.err;
+  EXPECT_NE(fe.err.find("(palprig data list fe)"), std::string::npos) << fe.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "o"));
+  const ProcessResult fit =
+      palprig_in(dir.path(), "calibrate fit none.csv --stress-model stress_model_002 --out c.json");
+  EXPECT_EQ(fit.err.find("stress_model_002' is neither"), std::string::npos) << fit.err;
+  const ProcessResult unknown =
+      palprig_in(dir.path(), "train enrol --curriculum palpation_basic --trainee T01 --db t.db");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("(palprig data list curricula)"), std::string::npos) << unknown.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "t.db"));
+  const ProcessResult enrol =
+      palprig_in(dir.path(), "train enrol --curriculum palpation_basics --trainee T01 --db t.db");
+  EXPECT_EQ(enrol.exit_code, 0) << enrol.err;
+  EXPECT_NE(enrol.out.find("T01 enrolled in"), std::string::npos) << enrol.out;
 }
 
 TEST(DataFiles, VersionNamesTheCommit) {
