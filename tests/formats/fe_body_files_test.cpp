@@ -3,6 +3,8 @@
 // fields, the laws and the shapes that cannot be meshed.
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <filesystem>
 #include <fstream>
 
 #include "formats/fe_body_files.hpp"
@@ -61,6 +63,10 @@ struct Refused {
   const char* expected;  // the whole refusal line
 };
 
+// How GoogleTest prints a case (it goes into the test's listing, so into ctest's name): its file
+// and field, not the struct's bytes, which hold pointers and change from run to run.
+void PrintTo(const Refused& r, std::ostream* os) { *os << r.file << " " << r.pointer; }
+
 class FeBodyRefusals : public ::testing::TestWithParam<Refused> {};
 
 TEST_P(FeBodyRefusals, NameFileFieldAndExpectation) {
@@ -116,7 +122,14 @@ INSTANTIATE_TEST_SUITE_P(
         Refused{"actuator_002.json", "/chamber/width_mm", 30, "chamber.width_mm: a number in 0.5..22, got 30"},
         Refused{"actuator_002.json", "/membrane/material/shore_a", 95,
                 "membrane.material.shore_a: a number in 20..80, got 95"},
-        Refused{"actuator_002.json", "/kind", "fingertip", "kind: one of \"actuator\", got \"fingertip\""}));
+        Refused{"actuator_002.json", "/kind", "fingertip", "kind: one of \"actuator\", got \"fingertip\""}),
+    // Each case named by its file and field (fingertip_002_outline_width_mm), not by its index.
+    [](const ::testing::TestParamInfo<Refused>& case_info) {
+      std::string name = std::filesystem::path(case_info.param.file).stem().string() + case_info.param.pointer;
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name;
+    });
 
 TEST(FeResultFiles, StressModelTheCalibrationCouldNotUseIsRefused) {
   ScratchDir dir;
