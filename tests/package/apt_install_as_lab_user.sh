@@ -3,9 +3,10 @@
 # needed; it changes the system, so it is not part of make test): `apt install ./palprig_*.deb`,
 # a lab user created and put in the palprig group, then as that user (a login through runuser -l,
 # so pam_limits applies the package's limits.d file) from an empty folder: --version, data list,
-# the demo, a simulated session by protocol name, stats trials, man palprig, rt-check's user part,
-# and `palprig run --realtime` holding SCHED_FIFO without root; then `apt purge` and a check that
-# none of the package's files is left (the group stays, as Debian leaves system groups).
+# the demo, a simulated session by protocol name, stats trials, man palprig, the window under Xvfb,
+# rt-check's user part and `palprig run --realtime` holding SCHED_FIFO without root; then `apt purge`
+# and a check that none of the package's files is left (the group stays, as Debian leaves system
+# groups).
 #   tests/package/apt_install_as_lab_user.sh PACKAGE.deb
 set -euo pipefail
 deb=$(realpath "${1:?usage: apt_install_as_lab_user.sh PACKAGE.deb}")
@@ -41,6 +42,13 @@ grep -q "^three-finger " <<<"$out" || fail "stats trials: $out"
 out=$(as_user "MANWIDTH=80 man palprig | col -bx | tr -s ' ' | head -n 5") || fail "man palprig: $out"
 grep -q "palprig - drive a pneumatic" <<<"$out" || fail "man palprig: $out"
 step "as $user: version, data list, demo, session by name, stats, man palprig"
+# The window, on a real X server (Xvfb, started by the lab user's own xvfb-run): two seconds of the
+# live console on a shipped scene and pen trace, then its own screenshot and exit 0.
+out=$(as_user "xvfb-run -a -s '-screen 0 1600x1000x24' env QT_QPA_PLATFORM=xcb palprig gui --scene phantom_abc \
+  --input trace:phantom_abc_pass --no-fifo --screenshot window.png --after-s 2 && stat -c %s window.png") ||
+  fail "the window under Xvfb: $out"
+[[ $(tail -n 1 <<<"$out") -gt 20000 ]] || fail "the window's screenshot is missing or blank: $out"
+step "as $user: the window under Xvfb (screenshot $(tail -n 1 <<<"$out") bytes)"
 out=$(as_user "palprig rt-check --seconds 0.2" || true)
 grep -q "$user is in the palprig group" <<<"$out" || fail "rt-check's user part: $out"
 # pam_limits raises the login's hard limits with CAP_SYS_RESOURCE; a sandbox without it (root
