@@ -227,16 +227,41 @@ TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
   server.stop();
   const auto writes = palprig::test_support::read_csv(log_path.string());
   const std::size_t t = writes.col("t_s"), ch = writes.col("channel"), kpa = writes.col("kPa");
-  std::array<double, 4> last_kPa{}, last_t{};
+  // The writes are timed where the server receives them, not where the bus thread sent them: one
+  // write delivered late makes the next look steeper by the delay (under the sanitizers with other
+  // suites beside it, once 8.82 kPa against the 8.76 kPa that two bus periods of slack allowed).
+  // So each step gets the slack of the returning-module case above (two periods and 10 ms: a
+  // missing ramp is still a 50 kPa jump), and the whole rise is held to the rate, which delivery
+  // delays cannot fake: from the first write above 0 to the first at 50 kPa takes at least
+  // (50 - first) / 2000 s, less two periods for the two writes' delivery. Channels are 1..3.
+  const double period_s = 1.0 / cmap.io_rate_hz;
+  std::array<double, 4> last_kPa{}, last_t{}, first_t{}, first_kPa{}, top_t{};
+  std::array<bool, 4> seen{}, rising{}, topped{};
   std::size_t rising_writes = 0;
   for (const auto& row : writes.rows) {
     const auto c = static_cast<std::size_t>(row[ch]);
-    if (last_t[c] > 0) {
-      EXPECT_LE(row[kpa] - last_kPa[c], 2000.0 * (row[t] - last_t[c] + 2.0 / cmap.io_rate_hz) + 0.01);
+    if (seen[c]) {
+      EXPECT_LE(row[kpa] - last_kPa[c], 2000.0 * (row[t] - last_t[c] + 2 * period_s + 0.010) + 0.01)
+          << "at t=" << row[t];
+    }
+    if (row[kpa] > 0 && !rising[c]) {
+      rising[c] = true;
+      first_t[c] = row[t];
+      first_kPa[c] = row[kpa];
+    }
+    if (row[kpa] >= 49.99 && !topped[c]) {
+      topped[c] = true;
+      top_t[c] = row[t];
     }
     if (row[kpa] > 0 && row[kpa] < 49.99) ++rising_writes;
+    seen[c] = true;
     last_kPa[c] = row[kpa];
     last_t[c] = row[t];
+  }
+  ASSERT_TRUE(topped[1]) << "channel 1 never reached 50 kPa";  // what the drive waited for
+  for (std::size_t c = 1; c <= kFingerCount; ++c) {
+    if (!topped[c]) continue;  // a channel whose 50 kPa write came after channel 1's and the close
+    EXPECT_GE(top_t[c] - first_t[c], (50.0 - first_kPa[c]) / 2000.0 - 2 * period_s) << "channel " << c;
   }
   EXPECT_GE(rising_writes, 3u * 5u);  // 50 kPa at 2000 kPa/s takes 25 ms: several bus cycles per channel
 }
