@@ -283,7 +283,10 @@ StressLine fit_stress_line(const std::vector<double>& x, const std::vector<doubl
   if (!(sxx > 0)) return line;
   line.slope = sxy / sxx;
   line.intercept_kPa = my - line.slope * mx;
-  line.r_squared = syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
+  // At most 1: a line through two points, or through points on a line, has R^2 1 exactly, which
+  // the rounding of sxy^2 / (sxx syy) can put a few ulp above (1.0000000000000002 refused by the
+  // stress-model file's own check, 2026-11-28).
+  line.r_squared = syy > 0 ? std::min(1.0, sxy * sxy / (sxx * syy)) : 1.0;
   return line;
 }
 
