@@ -190,14 +190,46 @@ def whole_targets(entries: dict[pathlib.Path, dict], folder: pathlib.Path) -> di
     return out
 
 
+_NINJA_DEPS: dict[pathlib.Path, dict[pathlib.Path, list[pathlib.Path]]] = {}
+
+
+def ninja_deps(build: pathlib.Path) -> dict[pathlib.Path, list[pathlib.Path]]:
+    """A Ninja build's record of the files each object's compile read (`ninja -t deps`): Ninja
+    reads the compiler's dependency files into its own log and deletes them. Only records Ninja
+    calls VALID (newer than the object) count; read once per build folder."""
+    if build not in _NINJA_DEPS:
+        found: dict[pathlib.Path, list[pathlib.Path]] = {}
+        ninja = shutil.which("ninja") or shutil.which("ninja-build")
+        if ninja and (build / "build.ninja").exists():
+            text = subprocess.run([ninja, "-C", str(build), "-t", "deps"], capture_output=True, text=True).stdout
+            current: list[pathlib.Path] | None = None
+            for line in text.splitlines():
+                if line.startswith("    ") and current is not None:
+                    current.append(pathlib.Path(build, line.strip()))
+                elif line and not line.startswith(" "):
+                    name, _, state = line.partition(": #deps")
+                    current = [] if state.endswith("(VALID)") else None
+                    if current is not None:
+                        found[pathlib.Path(build, name).resolve()] = current
+        _NINJA_DEPS[build] = found
+    return _NINJA_DEPS[build]
+
+
 def depfile_inputs(entry: dict) -> list[pathlib.Path] | None:
-    """The files the compiler read for this unit, from the build's dependency file (NAME.o.d)."""
+    """The files the compiler read for this unit, from the build's dependency file (NAME.o.d), or
+    in a Ninja build from Ninja's log of them."""
     objects = entry.get("objects") or [entry["object"]]
     sources = entry.get("unity_files") or [pathlib.Path(entry["file"])]
     names: list[pathlib.Path] = []
     for obj, source in zip(objects, sources):
         if obj is None:
             return None
+        logged = ninja_deps(pathlib.Path(entry["directory"]).resolve()).get(pathlib.Path(obj).resolve())
+        if logged is not None:
+            if not obj.exists() or obj.stat().st_mtime < pathlib.Path(source).stat().st_mtime:
+                return None  # the source changed since it was compiled: its includes may have too
+            names += logged
+            continue
         dep = pathlib.Path(str(obj) + ".d")
         if not dep.exists() or dep.stat().st_mtime < pathlib.Path(source).stat().st_mtime:
             return None
