@@ -7,13 +7,18 @@
 # measures each run's telemetry as it measures the in-process runs (RMS(monitor - target) for
 # fingers 1 and 2, monitor/target over tumors, overshoot over soft tissue, largest setpoint).
 #
-#   bench/fidelity_modbus.sh [BUILD]        (BUILD: the build folder, default build)
+#   bench/fidelity_modbus.sh [BUILD [PLANT_RIG]]   (BUILD: the build folder, default build)
 #   PALPRIG_KEEP=DIR bench/fidelity_modbus.sh   keeps the rig, sweep, calibration and telemetry in DIR
+#
+# PLANT_RIG: a rig file whose plant section the server simulates instead of the WAGO file's own,
+# e.g. data/rigs/simulated_asymmetric.json (the asymmetric regulator of docs/rig.md); its safety
+# section's p_max_kPa and slew limit come with it, so the bench judges setpoints by that rig.
 #
 # About 3 minutes, most of it the real-time sweep. Prints the machine, the load, the identified
 # dynamics (which include the bus's transport) and one table row per run.
 set -euo pipefail
 build=${1:-build}
+plant_rig=${2:-}
 bin=$(cd "$build/bin" && pwd)
 src=$(cd "$(dirname "$0")/.." && pwd)
 work=${PALPRIG_KEEP:-$(mktemp -d)}
@@ -27,8 +32,22 @@ trap cleanup EXIT
 
 echo "Machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores; load average $(cut -d' ' -f1-3 /proc/loadavg)"
 
+# The WAGO rig file, with the plant (and safety limits) of PLANT_RIG when one is given.
+python3 - "$src/data/rigs/wago_750_559.json" "$work/served.json" "$plant_rig" <<'EOF'
+import json, sys
+rig = json.load(open(sys.argv[1]))
+if sys.argv[3]:
+    other = json.load(open(sys.argv[3]))
+    rig["plant"] = other["plant"]
+    for key in ("p_max_kPa", "slew_kPa_per_s"):
+        if key in other.get("safety", {}):
+            rig["safety"][key] = other["safety"][key]
+json.dump(rig, open(sys.argv[2], "w"), indent=2)
+EOF
+[[ -n $plant_rig ]] && echo "Plant: the plant section of $plant_rig, served over Modbus TCP"
+
 # The server on a free port, then a copy of the rig file pointing at it.
-"$bin/palprig" sim-rig --rig "$src/data/rigs/wago_750_559.json" --listen 127.0.0.1:0 --duration-s 900 \
+"$bin/palprig" sim-rig --rig "$work/served.json" --listen 127.0.0.1:0 --duration-s 900 \
   > "$work/sim.txt" 2>&1 &
 sim=$!
 for _ in $(seq 100); do
@@ -37,7 +56,7 @@ for _ in $(seq 100); do
   sleep 0.1
 done
 [[ -n ${port:-} ]] || { echo "sim-rig did not start:"; cat "$work/sim.txt"; exit 1; }
-python3 - "$src/data/rigs/wago_750_559.json" "$work/rig.json" "$port" <<'EOF'
+python3 - "$work/served.json" "$work/rig.json" "$port" <<'EOF'
 import json, sys
 rig = json.load(open(sys.argv[1]))
 rig["modbus"]["links"][0]["tcp"]["port"] = int(sys.argv[3])
