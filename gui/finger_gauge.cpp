@@ -8,11 +8,9 @@
 namespace palprig::gui {
 
 FingerGauge::FingerGauge(int finger, QWidget* parent) : QWidget(parent), finger_(finger) {
-  // Tall enough for the bar and its four lines of figures (at 160 px the last line was clipped
-  // when the live page's column was squeezed), and short enough that on a 1280 x 800 screen the
-  // column shows the whole gauge above its scrolled part (at 216 px the rendering error's line
-  // was cut by the column's edge).
-  setMinimumSize(90, 196);
+  // Tall enough for the bar and its three lines of figures (at 160 px the last line was clipped
+  // when the live page's column was squeezed).
+  setMinimumSize(90, 216);
   setObjectName(QString("finger_gauge_%1").arg(finger + 1));
 }
 
