@@ -6,6 +6,7 @@
 #include <QLabel>
 #include <QPushButton>
 #include <QVBoxLayout>
+#include <algorithm>
 
 namespace palprig::gui {
 
@@ -20,7 +21,9 @@ RigPanel::RigPanel(LiveRun& run, QWidget* parent) : QWidget(parent), run_(run) {
   input_ = new QLabel;
   input_->setWordWrap(true);
   // A tracker's input names its tools and wraps to four lines at the column's width; the grid
-  // does not ask a wrapped label for its height, so the label would be cut to one line.
+  // does not ask a wrapped label for its height, so the label would be cut to one line. Its
+  // height follows its text (show_input): four lines for every input left the gauges' last line
+  // (the rendering error) below the column's edge on a 1280 x 800 screen.
   input_->setMinimumHeight(4 * input_->fontMetrics().lineSpacing());
   info->addWidget(new QLabel("Rig"), 0, 0);
   info->addWidget(backend_, 0, 1);
@@ -112,10 +115,20 @@ void RigPanel::update_controls() {
   vent_->setEnabled(true);  // never disabled
 }
 
+void RigPanel::show_input(const QString& text) {
+  if (text == input_->text()) return;
+  input_->setText(text);
+  // Lines the text wraps to in the value column (about 180 px wide in the 440 px column), two at
+  // least (a trace's path wraps at its folder), four at most (a tracker's tools).
+  const int text_px = input_->fontMetrics().horizontalAdvance(text);
+  const int lines = std::clamp(text_px / 180 + 1, 2, 4);
+  input_->setMinimumHeight(lines * input_->fontMetrics().lineSpacing());
+}
+
 void RigPanel::refresh(const FeedStatus& st) {
   backend_->setText(QString::fromStdString(run_.setup().rig.id + ": " + run_.backend_text()));
   link_->setText(session_ ? "the session's" : run_.linked() ? "up" : "DOWN (vented, reconnecting)");
-  input_->setText(session_ ? "the session's pen or stimuli" : QString::fromStdString(run_.input_text()));
+  show_input(session_ ? "the session's pen or stimuli" : QString::fromStdString(run_.input_text()));
   update_controls();
   if (run_.fault_pending()) {
     banner_text_->setText("FAULT: " + QString::fromStdString(run_.fault_text()));

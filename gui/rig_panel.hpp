@@ -35,7 +35,8 @@ class RigPanel final : public QWidget {
   void vented();
 
  private:
-  void update_controls();  // state text and which buttons apply, at once after a click
+  void update_controls();                // state text and which buttons apply, at once after a click
+  void show_input(const QString& text);  // the Input row, as tall as its text wraps
 
   LiveRun& run_;
   QLabel *backend_ = nullptr, *link_ = nullptr, *state_ = nullptr, *input_ = nullptr;
