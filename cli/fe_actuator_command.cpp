@@ -22,6 +22,7 @@ namespace {
 struct ActuatorArgs {
   std::string fingertip, actuator, out, pressures = "0,10,20,30,40,50,60,70,80,90,100";
   double press_mm = 1, target_kPa = 7.967;
+  std::string loading = "press-first";
   bool plot = true;
   FeAnalysisArgs analysis;
 };
@@ -32,9 +33,11 @@ void run_actuator(const ActuatorArgs& a) {
   mechanics::ActuatorOptions o;
   o.solve = solve_options(a.analysis);
   o.press_mm = a.press_mm;
+  o.loading = a.loading == "together" ? mechanics::ActuatorLoading::together : mechanics::ActuatorLoading::press_first;
   o.pressures_kPa = number_list(a.pressures, "--pressures", 0, 500);
   std::filesystem::create_directories(a.out);
-  std::cout << "palprig fe actuator: " << a.fingertip << " pressed " << a.press_mm << " mm onto " << a.actuator << ", "
+  std::cout << "palprig fe actuator: " << a.fingertip << " pressed " << (a.loading == "together" ? "up to " : "")
+            << a.press_mm << " mm onto " << a.actuator << (a.loading == "together" ? " as the air rises" : "") << ", "
             << plane_text(a.analysis) << ", " << a.analysis.element_mm << " mm elements\n";
   FeProgress progress("fe actuator");
   const mechanics::ContactRun run = mechanics::run_actuator(finger, actuator, o, std::ref(progress));
@@ -90,6 +93,11 @@ void register_fe_actuator(CLI::App* fe) {
       ->default_val("0,10,20,30,40,50,60,70,80,90,100");
   sub->add_option("--target-kPa", a->target_kPa, "Fingertip stress whose air pressure to report (paper 002's nodule)")
       ->default_val(7.967);
+  sub->add_option("--loading", a->loading,
+                  "press-first: the finger pressed --press-mm, then the air raised; together: the press rising "
+                  "with the air (--press-mm at the highest pressure), paper 002's 'at the same time'")
+      ->check(CLI::IsMember({"press-first", "together"}))
+      ->default_val("press-first");
   sub->add_option("--out", a->out, "Folder for the CSV tables and figures")->required();
   sub->add_flag("!--no-plot", a->plot, "Write the tables only");
   add_fe_analysis_options(sub, a->analysis);

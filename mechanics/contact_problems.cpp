@@ -211,7 +211,8 @@ ContactRun run_actuator(const FingertipBody& finger, const ActuatorBody& actuato
   run.materials = bodies.materials;
   run.material_names = bodies.names;
   run.unknowns = solver.unknowns();
-  const int press_steps = std::max(1, static_cast<int>(std::lround(o.press_mm / o.press_step_mm)));
+  const bool together = o.loading == ActuatorLoading::together;
+  const int press_steps = together ? 0 : std::max(1, static_cast<int>(std::lround(o.press_mm / o.press_step_mm)));
   const int total = press_steps + int(o.pressures_kPa.size());
   int done = 0;
   auto relay = [&](const StepProgress& p) {
@@ -223,7 +224,7 @@ ContactRun run_actuator(const FingertipBody& finger, const ActuatorBody& actuato
     q.remaining_s = q.elapsed_s / q.step * (q.steps - q.step);
     progress(q);
   };
-  // First the press, with no air.
+  // First the press, with no air (press_first; `together` presses as the air rises).
   std::vector<double> depths;
   for (int k = 1; k <= press_steps; ++k) depths.push_back(o.press_mm * k / press_steps);
   step_through(
@@ -234,15 +235,11 @@ ContactRun run_actuator(const FingertipBody& finger, const ActuatorBody& actuato
         return s;
       },
       [](double, int) {}, relay, t0);
-  // Then the air, the finger held.
+  // Then the air, the finger held (or pressed in proportion to the air).
   std::vector<double> pressures = o.pressures_kPa;
   std::sort(pressures.begin(), pressures.end());
-  auto at_pressure = [&](double p) {
-    LoadState s;
-    s.held_mm["bone"] = {0.0, -o.press_mm};
-    s.pressure_kPa["chamber"] = p;
-    return s;
-  };
+  const double highest_kPa = pressures.empty() ? 0.0 : pressures.back();
+  auto at_pressure = [&](double p) { return actuator_load(o, p, highest_kPa); };
   auto record = [&](double p, int iterations) {
     ContactStep step;
     step.load = p;
@@ -253,7 +250,10 @@ ContactRun run_actuator(const FingertipBody& finger, const ActuatorBody& actuato
     run.steps.push_back(std::move(step));
   };
   if (!pressures.empty() && pressures.front() <= 0) {
-    record(0.0, 0);
+    // Pressed and no air: the state the press left (press_first), or the finger resting on the
+    // actuator untouched (together), solved so that its profile is a solution's.
+    const int iterations = together ? solver.solve(at_pressure(0.0), o.solve.max_newton_iterations).iterations : 0;
+    record(0.0, iterations);
     relay({});
     pressures.erase(pressures.begin());
   }
@@ -261,6 +261,15 @@ ContactRun run_actuator(const FingertipBody& finger, const ActuatorBody& actuato
   run.last = solver.deformed();
   run.wall_s = seconds_since(t0);
   return run;
+}
+
+LoadState actuator_load(const ActuatorOptions& o, double pressure_kPa, double highest_kPa) {
+  LoadState s;
+  const bool together = o.loading == ActuatorLoading::together;
+  const double press_mm = !together ? o.press_mm : highest_kPa > 0 ? o.press_mm * pressure_kPa / highest_kPa : 0.0;
+  s.held_mm["bone"] = {0.0, -press_mm};
+  s.pressure_kPa["chamber"] = pressure_kPa;
+  return s;
 }
 
 StressLine fit_stress_line(const std::vector<double>& x, const std::vector<double>& y) {

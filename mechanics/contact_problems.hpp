@@ -72,14 +72,25 @@ struct IndentationOptions {
 ContactRun run_indentation(const FingertipBody& finger, const TissueBlock& block, const IndentationOptions& options,
                            const ProgressFn& progress = {});
 
+// How the press and the air are applied. Paper 002: "The air pressure was simulated by a
+// distributed load, increasing from 0 to 100 kPa ... At the same time, a downward displacement of
+// 1 mm was applied to the finger bone": read as `together`, the press at air p is
+// press_mm * p / (the highest pressure), so each step is a different press; `press_first` (the
+// default) presses the finger fully, then raises the air, as a user pressing a rig does.
+enum class ActuatorLoading { press_first, together };
+
 struct ActuatorOptions {
   SolveOptions solve;
   double press_mm = 1.0;
   double press_step_mm = 0.25;
   std::vector<double> pressures_kPa{0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100};
+  ActuatorLoading loading = ActuatorLoading::press_first;
 };
 ContactRun run_actuator(const FingertipBody& finger, const ActuatorBody& actuator, const ActuatorOptions& options,
                         const ProgressFn& progress = {});
+// The load of one air-pressure step: the bone held at the full press (press_first) or at the press
+// in proportion to the air (together: press_mm * pressure / highest), the chamber at the pressure.
+LoadState actuator_load(const ActuatorOptions& options, double pressure_kPa, double highest_kPa);
 
 // A least-squares line y = slope x + intercept with R^2 (the actuator's stress line). Written
 // here rather than taken from calibration/, which sits above this floor.

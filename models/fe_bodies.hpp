@@ -64,7 +64,10 @@ struct ActuatorBody {
   std::string name;
   double width_mm = 24.0;         // the modelled width of the layers (the fingertip is 16 mm)
   double chamber_width_mm = 4.0;  // the cavity's diameter
-  double chamber_depth_mm = 2.0;  // the membrane must not bottom out: checked after each solve
+  // Read and checked, but not modelled: the air is a pressure on the membrane's underside over the
+  // chamber's width and the substrate below it is not meshed, so a membrane pressed deeper than
+  // the chamber would not be stopped (no check; docs/finite-element.md's assumptions).
+  double chamber_depth_mm = 2.0;
   double membrane_thickness_mm = 0.25;
   MaterialLaw membrane = table1::membrane();  // E from Shore A 40 (paper 002 eq. 3-4)
   double layer_thickness_mm = 3.0;

@@ -99,6 +99,12 @@ TEST(FeCommand, RefusedFilesAndArgumentsExitTwoWithOneLine) {
   EXPECT_EQ(r.err, "palprig: " + kFe +
                        "soft_tissue_002.json: inclusions: a nodule: the stress over it is the model's "
                        "hard stress\n");
+  r = run_process(palprig_bin() + " fe actuator --fingertip " + kFe + "fingertip_002.json --actuator " + kFe +
+                  "actuator_002.json --loading sideways --out " + (dir.path() / "a").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--loading"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("sideways"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "a"));
   r = run_process(palprig_bin() + " check " + kFe + "fingertip_002.json " + kFe + "actuator_002.json");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("fingertip_002.json: fingertip, 16 x 12 mm"), std::string::npos) << r.out;
