@@ -34,7 +34,7 @@ using namespace palprig;
 
 namespace {
 
-struct Args {
+struct PsychometricArgs {
   std::string file, level, response, n, by, plot, sigmoid = "cumulative-gaussian", guess, lapse = "fit";
   std::optional<double> threshold_at;
   double guess_max = 0.5, lapse_max = 0.1, confidence = 0.95;
@@ -168,7 +168,7 @@ std::string session_threshold_note(const std::string& file, const std::optional<
   return note;
 }
 
-void run(const Args& a) {
+void run(const PsychometricArgs& a) {
   stats::PsychometricOptions o;
   const auto sigmoid = stats::sigmoid_from_string(a.sigmoid);
   if (!sigmoid) throw InputError("command line", "--sigmoid", "cumulative-gaussian, logistic or weibull");
@@ -274,7 +274,7 @@ void run(const Args& a) {
 }  // namespace
 
 void register_psychometric_command(CLI::App& stats_app) {
-  auto a = std::make_shared<Args>();
+  auto a = std::make_shared<PsychometricArgs>();
   auto* sub = stats_app.add_subcommand(
       "psychometric",
       "Psychometric function fit (cumulative Gaussian, logistic, Weibull) by maximum likelihood: threshold, slope, "
