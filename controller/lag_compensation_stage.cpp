@@ -40,16 +40,21 @@ double look_ahead_window_s(const RegulatorLag& model, double y_kPa) noexcept {
   return std::max(model.time_constant_s * kLn2, fall_half_life_s);
 }
 
-double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
-                              double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
-                              const void* context, const WindowCache& window) noexcept {
-  if (samples_ahead < 1) return sample(context, 0.0);
+EdgeAnticipation begin_anticipation(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
+                                    double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
+                                    const void* context, const WindowCache& window) noexcept {
+  EdgeAnticipation out;
+  if (samples_ahead < 1) {
+    out.at_lead_kPa = sample(context, 0.0);
+    return out;
+  }
   const double at_lead = sample(context, lead_s);
+  out.at_lead_kPa = at_lead;
   // A rise goes at the filling lag, a fall at the exhausting one (the same for one lag).
   const double tau = model.time_constant_s, tau_fall = model.exhaust_tau_s();
   if (!anticipate || samples_ahead < 2 || !(tau > 0) || !(tau_fall > 0) || !std::isfinite(at_lead) ||
       !std::isfinite(y_kPa))
-    return at_lead;
+    return out;
   constexpr double kEdge_kPa = 0.25;  // smaller changes are followed as they come
   const double y = std::max(y_kPa, 0.0);
   const double window_s = look_ahead_window_s(model, y);
@@ -60,23 +65,48 @@ double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y
     later = sample(context, lead_s + window_s);
     if (window.target_kPa && window.sampled) *window.target_kPa = later, *window.sampled = true;
   }
-  if (!std::isfinite(later)) return at_lead;
+  if (!std::isfinite(later)) return out;
   if (later < at_lead - kEdge_kPa && later < y) {
     const double b = std::max(later, 0.0);
     const double half_way_s = y > 0 ? std::clamp(model.exhaust_time_s(y, 0.5 * (y + b)), 0.0, window_s) : 0.0;
-    const double there = samples_ahead >= 3 ? sample(context, lead_s + half_way_s) : later;
-    return std::isfinite(there) ? std::min(at_lead, there) : at_lead;
+    out.edge = EdgeAnticipation::Edge::fall;
+    if (samples_ahead >= 3)
+      out.there_ahead_s = lead_s + half_way_s;
+    else
+      out.there_kPa = later;
+    return out;
   }
   if (later > at_lead + kEdge_kPa && later > y) {
     const double b = later;
     const double hi = std::min(p_max_kPa, b + std::min(max_lead_kPa, b));
     const double mid = 0.5 * (y + b);
-    if (!(hi > mid)) return at_lead;
+    if (!(hi > mid)) return out;
     const double half_way_s = std::clamp(tau * std::log((hi - y) / (hi - mid)), 0.0, window_s);
-    const double there = samples_ahead >= 3 ? sample(context, lead_s + half_way_s) : at_lead;
-    return std::isfinite(there) ? std::max(at_lead, there) : at_lead;
+    out.edge = EdgeAnticipation::Edge::rise;
+    if (samples_ahead >= 3)
+      out.there_ahead_s = lead_s + half_way_s;
+    else
+      out.there_kPa = at_lead;
+  }
+  return out;
+}
+
+double finish_anticipation(const EdgeAnticipation& a, double there_kPa) noexcept {
+  const double at_lead = a.at_lead_kPa;
+  switch (a.edge) {
+    case EdgeAnticipation::Edge::none: return at_lead;
+    case EdgeAnticipation::Edge::fall: return std::isfinite(there_kPa) ? std::min(at_lead, there_kPa) : at_lead;
+    case EdgeAnticipation::Edge::rise: return std::isfinite(there_kPa) ? std::max(at_lead, there_kPa) : at_lead;
   }
   return at_lead;
+}
+
+double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
+                              double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
+                              const void* context, const WindowCache& window) noexcept {
+  const EdgeAnticipation a = begin_anticipation(model, lead_s, y_kPa, max_lead_kPa, p_max_kPa, samples_ahead,
+                                                anticipate, sample, context, window);
+  return finish_anticipation(a, a.needs_sample() ? sample(context, a.there_ahead_s) : a.there_kPa);
 }
 
 ChannelPressures lag_compensation_stage(LagCompensationState& state, const LagPlan& plan, const LagTargets& in,

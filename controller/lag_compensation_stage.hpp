@@ -120,6 +120,24 @@ double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y
                               double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
                               const void* context, const WindowCache& window = {}) noexcept;
 
+// anticipated_target_kPa in two halves, so that a caller with several channels can ask for every
+// channel's last sample at once before reading any (the tick prefetches them: on a map larger
+// than the cache each is a miss, and one after another they queue): begin_anticipation takes the
+// samples at the lead and the window and says whether an edge needs one more, `there_ahead_s`
+// from now; finish_anticipation combines that sample (or there_kPa, when none was needed) with
+// the one at the lead. anticipated_target_kPa is exactly the two in a row.
+struct EdgeAnticipation {
+  enum class Edge { none, fall, rise } edge = Edge::none;
+  double at_lead_kPa = 0.0;
+  double there_ahead_s = -1.0;  // >= 0: the sample finish_anticipation needs, this far ahead
+  double there_kPa = 0.0;       // the value to finish with when no sample is needed
+  bool needs_sample() const noexcept { return edge != Edge::none && there_ahead_s >= 0; }
+};
+EdgeAnticipation begin_anticipation(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
+                                    double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
+                                    const void* context, const WindowCache& window = {}) noexcept;
+double finish_anticipation(const EdgeAnticipation& a, double there_kPa) noexcept;
+
 // The targets the stage works from: the stiffness part now and ahead (ahead only for channels
 // compensating the total; the stage ignores it elsewhere), and the pulse now and ahead.
 struct LagTargets {

@@ -165,15 +165,35 @@ void look_ahead_stage(TickState& state, const TickConfig& config, const Scene& s
                       TelemetryRecord& rec) noexcept {
   if (!plan.any_total() || state.fault != FaultCode::none) return;
   rec.flags |= kLagCompensated;
+  // Every channel's samples at the lead and the window first (the prefetch stage asked for
+  // them); then the last sample of each channel whose edge needs one, asked for at once, and
+  // only then read: they depend on the first samples, so no earlier stage could ask for them.
+  const LagCompensationSetting& lag = config.lag_compensation;
+  std::array<EdgeAnticipation, kFingerCount> begun{};
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     if (plan.part[i] != CompensatedPart::total) continue;
-    const LagCompensationSetting& lag = config.lag_compensation;
     const Ahead context{state, config, scene, i, t_s, target_now_kPa[i]};
     const WindowCache window{&state.lag.window_target_kPa[i], &state.lag.window_sampled[i],
                              state.lag.ticks % kWindowStride == i % kWindowStride};
-    targets.base_ahead_kPa[i] = anticipated_target_kPa(
-        plan.model[i], plan.lead_s[i], state.lag.compensator[i].predicted_kPa(), lag.max_lead_kPa,
-        config.safety.p_max_kPa, lag.samples_ahead, lag.anticipate_edges, &Ahead::sample, &context, window);
+    begun[i] = begin_anticipation(plan.model[i], plan.lead_s[i], state.lag.compensator[i].predicted_kPa(),
+                                  lag.max_lead_kPa, config.safety.p_max_kPa, lag.samples_ahead, lag.anticipate_edges,
+                                  &Ahead::sample, &context, window);
+  }
+  if (scene.prefetch_pays())
+    for (std::size_t i = 0; i < kFingerCount; ++i)
+      if (plan.part[i] == CompensatedPart::total && begun[i].needs_sample()) {
+        Point2_mm centre;
+        double force_N = 0;
+        if (begun[i].there_ahead_s > 0 &&
+            predicted_press(state, config, i, t_s + begun[i].there_ahead_s, centre, force_N))
+          scene.prefetch(centre);
+      }
+  for (std::size_t i = 0; i < kFingerCount; ++i) {
+    if (plan.part[i] != CompensatedPart::total) continue;
+    const EdgeAnticipation& a = begun[i];
+    const Ahead context{state, config, scene, i, t_s, target_now_kPa[i]};
+    targets.base_ahead_kPa[i] =
+        finish_anticipation(a, a.needs_sample() ? Ahead::sample(&context, a.there_ahead_s) : a.there_kPa);
   }
 }
 

@@ -4,11 +4,17 @@
 // (the paper's rule) or bilinear; outside the rectangle the map either clamps to its edge or
 // returns a configured background stiffness.
 #include <cstddef>
+#include <initializer_list>
 #include <iosfwd>
 #include <string>
 #include <vector>
 
+#include "models/huge_page_allocator.hpp"
+
 namespace palprig {
+
+// A map's values, row-major: on 2 MiB pages when the map is large (models/huge_page_allocator.hpp).
+using MapValues = std::vector<float, HugePageAllocator<float>>;
 
 enum class MapSampling { nearest, bilinear };
 
@@ -21,8 +27,15 @@ class StiffnessMap {
  public:
   StiffnessMap() = default;
   // values: rows*cols in row-major order, row 0 at y = 0 mm; each must be finite and in 0..1.
-  StiffnessMap(std::size_t cols, std::size_t rows, double width_mm, double height_mm, std::vector<float> values,
+  StiffnessMap(std::size_t cols, std::size_t rows, double width_mm, double height_mm, MapValues values,
                OutsidePolicy outside = {});
+  // The same from a plain vector (tests, generated maps): its values are copied.
+  StiffnessMap(std::size_t cols, std::size_t rows, double width_mm, double height_mm, const std::vector<float>& values,
+               OutsidePolicy outside = {})
+      : StiffnessMap(cols, rows, width_mm, height_mm, MapValues(values.begin(), values.end()), outside) {}
+  StiffnessMap(std::size_t cols, std::size_t rows, double width_mm, double height_mm,
+               std::initializer_list<float> values, OutsidePolicy outside = {})
+      : StiffnessMap(cols, rows, width_mm, height_mm, MapValues(values), outside) {}
 
   std::size_t cols() const noexcept { return cols_; }
   std::size_t rows() const noexcept { return rows_; }
@@ -31,7 +44,7 @@ class StiffnessMap {
   const OutsidePolicy& outside() const noexcept { return outside_; }
   void set_outside(OutsidePolicy p) noexcept { outside_ = p; }
   float at(std::size_t col, std::size_t row) const noexcept { return values_[row * cols_ + col]; }
-  const std::vector<float>& values() const noexcept { return values_; }
+  const MapValues& values() const noexcept { return values_; }
 
   // Vertex (col, row) sits at x = col * width/(cols-1), y = row * height/(rows-1).
   double sample_nearest(double x_mm, double y_mm) const noexcept;
@@ -51,7 +64,7 @@ class StiffnessMap {
 
   std::size_t cols_ = 0, rows_ = 0;
   double width_mm_ = 0, height_mm_ = 0;
-  std::vector<float> values_;
+  MapValues values_;
   OutsidePolicy outside_;
 };
 

@@ -98,3 +98,53 @@ TEST(ExhaustLagCompensation, TheFallIsAskedForEarlierByTheTimeTheSlowExhaustTake
   EXPECT_NEAR(switch_lead(exact), edge.at_s - half_exact, 0.001);
   EXPECT_NEAR(switch_lead(flat), edge.at_s - half_flat, 0.001);
 }
+
+// The two halves the tick calls (begin for every channel, its last samples asked for at once,
+// then finish) give what anticipated_target_kPa gives, and say which sample they still need: on
+// a fall, the target the exhaust's half-way time ahead of the lead (the closed form of the plant
+// above); on a rise, the filling lag's half-way time towards the bound hi; none without an edge.
+TEST(ExhaustLagCompensation, TheAnticipationsTwoHalvesAskForTheEdgesSampleAndEqualTheWhole) {
+  const RegulatorLag m{0.004, 0.040, 2000, 0.070, 2.5, 5};
+  struct Step {
+    double at_s, before_kPa, after_kPa;
+  };
+  auto target = [](const void* context, double ahead_s) {
+    const auto& s = *static_cast<const Step*>(context);
+    return ahead_s >= s.at_s ? s.after_kPa : s.before_kPa;
+  };
+  const double lead = 0.005;
+  // A fall from 10 to 0.7 kPa 60 ms ahead, with the output at 10 kPa.
+  const Step fall{0.060, 10.0, 0.7};
+  const EdgeAnticipation f = begin_anticipation(m, lead, 10.0, 10, 60, 3, true, target, &fall);
+  ASSERT_TRUE(f.needs_sample());
+  EXPECT_EQ(f.edge, EdgeAnticipation::Edge::fall);
+  EXPECT_DOUBLE_EQ(f.at_lead_kPa, 10.0);
+  EXPECT_NEAR(f.there_ahead_s, lead + m.exhaust_time_s(10.0, 0.5 * (10.0 + 0.7)), 1e-12);
+  EXPECT_DOUBLE_EQ(finish_anticipation(f, 0.7), 0.7);    // the fall is asked for
+  EXPECT_DOUBLE_EQ(finish_anticipation(f, 12.0), 10.0);  // never more than at the lead
+  EXPECT_DOUBLE_EQ(finish_anticipation(f, NAN), 10.0);
+  // A rise from 2 to 20 kPa 60 ms ahead, with the output at 2 kPa: pushed at hi = 30 kPa.
+  const Step rise{0.060, 2.0, 20.0};
+  const EdgeAnticipation r = begin_anticipation(m, lead, 2.0, 10, 60, 3, true, target, &rise);
+  ASSERT_TRUE(r.needs_sample());
+  EXPECT_EQ(r.edge, EdgeAnticipation::Edge::rise);
+  const double window_s = look_ahead_window_s(m, 2.0);
+  EXPECT_NEAR(r.there_ahead_s, lead + std::min(0.040 * std::log((30.0 - 2.0) / (30.0 - 11.0)), window_s), 1e-12);
+  EXPECT_DOUBLE_EQ(finish_anticipation(r, 20.0), 20.0);
+  EXPECT_DOUBLE_EQ(finish_anticipation(r, 1.0), 2.0);
+  // No edge in the window: nothing more to sample; two samples only: the edge is judged from
+  // the window's sample, which is the fall's value.
+  const Step flat{0.060, 5.0, 5.1};
+  EXPECT_FALSE(begin_anticipation(m, lead, 5.0, 10, 60, 3, true, target, &flat).needs_sample());
+  const EdgeAnticipation two = begin_anticipation(m, lead, 10.0, 10, 60, 2, true, target, &fall);
+  EXPECT_FALSE(two.needs_sample());
+  EXPECT_DOUBLE_EQ(finish_anticipation(two, two.there_kPa), 0.7);
+  // And the halves in a row are the whole, along a sweep of leads across both edges.
+  for (double l = 0.0; l < 0.08; l += 0.0005)
+    for (const Step* s : {&fall, &rise, &flat})
+      for (double y : {0.0, 2.0, 10.0}) {
+        const EdgeAnticipation a = begin_anticipation(m, l, y, 10, 60, 3, true, target, s);
+        const double halves = finish_anticipation(a, a.needs_sample() ? target(s, a.there_ahead_s) : a.there_kPa);
+        EXPECT_EQ(halves, anticipated_target_kPa(m, l, y, 10, 60, 3, true, target, s)) << l << " " << y;
+      }
+}

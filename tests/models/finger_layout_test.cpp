@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
 
 #include "models/finger_layout.hpp"
 
@@ -37,4 +38,22 @@ TEST(FingerLayout, NinetyDegreesRotatesCounterClockwise) {
   EXPECT_NEAR(f[1].y_mm, 10, 1e-9);
   EXPECT_NEAR(f[2].x_mm, -10, 1e-9);
   EXPECT_NEAR(f[2].y_mm, 0, 1e-9);
+}
+
+// The layout's axis is kept per thread for the orientation it was computed for: layouts of
+// different orientations used in turn, and on two threads, each get their own triangle.
+TEST(FingerLayout, LayoutsOfDifferentOrientationsInTurnEachGetTheirOwnAxis) {
+  const FingerLayout a{10.0, 0.0}, b{10.0, 90.0};
+  auto check = [&] {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_DOUBLE_EQ(a.centres(0, 0)[1].x_mm, 10.0);
+      EXPECT_NEAR(b.centres(0, 0)[1].x_mm, 0.0, 1e-12);
+      EXPECT_NEAR(b.centres(0, 0)[1].y_mm, 10.0, 1e-12);
+      EXPECT_DOUBLE_EQ(a.centres(0, 0)[2].y_mm, 10.0);
+    }
+  };
+  check();
+  std::thread other(check);
+  check();
+  other.join();
 }

@@ -1,6 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
 #include <sstream>
 
 #include "core/input_error.hpp"
@@ -32,6 +37,62 @@ TEST(StiffnessMap, NearestPicksTheClosestVertex) {
   EXPECT_DOUBLE_EQ(m.sample_nearest(5.1, 0), 0.5);
   EXPECT_FLOAT_EQ(m.sample_nearest(19, 9), 0.6f);
   EXPECT_FLOAT_EQ(m.sample_nearest(10, 6), 0.4f);
+}
+
+// The nearest vertex as std::lround picks it (half-way goes away from zero), the tick's rounding
+// done without the library call: exact halves and random points over a large map agree.
+TEST(StiffnessMap, NearestRoundsHalfWayUpAsLroundDoes) {
+  const auto m = small_map();
+  EXPECT_DOUBLE_EQ(m.sample_nearest(5.0, 0), 0.5);  // x exactly half-way between 0 and 10 mm
+  EXPECT_DOUBLE_EQ(m.sample_nearest(15.0, 0), 1.0);
+  EXPECT_FLOAT_EQ(m.sample_nearest(0, 5.0), 0.2f);  // y half-way between the rows
+  const std::size_t cols = 257, rows = 129;
+  std::vector<float> v(cols * rows);
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = float(k % 1000) / 1000.0f;
+  const StiffnessMap big(cols, rows, 400.0, 200.0, v);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> ux(0, 400), uy(0, 200);
+  for (int k = 0; k < 100000; ++k) {
+    const double x = ux(rng), y = uy(rng);
+    const auto c = static_cast<std::size_t>(std::lround(x / 400.0 * double(cols - 1)));
+    const auto r = static_cast<std::size_t>(std::lround(y / 200.0 * double(rows - 1)));
+    ASSERT_EQ(big.sample_nearest(x, y), big.at(c, r)) << x << " " << y;
+  }
+}
+
+// A map of 2 MiB or more lies on 2 MiB boundaries and asks the kernel for huge pages (the
+// tick's samples of a pen jumping over a 4096 x 4096 map then miss the TLB far less); a small one
+// is an ordinary allocation. Where the kernel reports it (smaps' THPeligible), the map's memory
+// is eligible for huge pages unless transparent huge pages are switched off.
+TEST(StiffnessMap, LargeMapsLieOnHugePageBoundaries) {
+  const std::size_t side = 1024;  // 4 MiB of floats
+  const StiffnessMap big(side, side, 100.0, 100.0, std::vector<float>(side * side, 0.25f));
+  const auto address = reinterpret_cast<std::uintptr_t>(big.values().data());
+  EXPECT_EQ(address % kHugePageBytes, 0u);
+  EXPECT_FLOAT_EQ(big.at(side - 1, side - 1), 0.25f);
+  const StiffnessMap copy = big;  // copies allocate the same way
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(copy.values().data()) % kHugePageBytes, 0u);
+  EXPECT_EQ(copy.values(), big.values());
+  EXPECT_FLOAT_EQ(small_map().at(2, 1), 0.6f);
+
+  std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string policy((std::istreambuf_iterator<char>(thp)), std::istreambuf_iterator<char>());
+  if (policy.empty() || policy.find("[never]") != std::string::npos) return;  // nothing to ask for
+  std::ifstream smaps("/proc/self/smaps");
+  std::string line;
+  bool in_map = false;
+  int eligible = -1;  // the map's THPeligible, -1 where the kernel does not say
+  while (std::getline(smaps, line)) {
+    unsigned long lo = 0, hi = 0;
+    if (std::sscanf(line.c_str(), "%lx-%lx ", &lo, &hi) == 2) {  // a mapping's first line
+      in_map = address >= lo && address < hi;
+      continue;
+    }
+    if (in_map && line.rfind("THPeligible:", 0) == 0) eligible = std::stoi(line.substr(12));
+  }
+  if (eligible >= 0) {
+    EXPECT_EQ(eligible, 1) << "the map's memory is not eligible for huge pages (" << policy << ")";
+  }
 }
 
 TEST(StiffnessMap, BilinearInterpolatesBetweenVertices) {
