@@ -42,7 +42,7 @@ void render(const RenderArgs& a) {
   const auto rows = static_cast<std::size_t>(std::floor(b.y1_mm / a.res_mm)) + 1;
   if (cols < 2 || rows < 2 || cols * rows > 50'000'000)
     throw InputError("--res-mm", std::to_string(a.res_mm), "a resolution giving 2..50 million vertices per side pair");
-  std::vector<float> values(cols * rows);
+  MapValues values(cols * rows);  // the map's own storage: moved into it, not copied
   for (std::size_t r = 0; r < rows; ++r)
     for (std::size_t c = 0; c < cols; ++c)
       values[r * cols + c] = static_cast<float>(std::clamp(

@@ -70,7 +70,8 @@ EdgeAnticipation begin_anticipation(const RegulatorLag& model, double lead_s, do
     const double b = std::max(later, 0.0);
     const double half_way_s = y > 0 ? std::clamp(model.exhaust_time_s(y, 0.5 * (y + b)), 0.0, window_s) : 0.0;
     out.edge = EdgeAnticipation::Edge::fall;
-    if (samples_ahead >= 3)
+    out.sample_needed = samples_ahead >= 3;
+    if (out.sample_needed)
       out.there_ahead_s = lead_s + half_way_s;
     else
       out.there_kPa = later;
@@ -83,7 +84,8 @@ EdgeAnticipation begin_anticipation(const RegulatorLag& model, double lead_s, do
     if (!(hi > mid)) return out;
     const double half_way_s = std::clamp(tau * std::log((hi - y) / (hi - mid)), 0.0, window_s);
     out.edge = EdgeAnticipation::Edge::rise;
-    if (samples_ahead >= 3)
+    out.sample_needed = samples_ahead >= 3;
+    if (out.sample_needed)
       out.there_ahead_s = lead_s + half_way_s;
     else
       out.there_kPa = at_lead;

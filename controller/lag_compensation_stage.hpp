@@ -129,9 +129,10 @@ double anticipated_target_kPa(const RegulatorLag& model, double lead_s, double y
 struct EdgeAnticipation {
   enum class Edge { none, fall, rise } edge = Edge::none;
   double at_lead_kPa = 0.0;
-  double there_ahead_s = -1.0;  // >= 0: the sample finish_anticipation needs, this far ahead
-  double there_kPa = 0.0;       // the value to finish with when no sample is needed
-  bool needs_sample() const noexcept { return edge != Edge::none && there_ahead_s >= 0; }
+  bool sample_needed = false;  // finish_anticipation needs the target there_ahead_s from now
+  double there_ahead_s = 0.0;
+  double there_kPa = 0.0;  // the value to finish with when no sample is needed
+  bool needs_sample() const noexcept { return sample_needed; }
 };
 EdgeAnticipation begin_anticipation(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
                                     double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,

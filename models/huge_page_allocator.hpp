@@ -37,7 +37,7 @@ struct HugePageAllocator {
   static bool huge(std::size_t n) noexcept { return n * sizeof(T) >= kHugePageBytes; }
 
   T* allocate(std::size_t n) {
-    if (n > std::numeric_limits<std::size_t>::max() / sizeof(T)) throw std::bad_array_new_length();
+    if (n > (std::numeric_limits<std::size_t>::max() - kHugePageBytes) / sizeof(T)) throw std::bad_array_new_length();
     if (!huge(n)) return std::allocator<T>{}.allocate(n);
     const std::size_t bytes = (n * sizeof(T) + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
     void* p = std::aligned_alloc(kHugePageBytes, bytes);

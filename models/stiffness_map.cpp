@@ -45,9 +45,12 @@ bool StiffnessMap::to_grid(double x_mm, double y_mm, double& gx, double& gy) con
 namespace {
 
 // The vertex nearest a grid coordinate g >= 0 (to_grid clamps it): std::lround's result
-// (half away from zero) without its library call, which the tick makes for every sample.
-// g + 0.5 rounds up only where g is within half an ulp below a half, a 1e-16 mm difference.
-std::size_t nearest_vertex(double g) noexcept { return static_cast<std::size_t>(g + 0.5); }
+// (half away from zero) without its library call, which the tick makes for every sample. The
+// one input where they differ is g = 0.5 - 2^-54, which g + 0.5 rounds up to vertex 1: a point
+// 1e-16 of a cell from half-way, which no pen resolves.
+std::size_t nearest_vertex(double g) noexcept {
+  return static_cast<std::size_t>(g + 0.5);  // NOLINT(bugprone-incorrect-roundings): g >= 0; the one case above
+}
 
 }  // namespace
 

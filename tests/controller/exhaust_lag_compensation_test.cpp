@@ -99,6 +99,44 @@ TEST(ExhaustLagCompensation, TheFallIsAskedForEarlierByTheTimeTheSlowExhaustTake
   EXPECT_NEAR(switch_lead(flat), edge.at_s - half_flat, 0.001);
 }
 
+namespace {
+
+// anticipated_target_kPa as it was before it was split into two halves (main 874db3b), kept here
+// word for word as the oracle of the split.
+double anticipated_before_split(const RegulatorLag& model, double lead_s, double y_kPa, double max_lead_kPa,
+                                double p_max_kPa, int samples_ahead, bool anticipate, TargetAhead sample,
+                                const void* context) {
+  if (samples_ahead < 1) return sample(context, 0.0);
+  const double at_lead = sample(context, lead_s);
+  const double tau = model.time_constant_s, tau_fall = model.exhaust_tau_s();
+  if (!anticipate || samples_ahead < 2 || !(tau > 0) || !(tau_fall > 0) || !std::isfinite(at_lead) ||
+      !std::isfinite(y_kPa))
+    return at_lead;
+  constexpr double kEdge_kPa = 0.25;
+  const double y = std::max(y_kPa, 0.0);
+  const double window_s = look_ahead_window_s(model, y);
+  const double later = sample(context, lead_s + window_s);
+  if (!std::isfinite(later)) return at_lead;
+  if (later < at_lead - kEdge_kPa && later < y) {
+    const double b = std::max(later, 0.0);
+    const double half_way_s = y > 0 ? std::clamp(model.exhaust_time_s(y, 0.5 * (y + b)), 0.0, window_s) : 0.0;
+    const double there = samples_ahead >= 3 ? sample(context, lead_s + half_way_s) : later;
+    return std::isfinite(there) ? std::min(at_lead, there) : at_lead;
+  }
+  if (later > at_lead + kEdge_kPa && later > y) {
+    const double b = later;
+    const double hi = std::min(p_max_kPa, b + std::min(max_lead_kPa, b));
+    const double mid = 0.5 * (y + b);
+    if (!(hi > mid)) return at_lead;
+    const double half_way_s = std::clamp(tau * std::log((hi - y) / (hi - mid)), 0.0, window_s);
+    const double there = samples_ahead >= 3 ? sample(context, lead_s + half_way_s) : at_lead;
+    return std::isfinite(there) ? std::max(at_lead, there) : at_lead;
+  }
+  return at_lead;
+}
+
+}  // namespace
+
 // The two halves the tick calls (begin for every channel, its last samples asked for at once,
 // then finish) give what anticipated_target_kPa gives, and say which sample they still need: on
 // a fall, the target the exhaust's half-way time ahead of the lead (the closed form of the plant
@@ -139,12 +177,26 @@ TEST(ExhaustLagCompensation, TheAnticipationsTwoHalvesAskForTheEdgesSampleAndEqu
   const EdgeAnticipation two = begin_anticipation(m, lead, 10.0, 10, 60, 2, true, target, &fall);
   EXPECT_FALSE(two.needs_sample());
   EXPECT_DOUBLE_EQ(finish_anticipation(two, two.there_kPa), 0.7);
-  // And the halves in a row are the whole, along a sweep of leads across both edges.
-  for (double l = 0.0; l < 0.08; l += 0.0005)
-    for (const Step* s : {&fall, &rise, &flat})
-      for (double y : {0.0, 2.0, 10.0}) {
-        const EdgeAnticipation a = begin_anticipation(m, l, y, 10, 60, 3, true, target, s);
-        const double halves = finish_anticipation(a, a.needs_sample() ? target(s, a.there_ahead_s) : a.there_kPa);
-        EXPECT_EQ(halves, anticipated_target_kPa(m, l, y, 10, 60, 3, true, target, s)) << l << " " << y;
-      }
+  // And the halves in a row give what the function gave before the split, along a sweep of
+  // leads across both edges (negative and NaN leads too), levels, sample counts and regulators
+  // (one lag, two lags, an exhaust slowing near 0 kPa), a target that is NaN past its edge.
+  const RegulatorLag one_lag{0.004, 0.050, 2000}, two_lags{0.004, 0.040, 2000, 0.086};
+  const Step nan_after{0.060, 5.0, NAN}, negative{0.060, 5.0, -3.0};
+  int compared = 0;
+  for (const RegulatorLag* model : {&m, &one_lag, &two_lags})
+    for (double l = -0.01; l < 0.08; l += 0.0005)
+      for (const Step* s : {&fall, &rise, &flat, &nan_after, &negative})
+        for (double y : {-1.0, 0.0, 2.0, 10.0, 40.0, double(NAN)})
+          for (int samples : {0, 1, 2, 3})
+            for (double l_s : {l, double(NAN)}) {
+              const EdgeAnticipation a = begin_anticipation(*model, l_s, y, 10, 60, samples, true, target, s);
+              const double halves = finish_anticipation(a, a.needs_sample() ? target(s, a.there_ahead_s) : a.there_kPa);
+              const double before = anticipated_before_split(*model, l_s, y, 10, 60, samples, true, target, s);
+              ASSERT_TRUE(halves == before || (std::isnan(halves) && std::isnan(before)))
+                  << "lead " << l_s << " y " << y << " samples " << samples << ": " << halves << " vs " << before;
+              const double whole = anticipated_target_kPa(*model, l_s, y, 10, 60, samples, true, target, s);
+              EXPECT_TRUE(whole == halves || (std::isnan(whole) && std::isnan(halves)));
+              ++compared;
+            }
+  EXPECT_GT(compared, 10000);
 }
