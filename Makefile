@@ -2,8 +2,8 @@
 #   make demo   install missing Debian packages (the build's only), configure, build the palprig program only, run the demo
 #   make test   same set-up plus the test tools' packages, then build everything (suites, benchmarks, fuzz targets) and run the whole test suite
 #   make package       the Debian package palprig_VERSION_ARCH.deb in build/ (CPack; docs/rig-pc.md)
-#   make test-package  build it, install it into a scratch root and run the installed program from there
-#   make test-package-system  install it with apt on this machine, run it as a lab user, purge it (root)
+#   make test-package  build it, run it from a scratch root, then (root) apt install it on this machine, run it as a lab user, apt purge it
+#   make test-package-scratch  only the scratch-root part (no root needed, nothing installed; make test runs it)
 #   make fuzz   run every fuzz target for a minute (make test runs each for a second)
 #   make test-tsan  the threaded suites under ThreadSanitizer
 #   make test-analyst  the analyst-only build (-DPALPRIG_RIG=OFF: stats, export, store) and its suites
@@ -46,7 +46,7 @@ PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages.txt | tr '\n' ' ')
 TEST_PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages-test.txt | tr '\n' ' ')
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps deps-test configure build demo package test-package test-package-system test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
+.PHONY: all deps deps-test configure build demo package test-package test-package-scratch test-package-system test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
 
 all: build
 
@@ -87,14 +87,17 @@ package: configure
 	cmake --build $(BUILD) -j$(JOBS) --target palprig palprig_cli_docs palprig_changelog
 	cd $(BUILD) && cpack -G DEB
 
-# The package installed into a scratch root (dpkg -x) and run from a folder far from the clone.
-test-package: deps-test package
+# The package installed into a scratch root (dpkg -x) and run from a folder far from the clone
+# (also package.InstallAndRun in make test).
+test-package-scratch: deps-test package
 	tests/package/install_and_run.sh $(BUILD) "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
 
-# For real, on this machine (root; it installs, adds a lab user, runs as that user, purges):
-# not part of make test, since it changes the system.
-test-package-system: deps-test package
-	tests/package/apt_install_as_lab_user.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
+# The package as a rig PC gets it (issue 32): the scratch-root run, then for real on this machine
+# (root; it installs with apt, adds a lab user to the palprig group, runs as that user, purges).
+# Not part of make test, since it changes the system. test-package-system: the same (its old name).
+test-package: test-package-scratch
+	$(SUDO) tests/package/apt_install_as_lab_user.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
+test-package-system: test-package
 
 # The BIDS validator's npm download (about a minute, mostly waiting on the network) runs beside
 # the compile: make's -j2 starts both.

@@ -1,5 +1,5 @@
 #!/bin/bash
-# `make test-package-system`: the package as a rig PC gets it, for real, on this machine (root
+# `make test-package` (after its scratch-root part): the package as a rig PC gets it, for real, on this machine (root
 # needed; it changes the system, so it is not part of make test): `apt install ./palprig_*.deb`,
 # a lab user created and put in the palprig group, then as that user (a login through runuser -l,
 # so pam_limits applies the package's limits.d file) from an empty folder: --version, data list,

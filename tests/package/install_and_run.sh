@@ -1,5 +1,5 @@
 #!/bin/bash
-# package.InstallAndRun (ctest) and `make test-package`: the Debian package as a rig PC gets it.
+# package.InstallAndRun (ctest) and `make test-package-scratch` (the first half of `make test-package`): the Debian package as a rig PC gets it.
 # Builds the .deb with CPack from BUILD (unless one is given), unpacks it into a scratch root
 # (dpkg -x: no root rights or apt needed, nothing touches this machine's /usr) and checks
 #   - its control data: dependencies computed by dpkg-shlibdeps (Qt, libmodbus, comedilib, ...),
