@@ -9,7 +9,8 @@
 //     calibrate fit; the palprig command itself, as a user types it), and
 //   - the shipped asymmetric regulator (data/rigs/simulated_asymmetric.json: 3 kPa play rising,
 //     1 kPa falling, separate fill and exhaust lags, a saturating gain), calibrated the same way.
-// Goals: RMS <= 0.5 kPa on every plant, monitor/target over tumors >= 0.97,
+// Goals (issue 35): RMS <= 0.25 kPa on the shipped simulated rig and <= 0.5 kPa on every other
+// plant, monitor/target over tumors >= 0.97,
 // no setpoint above p_max, no overshoot over soft tissue above 0.5 kPa.
 //
 //   build/bin/bench_fidelity                        the table (Markdown), runs in a few seconds
@@ -272,12 +273,17 @@ nlohmann::json metrics_json(const Metrics& m, double p_max) {
 
 std::string met(bool ok) { return ok ? "met" : "NOT met"; }
 
+// The RMS goal: 0.25 kPa on the shipped simulated rig (the plant palprig's own model describes),
+// 0.5 kPa on any other.
+double rms_goal_kPa(const std::string& rig) { return rig == "shipped simulated rig" ? 0.25 : 0.5; }
+
 void print_row(const std::string& rig, const std::string& comp, const Metrics& m, double p_max) {
-  std::printf("| %s | %s | %s (%s) | %s (%s) | %s (%s) | %s / %s (%s) |\n", rig.c_str(), comp.c_str(),
-              fixed(m.rms(), 3).c_str(), met(m.rms() <= 0.5).c_str(), fixed(m.tumor_ratio(), 3).c_str(),
-              met(m.tumor_ratio() >= 0.97).c_str(), fixed(m.soft_overshoot_kPa, 2).c_str(),
-              met(m.soft_overshoot_kPa <= 0.5).c_str(), fixed(m.max_setpoint_kPa, 2).c_str(), fixed(p_max, 0).c_str(),
-              met(m.max_setpoint_kPa <= p_max).c_str());
+  const double goal = rms_goal_kPa(rig);
+  std::printf("| %s | %s | %s (%s%s) | %s (%s) | %s (%s) | %s / %s (%s) |\n", rig.c_str(), comp.c_str(),
+              fixed(m.rms(), 3).c_str(), goal < 0.5 ? "goal 0.25: " : "", met(m.rms() <= goal).c_str(),
+              fixed(m.tumor_ratio(), 3).c_str(), met(m.tumor_ratio() >= 0.97).c_str(),
+              fixed(m.soft_overshoot_kPa, 2).c_str(), met(m.soft_overshoot_kPa <= 0.5).c_str(),
+              fixed(m.max_setpoint_kPa, 2).c_str(), fixed(p_max, 0).c_str(), met(m.max_setpoint_kPa <= p_max).c_str());
 }
 
 // Finger 1 over tumor B: the target, the monitor without and with compensation.
@@ -388,6 +394,7 @@ int main(int argc, char** argv) {
       for (const Case& c : cases) {
         nlohmann::json j = metrics_json(c.metrics, c.p_max_kPa);
         j["rig"] = c.rig_name;
+        j["rms_goal_kPa"] = rms_goal_kPa(c.rig_name);
         j["lag_compensation"] = c.compensated;
         j["identified"] = c.identified;
         all.push_back(j);
@@ -395,7 +402,8 @@ int main(int argc, char** argv) {
       std::cout << all.dump(2) << "\n";
     } else {
       std::printf(
-          "| plant | lag compensation | RMS(monitor - target) kPa, goal <= 0.5 | monitor/target over tumors, goal >= "
+          "| plant | lag compensation | RMS(monitor - target) kPa, goal <= 0.5 (0.25 on the shipped simulated rig) | "
+          "monitor/target over tumors, goal >= "
           "0.97 | "
           "largest monitor - target over soft tissue kPa, goal <= 0.5 | largest setpoint / p_max kPa |\n");
       std::printf("|---|---|---|---|---|---|\n");
