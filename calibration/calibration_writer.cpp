@@ -89,6 +89,7 @@ json calibration_json(const CalibrationResult& r) {
           sel["asymmetric_held_out_rms_kPa"] = s.asymmetric.rms_kPa;
           sel["asymmetric_held_out_max_kPa"] = s.asymmetric.max_kPa;
           sel["min_gain"] = s.min_gain;
+          sel["min_gain_kPa"] = s.min_gain_kPa;
         }
         f["hysteresis_fit"]["selection"] = sel;
       }

@@ -28,7 +28,9 @@ Prepared prepare_runs(std::span<const DynamicsSample> s, const PrandtlIshlinskii
       h.reset(s[k].command_kPa);
     }
     Run& r = p.runs.back();
-    r.x.push_back(h.is_identity() ? s[k].command_kPa : h.apply(s[k].command_kPa));
+    // The pressure the regulator heads for: the command through the identified plays, which
+    // narrow near 0 kPa as its exhaust does (as the tick runs them).
+    r.x.push_back(h.is_identity() ? s[k].command_kPa : h.apply_exhausting(s[k].command_kPa));
     r.m.push_back(s[k].monitor_kPa);
     r.segment.push_back(s[k].segment);
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <vector>
@@ -17,21 +18,30 @@
 
 namespace palprig {
 
-void simulate_hysteresis(PrandtlIshlinskii model, std::span<const double> input_kPa, std::span<double> output_kPa) {
+void simulate_hysteresis(PrandtlIshlinskii model, std::span<const double> input_kPa, std::span<double> output_kPa,
+                         bool exhausting) {
   if (input_kPa.empty()) return;
   model.reset(input_kPa[0]);
-  for (std::size_t k = 0; k < input_kPa.size() && k < output_kPa.size(); ++k) output_kPa[k] = model.apply(input_kPa[k]);
+  for (std::size_t k = 0; k < input_kPa.size() && k < output_kPa.size(); ++k)
+    output_kPa[k] = exhausting ? model.apply_exhausting(input_kPa[k]) : model.apply(input_kPa[k]);
 }
 
 namespace {
+
+// The room a play's falling band has at input x: the whole band, or near 0 kPa (exhausting) the
+// input's distance from 0 (PrandtlIshlinskii::apply_exhausting with its bottom at 0 kPa).
+double falling_room_kPa(double x_kPa, bool exhausting) {
+  return exhausting ? std::max(x_kPa, 0.0) : std::numeric_limits<double>::infinity();
+}
 
 // The model's output and its derivatives at the current parameter values, for every sample.
 // Ceres calls PrepareForEvaluation with the parameter blocks already holding the point to
 // evaluate; the per-sample cost functions then only read from here.
 class PlaySequenceCache final : public ceres::EvaluationCallback {
  public:
-  PlaySequenceCache(std::span<const double> x, std::span<const double> y, std::size_t n, bool asymmetric = false)
-      : x_(x), y_(y), asymmetric_(asymmetric) {
+  PlaySequenceCache(std::span<const double> x, std::span<const double> y, std::size_t n, bool asymmetric,
+                    bool exhausting)
+      : x_(x), y_(y), asymmetric_(asymmetric), exhausting_(exhausting) {
     set_operators(n);
   }
   void set_operators(std::size_t n) {
@@ -76,18 +86,22 @@ class PlaySequenceCache final : public ceres::EvaluationCallback {
     }
     for (std::size_t k = 0; k < x_.size(); ++k) {
       const double xk = x_[k];
+      const double room = falling_room_kPa(xk, exhausting_);
       double y = w0 * xk;
       for (std::size_t i = 0; i < n_; ++i) {
         // play: z = clamp(z_prev, x - r+, x + r-); on a clamp the state follows x - r+ or x + r-.
-        const double r_down = asymmetric_ ? fall[i] : r_[i];
+        // Exhausting, the falling band is at most the room above 0 kPa, which no threshold moves.
+        const double r_down_play = asymmetric_ ? fall[i] : r_[i];
+        const bool narrowed = room < r_down_play;
+        const double r_down = narrowed ? room : r_down_play;
         if (z_[i] < xk - r_[i]) {
           z_[i] = xk - r_[i];
           dz_dr_[i] = -1;
           dz_dfall_[i] = 0;
         } else if (z_[i] > xk + r_down) {
           z_[i] = xk + r_down;
-          dz_dr_[i] = asymmetric_ ? 0 : 1;
-          dz_dfall_[i] = 1;
+          dz_dr_[i] = asymmetric_ || narrowed ? 0 : 1;
+          dz_dfall_[i] = narrowed ? 0 : 1;
         }
         y += w[i] * z_[i];
       }
@@ -115,7 +129,7 @@ class PlaySequenceCache final : public ceres::EvaluationCallback {
 
  private:
   std::span<const double> x_, y_;
-  bool asymmetric_;
+  bool asymmetric_, exhausting_;
   std::size_t n_;
   std::vector<double> prediction_, dy_dw_, dy_dd_, dy_dfall_;
   std::vector<double> z_, dz_dr_, dz_dfall_, r_, dy_dr_;  // scratch for one pass
@@ -252,8 +266,9 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
     for (std::size_t k = 0; k < x.size(); ++k) {
       const auto row = Eigen::Index(k);
       A(row, 0) = x[k];
+      const double room = falling_room_kPa(x[k], o.exhausting);
       for (std::size_t i = 0; i < columns; ++i) {
-        z[i] = std::max(x[k] - grid_rise[i], std::min(x[k] + grid_fall[i], z[i]));
+        z[i] = std::max(x[k] - grid_rise[i], std::min(x[k] + std::min(grid_fall[i], room), z[i]));
         A(row, Eigen::Index(i + 1)) = z[i];
       }
       b[row] = y[k] - o.min_linear_weight * x[k];
@@ -278,7 +293,7 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
   fit.converged = stage1.converged;
 
   // Keep the operators the data uses; unused ones only make stage 2 ill-conditioned.
-  PlaySequenceCache cache(x, y, 0, o.asymmetric);
+  PlaySequenceCache cache(x, y, 0, o.asymmetric, o.exhausting);
   cache.w0 = o.min_linear_weight + stage1.w[0];
   double total_slope = cache.w0;
   for (std::size_t i = 0; i < columns; ++i) total_slope += stage1.w[Eigen::Index(i + 1)];
@@ -378,7 +393,7 @@ HysteresisFit fit_hysteresis(std::span<const double> x, std::span<const double> 
   m.reset(0.0);
 
   std::vector<double> predicted(x.size());
-  simulate_hysteresis(m, x, predicted);
+  simulate_hysteresis(m, x, predicted, o.exhausting);
   double ss = 0;
   for (std::size_t k = 0; k < x.size(); ++k) {
     const double e = predicted[k] - y[k];

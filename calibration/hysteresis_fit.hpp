@@ -34,7 +34,13 @@ struct HysteresisFitOptions {
   // band around a straight line, between 2 % and 50 % of the input range).
   double max_threshold_kPa = 0;
   bool refine_thresholds = true;
-  bool asymmetric = false;          // separate rising and falling thresholds (generalised PI)
+  bool asymmetric = false;  // separate rising and falling thresholds (generalised PI)
+  // The plays as the rig runs them: near 0 kPa a play's band above the input narrows to the
+  // input (a regulator commanded towards 0 kPa opens its exhaust and empties the actuator:
+  // PrandtlIshlinskii::apply_exhausting), the model the tick inverts and the held-out comparison
+  // scores. A sweep's staircase returns to 0 kPa between repeats; fitted with plain plays, the
+  // states it leaves there are wrong for the whole next repeat. false: the plain plays.
+  bool exhausting = true;
   double min_linear_weight = 0.01;  // keeps the inverse's gain at most 1/0.01
   double min_threshold_step_kPa = 0.05;
   RobustLoss loss = RobustLoss::none;
@@ -57,8 +63,10 @@ struct HysteresisFit {
   std::string solver_report;  // Ceres' brief report of the last stage
 };
 
-// Forward simulation of a model over an input sequence, starting relaxed at input[0].
-void simulate_hysteresis(PrandtlIshlinskii model, std::span<const double> input_kPa, std::span<double> output_kPa);
+// Forward simulation of a model over an input sequence, starting relaxed at input[0]; exhausting
+// as HysteresisFitOptions::exhausting says.
+void simulate_hysteresis(PrandtlIshlinskii model, std::span<const double> input_kPa, std::span<double> output_kPa,
+                         bool exhausting = true);
 
 // Throws InputError(file, what, ...) for unusable data: fewer samples than 4x the parameters,
 // non-finite values, an input that never moves or never reverses (no hysteresis to see).

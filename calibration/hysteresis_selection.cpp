@@ -22,9 +22,10 @@ void held_out_errors(const PrandtlIshlinskii& fitted, std::span<const double> x,
 
 HysteresisSelection select_hysteresis_model(std::span<const double> x, std::span<const double> y,
                                             std::span<const std::size_t> run_starts, const HysteresisFitOptions& o,
-                                            double min_gain) {
+                                            double min_gain, double min_gain_kPa) {
   HysteresisSelection s;
   s.min_gain = min_gain;
+  s.min_gain_kPa = min_gain_kPa;
   std::vector<std::size_t> starts(run_starts.begin(), run_starts.end());
   starts.erase(std::remove_if(starts.begin(), starts.end(), [&](std::size_t i) { return i >= x.size(); }),
                starts.end());
@@ -80,7 +81,9 @@ HysteresisSelection select_hysteresis_model(std::span<const double> x, std::span
   s.samples = held_out;
   s.symmetric = {std::sqrt(ss_sym / double(held_out)), worst_sym};
   s.asymmetric = {std::sqrt(ss_asym / double(held_out)), worst_asym};
-  s.asymmetric_chosen = s.asymmetric.rms_kPa < (1.0 - min_gain) * s.symmetric.rms_kPa;
+  const bool relatively_better = s.asymmetric.rms_kPa < (1.0 - min_gain) * s.symmetric.rms_kPa;
+  const bool outright_better = s.symmetric.rms_kPa - s.asymmetric.rms_kPa >= min_gain_kPa;
+  s.asymmetric_chosen = relatively_better && outright_better;
   std::ostringstream why;
   why.setf(std::ios::fixed);
   why.precision(3);
@@ -90,8 +93,10 @@ HysteresisSelection select_hysteresis_model(std::span<const double> x, std::span
   why.precision(2);
   if (s.asymmetric_chosen)
     why << s.symmetric.rms_kPa / s.asymmetric.rms_kPa << "x lower)";
-  else
+  else if (!relatively_better)
     why << "the asymmetric model is not " << int(std::lround(100 * min_gain)) << " % better)";
+  else
+    why << "the asymmetric model is not " << min_gain_kPa << " kPa better)";
   s.reason = why.str();
   return s;
 }

@@ -9,8 +9,11 @@
 // each run, both classes are fitted on the others and simulated over it as the tick's copy
 // runs (exhausting at 0 kPa, play states empty at the vent); the held-out RMS over all runs
 // decides. The asymmetric model must beat the symmetric one by min_gain (10 %) of its held-out
-// RMS: within that the simpler model stays, so a symmetric regulator keeps the model it always
-// had. Fewer than 2 runs: nothing to hold out, the symmetric model stays and the reason says so.
+// RMS and by min_gain_kPa (0.05 kPa) outright: within that the simpler model stays, so a
+// symmetric regulator keeps the model it always had (fitted as the tick runs its plays, both
+// classes can fit such a regulator's holds to about 0.02 kPa, where a 10 % difference is noise
+// that no fingertip could feel). Fewer than 2 runs: nothing to hold out, the symmetric model stays and the reason says
+// so.
 #include <cstddef>
 #include <limits>
 #include <span>
@@ -32,6 +35,7 @@ struct HysteresisSelection {
   HysteresisHeldOut symmetric, asymmetric;
   bool asymmetric_chosen = false;
   double min_gain = 0.10;
+  double min_gain_kPa = 0.05;
   std::string reason;  // one line: what won and by how much, or why nothing was compared
 };
 
@@ -41,7 +45,8 @@ struct HysteresisSelection {
 // says why; the caller keeps the symmetric model.
 HysteresisSelection select_hysteresis_model(std::span<const double> x_kPa, std::span<const double> y_kPa,
                                             std::span<const std::size_t> run_starts,
-                                            const HysteresisFitOptions& options, double min_gain = 0.10);
+                                            const HysteresisFitOptions& options, double min_gain = 0.10,
+                                            double min_gain_kPa = 0.05);
 
 // The held-out error of a fitted model over one run, as the tick's copy would follow it.
 void held_out_errors(const PrandtlIshlinskii& model, std::span<const double> x_kPa, std::span<const double> y_kPa,

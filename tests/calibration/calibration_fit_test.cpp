@@ -22,7 +22,9 @@ using palprig::test_support::TempDir;
 namespace {
 
 // A regulator with gain, offset and a backlash of half-width h (monitor lands h below the
-// command on inflation, h above on deflation), optionally a sensor at 0.01 mm/kPa.
+// command on inflation, h above on deflation; commanded towards 0 kPa its exhaust empties it, so
+// the band above the command narrows to the command, as palprig's simulated plant and the tick's
+// model do), optionally a sensor at 0.01 mm/kPa.
 struct SyntheticRig {
   double gain = 1.0, offset_kPa = 0.0, half_gap_kPa = 2.0, noise_sd = 0.02;
   bool sensor = false;
@@ -33,7 +35,7 @@ struct SyntheticRig {
   HoldPoint read(int channel, double command, SweepSegment seg, int repeat, SweepBranch branch) {
     std::normal_distribution<double> noise(0, noise_sd);
     double& z = play[std::size_t(channel - 1)];
-    z = std::clamp(z, command - half_gap_kPa, command + half_gap_kPa);
+    z = std::clamp(z, command - half_gap_kPa, command + std::min(half_gap_kPa, std::max(command, 0.0)));
     HoldPoint p;
     p.channel = channel;
     p.segment = seg;

@@ -276,3 +276,51 @@ TEST(HysteresisFit, AsymmetricPlayRecoveredExactly) {
   EXPECT_NEAR(fit.model.thresholds_kPa[0], 3.0, 0.02);
   EXPECT_NEAR(fit.model.falling_thresholds_kPa[0], 1.0, 0.02);
 }
+
+// A regulator's plays exhaust near 0 kPa: commanded 0 kPa it empties the actuator, so the band
+// above the command narrows to the command (PrandtlIshlinskii::apply_exhausting, the model the
+// tick inverts). A sweep whose runs start from a vent, fitted with the plays as the regulator runs
+// them, recovers the one asymmetric play of palprig's shipped regulator; fitted with the plain
+// plays of the textbook model (exhausting false), the states the vents leave are wrong for the
+// whole next run and the same data leaves several times the error.
+TEST(HysteresisFit, PlaysExhaustingAtTheVentAreFittedAsTheRegulatorRunsThem) {
+  PrandtlIshlinskii truth;
+  truth.linear_weight = 0.2;
+  truth.operator_count = 1;
+  truth.asymmetric = true;
+  truth.thresholds_kPa[0] = 3.0;
+  truth.falling_thresholds_kPa[0] = 1.0;
+  truth.weights[0] = 0.8;
+  // Five staircases 10..60..10 kPa, each from a vent at 0 kPa, as calibrate sweep runs them.
+  std::vector<double> x;
+  for (int run = 0; run < 5; ++run) {
+    x.push_back(0.0);
+    for (int l = 10; l <= 60; l += 10) x.push_back(l);
+    for (int l = 60; l >= 10; l -= 10) x.push_back(l);
+  }
+  std::vector<double> y(x.size());
+  PrandtlIshlinskii regulator = truth;
+  regulator.reset(0.0);
+  for (std::size_t k = 0; k < x.size(); ++k) y[k] = regulator.apply_exhausting(x[k]);
+  std::vector<double> simulated(x.size());
+  simulate_hysteresis(truth, x, simulated);  // exhausting by default: the same outputs
+  for (std::size_t k = 0; k < x.size(); ++k) ASSERT_DOUBLE_EQ(simulated[k], y[k]) << k;
+
+  HysteresisFitOptions o;
+  o.asymmetric = true;
+  o.operator_count = 1;
+  const HysteresisFit fit = fit_hysteresis(x, y, o, "synthetic", "exhausting play");
+  ASSERT_TRUE(fit.converged) << fit.solver_report;
+  EXPECT_LT(fit.rms_error_kPa, 0.01);
+  // Steps of 10 kPa, larger than the play, show the loop's width but not how it splits between
+  // a threshold and its weight: what they identify is the gain and the two offsets w r+ and w r-
+  // (2.4 and 0.8 kPa here).
+  ASSERT_EQ(fit.model.operator_count, 1u);
+  EXPECT_NEAR(fit.model.weights[0] + fit.model.linear_weight, 1.0, 0.01);
+  EXPECT_NEAR(fit.model.weights[0] * fit.model.thresholds_kPa[0], 2.4, 0.05);
+  EXPECT_NEAR(fit.model.weights[0] * fit.model.falling_thresholds_kPa[0], 0.8, 0.05);
+
+  o.exhausting = false;
+  const HysteresisFit plain = fit_hysteresis(x, y, o, "synthetic", "plain play");
+  EXPECT_GT(plain.rms_error_kPa, 5 * fit.rms_error_kPa + 0.05) << plain.solver_report;
+}

@@ -62,6 +62,26 @@ TEST(HysteresisSelection, SymmetricPlantKeepsTheSymmetricModel) {
   EXPECT_NE(s.reason.find("symmetric ("), std::string::npos) << s.reason;
 }
 
+// Fitted as the regulator runs its plays, both classes fit a symmetric regulator's holds to a few
+// hundredths of a kPa, where one may beat the other by 10 % by chance: the asymmetric model must
+// also be 0.05 kPa better outright, and the reason says which rule kept the symmetric one.
+TEST(HysteresisSelection, ATenPercentGainOfHundredthsOfAKpaKeepsTheSymmetricModel) {
+  PlantParams p;
+  p.noise_sd_kPa = 0.0;
+  const Runs r = sweep_of(p);
+  const HysteresisSelection s = select_hysteresis_model(r.x, r.y, r.starts, HysteresisFitOptions{});
+  ASSERT_TRUE(s.compared) << s.reason;
+  EXPECT_LT(s.symmetric.rms_kPa, 0.05) << s.reason;
+  EXPECT_FALSE(s.asymmetric_chosen) << s.reason;
+  // Without the outright margin, a 10 % gain would decide when it occurs.
+  const HysteresisSelection relative_only =
+      select_hysteresis_model(r.x, r.y, r.starts, HysteresisFitOptions{}, 0.10, 0.0);
+  if (relative_only.asymmetric.rms_kPa < 0.9 * relative_only.symmetric.rms_kPa) {
+    EXPECT_TRUE(relative_only.asymmetric_chosen) << relative_only.reason;
+    EXPECT_NE(s.reason.find("0.05 kPa better"), std::string::npos) << s.reason;
+  }
+}
+
 TEST(HysteresisSelection, AsymmetricPlantGetsTheAsymmetricModel) {
   PlantParams p;
   p.hysteresis_rising_kPa = 3.0;  // lags three times more rising than falling
