@@ -38,8 +38,9 @@ struct HysteresisFitOptions {
   // The plays as the rig runs them: near 0 kPa a play's band above the input narrows to the
   // input (a regulator commanded towards 0 kPa opens its exhaust and empties the actuator:
   // PrandtlIshlinskii::apply_exhausting), the model the tick inverts and the held-out comparison
-  // scores. A sweep's staircase returns to 0 kPa between repeats; fitted with plain plays, the
-  // states it leaves there are wrong for the whole next repeat. false: the plain plays.
+  // scores. A sweep returns to 0 kPa between its runs; plain plays predict their upper edge there
+  // (1-2 kPa) where the regulator reads 0, and those residuals pull the whole fit. false: the
+  // plain plays.
   bool exhausting = true;
   double min_linear_weight = 0.01;  // keeps the inverse's gain at most 1/0.01
   double min_threshold_step_kPa = 0.05;

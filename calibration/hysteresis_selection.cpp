@@ -20,6 +20,12 @@ void held_out_errors(const PrandtlIshlinskii& fitted, std::span<const double> x,
   }
 }
 
+bool asymmetric_model_wins(double symmetric_rms_kPa, double asymmetric_rms_kPa, double min_gain,
+                           double min_gain_kPa) noexcept {
+  return asymmetric_rms_kPa < (1.0 - min_gain) * symmetric_rms_kPa &&
+         symmetric_rms_kPa - asymmetric_rms_kPa >= min_gain_kPa;
+}
+
 HysteresisSelection select_hysteresis_model(std::span<const double> x, std::span<const double> y,
                                             std::span<const std::size_t> run_starts, const HysteresisFitOptions& o,
                                             double min_gain, double min_gain_kPa) {
@@ -82,8 +88,7 @@ HysteresisSelection select_hysteresis_model(std::span<const double> x, std::span
   s.symmetric = {std::sqrt(ss_sym / double(held_out)), worst_sym};
   s.asymmetric = {std::sqrt(ss_asym / double(held_out)), worst_asym};
   const bool relatively_better = s.asymmetric.rms_kPa < (1.0 - min_gain) * s.symmetric.rms_kPa;
-  const bool outright_better = s.symmetric.rms_kPa - s.asymmetric.rms_kPa >= min_gain_kPa;
-  s.asymmetric_chosen = relatively_better && outright_better;
+  s.asymmetric_chosen = asymmetric_model_wins(s.symmetric.rms_kPa, s.asymmetric.rms_kPa, min_gain, min_gain_kPa);
   std::ostringstream why;
   why.setf(std::ios::fixed);
   why.precision(3);

@@ -39,6 +39,11 @@ struct HysteresisSelection {
   std::string reason;  // one line: what won and by how much, or why nothing was compared
 };
 
+// The rule: the asymmetric model's held-out RMS at least min_gain (a fraction) and min_gain_kPa
+// below the symmetric one's.
+bool asymmetric_model_wins(double symmetric_rms_kPa, double asymmetric_rms_kPa, double min_gain,
+                           double min_gain_kPa) noexcept;
+
 // run_starts: the index in x/y where each run begins (ascending, the first 0). Fits use
 // `options` (its `asymmetric` is set per class). Never throws for a fold that cannot be fitted
 // (too few samples left, Ceres not converging): the comparison is then not made and the reason

@@ -109,7 +109,7 @@ std::vector<NamedChart> fit_charts(const SweepData& data, const CalibrationResul
         const double step = goal > at ? 0.1 : -0.1;
         for (; (goal - at) * step > 0; at += step) {
           model.x.push_back(at);
-          model.y.push_back(m.apply(at));
+          model.y.push_back(m.apply_exhausting(at));  // as the fit and the tick run the plays
         }
       }
       if (ch.hysteresis_source == HysteresisSource::monitor) c.series.push_back(measured);

@@ -324,3 +324,25 @@ TEST(HysteresisFit, PlaysExhaustingAtTheVentAreFittedAsTheRegulatorRunsThem) {
   const HysteresisFit plain = fit_hysteresis(x, y, o, "synthetic", "plain play");
   EXPECT_GT(plain.rms_error_kPa, 5 * fit.rms_error_kPa + 0.05) << plain.solver_report;
 }
+
+// The textbook model stays available: data from plain plays (a regulator that does not empty at
+// a vent), through 0 kPa, fitted with exhausting off, recovers its weights on their grid.
+TEST(HysteresisFit, PlainPlaysFitDataFromARegulatorThatDoesNotExhaust) {
+  const PrandtlIshlinskii truth = known_model();
+  const auto x = reversal_sequence(3000, 0, 60, 2.5, 7);
+  std::vector<double> y(x.size());
+  simulate_hysteresis(truth, x, y, false);
+  HysteresisFitOptions o;
+  o.operator_count = 4;
+  o.max_threshold_kPa = 4.0;
+  o.refine_thresholds = false;
+  o.exhausting = false;
+  const HysteresisFit fit = fit_hysteresis(x, y, o, "synthetic", "plain plays");
+  ASSERT_TRUE(fit.converged) << fit.solver_report;
+  EXPECT_LT(fit.rms_error_kPa, 1e-6);
+  for (std::size_t i = 0; i < 4; ++i)
+    EXPECT_NEAR(weight_at(fit.model, truth.thresholds_kPa[i]), truth.weights[i], 1e-6) << "operator " << i;
+  // The same data fitted exhausting cannot be exact wherever the sequence comes near 0 kPa.
+  o.exhausting = true;
+  EXPECT_GT(fit_hysteresis(x, y, o, "synthetic", "exhausting").rms_error_kPa, 10 * fit.rms_error_kPa);
+}
