@@ -84,6 +84,12 @@ void IgtlPoseServer::serve(void* raw_client) noexcept {
   position->SetPackType(igtl::PositionMessage::ALL);
   igtl::TimeStamp::Pointer stamp = igtl::TimeStamp::New();
   std::int64_t start_ns = mono_ns();
+  // Each pose is stamped with the time it was taken in the recording (the header's timestamp is
+  // the acquisition time), on the wall clock from this client's start: a client that reads late
+  // and in a burst still sees the recording's spacing, as it would a tracker's.
+  const std::int64_t first_start_ns = start_ns;
+  stamp->GetTime();
+  const double wall_start_s = stamp->GetTimeStamp();
   const std::int64_t period_ns = static_cast<std::int64_t>((duration_s() + 0.02) * 1e9);
   bool gone = false;
   while (!stop_.load(std::memory_order_acquire) && !gone) {
@@ -94,7 +100,7 @@ void IgtlPoseServer::serve(void* raw_client) noexcept {
       while (mono_ns() < due && !stop_.load(std::memory_order_acquire))
         sleep_until_ns(std::min(due, mono_ns() + 50'000'000));
       if (stop_.load(std::memory_order_acquire)) break;
-      stamp->GetTime();
+      stamp->SetTime(wall_start_s + static_cast<double>(due - first_start_ns) * 1e-9);
       igtl::MessageBase* msg = nullptr;
       if (options_.position_messages) {
         // Rotation matrix -> quaternion (x, y, z, w), as the library converts it.

@@ -98,6 +98,9 @@ void IgtlStreamDecoder::decode(const std::uint8_t* header, const std::uint8_t* b
   mh->Unpack();
   DecodedPose out;
   std::snprintf(out.device, sizeof out.device, "%s", mh->GetDeviceName());
+  unsigned int stamp_sec = 0, stamp_frac = 0;  // the fraction in units of 2^-32 s, as the header carries it
+  mh->GetTimeStamp(&stamp_sec, &stamp_frac);
+  out.stamp_s = double(stamp_sec) + double(stamp_frac) / 4294967296.0;
   if (std::strcmp(mh->GetDeviceType(), "TRANSFORM") == 0) {
     igtl::TransformMessage::Pointer& m = msg_->transform;
     m->SetMessageHeader(mh);

@@ -26,6 +26,9 @@ struct DecodedPose {
   RigidTransform pose;       // tool -> tracker, as the message carried it
   bool has_rotation = true;  // false: POSITION without a quaternion
   bool is_rotation = true;   // the rotation part is a proper rotation (a lost tool sends zeros)
+  // The header's timestamp in seconds (by the OpenIGTLink spec the time the data was acquired;
+  // PlusServer and `palprig igtl-replay` set it), 0 when the sender set none.
+  double stamp_s = 0;
 };
 
 struct IgtlStreamCounts {

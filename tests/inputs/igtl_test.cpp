@@ -134,6 +134,20 @@ TEST(IgtlStream, DecodesTransformAndPositionEvenOneByteAtATime) {
   EXPECT_EQ(again.size(), 3u);
 }
 
+TEST(IgtlStream, CarriesTheHeadersTimestampAsThePosesTime) {
+  igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
+  m->SetDeviceName("StylusToTracker");
+  m->SetTimeStamp(1700000000u, 1u << 30);  // a quarter of a second in the header's units of 2^-32 s
+  std::vector<std::uint8_t> stream = bytes_of(m.GetPointer());
+  append(stream, transform_bytes("StylusToTracker", 1, 2, 3));  // a sender that sets no stamp
+  IgtlStreamDecoder decoder;
+  std::vector<DecodedPose> poses;
+  ASSERT_TRUE(decoder.feed(stream.data(), stream.size(), poses));
+  ASSERT_EQ(poses.size(), 2u);
+  EXPECT_DOUBLE_EQ(poses[0].stamp_s, 1700000000.25);
+  EXPECT_EQ(poses[1].stamp_s, 0.0);
+}
+
 TEST(IgtlStream, SkipsBadCrcAndOtherHeaderVersionsAndRefusesGarbage) {
   std::vector<std::uint8_t> bad = transform_bytes("T", 1, 2, 3);
   bad.back() ^= 0x40;  // the body no longer matches its CRC
