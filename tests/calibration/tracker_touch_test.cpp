@@ -48,8 +48,7 @@ std::vector<RecordedPose> touches(const std::vector<Fiducial>& fiducials) {
 }
 
 TEST(TouchFiducials, ARestReadInOneBurstIsTakenByTheTrackersTimeAtItsOwnFiducial) {
-  const std::vector<Fiducial> fiducials = {fiducial("F1", 10, 10), fiducial("F2", 150, 10),
-                                           fiducial("F3", 150, 110)};
+  const std::vector<Fiducial> fiducials = {fiducial("F1", 10, 10), fiducial("F2", 150, 10), fiducial("F3", 150, 110)};
   PoseServerOptions options;
   options.port = 0;
   IgtlPoseServer server(touches(fiducials), options);
