@@ -23,6 +23,7 @@ namespace {
 struct StressModelArgs {
   std::string fingertip, tissue, actuator, out, pressures = "0,10,20,30,40,50,60,70,80,90,100";
   double depth_mm = 7, press_mm = 1;
+  std::string loading = "press-first";
   FeAnalysisArgs analysis;
 };
 
@@ -35,6 +36,7 @@ void run_stress_model(const StressModelArgs& a) {
   TissueBlock healthy = nodule;
   healthy.inclusions.clear();
   const auto pressures = number_list(a.pressures, "--pressures", 0, 500);
+  const bool together = a.loading == "together";
   std::cout << "palprig fe stress-model: " << a.fingertip << ", " << a.tissue << ", " << a.actuator << ", "
             << plane_text(a.analysis) << ", " << a.analysis.element_mm << " mm elements\n";
   mechanics::IndentationOptions io;
@@ -47,6 +49,7 @@ void run_stress_model(const StressModelArgs& a) {
   mechanics::ActuatorOptions ao;
   ao.solve = io.solve;
   ao.press_mm = a.press_mm;
+  ao.loading = together ? mechanics::ActuatorLoading::together : mechanics::ActuatorLoading::press_first;
   ao.pressures_kPa = pressures;
   const auto act = mechanics::run_actuator(finger, actuator, ao, std::ref(actuator_progress));
 
@@ -54,6 +57,7 @@ void run_stress_model(const StressModelArgs& a) {
   std::ostringstream settings;
   settings << plane_text(a.analysis) << ' ' << a.analysis.element_mm << ' ' << a.depth_mm << ' ' << a.press_mm << ' '
            << a.pressures;
+  if (together) settings << " together";  // press-first files keep the hash they had before the option
   m.inputs = {a.fingertip,
               a.tissue,
               a.actuator,
@@ -64,6 +68,7 @@ void run_stress_model(const StressModelArgs& a) {
   m.soft_stress_kPa = soft.steps.back().peak_kPa;
   m.hard_stress_kPa = hard.steps.back().peak_kPa;
   m.press_mm = a.press_mm;
+  m.loading = a.loading;
   for (const auto& s : act.steps) {
     m.pressures_kPa.push_back(s.load);
     m.stresses_kPa.push_back(s.peak_kPa);
@@ -75,8 +80,8 @@ void run_stress_model(const StressModelArgs& a) {
   m.nodule_pressure_kPa = line.slope > 0 ? (m.hard_stress_kPa - line.intercept_kPa) / line.slope : 0;
   print_out("  tissue at %.2f mm: soft %.3f kPa, over the nodule %.3f kPa (ratio %.3f)\n", a.depth_mm,
             m.soft_stress_kPa, m.hard_stress_kPa, m.hard_stress_kPa / m.soft_stress_kPa);
-  print_out("  actuator pressed %.2f mm: stress = %.5f x air + %.3f kPa, R^2 %.5f\n", a.press_mm, line.slope,
-            line.intercept_kPa, line.r_squared);
+  print_out("  actuator pressed %s%.2f mm%s: stress = %.5f x air + %.3f kPa, R^2 %.5f\n", together ? "up to " : "",
+            a.press_mm, together ? " as the air rises" : "", line.slope, line.intercept_kPa, line.r_squared);
   print_out("  the nodule's %.3f kPa needs %.2f kPa of air\n", m.hard_stress_kPa, m.nodule_pressure_kPa);
   std::cout << std::flush;
   std::fprintf(stderr, "palprig fe stress-model: solved in %.1f s\n", soft.wall_s + hard.wall_s + act.wall_s);
@@ -101,6 +106,11 @@ void register_fe_stress_model(CLI::App* fe) {
   sub->add_option("--press-mm", a->press_mm, "Press onto the actuator")->default_val(1.0)->check(CLI::Range(0.1, 5.0));
   sub->add_option("--pressures", a->pressures, "Air pressures in kPa, comma-separated")
       ->default_val("0,10,20,30,40,50,60,70,80,90,100");
+  sub->add_option("--loading", a->loading,
+                  "press-first: the finger pressed --press-mm, then the air raised; together: the press rising "
+                  "with the air (--press-mm at the highest pressure), paper 002's 'at the same time'")
+      ->check(CLI::IsMember({"press-first", "together"}))
+      ->default_val("press-first");
   sub->add_option("--out", a->out, "Stress model file to write (JSON)")->required();
   add_fe_analysis_options(sub, a->analysis);
   sub->callback([a] { run_stress_model(*a); });

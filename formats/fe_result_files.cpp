@@ -67,6 +67,7 @@ nlohmann::json stress_model_json(const FeStressModelFile& m) {
             {"hard_stress_kPa", m.hard_stress_kPa}}},
           {"actuator",
            {{"press_mm", m.press_mm},
+            {"loading", m.loading},
             {"slope", m.actuator.slope},
             {"intercept_kPa", m.actuator.intercept_kPa},
             {"r_squared", m.r_squared},
@@ -90,6 +91,7 @@ FeStressModelFile parse_stress_model(const nlohmann::json& doc, const std::strin
   t.refuse_unknown();
   const JsonObject a = root.object("actuator");
   m.press_mm = a.number("press_mm", 0.01, 100);
+  m.loading = a.choice_or("loading", "press-first", {"press-first", "together"});
   m.actuator.slope = a.number("slope", 1e-9, kMaxActuatorSlope);
   // The calibration file's rule: an intercept at or above the hard stress makes every target 0 kPa.
   m.actuator.intercept_kPa = a.number("intercept_kPa", kMinActuatorIntercept_kPa, 1000);

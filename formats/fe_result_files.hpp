@@ -6,7 +6,7 @@
 //   stress model   {"version": 1, "kind": "stress_model", "inputs": {"fingertip", "tissue",
 //                   "actuator", "hash"}, "assumptions": {"plane", "element_mm"},
 //                   "tissue": {"indentation_mm", "soft_stress_kPa", "hard_stress_kPa"},
-//                   "actuator": {"press_mm", "slope", "intercept_kPa", "r_squared",
+//                   "actuator": {"press_mm", "loading", "slope", "intercept_kPa", "r_squared",
 //                                "pressures_kPa", "stresses_kPa"},
 //                   "nodule_pressure_kPa"}
 //     `palprig fe stress-model` writes it; `calibrate fit --stress-model` reads it instead of the
@@ -49,6 +49,10 @@ struct FeStressModelFile {
   double indentation_mm = 7.0;
   double soft_stress_kPa = 0, hard_stress_kPa = 0;
   double press_mm = 1.0;
+  // How the press met the air: "press-first" (pressed press_mm, then inflated) or "together"
+  // (paper 002's "at the same time": the press rising with the air). Absent in files written
+  // before the key existed, which were all press-first.
+  std::string loading = "press-first";
   ActuatorModel actuator;
   double r_squared = 0;
   std::vector<double> pressures_kPa, stresses_kPa;

@@ -40,6 +40,7 @@ TEST(FeCommand, StressModelRoundTripsThroughCalibrateFitAndRunsTheDemo) {
   EXPECT_GT(m.hard_stress_kPa, m.soft_stress_kPa);
   EXPECT_GT(m.actuator.slope, 0);
   EXPECT_EQ(m.pressures_kPa, (std::vector<double>{0, 100}));
+  EXPECT_EQ(m.loading, "press-first");  // the default; `--loading together` is measured in docs/finite-element.md
   EXPECT_NE(r.out.find("wrote " + model), std::string::npos);
 
   const std::string sweep = (dir.path() / "sweep.csv").string(), cal = (dir.path() / "cal.json").string();
@@ -105,6 +106,12 @@ TEST(FeCommand, RefusedFilesAndArgumentsExitTwoWithOneLine) {
   EXPECT_NE(r.err.find("--loading"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("sideways"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "a"));
+  r = run_process(palprig_bin() + " fe stress-model --fingertip " + kFe + "fingertip_002.json --tissue " + kFe +
+                  "soft_tissue_002_nodule.json --actuator " + kFe + "actuator_002.json --loading sideways --out " +
+                  (dir.path() / "m.json").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--loading"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "m.json"));
   r = run_process(palprig_bin() + " check " + kFe + "fingertip_002.json " + kFe + "actuator_002.json");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("fingertip_002.json: fingertip, 16 x 12 mm"), std::string::npos) << r.out;

@@ -151,6 +151,27 @@ TEST(FeResultFiles, StressModelTheCalibrationCouldNotUseIsRefused) {
   EXPECT_DOUBLE_EQ(back.actuator.slope, 0.25);
   EXPECT_DOUBLE_EQ(back.hard_stress_kPa, 8);
   EXPECT_EQ(back.inputs.hash, "0123");
+  EXPECT_EQ(back.loading, "press-first");
+}
+
+TEST(FeResultFiles, StressModelSaysHowThePressMetTheAir) {
+  // A file written before the key existed (the shipped model) was pressed first.
+  EXPECT_EQ(load_stress_model_file(fe_data("stress_model_002.json")).loading, "press-first");
+  ScratchDir dir;
+  FeStressModelFile m;
+  m.inputs = {"f.json", "t.json", "a.json", "0123", "plane strain", 1.0};
+  m.soft_stress_kPa = 5;
+  m.hard_stress_kPa = 8;
+  m.actuator.slope = 0.25;
+  m.actuator.intercept_kPa = 0.13;
+  m.loading = "together";
+  const auto path = dir / "model.json";
+  write_stress_model_file(path, m);
+  EXPECT_EQ(load_stress_model_file(path).loading, "together");
+  nlohmann::json doc = stress_model_json(m);
+  doc["actuator"]["loading"] = "sideways";
+  EXPECT_EQ(refusal([&] { (void)parse_stress_model(doc, "model.json"); }),
+            "model.json: actuator.loading: one of \"press-first\", \"together\", got \"sideways\"");
 }
 
 }  // namespace
