@@ -38,27 +38,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The time of a pose for a hold: the tracker's own stamp (the header's timestamp, the time the
-// pose was acquired) when the hold's first pose carried one, else when it arrived. Counted in
-// arrival time, a rest whose poses arrive late and then in one burst (a loaded machine, a reader
-// that stalled) looks shorter than it was: a 1.2 s rest was missed so, and the next fiducial's
-// rest taken in its place. One time base per hold, so the two are never mixed.
-class HoldClock {
- public:
-  explicit HoldClock(std::chrono::steady_clock::time_point t0) : t0_(t0) {}
-  double at(const DecodedPose& p, const PointHold& hold) {
-    if (hold.samples() == 0) stamped_ = p.stamp_s > 0;
-    if (!stamped_) return seconds_since(t0_);
-    if (p.stamp_s > 0) last_stamp_s_ = p.stamp_s;  // an unstamped pose among stamped ones: the last stamp
-    return last_stamp_s_;
-  }
-
- private:
-  std::chrono::steady_clock::time_point t0_;
-  bool stamped_ = false;
-  double last_stamp_s_ = 0;
-};
-
 // Names of the devices seen so far, for a refusal that says what the tracker did send.
 struct SeenNames {
   std::vector<std::string> names;
@@ -161,7 +140,7 @@ std::vector<Vec3_mm> touch_fiducials(IgtlPoseReader& tracker, const TrackedTool&
     PointHold hold(rules.radius_mm, rules.hold_s);
     bool left = !last.has_value();
     const auto t0 = std::chrono::steady_clock::now();
-    HoldClock clock(t0);
+    HoldTime hold_time;  // the tracker's stamps while they behave like a clock (models/pose_hold.hpp)
     auto seen_tool_at = t0;
     bool done = false;
     while (!done) {
@@ -176,7 +155,7 @@ std::vector<Vec3_mm> touch_fiducials(IgtlPoseReader& tracker, const TrackedTool&
           left = distance_mm(tip, *last) > rules.leave_mm;
           continue;
         }
-        if (hold.add(clock.at(p, hold), tip)) {
+        if (hold.add(hold_time.at(p.stamp_s, seconds_since(t0)), tip)) {
           done = true;
           break;
         }

@@ -15,6 +15,18 @@ bool PointHold::add(double t_s, const Vec3_mm& p) noexcept {
   return last_t_s_ - start_t_s_ >= hold_s_;
 }
 
+double HoldTime::at(double stamp_s, double arrival_s) noexcept {
+  if (mode_ == Mode::undecided) {
+    mode_ = stamp_s > 0 ? Mode::stamps : Mode::arrival;
+  } else if (mode_ == Mode::stamps) {
+    const double step_s = stamp_s - last_stamp_s_;
+    if (!(step_s > 0 && step_s <= max_step_s_)) mode_ = Mode::arrival;
+  }
+  if (mode_ == Mode::arrival) return arrival_s;
+  last_stamp_s_ = stamp_s;
+  return stamp_s;
+}
+
 Vec3_mm PointHold::mean() const noexcept {
   if (n_ == 0) return {};
   return {sum_[0] / double(n_), sum_[1] / double(n_), sum_[2] / double(n_)};

@@ -26,4 +26,25 @@ class PointHold {
   std::size_t n_ = 0;
 };
 
+// The time to count a hold in: the tracker's own stamps (OpenIGTLink's header timestamp, the time
+// a pose was acquired) while they behave like a clock, else the time each pose arrived. Counted
+// in arrival time, a rest whose poses arrive late and then in one burst (a loaded machine, a
+// reader that stalled) looks shorter than it was. Stamps are trusted from a first stamp above 0
+// while each one is after the last by at most max_step_s: a sender that sets none (0), or leaves
+// them unset (Debian's libopenigtlink 1.11 does not initialise them: a constant or random value),
+// falls back to arrival time for the rest of the hold. The one switch makes the time go back,
+// which restarts a PointHold; it never completes one early.
+class HoldTime {
+ public:
+  explicit HoldTime(double max_step_s = 1.0) noexcept : max_step_s_(max_step_s) {}
+  double at(double stamp_s, double arrival_s) noexcept;
+  bool stamped() const noexcept { return mode_ == Mode::stamps; }
+
+ private:
+  enum class Mode { undecided, stamps, arrival };
+  double max_step_s_;
+  Mode mode_ = Mode::undecided;
+  double last_stamp_s_ = 0;
+};
+
 }  // namespace palprig

@@ -151,6 +151,35 @@ TEST(TipCalibration, PivotRefusesTooFewOrOneAxisOrStillPoses) {
   }
 }
 
+TEST(HoldTime, ARestDeliveredInOneBurstIsCountedInTheTrackersStamps) {
+  HoldTime time;
+  PointHold hold(1.0, 1.0);
+  const double stamp0 = 1.7e9, arrived_s = 5.0;  // every pose arrives at once
+  int k = 0;
+  while (!hold.add(time.at(stamp0 + 0.025 * k, arrived_s), {1, 2, 3})) ASSERT_LT(++k, 100);
+  EXPECT_NEAR(k, 40, 1);  // one second of the tracker's time (the stamps rounded at 1.7e9 s)
+  EXPECT_TRUE(time.stamped());
+}
+
+TEST(HoldTime, StampsThatAreNotAClockFallBackToArrivalAndNeverEndAHoldEarly) {
+  // None (0), unset and constant (what libopenigtlink 1.11 leaves), and one that jumps.
+  for (const double garbage : {0.0, 3.2e9}) {
+    HoldTime time;
+    PointHold hold(1.0, 1.0);
+    int k = 0;
+    while (!hold.add(time.at(garbage, 0.025 * k), {1, 2, 3})) ASSERT_LT(++k, 100) << garbage;
+    EXPECT_GE(k, 40) << garbage;  // at least a second of arrival time
+    EXPECT_FALSE(time.stamped()) << garbage;
+  }
+  HoldTime time;
+  PointHold hold(1.0, 1.0);
+  EXPECT_FALSE(hold.add(time.at(1.7e9, 0.0), {1, 2, 3}));
+  EXPECT_FALSE(hold.add(time.at(1.7e9 + 0.025, 0.025), {1, 2, 3}));
+  EXPECT_FALSE(hold.add(time.at(1.7e9 + 100, 0.05), {1, 2, 3})) << "a stamp 100 s on is not a clock";
+  EXPECT_FALSE(time.stamped());
+  EXPECT_FALSE(hold.add(time.at(1.7e9 + 100.025, 0.075), {1, 2, 3}));
+}
+
 TEST(PointHold, TakesARestAndRestartsWhenTheTipMoves) {
   PointHold hold(1.0, 0.5);
   double t = 0;
