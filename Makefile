@@ -92,7 +92,7 @@ package: configure
 test-package-scratch: deps-test package
 	tests/package/install_and_run.sh $(BUILD) "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
 
-# The package as a rig PC gets it (issue 32): the scratch-root run, then for real on this machine
+# The package as a rig PC gets it (docs/rig-pc.md): the scratch-root run, then for real on this machine
 # (root; it installs with apt, adds a lab user to the palprig group, runs as that user, purges).
 # Not part of make test, since it changes the system. test-package-system: the same (its old name).
 test-package: test-package-scratch

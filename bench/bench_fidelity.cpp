@@ -9,9 +9,9 @@
 //     calibrate fit; the palprig command itself, as a user types it), and
 //   - the shipped asymmetric regulator (data/rigs/simulated_asymmetric.json: 3 kPa play rising,
 //     1 kPa falling, separate fill and exhaust lags, a saturating gain), calibrated the same way.
-// Goals (issue 35): RMS <= 0.25 kPa on the shipped simulated rig and <= 0.5 kPa on every other
-// plant, monitor/target over tumors >= 0.97,
-// no setpoint above p_max, no overshoot over soft tissue above 0.5 kPa.
+// Goals (the goal column of the README's fidelity table): RMS <= 0.25 kPa on the shipped
+// simulated rig and <= 0.5 kPa on every other plant, monitor/target over tumors >= 0.97, no
+// setpoint above p_max, no overshoot over soft tissue above 0.5 kPa.
 //
 //   build/bin/bench_fidelity                        the table (Markdown), runs in a few seconds
 //   build/bin/bench_fidelity --json                 the same as JSON

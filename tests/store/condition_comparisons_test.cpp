@@ -71,7 +71,7 @@ TEST(ConditionComparisons, TheResponseTimeTTestEqualsScipysOnTheScoredTrials) {
     EXPECT_NEAR(rt["df"].get<double>(), want["df"].get<double>(), 1e-9 * want["df"].get<double>()) << test;
     EXPECT_NEAR(rt["p"].get<double>(), want["p"].get<double>(), 1e-7 * want["p"].get<double>()) << test;
   }
-  // The figures for this study: 28 scored trials a condition, t 4.35, p 6.1e-05.
+  // The README's figures for this study (its analysis example): 28 scored trials a condition, t 4.35, p 6.1e-05.
   EXPECT_EQ(oracle["n"][0], 28);
   EXPECT_EQ(oracle["n"][1], 28);
   EXPECT_NEAR(std::abs(oracle["student"]["t"].get<double>()), 4.35, 0.005);
