@@ -131,14 +131,20 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
-TEST(FeResultFiles, StressModelTheCalibrationCouldNotUseIsRefused) {
-  ScratchDir dir;
+// A stress model with soft 5 and nodule 8 kPa stresses and a line of slope 0.25.
+FeStressModelFile small_stress_model(double intercept_kPa) {
   FeStressModelFile m;
   m.inputs = {"f.json", "t.json", "a.json", "0123", "plane strain", 1.0};
   m.soft_stress_kPa = 5;
   m.hard_stress_kPa = 8;
   m.actuator.slope = 0.25;
-  m.actuator.intercept_kPa = 9;  // at or above the nodule's stress: no pressure renders it
+  m.actuator.intercept_kPa = intercept_kPa;
+  return m;
+}
+
+TEST(FeResultFiles, StressModelTheCalibrationCouldNotUseIsRefused) {
+  ScratchDir dir;
+  FeStressModelFile m = small_stress_model(9);  // at or above the nodule's stress: no pressure renders it
   const auto path = dir / "model.json";
   EXPECT_EQ(refusal([&] { write_stress_model_file(path, m); }),
             path.string() +
@@ -158,12 +164,7 @@ TEST(FeResultFiles, StressModelSaysHowThePressMetTheAir) {
   // A file written before the key existed (the shipped model) was pressed first.
   EXPECT_EQ(load_stress_model_file(fe_data("stress_model_002.json")).loading, "press-first");
   ScratchDir dir;
-  FeStressModelFile m;
-  m.inputs = {"f.json", "t.json", "a.json", "0123", "plane strain", 1.0};
-  m.soft_stress_kPa = 5;
-  m.hard_stress_kPa = 8;
-  m.actuator.slope = 0.25;
-  m.actuator.intercept_kPa = 0.13;
+  FeStressModelFile m = small_stress_model(0.13);
   m.loading = "together";
   const auto path = dir / "model.json";
   write_stress_model_file(path, m);
