@@ -33,7 +33,7 @@ void run_actuator(const ActuatorArgs& a) {
   mechanics::ActuatorOptions o;
   o.solve = solve_options(a.analysis);
   o.press_mm = a.press_mm;
-  o.loading = a.loading == "together" ? mechanics::ActuatorLoading::together : mechanics::ActuatorLoading::press_first;
+  o.loading = actuator_loading(a.loading);
   o.pressures_kPa = number_list(a.pressures, "--pressures", 0, 500);
   std::filesystem::create_directories(a.out);
   std::cout << "palprig fe actuator: " << a.fingertip << " pressed " << (a.loading == "together" ? "up to " : "")
@@ -93,11 +93,7 @@ void register_fe_actuator(CLI::App* fe) {
       ->default_val("0,10,20,30,40,50,60,70,80,90,100");
   sub->add_option("--target-kPa", a->target_kPa, "Fingertip stress whose air pressure to report (paper 002's nodule)")
       ->default_val(7.967);
-  sub->add_option("--loading", a->loading,
-                  "press-first: the finger pressed --press-mm, then the air raised; together: the press rising "
-                  "with the air (--press-mm at the highest pressure), paper 002's 'at the same time'")
-      ->check(CLI::IsMember({"press-first", "together"}))
-      ->default_val("press-first");
+  add_fe_loading_option(sub, a->loading);
   sub->add_option("--out", a->out, "Folder for the CSV tables and figures")->required();
   sub->add_flag("!--no-plot", a->plot, "Write the tables only");
   add_fe_analysis_options(sub, a->analysis);

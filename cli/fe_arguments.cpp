@@ -44,6 +44,18 @@ void FeProgress::operator()(const mechanics::StepProgress& p) {
   std::cerr << line << std::flush;
 }
 
+void add_fe_loading_option(CLI::App* sub, std::string& loading) {
+  sub->add_option("--loading", loading,
+                  "press-first: the finger pressed --press-mm, then the air raised; together: the press rising "
+                  "with the air (--press-mm at the highest pressure), paper 002's 'at the same time'")
+      ->check(CLI::IsMember({"press-first", "together"}))
+      ->default_val("press-first");
+}
+
+mechanics::ActuatorLoading actuator_loading(const std::string& loading) {
+  return loading == "together" ? mechanics::ActuatorLoading::together : mechanics::ActuatorLoading::press_first;
+}
+
 std::string fe_inputs_hash(const std::vector<std::filesystem::path>& files, const std::string& settings) {
   std::uint64_t h = 14695981039346656037ull;
   auto mix = [&](const std::string& bytes) {

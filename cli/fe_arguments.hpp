@@ -20,6 +20,10 @@ void add_fe_analysis_options(CLI::App* sub, FeAnalysisArgs& args);
 mechanics::SolveOptions solve_options(const FeAnalysisArgs& args);
 std::string plane_text(const FeAnalysisArgs& args);  // "plane strain" | "plane stress"
 
+// --loading press-first|together (fe actuator, fe stress-model), and the order it names.
+void add_fe_loading_option(CLI::App* sub, std::string& loading);
+mechanics::ActuatorLoading actuator_loading(const std::string& loading);
+
 // The progress line on standard error while a solve runs: the step, what it reached, the time
 // so far and an estimate of what is left, at most once a second (and for the last step).
 class FeProgress {

@@ -49,7 +49,7 @@ void run_stress_model(const StressModelArgs& a) {
   mechanics::ActuatorOptions ao;
   ao.solve = io.solve;
   ao.press_mm = a.press_mm;
-  ao.loading = together ? mechanics::ActuatorLoading::together : mechanics::ActuatorLoading::press_first;
+  ao.loading = actuator_loading(a.loading);
   ao.pressures_kPa = pressures;
   const auto act = mechanics::run_actuator(finger, actuator, ao, std::ref(actuator_progress));
 
@@ -106,11 +106,7 @@ void register_fe_stress_model(CLI::App* fe) {
   sub->add_option("--press-mm", a->press_mm, "Press onto the actuator")->default_val(1.0)->check(CLI::Range(0.1, 5.0));
   sub->add_option("--pressures", a->pressures, "Air pressures in kPa, comma-separated")
       ->default_val("0,10,20,30,40,50,60,70,80,90,100");
-  sub->add_option("--loading", a->loading,
-                  "press-first: the finger pressed --press-mm, then the air raised; together: the press rising "
-                  "with the air (--press-mm at the highest pressure), paper 002's 'at the same time'")
-      ->check(CLI::IsMember({"press-first", "together"}))
-      ->default_val("press-first");
+  add_fe_loading_option(sub, a->loading);
   sub->add_option("--out", a->out, "Stress model file to write (JSON)")->required();
   add_fe_analysis_options(sub, a->analysis);
   sub->callback([a] { run_stress_model(*a); });
