@@ -9,6 +9,7 @@
 #include "formats/modbus_register_map.hpp"
 #include "inputs/igtl_pose_reader.hpp"
 #include "core/input_error.hpp"
+#include "inputs/tracker_clock.hpp"
 #include "runtime/monotonic_clock.hpp"
 #include "runtime/realtime.hpp"
 #include "runtime/worker_fault.hpp"
@@ -77,6 +78,7 @@ void IgtlInput::reader_main() noexcept {
     TrackerStatus st;
     st.connected = true;
     int other_names = 0;
+    std::array<TrackerClock, kFingerCount> clocks{};  // per tool: each tool's stamps must behave like a clock
     while (!stop_.load(std::memory_order_acquire)) {
       poses.clear();
       const IgtlPoseReader::Status got = reader_socket_->poll(poses, kIgtlHeartbeatMs);
@@ -112,6 +114,7 @@ void IgtlInput::reader_main() noexcept {
               ts.tip_scene_mm = tracking_.registration.tracker_to_scene.apply(p.pose.apply(tool.tip.offset_mm));
               ts.refused = FingerVent::none;
               ts.arrived_ns = now;
+              ts.taken_ns = static_cast<std::int64_t>(std::llround(clocks[k].taken_at(p.stamp_s, double(now) * 1e-9) * 1e9));
               ++ts.poses;
             }
           }
@@ -182,6 +185,7 @@ TouchSample IgtlInput::latest(double t_s) noexcept {
         f.x_mm = p[0];
         f.y_mm = p[1];
         f.z_mm = f.vent == FingerVent::none ? p[2] : 0.0;
+        if (st.tools[k].taken_ns != 0) f.pose_t_s = double(st.tools[k].taken_ns - epoch) * 1e-9;
         if (f.vent == FingerVent::none) {
           if (!pen_set) {
             // The sample's own x, y (the "pen" of telemetry): the first placed finger.

@@ -15,7 +15,10 @@
 //   - triangle placement: the one tool's fingertip is the pen; the three fingers stand around it.
 //   - the pressing force is the rig's load cells' (force_from_load_cells): RigStep reads them.
 //   - the sample's time is the reader's last wake (every 10 ms at least), so a reader that
-//     stalls makes the sample stale and the tick vents everything (input_stale).
+//     stalls makes the sample stale and the tick vents everything (input_stale). Each finger's
+//     position carries the time its pose was taken (FingerTouch::pose_t_s: the tracker's stamp
+//     on the loop's clock, inputs/tracker_clock.hpp), which the lag compensation extrapolates
+//     from; a tool's staleness is counted from its pose's arrival.
 // A connection the server closes (the tracker process died) or a stream that is not
 // OpenIGTLink is a worker fault: every channel vents and the run stops with the reason.
 #include <array>
@@ -45,6 +48,7 @@ bool is_igtl_input(const std::string& spec);
 // What the reader knows of one tool the tracking file names. Plain data: crosses threads as is.
 struct TrackedToolState {
   std::int64_t arrived_ns = 0;            // CLOCK_MONOTONIC of its last usable pose; 0: none yet
+  std::int64_t taken_ns = 0;              // when that pose was taken, on CLOCK_MONOTONIC (TrackerClock)
   std::uint64_t poses = 0;                // usable poses received
   FingerVent refused = FingerVent::none;  // the last pose was unusable (tool_invalid, tool_no_rotation)
   Vec3_mm tip_scene_mm{};                 // its fingertip in scene space (mm)

@@ -76,15 +76,35 @@ void PenPredictor::fit_slopes(const PenPrediction& how) noexcept {
   if (newest.own_positions || newest.per_finger_force) {
     for (std::size_t i = 0; i < kFingerCount; ++i) {
       if (newest.fingers[i].vent != FingerVent::none) continue;
-      Slopes f;
+      // The force against the samples' times; the position against the times its poses were
+      // taken, each pose once (a tracker's pose is carried by several samples, and arrives late).
+      Slopes force, position;
+      const double newest_pose_t = position_time_s(newest, i);
+      double last_pose_t = 0;
+      std::size_t poses = 0;
+      bool force_done = false;
       for (std::size_t age = 0; age < count_; ++age) {
         const TouchSample& s = at(age);
-        const double t = s.t_s - newest.t_s;
-        if (age >= 2 && t < -how.window_s) break;
         if (s.fingers[i].vent != FingerVent::none) break;  // back into view: only since then
-        f.add(t, s.fingers[i].x_mm, s.fingers[i].y_mm, s.fingers[i].force_N);
+        const double t = s.t_s - newest.t_s;
+        force_done = force_done || (age >= 2 && t < -how.window_s);
+        if (!force_done) force.add(t, 0, 0, s.fingers[i].force_N);
+        const double pose_t = position_time_s(s, i) - newest_pose_t;
+        if (poses > 0 && !(pose_t < last_pose_t)) {
+          if (pose_t > last_pose_t) break;  // a pose time that went back: only since then
+          continue;                         // the same pose again
+        }
+        if (poses >= 2 && pose_t < -how.window_s) {
+          if (force_done) break;
+          continue;
+        }
+        position.add(pose_t, s.fingers[i].x_mm, s.fingers[i].y_mm, 0);
+        last_pose_t = pose_t;
+        ++poses;
       }
-      f.fit(finger_vx_[i], finger_vy_[i], finger_vf_[i], how);
+      double unused_x = 0, unused_y = 0, unused_f = 0;
+      force.fit(unused_x, unused_y, finger_vf_[i], how);
+      position.fit(finger_vx_[i], finger_vy_[i], unused_f, how);
     }
   }
   // Least-squares slopes over the samples of the window, times relative to the newest.
@@ -109,8 +129,9 @@ TouchSample PenPredictor::predict(double t_s, const PenPrediction& how) const no
   out.force_N = std::max(0.0, newest.force_N + vf_ * h);
   for (std::size_t i = 0; i < kFingerCount; ++i) {
     FingerTouch& f = out.fingers[i];
-    f.x_mm += finger_vx_[i] * h;
-    f.y_mm += finger_vy_[i] * h;
+    const double h_pose = std::clamp(t_s - position_time_s(newest, i), 0.0, how.max_horizon_s);
+    f.x_mm += finger_vx_[i] * h_pose;
+    f.y_mm += finger_vy_[i] * h_pose;
     f.force_N = std::max(0.0, f.force_N + finger_vf_[i] * h);
   }
   return out;
@@ -128,8 +149,9 @@ PredictedFinger PenPredictor::predict_finger(double t_s, const PenPrediction& ho
   out.own_position = newest.own_positions;
   out.own_force = newest.per_finger_force;
   const FingerTouch& f = newest.fingers[i];
-  out.x_mm = f.x_mm + finger_vx_[i] * h;
-  out.y_mm = f.y_mm + finger_vy_[i] * h;
+  const double h_pose = std::clamp(t_s - position_time_s(newest, i), 0.0, how.max_horizon_s);
+  out.x_mm = f.x_mm + finger_vx_[i] * h_pose;
+  out.y_mm = f.y_mm + finger_vy_[i] * h_pose;
   out.force_N = std::max(0.0, f.force_N + finger_vf_[i] * h);
   out.vent = f.vent;
   return out;

@@ -11,7 +11,12 @@
 // pen that jumps (a lifted pen put down elsewhere, a glitch) is not flung across the pad.
 // Tracked fingers (TouchSample::own_positions, per_finger_force) are extrapolated the
 // same way, each from its own positions and force, over the samples since its tool was last
-// vented (out of view), so a tool coming back into view is not read as a jump.
+// vented (out of view), so a tool coming back into view is not read as a jump. A finger's
+// position is fitted against the times its poses were taken (FingerTouch::pose_t_s), each pose
+// once, and extrapolated from the newest pose's time: a tracker's pose arrives late and is
+// carried by several samples, and timed by the samples a late pose, or a burst, reads as a
+// finger that stopped and then jumped. Its force (a load cell read every tick) goes by the
+// samples' times.
 #include <array>
 #include <cstddef>
 

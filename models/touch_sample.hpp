@@ -2,7 +2,10 @@
 // One reading of the pen on the touchpad, already in physical units; or, from a tracker, the
 // tracked fingertips (each finger at its own position, with its own force).
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "models/finger_layout.hpp"
 
@@ -38,6 +41,10 @@ struct FingerTouch {
   double x_mm = 0, y_mm = 0, z_mm = 0;
   double force_N = 0;  // its own load cell (TouchSample::per_finger_force)
   FingerVent vent = FingerVent::none;
+  // When its position was taken, on the loop's clock (s): a tracker's pose is older than the
+  // sample that carries it, and several samples carry the same pose. NaN: taken with the sample
+  // (TouchSample::t_s). The lag compensation extrapolates the position from this time.
+  double pose_t_s = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct TouchSample {
@@ -53,5 +60,11 @@ struct TouchSample {
   bool force_from_load_cells = false;               // the rig's load cells give the force: RigStep fills it in
   std::array<FingerTouch, kFingerCount> fingers{};  // vent applies in either placement
 };
+
+// When finger i's position was taken: its pose time, else the sample's.
+inline double position_time_s(const TouchSample& s, std::size_t i) noexcept {
+  const double t = s.fingers[i].pose_t_s;
+  return std::isfinite(t) ? t : s.t_s;
+}
 
 }  // namespace palprig

@@ -173,7 +173,9 @@ TEST(FunctionSceneTick, RateChangedWhileRunningTakesEffectWithoutAJump) {
   OperatorSwitches switches;
   for (int k = 0; k < 8000; ++k) {
     const double t = k * 0.001;
-    if (k == 4100) EXPECT_TRUE(switches.request_pulse_rate_bpm(0, 120));
+    if (k == 4100) {
+      EXPECT_TRUE(switches.request_pulse_rate_bpm(0, 120));
+    }
     const double p = tick(st, cfg, *scene, {t, 40, 60, 2.0, true}, t, switches.read()).pulse_kPa[0];
     if (p > 0.5 && previous <= 0.5) onsets.push_back(t);
     previous = p;

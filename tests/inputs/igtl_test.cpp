@@ -4,12 +4,19 @@
 // reporting a server that goes away.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <thread>
+#include <utility>
+#include <vector>
 
+#include <igtlOSUtil.h>
 #include <igtlPositionMessage.h>
+#include <igtlServerSocket.h>
 #include <igtlStringMessage.h>
 #include <igtlTransformMessage.h>
 #include <igtl_util.h>
@@ -18,6 +25,7 @@
 #include "inputs/igtl_pose_server.hpp"
 #include "inputs/igtl_stream.hpp"
 #include "inputs/pose_recording.hpp"
+#include "inputs/tracker_clock.hpp"
 #include "core/input_error.hpp"
 #include "runtime/worker_fault.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -274,6 +282,124 @@ TEST(IgtlInput, FollowsEachToolOnLoopbackAndVentsAFingerWhoseToolStops) {
   EXPECT_TRUE(st.connected);
   EXPECT_GT(st.tools[0].poses, 10u);
   EXPECT_EQ(st.tools[2].poses, 0u);
+  EXPECT_FALSE(worker_fault_pending(nullptr, 0));
+}
+
+TEST(TrackerClock, APoseIsTimedByItsStampOnOurClockAndNeverAfterItArrived) {
+  // The tracker's clock is 1.7e9 s ahead of ours; transport takes 2 ms plus 0 to 15 ms.
+  TrackerClock clock;
+  const double extra_s[] = {0.015, 0.004, 0.0, 0.011, 0.007};
+  for (int k = 0; k < 50; ++k) {
+    const double taken = 100 + 0.025 * k, arrived = taken + 0.002 + extra_s[k % 5];
+    const double t = clock.taken_at(1.7e9 + taken, arrived);
+    EXPECT_LE(t, arrived) << k;
+    // Once the fastest pose has been seen (the third), every pose is timed 2 ms after it was
+    // taken, give or take what the offset may grow between the fastest poses (kDriftAllowance x
+    // 125 ms) and the stamps' rounding at 1.7e9 s.
+    if (k >= 2) {
+      EXPECT_NEAR(t, taken + 0.002, TrackerClock::kDriftAllowance * 0.125 + 1e-6) << k;
+    }
+  }
+  EXPECT_TRUE(clock.stamped());
+}
+
+TEST(TrackerClock, FollowsATrackerClockThatRunsSlowAndFallsBackToArrivalWithoutStamps) {
+  // 100 ppm slow (a poor crystal), 40 poses a second for ten minutes, 1 to 3 ms in transit: the
+  // offset grows with it (up to 1000 ppm is followed), so poses stay timed within the jitter.
+  TrackerClock slow;
+  double worst_s = 0;
+  for (int k = 0; k < 24000; ++k) {
+    const double taken = 0.025 * k, arrived = taken + 0.001 + 0.002 * ((k * 7) % 11) / 10.0;
+    const double t = slow.taken_at(1.7e9 + taken * (1 - 1e-4), arrived);
+    worst_s = std::max(worst_s, std::abs(t - (taken + 0.001)));
+  }
+  EXPECT_LT(worst_s, 0.002);
+  // None set (0), or left unset (libopenigtlink 1.11's constant): the arrival time, as before.
+  for (const double garbage : {0.0, 3.2e9}) {
+    TrackerClock none;
+    for (int k = 0; k < 5; ++k) EXPECT_EQ(none.taken_at(garbage, 7.0 + 0.03 * k), 7.0 + 0.03 * k) << garbage;
+    EXPECT_FALSE(none.stamped());
+  }
+}
+
+namespace {
+
+// A tracker whose poses reach us late by turns: pose k of finger 1 (x = 10 + k mm) is stamped
+// when it was taken, k * 25 ms after the start, and sent 0 or 15 ms after that. libopenigtlink's
+// own server socket; a thread paced on the clock as a tracker is.
+class LateTracker {
+ public:
+  LateTracker() {
+    if (socket_->CreateServer(0) != 0) throw std::runtime_error("cannot listen");
+    port_ = socket_->GetServerPort();
+    thread_ = std::thread([this] { serve(); });
+  }
+  ~LateTracker() {
+    stop_ = true;
+    thread_.join();
+    socket_->CloseSocket();
+  }
+  int port() const { return port_; }
+  static constexpr int kPoses = 60;
+
+ private:
+  void serve() {
+    igtl::ClientSocket::Pointer client;
+    while (!stop_ && client.IsNull()) client = socket_->WaitForConnection(100);
+    if (client.IsNull()) return;
+    igtl::TimeStamp::Pointer stamp = igtl::TimeStamp::New();
+    stamp->GetTime();
+    const double wall_start_s = stamp->GetTimeStamp();
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 0; k < kPoses && !stop_; ++k) {
+      const double taken_s = 0.025 * k, late_s = k % 2 ? 0.015 : 0.0;
+      std::this_thread::sleep_until(start + std::chrono::duration<double>(taken_s + late_s));
+      igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
+      m->SetDeviceName("Finger1ToTracker");
+      igtl::Matrix4x4 mat;
+      igtl::IdentityMatrix(mat);
+      mat[0][3] = static_cast<float>(10 + k);
+      m->SetMatrix(mat);
+      stamp->SetTime(wall_start_s + taken_s);
+      m->SetTimeStamp(stamp);
+      m->Pack();
+      if (client->Send(m->GetPackPointer(), m->GetPackSize()) != 1) return;
+    }
+    while (!stop_) std::this_thread::sleep_for(5ms);  // stay connected until the test is done
+  }
+  igtl::ServerSocket::Pointer socket_ = igtl::ServerSocket::New();
+  int port_ = 0;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace
+
+TEST(IgtlInput, EachFingersPoseCarriesTheTimeItWasTakenNotWhenItArrived) {
+  clear_worker_faults();
+  LateTracker tracker;
+  IgtlInput input({"127.0.0.1", tracker.port()}, two_finger_tracking(), 0.1);
+  const auto start = std::chrono::steady_clock::now();
+  auto now_s = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  // Every pose the loop would see: its x (which pose it is) and the time it says it was taken.
+  std::vector<std::pair<double, double>> seen;
+  ASSERT_TRUE(eventually([&] {
+    const TouchSample s = input.latest(now_s());
+    if (s.fingers[0].vent == FingerVent::none && (seen.empty() || s.fingers[0].x_mm != seen.back().first)) {
+      EXPECT_LE(s.fingers[0].pose_t_s, s.t_s + 1e-9);
+      seen.emplace_back(s.fingers[0].x_mm, s.fingers[0].pose_t_s);
+    }
+    return !seen.empty() && seen.back().first >= 100 + 10 + LateTracker::kPoses - 1 - 1e-3;
+  }));
+  ASSERT_GT(seen.size(), 20u);
+  // Poses k and j were taken (k - j) * 25 ms apart, whether they came 0 or 15 ms late (timed by
+  // arrival, consecutive poses would be 10 or 40 ms apart). The first few fix the offset.
+  for (std::size_t i = 6; i < seen.size(); ++i) {
+    const double poses_apart = seen[i].first - seen[i - 1].first;
+    EXPECT_NEAR(seen[i].second - seen[i - 1].second, 0.025 * poses_apart, 0.002) << "pose at x " << seen[i].first;
+  }
+  // The unmapped finger has no pose and no pose time.
+  EXPECT_FALSE(std::isfinite(input.latest(now_s()).fingers[2].pose_t_s));
   EXPECT_FALSE(worker_fault_pending(nullptr, 0));
 }
 
