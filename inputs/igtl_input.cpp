@@ -114,7 +114,8 @@ void IgtlInput::reader_main() noexcept {
               ts.tip_scene_mm = tracking_.registration.tracker_to_scene.apply(p.pose.apply(tool.tip.offset_mm));
               ts.refused = FingerVent::none;
               ts.arrived_ns = now;
-              ts.taken_ns = static_cast<std::int64_t>(std::llround(clocks[k].taken_at(p.stamp_s, double(now) * 1e-9) * 1e9));
+              ts.taken_ns =
+                  static_cast<std::int64_t>(std::llround(clocks[k].taken_at(p.stamp_s, double(now) * 1e-9) * 1e9));
               ++ts.poses;
             }
           }

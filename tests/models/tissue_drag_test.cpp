@@ -188,8 +188,8 @@ TEST(PenPredictor, ATrackedPoseIsExtrapolatedFromWhenItWasTakenNotWhenItArrived)
     s.fingers[0] = {x_at(k * 0.025), 5, -1, 2.0, FingerVent::none};
     by_arrival.observe(s, how);
     if (k >= 1)
-      arrival_worst_mm = std::max(arrival_worst_mm,
-                                  std::abs(by_arrival.predict_finger(arrived + 0.051, how, 0).x_mm - x_at(arrived + 0.051)));
+      arrival_worst_mm = std::max(
+          arrival_worst_mm, std::abs(by_arrival.predict_finger(arrived + 0.051, how, 0).x_mm - x_at(arrived + 0.051)));
   }
   EXPECT_GT(arrival_worst_mm, 0.5);
 }

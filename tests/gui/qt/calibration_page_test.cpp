@@ -138,7 +138,7 @@ class CalibrationPageTest : public QObject {
     QTest::mouseClick(child<QPushButton>(p, "cal_start"), Qt::LeftButton);
     QVERIFY2(p->sweeping(), qPrintable(child<QLabel>(p, "cal_status")->text()));
     QCOMPARE(job_holds_the_rig(w), QString());
-    wait_for_poll(w);                                       // the window disables the live page on its next poll
+    wait_for_poll(w);  // the window disables the live page on its next poll
     QVERIFY(!w.window->live_page()->isEnabled());
     QVERIFY(signalled(finished, 1, 120000));
     QVERIFY(!p->sweeping());
