@@ -322,6 +322,27 @@ TEST(TrackerClock, FollowsATrackerClockThatRunsSlowAndFallsBackToArrivalWithoutS
   }
 }
 
+TEST(TrackerClock, AToolBackInViewKeepsItsStampsAndAStampThatIsNoClockIsDropped) {
+  // Out of view for 5 s (PlusServer sends nothing for it): its next stamp is 5 s on, and so is
+  // its arrival; that is a clock.
+  TrackerClock clock;
+  EXPECT_NEAR(clock.taken_at(1.7e9, 10.002), 10.002, 1e-6);
+  // 1 ms late: timed 2 ms after it was taken, give or take the offset's allowed growth (28 us here).
+  EXPECT_NEAR(clock.taken_at(1.7e9 + 0.025, 10.030), 10.027, 1e-4);
+  EXPECT_NEAR(clock.taken_at(1.7e9 + 5.025, 15.027), 15.027, 1e-4);
+  EXPECT_TRUE(clock.stamped());
+  // A stamp 100 s on after 25 ms here is no clock, nor one that goes back: arrival times from then on.
+  TrackerClock jumps;
+  jumps.taken_at(1.7e9, 10.0);
+  EXPECT_EQ(jumps.taken_at(1.7e9 + 100, 10.025), 10.025);
+  EXPECT_FALSE(jumps.stamped());
+  EXPECT_EQ(jumps.taken_at(1.7e9 + 100.025, 10.05), 10.05);
+  TrackerClock back;
+  back.taken_at(1.7e9, 10.0);
+  EXPECT_EQ(back.taken_at(1.7e9 - 0.025, 10.025), 10.025);
+  EXPECT_FALSE(back.stamped());
+}
+
 namespace {
 
 // A tracker whose poses reach us late by turns: pose k of finger 1 (x = 10 + k mm) is stamped
