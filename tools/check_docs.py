@@ -220,7 +220,7 @@ def has_gui(bin_dir: pathlib.Path) -> bool:
 class PageRunner:
     def __init__(self, repo: pathlib.Path, bin_dir: pathlib.Path, path_prefix: list, gui: bool, keep: bool):
         self.repo, self.bin_dir, self.path_prefix, self.gui, self.keep = repo, bin_dir, path_prefix, gui, keep
-        self.retried: list = []  # (block, why) of `realtime` blocks run a second time
+        self.retried: list = []  # (page, block, why) of `realtime` blocks run a second time
 
     def environment(self, folder: pathlib.Path) -> dict:
         env = dict(os.environ)
