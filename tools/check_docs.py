@@ -31,9 +31,9 @@ docs/developing.md, "Executable docs"; in short:
   waits for a person (a window, a terminal session) and requires it to be still running after S
   seconds (then it is stopped with SIGTERM); `realtime` marks a block that runs the 1 kHz loop in
   real time: when the loop faulted in it because this machine stalled it beyond the rig's
-  safety.max_lost_time_s ("loop cannot hold its rate": the rig's own protection, working), the
-  block runs once more and the report lists it under "retried"; any other failure, or a second
-  stall, fails. Separate several with ";".
+  limits ("loop cannot hold its rate", or "pen input stale" when the input's reader was not run:
+  the rig's own protection, working), the block runs once more and the report lists it under
+  "retried"; any other failure, or a second stall, fails. Separate several with ";".
 * Every ```json block (and every ```csv block with a file name) is loaded with `palprig check`
   (each JSON example is a complete file, never a fragment).
 * Relative links ([text](path#anchor)) must name files that exist, and headings that exist.
@@ -60,7 +60,9 @@ NUMBER = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?"
 TILDE = re.compile(r"~(" + NUMBER + ")")
 HEREDOC = re.compile(r"<<-?\s*(['\"]?)([A-Za-z_][A-Za-z0-9_]*)\1")
 TOLERANCE = 0.10
-# What palprig says when the loop lost more time than the rig allows (controller's fault text).
+# What palprig says when the machine stalled the loop past the rig's limits (controller/fault.hpp):
+# the loop lost more time than safety.max_lost_time_s, or the input's reader thread was not run
+# for safety.max_input_age_s (a stalled virtual CPU), so its newest sample went stale.
 LOOP_STALLED = "loop cannot hold its rate (lost time beyond safety.max_lost_time_s)"
 
 
@@ -256,7 +258,7 @@ class PageRunner:
                 elif block.lang in ("sh", "bash", "shell"):
                     before = files_under(folder) if d.get("realtime") else set()
                     result = self.run_sh(block, folder, env)
-                    if result.status == "failed" and d.get("realtime") and LOOP_STALLED in result.detail:
+                    if result.status == "failed" and d.get("realtime") and stalled(result.detail):
                         # The machine, not the page: the loop vented as it must when it was
                         # stalled. Once more, from the files the page had before the block (a log
                         # the block waits on must not be the first run's); a second stall, or
@@ -374,6 +376,12 @@ class PageRunner:
         return Result(block, "passed", f"{len(commands)} commands, {elapsed:.1f} s")
 
 
+def stalled(detail: str) -> bool:
+    """The block failed because the machine stalled the loop: its run faulted for lost time, or for
+    a stale input (the reader was not scheduled), and said so in palprig's fault line."""
+    return LOOP_STALLED in detail or re.search(r"palprig: fault at t=[0-9.]+ s: pen input stale", detail) is not None
+
+
 def files_under(folder: pathlib.Path) -> set:
     """Every file and folder under folder, symbolic links not followed (data/ is one)."""
     out = set()
@@ -467,7 +475,7 @@ def run(repo: pathlib.Path, bin_dir: pathlib.Path, pages: list, keep: bool = Fal
         for s in skipped:
             print(f"skipped {s}")
         for r in retried:
-            print(f"retried {r} (the loop could not hold its rate on this machine; run once more)")
+            print(f"retried {r} (this machine stalled the loop past the rig's limits; run once more)")
         for f in failures:
             print(f"FAILED {f}")
         print(f"docs: {counts['passed']} passed, {counts['failed']} failed, {counts['skipped']} skipped "
@@ -570,6 +578,7 @@ def self_test(repo: pathlib.Path, bin_dir: pathlib.Path) -> int:
         page_text = ("# Real time\n\n<!-- docs-test: realtime -->\n```sh\npalprig --version\n#   palprig ...\n```\n")
         for name, say, always, should_fail in (
                 ("a realtime block whose loop stalled once", f"palprig: fault at t=1.000 s: {LOOP_STALLED}", False, False),
+                ("a realtime block whose input went stale once", "palprig: fault at t=1.840 s: pen input stale", False, False),
                 ("a realtime block whose loop stalls every time", f"palprig: fault at t=1.000 s: {LOOP_STALLED}", True, True),
                 ("a realtime block that failed otherwise once", "palprig: cannot open /dev/comedi0", False, True)):
             root = copy_tree()
@@ -581,7 +590,7 @@ def self_test(repo: pathlib.Path, bin_dir: pathlib.Path) -> int:
             (stall_dir / "palprig").chmod(0o755)
             expect(name, root, "docs/realtime.md", should_fail, [stall_dir])
 
-    print("self-test: 5 of 5 drifts made the check fail, 3 of 3 real-time retries went as they must, and the "
+    print("self-test: 5 of 5 drifts made the check fail, 4 of 4 real-time retries went as they must, and the "
           "unchanged README passed" if not problems else "self-test: FAILED: " + "; ".join(problems))
     return 1 if problems else 0
 
