@@ -237,7 +237,7 @@ TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
   const double period_s = 1.0 / cmap.io_rate_hz;
   std::array<double, 4> last_kPa{}, last_t{}, first_t{}, first_kPa{}, top_t{};
   std::array<bool, 4> seen{}, rising{}, topped{};
-  std::size_t rising_writes = 0;
+  std::array<std::size_t, 4> rising_writes{};
   for (const auto& row : writes.rows) {
     const auto c = static_cast<std::size_t>(row[ch]);
     if (seen[c]) {
@@ -253,7 +253,7 @@ TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
       topped[c] = true;
       top_t[c] = row[t];
     }
-    if (row[kpa] > 0 && row[kpa] < 49.99) ++rising_writes;
+    if (row[kpa] > 0 && row[kpa] < 49.99) ++rising_writes[c];
     seen[c] = true;
     last_kPa[c] = row[kpa];
     last_t[c] = row[t];
@@ -262,8 +262,12 @@ TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
   for (std::size_t c = 1; c <= kFingerCount; ++c) {
     if (!topped[c]) continue;  // a channel whose 50 kPa write came after channel 1's and the close
     EXPECT_GE(top_t[c] - first_t[c], (50.0 - first_kPa[c]) / 2000.0 - 2 * period_s) << "channel " << c;
+    // A ramp, not a jump: writes between 0 and 50 kPa. 50 kPa at 2000 kPa/s takes 25 ms, about 12
+    // bus cycles; the bus slews by the time that passed, so a bus thread the machine stalled for
+    // part of the rise sends fewer of them (4 a channel once on a loaded virtual machine), and
+    // the rise's duration above is what holds the rate.
+    EXPECT_GE(rising_writes[c], 2u) << "channel " << c;
   }
-  EXPECT_GE(rising_writes, 3u * 5u);  // 50 kPa at 2000 kPa/s takes 25 ms: several bus cycles per channel
 }
 
 TEST(ModbusLoopback, TheBusThreadVentsWhenTheLoopFallsSilent) {
