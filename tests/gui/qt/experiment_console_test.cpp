@@ -461,9 +461,16 @@ class ExperimentConsoleTest : public QObject {
       QSKIP("xvfb-run or xrandr is not installed (packages xvfb, x11-xserver-utils)");
     TempDir dir;
     const std::string protocol = short_discrimination(dir);
+    // The simulated rig, patient with a machine that stalls (under the sanitizers a virtual
+    // machine once lost 100 ms and the loop vented, as it must on a rig): where the participant
+    // screen goes is what this test is about.
+    auto rig = nlohmann::json::parse(test_support::read_file(data_dir() + "/rigs/simulated.json"));
+    rig["safety"]["max_lost_time_s"] = 10;
+    rig["safety"]["max_consecutive_overruns"] = 100000;
+    const std::string rig_path = dir.write("rig.json", rig.dump()).string();
     const std::string gui = "env QT_QPA_PLATFORM=xcb " + test_support::palprig_bin() + " gui --protocol " + protocol +
-                            " --participant P08 --db " + (dir.path() / "p.db").string() + " --json --screenshot " +
-                            (dir.path() / "s.png").string() + " --after-s 1";
+                            " --rig " + rig_path + " --participant P08 --db " + (dir.path() / "p.db").string() +
+                            " --json --screenshot " + (dir.path() / "s.png").string() + " --after-s 1";
     // -noreset: the monitors set by xrandr would go with a server reset when xrandr disconnects.
     auto under_two_displays = [&](const std::string& display) {
       const auto script = dir.write("two_displays.sh",
