@@ -58,13 +58,11 @@ std::string head_of_pass(const TempDir& dir, double seconds) {
 // heartbeat then goes stale and the loop vents, "pen input stale"). The pass's first 3 s have no
 // tool out of view, so a second's input age changes nothing else.
 std::string patient_rig(const TempDir& dir) {
-  std::string rig = test_support::read_file(kData + "/rigs/simulated_load_cells.json");
-  const std::string from = "\"max_consecutive_overruns\": 20",
-                    to = "\"max_consecutive_overruns\": 100000, \"max_lost_time_s\": 10";
-  rig.replace(rig.find(from), from.size(), to);
-  const std::string age = "\"max_input_age_s\": 0.1";
-  rig.replace(rig.find(age), age.size(), "\"max_input_age_s\": 1.0");
-  return dir.write("rig.json", rig).string();
+  auto rig = nlohmann::json::parse(test_support::read_file(kData + "/rigs/simulated_load_cells.json"));
+  rig["safety"]["max_consecutive_overruns"] = 100000;
+  rig["safety"]["max_lost_time_s"] = 10;
+  rig["safety"]["max_input_age_s"] = 1.0;
+  return dir.write("rig.json", rig.dump(2)).string();
 }
 
 TEST(TrackingCli, RunOverAReplayedTrackerPrintsThePerRegionTable) {

@@ -36,6 +36,25 @@ TEST(Files, ShippedFilesLoad) {
   EXPECT_GT(trace.size(), 1000u);
 }
 
+// A simulated regulator holds no air: the shipped simulated rigs ride out a 0.5 s stall of the
+// machine (a demo or a rehearsal on a laptop or a shared virtual machine), while every rig file
+// that drives hardware keeps the default 0.05 s, the regulator's time constant (docs/rig.md).
+TEST(Files, OnlyTheSimulatedRigsAllowHalfASecondOfLostTime) {
+  int simulated = 0, hardware = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kData / "rigs")) {
+    const RigConfig rig = load_rig_file(entry.path());
+    if (rig.backend == "simulated") {
+      ++simulated;
+      EXPECT_EQ(rig.safety.max_lost_time_s, 0.5) << entry.path();
+    } else {
+      ++hardware;
+      EXPECT_EQ(rig.safety.max_lost_time_s, SafetyLimits{}.max_lost_time_s) << entry.path();
+    }
+  }
+  EXPECT_EQ(simulated, 3);
+  EXPECT_EQ(hardware, 4);
+}
+
 TEST(Files, RigFileFieldsAndDefaults) {
   TempDir dir;
   const RigConfig rig = load_rig_file(dir.write("rig.json", kGoodRig));

@@ -24,6 +24,8 @@
 #include <thread>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "gui/finger_gauge.hpp"
 #include "gui/live_page.hpp"
 #include "gui/main_window.hpp"
@@ -48,14 +50,12 @@ std::string data_dir() { return std::string(PALPRIG_SOURCE_DIR) + "/data"; }
 // thread descheduled for 100 ms would fault a test that is not about stalls. (The stall test
 // stalls longer than this.)
 std::string patient_rig(const TempDir& dir) {
-  std::string rig = test_support::read_file(data_dir() + "/rigs/simulated.json");
-  const std::string from = "\"max_input_age_s\": 0.1", to = "\"max_input_age_s\": 1.0";
-  rig.replace(rig.find(from), from.size(), to);
-  // Overruns are not the subject here either.
-  const std::string o_from = "\"max_consecutive_overruns\": 20",
-                    o_to = "\"max_consecutive_overruns\": 1000, \"max_lost_time_s\": 10";
-  rig.replace(rig.find(o_from), o_from.size(), o_to);
-  return dir.write("rig.json", rig).string();
+  auto rig = nlohmann::json::parse(test_support::read_file(data_dir() + "/rigs/simulated.json"));
+  rig["safety"]["max_input_age_s"] = 1.0;
+  // Overruns and lost periods are not the subject here either.
+  rig["safety"]["max_consecutive_overruns"] = 1000;
+  rig["safety"]["max_lost_time_s"] = 10;
+  return dir.write("rig.json", rig.dump(2)).string();
 }
 
 // Starts `palprig gui` on the patient rig with telemetry, waits (polling the file, up to 30 s)
