@@ -24,6 +24,7 @@ RigStep::RigStep(const TickConfig& config, RigBackend& backend, const RigStepOpt
   // Asked once here: capabilities() builds strings, which the loop thread must not.
   read_sensors_ = options.read_sensors && backend.capabilities().has_sensor;
   result_.sensor.fill(std::numeric_limits<double>::quiet_NaN());
+  seen_forced_vents_ = backend.forced_vents();
 }
 
 void RigStep::enter_fault(FaultCode why, const char* detail) noexcept {
@@ -39,8 +40,10 @@ BackendStatus RigStep::arm() noexcept {
     backend_.vent();
     return armed;
   }
-  // Pressure rises from the vented state under the slew limit after every arm.
+  // Pressure rises from the vented state under the slew limit after every arm; what the backend
+  // vented on its own while disarmed held no pressure.
   state_.restart_from_vented();
+  seen_forced_vents_ = backend_.forced_vents();
   return BackendStatus::ok;
 }
 
@@ -118,13 +121,6 @@ void RigStep::finish(std::int64_t tick_start, bool linked, double t_s) noexcept 
   TickResult& r = result_.tick;
   TelemetryRecord& rec = r.record;
   const bool armed = backend_.armed();
-  result_.linked = linked;
-  result_.armed = armed;
-  if (!linked) {
-    ++unlinked_steps_;
-    if (was_linked_) ++link_outages_;
-  }
-  was_linked_ = linked;
   // Vented without a fault (the link is down and reconnecting, or the operator disarmed): 0 kPa
   // goes out, and the slew limiter starts again from the vented state when pressure may flow.
   if (!linked || !armed) {
@@ -142,6 +138,23 @@ void RigStep::finish(std::int64_t tick_start, bool linked, double t_s) noexcept 
   else
     (void)backend_.vent();  // a disarmed rig: the reads below say whether its link holds
   if (io == BackendStatus::ok) io = backend_.read_monitors(result_.monitor_kPa, t_s);
+  // The backend vented on its own since the last step (backend.forced_vents()), perhaps in an
+  // outage already over: the plant emptied, so this step is an outage's step too, and the slew
+  // limiter starts again from the vented state as the backend's own ramp does.
+  if (const std::uint64_t vents = backend_.forced_vents(); vents != seen_forced_vents_) {
+    seen_forced_vents_ = vents;
+    if (linked) {
+      linked = false;
+      state_.restart_from_vented();
+    }
+  }
+  result_.linked = linked;
+  result_.armed = armed;
+  if (!linked) {
+    ++unlinked_steps_;
+    if (was_linked_) ++link_outages_;
+  }
+  was_linked_ = linked;
   // A tick that began with the link down has no reading it can vouch for: the bus thread may
   // publish the first fresh monitors of a reconnect between our linked() and read_monitors(),
   // and an alarm row must not carry them (they belong to the next, linked tick).

@@ -14,7 +14,10 @@
 // setpoint by hand: no setpoint reaches a backend except through the tick's safety stage.
 // A link outage (Modbus reconnecting) or a disarmed backend is not a fault: the channels are
 // vented, the record says so, and the slew limiter restarts from 0 kPa when pressure may flow
-// again. Runs on the loop thread: no allocation, no locks, no exceptions.
+// again. So is a vent the backend did on its own between two steps (RigBackend::forced_vents():
+// an outage over before linked() showed it, or a bus that vented a loop silent beyond its
+// setpoint timeout): that step counts as an outage's step. Runs on the loop thread: no
+// allocation, no locks, no exceptions.
 #include <array>
 #include <cstdint>
 
@@ -35,9 +38,10 @@ struct StepResult {
   ChannelPressures monitor_kPa{};  // NaN where the backend has no reading (link down)
   std::array<double, kFingerCount> sensor{};  // NaN unless sensors were read
   LoadCellReading load_cells;                 // count 0 unless the sample's force came from the load cells
-  bool linked = true;                         // the backend's link carried this step's setpoints
-  bool armed = true;                          // the backend was armed (setpoints flowed)
-  double tick_us = 0, io_us = 0;              // time in the tick, time in the backend
+  bool linked =
+      true;  // the backend's link carried this step's setpoints, and it vented nothing on its own since the last step
+  bool armed = true;              // the backend was armed (setpoints flowed)
+  double tick_us = 0, io_us = 0;  // time in the tick, time in the backend
 };
 
 class RigStep {
@@ -97,6 +101,7 @@ class RigStep {
   StepResult result_;
   bool was_linked_ = true;
   std::uint64_t link_outages_ = 0, unlinked_steps_ = 0;
+  std::uint64_t seen_forced_vents_ = 0;  // the backend's forced_vents() at the last step
   Fault fault_;
   FaultRecorder recorder_;
   double last_t_s_ = 0;  // the last step's time: when a fault found outside a step is latched

@@ -221,6 +221,19 @@ void ModbusRig::io_cycle(std::int64_t now, double dt_s) {
   bool all_up = true;
   for (const auto& l : links_) all_up = all_up && l.up;
   const bool loop_silent = double(now - cmd.stamp_ns) * 1e-9 > config_.setpoint_timeout_s;
+  // The loop stopped sending while it asked for pressure (a machine that stalled the loop's
+  // thread longer than the timeout): the outputs go to 0 below. Counted before they do, so a
+  // step that reads the count after this cycle knows its plant was vented (a calibration hold
+  // would otherwise be recorded on the wrong hysteresis branch).
+  bool pressure_asked = false;
+  for (double p : cmd.kPa) pressure_asked = pressure_asked || (std::isfinite(p) && p > 0.0);
+  const bool silenced = all_up && loop_silent && pressure_asked;
+  if (silenced && !silenced_) {
+    forced_vents_.fetch_add(1, std::memory_order_acq_rel);
+    log("modbus: no setpoint from the loop for more than " + seconds_text(config_.setpoint_timeout_s) + " at t=" +
+        seconds_text(double(now - start_ns_) * 1e-9) + ": all channels vented; the next setpoints ramp up from 0 kPa");
+  }
+  silenced_ = silenced;
 
   // Target per channel: the loop's setpoint while everything is linked and the loop is alive,
   // 0 kPa otherwise. Going down is immediate; coming up from a vent follows the ramp.
@@ -290,6 +303,7 @@ void ModbusRig::mark_down(LinkState& l, std::int64_t now) {
   l.next_attempt_ns = now + static_cast<std::int64_t>(l.backoff_s * 1e9);
   l.attempts = 0;
   ++stats_.outages;
+  forced_vents_.fetch_add(1, std::memory_order_acq_rel);
   // Every other link gets 0 kPa on the next cycle (all_up is false), and the loop sees
   // linked() == false after this cycle.
   write_zeros_everywhere();

@@ -48,6 +48,7 @@ class ModbusRig final : public RigBackend {
   // link_kind "modbus-tcp" or "modbus-rtu" ("modbus-tcp+rtu" when links mix), endpoints joined by " + ".
   BackendCapabilities capabilities() const override;
   bool linked() const noexcept override { return linked_.load(std::memory_order_acquire); }
+  std::uint64_t forced_vents() const noexcept override { return forced_vents_.load(std::memory_order_acquire); }
 
   // Where link events (lost, back, bus summary) go; called on the I/O thread. Default: stderr.
   void set_log_sink(LogSink sink) { log_ = std::move(sink); }
@@ -100,6 +101,7 @@ class ModbusRig final : public RigBackend {
   std::atomic<bool> fatal_{false};
   std::atomic<int> fatal_state_{0};
   std::atomic<std::int64_t> down_since_ns_{0};  // 0 while linked
+  std::atomic<std::uint64_t> forced_vents_{0};  // see RigBackend::forced_vents()
   char fatal_text_[256] = {0};                  // written before fatal_ is set (release)
 
   LatestValue<Command> commands_;   // loop -> I/O thread
@@ -108,6 +110,7 @@ class ModbusRig final : public RigBackend {
   // I/O thread state.
   ChannelPressures ramp_kPa_{};  // what the re-engagement ramp allows now
   std::array<bool, kFingerCount> engaging_{};
+  bool silenced_ = false;  // the loop fell silent while asking for pressure, and the outputs went to 0
   ChannelWords out_words_{}, mon_words_{}, cell_words_{};
   ChannelWords zero_words_{};  // every output at 0 kPa (not always word 0: signed or offset maps)
   LatencyHistogram cycle_hist_;

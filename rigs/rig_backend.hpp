@@ -22,6 +22,7 @@
 // anything moves). state() may be read from any thread; the transitions are made by the thread
 // that owns the backend (the loop while one runs).
 #include <array>
+#include <cstdint>
 #include <atomic>
 #include <cstddef>
 #include <optional>
@@ -132,6 +133,13 @@ class RigBackend {
   // (Modbus) returns false while it is vented and reconnecting; the loop then raises an alarm in
   // telemetry instead of stopping. In-process and directly attached backends are always linked.
   virtual bool linked() const noexcept { return true; }
+  // How many times since open() the backend took the pressure off on its own: a link lost, or
+  // (Modbus) no setpoint from the loop within the bus's setpoint timeout while pressure was
+  // asked for. A step that sees this count change knows the plant was vented since the last
+  // one, even when the vent was over before linked() could show it: after a stall of the
+  // machine longer than the timeout, the I/O thread may vent and the next setpoint ramp the
+  // plant up again from 0 between two steps. Backends without their own I/O thread never do.
+  virtual std::uint64_t forced_vents() const noexcept { return 0; }
 
   double p_max_kPa() const noexcept { return p_max_kPa_; }
   const char* last_error() const noexcept { return last_error_; }

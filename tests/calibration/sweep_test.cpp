@@ -314,6 +314,77 @@ TEST(SweepRunner, OnlySelectedChannelsAreDriven) {
   EXPECT_GT(most_2, 55.0);
 }
 
+namespace {
+// The simulated rig behind a bus whose I/O thread vents on its own when the loop falls silent
+// (Modbus's setpoint timeout): on the fifth write of the first deflation hold the machine
+// "stalls" for 0.3 s, the plant empties at 0 kPa, and the write then ramps it up again from 0,
+// all between two steps; only forced_vents() tells.
+class StallingBusRig final : public RigBackend {
+ public:
+  explicit StallingBusRig(double p_max_kPa) : RigBackend(p_max_kPa), inner_(default_plants(), p_max_kPa) {}
+  std::string describe() const override { return "stalling bus test rig"; }
+  BackendCapabilities capabilities() const override {
+    BackendCapabilities c;
+    c.link_kind = "in-process";
+    return c;
+  }
+  std::uint64_t forced_vents() const noexcept override { return stalls; }
+  std::uint64_t stalls = 0;
+
+ protected:
+  void do_open() override {
+    inner_.open();
+    inner_.arm();
+  }
+  void do_close() noexcept override { inner_.close(); }
+  BackendStatus do_write(const ChannelPressures& s, double t) noexcept override {
+    if (s[0] < last_kPa_ - 1e-9 && s[0] > 0) ++deflation_writes_;
+    last_kPa_ = s[0];
+    if (deflation_writes_ == 5 && stalls == 0) {
+      inner_.write({0, 0, 0}, t + offset_s_);
+      offset_s_ += 0.3;
+      ++stalls;
+    }
+    return inner_.write(s, t + offset_s_);
+  }
+  BackendStatus do_read(ChannelPressures& m, double t) noexcept override {
+    return inner_.read_monitors(m, t + offset_s_);
+  }
+  BackendStatus do_vent() noexcept override { return inner_.vent(); }
+
+ private:
+  SimulatedRig inner_;
+  double offset_s_ = 0, last_kPa_ = 0;
+  int deflation_writes_ = 0;
+};
+}  // namespace
+
+// A deflation hold whose plant the bus vented behind the sweep's back once read 2 kPa below its
+// level (the rising branch) and went into the file as deflation. Now the step after the vent is
+// an outage's, the hold is redone from the right branch, and every hold reads its branch.
+TEST(SweepRunner, AHoldTheBusVentedBetweenTwoStepsIsRedoneFromItsBranch) {
+  StallingBusRig rig(60.0);
+  rig.open();
+  SweepPlanOptions po;
+  po.repeats = 1;
+  MemorySink sink;
+  palprig::testing::LeasedRig leased(rig);
+  const SweepOutcome out = run_calibration_sweep(leased.lease, plan_calibration_sweep(po, 60.0), fast_options(), sink);
+  EXPECT_FALSE(out.faulted) << out.fault;
+  EXPECT_EQ(rig.stalls, 1u);
+  EXPECT_EQ(out.holds_redone, 1u);
+  EXPECT_EQ(out.holds_unsettled, 0u);
+  std::size_t deflations = 0;
+  for (const auto& h : sink.holds) {
+    if (h.hold.segment != SweepSegment::staircase || h.hold.level_kPa == 60.0) continue;
+    const double expected = h.hold.level_kPa + (h.hold.branch == SweepBranch::inflation ? -2.0 : 2.0);
+    for (std::size_t c = 0; c < kFingerCount; ++c)
+      EXPECT_NEAR(settled_mean(h, c), expected, 0.06) << to_string(h.hold.branch) << " " << h.hold.level_kPa;
+    deflations += h.hold.branch == SweepBranch::deflation;
+  }
+  EXPECT_GE(deflations, 4u);
+}
+
 TEST(SweepRunner, StopSignalVentsAndKeepsWhatWasRecorded) {
   CaliperRig rig(60.0);
   rig.open();

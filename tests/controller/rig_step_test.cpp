@@ -54,6 +54,59 @@ TEST(RigStep, APenAlreadyPressedWhenTheRunStartsRampsFromVented) {
   EXPECT_EQ(rig.state(), BackendState::disarmed);             // the run disarms at its end
 }
 
+namespace {
+// A rig whose I/O thread (as Modbus's) vented it on its own between two steps, the vent over
+// before linked() could show it: only forced_vents() tells.
+class SelfVentingRig final : public RecordingRig {
+ public:
+  std::uint64_t vents_on_its_own = 0;
+  std::uint64_t forced_vents() const noexcept override { return vents_on_its_own; }
+};
+}  // namespace
+
+// A machine stalled the loop past the bus's setpoint timeout; the bus vented and the loop's next
+// setpoint ramped up again, all between two steps. That step is an outage's step (unlinked,
+// counted once, monitors NaN, the record's alarm), and the slew limiter starts again from 0 kPa
+// as the plant did.
+TEST(RigStep, AVentTheBackendDidOnItsOwnBetweenTwoStepsIsAnOutage) {
+  SelfVentingRig rig;
+  rig.open();
+  rig.vents_on_its_own = 3;  // earlier vents, before this step was made, are not this step's
+  TickConfig config;         // 2000 kPa/s: 2 kPa per 1 ms step
+  RigStep step(config, rig);
+  ASSERT_EQ(step.arm(), BackendStatus::ok);
+  double t = 0;
+  for (int k = 0; k < 20; ++k, t += 0.001) EXPECT_TRUE(step.step_direct({30, 0, 0}, t).linked);
+  EXPECT_NEAR(step.last().tick.setpoint_kPa[0], 30.0, 1e-9);
+  EXPECT_EQ(step.link_outages(), 0u);
+
+  rig.vents_on_its_own = 4;
+  const StepResult& r = step.step_direct({30, 0, 0}, t);
+  t += 0.001;
+  EXPECT_FALSE(r.linked);
+  EXPECT_TRUE(std::isnan(r.monitor_kPa[0]));
+  EXPECT_EQ(r.tick.record.fault, FaultCode::backend_error);  // the alarm, not latched
+  EXPECT_TRUE(r.tick.record.flags & kVented);
+  EXPECT_FALSE(step.faulted());
+  EXPECT_EQ(step.link_outages(), 1u);
+  EXPECT_EQ(step.unlinked_steps(), 1u);
+
+  // Linked again at once, rising from 0 kPa under the slew limit.
+  const StepResult& next = step.step_direct({30, 0, 0}, t);
+  t += 0.001;
+  EXPECT_TRUE(next.linked);
+  EXPECT_NEAR(next.tick.setpoint_kPa[0], 2.0, 1e-9);
+  EXPECT_EQ(step.link_outages(), 1u);
+  EXPECT_EQ(step.unlinked_steps(), 1u);
+
+  // A vent while disarmed held no pressure: re-arming starts from it without an outage.
+  step.disarm();
+  rig.vents_on_its_own = 5;
+  ASSERT_EQ(step.arm(), BackendStatus::ok);
+  EXPECT_TRUE(step.step_direct({30, 0, 0}, t).linked);
+  EXPECT_EQ(step.link_outages(), 1u);
+}
+
 TEST(RigStep, ADisarmedRigIsVentedAndReadAndRampsAgainAfterReArming) {
   RecordingRig rig;
   rig.open();

@@ -13,6 +13,7 @@
 
 #include "rigs/modbus_rig.hpp"
 #include "rigs/modbus_sim_server.hpp"
+#include "controller/rig_step.hpp"
 #include "formats/rig_file.hpp"
 #include "core/input_error.hpp"
 #include "tests/support/modbus_support.hpp"
@@ -168,6 +169,7 @@ TEST(ModbusLoopback, LostPeerVentsAlarmsReconnectsAndRampsFromZero) {
   rig.read_monitors(monitors, 0);
   EXPECT_TRUE(std::isnan(monitors[0]));  // no reading is reported as none, not as the last one
   EXPECT_TRUE(log.contains("lost"));
+  EXPECT_GE(rig.forced_vents(), 1u);  // the vent on a lost link is counted as well
   // Still down a while later: the rig keeps trying, the loop is never blocked.
   EXPECT_FALSE(drive(rig, setpoint, 150ms, [&] { return rig.linked(); }));
 
@@ -276,14 +278,69 @@ TEST(ModbusLoopback, TheBusThreadVentsWhenTheLoopFallsSilent) {
   server.set_log_sink(nullptr);
   const auto ports = serve(server, 1);
   ModbusRig rig(client_map(map, ports));
-  rig.set_log_sink(nullptr);
+  Quiet log;
+  rig.set_log_sink(log.sink());
   rig.open();
   ASSERT_TRUE(drive(rig, {30, 30, 30}, 3000ms, [&] { return server.output_words()[2] == 9830; }));
+  EXPECT_EQ(rig.forced_vents(), 0u);
   // No more writes: after setpoint_timeout (100 ms) the I/O thread vents on its own.
   const auto end = std::chrono::steady_clock::now() + 2s;
   while (server.output_words()[2] != 0 && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(5ms);
   EXPECT_EQ(server.output_words(), (std::array<std::uint16_t, kFingerCount>{0, 0, 0}));
   EXPECT_TRUE(rig.linked());  // silence is the loop's, not the link's
+  // ... but the vent is counted (before the outputs went to 0) and said, once.
+  EXPECT_EQ(rig.forced_vents(), 1u);
+  EXPECT_TRUE(log.contains("no setpoint from the loop for more than 0.1"));
+  // The loop back: pressure again, the count unchanged.
+  ASSERT_TRUE(drive(rig, {30, 30, 30}, 3000ms, [&] { return server.output_words()[2] == 9830; }));
+  EXPECT_EQ(rig.forced_vents(), 1u);
+  rig.close();
+}
+
+// A machine that stalls the loop's thread past the bus's setpoint timeout: the I/O thread vents,
+// and the loop's next setpoint ramps the plant up again from 0 kPa. RigStep takes the next step
+// as an outage's (the sweep then redoes its hold from the right hysteresis branch: a deflation
+// hold once read 2 kPa below its level, the rising branch, on a sanitizer run). A vented loop
+// (every setpoint 0) that falls silent loses nothing and is not counted.
+TEST(ModbusLoopback, ALoopStalledPastTheSetpointTimeoutSeesAnOutageAtItsNextStep) {
+  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
+  ModbusSimServer server(map, loopback_plants());
+  server.set_log_sink(nullptr);
+  const auto ports = serve(server, 1);
+  ModbusRig rig(client_map(map, ports));
+  rig.set_log_sink(nullptr);
+  rig.open();
+  RigStep step(TickConfig{}, rig);
+  ASSERT_EQ(step.arm(), BackendStatus::ok);
+  double t = 0;
+  auto step_for = [&](double level, std::chrono::milliseconds how_long) {
+    const auto end = std::chrono::steady_clock::now() + how_long;
+    while (std::chrono::steady_clock::now() < end) {
+      step.step_direct({level, level, level}, t += 0.001);
+      std::this_thread::sleep_for(1ms);
+    }
+  };
+  step_for(0, 300ms);  // vented, then silent for 300 ms: nothing to lose
+  std::this_thread::sleep_for(300ms);
+  EXPECT_TRUE(step.step_direct({0, 0, 0}, t += 0.001).linked);
+  EXPECT_EQ(rig.forced_vents(), 0u);
+
+  const auto until = std::chrono::steady_clock::now() + 3s;
+  while (server.output_words()[0] != 9830 && std::chrono::steady_clock::now() < until) step_for(30, 10ms);
+  ASSERT_EQ(server.output_words()[0], 9830);
+  EXPECT_EQ(step.link_outages(), 0u);
+  // The stall: no step until the bus has vented (100 ms of silence; polled, for a busy machine).
+  const auto vented_by = std::chrono::steady_clock::now() + 3s;
+  while (server.output_words()[0] != 0 && std::chrono::steady_clock::now() < vented_by)
+    std::this_thread::sleep_for(5ms);
+  ASSERT_EQ(server.output_words()[0], 0);
+  const StepResult& r = step.step_direct({30, 30, 30}, t += 0.001);
+  EXPECT_FALSE(r.linked);
+  EXPECT_EQ(step.link_outages(), 1u);
+  std::this_thread::sleep_for(1ms);
+  EXPECT_TRUE(step.step_direct({30, 30, 30}, t += 0.001).linked);
+  EXPECT_EQ(step.link_outages(), 1u);
+  step.disarm();
   rig.close();
 }
 
