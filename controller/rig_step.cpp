@@ -121,6 +121,13 @@ void RigStep::finish(std::int64_t tick_start, bool linked, double t_s) noexcept 
   TickResult& r = result_.tick;
   TelemetryRecord& rec = r.record;
   const bool armed = backend_.armed();
+  result_.linked = linked;
+  result_.armed = armed;
+  if (!linked) {
+    ++unlinked_steps_;
+    if (was_linked_) ++link_outages_;
+  }
+  was_linked_ = linked;
   // Vented without a fault (the link is down and reconnecting, or the operator disarmed): 0 kPa
   // goes out, and the slew limiter starts again from the vented state when pressure may flow.
   if (!linked || !armed) {
@@ -138,23 +145,20 @@ void RigStep::finish(std::int64_t tick_start, bool linked, double t_s) noexcept 
   else
     (void)backend_.vent();  // a disarmed rig: the reads below say whether its link holds
   if (io == BackendStatus::ok) io = backend_.read_monitors(result_.monitor_kPa, t_s);
-  // The backend vented on its own since the last step (backend.forced_vents()), perhaps in an
-  // outage already over: the plant emptied, so this step is an outage's step too, and the slew
-  // limiter starts again from the vented state as the backend's own ramp does.
+  // The backend vented on its own since the last step (forced_vents(): an outage over before
+  // linked() could show it, or a bus that vented a loop silent past its setpoint timeout): the
+  // plant emptied, and the backend ramps it up again from 0 kPa. The result says this step is
+  // not linked, so a caller that records the plant's response (a calibration hold) knows that
+  // what it reads is not the response to its commands; the slew limiter starts again from the
+  // vented state. The run's link outages and alarm rows stay what linked() showed.
   if (const std::uint64_t vents = backend_.forced_vents(); vents != seen_forced_vents_) {
     seen_forced_vents_ = vents;
-    if (linked) {
-      linked = false;
+    if (result_.linked) {
+      result_.linked = false;
+      ++vents_between_steps_;
       state_.restart_from_vented();
     }
   }
-  result_.linked = linked;
-  result_.armed = armed;
-  if (!linked) {
-    ++unlinked_steps_;
-    if (was_linked_) ++link_outages_;
-  }
-  was_linked_ = linked;
   // A tick that began with the link down has no reading it can vouch for: the bus thread may
   // publish the first fresh monitors of a reconnect between our linked() and read_monitors(),
   // and an alarm row must not carry them (they belong to the next, linked tick).

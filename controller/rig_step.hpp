@@ -14,10 +14,10 @@
 // setpoint by hand: no setpoint reaches a backend except through the tick's safety stage.
 // A link outage (Modbus reconnecting) or a disarmed backend is not a fault: the channels are
 // vented, the record says so, and the slew limiter restarts from 0 kPa when pressure may flow
-// again. So is a vent the backend did on its own between two steps (RigBackend::forced_vents():
-// an outage over before linked() showed it, or a bus that vented a loop silent beyond its
-// setpoint timeout): that step counts as an outage's step. Runs on the loop thread: no
-// allocation, no locks, no exceptions.
+// again. A vent the backend did on its own between two steps (RigBackend::forced_vents(): an
+// outage over before linked() showed it, or a bus that vented a loop silent beyond its setpoint
+// timeout) makes that step's result not linked and restarts the slew limiter from 0 kPa. Runs
+// on the loop thread: no allocation, no locks, no exceptions.
 #include <array>
 #include <cstdint>
 
@@ -86,6 +86,9 @@ class RigStep {
   const RigBackend& backend() const noexcept { return backend_; }
   std::uint64_t link_outages() const noexcept { return link_outages_; }
   std::uint64_t unlinked_steps() const noexcept { return unlinked_steps_; }
+  // Steps that found the backend had vented on its own since the last one while its link
+  // looked up (RigBackend::forced_vents()); such a step's result is not linked.
+  std::uint64_t vents_between_steps() const noexcept { return vents_between_steps_; }
 
  private:
   void vent_and_disarm() noexcept;
@@ -102,6 +105,7 @@ class RigStep {
   bool was_linked_ = true;
   std::uint64_t link_outages_ = 0, unlinked_steps_ = 0;
   std::uint64_t seen_forced_vents_ = 0;  // the backend's forced_vents() at the last step
+  std::uint64_t vents_between_steps_ = 0;
   Fault fault_;
   FaultRecorder recorder_;
   double last_t_s_ = 0;  // the last step's time: when a fault found outside a step is latched

@@ -298,11 +298,11 @@ TEST(ModbusLoopback, TheBusThreadVentsWhenTheLoopFallsSilent) {
 }
 
 // A machine that stalls the loop's thread past the bus's setpoint timeout: the I/O thread vents,
-// and the loop's next setpoint ramps the plant up again from 0 kPa. RigStep takes the next step
-// as an outage's (the sweep then redoes its hold from the right hysteresis branch: a deflation
+// and the loop's next setpoint ramps the plant up again from 0 kPa. RigStep's next step is not
+// linked (the sweep then redoes its hold from the right hysteresis branch: a deflation
 // hold once read 2 kPa below its level, the rising branch, on a sanitizer run). A vented loop
 // (every setpoint 0) that falls silent loses nothing and is not counted.
-TEST(ModbusLoopback, ALoopStalledPastTheSetpointTimeoutSeesAnOutageAtItsNextStep) {
+TEST(ModbusLoopback, ALoopStalledPastTheSetpointTimeoutFindsItsNextStepNotLinked) {
   const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
   ModbusSimServer server(map, loopback_plants());
   server.set_log_sink(nullptr);
@@ -328,7 +328,7 @@ TEST(ModbusLoopback, ALoopStalledPastTheSetpointTimeoutSeesAnOutageAtItsNextStep
   const auto until = std::chrono::steady_clock::now() + 3s;
   while (server.output_words()[0] != 9830 && std::chrono::steady_clock::now() < until) step_for(30, 10ms);
   ASSERT_EQ(server.output_words()[0], 9830);
-  EXPECT_EQ(step.link_outages(), 0u);
+  EXPECT_EQ(step.vents_between_steps(), 0u);
   // The stall: no step until the bus has vented (100 ms of silence; polled, for a busy machine).
   const auto vented_by = std::chrono::steady_clock::now() + 3s;
   while (server.output_words()[0] != 0 && std::chrono::steady_clock::now() < vented_by)
@@ -336,10 +336,11 @@ TEST(ModbusLoopback, ALoopStalledPastTheSetpointTimeoutSeesAnOutageAtItsNextStep
   ASSERT_EQ(server.output_words()[0], 0);
   const StepResult& r = step.step_direct({30, 30, 30}, t += 0.001);
   EXPECT_FALSE(r.linked);
-  EXPECT_EQ(step.link_outages(), 1u);
+  EXPECT_EQ(step.vents_between_steps(), 1u);
+  EXPECT_EQ(step.link_outages(), 0u);  // the link held: the silence was the loop's
   std::this_thread::sleep_for(1ms);
   EXPECT_TRUE(step.step_direct({30, 30, 30}, t += 0.001).linked);
-  EXPECT_EQ(step.link_outages(), 1u);
+  EXPECT_EQ(step.vents_between_steps(), 1u);
   step.disarm();
   rig.close();
 }
