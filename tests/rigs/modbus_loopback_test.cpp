@@ -9,7 +9,9 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <thread>
+#include <vector>
 
 #include "rigs/modbus_rig.hpp"
 #include "rigs/modbus_sim_server.hpp"
@@ -55,6 +57,23 @@ std::vector<int> serve(ModbusSimServer& server, std::size_t links) {
   return ports;
 }
 
+// The rig file's map served by a simulated module on loopback (a listener per link) and a client
+// rig opened on it, its log lines to `log` (empty: dropped): where most cases here start.
+struct ServedModule {
+  const ModbusRigConfig map;
+  ModbusSimServer server;
+  std::vector<int> ports;
+  std::unique_ptr<ModbusRig> rig;
+  explicit ServedModule(const std::string& rig_file, ModbusRig::LogSink log = nullptr)
+      : map(loopback_rig(rig_file).modbus.value()), server(map, loopback_plants()) {
+    server.set_log_sink(nullptr);
+    ports = serve(server, map.links.size());
+    rig = std::make_unique<ModbusRig>(client_map(map, ports));
+    rig->set_log_sink(std::move(log));
+    rig->open();
+  }
+};
+
 // Act as the loop: write `setpoint` every millisecond until `done` or the timeout.
 bool drive(RigBackend& rig, const ChannelPressures& setpoint, std::chrono::milliseconds timeout,
            const std::function<bool()>& done) {
@@ -91,14 +110,10 @@ struct Quiet {  // collects the rig's log lines instead of printing them
 }  // namespace
 
 TEST(ModbusLoopback, WritesTheExactWordsOfTheMapAndReadsMonitorsBack) {
-  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
-  ModbusSimServer server(map, loopback_plants());
-  server.set_log_sink(nullptr);
-  const auto ports = serve(server, 1);
-  ModbusRig rig(client_map(map, ports));
   Quiet log;
-  rig.set_log_sink(log.sink());
-  rig.open();
+  ServedModule module("wago_750_559.json", log.sink());
+  ModbusSimServer& server = module.server;
+  ModbusRig& rig = *module.rig;
   EXPECT_TRUE(rig.linked());
   // 11.75 kPa (paper 002's hard-nodule pressure) -> 1.175 V -> 3850 counts of 32767;
   // 25 kPa -> 8192; 0 kPa -> 0.
@@ -121,14 +136,11 @@ TEST(ModbusLoopback, WritesTheExactWordsOfTheMapAndReadsMonitorsBack) {
 }
 
 TEST(ModbusLoopback, ServesSeveralClientsAtOnce) {
-  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
-  ModbusSimServer server(map, loopback_plants());
-  server.set_log_sink(nullptr);
-  const auto ports = serve(server, 1);
-  ModbusRig rig(client_map(map, ports));
   Quiet log;
-  rig.set_log_sink(log.sink());
-  rig.open();
+  ServedModule module("wago_750_559.json", log.sink());
+  ModbusSimServer& server = module.server;
+  ModbusRig& rig = *module.rig;
+  const std::vector<int>& ports = module.ports;
   // A second client, e.g. a lab's logger, reads the monitors and outputs while the rig runs.
   modbus_t* other = modbus_new_tcp("127.0.0.1", ports[0]);
   ASSERT_EQ(modbus_connect(other), 0);
@@ -273,14 +285,10 @@ TEST(ModbusLoopback, OutputsRiseFromZeroUnderTheSlewLimitAfterOpen) {
 }
 
 TEST(ModbusLoopback, TheBusThreadVentsWhenTheLoopFallsSilent) {
-  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
-  ModbusSimServer server(map, loopback_plants());
-  server.set_log_sink(nullptr);
-  const auto ports = serve(server, 1);
-  ModbusRig rig(client_map(map, ports));
   Quiet log;
-  rig.set_log_sink(log.sink());
-  rig.open();
+  ServedModule module("wago_750_559.json", log.sink());
+  ModbusSimServer& server = module.server;
+  ModbusRig& rig = *module.rig;
   ASSERT_TRUE(drive(rig, {30, 30, 30}, 3000ms, [&] { return server.output_words()[2] == 9830; }));
   EXPECT_EQ(rig.forced_vents(), 0u);
   // No more writes: after setpoint_timeout (100 ms) the I/O thread vents on its own.
@@ -303,13 +311,9 @@ TEST(ModbusLoopback, TheBusThreadVentsWhenTheLoopFallsSilent) {
 // hold once read 2 kPa below its level, the rising branch, on a sanitizer run). A vented loop
 // (every setpoint 0) that falls silent loses nothing and is not counted.
 TEST(ModbusLoopback, ALoopStalledPastTheSetpointTimeoutFindsItsNextStepNotLinked) {
-  const ModbusRigConfig map = loopback_rig("wago_750_559.json").modbus.value();
-  ModbusSimServer server(map, loopback_plants());
-  server.set_log_sink(nullptr);
-  const auto ports = serve(server, 1);
-  ModbusRig rig(client_map(map, ports));
-  rig.set_log_sink(nullptr);
-  rig.open();
+  ServedModule module("wago_750_559.json");
+  ModbusSimServer& server = module.server;
+  ModbusRig& rig = *module.rig;
   RigStep step(TickConfig{}, rig);
   ASSERT_EQ(step.arm(), BackendStatus::ok);
   double t = 0;
@@ -400,13 +404,10 @@ TEST(ModbusLoopback, NothingListeningIsRefusedAtOpenWithTheReason) {
 
 TEST(ModbusLoopback, TwoModuleMapsWriteEachRegisterOnItsOwnLink) {
   // Moxa: outputs on the E1241 at 1024..1026 (12 bit), monitors on the E1240 at 0..2 (16 bit).
-  const ModbusRigConfig map = loopback_rig("moxa_iologik_e1241.json").modbus.value();
-  ModbusSimServer server(map, loopback_plants());
-  server.set_log_sink(nullptr);
-  const auto ports = serve(server, 2);
-  ModbusRig rig(client_map(map, ports));
-  rig.set_log_sink(nullptr);
-  rig.open();
+  ServedModule module("moxa_iologik_e1241.json");
+  ModbusSimServer& server = module.server;
+  ModbusRig& rig = *module.rig;
+  const std::vector<int>& ports = module.ports;
   const ChannelPressures setpoint{25.0, 12.5, 60.0};
   EXPECT_TRUE(drive(rig, setpoint, 3000ms, [&] {
     return server.output_words() == std::array<std::uint16_t, kFingerCount>{1024, 512, 2457};
