@@ -38,8 +38,9 @@ struct StepResult {
   ChannelPressures monitor_kPa{};  // NaN where the backend has no reading (link down)
   std::array<double, kFingerCount> sensor{};  // NaN unless sensors were read
   LoadCellReading load_cells;                 // count 0 unless the sample's force came from the load cells
-  bool linked =
-      true;  // the backend's link carried this step's setpoints, and it vented nothing on its own since the last step
+  // The backend's link carried this step's setpoints, and it vented nothing on its own since
+  // the last step.
+  bool linked = true;
   bool armed = true;              // the backend was armed (setpoints flowed)
   double tick_us = 0, io_us = 0;  // time in the tick, time in the backend
 };

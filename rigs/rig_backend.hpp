@@ -22,9 +22,9 @@
 // anything moves). state() may be read from any thread; the transitions are made by the thread
 // that owns the backend (the loop while one runs).
 #include <array>
-#include <cstdint>
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 
