@@ -1,6 +1,7 @@
 # palprig: the two set-up commands of the README.
 #   make demo   install missing Debian packages (the build's only), configure, build the palprig program only, run the demo
-#   make test   same set-up plus the test tools' packages, then build everything (suites, benchmarks, fuzz targets) and run the whole test suite
+#   make test   same set-up plus the test tools' packages, then build the suites and the fuzz targets and run the whole test suite
+#   make build  configure and build everything, the benchmarks included (make bench runs them)
 #   make package       the Debian package palprig_VERSION_ARCH.deb in build/ (CPack; docs/rig-pc.md)
 #   make test-package  build it, run it from a scratch root, then (root) apt install it on this machine, run it as a lab user, apt purge it
 #   make test-package-scratch  only the scratch-root part (no root needed, nothing installed; make test runs it)
@@ -46,7 +47,7 @@ PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages.txt | tr '\n' ' ')
 TEST_PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages-test.txt | tr '\n' ' ')
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps deps-test configure build demo package test-package test-package-scratch test-package-system test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
+.PHONY: all deps deps-test configure build build-suites test-tools demo package test-package test-package-scratch test-package-system test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
 
 all: build
 
@@ -73,7 +74,13 @@ $(BUILD)/CMakeCache.txt: | deps
 
 configure: deps $(BUILD)/CMakeCache.txt
 
+# Everything: the default target (the program, its libraries, the suites) and the benchmarks.
 build: configure
+	cmake --build $(BUILD) -j$(JOBS) --target all palprig_benches
+
+# What make test runs: the default target, without the benchmark programs (no test runs one; the
+# style gate still checks their sources). About 110 s of a cold build's compiling.
+build-suites: configure
 	cmake --build $(BUILD) -j$(JOBS)
 
 # Only the program the demo runs (the window is part of it): the 140 objects of the suites, the
@@ -99,12 +106,19 @@ test-package: test-package-scratch
 	$(SUDO) tests/package/apt_install_as_lab_user.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
 test-package-system: test-package
 
-# The BIDS validator's npm download (about a minute, mostly waiting on the network) runs beside
-# the compile: make's -j2 starts both.
-test: deps-test configure
-	$(MAKE) --no-print-directory -j2 build bids-validator
+# The compile needs only the build's packages (make demo's); the test tools' packages
+# (tools/debian-packages-test.txt: clang, clang-tidy, PostgreSQL, Xvfb, SciPy, ... on a fresh
+# machine mostly waiting on the network and dpkg) and then the BIDS validator's npm download
+# are fetched beside it: make's -j2 starts both. No test runs before both have ended.
+test: deps configure
+	$(MAKE) --no-print-directory -j2 build-suites test-tools
 	cd $(BUILD) && ctest --output-on-failure -j$(TEST_JOBS) --timeout 600
 	$(MAKE) --no-print-directory fuzz-smoke
+
+# What the suites need beyond the build: the test packages, then the BIDS validator (one after
+# the other: both may run apt-get, which takes a lock).
+test-tools: deps-test
+	$(MAKE) --no-print-directory bids-validator
 
 # The official BIDS validator (npm package, pinned), for the export test that checks a BIDS
 # tree; into the build folder, never system-wide. npm itself is Debian's (with nodejs, 356

@@ -81,7 +81,7 @@ echo "== pulse on the regulators (bench_pulse_correlation)"
 if [ -x "$build/bin/bench_pulse_correlation" ]; then
   "$build/bin/bench_pulse_correlation" | grep -E '^\| (rectangular|saw-tooth|table)' || true
 else
-  echo "(not built: bench/ is built with the default options)"
+  echo "(not built: make bench builds the benchmark programs)"
 fi
 
 echo
@@ -89,7 +89,7 @@ echo "== haptic fidelity: the demo pass with and without lag compensation (bench
 if [ -x "$build/bin/bench_fidelity" ]; then
   "$build/bin/bench_fidelity" --figure fidelity.png
 else
-  echo "(not built: bench/ is built with the default options)"
+  echo "(not built: make bench builds the benchmark programs)"
 fi
 
 echo
