@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/sim_rig_child.hpp"
 #include "core/error.hpp"
 #include "controller/backend_factory.hpp"
 #include "controller/loop_runner.hpp"
@@ -91,37 +92,6 @@ std::vector<PenEdge> write_recording(const std::string& path, double seconds) {
   return edges;
 }
 
-struct Child {
-  pid_t pid = -1;
-  FILE* out = nullptr;
-};
-
-Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
-  int fds[2];
-  if (pipe(fds) != 0) throw palprig::Error("pipe");
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
-  posix_spawn_file_actions_addclose(&fa, fds[0]);
-  std::vector<std::string> args = {"chrt", "-f",       "50",          PALPRIG_BIN,   "sim-rig", "--rig",
-                                   rig,    "--listen", "127.0.0.1:0", "--write-log", write_log};
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  Child c;
-  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw palprig::Error("spawn sim-rig");
-  close(fds[1]);
-  c.out = fdopen(fds[0], "r");
-  return c;
-}
-
-double pct(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
-}
-
 int run_benchmark(int argc, char** argv) {
   // bench/run_all.sh passes Google Benchmark flags to every program: only a number is a length.
   const double seconds = argc > 1 && std::atof(argv[1]) > 0 ? std::atof(argv[1]) : 20.0;
@@ -131,14 +101,8 @@ int run_benchmark(int argc, char** argv) {
   const std::vector<PenEdge> edges = write_recording(recording, seconds);
 
   const std::string wago = kSource + "/data/rigs/wago_750_559.json";
-  Child sim = spawn_sim_rig(wago, write_log);
-  int port = 0;
-  char buf[512];
-  while (port == 0 && std::fgets(buf, sizeof buf, sim.out)) {
-    const std::string l = buf;
-    const auto at = l.find("listening on 127.0.0.1:");
-    if (at != std::string::npos) port = std::atoi(l.c_str() + at + 23);
-  }
+  bench::SimRigChild sim = bench::spawn_sim_rig(wago, write_log);
+  const int port = sim.wait_for_port();
   if (port == 0) {
     std::cerr << "bench_pen_to_modbus: sim-rig did not start\n";
     return 1;
@@ -168,9 +132,7 @@ int run_benchmark(int argc, char** argv) {
   const RunSummary s = run_loop(config, *scene.scene, pen, lease, opt);
   lease.release();
   opened.reset();
-  kill(sim.pid, SIGTERM);
-  waitpid(sim.pid, nullptr, 0);
-  fclose(sim.out);
+  sim.stop();
 
   // Writes of finger 1's output: (arrival ns, word).
   std::vector<std::pair<long long, unsigned>> writes;
@@ -206,13 +168,13 @@ int run_benchmark(int argc, char** argv) {
   all.insert(all.end(), lift_ms.begin(), lift_ms.end());
   std::printf("pen event -> Modbus register write at sim-rig on loopback, %.0f s, loop 1 kHz, bus %g Hz (%s)\n",
               seconds, rig.modbus->io_rate_hz, s.realtime_practices.c_str());
-  std::printf("  presses %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", press_ms.size(), pct(press_ms, .5),
-              pct(press_ms, .99), pct(press_ms, 1.0));
-  std::printf("  lifts   %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", lift_ms.size(), pct(lift_ms, .5),
-              pct(lift_ms, .99), pct(lift_ms, 1.0));
+  std::printf("  presses %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", press_ms.size(),
+              bench::percentile(press_ms, .5), bench::percentile(press_ms, .99), bench::percentile(press_ms, 1.0));
+  std::printf("  lifts   %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", lift_ms.size(), bench::percentile(lift_ms, .5),
+              bench::percentile(lift_ms, .99), bench::percentile(lift_ms, 1.0));
   std::printf(
       "  all     %zu: p50 %.2f ms, p99 %.2f ms (regulator response: 50 ms time constant); %zu edges unmatched\n",
-      all.size(), pct(all, .5), pct(all, .99), unmatched);
+      all.size(), bench::percentile(all, .5), bench::percentile(all, .99), unmatched);
   std::printf("  loop: %llu ticks, %llu overruns, wake-up p50/p99 %.0f/%.0f us; fault: %s\n",
               static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
               s.wake_latency.p50_us, s.wake_latency.p99_us, to_string(s.fault));

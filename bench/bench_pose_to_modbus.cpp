@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/sim_rig_child.hpp"
 #include "core/error.hpp"
 #include "controller/backend_factory.hpp"
 #include "controller/loop_runner.hpp"
@@ -84,37 +85,6 @@ std::vector<RecordedPose> recording(double seconds, std::vector<Move>& moves) {
   return rec;
 }
 
-struct Child {
-  pid_t pid = -1;
-  FILE* out = nullptr;
-};
-
-Child spawn_sim_rig(const std::string& rig, const std::string& write_log) {
-  int fds[2];
-  if (pipe(fds) != 0) throw palprig::Error("pipe");
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
-  posix_spawn_file_actions_addclose(&fa, fds[0]);
-  std::vector<std::string> args = {"chrt",     "-f",          "50",          PALPRIG_BIN, "sim-rig",  "--rig", rig,
-                                   "--listen", "127.0.0.1:0", "--write-log", write_log,   "--load-N", "2"};
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  Child c;
-  if (posix_spawnp(&c.pid, "chrt", &fa, nullptr, argv.data(), environ) != 0) throw palprig::Error("spawn sim-rig");
-  close(fds[1]);
-  c.out = fdopen(fds[0], "r");
-  return c;
-}
-
-double pct(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
-}
-
 // The WAGO rig file with a load cell on the coupler's fourth analog input (750-459 channel 4,
 // input register 3), for every finger, and the simulator's port.
 std::string rig_text(int port) {
@@ -137,14 +107,8 @@ int run_benchmark(int argc, char** argv) {
   std::filesystem::create_directories(dir);
   const std::string write_log = dir + "/writes.csv", rig_path = dir + "/rig.json";
   std::ofstream(rig_path) << rig_text(1502);  // the simulator reads the map; the port is its own
-  Child sim = spawn_sim_rig(rig_path, write_log);
-  int port = 0;
-  char buf[512];
-  while (port == 0 && std::fgets(buf, sizeof buf, sim.out)) {
-    const std::string l = buf;
-    const auto at = l.find("listening on 127.0.0.1:");
-    if (at != std::string::npos) port = std::atoi(l.c_str() + at + 23);
-  }
+  bench::SimRigChild sim = bench::spawn_sim_rig(rig_path, write_log, {"--load-N", "2"});
+  const int port = sim.wait_for_port();
   if (port == 0) {
     std::cerr << "bench_pose_to_modbus: sim-rig did not start\n";
     return 1;
@@ -181,9 +145,7 @@ int run_benchmark(int argc, char** argv) {
   opened.reset();
   input.reset();  // the client leaves before the server stops
   server.stop();
-  kill(sim.pid, SIGTERM);
-  waitpid(sim.pid, nullptr, 0);
-  fclose(sim.out);
+  sim.stop();
 
   std::vector<std::int64_t> sent_ns(server.sends().size() ? server.sends().back().first + 1 : 0, 0);
   for (const auto& [row, ns] : server.sends())
@@ -226,14 +188,14 @@ int run_benchmark(int argc, char** argv) {
       "tracker pose sent -> Modbus register write at sim-rig on loopback, %.0f s, tracker 200 Hz, loop 1 kHz, bus %g "
       "Hz (%s)\n",
       seconds, rig.modbus->io_rate_hz, s.realtime_practices.c_str());
-  std::printf("  onto tumor %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", onto_ms.size(), pct(onto_ms, .5),
-              pct(onto_ms, .99), pct(onto_ms, 1.0));
-  std::printf("  off tumor  %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", off_ms.size(), pct(off_ms, .5),
-              pct(off_ms, .99), pct(off_ms, 1.0));
+  std::printf("  onto tumor %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", onto_ms.size(),
+              bench::percentile(onto_ms, .5), bench::percentile(onto_ms, .99), bench::percentile(onto_ms, 1.0));
+  std::printf("  off tumor  %zu: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", off_ms.size(), bench::percentile(off_ms, .5),
+              bench::percentile(off_ms, .99), bench::percentile(off_ms, 1.0));
   std::printf(
       "  all        %zu: p50 %.2f ms, p99 %.2f ms (regulator response: 50 ms time constant); %zu moves unmatched, "
       "%zu outside the run\n",
-      all.size(), pct(all, .5), pct(all, .99), unmatched, outside);
+      all.size(), bench::percentile(all, .5), bench::percentile(all, .99), unmatched, outside);
   std::printf("  loop: %llu ticks, %llu overruns, wake-up p50/p99 %.0f/%.0f us; fault: %s %s\n",
               static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
               s.wake_latency.p50_us, s.wake_latency.p99_us, to_string(s.fault), s.fault.detail().c_str());
