@@ -8,6 +8,11 @@
 #include <getfem/getfem_model_solvers.h>
 
 #include <algorithm>
+#include <array>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <sstream>
 #include <cmath>
 #include <numeric>
 #include <set>
@@ -32,6 +37,55 @@ struct QuietGetfem {
     gmm::set_warning_level(0);
   }
 };
+
+// A law's strain energy as a GetFEM nonlinear operator of Grad_u: its value, gradient and
+// Hessian computed in C++ (strain_energy.hpp says why). Registered once per law and plane mode,
+// under a name made of their parameters, in GetFEM's table of predefined operators.
+struct StrainEnergyOperator : getfem::ga_nonlinear_operator {
+  MaterialLaw law;
+  PlaneMode mode;
+  StrainEnergyOperator(const MaterialLaw& l, PlaneMode m) : law(l), mode(m) {}
+
+  static std::array<double, 4> grad_u(const arg_list& args) {
+    const getfem::base_tensor& t = *args[0];
+    return {t[0], t[1], t[2], t[3]};
+  }
+  bool result_size(const arg_list& args, bgeot::multi_index& sizes) const override {
+    if (args.size() != 1 || args[0]->sizes().size() != 2 || args[0]->size() != 4) return false;
+    sizes.resize(0);  // a scalar
+    return true;
+  }
+  void value(const arg_list& args, getfem::base_tensor& result) const override {
+    result[0] = strain_energy(law, mode, grad_u(args)).value;
+  }
+  void derivative(const arg_list& args, size_type, getfem::base_tensor& result) const override {
+    const SecondOrderDual w = strain_energy(law, mode, grad_u(args));
+    for (std::size_t k = 0; k < 4; ++k) result[k] = w.gradient[k];
+  }
+  void second_derivative(const arg_list& args, size_type, size_type, getfem::base_tensor& result) const override {
+    const SecondOrderDual w = strain_energy(law, mode, grad_u(args));
+    for (std::size_t k = 0; k < 4; ++k)  // result(k, l) at k + 4 l; the Hessian is symmetric
+      for (std::size_t l = 0; l < 4; ++l) result[k + 4 * l] = w.hessian[4 * k + l];
+  }
+};
+
+// The weak-form term of a law: its operator and, for an incompressible law in plane strain, the
+// pressure's term p (J - 1).
+std::string strain_energy_term(const MaterialLaw& law, PlaneMode mode, const std::string& pressure) {
+  std::ostringstream name;
+  name << std::hexfloat << int(law.kind) << '_' << int(mode) << '_' << law.mu_kPa << '_' << law.alpha << '_'
+       << law.locking_stretch << '_' << law.youngs_kPa << '_' << law.poisson;
+  const std::string op = "Palprig_strain_energy_" + std::to_string(std::hash<std::string>{}(name.str()));
+  {
+    static std::mutex registering;  // GetFEM's table is a process-wide map
+    const std::lock_guard<std::mutex> lock(registering);
+    auto& table = dal::singleton<getfem::ga_predef_operator_tab>::instance(0).tab;
+    if (table.find(op) == table.end()) table[op] = std::make_shared<StrainEnergyOperator>(law, mode);
+  }
+  std::string term = op + "(Grad_u)";
+  if (needs_pressure(law, mode)) term += "+" + pressure + "*(Det(F)-1)";
+  return term;
+}
 
 getfem::base_node point(const MeshNode& n) {
   getfem::base_node p(2);
@@ -119,8 +173,8 @@ struct ContactSolver::Impl {
     }
     for (std::size_t m = 0; m < spec.materials.size(); ++m) {
       if (mesh.region(kMaterialRegion + m).is_empty()) continue;
-      getfem::add_nonlinear_term(md, mim, strain_energy_expression(spec.materials[m], spec.plane, "p"),
-                                 kMaterialRegion + m, true, false, "material " + std::to_string(m));
+      getfem::add_nonlinear_term(md, mim, strain_energy_term(spec.materials[m], spec.plane, "p"), kMaterialRegion + m,
+                                 true, false, "material " + std::to_string(m));
     }
     for (std::size_t i = 0; i < spec.held.size(); ++i) {
       const std::string data = "held_" + std::to_string(i);

@@ -1,8 +1,6 @@
 #include "mechanics/strain_energy.hpp"
 
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 
 namespace palprig::mechanics {
 
@@ -10,13 +8,6 @@ namespace {
 
 // Arruda-Boyce's series coefficients (ABAQUS): C_i for i = 1..5.
 constexpr std::array<double, 5> kArrudaBoyce = {1.0 / 2, 1.0 / 20, 11.0 / 1050, 19.0 / 7000, 519.0 / 673750};
-
-std::string number(double v) {
-  std::ostringstream o;
-  o << std::setprecision(17) << v;
-  const std::string s = o.str();
-  return v < 0 ? "(" + s + ")" : s;
-}
 
 struct Lame {
   double lambda, mu;
@@ -68,36 +59,40 @@ bool needs_pressure(const MaterialLaw& law, PlaneMode mode) noexcept {
   return law.incompressible() && mode == PlaneMode::plane_strain;
 }
 
-std::string strain_energy_expression(const MaterialLaw& law, PlaneMode mode, const std::string& pressure) {
-  const bool strain = mode == PlaneMode::plane_strain;
-  if (law.kind == MaterialKind::linear_elastic) {
+SecondOrderDual strain_energy(const MaterialLaw& law, PlaneMode mode, const std::array<double, 4>& grad_u) {
+  // F = I + Grad_u, component (i, j) at i + 2 j (GetFEM's order), each a variable.
+  std::array<SecondOrderDual, 4> F;
+  for (int k = 0; k < 4; ++k)
+    F[std::size_t(k)] = SecondOrderDual::variable(k, grad_u[std::size_t(k)] + ((k == 0 || k == 3) ? 1.0 : 0.0));
+  const SecondOrderDual c11 = F[0] * F[0] + F[1] * F[1], c22 = F[2] * F[2] + F[3] * F[3],
+                        c12 = F[0] * F[2] + F[1] * F[3];
+  const SecondOrderDual trace = c11 + c22, det = c11 * c22 - c12 * c12;
+  if (law.kind == MaterialKind::linear_elastic) {  // Saint Venant-Kirchhoff: E = (C - I) / 2
     const Lame l = lame(law, mode);
-    return "(" + number(l.lambda / 2) + "*sqr(Trace((C-Id(2))/2)) + " + number(l.mu) +
-           "*(((C-Id(2))/2):((C-Id(2))/2)))";
+    const SecondOrderDual e11 = 0.5 * (c11 + -1.0), e22 = 0.5 * (c22 + -1.0), e12 = 0.5 * c12;
+    const SecondOrderDual trace_e = e11 + e22;
+    return (l.lambda / 2) * (trace_e * trace_e) + l.mu * (e11 * e11 + e22 * e22 + 2.0 * (e12 * e12));
   }
   // The first invariant and the principal stretches' squares of the (deviatoric) 3D tensor.
-  const std::string iso = strain ? "pow(Det(C),-1/3)" : "1";     // J^(-2/3) in plane strain
-  const std::string out_of_plane = strain ? iso : "(1/Det(C))";  // the third principal C value
-  std::string energy;
+  const bool strain = mode == PlaneMode::plane_strain;
+  const SecondOrderDual iso = strain ? pow(det, -1.0 / 3) : SecondOrderDual::constant(1);  // J^(-2/3)
+  const SecondOrderDual out_of_plane = strain ? iso : pow(det, -1.0);  // the third principal C value
   if (law.kind == MaterialKind::ogden) {
-    const std::string root = "sqrt(sqr(Trace(C))-4*Det(C)+1e-10)";
-    const std::string c1 = "(" + iso + "*(Trace(C)+" + root + ")/2)", c2 = "(" + iso + "*(Trace(C)-" + root + ")/2)";
-    const std::string half = number(law.alpha / 2);
-    energy = number(2 * law.mu_kPa / (law.alpha * law.alpha)) + "*(pow(" + c1 + "," + half + ")+pow(" + c2 + "," +
-             half + ")+pow(" + out_of_plane + "," + half + ")-3)";
-  } else {
-    const std::string i1 = "(" + iso + "*Trace(C)+" + out_of_plane + ")";
-    double lm_power = 1, three = 3;
-    energy = "(";
-    for (int i = 1; i <= 5; ++i) {
-      const double k = law.mu_kPa * kArrudaBoyce[std::size_t(i - 1)] / lm_power;
-      energy += (i > 1 ? "+" : "") + number(k) + "*(pow(" + i1 + "," + std::to_string(i) + ")-" + number(three) + ")";
-      lm_power *= law.locking_stretch * law.locking_stretch;
-      three *= 3;
-    }
-    energy += ")";
+    const SecondOrderDual root = pow(trace * trace - 4.0 * det + 1e-10, 0.5);
+    const SecondOrderDual c1 = 0.5 * (iso * (trace + root)), c2 = 0.5 * (iso * (trace - root));
+    const double half = law.alpha / 2;
+    return (2 * law.mu_kPa / (law.alpha * law.alpha)) *
+           (pow(c1, half) + pow(c2, half) + pow(out_of_plane, half) + -3.0);
   }
-  if (strain) energy += "+" + pressure + "*(Det(F)-1)";
+  const SecondOrderDual i1 = iso * trace + out_of_plane;
+  SecondOrderDual energy, i1_power = SecondOrderDual::constant(1);
+  double lm_power = 1, three_power = 1;
+  for (std::size_t i = 1; i <= 5; ++i) {
+    i1_power = i1_power * i1;
+    three_power *= 3;
+    energy = energy + (law.mu_kPa * kArrudaBoyce[i - 1] / lm_power) * (i1_power + -three_power);
+    lm_power *= law.locking_stretch * law.locking_stretch;
+  }
   return energy;
 }
 

@@ -1,7 +1,13 @@
 #pragma once
-// The laws of models/material_law.hpp in 2D: their strain energy per unit reference area as an
-// expression of GetFEM's weak-form language (GetFEM derives it twice for Newton), and their
-// stresses in closed form for the von Mises field and the verification tests.
+// The laws of models/material_law.hpp in 2D: their strain energy per unit reference area with its
+// gradient and Hessian in the displacement gradient (contact_solver.cpp hands them to GetFEM as
+// nonlinear operators), and their stresses in closed form for the von Mises field and the
+// verification tests.
+//
+// Why the derivatives are computed here and not by GetFEM: written as weak-form expressions, the
+// energies were derived symbolically by GetFEM twice at every assembly (it compiles a model's
+// terms anew each time), which was more than half of a solve; as operators the same solve is
+// about five times faster, to the last digits the same.
 //
 // Why written here: GetFEM's own 2D hyperelastic laws are plane strain only, it has no Ogden law
 // and no Arruda-Boyce law, and its weak-form language has no eigenvalue operator. So:
@@ -18,6 +24,7 @@
 #include <array>
 #include <string>
 
+#include "mechanics/second_order_dual.hpp"
 #include "models/material_law.hpp"
 
 namespace palprig::mechanics {
@@ -25,9 +32,11 @@ namespace palprig::mechanics {
 enum class PlaneMode { plane_strain, plane_stress };
 const char* to_string(PlaneMode m) noexcept;
 
-// The energy in terms of the weak-form macros F (deformation gradient, 2 x 2) and C = F'*F; for
-// an incompressible law in plane strain, plus `pressure` * (Det(F) - 1).
-std::string strain_energy_expression(const MaterialLaw& law, PlaneMode mode, const std::string& pressure);
+// The energy at an in-plane displacement gradient Grad_u, given as GetFEM orders it (component
+// (i, j) = du_i/dx_j at i + 2 j), with its derivatives in those four components. For an
+// incompressible law in plane strain the energy is the deviatoric part's: the pressure's term
+// p (J - 1) stays in the weak form (contact_solver.cpp).
+SecondOrderDual strain_energy(const MaterialLaw& law, PlaneMode mode, const std::array<double, 4>& grad_u);
 
 // Whether the law needs a pressure field in this mode.
 bool needs_pressure(const MaterialLaw& law, PlaneMode mode) noexcept;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -96,6 +97,34 @@ INSTANTIATE_TEST_SUITE_P(
           n.begin(), n.end(), [](char ch) { return !std::isalnum(static_cast<unsigned char>(ch)); }, '_');
       return n;
     });
+
+// The energy's derivatives the solver hands GetFEM (strain_energy): the gradient against central
+// differences of the energy, the Hessian against central differences of the gradient, and a
+// stress-free reference, for every law and mode of the patch test.
+TEST_P(PatchTest, EnergyDerivativesAgreeWithFiniteDifferences) {
+  const PatchCase& c = GetParam();
+  const std::array<double, 4> at = {0.05, -0.03, 0.02, -0.1};  // Grad_u, component (i, j) at i + 2 j
+  const SecondOrderDual w = strain_energy(c.law, c.mode, at);
+  const double h = 1e-6;
+  for (std::size_t k = 0; k < 4; ++k) {
+    std::array<double, 4> up = at, down = at;
+    up[k] += h;
+    down[k] -= h;
+    const SecondOrderDual wu = strain_energy(c.law, c.mode, up), wd = strain_energy(c.law, c.mode, down);
+    const double scale = c.law.initial_youngs_kPa();
+    EXPECT_NEAR(w.gradient[k], (wu.value - wd.value) / (2 * h), 1e-6 * scale) << c.name << " k " << k;
+    for (std::size_t l = 0; l < 4; ++l) {
+      EXPECT_NEAR(w.hessian[4 * k + l], (wu.gradient[l] - wd.gradient[l]) / (2 * h), 1e-5 * scale)
+          << c.name << " k " << k << " l " << l;
+      EXPECT_NEAR(w.hessian[4 * k + l], w.hessian[4 * l + k], 1e-9 * scale) << c.name;
+    }
+  }
+  const SecondOrderDual rest = strain_energy(c.law, c.mode, {0, 0, 0, 0});
+  EXPECT_NEAR(rest.value, 0, 1e-9 * c.law.initial_youngs_kPa()) << c.name;
+  // At rest an incompressible law in plane strain leaves its stress to the pressure field: its
+  // deviatoric energy has no gradient there either.
+  for (double g : rest.gradient) EXPECT_NEAR(g, 0, 1e-6 * c.law.initial_youngs_kPa()) << c.name;
+}
 
 // The closed forms themselves, at small strain: every law's small-strain modulus.
 TEST(ClosedForms, SmallStrainModuli) {
