@@ -9,13 +9,13 @@
 
 #include <algorithm>
 #include <array>
-#include <functional>
+#include <cmath>
+#include <map>
 #include <memory>
 #include <mutex>
-#include <sstream>
-#include <cmath>
 #include <numeric>
 #include <set>
+#include <sstream>
 
 #include "core/error.hpp"
 
@@ -70,17 +70,22 @@ struct StrainEnergyOperator : getfem::ga_nonlinear_operator {
 };
 
 // The weak-form term of a law: its operator and, for an incompressible law in plane strain, the
-// pressure's term p (J - 1).
+// pressure's term p (J - 1). One operator per distinct law and mode in the process, numbered in
+// the order first met (a name must be an identifier; numbering, unlike a hash, cannot collide).
 std::string strain_energy_term(const MaterialLaw& law, PlaneMode mode, const std::string& pressure) {
-  std::ostringstream name;
-  name << std::hexfloat << int(law.kind) << '_' << int(mode) << '_' << law.mu_kPa << '_' << law.alpha << '_'
-       << law.locking_stretch << '_' << law.youngs_kPa << '_' << law.poisson;
-  const std::string op = "Palprig_strain_energy_" + std::to_string(std::hash<std::string>{}(name.str()));
+  std::ostringstream key;
+  key << std::hexfloat << int(law.kind) << ' ' << int(mode) << ' ' << law.mu_kPa << ' ' << law.alpha << ' '
+      << law.locking_stretch << ' ' << law.youngs_kPa << ' ' << law.poisson;
+  std::string op;
   {
-    static std::mutex registering;  // GetFEM's table is a process-wide map
+    static std::mutex registering;                    // GetFEM's table is a process-wide map
+    static std::map<std::string, std::string> names;  // key -> operator name
     const std::lock_guard<std::mutex> lock(registering);
-    auto& table = dal::singleton<getfem::ga_predef_operator_tab>::instance(0).tab;
-    if (table.find(op) == table.end()) table[op] = std::make_shared<StrainEnergyOperator>(law, mode);
+    auto [it, added] = names.try_emplace(key.str(), "Palprig_strain_energy_" + std::to_string(names.size()));
+    if (added)
+      dal::singleton<getfem::ga_predef_operator_tab>::instance(0).add_method(
+          it->second, std::make_shared<StrainEnergyOperator>(law, mode));
+    op = it->second;
   }
   std::string term = op + "(Grad_u)";
   if (needs_pressure(law, mode)) term += "+" + pressure + "*(Det(F)-1)";
