@@ -4,6 +4,7 @@
 #   make build  configure and build everything, the benchmarks included (make bench runs them)
 #   make package       the Debian package palprig_VERSION_ARCH.deb in build/ (CPack; docs/rig-pc.md)
 #   make test-package  build it, run it from a scratch root, then (root) apt install it on this machine, run it as a lab user, apt purge it
+#   make test-package-vm  the apt/lab-user part inside a fresh Debian 12 VM (QEMU), where real-time limits can be shown
 #   make test-package-scratch  only the scratch-root part (no root needed, nothing installed; make test runs it)
 #   make fuzz   run every fuzz target for a minute (make test runs each for a second)
 #   make test-tsan  the threaded suites under ThreadSanitizer
@@ -47,7 +48,7 @@ PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages.txt | tr '\n' ' ')
 TEST_PACKAGES := $(shell grep -v '^\s*\#' tools/debian-packages-test.txt | tr '\n' ' ')
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps deps-test configure build build-suites test-tools demo package test-package test-package-scratch test-package-system test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
+.PHONY: all deps deps-test configure build build-suites test-tools demo package test-package test-package-scratch test-package-system test-package-vm test test-asan test-tsan test-analyst fuzz fuzz-build fuzz-smoke bench clean bids-validator format
 
 all: build
 
@@ -102,9 +103,20 @@ test-package-scratch: deps-test package
 # The package as a rig PC gets it (docs/rig-pc.md): the scratch-root run, then for real on this machine
 # (root; it installs with apt, adds a lab user to the palprig group, runs as that user, purges).
 # Not part of make test, since it changes the system. test-package-system: the same (its old name).
+# Where no process may raise RLIMIT_RTPRIO (a container whose root lacks CAP_SYS_RESOURCE), the
+# machine cannot show the real-time limits at work, so the same test then runs again inside a VM.
 test-package: test-package-scratch
 	$(SUDO) tests/package/apt_install_as_lab_user.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
+	@if bash -c 'ulimit -Hr 90' 2>/dev/null; then echo "real-time limits checked on this machine"; \
+	else $(MAKE) --no-print-directory test-package-vm; fi
 test-package-system: test-package
+
+# The apt install, lab-user and purge test inside a fresh Debian 12 virtual machine with its own
+# kernel (tests/package/in_vm.sh; QEMU, KVM where present): the real-time limits shown for real.
+VM_PACKAGES = qemu-system-x86 debootstrap e2fsprogs
+test-package-vm: package
+	$(call install_missing,$(VM_PACKAGES))
+	$(SUDO) tests/package/in_vm.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)" "$(abspath $(BUILD))/package-vm"
 
 # The compile needs only the build's packages (make demo's); the test tools' packages
 # (tools/debian-packages-test.txt: clang, clang-tidy, PostgreSQL, Xvfb, SciPy, ... on a fresh

@@ -56,7 +56,7 @@ grep -q "$user is in the palprig group" <<<"$out" || fail "rt-check's user part:
 limits_checked=yes
 if ! bash -c 'ulimit -Hr 90' 2>/dev/null; then
   limits_checked=no
-  step "NOT CHECKED here: this machine lets no process raise RLIMIT_RTPRIO (root lacks CAP_SYS_RESOURCE), so pam_limits cannot apply limits.d; rtprio and run --realtime as $user need a real rig PC"
+  step "NOT CHECKED here: this machine lets no process raise RLIMIT_RTPRIO (root lacks CAP_SYS_RESOURCE), so pam_limits cannot apply limits.d here; make test-package checks rtprio and run --realtime as $user in a VM next (make test-package-vm)"
 else
   out=$(as_user "ulimit -r; ulimit -l")
   step "limits in $user's login: rtprio $(sed -n 1p <<<"$out"), memlock $(sed -n 2p <<<"$out")"
