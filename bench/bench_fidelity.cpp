@@ -48,6 +48,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "calibration/tracking_bound.hpp"
 #include "core/error.hpp"
 #include "controller/run_setup.hpp"
 #include "formats/scene_file.hpp"
@@ -75,13 +76,16 @@ struct Metrics {
 struct Tick {
   double t_s = 0, x_mm = 0, y_mm = 0;
   bool in_contact = false;
+  bool vented = false;  // a link outage or a disarmed rig (telemetry runs only)
+  // Where fingers 1 and 2 were, as the Meter classed them (set by Meter::add).
+  bool over_tumor[kFingerCount]{}, over_soft[kFingerCount]{};
   double target[kFingerCount]{}, setpoint[kFingerCount]{}, monitor[kFingerCount]{};
 };
 
 class Meter {
  public:
   Meter(std::vector<TumorTruth> tumors, FingerLayout layout) : tumors_(std::move(tumors)), layout_(layout) {}
-  void add(const Tick& r) {
+  void add(Tick& r) {
     for (std::size_t f = 0; f < kFingerCount; ++f) m_.max_setpoint_kPa = std::max(m_.max_setpoint_kPa, r.setpoint[f]);
     if (!r.in_contact) return;
     const auto centres = layout_.centres(r.x_mm, r.y_mm);
@@ -95,6 +99,8 @@ class Meter {
         inside = inside || d <= t.radius_mm;
         near = near || d <= t.radius_mm + kSoftMargin_mm;
       }
+      r.over_tumor[f] = inside;
+      r.over_soft[f] = !near;
       if (inside) {
         ++m_.n_tumor;
         m_.tumor_monitor += r.monitor[f];
@@ -134,8 +140,97 @@ class Recorder final : public TickObserver {
   std::vector<Tick> ticks;
 };
 
+// The least RMS any controller could reach on this plant over these targets, knowing them all in
+// advance (calibration/tracking_bound.hpp: only the regulator's fastest exhaust bounds it), over the
+// same finger-ticks as the Meter; and the same with the monitor's noise added (it adds its
+// variance to any controller's mean squared error). Not given (negative) for a run with vented
+// ticks: a vent empties faster than the regulator's exhaust.
+struct Floor {
+  double tracking_kPa = -1, with_noise_kPa = -1;
+  // The least largest monitor - target over soft tissue (the monitor's noise left out) with which
+  // the tumors still get 0.97 of their target: any controller, knowing every target in advance.
+  double soft_overshoot_kPa = -1;
+};
+
+// The highest pressure reachable at each tick when the pressure over soft tissue may exceed its
+// target by at most `overshoot_kPa`: a pressure must be able to exhaust down to every later cap,
+// so going backwards Y_k = min(cap_k, Y_{k+1} / decay). It is reachable (Y_{k+1} >= decay Y_k)
+// and the highest at every tick at once, so it gives the tumors the most a controller can.
+double tumor_ratio_reachable(const std::vector<Tick>& ticks, const RigConfig& rig, double overshoot_kPa) {
+  double monitor_sum = 0, target_sum = 0;
+  for (std::size_t f = 0; f < kFingers; ++f) {
+    const PlantParams& plant = rig.plants[f];
+    const double tau =
+        std::min(plant.exhaust_time_constant_at(0.0), plant.exhaust_time_constant_at(rig.safety.p_max_kPa));
+    double next = rig.safety.p_max_kPa;
+    for (std::size_t k = ticks.size(); k-- > 0;) {
+      const Tick& t = ticks[k];
+      double cap = rig.safety.p_max_kPa;
+      if (t.in_contact && t.over_soft[f]) cap = t.target[f] + overshoot_kPa;
+      const double y =
+          k + 1 < ticks.size() ? std::min(cap, next / std::exp(-(ticks[k + 1].t_s - t.t_s) / tau)) : std::max(0.0, cap);
+      next = std::max(0.0, y);
+      if (t.in_contact && t.over_tumor[f]) {
+        monitor_sum += next;
+        target_sum += t.target[f];
+      }
+    }
+  }
+  return target_sum > 0 ? monitor_sum / target_sum : 0.0;
+}
+
+// The least overshoot at which the tumors can still get 0.97 (bisection: the reachable ratio
+// grows with the overshoot allowed), to 0.001 kPa; 0 when none is needed.
+double least_soft_overshoot_kPa(const std::vector<Tick>& ticks, const RigConfig& rig) {
+  double lo = 0.0, hi = 5.0;  // below 0 a cap could ask for a pressure under 0 kPa
+  if (tumor_ratio_reachable(ticks, rig, lo) >= 0.97) return lo;
+  if (tumor_ratio_reachable(ticks, rig, hi) < 0.97) return hi;
+  while (hi - lo > 1e-3) {
+    const double mid = 0.5 * (lo + hi);
+    (tumor_ratio_reachable(ticks, rig, mid) >= 0.97 ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+Floor floor_of(const std::vector<Tick>& ticks, const RigConfig& rig) {
+  Floor out;
+  std::vector<double> t, target;
+  std::vector<std::uint8_t> counted;
+  std::vector<TrackingBound> fingers;
+  double noise_sq_sum = 0;
+  for (std::size_t f = 0; f < kFingers; ++f) {
+    t.clear();
+    target.clear();
+    counted.clear();
+    for (const Tick& k : ticks) {
+      if (k.vented) return out;
+      t.push_back(k.t_s);
+      target.push_back(k.target[f]);
+      counted.push_back(k.in_contact ? 1 : 0);
+    }
+    // The regulator's fastest exhaust over the pressures that matter: none above the highest
+    // target R (a pressure clipped at R is as reachable, the exhaust being monotone, and no
+    // further from any target), and the exhaust lag is monotone in the pressure, so its least
+    // over [0, R] is at one end (near 0 kPa it is slower where exhaust_lag_factor_at_0 > 1).
+    double highest_kPa = 0;
+    for (std::size_t k = 0; k < target.size(); ++k)
+      if (counted[k]) highest_kPa = std::max(highest_kPa, target[k]);
+    const PlantParams& plant = rig.plants[f];
+    const double fastest_exhaust_s =
+        std::min(plant.exhaust_time_constant_at(0.0), plant.exhaust_time_constant_at(highest_kPa));
+    fingers.push_back(least_tracking_error(t, target, counted, fastest_exhaust_s));
+    noise_sq_sum += double(fingers.back().samples) * plant.noise_sd_kPa * plant.noise_sd_kPa;
+  }
+  const TrackingBound all = pooled(fingers);
+  out.soft_overshoot_kPa = least_soft_overshoot_kPa(ticks, rig);
+  out.tracking_kPa = all.rms_kPa();
+  out.with_noise_kPa = all.samples ? std::sqrt((all.sum_squared_kPa2 + noise_sq_sum) / double(all.samples)) : 0.0;
+  return out;
+}
+
 struct Case {
   std::string rig_name;
+  Floor floor;
   bool compensated = false;
   Metrics metrics;
   double p_max_kPa = 0;
@@ -167,7 +262,7 @@ Case run_pass(const std::string& name, const fs::path& rig, const fs::path& cal,
   const RunSummary s = execute_run(run, opt);
   if (s.fault != FaultCode::none) throw palprig::Error(name + ": the run faulted: " + to_string(s.fault));
   Meter meter(run.scene.tumors, run.config.layout);
-  for (const Tick& t : rec.ticks) meter.add(t);
+  for (Tick& t : rec.ticks) meter.add(t);
   Case c;
   c.rig_name = name;
   c.compensated = compensate;
@@ -179,6 +274,7 @@ Case run_pass(const std::string& name, const fs::path& rig, const fs::path& cal,
                       fixed(run.cal.dynamics[i]->dead_time_s * 1000, 1) + " + " +
                       fixed(run.cal.dynamics[i]->time_constant_s * 1000, 1) + " ms, R^2 " +
                       fixed(run.cal.dynamics[i]->r_squared, 4);
+  c.floor = floor_of(rec.ticks, run.rig);
   c.ticks = std::move(rec.ticks);
   return c;
 }
@@ -219,7 +315,8 @@ fs::path heavy_rig(const fs::path& work, fs::path& cal) {
 }
 
 // Telemetry CSV of a run (palprig run --telemetry): the same measures.
-Metrics metrics_of_telemetry(const fs::path& csv, const fs::path& scene_file, const fs::path& rig_file) {
+Metrics metrics_of_telemetry(const fs::path& csv, const fs::path& scene_file, const fs::path& rig_file,
+                             std::vector<Tick>& ticks) {
   const SceneFile scene = load_scene_file(scene_file);
   const RigConfig rig = load_rig_file(rig_file);
   Meter meter(scene.tumors, rig.layout);
@@ -248,7 +345,8 @@ Metrics metrics_of_telemetry(const fs::path& csv, const fs::path& scene_file, co
     t.y_mm = cells[col["y_mm"]];
     const int flags = int(cells[col["flags"]]);
     // A tick of a link outage or a disarmed rig is no fidelity figure: the rig was vented.
-    t.in_contact = (flags & kInContact) && !(flags & (kVented | kDisarmed));
+    t.vented = (flags & (kVented | kDisarmed)) != 0;
+    t.in_contact = (flags & kInContact) && !t.vented;
     for (std::size_t f = 0; f < kFingerCount; ++f) {
       const std::string n = std::to_string(f + 1);
       t.target[f] = cells[col["target_kPa_" + n]];
@@ -256,12 +354,16 @@ Metrics metrics_of_telemetry(const fs::path& csv, const fs::path& scene_file, co
       t.monitor[f] = cells[col["monitor_kPa_" + n]];
     }
     meter.add(t);
+    ticks.push_back(t);
   }
   return meter.metrics();
 }
 
-nlohmann::json metrics_json(const Metrics& m, double p_max) {
+nlohmann::json metrics_json(const Metrics& m, double p_max, const Floor& floor) {
   return {{"rms_kPa", m.rms()},
+          {"least_possible_rms_kPa", floor.tracking_kPa},
+          {"least_possible_rms_with_noise_kPa", floor.with_noise_kPa},
+          {"least_possible_soft_overshoot_kPa", floor.soft_overshoot_kPa},
           {"tumor_monitor_over_target", m.tumor_ratio()},
           {"soft_overshoot_kPa", m.soft_overshoot_kPa},
           {"max_setpoint_kPa", m.max_setpoint_kPa},
@@ -277,12 +379,19 @@ std::string met(bool ok) { return ok ? "met" : "NOT met"; }
 // 0.5 kPa on any other.
 double rms_goal_kPa(const std::string& rig) { return rig == "shipped simulated rig" ? 0.25 : 0.5; }
 
-void print_row(const std::string& rig, const std::string& comp, const Metrics& m, double p_max) {
+std::string floor_text(const Floor& f) {
+  if (f.tracking_kPa < 0) return "n/a (the run vented)";
+  return fixed(f.with_noise_kPa, 3) + " (" + fixed(f.tracking_kPa, 3) + " without the noise)";
+}
+
+void print_row(const std::string& rig, const std::string& comp, const Metrics& m, double p_max, const Floor& floor) {
   const double goal = rms_goal_kPa(rig);
-  std::printf("| %s | %s | %s (%s%s) | %s (%s) | %s (%s) | %s / %s (%s) |\n", rig.c_str(), comp.c_str(),
-              fixed(m.rms(), 3).c_str(), goal < 0.5 ? "goal 0.25: " : "", met(m.rms() <= goal).c_str(),
-              fixed(m.tumor_ratio(), 3).c_str(), met(m.tumor_ratio() >= 0.97).c_str(),
-              fixed(m.soft_overshoot_kPa, 2).c_str(), met(m.soft_overshoot_kPa <= 0.5).c_str(),
+  const std::string least_overshoot =
+      floor.soft_overshoot_kPa < 0 ? "n/a" : fixed(floor.soft_overshoot_kPa, 2) + " without the noise";
+  std::printf("| %s | %s | %s (%s%s) | %s | %s (%s) | %s (%s; least possible %s) | %s / %s (%s) |\n", rig.c_str(),
+              comp.c_str(), fixed(m.rms(), 3).c_str(), goal < 0.5 ? "goal 0.25: " : "", met(m.rms() <= goal).c_str(),
+              floor_text(floor).c_str(), fixed(m.tumor_ratio(), 3).c_str(), met(m.tumor_ratio() >= 0.97).c_str(),
+              fixed(m.soft_overshoot_kPa, 2).c_str(), met(m.soft_overshoot_kPa <= 0.5).c_str(), least_overshoot.c_str(),
               fixed(m.max_setpoint_kPa, 2).c_str(), fixed(p_max, 0).c_str(), met(m.max_setpoint_kPa <= p_max).c_str());
 }
 
@@ -366,12 +475,14 @@ int main(int argc, char** argv) {
     if (!telemetry.empty()) {
       const fs::path rig = rig_arg.empty() ? data / "rigs" / "simulated.json" : fs::path(rig_arg);
       const RigConfig rc = load_rig_file(rig);
+      std::vector<Tick> ticks;
       const Metrics m = metrics_of_telemetry(
-          telemetry, scene_arg.empty() ? data / "scenes" / "phantom_abc.json" : fs::path(scene_arg), rig);
+          telemetry, scene_arg.empty() ? data / "scenes" / "phantom_abc.json" : fs::path(scene_arg), rig, ticks);
+      const Floor floor = floor_of(ticks, rc);
       if (json_out)
-        std::cout << metrics_json(m, rc.safety.p_max_kPa).dump(2) << "\n";
+        std::cout << metrics_json(m, rc.safety.p_max_kPa, floor).dump(2) << "\n";
       else
-        print_row(label, "", m, rc.safety.p_max_kPa);
+        print_row(label, "", m, rc.safety.p_max_kPa, floor);
       return 0;
     }
     const fs::path work = fs::temp_directory_path() / ("palprig-bench-fidelity-" + std::to_string(::getpid()));
@@ -392,7 +503,7 @@ int main(int argc, char** argv) {
     if (json_out) {
       nlohmann::json all = nlohmann::json::array();
       for (const Case& c : cases) {
-        nlohmann::json j = metrics_json(c.metrics, c.p_max_kPa);
+        nlohmann::json j = metrics_json(c.metrics, c.p_max_kPa, c.floor);
         j["rig"] = c.rig_name;
         j["rms_goal_kPa"] = rms_goal_kPa(c.rig_name);
         j["lag_compensation"] = c.compensated;
@@ -403,11 +514,12 @@ int main(int argc, char** argv) {
     } else {
       std::printf(
           "| plant | lag compensation | RMS(monitor - target) kPa, goal <= 0.5 (0.25 on the shipped simulated rig) | "
+          "least possible RMS kPa, any controller knowing every target in advance | "
           "monitor/target over tumors, goal >= "
           "0.97 | "
           "largest monitor - target over soft tissue kPa, goal <= 0.5 | largest setpoint / p_max kPa |\n");
-      std::printf("|---|---|---|---|---|---|\n");
-      for (const Case& c : cases) print_row(c.rig_name, c.compensated ? "on" : "off", c.metrics, c.p_max_kPa);
+      std::printf("|---|---|---|---|---|---|---|\n");
+      for (const Case& c : cases) print_row(c.rig_name, c.compensated ? "on" : "off", c.metrics, c.p_max_kPa, c.floor);
       std::printf("\nIdentified dynamics (dead time + lag): shipped: %s\n  heavier plant: %s\n  asymmetric: %s\n",
                   cases[0].identified.c_str(), cases[2].identified.c_str(), cases[4].identified.c_str());
     }
