@@ -107,7 +107,7 @@ test-package-scratch: deps-test package
 # machine cannot show the real-time limits at work, so the same test then runs again inside a VM.
 test-package: test-package-scratch
 	$(SUDO) tests/package/apt_install_as_lab_user.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
-	@if bash -c 'ulimit -Hr 90' 2>/dev/null; then echo "real-time limits checked on this machine"; \
+	@if $(SUDO) bash -c 'ulimit -Hr 90' 2>/dev/null; then echo "real-time limits checked on this machine"; \
 	else $(MAKE) --no-print-directory test-package-vm; fi
 test-package-system: test-package
 
@@ -116,7 +116,7 @@ test-package-system: test-package
 VM_PACKAGES = qemu-system-x86 debootstrap e2fsprogs
 test-package-vm: package
 	$(call install_missing,$(VM_PACKAGES))
-	$(SUDO) tests/package/in_vm.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)" "$(abspath $(BUILD))/package-vm"
+	$(SUDO) tests/package/in_vm.sh "$$(ls -t $(BUILD)/palprig_*.deb | head -n 1)"
 
 # The compile needs only the build's packages (make demo's); the test tools' packages
 # (tools/debian-packages-test.txt: clang, clang-tidy, PostgreSQL, Xvfb, SciPy, ... on a fresh

@@ -34,6 +34,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -42,6 +43,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -77,15 +79,13 @@ struct Tick {
   double t_s = 0, x_mm = 0, y_mm = 0;
   bool in_contact = false;
   bool vented = false;  // a link outage or a disarmed rig (telemetry runs only)
-  // Where fingers 1 and 2 were, as the Meter classed them (set by Meter::add).
-  bool over_tumor[kFingerCount]{}, over_soft[kFingerCount]{};
   double target[kFingerCount]{}, setpoint[kFingerCount]{}, monitor[kFingerCount]{};
 };
 
 class Meter {
  public:
   Meter(std::vector<TumorTruth> tumors, FingerLayout layout) : tumors_(std::move(tumors)), layout_(layout) {}
-  void add(Tick& r) {
+  void add(const Tick& r) {
     for (std::size_t f = 0; f < kFingerCount; ++f) m_.max_setpoint_kPa = std::max(m_.max_setpoint_kPa, r.setpoint[f]);
     if (!r.in_contact) return;
     const auto centres = layout_.centres(r.x_mm, r.y_mm);
@@ -99,8 +99,6 @@ class Meter {
         inside = inside || d <= t.radius_mm;
         near = near || d <= t.radius_mm + kSoftMargin_mm;
       }
-      r.over_tumor[f] = inside;
-      r.over_soft[f] = !near;
       if (inside) {
         ++m_.n_tumor;
         m_.tumor_monitor += r.monitor[f];
@@ -125,7 +123,8 @@ Tick tick_of(const TelemetryRecord& r) {
   t.t_s = r.t_s;
   t.x_mm = r.x_mm;
   t.y_mm = r.y_mm;
-  t.in_contact = (r.flags & kInContact) != 0;
+  t.vented = (r.flags & (kVented | kDisarmed)) != 0;
+  t.in_contact = (r.flags & kInContact) != 0 && !t.vented;
   for (std::size_t f = 0; f < kFingerCount; ++f) {
     t.target[f] = r.target_kPa[f];
     t.setpoint[f] = r.setpoint_kPa[f];
@@ -140,91 +139,80 @@ class Recorder final : public TickObserver {
   std::vector<Tick> ticks;
 };
 
-// The least RMS any controller could reach on this plant over these targets, knowing them all in
-// advance (calibration/tracking_bound.hpp: only the regulator's fastest exhaust bounds it), over the
-// same finger-ticks as the Meter; and the same with the monitor's noise added (it adds its
-// variance to any controller's mean squared error). Not given (negative) for a run with vented
-// ticks: a vent empties faster than the regulator's exhaust.
+// The floor under the RMS (calibration/tracking_bound.hpp): the least RMS of the regulator's own
+// pressure against the targets that any controller could reach, knowing every target in advance
+// and filling instantly, bounded only by the regulator's fastest exhaust; over the same
+// finger-ticks as the Meter. A lower bound for the pressure, which the monitor reads with noise:
+// `monitor_kPa` is what that best pressure would score read through the monitor (its noise, and
+// the reading clamped at min_kPa as the simulated regulator clamps it), an expectation for that
+// one clairvoyant controller, not a bound (a clamped reading can even score below its pressure).
 struct Floor {
-  double tracking_kPa = -1, with_noise_kPa = -1;
-  // The least largest monitor - target over soft tissue (the monitor's noise left out) with which
-  // the tumors still get 0.97 of their target: any controller, knowing every target in advance.
-  double soft_overshoot_kPa = -1;
+  double pressure_kPa = -1, monitor_kPa = -1;
+  std::string why_not;  // why there is none (the run vented, a plant the bound does not hold for, ...)
 };
 
-// The highest pressure reachable at each tick when the pressure over soft tissue may exceed its
-// target by at most `overshoot_kPa`: a pressure must be able to exhaust down to every later cap,
-// so going backwards Y_k = min(cap_k, Y_{k+1} / decay). It is reachable (Y_{k+1} >= decay Y_k)
-// and the highest at every tick at once, so it gives the tumors the most a controller can.
-double tumor_ratio_reachable(const std::vector<Tick>& ticks, const RigConfig& rig, double overshoot_kPa) {
-  double monitor_sum = 0, target_sum = 0;
-  for (std::size_t f = 0; f < kFingers; ++f) {
-    const PlantParams& plant = rig.plants[f];
-    const double tau =
-        std::min(plant.exhaust_time_constant_at(0.0), plant.exhaust_time_constant_at(rig.safety.p_max_kPa));
-    double next = rig.safety.p_max_kPa;
-    for (std::size_t k = ticks.size(); k-- > 0;) {
-      const Tick& t = ticks[k];
-      double cap = rig.safety.p_max_kPa;
-      if (t.in_contact && t.over_soft[f]) cap = t.target[f] + overshoot_kPa;
-      const double y =
-          k + 1 < ticks.size() ? std::min(cap, next / std::exp(-(ticks[k + 1].t_s - t.t_s) / tau)) : std::max(0.0, cap);
-      next = std::max(0.0, y);
-      if (t.in_contact && t.over_tumor[f]) {
-        monitor_sum += next;
-        target_sum += t.target[f];
-      }
-    }
-  }
-  return target_sum > 0 ? monitor_sum / target_sum : 0.0;
-}
-
-// The least overshoot at which the tumors can still get 0.97 (bisection: the reachable ratio
-// grows with the overshoot allowed), to 0.001 kPa; 0 when none is needed.
-double least_soft_overshoot_kPa(const std::vector<Tick>& ticks, const RigConfig& rig) {
-  double lo = 0.0, hi = 5.0;  // below 0 a cap could ask for a pressure under 0 kPa
-  if (tumor_ratio_reachable(ticks, rig, lo) >= 0.97) return lo;
-  if (tumor_ratio_reachable(ticks, rig, hi) < 0.97) return hi;
-  while (hi - lo > 1e-3) {
-    const double mid = 0.5 * (lo + hi);
-    (tumor_ratio_reachable(ticks, rig, mid) >= 0.97 ? hi : lo) = mid;
-  }
-  return hi;
+// E[(max(min, p + n) - r)^2] for n ~ N(0, sd^2): the reading clamped below as the plant clamps it
+// (the upper clamp, 100 kPa, is never near a target). With a = (min - p) / sd, m = p - r and the
+// standard normal's pdf phi and cdf Phi: (min - r)^2 Phi(a) + m^2 (1 - Phi(a)) + 2 m sd phi(a)
+// + sd^2 (1 - Phi(a) + a phi(a)).
+double expected_clamped_square(double p, double r, double sd, double min_kPa) {
+  if (sd <= 0) return (std::max(min_kPa, p) - r) * (std::max(min_kPa, p) - r);
+  const double a = (min_kPa - p) / sd, m = p - r;
+  const double Phi = 0.5 * std::erfc(-a / std::sqrt(2.0));
+  const double phi = std::exp(-0.5 * a * a) / std::sqrt(2.0 * std::numbers::pi);
+  return (min_kPa - r) * (min_kPa - r) * Phi + m * m * (1 - Phi) + 2 * m * sd * phi + sd * sd * (1 - Phi + a * phi);
 }
 
 Floor floor_of(const std::vector<Tick>& ticks, const RigConfig& rig) {
   Floor out;
-  std::vector<double> t, target;
+  std::vector<double> t, target, best;
   std::vector<std::uint8_t> counted;
   std::vector<TrackingBound> fingers;
-  double noise_sq_sum = 0;
+  double monitor_sq_sum = 0;
+  for (const Tick& k : ticks)
+    if (k.vented) {
+      out.why_not = "the run vented";  // a vent empties faster than the regulator's exhaust
+      return out;
+    }
   for (std::size_t f = 0; f < kFingers; ++f) {
+    const PlantParams& plant = rig.plants[f];
+    if (plant.min_kPa < 0) {
+      out.why_not = "the plant's min_kPa is below 0 kPa";  // a command below 0 could empty it faster
+      return out;
+    }
     t.clear();
     target.clear();
     counted.clear();
     for (const Tick& k : ticks) {
-      if (k.vented) return out;
       t.push_back(k.t_s);
       target.push_back(k.target[f]);
       counted.push_back(k.in_contact ? 1 : 0);
     }
     // The regulator's fastest exhaust over the pressures that matter: none above the highest
-    // target R (a pressure clipped at R is as reachable, the exhaust being monotone, and no
-    // further from any target), and the exhaust lag is monotone in the pressure, so its least
-    // over [0, R] is at one end (near 0 kPa it is slower where exhaust_lag_factor_at_0 > 1).
+    // target R (a pressure clipped at R stays reachable, since p exp(-dt / tau(p)) grows with p,
+    // and is no further from any target), and the exhaust lag is monotone in the pressure, so its
+    // least over [0, R] is at one end (near 0 kPa it is slower where exhaust_lag_factor_at_0 > 1).
     double highest_kPa = 0;
     for (std::size_t k = 0; k < target.size(); ++k)
       if (counted[k]) highest_kPa = std::max(highest_kPa, target[k]);
-    const PlantParams& plant = rig.plants[f];
     const double fastest_exhaust_s =
         std::min(plant.exhaust_time_constant_at(0.0), plant.exhaust_time_constant_at(highest_kPa));
-    fingers.push_back(least_tracking_error(t, target, counted, fastest_exhaust_s));
-    noise_sq_sum += double(fingers.back().samples) * plant.noise_sd_kPa * plant.noise_sd_kPa;
+    if (fastest_exhaust_s > 0) {
+      fingers.push_back(least_tracking_error(t, target, counted, fastest_exhaust_s, &best));
+    } else {  // an instant exhaust follows every target
+      best = target;
+      fingers.push_back({0.0, std::size_t(std::count(counted.begin(), counted.end(), std::uint8_t{1}))});
+    }
+    for (std::size_t k = 0; k < target.size(); ++k)
+      if (counted[k]) monitor_sq_sum += expected_clamped_square(best[k], target[k], plant.noise_sd_kPa, plant.min_kPa);
   }
   const TrackingBound all = pooled(fingers);
-  out.soft_overshoot_kPa = least_soft_overshoot_kPa(ticks, rig);
-  out.tracking_kPa = all.rms_kPa();
-  out.with_noise_kPa = all.samples ? std::sqrt((all.sum_squared_kPa2 + noise_sq_sum) / double(all.samples)) : 0.0;
+  if (all.samples == 0) {
+    out.why_not = "no finger-tick pressed";
+    return out;
+  }
+  out.pressure_kPa = all.rms_kPa();
+  out.monitor_kPa = std::sqrt(monitor_sq_sum / double(all.samples));
   return out;
 }
 
@@ -262,7 +250,7 @@ Case run_pass(const std::string& name, const fs::path& rig, const fs::path& cal,
   const RunSummary s = execute_run(run, opt);
   if (s.fault != FaultCode::none) throw palprig::Error(name + ": the run faulted: " + to_string(s.fault));
   Meter meter(run.scene.tumors, run.config.layout);
-  for (Tick& t : rec.ticks) meter.add(t);
+  for (const Tick& t : rec.ticks) meter.add(t);
   Case c;
   c.rig_name = name;
   c.compensated = compensate;
@@ -361,9 +349,10 @@ Metrics metrics_of_telemetry(const fs::path& csv, const fs::path& scene_file, co
 
 nlohmann::json metrics_json(const Metrics& m, double p_max, const Floor& floor) {
   return {{"rms_kPa", m.rms()},
-          {"least_possible_rms_kPa", floor.tracking_kPa},
-          {"least_possible_rms_with_noise_kPa", floor.with_noise_kPa},
-          {"least_possible_soft_overshoot_kPa", floor.soft_overshoot_kPa},
+          {"least_possible_pressure_rms_kPa",
+           floor.pressure_kPa < 0 ? nlohmann::json(nullptr) : nlohmann::json(floor.pressure_kPa)},
+          {"that_pressure_read_through_the_monitor_rms_kPa",
+           floor.monitor_kPa < 0 ? nlohmann::json(nullptr) : nlohmann::json(floor.monitor_kPa)},
           {"tumor_monitor_over_target", m.tumor_ratio()},
           {"soft_overshoot_kPa", m.soft_overshoot_kPa},
           {"max_setpoint_kPa", m.max_setpoint_kPa},
@@ -380,18 +369,16 @@ std::string met(bool ok) { return ok ? "met" : "NOT met"; }
 double rms_goal_kPa(const std::string& rig) { return rig == "shipped simulated rig" ? 0.25 : 0.5; }
 
 std::string floor_text(const Floor& f) {
-  if (f.tracking_kPa < 0) return "n/a (the run vented)";
-  return fixed(f.with_noise_kPa, 3) + " (" + fixed(f.tracking_kPa, 3) + " without the noise)";
+  if (f.pressure_kPa < 0) return "n/a (" + f.why_not + ")";
+  return fixed(f.pressure_kPa, 3) + " (read through the monitor " + fixed(f.monitor_kPa, 3) + ")";
 }
 
 void print_row(const std::string& rig, const std::string& comp, const Metrics& m, double p_max, const Floor& floor) {
   const double goal = rms_goal_kPa(rig);
-  const std::string least_overshoot =
-      floor.soft_overshoot_kPa < 0 ? "n/a" : fixed(floor.soft_overshoot_kPa, 2) + " without the noise";
-  std::printf("| %s | %s | %s (%s%s) | %s | %s (%s) | %s (%s; least possible %s) | %s / %s (%s) |\n", rig.c_str(),
-              comp.c_str(), fixed(m.rms(), 3).c_str(), goal < 0.5 ? "goal 0.25: " : "", met(m.rms() <= goal).c_str(),
+  std::printf("| %s | %s | %s (%s%s) | %s | %s (%s) | %s (%s) | %s / %s (%s) |\n", rig.c_str(), comp.c_str(),
+              fixed(m.rms(), 3).c_str(), goal < 0.5 ? "goal 0.25: " : "", met(m.rms() <= goal).c_str(),
               floor_text(floor).c_str(), fixed(m.tumor_ratio(), 3).c_str(), met(m.tumor_ratio() >= 0.97).c_str(),
-              fixed(m.soft_overshoot_kPa, 2).c_str(), met(m.soft_overshoot_kPa <= 0.5).c_str(), least_overshoot.c_str(),
+              fixed(m.soft_overshoot_kPa, 2).c_str(), met(m.soft_overshoot_kPa <= 0.5).c_str(),
               fixed(m.max_setpoint_kPa, 2).c_str(), fixed(p_max, 0).c_str(), met(m.max_setpoint_kPa <= p_max).c_str());
 }
 
@@ -478,7 +465,12 @@ int main(int argc, char** argv) {
       std::vector<Tick> ticks;
       const Metrics m = metrics_of_telemetry(
           telemetry, scene_arg.empty() ? data / "scenes" / "phantom_abc.json" : fs::path(scene_arg), rig, ticks);
-      const Floor floor = floor_of(ticks, rc);
+      Floor floor;
+      try {
+        floor = floor_of(ticks, rc);  // from the rig file's plant section: a model of the regulator
+      } catch (const palprig::Error& e) {
+        floor.why_not = e.what();
+      }
       if (json_out)
         std::cout << metrics_json(m, rc.safety.p_max_kPa, floor).dump(2) << "\n";
       else
@@ -514,7 +506,8 @@ int main(int argc, char** argv) {
     } else {
       std::printf(
           "| plant | lag compensation | RMS(monitor - target) kPa, goal <= 0.5 (0.25 on the shipped simulated rig) | "
-          "least possible RMS kPa, any controller knowing every target in advance | "
+          "floor: least RMS of the pressure itself, any controller knowing every target in advance (the rig "
+          "file's plant) | "
           "monitor/target over tumors, goal >= "
           "0.97 | "
           "largest monitor - target over soft tissue kPa, goal <= 0.5 | largest setpoint / p_max kPa |\n");

@@ -7,9 +7,12 @@
 // exhaust lag. With a command of 0 kPa its pressure decays as exp(-dt / tau), so whatever is
 // commanded (every command >= 0), p(t_{k+1}) >= p(t_k) exp(-(t_{k+1} - t_k) / tau). Everything
 // else a real controller meets (the dead time, the pen known only up to now, the hysteresis, the
-// slew limit, p_max, the lead bound) is left out, so the figure is a lower bound: no controller
-// does better on that plant, and one that knew the future exactly and could fill instantly would
-// reach it.
+// slew limit, p_max, the lead bound; an exhaust that is slower than its fastest at some
+// pressures) is left out, so the figure is a lower bound on the RMS of the regulator's pressure:
+// no controller tracks better on such a regulator. It would be reached only by a controller that
+// knew the future exactly, on a regulator that filled instantly and always exhausted at that
+// rate. It bounds the pressure, not a noisy reading of it (a reading clamped at 0 kPa can score
+// below the pressure it reads).
 //
 // Computed exactly: with z_k = p_k exp((t_k - t_0) / tau) the constraint says z is
 // non-decreasing, and the objective sum (p_k - r_k)^2 becomes a weighted isotonic regression of

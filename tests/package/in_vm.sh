@@ -11,15 +11,17 @@
 # into it the .deb's dependencies (so the VM needs no network: it has none, and apt installs
 # from the cache), copy the .deb and the test script in, make a fresh ext4 image from the folder
 # (mkfs.ext4 -d: no loop mount), boot it with QEMU (KVM where there is one, else TCG) with the
-# test as init, read the serial console, power off. The VM starts from the same image every
-# run; the folder only keeps the base system between runs (delete it to refresh).
+# test as init, read the serial console, power off. The VM starts from a fresh image every run;
+# the cache folder (root's, default /var/cache/palprig-test-vm) keeps only the base system
+# between runs (delete it to refresh).
 #   tests/package/in_vm.sh PACKAGE.deb [CACHE_DIR]
 # Needs root, qemu-system-x86, debootstrap, e2fsprogs and Debian's archive (for the first
 # debootstrap and the dependencies). Figures (2-core AMD EPYC VM without KVM, TCG): debootstrap
-# 3 min 34 s the first time; `make test-package-vm` with it cached 3 min 29 s (the VM about 3 min).
+# 3 min 34 s the first time; `make test-package-vm` with it cached 3 min 29 s (the VM about 3 min);
+# the whole `make test-package` 4-5 min.
 set -euo pipefail
 deb=$(realpath "${1:?usage: in_vm.sh PACKAGE.deb [CACHE_DIR]}")
-cache=$(realpath -m "${2:-${TMPDIR:-/tmp}/palprig-test-vm}")
+cache=$(realpath -m "${2:-/var/cache/palprig-test-vm}")
 here=$(dirname "$(realpath "$0")")
 fail() { echo "vm package test: FAILED: $*" >&2; exit 1; }
 step() { echo "vm package test: $*"; }
@@ -34,17 +36,23 @@ mkdir -p "$cache"
 exec 9>"$cache/lock"
 flock -n 9 || fail "another in_vm.sh is running with $cache"
 
-if [[ ! -x $root/usr/bin/Xvfb ]]; then
+# The base system is kept once debootstrap finished (its stamp); a run it did not finish starts again.
+if [[ ! -f $cache/rootfs.done ]]; then
   step "debootstrap bookworm into $root (once; minutes)"
   rm -rf "$root"
   debootstrap --variant=minbase --include=linux-image-amd64,xvfb,xauth,man-db,systemd-sysv \
     bookworm "$root" "$mirror" >"$cache/debootstrap.log" 2>&1 || fail "debootstrap (log: $cache/debootstrap.log)"
+  # The point releases' and security updates' packages too, as a rig PC has them.
+  security=${DEBIAN_SECURITY_MIRROR:-http://deb.debian.org/debian-security}
+  printf 'deb %s bookworm main\ndeb %s bookworm-updates main\ndeb %s bookworm-security main\n' \
+    "$mirror" "$mirror" "$security" >"$root/etc/apt/sources.list"
+  touch "$cache/rootfs.done"
 fi
 kernel=$(printf "%s\n" "$root"/boot/vmlinuz-* | sort -V | tail -n 1)
 initrd=$(printf "%s\n" "$root"/boot/initrd.img-* | sort -V | tail -n 1)
+[[ -f $kernel && -f $initrd ]] || fail "no kernel or initrd in $root/boot (delete $cache to start again)"
 
 # The .deb's dependencies into the VM's apt cache (the VM itself has no network).
-rm -f "$root"/root/palprig_*.deb
 cp "$deb" "$root/root/palprig.deb"
 chroot "$root" apt-get update -qq >"$cache/apt.log" 2>&1 || fail "apt-get update in $root (log: $cache/apt.log)"
 chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --download-only /root/palprig.deb \
@@ -72,14 +80,14 @@ chmod +x "$root/root/vm-init.sh"
 
 image=$cache/vm.img
 rm -f "$image"
+trap 'rm -f "$image"' EXIT  # 4 GB, sparse: not left behind by a failed run
 mkfs.ext4 -q -F -d "$root" "$image" 4G || fail "mkfs.ext4 -d $root"
 step "booting $(basename "$kernel") with QEMU ($( [[ -w /dev/kvm ]] && echo KVM || echo TCG, no KVM here: slow))"
 log=$cache/console.log
 timeout "${VM_TIMEOUT_S:-1800}" qemu-system-x86_64 -accel kvm -accel tcg,thread=multi -cpu max -m 2048 -smp "$(nproc)" \
   -nographic -no-reboot -nic none -kernel "$kernel" -initrd "$initrd" \
   -append "root=/dev/vda rw console=ttyS0 quiet panic=1 init=/root/vm-init.sh" \
-  -drive "file=$image,format=raw,if=virtio" >"$log" 2>&1 || fail "QEMU exited non-zero or timed out (console: $log)"
-rm -f "$image"
+  -drive "file=$image,format=raw,if=virtio" </dev/null >"$log" 2>&1 || fail "QEMU exited non-zero or timed out (console: $log)"
 # The console without the firmware's and the kernel's lines: the test's own.
 # (The console's escape sequences, which may lead a line, are removed first.)
 console=$(tr -d '\0' <"$log" | sed -e 's/\x1b\[[0-9;?]*[A-Za-z]//g' -e 's/\x1bc//g' -e 's/\r$//')
