@@ -43,11 +43,11 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <boost/math/distributions/normal.hpp>
 #include <nlohmann/json.hpp>
 
 #include "calibration/tracking_bound.hpp"
@@ -78,8 +78,14 @@ struct Metrics {
 struct Tick {
   double t_s = 0, x_mm = 0, y_mm = 0;
   bool in_contact = false;
-  bool vented = false;  // a link outage or a disarmed rig (telemetry runs only)
+  bool vented = false;  // a link outage or a disarmed rig
   double target[kFingerCount]{}, setpoint[kFingerCount]{}, monitor[kFingerCount]{};
+  // From the record's flags. A tick of a link outage or a disarmed rig is no fidelity figure: the
+  // rig was vented.
+  void set_flags(unsigned flags) {
+    vented = (flags & (kVented | kDisarmed)) != 0;
+    in_contact = (flags & kInContact) != 0 && !vented;
+  }
 };
 
 class Meter {
@@ -123,8 +129,7 @@ Tick tick_of(const TelemetryRecord& r) {
   t.t_s = r.t_s;
   t.x_mm = r.x_mm;
   t.y_mm = r.y_mm;
-  t.vented = (r.flags & (kVented | kDisarmed)) != 0;
-  t.in_contact = (r.flags & kInContact) != 0 && !t.vented;
+  t.set_flags(r.flags);
   for (std::size_t f = 0; f < kFingerCount; ++f) {
     t.target[f] = r.target_kPa[f];
     t.setpoint[f] = r.setpoint_kPa[f];
@@ -158,8 +163,8 @@ struct Floor {
 double expected_clamped_square(double p, double r, double sd, double min_kPa) {
   if (sd <= 0) return (std::max(min_kPa, p) - r) * (std::max(min_kPa, p) - r);
   const double a = (min_kPa - p) / sd, m = p - r;
-  const double Phi = 0.5 * std::erfc(-a / std::sqrt(2.0));
-  const double phi = std::exp(-0.5 * a * a) / std::sqrt(2.0 * std::numbers::pi);
+  const boost::math::normal standard;
+  const double Phi = boost::math::cdf(standard, a), phi = boost::math::pdf(standard, a);
   return (min_kPa - r) * (min_kPa - r) * Phi + m * m * (1 - Phi) + 2 * m * sd * phi + sd * sd * (1 - Phi + a * phi);
 }
 
@@ -331,10 +336,7 @@ Metrics metrics_of_telemetry(const fs::path& csv, const fs::path& scene_file, co
     t.t_s = cells[col["t_s"]];
     t.x_mm = cells[col["x_mm"]];
     t.y_mm = cells[col["y_mm"]];
-    const int flags = int(cells[col["flags"]]);
-    // A tick of a link outage or a disarmed rig is no fidelity figure: the rig was vented.
-    t.vented = (flags & (kVented | kDisarmed)) != 0;
-    t.in_contact = (flags & kInContact) && !t.vented;
+    t.set_flags(unsigned(cells[col["flags"]]));
     for (std::size_t f = 0; f < kFingerCount; ++f) {
       const std::string n = std::to_string(f + 1);
       t.target[f] = cells[col["target_kPa_" + n]];
