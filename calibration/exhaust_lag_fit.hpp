@@ -8,11 +8,12 @@
 //   tau_e(y) = tau_e (1 + (F - 1) s / (max(y, 0) + s))      (F at 0 kPa, tau_e far above s)
 //
 // (F = 1 is stage 3's model). The five parameters are fitted with automatic derivatives (Ceres
-// Jets) propagated along the sequence, the dead time still a real number. The sweep's steps never
-// go below its lowest staircase level, so F and s are extrapolated to 0 kPa from the levels the
-// exhaust was seen at: the model is kept only when it predicts samples it was not fitted on
-// better, by cross-validation over blocks of the step and chirp rows (each block held out in turn,
-// both models refitted without it and run over it), not by its own residual.
+// Jets) propagated along the sequence, the dead time still a real number. The sweep's step
+// segment falls to 0 kPa three times, so the exhaust below its lowest level is seen, not
+// extrapolated (calibration/sweep_plan.cpp). Two more parameters can still fit noise: the
+// model is kept only when it predicts samples it was not fitted on better, by cross-validation
+// over blocks of the step and chirp rows (each block held out in turn, both models refitted
+// without it and run over it), not by its own residual.
 #include <vector>
 
 #include "calibration/dynamics_runs.hpp"

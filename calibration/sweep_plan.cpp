@@ -151,11 +151,16 @@ SweepSchedule plan_calibration_sweep(const SweepPlanOptions& o, double p_max_kPa
     }
   }
   if (o.step) {
-    // Steps up and down of many sizes between from and the top (never to 0: at 0 kPa a
-    // regulator exhausts, which is not its lag), from vented.
+    // Steps up and down of many sizes between from and the top, from vented, and three falls
+    // to 0 kPa (from high, low and middle levels): commanded 0 kPa a regulator opens its exhaust,
+    // and its last kilopascals empty slowest (the dynamics fit's stage 4,
+    // calibration/exhaust_lag_fit.hpp). The tick commands 0 kPa on every fall it anticipates,
+    // so that is the lag it must know; without these steps the fit extrapolated it from the
+    // lowest level (from_kPa) and missed an exhaust that slows only below it.
     add(SweepSegment::vent, 0, SweepBranch::none, 0.0);
-    for (double f : {0.2, 0.5, 0.35, 0.8, 0.1, 0.65, 0.25, 0.95, 0.5, 0.0, 0.4}) {
-      add(SweepSegment::step, 0, SweepBranch::none, o.from_kPa + f * (top - o.from_kPa));
+    constexpr double kToZero = -1;  // a step to 0 kPa rather than to a level of the range
+    for (double f : {0.2, 0.5, 0.35, 0.8, kToZero, 0.1, kToZero, 0.65, 0.25, 0.95, 0.5, 0.0, 0.4, kToZero}) {
+      add(SweepSegment::step, 0, SweepBranch::none, f == kToZero ? 0.0 : o.from_kPa + f * (top - o.from_kPa));
       plan.holds.back().duration_s = o.step_hold_s;
     }
   }
