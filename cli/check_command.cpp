@@ -147,6 +147,7 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
     std::ostringstream o;
     o << "finite-element stress model, soft " << m.soft_stress_kPa << " / nodule " << m.hard_stress_kPa
       << " kPa, actuator line " << m.actuator.slope << " x air + " << m.actuator.intercept_kPa << " kPa";
+    if (m.uninflated == "soft-tissue") o << " (the uninflated actuator as soft tissue)";
     return o.str();
   }
   if (kind == "fe-table") {

@@ -21,7 +21,7 @@ namespace {
 
 struct ActuatorArgs {
   std::string fingertip, actuator, out, pressures = "0,10,20,30,40,50,60,70,80,90,100";
-  double press_mm = 1, target_kPa = 7.967;
+  double press_mm = 1, target_kPa = 7.967, soft_kPa = 4.990;
   std::string loading = "press-first";
   bool plot = true;
   FeAnalysisArgs analysis;
@@ -54,6 +54,11 @@ void run_actuator(const ActuatorArgs& a) {
   if (line.slope > 0)
     print_out("  %.3f kPa of fingertip stress needs %.2f kPa of air (%zu unknowns, %d step cuts)\n", a.target_kPa,
               (a.target_kPa - line.intercept_kPa) / line.slope, run.unknowns, run.cuts);
+  // Paper 002's reading: the uninflated actuator stands for healthy tissue and the air adds the
+  // line's slope to that stress (fe stress-model --uninflated soft-tissue).
+  if (line.slope > 0 && a.target_kPa > a.soft_kPa)
+    print_out("  the uninflated actuator as soft tissue at %.3f kPa: %.3f kPa needs %.2f kPa of air\n", a.soft_kPa,
+              a.target_kPa, (a.target_kPa - a.soft_kPa) / line.slope);
   std::cout << std::flush;
   std::fprintf(stderr, "palprig fe actuator: solved in %.1f s\n", run.wall_s);
   const std::filesystem::path out(a.out);
@@ -93,6 +98,11 @@ void register_fe_actuator(CLI::App* fe) {
       ->default_val("0,10,20,30,40,50,60,70,80,90,100");
   sub->add_option("--target-kPa", a->target_kPa, "Fingertip stress whose air pressure to report (paper 002's nodule)")
       ->default_val(7.967);
+  sub->add_option("--soft-kPa", a->soft_kPa,
+                  "Soft tissue's stress, for the air the target needs over it when the uninflated actuator stands "
+                  "for soft tissue (paper 002's healthy peak)")
+      ->default_val(4.990)
+      ->check(CLI::Range(0.0, 1000.0));
   add_fe_loading_option(sub, a->loading);
   sub->add_option("--out", a->out, "Folder for the CSV tables and figures")->required();
   sub->add_flag("!--no-plot", a->plot, "Write the tables only");

@@ -24,6 +24,7 @@ struct StressModelArgs {
   std::string fingertip, tissue, actuator, out, pressures = "0,10,20,30,40,50,60,70,80,90,100";
   double depth_mm = 7, press_mm = 1;
   std::string loading = "press-first";
+  std::string uninflated = "fitted";
   FeAnalysisArgs analysis;
 };
 
@@ -58,6 +59,7 @@ void run_stress_model(const StressModelArgs& a) {
   settings << plane_text(a.analysis) << ' ' << a.analysis.element_mm << ' ' << a.depth_mm << ' ' << a.press_mm << ' '
            << a.pressures;
   if (together) settings << " together";  // press-first files keep the hash they had before the option
+  if (a.uninflated != "fitted") settings << " uninflated " << a.uninflated;
   m.inputs = {a.fingertip,
               a.tissue,
               a.actuator,
@@ -74,14 +76,20 @@ void run_stress_model(const StressModelArgs& a) {
     m.stresses_kPa.push_back(s.peak_kPa);
   }
   const mechanics::StressLine line = mechanics::fit_stress_line(m.pressures_kPa, m.stresses_kPa);
+  m.uninflated = a.uninflated;
   m.actuator.slope = line.slope;
-  m.actuator.intercept_kPa = line.intercept_kPa;
+  // Paper 002's reading of its own actuator ("an inactivated actuator to simulate the situation
+  // of no tumor"): the uninflated actuator stands for healthy tissue, the air adds the slope.
+  m.actuator.intercept_kPa = a.uninflated == "soft-tissue" ? m.soft_stress_kPa : line.intercept_kPa;
   m.r_squared = line.r_squared;
-  m.nodule_pressure_kPa = line.slope > 0 ? (m.hard_stress_kPa - line.intercept_kPa) / line.slope : 0;
+  m.nodule_pressure_kPa = line.slope > 0 ? (m.hard_stress_kPa - m.actuator.intercept_kPa) / line.slope : 0;
   print_out("  tissue at %.2f mm: soft %.3f kPa, over the nodule %.3f kPa (ratio %.3f)\n", a.depth_mm,
             m.soft_stress_kPa, m.hard_stress_kPa, m.hard_stress_kPa / m.soft_stress_kPa);
   print_out("  actuator pressed %s%.2f mm%s: stress = %.5f x air + %.3f kPa, R^2 %.5f\n", together ? "up to " : "",
             a.press_mm, together ? " as the air rises" : "", line.slope, line.intercept_kPa, line.r_squared);
+  if (a.uninflated == "soft-tissue")
+    print_out("  the uninflated actuator as soft tissue: stress = %.5f x air + %.3f kPa\n", m.actuator.slope,
+              m.actuator.intercept_kPa);
   print_out("  the nodule's %.3f kPa needs %.2f kPa of air\n", m.hard_stress_kPa, m.nodule_pressure_kPa);
   std::cout << std::flush;
   std::fprintf(stderr, "palprig fe stress-model: solved in %.1f s\n", soft.wall_s + hard.wall_s + act.wall_s);
@@ -107,6 +115,11 @@ void register_fe_stress_model(CLI::App* fe) {
   sub->add_option("--pressures", a->pressures, "Air pressures in kPa, comma-separated")
       ->default_val("0,10,20,30,40,50,60,70,80,90,100");
   add_fe_loading_option(sub, a->loading);
+  sub->add_option("--uninflated", a->uninflated,
+                  "What the uninflated actuator renders: fitted (the line's own intercept) or soft-tissue (paper "
+                  "002's reading: its stress is the soft tissue's, the air adds the line's slope)")
+      ->default_val("fitted")
+      ->check(CLI::IsMember({"fitted", "soft-tissue"}));
   sub->add_option("--out", a->out, "Stress model file to write (JSON)")->required();
   add_fe_analysis_options(sub, a->analysis);
   sub->callback([a] { run_stress_model(*a); });

@@ -1,5 +1,6 @@
 #include "formats/fe_result_files.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "formats/calibration_file.hpp"
@@ -68,6 +69,7 @@ nlohmann::json stress_model_json(const FeStressModelFile& m) {
           {"actuator",
            {{"press_mm", m.press_mm},
             {"loading", m.loading},
+            {"uninflated", m.uninflated},
             {"slope", m.actuator.slope},
             {"intercept_kPa", m.actuator.intercept_kPa},
             {"r_squared", m.r_squared},
@@ -92,9 +94,14 @@ FeStressModelFile parse_stress_model(const nlohmann::json& doc, const std::strin
   const JsonObject a = root.object("actuator");
   m.press_mm = a.number("press_mm", 0.01, 100);
   m.loading = a.choice_or("loading", "press-first", {"press-first", "together"});
+  m.uninflated = a.choice_or("uninflated", "fitted", {"fitted", "soft-tissue"});
   m.actuator.slope = a.number("slope", 1e-9, kMaxActuatorSlope);
   // The calibration file's rule: an intercept at or above the hard stress makes every target 0 kPa.
   m.actuator.intercept_kPa = a.number("intercept_kPa", kMinActuatorIntercept_kPa, 1000);
+  if (m.uninflated == "soft-tissue" &&
+      !(std::abs(m.actuator.intercept_kPa - m.soft_stress_kPa) <= 1e-9 * std::max(1.0, m.soft_stress_kPa)))
+    a.fail("intercept_kPa", "the soft-tissue stress (" + result_number_text(m.soft_stress_kPa) +
+                                " kPa), as \"uninflated\": \"soft-tissue\" says");
   if (!(m.actuator.intercept_kPa < m.hard_stress_kPa))
     a.fail("intercept_kPa", "the uninflated actuator's stress below the nodule stress (" +
                                 result_number_text(m.hard_stress_kPa) +

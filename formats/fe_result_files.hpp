@@ -6,8 +6,8 @@
 //   stress model   {"version": 1, "kind": "stress_model", "inputs": {"fingertip", "tissue",
 //                   "actuator", "hash"}, "assumptions": {"plane", "element_mm"},
 //                   "tissue": {"indentation_mm", "soft_stress_kPa", "hard_stress_kPa"},
-//                   "actuator": {"press_mm", "loading", "slope", "intercept_kPa", "r_squared",
-//                                "pressures_kPa", "stresses_kPa"},
+//                   "actuator": {"press_mm", "loading", "uninflated", "slope", "intercept_kPa",
+//                                "r_squared", "pressures_kPa", "stresses_kPa"},
 //                   "nodule_pressure_kPa"}
 //     `palprig fe stress-model` writes it; `calibrate fit --stress-model` reads it instead of the
 //     paper's constants: the soft and hard stresses become the calibration's stress model, the
@@ -53,6 +53,12 @@ struct FeStressModelFile {
   // (paper 002's "at the same time": the press rising with the air). Absent in files written
   // before the key existed, which were all press-first.
   std::string loading = "press-first";
+  // What the uninflated actuator renders: "fitted" (the line's own intercept, the stress the
+  // computed actuator gives with no air) or "soft-tissue" (paper 002's reading, "an inactivated
+  // actuator to simulate the situation of no tumor": the intercept is soft_stress_kPa and the air
+  // adds the line's slope to it, so a nodule needs (hard - soft) / slope). Absent in files
+  // written before the key existed, which were all fitted.
+  std::string uninflated = "fitted";
   ActuatorModel actuator;
   double r_squared = 0;
   std::vector<double> pressures_kPa, stresses_kPa;

@@ -63,6 +63,36 @@ TEST(FeCommand, StressModelRoundTripsThroughCalibrateFitAndRunsTheDemo) {
   EXPECT_NE(r.out.find("Every tumor got higher pressure than soft tissue."), std::string::npos) << r.out;
 }
 
+// Paper 002's reading of its actuator (the uninflated actuator stands for healthy tissue): the
+// same solves, the line's slope kept and its intercept moved to the soft stress, so the nodule's
+// air is (hard - soft) / slope; the file says so and calibrate fit takes the line as written.
+TEST(FeCommand, StressModelWithTheUninflatedActuatorAsSoftTissue) {
+  TempDir dir;
+  const std::string fitted = (dir.path() / "fitted.json").string(), soft = (dir.path() / "soft.json").string();
+  const std::string common = palprig_bin() + " fe stress-model --fingertip " + kFe + "fingertip_002.json --tissue " +
+                             kFe + "soft_tissue_002_nodule.json --actuator " + kFe +
+                             "actuator_002.json --element-mm 3 --depth-mm 4 --press-mm 0.5 --loading together "
+                             "--pressures 0,50,100 --out ";
+  auto r = run_process(common + fitted);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  r = run_process(common + soft + " --uninflated soft-tissue");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("the uninflated actuator as soft tissue: stress = "), std::string::npos) << r.out;
+  const FeStressModelFile f = load_stress_model_file(fitted), s = load_stress_model_file(soft);
+  EXPECT_EQ(f.uninflated, "fitted");
+  EXPECT_EQ(s.uninflated, "soft-tissue");
+  EXPECT_NE(f.inputs.hash, s.inputs.hash);  // a cached result of one is not the other
+  EXPECT_DOUBLE_EQ(s.actuator.slope, f.actuator.slope);
+  EXPECT_DOUBLE_EQ(s.actuator.intercept_kPa, s.soft_stress_kPa);
+  EXPECT_NEAR(s.nodule_pressure_kPa, (s.hard_stress_kPa - s.soft_stress_kPa) / s.actuator.slope, 1e-9);
+  EXPECT_LT(s.nodule_pressure_kPa, f.nodule_pressure_kPa);
+  r = run_process(palprig_bin() + " check " + soft);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("(the uninflated actuator as soft tissue)"), std::string::npos) << r.out;
+  r = run_process(common + soft + " --uninflated inflated");
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+}
+
 TEST(FeCommand, IndentWritesTablesAndFigures) {
   TempDir dir;
   const auto out = dir.path() / "indent";

@@ -175,5 +175,28 @@ TEST(FeResultFiles, StressModelSaysHowThePressMetTheAir) {
             "model.json: actuator.loading: one of \"press-first\", \"together\", got \"sideways\"");
 }
 
+TEST(FeResultFiles, StressModelSaysWhatTheUninflatedActuatorRenders) {
+  // Files written before the key existed (the shipped model) used the line's own intercept.
+  EXPECT_EQ(load_stress_model_file(fe_data("stress_model_002.json")).uninflated, "fitted");
+  ScratchDir dir;
+  FeStressModelFile m = small_stress_model(5);  // the soft tissue's 5 kPa
+  m.uninflated = "soft-tissue";
+  const auto path = dir / "model.json";
+  write_stress_model_file(path, m);
+  const FeStressModelFile back = load_stress_model_file(path);
+  EXPECT_EQ(back.uninflated, "soft-tissue");
+  EXPECT_DOUBLE_EQ(back.actuator.intercept_kPa, 5);
+  // "soft-tissue" with an intercept that is not the soft stress says one thing and does another.
+  nlohmann::json doc = stress_model_json(m);
+  doc["actuator"]["intercept_kPa"] = 4.5;
+  EXPECT_EQ(refusal([&] { (void)parse_stress_model(doc, "model.json"); }),
+            "model.json: actuator.intercept_kPa: the soft-tissue stress (5 kPa), as \"uninflated\": "
+            "\"soft-tissue\" says");
+  doc = stress_model_json(m);
+  doc["actuator"]["uninflated"] = "inflated";
+  EXPECT_EQ(refusal([&] { (void)parse_stress_model(doc, "model.json"); }),
+            "model.json: actuator.uninflated: one of \"fitted\", \"soft-tissue\", got \"inflated\"");
+}
+
 }  // namespace
 }  // namespace palprig
