@@ -1,5 +1,6 @@
 #include "formats/fe_result_files.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
