@@ -140,6 +140,7 @@ std::string check_one(const std::filesystem::path& path, const std::string& kind
     std::ostringstream o;
     o << "actuator '" << a.name << "', chamber " << a.chamber_width_mm << " mm, membrane " << a.membrane_thickness_mm
       << " mm (E " << a.membrane.youngs_kPa / 1000 << " MPa), layer " << a.layer_thickness_mm << " mm";
+    if (a.membrane_slides) o << ", the membrane sliding on the substrate";
     return o.str();
   }
   if (kind == "stress-model") {

@@ -164,6 +164,7 @@ ActuatorBody parse_actuator(const nlohmann::json& doc, const std::string& file) 
   const JsonObject membrane = root.object("membrane");
   a.membrane_thickness_mm = membrane.number("thickness_mm", 0.02, 5);
   a.membrane = material_or(membrane, "material", a.membrane);
+  a.membrane_slides = membrane.choice_or("on_substrate", "bonded", {"bonded", "sliding"}) == "sliding";
   membrane.refuse_unknown();
   const JsonObject layer = root.object("layer");
   a.layer_thickness_mm = layer.number("thickness_mm", 0.2, 50);

@@ -45,7 +45,8 @@ QuadMesh mesh_block(const TissueBlock& block, const BlockMeshSizes& sizes);
 
 // Actuator materials: 0 membrane, 1 silicone layer. Boundaries "actuator_top", "chamber" (the
 // membrane's underside over the cavity, where the air pushes), "bonded" (its underside on the
-// substrate), "actuator_left", "actuator_right".
+// substrate: held both ways, or only vertically when ActuatorBody::membrane_slides),
+// "actuator_left", "actuator_right".
 QuadMesh mesh_actuator(const ActuatorBody& body, double element_mm);
 
 // Graded grid coordinates from lo to hi (lo < hi) through every breakpoint, with cells about

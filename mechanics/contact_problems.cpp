@@ -201,6 +201,10 @@ ContactRun run_actuator(const FingertipBody& finger, const ActuatorBody& actuato
   spec.materials = bodies.materials;
   spec.plane = o.solve.plane;
   spec.held = {{"bone"}, {"bonded"}};
+  if (actuator.membrane_slides) {  // on a frictionless substrate: down held, along free
+    spec.held = {{"bone"}};
+    spec.rollers = {{"bonded"}, {"actuator_left"}, {"actuator_right"}};
+  }
   spec.pressures = {{"chamber"}};
   const double softest = std::min(actuator.layer.initial_youngs_kPa(), finger.skin.initial_youngs_kPa());
   spec.contact = contact_between("actuator_top", softest, o.solve);

@@ -70,6 +70,11 @@ struct ActuatorBody {
   double chamber_depth_mm = 2.0;
   double membrane_thickness_mm = 0.25;
   MaterialLaw membrane = table1::membrane();  // E from Shore A 40 (paper 002 eq. 3-4)
+  // How the membrane's underside meets the substrate beside the chamber: bonded (held in both
+  // directions, the paper's adhesive) or sliding (held only vertically: a frictionless rigid
+  // substrate, ABAQUS's default contact; the layers' sides are then held horizontally so the
+  // actuator cannot slide away). Paper 002 does not say which its model used.
+  bool membrane_slides = false;
   double layer_thickness_mm = 3.0;
   MaterialLaw layer = table1::silicone_layer();
 };

@@ -53,6 +53,18 @@ TEST(FeBodyFiles, ShippedFilesArePaper002s) {
   EXPECT_NEAR(a.membrane.youngs_kPa, 1994, 1);  // Shore A 40 through eq. 3-4
 }
 
+TEST(FeBodyFiles, TheMembraneIsBondedUnlessTheFileSaysItSlides) {
+  nlohmann::json doc = shipped("actuator_002.json");
+  EXPECT_FALSE(parse_actuator(doc, "a.json").membrane_slides);  // the paper's adhesive
+  doc["membrane"]["on_substrate"] = "sliding";
+  EXPECT_TRUE(parse_actuator(doc, "a.json").membrane_slides);
+  doc["membrane"]["on_substrate"] = "bonded";
+  EXPECT_FALSE(parse_actuator(doc, "a.json").membrane_slides);
+  doc["membrane"]["on_substrate"] = "glued";
+  EXPECT_EQ(refusal([&] { (void)parse_actuator(doc, "a.json"); }),
+            "a.json: membrane.on_substrate: one of \"bonded\", \"sliding\", got \"glued\"");
+}
+
 TEST(FeBodyFiles, MaterialsDefaultToTable1) {
   nlohmann::json doc = shipped("fingertip_002.json");
   doc.erase("materials");
