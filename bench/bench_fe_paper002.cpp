@@ -81,13 +81,7 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
   ActuatorOptions ao;
   ao.solve = solve;
-  const ContactRun act = run_actuator(finger, actuator, ao);
-  std::vector<double> x, y;
-  for (const auto& s : act.steps) {
-    x.push_back(s.load);
-    y.push_back(s.peak_kPa);
-  }
-  const StressLine line = fit_stress_line(x, y);
+  const StressLine line = fit_stress_line(run_actuator(finger, actuator, ao));
   std::printf("| actuator line R^2 | >= 0.99 | 0.9969 / 0.9998 | %.5f (stress = %.5f x air + %.3f kPa) |\n",
               line.r_squared, line.slope, line.intercept_kPa);
   std::printf(
@@ -99,13 +93,7 @@ int main(int argc, char** argv) {
   // stress), as `fe stress-model --loading together --uninflated soft-tissue` computes it.
   ActuatorOptions together = ao;
   together.loading = ActuatorLoading::together;
-  const ContactRun act_t = run_actuator(finger, actuator, together);
-  std::vector<double> xt, yt;
-  for (const auto& s : act_t.steps) {
-    xt.push_back(s.load);
-    yt.push_back(s.peak_kPa);
-  }
-  const StressLine lt = fit_stress_line(xt, yt);
+  const StressLine lt = fit_stress_line(run_actuator(finger, actuator, together));
   std::printf(
       "| air for the nodule's stress, pressed as the air rises, the uninflated actuator as soft tissue | within "
       "10 %% of 11.75 kPa | 11.75 kPa (slope (7.967 - 4.990) / 11.75 = 0.25336) | %.2f kPa for %.3f over %.3f kPa "
@@ -157,13 +145,7 @@ int main(int argc, char** argv) {
   for (double w : {16.0, 32.0}) {
     ActuatorBody a = actuator;
     a.width_mm = w;
-    const ContactRun r = run_actuator(finger, a, ao);
-    std::vector<double> px, py;
-    for (const auto& s : r.steps) {
-      px.push_back(s.load);
-      py.push_back(s.peak_kPa);
-    }
-    const StressLine l = fit_stress_line(px, py);
+    const StressLine l = fit_stress_line(run_actuator(finger, a, ao));
     std::printf("| actuator %.0f mm wide (24): line %.5f x air + %.3f, R^2 %.5f, air for 7.967: %.2f kPa | | | |\n", w,
                 l.slope, l.intercept_kPa, l.r_squared, (7.967 - l.intercept_kPa) / l.slope);
     std::fflush(stdout);

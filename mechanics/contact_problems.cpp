@@ -303,4 +303,15 @@ StressLine fit_stress_line(const std::vector<double>& x, const std::vector<doubl
   return line;
 }
 
+StressLine fit_stress_line(const ContactRun& run) {
+  std::vector<double> pressure_kPa, stress_kPa;
+  pressure_kPa.reserve(run.steps.size());
+  stress_kPa.reserve(run.steps.size());
+  for (const ContactStep& step : run.steps) {
+    pressure_kPa.push_back(step.load);
+    stress_kPa.push_back(step.peak_kPa);
+  }
+  return fit_stress_line(pressure_kPa, stress_kPa);
+}
+
 }  // namespace palprig::mechanics

@@ -99,6 +99,8 @@ struct StressLine {
   std::size_t points = 0;
 };
 StressLine fit_stress_line(const std::vector<double>& pressure_kPa, const std::vector<double>& stress_kPa);
+// The same over a run's steps: each step's load (the air pressure) against its peak stress.
+StressLine fit_stress_line(const ContactRun& run);
 
 // The peak of one profile (averaged over kStressAveragingLength_mm) and where it is.
 void summarise_profile(ContactStep& step);

@@ -39,5 +39,19 @@ TEST(StressLine, ScatterLowersRSquaredAndTheLineIsTheLeastSquaresOne) {
   EXPECT_NEAR(line.r_squared, 75.0 / 76.0, 1e-12);  // sxy^2 / (sxx syy) = 1000^2 / (5000 x 152/3)
 }
 
+TEST(StressLine, ARunsStepsGiveTheLineOfTheirAirAgainstTheirPeaks) {
+  ContactRun run;
+  for (const auto& [air_kPa, peak_kPa] : {std::pair{0.0, 5.0}, {50.0, 11.0}, {100.0, 15.0}}) {
+    ContactStep step;
+    step.load = air_kPa;
+    step.peak_kPa = peak_kPa;
+    run.steps.push_back(step);
+  }
+  const StressLine line = fit_stress_line(run);
+  EXPECT_EQ(line.points, 3u);
+  EXPECT_DOUBLE_EQ(line.slope, 0.1);
+  EXPECT_NEAR(line.intercept_kPa, 5 + 1.0 / 3, 1e-12);
+}
+
 }  // namespace
 }  // namespace palprig::mechanics
